@@ -1,0 +1,1 @@
+//! squeal-brake (not written yet).

@@ -1,0 +1,1 @@
+//! squeal-eigs (not written yet).

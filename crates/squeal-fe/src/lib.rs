@@ -1,0 +1,1 @@
+//! squeal-fe (not written yet).

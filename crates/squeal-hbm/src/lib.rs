@@ -1,0 +1,1 @@
+//! squeal-hbm (not written yet).

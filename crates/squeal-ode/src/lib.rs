@@ -1,0 +1,1 @@
+//! squeal-ode (not written yet).

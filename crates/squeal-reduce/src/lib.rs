@@ -1,0 +1,1 @@
+//! squeal-reduce (not written yet).

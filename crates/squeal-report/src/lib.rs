@@ -1,0 +1,1 @@
+//! squeal-report (not written yet).

@@ -1,0 +1,4 @@
+#![no_main]
+// Placeholder: the inp reader's fuzz target is being written.
+use libfuzzer_sys::fuzz_target;
+fuzz_target!(|_data: &[u8]| {});
