@@ -1,0 +1,2 @@
+//! Read-time benchmark of the .inp reader (being written).
+fn main() {}

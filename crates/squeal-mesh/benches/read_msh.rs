@@ -1,0 +1,2 @@
+//! Read-time benchmark of the .msh reader (being written).
+fn main() {}
