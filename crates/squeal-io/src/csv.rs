@@ -1,7 +1,6 @@
 //! Minimal CSV output: a header and rows of numbers, written atomically.
 
 use crate::{IoError, atomic_write};
-use std::io::Write;
 use std::path::Path;
 
 /// Writes a CSV table with a header line and one row per entry of `rows`.

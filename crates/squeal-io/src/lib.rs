@@ -23,7 +23,11 @@ pub enum IoError {
     #[error("cannot read {path}: {source}")]
     Read { path: PathBuf, source: io::Error },
     #[error("{path}:{line}: {message}")]
-    Parse { path: PathBuf, line: usize, message: String },
+    Parse {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
 }
 
 /// Writes a file atomically: `fill` writes into a buffered temporary file beside `path`, which
@@ -35,13 +39,19 @@ pub fn atomic_write<F>(path: &Path, fill: F) -> Result<(), IoError>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
-    let wrap = |source| IoError::Write { path: path.to_path_buf(), source };
+    let wrap = |source| IoError::Write {
+        path: path.to_path_buf(),
+        source,
+    };
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     };
     fs::create_dir_all(&dir).map_err(wrap)?;
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
     let result = (|| {
         let file = File::create(&tmp)?;

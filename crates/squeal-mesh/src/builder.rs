@@ -77,18 +77,26 @@ impl MeshBuilder {
 
     /// Connectivity (file ids) of an element defined so far.
     pub fn element_nodes(&self, id: u64) -> Option<&[u64; 10]> {
-        self.element_index.get(&id).map(|&i| &self.elements[i as usize].1)
+        self.element_index
+            .get(&id)
+            .map(|&i| &self.elements[i as usize].1)
     }
 
     /// Adds members (file node ids) to a node set, creating it if needed (an empty set is
     /// kept: the quality checks report it).
     pub fn add_to_node_set(&mut self, name: &str, ids: impl IntoIterator<Item = u64>) {
-        self.node_sets.entry(name.to_string()).or_default().extend(ids);
+        self.node_sets
+            .entry(name.to_string())
+            .or_default()
+            .extend(ids);
     }
 
     /// Adds members (file element ids) to an element set, creating it if needed.
     pub fn add_to_element_set(&mut self, name: &str, ids: impl IntoIterator<Item = u64>) {
-        self.element_sets.entry(name.to_string()).or_default().extend(ids);
+        self.element_sets
+            .entry(name.to_string())
+            .or_default()
+            .extend(ids);
     }
 
     /// Adds or replaces a material.
@@ -134,7 +142,10 @@ impl MeshBuilder {
                     Some(&i) => conn[k] = i,
                     None => {
                         ok = false;
-                        dangling.push(Dangling::ElementNode { element: *id, node: *n });
+                        dangling.push(Dangling::ElementNode {
+                            element: *id,
+                            node: *n,
+                        });
                     }
                 }
             }
@@ -150,7 +161,10 @@ impl MeshBuilder {
             for id in ids {
                 match self.node_index.get(&id) {
                     Some(&i) => v.push(i),
-                    None => dangling.push(Dangling::NodeSetMember { set: name.clone(), node: id }),
+                    None => dangling.push(Dangling::NodeSetMember {
+                        set: name.clone(),
+                        node: id,
+                    }),
                 }
             }
             v.sort_unstable();
@@ -165,8 +179,12 @@ impl MeshBuilder {
                     Some(&i) => v.push(i),
                     // Skipped (non-tet) elements and elements dropped for a missing node are
                     // already accounted for.
-                    None if self.skipped_elements.contains(&id) || self.element_index.contains_key(&id) => {}
-                    None => dangling.push(Dangling::ElementSetMember { set: name.clone(), element: id }),
+                    None if self.skipped_elements.contains(&id)
+                        || self.element_index.contains_key(&id) => {}
+                    None => dangling.push(Dangling::ElementSetMember {
+                        set: name.clone(),
+                        element: id,
+                    }),
                 }
             }
             v.sort_unstable();
@@ -194,12 +212,17 @@ mod tests {
     #[test]
     fn resolves_ids_and_reports_dangling_references() {
         let mut b = MeshBuilder::new();
-        for (k, id) in [10u64, 20, 30, 40, 50, 60, 70, 80, 90, 100].iter().enumerate() {
+        for (k, id) in [10u64, 20, 30, 40, 50, 60, 70, 80, 90, 100]
+            .iter()
+            .enumerate()
+        {
             b.add_node(*id, [k as f64, 0.0, 0.0]).unwrap();
         }
         assert!(b.add_node(10, [0.0; 3]).is_err());
-        b.add_element(7, [10, 20, 30, 40, 50, 60, 70, 80, 90, 100]).unwrap();
-        b.add_element(8, [10, 20, 30, 40, 50, 60, 70, 80, 90, 999]).unwrap();
+        b.add_element(7, [10, 20, 30, 40, 50, 60, 70, 80, 90, 100])
+            .unwrap();
+        b.add_element(8, [10, 20, 30, 40, 50, 60, 70, 80, 90, 999])
+            .unwrap();
         b.skip_element(9);
         b.add_to_node_set("A", [30, 10, 10, 555]);
         b.add_to_element_set("E", [7, 8, 9, 11]);
@@ -213,9 +236,18 @@ mod tests {
         assert_eq!(
             m.dangling,
             vec![
-                Dangling::ElementNode { element: 8, node: 999 },
-                Dangling::NodeSetMember { set: "A".into(), node: 555 },
-                Dangling::ElementSetMember { set: "E".into(), element: 11 },
+                Dangling::ElementNode {
+                    element: 8,
+                    node: 999
+                },
+                Dangling::NodeSetMember {
+                    set: "A".into(),
+                    node: 555
+                },
+                Dangling::ElementSetMember {
+                    set: "E".into(),
+                    element: 11
+                },
             ]
         );
     }

@@ -28,17 +28,32 @@ impl fmt::Display for Location {
 #[derive(Debug, thiserror::Error)]
 pub enum MeshError {
     #[error("{}: {source}", file.display())]
-    Io { file: PathBuf, source: std::io::Error },
+    Io {
+        file: PathBuf,
+        source: std::io::Error,
+    },
     #[error("{}{location}: {message}", file.display())]
-    Invalid { file: PathBuf, location: Location, message: String },
+    Invalid {
+        file: PathBuf,
+        location: Location,
+        message: String,
+    },
     #[error("{}: unknown mesh format (expected a .inp or .msh file)", file.display())]
     UnknownFormat { file: PathBuf },
 }
 
 impl MeshError {
     /// Shorthand for [`MeshError::Invalid`].
-    pub fn invalid(file: impl Into<PathBuf>, location: Location, message: impl Into<String>) -> Self {
-        MeshError::Invalid { file: file.into(), location, message: message.into() }
+    pub fn invalid(
+        file: impl Into<PathBuf>,
+        location: Location,
+        message: impl Into<String>,
+    ) -> Self {
+        MeshError::Invalid {
+            file: file.into(),
+            location,
+            message: message.into(),
+        }
     }
 }
 
@@ -52,6 +67,12 @@ pub struct Warning {
 
 impl fmt::Display for Warning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}{}: {}", self.file.display(), self.location, self.message)
+        write!(
+            f,
+            "{}{}: {}",
+            self.file.display(),
+            self.location,
+            self.message
+        )
     }
 }

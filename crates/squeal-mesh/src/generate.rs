@@ -26,7 +26,14 @@ pub fn box_tet10_origin(origin: [f64; 3], lengths: [f64; 3], cells: [usize; 3]) 
             origin[2] + lengths[2] * k as f64 / (2 * nz) as f64,
         ]
     };
-    const PERMS: [[usize; 3]; 6] = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
+    const PERMS: [[usize; 3]; 6] = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
     let mut b = MeshBuilder::new();
     let mut used = std::collections::BTreeSet::new();
     let mut elements = Vec::new();
@@ -51,7 +58,11 @@ pub fn box_tet10_origin(origin: [f64; 3], lengths: [f64; 3], cells: [usize; 3]) 
                         used.insert(*p);
                     }
                     for (e, [a, c]) in EDGES.iter().enumerate() {
-                        let m = [(v[*a][0] + v[*c][0]) / 2, (v[*a][1] + v[*c][1]) / 2, (v[*a][2] + v[*c][2]) / 2];
+                        let m = [
+                            (v[*a][0] + v[*c][0]) / 2,
+                            (v[*a][1] + v[*c][1]) / 2,
+                            (v[*a][2] + v[*c][2]) / 2,
+                        ];
                         ids[4 + e] = grid_id(m[0], m[1], m[2]);
                         used.insert(m);
                     }
@@ -81,7 +92,10 @@ pub fn box_tet10_origin(origin: [f64; 3], lengths: [f64; 3], cells: [usize; 3]) 
     for (e, ids) in elements.into_iter().enumerate() {
         let _ = b.add_element(e as u64 + 1, ids);
     }
-    for (name, ids) in ["XMIN", "XMAX", "YMIN", "YMAX", "ZMIN", "ZMAX"].iter().zip(faces) {
+    for (name, ids) in ["XMIN", "XMAX", "YMIN", "YMAX", "ZMIN", "ZMAX"]
+        .iter()
+        .zip(faces)
+    {
         b.add_to_node_set(name, ids);
     }
     b.add_to_element_set("ALL", 1..=(6 * nx * ny * nz) as u64);
@@ -98,7 +112,9 @@ mod tests {
         let m = box_tet10([2.0, 1.0, 0.5], [3, 2, 1]);
         assert_eq!(m.num_elements(), 36);
         // Nodes of a Kuhn tet10 mesh: the doubled grid minus the points no edge reaches.
-        let total: f64 = (0..m.num_elements()).map(|e| volume(&m.element_coords(e))).sum();
+        let total: f64 = (0..m.num_elements())
+            .map(|e| volume(&m.element_coords(e)))
+            .sum();
         assert!((total - 1.0).abs() < 1e-14, "volume {total}");
         for e in 0..m.num_elements() {
             assert!(volume(&m.element_coords(e)) > 0.0);

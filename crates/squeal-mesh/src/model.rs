@@ -38,7 +38,11 @@ pub enum Elastic {
     Isotropic { young: f64, poisson: f64 },
     /// Abaqus `TYPE=ENGINEERING CONSTANTS` in the global axes: E1, E2, E3, nu12, nu13, nu23,
     /// G12, G13, G23.
-    EngineeringConstants { e: [f64; 3], nu: [f64; 3], g: [f64; 3] },
+    EngineeringConstants {
+        e: [f64; 3],
+        nu: [f64; 3],
+        g: [f64; 3],
+    },
 }
 
 /// A material: elastic constants and density (kg/m^3), each present if the file gives it.
@@ -77,7 +81,11 @@ impl Mesh {
 
     /// Map from file node id to node index.
     pub fn node_index_map(&self) -> HashMap<u64, u32> {
-        self.node_ids.iter().enumerate().map(|(i, &id)| (id, i as u32)).collect()
+        self.node_ids
+            .iter()
+            .enumerate()
+            .map(|(i, &id)| (id, i as u32))
+            .collect()
     }
 
     /// Node set by name, ASCII case-insensitive (Abaqus names are case-insensitive).

@@ -18,8 +18,12 @@ pub const GMSH_TO_CANONICAL: [usize; 10] = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8];
 
 /// The four faces as 6-node triangles `[v0, v1, v2, m01, m12, m20]` (local node numbers),
 /// oriented so that `(x1 - x0) × (x2 - x0)` points out of a positively oriented element.
-pub const FACES: [[usize; 6]; 4] =
-    [[0, 2, 1, 6, 5, 4], [0, 1, 3, 4, 8, 7], [1, 2, 3, 5, 9, 8], [0, 3, 2, 7, 9, 6]];
+pub const FACES: [[usize; 6]; 4] = [
+    [0, 2, 1, 6, 5, 4],
+    [0, 1, 3, 4, 8, 7],
+    [1, 2, 3, 5, 9, 8],
+    [0, 3, 2, 7, 9, 6],
+];
 
 /// Reference coordinates of the ten nodes.
 pub const NODES_REF: [[f64; 3]; 10] = [
@@ -40,7 +44,12 @@ fn barycentric(xi: [f64; 3]) -> [f64; 4] {
 }
 
 /// Gradients of the barycentric coordinates with respect to `(ξ, η, ζ)`.
-const DL: [[f64; 3]; 4] = [[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+const DL: [[f64; 3]; 4] = [
+    [-1.0, -1.0, -1.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.0, 0.0, 1.0],
+];
 
 /// Shape function values at reference point `xi`.
 pub fn shape(xi: [f64; 3]) -> [f64; 10] {
@@ -88,7 +97,8 @@ pub fn jacobian(x: &[[f64; 3]; 10], xi: [f64; 3]) -> [[f64; 3]; 3] {
 
 /// Determinant of a 3×3 matrix.
 pub fn det3(m: &[[f64; 3]; 3]) -> f64 {
-    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
 }
 
@@ -108,7 +118,10 @@ pub fn volume(x: &[[f64; 3]; 10]) -> f64 {
         ([B, C, B], 9.0 / 20.0),
         ([B, B, C], 9.0 / 20.0),
     ];
-    pts.iter().map(|(p, w)| w * det3(&jacobian(x, *p))).sum::<f64>() / 6.0
+    pts.iter()
+        .map(|(p, w)| w * det3(&jacobian(x, *p)))
+        .sum::<f64>()
+        / 6.0
 }
 
 #[cfg(test)]
@@ -142,7 +155,11 @@ mod tests {
             for i in 0..10 {
                 let fd = (na[i] - nb[i]) / (2.0 * h);
                 // Central differences of a quadratic are exact up to round-off.
-                assert!((fd - g[i][j]).abs() < 1e-9, "dN{i}/dxi{j}: {fd} vs {}", g[i][j]);
+                assert!(
+                    (fd - g[i][j]).abs() < 1e-9,
+                    "dN{i}/dxi{j}: {fd} vs {}",
+                    g[i][j]
+                );
             }
         }
     }
