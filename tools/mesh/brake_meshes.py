@@ -1,0 +1,365 @@
+#!/usr/bin/env python3
+"""Generate squeal's bundled disc and pad meshes (10-node tetrahedra) with Gmsh.
+
+For each refinement level (coarse, medium, fine) and each part (disc, pad) this writes
+``meshes/<part>_<level>.msh`` (Gmsh MSH 4.1 ASCII, physical groups named) and
+``meshes/<part>_<level>.inp`` (Abaqus input: *NODE, *ELEMENT TYPE=C3D10, *NSET, materials and
+sections). The geometry, the sets and the materials are described in ``meshes/README.md``.
+
+Usage (from the repository root)::
+
+    python3 tools/mesh/brake_meshes.py                  # all levels into meshes/
+    python3 tools/mesh/brake_meshes.py --levels coarse  # one level
+    python3 tools/mesh/check_meshes.py                  # verify what was written
+
+The output is deterministic: Gmsh runs on one thread with its serial Delaunay mesher, and
+nothing time- or host-dependent is written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+import time
+from dataclasses import dataclass
+
+import gmsh
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import abaqus_inp  # noqa: E402
+import brake_geometry as geo  # noqa: E402
+
+# The committed meshes were made with this Gmsh (tools/mesh/requirements.txt pins it); another
+# version meshes validly but not byte for byte the same.
+GMSH_VERSION = "4.15.2"
+
+
+@dataclass(frozen=True)
+class Level:
+    """Target element sizes (m) of one refinement level."""
+
+    name: str
+    disc_size: float  # disc away from the pad footprint
+    contact_size: float  # disc top face under the pad (the footprint)
+    pad_size: float  # whole pad (lining and backplate)
+    transition: float  # distance over which the disc size grows from contact to disc size
+    two_layers: bool  # split the disc annulus and the lining at mid-thickness
+    netgen: bool  # also run Gmsh's Netgen optimizer (lifts the worst tets of the finer levels)
+
+
+LEVELS = {
+    # one element through the disc and the lining (the node budget of ~5k allows no more)
+    "coarse": Level(
+        "coarse",
+        disc_size=0.025,
+        contact_size=0.013,
+        pad_size=0.013,
+        transition=0.02,
+        two_layers=False,
+        netgen=False,
+    ),
+    "medium": Level(
+        "medium",
+        disc_size=0.015,
+        contact_size=0.008,
+        pad_size=0.008,
+        transition=0.02,
+        two_layers=True,
+        netgen=True,
+    ),
+    "fine": Level(
+        "fine",
+        disc_size=0.0072,
+        contact_size=0.004,
+        pad_size=0.004,
+        transition=0.02,
+        two_layers=True,
+        netgen=True,
+    ),
+}
+
+
+def set_common_options(level: Level, max_size: float) -> None:
+    """Mesher options shared by both parts: second order, curved boundary, serial Delaunay."""
+    opt = gmsh.option.setNumber
+    opt("General.Terminal", 0)
+    opt("General.NumThreads", 1)
+    opt("Mesh.Algorithm", 6)  # 2-D: Frontal-Delaunay
+    opt("Mesh.Algorithm3D", 1)  # 3-D: Delaunay (serial, deterministic)
+    opt("Mesh.ElementOrder", 2)
+    opt("Mesh.SecondOrderLinear", 0)  # midside nodes on the CAD surfaces (curved boundary)
+    opt("Mesh.HighOrderOptimize", 0)
+    opt("Mesh.Optimize", 1)
+    opt("Mesh.OptimizeNetgen", 1 if level.netgen else 0)
+    opt("Mesh.MeshSizeFromPoints", 0)
+    opt("Mesh.MeshSizeFromCurvature", 0)
+    opt("Mesh.MeshSizeExtendFromBoundary", 0)
+    opt("Mesh.MeshSizeMax", max_size)
+    opt("Mesh.MeshSizeMin", 0.0)
+    opt("Mesh.MshFileVersion", 4.1)
+    opt("Mesh.Binary", 0)
+    opt("Mesh.SaveAll", 0)
+    opt("Geometry.OCCParallel", 0)
+
+
+def patch_sector_faces(z: float) -> list[int]:
+    """The 3 x 3 contact patches as OCC faces at height z, numbered as geo.patch_index."""
+    occ = gmsh.model.occ
+    radii = geo.patch_radii()
+    angles = geo.patch_angles()
+    centre = occ.addPoint(0.0, 0.0, z)
+    pts = [[occ.addPoint(r * math.cos(a), r * math.sin(a), z) for a in angles] for r in radii]
+    arcs = [
+        [occ.addCircleArc(pts[i][j], centre, pts[i][j + 1]) for j in range(3)] for i in range(4)
+    ]
+    rays = [[occ.addLine(pts[i][j], pts[i + 1][j]) for j in range(4)] for i in range(3)]
+    faces = []
+    for i in range(3):
+        for j in range(3):
+            loop = occ.addCurveLoop([arcs[i][j], rays[i][j + 1], -arcs[i + 1][j], -rays[i][j]])
+            faces.append(occ.addPlaneSurface([loop]))
+    occ.remove([(0, centre)])
+    return faces
+
+
+def tube(r_in: float, r_out: float, z0: float, z1: float) -> list[tuple[int, int]]:
+    """A full annular cylinder r_in..r_out, z0..z1 about the z axis."""
+    occ = gmsh.model.occ
+    outer = occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, r_out)
+    inner = occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, r_in)
+    out, _ = occ.cut([(3, outer)], [(3, inner)])
+    return out
+
+
+def sector(r_in: float, r_out: float, z0: float, z1: float) -> list[tuple[int, int]]:
+    """The pad's annular sector r_in..r_out, z0..z1, angles geo.PAD_ANGLE_MIN..MAX."""
+    occ = gmsh.model.occ
+    span = geo.PAD_ANGLE_MAX - geo.PAD_ANGLE_MIN
+    outer = occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, r_out, angle=span)
+    inner = occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, r_in, angle=span)
+    out, _ = occ.cut([(3, outer)], [(3, inner)])
+    occ.rotate(out, 0, 0, 0, 0, 0, 1, geo.PAD_ANGLE_MIN)
+    return out
+
+
+def add_points(coords: list[tuple[float, float, float]]) -> list[int]:
+    occ = gmsh.model.occ
+    return [occ.addPoint(x, y, z) for (x, y, z) in coords]
+
+
+def faces_at(dim_tags: list[tuple[int, int]], predicate) -> list[int]:
+    """Tags of the surfaces among dim_tags whose bounding box satisfies predicate."""
+    out = []
+    for dim, tag in dim_tags:
+        if dim == 2 and predicate(gmsh.model.getBoundingBox(dim, tag)):
+            out.append(tag)
+    return sorted(out)
+
+
+def physical(dim: int, tags: list[int], name: str) -> None:
+    if not tags:
+        raise RuntimeError(f"physical group {name} would be empty")
+    gmsh.model.addPhysicalGroup(dim, tags, name=name)
+
+
+def check_cad_volume(volumes: list[int], exact: float, what: str) -> None:
+    """The OCC solids' volume equals the analytic one (guards the CAD construction)."""
+    got = sum(gmsh.model.occ.getMass(3, v) for v in volumes)
+    # OCC integrates the exact B-rep (planes, cylinders) by Gauss rules: ~1e-12 relative
+    if abs(got - exact) > 1e-9 * exact:
+        raise RuntimeError(f"{what}: CAD volume {got!r} differs from the analytic {exact!r}")
+
+
+def contact_size_field(patches: list[int], level: Level) -> None:
+    """Mesh size: contact_size on the footprint patches, growing to disc_size away from them."""
+    field = gmsh.model.mesh.field
+    dist = field.add("Distance")
+    field.setNumbers(dist, "SurfacesList", patches)
+    field.setNumber(dist, "Sampling", 40)
+    thr = field.add("Threshold")
+    field.setNumber(thr, "InField", dist)
+    field.setNumber(thr, "SizeMin", level.contact_size)
+    field.setNumber(thr, "SizeMax", level.disc_size)
+    field.setNumber(thr, "DistMin", 0.0)
+    field.setNumber(thr, "DistMax", level.transition)
+    field.setAsBackgroundMesh(thr)
+
+
+def build_disc(level: Level) -> None:
+    """Disc: braking annulus, hat wall and hub flange, top face under the pad in 9 patches."""
+    occ = gmsh.model.occ
+    gmsh.model.add(f"disc_{level.name}")
+    set_common_options(level, level.disc_size)
+    # The annulus as two half-thickness layers sharing a conforming mid-plane face: no tet can
+    # reach from one braking face to the other, so there are >= 2 elements through the thickness.
+    if level.two_layers:
+        annulus = tube(geo.DISC_R_IN, geo.DISC_R_OUT, geo.DISC_Z_BOTTOM, geo.DISC_Z_MID)
+        annulus += tube(geo.DISC_R_IN, geo.DISC_R_OUT, geo.DISC_Z_MID, geo.DISC_Z_TOP)
+    else:
+        annulus = tube(geo.DISC_R_IN, geo.DISC_R_OUT, geo.DISC_Z_BOTTOM, geo.DISC_Z_TOP)
+    parts = (
+        annulus
+        + tube(geo.DISC_R_IN, geo.HAT_R_OUT, geo.FLANGE_Z_TOP, geo.DISC_Z_BOTTOM)
+        + tube(geo.BORE_R, geo.HAT_R_OUT, geo.FLANGE_Z_BOTTOM, geo.FLANGE_Z_TOP)
+    )
+    patches_in = patch_sector_faces(geo.DISC_Z_TOP)
+    out, out_map = occ.fragment(parts, [(2, f) for f in patches_in])
+    patch_tags = [_single_child(out_map[len(parts) + k], 2) for k in range(9)]
+    volumes = sorted(t for d, t in out if d == 3)
+    check_cad_volume(volumes, geo.disc_volume(), "disc")
+    contact_pts = add_points(geo.contact_points(geo.DISC_Z_TOP))
+    occ.synchronize()
+
+    for k, p in enumerate(contact_pts):
+        gmsh.model.mesh.embed(0, [p], 2, patch_tags[k])
+    boundary = gmsh.model.getBoundary([(3, v) for v in volumes], oriented=False)
+    clamp = faces_at(
+        boundary,
+        lambda b: abs(b[2] - geo.FLANGE_Z_BOTTOM) < 1e-6 and abs(b[5] - geo.FLANGE_Z_BOTTOM) < 1e-6,
+    )
+
+    physical(3, volumes, "DISC")
+    physical(2, clamp, "CLAMP")
+    physical(2, patch_tags, "CONTACT_FACE")
+    for k, tag in enumerate(patch_tags):
+        physical(2, [tag], f"CONTACT_PATCH_{k + 1}")
+    physical(0, contact_pts, "CONTACT")
+    contact_size_field(patch_tags, level)
+
+
+def build_pad(level: Level) -> None:
+    """Pad: lining and backplate sectors fragmented together, friction face split into 9 patches."""
+    occ = gmsh.model.occ
+    gmsh.model.add(f"pad_{level.name}")
+    set_common_options(level, level.pad_size)
+    # The lining as two half-thickness layers (see build_disc): >= 2 elements through it.
+    if level.two_layers:
+        lining = sector(geo.PAD_R_IN, geo.PAD_R_OUT, geo.LINING_Z_BOTTOM, geo.LINING_Z_MID)
+        lining += sector(geo.PAD_R_IN, geo.PAD_R_OUT, geo.LINING_Z_MID, geo.LINING_Z_TOP)
+    else:
+        lining = sector(geo.PAD_R_IN, geo.PAD_R_OUT, geo.LINING_Z_BOTTOM, geo.LINING_Z_TOP)
+    backplate = sector(geo.PAD_R_IN, geo.PAD_R_OUT, geo.LINING_Z_TOP, geo.BACKPLATE_Z_TOP)
+    patches_in = patch_sector_faces(geo.LINING_Z_BOTTOM)
+    solids = lining + backplate
+    out, out_map = occ.fragment(solids, [(2, f) for f in patches_in])
+    lining_vols = sorted(t for k in range(len(lining)) for d, t in out_map[k] if d == 3)
+    backplate_vols = sorted(
+        t for k in range(len(lining), len(solids)) for d, t in out_map[k] if d == 3
+    )
+    patch_tags = [_single_child(out_map[len(solids) + k], 2) for k in range(9)]
+    check_cad_volume(lining_vols, geo.lining_volume(), "lining")
+    check_cad_volume(backplate_vols, geo.backplate_volume(), "backplate")
+    contact_pts = add_points(geo.contact_points(geo.LINING_Z_BOTTOM))
+    piston_pts = add_points(geo.piston_points())
+    occ.synchronize()
+
+    for k, p in enumerate(contact_pts):
+        gmsh.model.mesh.embed(0, [p], 2, patch_tags[k])
+    back_boundary = gmsh.model.getBoundary([(3, v) for v in backplate_vols], oriented=False)
+    back_face = faces_at(
+        back_boundary,
+        lambda b: abs(b[2] - geo.BACKPLATE_Z_TOP) < 1e-6 and abs(b[5] - geo.BACKPLATE_Z_TOP) < 1e-6,
+    )
+    if len(back_face) != 1:
+        raise RuntimeError(f"expected one backplate back face, found {back_face}")
+    gmsh.model.mesh.embed(0, piston_pts, 2, back_face[0])
+    abutment = sector_end_faces(back_boundary)
+    if len(abutment) != 2:
+        raise RuntimeError(f"expected two backplate end faces, found {abutment}")
+
+    physical(3, lining_vols, "LINING")
+    physical(3, backplate_vols, "BACKPLATE")
+    physical(2, patch_tags, "CONTACT_FACE")
+    for k, tag in enumerate(patch_tags):
+        physical(2, [tag], f"CONTACT_PATCH_{k + 1}")
+    physical(2, abutment, "ABUTMENT")
+    physical(0, contact_pts, "CONTACT")
+    physical(0, piston_pts, "PISTON")
+
+
+def sector_end_faces(dim_tags: list[tuple[int, int]]) -> list[int]:
+    """Planar faces among dim_tags lying in one of the two radial planes at the sector's ends."""
+    out = []
+    for dim, tag in dim_tags:
+        if dim != 2 or gmsh.model.getType(dim, tag) != "Plane":
+            continue
+        x, y, _ = gmsh.model.occ.getCenterOfMass(dim, tag)
+        for angle in (geo.PAD_ANGLE_MIN, geo.PAD_ANGLE_MAX):
+            # the centroid lies on the radial line at this angle, on the pad's side of the axis
+            along = x * math.cos(angle) + y * math.sin(angle)
+            across = -x * math.sin(angle) + y * math.cos(angle)
+            if abs(across) < 1e-9 and along > 0.0:
+                out.append(tag)
+    return sorted(out)
+
+
+def _single_child(children: list[tuple[int, int]], dim: int) -> int:
+    tags = [t for d, t in children if d == dim]
+    if len(tags) != 1:
+        raise RuntimeError(f"expected one child of dimension {dim}, found {children}")
+    return tags[0]
+
+
+def mesh_and_write(part: str, level: Level, out_dir: str) -> dict:
+    """Mesh the current model (second order), renumber, write .msh and .inp; return counts."""
+    gmsh.model.mesh.generate(3)
+    gmsh.model.mesh.setOrder(2)
+    gmsh.model.mesh.renumberNodes()
+    gmsh.model.mesh.renumberElements()
+    base = os.path.join(out_dir, f"{part}_{level.name}")
+    gmsh.write(base + ".msh")
+    counts = abaqus_inp.write_inp(base + ".inp", part, level.name, gmsh.__version__)
+    tets, _ = gmsh.model.mesh.getElementsByType(abaqus_inp.GMSH_TET10)
+    gamma = gmsh.model.mesh.getElementQualities(tets, "gamma")
+    counts["min_gamma"] = float(min(gamma))
+    return counts
+
+
+def generate(levels: list[str], parts: list[str], out_dir: str) -> None:
+    """Write <part>_<level>.msh and .inp into out_dir for every level and part named."""
+    if gmsh.__version__ != GMSH_VERSION:
+        print(
+            f"warning: Gmsh {gmsh.__version__}, not {GMSH_VERSION}: the meshes will differ from "
+            "the committed ones",
+            file=sys.stderr,
+        )
+    os.makedirs(out_dir, exist_ok=True)
+    gmsh.initialize(["brake_meshes"], readConfigFiles=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    try:
+        for name in levels:
+            level = LEVELS[name]
+            for part in parts:
+                start = time.perf_counter()
+                gmsh.clear()
+                if part == "disc":
+                    build_disc(level)
+                else:
+                    build_pad(level)
+                counts = mesh_and_write(part, level, out_dir)
+                secs = time.perf_counter() - start
+                print(
+                    f"{part}_{name}: {counts['nodes']} nodes, {counts['elements']} C3D10, "
+                    f"worst tet shape (gamma) {counts['min_gamma']:.3f}, {secs:.1f} s",
+                    flush=True,
+                )
+    finally:
+        gmsh.finalize()
+
+
+def main(argv: list[str] | None = None) -> int:
+    here = os.path.dirname(os.path.abspath(__file__))
+    default_out = os.path.normpath(os.path.join(here, "..", "..", "meshes"))
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--levels", nargs="+", choices=list(LEVELS), default=list(LEVELS))
+    ap.add_argument("--parts", nargs="+", choices=["disc", "pad"], default=["disc", "pad"])
+    ap.add_argument("--out-dir", default=default_out)
+    args = ap.parse_args(argv)
+    generate(args.levels, args.parts, args.out_dir)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
