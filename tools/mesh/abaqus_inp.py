@@ -123,9 +123,10 @@ def write_inp(path: str, part: str, level: str, gmsh_version: str) -> dict:
         mat = SECTION_MATERIAL[name]
         lines.append(f"*MATERIAL, NAME={mat.name}")
         lines.append("*ELASTIC")
-        lines.append(f"{_fmt(mat.young)}, {_fmt(mat.poisson)}")
+        # the material constants have few digits: %g writes them as an engineer would (2e+09)
+        lines.append(f"{mat.young:g}, {mat.poisson:g}")
         lines.append("*DENSITY")
-        lines.append(_fmt(mat.density))
+        lines.append(f"{mat.density:g}")
         lines.append(f"*SOLID SECTION, ELSET={name}, MATERIAL={mat.name}")
 
     with open(path, "w", encoding="ascii", newline="\n") as f:

@@ -311,6 +311,8 @@ def check_contact_sets(
         )
     contact = mesh.nsets.get("CONTACT", [])
     rep.check(len(contact) == 9, f"{tag}: CONTACT has {len(contact)} nodes, not 9")
+    # patch order is also id order, so a reader that sorts the set keeps the pairing
+    rep.check(contact == sorted(contact), f"{tag}: CONTACT ids not ascending in patch order")
     table = node_table(mesh)
     xyz = np.array([table[i] for i in contact]) if contact else np.zeros((0, 3))
     expect_xyz = np.array(geo.contact_points(z_face))
@@ -355,6 +357,7 @@ def check_pad(rep: Report, tag: str, mesh: InpMesh, x: dict) -> dict:
     table = node_table(mesh)
     piston = mesh.nsets.get("PISTON", [])
     rep.check(len(piston) == 4, f"{tag}: PISTON has {len(piston)} nodes, not 4")
+    rep.check(piston == sorted(piston), f"{tag}: PISTON ids not ascending in point order")
     if len(piston) == 4:
         err = np.abs(np.array([table[i] for i in piston]) - np.array(geo.piston_points())).max()
         rep.check(err <= GEOM_TOL, f"{tag}: PISTON nodes {err:.2e} m from the piston points")
