@@ -1,1 +1,44 @@
-fn main() {}
+//! `squeal`: disc-brake squeal prediction from tetrahedral meshes to limit cycles.
+//!
+//! Run `squeal --help` for the commands. Every command reports errors with their context and
+//! exits non-zero; output files are written atomically.
+
+mod commands;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "squeal", version, about = "Disc-brake squeal: meshes -> Craig-Bampton brake -> stability -> CHBM limit cycles")]
+struct Cli {
+    /// Worker threads (default: all cores). Results are bit-identical for any count.
+    #[arg(long, global = true)]
+    threads: Option<usize>,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Inspect and convert tet10 meshes (Abaqus .inp, Gmsh .msh)
+    #[command(subcommand)]
+    Mesh(commands::mesh::MeshCommand),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    if let Some(n) = cli.threads {
+        // A second initialisation cannot happen here: this is the only call.
+        let _ = rayon::ThreadPoolBuilder::new().num_threads(n.max(1)).build_global();
+    }
+    let result = match cli.command {
+        Command::Mesh(cmd) => commands::mesh::run(cmd),
+    };
+    match result {
+        Ok(code) => code,
+        Err(err) => {
+            eprintln!("error: {err:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,1 +1,3 @@
-//! squeal-reduce (not written yet).
+//! Craig–Bampton reduction (eqs 1–7 of Coudeyras, Sinou & Nacivet 2009) and reduced-model files.
+
+pub mod rom;

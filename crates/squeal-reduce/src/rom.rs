@@ -1,0 +1,466 @@
+//! The reduced-model file (`.rom`): one versioned format for the reduced brake.
+//!
+//! The container is the [safetensors](https://github.com/huggingface/safetensors) layout:
+//! an 8-byte little-endian header length `N`, `N` bytes of JSON describing each array
+//! (`dtype`, `shape`, byte range), then the arrays' raw little-endian bytes, row-major.
+//! The JSON's `__metadata__.squeal` entry holds this module's [`RomHeader`] as a JSON string:
+//! format name and version, tool version, and for each part the mesh it came from (path and
+//! SHA-256), materials, restraints, interface model, retained points with coordinates, the
+//! label of every reduced dof, and the fixed-interface frequencies.
+//!
+//! Arrays, for each part `p` (`disc`, `pad`):
+//! - `p.K`, `p.M` — reduced stiffness and mass (eqs 6–7), `n x n`, F64;
+//! - `p.basis` — the Craig–Bampton basis `[T_C T_phi]` on the part's free dofs,
+//!   `n_free x n`, F64 (present unless the model was written without it);
+//! - `p.dof_node`, `p.dof_dir` — the mesh node id (U64) and direction (U8, 0 = x) of each
+//!   basis row, so that `u_mesh = basis @ q` can be put back on the mesh.
+//!
+//! Reading from Python with numpy alone is shown in `docs/rom-format.md`.
+
+use faer::Mat;
+use safetensors::tensor::{Dtype, SafeTensors, TensorView};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Name of the format in the header.
+pub const FORMAT: &str = "squeal-rom";
+/// Version of the format written by this code; readers refuse newer major versions.
+pub const VERSION: u32 = 1;
+
+/// Errors reading or writing a reduced-model file.
+#[derive(Debug, thiserror::Error)]
+pub enum RomError {
+    #[error("{}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error(transparent)]
+    Write(#[from] squeal_io::IoError),
+    #[error("{}: not a reduced-model file: {message}", path.display())]
+    Format { path: PathBuf, message: String },
+    #[error("{}: format version {found} is newer than this squeal reads ({VERSION})", path.display())]
+    Version { path: PathBuf, found: u32 },
+    #[error("cannot serialize the reduced model: {0}")]
+    Serialize(String),
+}
+
+/// How a part's contact points are tied to its mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum InterfaceKind {
+    /// Each contact point is one mesh node (the paper's model).
+    Node,
+    /// Each contact point is the area-weighted mean motion of a patch of the contact face.
+    Patch,
+}
+
+/// What a retained interface point is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PointRole {
+    Contact,
+    Piston,
+}
+
+/// A retained interface point.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct InterfacePoint {
+    pub role: PointRole,
+    /// The mesh node id (node interface and piston points).
+    pub node_id: Option<u64>,
+    /// The patch number, 1-based (patch interface).
+    pub patch: Option<usize>,
+    /// Coordinates: the node's, or the patch's centroid.
+    pub position: [f64; 3],
+    /// Patch area (patch interface).
+    pub area: Option<f64>,
+}
+
+/// The meaning of one reduced dof.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+pub enum DofLabel {
+    /// Physical motion of interface point `point` (index into `points`) along `direction`
+    /// (0 = x, 1 = y, 2 = z): a constraint-mode coordinate.
+    Point { point: usize, direction: u8 },
+    /// Amplitude of fixed-interface mode `mode` (0-based, ascending frequency).
+    Mode { mode: usize },
+}
+
+/// The mesh a part was reduced from.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MeshInfo {
+    pub path: String,
+    pub sha256: String,
+    pub nodes: usize,
+    pub elements: usize,
+}
+
+/// A material as used for a part's element set.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MaterialInfo {
+    pub element_set: String,
+    /// Human-readable description (`isotropic E=..., nu=...`, ...).
+    pub description: String,
+    pub density: f64,
+}
+
+/// A restraint applied before reduction.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RestraintInfo {
+    pub node_set: String,
+    /// Restrained directions x, y, z.
+    pub directions: [bool; 3],
+    pub nodes: usize,
+}
+
+/// Everything about a part except its arrays.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PartInfo {
+    pub name: String,
+    pub mesh: MeshInfo,
+    pub interface: InterfaceKind,
+    pub materials: Vec<MaterialInfo>,
+    pub restraints: Vec<RestraintInfo>,
+    pub points: Vec<InterfacePoint>,
+    pub dofs: Vec<DofLabel>,
+    /// Fixed-interface natural frequencies (Hz) of the kept modes, ascending.
+    pub fixed_interface_hz: Vec<f64>,
+    /// Free dofs of the full part (rows of the basis).
+    pub full_dofs: usize,
+}
+
+/// The JSON header stored in `__metadata__.squeal`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RomHeader {
+    pub format: String,
+    pub version: u32,
+    pub tool_version: String,
+    pub parts: Vec<PartInfo>,
+}
+
+/// The basis `[T_C T_phi]` on the part's free dofs, with each row's node id and direction.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Basis {
+    pub dof_node: Vec<u64>,
+    pub dof_dir: Vec<u8>,
+    /// `n_free x n_reduced`.
+    pub values: Mat<f64>,
+}
+
+/// A reduced part: its description, reduced K and M, and optionally its basis.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReducedPart {
+    pub info: PartInfo,
+    pub k: Mat<f64>,
+    pub m: Mat<f64>,
+    pub basis: Option<Basis>,
+}
+
+impl ReducedPart {
+    /// Number of reduced dofs.
+    pub fn size(&self) -> usize {
+        self.k.nrows()
+    }
+}
+
+/// A reduced model: the parts, in the order their dofs are stacked in the brake.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReducedModel {
+    pub tool_version: String,
+    pub parts: Vec<ReducedPart>,
+}
+
+impl ReducedModel {
+    /// The part called `name`.
+    pub fn part(&self, name: &str) -> Option<&ReducedPart> {
+        self.parts.iter().find(|p| p.info.name == name)
+    }
+
+    /// Total reduced dofs.
+    pub fn size(&self) -> usize {
+        self.parts.iter().map(ReducedPart::size).sum()
+    }
+
+    /// Writes the model to `path` atomically.
+    pub fn write(&self, path: &Path) -> Result<(), RomError> {
+        let bytes = self.to_bytes()?;
+        squeal_io::atomic_write_bytes(path, &bytes)?;
+        Ok(())
+    }
+
+    /// Serializes the model.
+    pub fn to_bytes(&self) -> Result<Vec<u8>, RomError> {
+        let header = RomHeader {
+            format: FORMAT.into(),
+            version: VERSION,
+            tool_version: self.tool_version.clone(),
+            parts: self.parts.iter().map(|p| p.info.clone()).collect(),
+        };
+        let json =
+            serde_json::to_string(&header).map_err(|e| RomError::Serialize(e.to_string()))?;
+        let mut arrays: Vec<(String, Array)> = Vec::new();
+        for p in &self.parts {
+            let name = &p.info.name;
+            arrays.push((format!("{name}.K"), Array::from_mat(&p.k)));
+            arrays.push((format!("{name}.M"), Array::from_mat(&p.m)));
+            if let Some(b) = &p.basis {
+                arrays.push((format!("{name}.basis"), Array::from_mat(&b.values)));
+                arrays.push((
+                    format!("{name}.dof_node"),
+                    Array::new(
+                        Dtype::U64,
+                        vec![b.dof_node.len()],
+                        b.dof_node.iter().flat_map(|v| v.to_le_bytes()).collect(),
+                    ),
+                ));
+                arrays.push((
+                    format!("{name}.dof_dir"),
+                    Array::new(Dtype::U8, vec![b.dof_dir.len()], b.dof_dir.clone()),
+                ));
+            }
+        }
+        let views: Vec<(String, TensorView)> = arrays
+            .iter()
+            .map(|(n, a)| {
+                TensorView::new(a.dtype, a.shape.clone(), &a.bytes)
+                    .map(|v| (n.clone(), v))
+                    .map_err(|e| RomError::Serialize(e.to_string()))
+            })
+            .collect::<Result<_, _>>()?;
+        let meta = HashMap::from([("squeal".to_string(), json)]);
+        safetensors::serialize(views, Some(meta)).map_err(|e| RomError::Serialize(e.to_string()))
+    }
+
+    /// Reads a model written by [`ReducedModel::write`].
+    pub fn read(path: &Path) -> Result<Self, RomError> {
+        let bytes = std::fs::read(path).map_err(|source| RomError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::from_bytes(&bytes, path)
+    }
+
+    /// Parses a model from bytes; `path` only names the source in errors.
+    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Self, RomError> {
+        let bad = |message: String| RomError::Format {
+            path: path.to_path_buf(),
+            message,
+        };
+        let st = SafeTensors::deserialize(bytes).map_err(|e| bad(format!("{e}")))?;
+        let (_, meta) = SafeTensors::read_metadata(bytes).map_err(|e| bad(format!("{e}")))?;
+        let json = meta
+            .metadata()
+            .as_ref()
+            .and_then(|m| m.get("squeal"))
+            .ok_or_else(|| bad("no squeal header in __metadata__".into()))?;
+        let header: RomHeader =
+            serde_json::from_str(json).map_err(|e| bad(format!("header: {e}")))?;
+        if header.format != FORMAT {
+            return Err(bad(format!("format '{}' is not '{FORMAT}'", header.format)));
+        }
+        if header.version > VERSION {
+            return Err(RomError::Version {
+                path: path.to_path_buf(),
+                found: header.version,
+            });
+        }
+        let mut parts = Vec::with_capacity(header.parts.len());
+        for info in header.parts {
+            let n = info.dofs.len();
+            let name = info.name.clone();
+            let k = read_mat(&st, &format!("{name}.K"), Some((n, n))).map_err(bad)?;
+            let m = read_mat(&st, &format!("{name}.M"), Some((n, n))).map_err(bad)?;
+            let basis = if st.names().contains(&format!("{name}.basis").as_str()) {
+                let values = read_mat(&st, &format!("{name}.basis"), Some((info.full_dofs, n)))
+                    .map_err(bad)?;
+                let dof_node =
+                    read_vec(&st, &format!("{name}.dof_node"), Dtype::U64, info.full_dofs)
+                        .map_err(bad)?
+                        .chunks_exact(8)
+                        .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
+                        .collect();
+                let dof_dir = read_vec(&st, &format!("{name}.dof_dir"), Dtype::U8, info.full_dofs)
+                    .map_err(bad)?;
+                Some(Basis {
+                    dof_node,
+                    dof_dir,
+                    values,
+                })
+            } else {
+                None
+            };
+            parts.push(ReducedPart { info, k, m, basis });
+        }
+        Ok(ReducedModel {
+            tool_version: header.tool_version,
+            parts,
+        })
+    }
+}
+
+/// An array ready for serialization: row-major little-endian bytes.
+struct Array {
+    dtype: Dtype,
+    shape: Vec<usize>,
+    bytes: Vec<u8>,
+}
+
+impl Array {
+    fn new(dtype: Dtype, shape: Vec<usize>, bytes: Vec<u8>) -> Self {
+        Self {
+            dtype,
+            shape,
+            bytes,
+        }
+    }
+
+    fn from_mat(m: &Mat<f64>) -> Self {
+        let mut bytes = Vec::with_capacity(m.nrows() * m.ncols() * 8);
+        for i in 0..m.nrows() {
+            for j in 0..m.ncols() {
+                bytes.extend_from_slice(&m[(i, j)].to_le_bytes());
+            }
+        }
+        Self::new(Dtype::F64, vec![m.nrows(), m.ncols()], bytes)
+    }
+}
+
+fn read_mat(
+    st: &SafeTensors,
+    name: &str,
+    shape: Option<(usize, usize)>,
+) -> Result<Mat<f64>, String> {
+    let t = st.tensor(name).map_err(|e| format!("array {name}: {e}"))?;
+    if t.dtype() != Dtype::F64 || t.shape().len() != 2 {
+        return Err(format!(
+            "array {name}: expected a 2-D F64 array, found {:?} {:?}",
+            t.dtype(),
+            t.shape()
+        ));
+    }
+    let (r, c) = (t.shape()[0], t.shape()[1]);
+    if let Some(s) = shape
+        && s != (r, c)
+    {
+        return Err(format!(
+            "array {name}: expected shape {s:?}, found ({r}, {c})"
+        ));
+    }
+    let data = t.data();
+    Ok(Mat::from_fn(r, c, |i, j| {
+        let k = 8 * (i * c + j);
+        f64::from_le_bytes(data[k..k + 8].try_into().unwrap_or([0; 8]))
+    }))
+}
+
+fn read_vec(st: &SafeTensors, name: &str, dtype: Dtype, len: usize) -> Result<Vec<u8>, String> {
+    let t = st.tensor(name).map_err(|e| format!("array {name}: {e}"))?;
+    if t.dtype() != dtype || t.shape() != [len] {
+        return Err(format!(
+            "array {name}: expected {dtype:?} [{len}], found {:?} {:?}",
+            t.dtype(),
+            t.shape()
+        ));
+    }
+    Ok(t.data().to_vec())
+}
+
+/// SHA-256 of a file, as lowercase hex.
+pub fn sha256_file(path: &Path) -> Result<String, RomError> {
+    use sha2::{Digest, Sha256};
+    let bytes = std::fs::read(path).map_err(|source| RomError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let digest = Sha256::digest(&bytes);
+    Ok(digest.iter().map(|b| format!("{b:02x}")).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> ReducedModel {
+        let n = 3;
+        let info = PartInfo {
+            name: "pad".into(),
+            mesh: MeshInfo {
+                path: "meshes/pad.inp".into(),
+                sha256: "00".into(),
+                nodes: 10,
+                elements: 1,
+            },
+            interface: InterfaceKind::Patch,
+            materials: vec![],
+            restraints: vec![RestraintInfo {
+                node_set: "ABUTMENT".into(),
+                directions: [true, true, false],
+                nodes: 4,
+            }],
+            points: vec![InterfacePoint {
+                role: PointRole::Contact,
+                node_id: None,
+                patch: Some(1),
+                position: [0.1, 0.2, 0.3],
+                area: Some(1e-4),
+            }],
+            dofs: vec![
+                DofLabel::Point {
+                    point: 0,
+                    direction: 0,
+                },
+                DofLabel::Point {
+                    point: 0,
+                    direction: 2,
+                },
+                DofLabel::Mode { mode: 0 },
+            ],
+            fixed_interface_hz: vec![1234.5],
+            full_dofs: 4,
+        };
+        let k = Mat::from_fn(n, n, |i, j| (i * 10 + j) as f64 + 0.1);
+        let m = Mat::from_fn(
+            n,
+            n,
+            |i, j| if i == j { 1.0 } else { 1e-3 * (i + j) as f64 },
+        );
+        let basis = Basis {
+            dof_node: vec![7, 7, 7, 9],
+            dof_dir: vec![0, 1, 2, 0],
+            values: Mat::from_fn(4, n, |i, j| (i as f64) - 0.5 * j as f64),
+        };
+        ReducedModel {
+            tool_version: "test".into(),
+            parts: vec![ReducedPart {
+                info,
+                k,
+                m,
+                basis: Some(basis),
+            }],
+        }
+    }
+
+    #[test]
+    fn round_trip_is_bit_exact() {
+        let model = sample();
+        let bytes = model.to_bytes().unwrap();
+        let back = ReducedModel::from_bytes(&bytes, Path::new("mem.rom")).unwrap();
+        assert_eq!(back, model);
+        // Same model, same bytes: the file is deterministic.
+        assert_eq!(model.to_bytes().unwrap(), bytes);
+    }
+
+    #[test]
+    fn rejects_garbage_and_truncation() {
+        let bytes = sample().to_bytes().unwrap();
+        for cut in [0, 4, 8, 40, bytes.len() - 1] {
+            let r = ReducedModel::from_bytes(&bytes[..cut], Path::new("cut.rom"));
+            assert!(matches!(r, Err(RomError::Format { .. })), "cut at {cut}");
+        }
+        let r = ReducedModel::from_bytes(b"not a model at all", Path::new("junk.rom"));
+        assert!(matches!(r, Err(RomError::Format { .. })));
+    }
+}

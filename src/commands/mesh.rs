@@ -1,0 +1,152 @@
+//! `squeal mesh info` and `squeal mesh convert`.
+
+use anyhow::{Context, Result};
+use clap::Subcommand;
+use squeal_mesh::quality::{self, QualityOptions, Severity};
+use squeal_mesh::{Elastic, Mesh, ReadMesh};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Subcommand)]
+pub enum MeshCommand {
+    /// Nodes, elements, sets, materials, volume and quality findings of each mesh
+    Info {
+        /// Mesh files (.inp or .msh)
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// List every id of each finding instead of the first few
+        #[arg(long)]
+        all_ids: bool,
+    },
+    /// Write a mesh as VTK XML (.vtu) for ParaView, with node and element sets as flags
+    Convert {
+        /// Input mesh (.inp or .msh)
+        input: PathBuf,
+        /// Output file (.vtu)
+        output: PathBuf,
+    },
+}
+
+pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
+    match cmd {
+        MeshCommand::Info { files, all_ids } => {
+            let mut any_error = false;
+            for (k, f) in files.iter().enumerate() {
+                if k > 0 {
+                    println!();
+                }
+                any_error |= info(f, all_ids)?;
+            }
+            Ok(if any_error { ExitCode::from(2) } else { ExitCode::SUCCESS })
+        }
+        MeshCommand::Convert { input, output } => {
+            let read = read_mesh(&input)?;
+            squeal_mesh::vtu::write_vtu(&output, &read.mesh, &[], &[])
+                .with_context(|| format!("writing {}", output.display()))?;
+            println!(
+                "wrote {} ({} nodes, {} quadratic tetrahedra)",
+                output.display(),
+                read.mesh.num_nodes(),
+                read.mesh.num_elements()
+            );
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+/// Reads a mesh and prints the reader's warnings to stderr.
+pub fn read_mesh(path: &Path) -> Result<ReadMesh> {
+    let read = squeal_mesh::read(path).with_context(|| format!("reading mesh {}", path.display()))?;
+    for w in &read.warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(read)
+}
+
+/// Prints one mesh's summary; returns whether the quality checks found errors.
+fn info(path: &Path, all_ids: bool) -> Result<bool> {
+    let t = Instant::now();
+    let read = read_mesh(path)?;
+    let elapsed = t.elapsed();
+    let m = &read.mesh;
+    println!("{}", path.display());
+    println!("  read in {:.3} s ({} warning(s))", elapsed.as_secs_f64(), read.warnings.len());
+    println!("  nodes     {:>10}", m.num_nodes());
+    println!("  elements  {:>10}  (10-node tetrahedra)", m.num_elements());
+    if let Some((lo, hi)) = m.bounding_box() {
+        println!(
+            "  bounds    x [{:.6}, {:.6}]  y [{:.6}, {:.6}]  z [{:.6}, {:.6}]",
+            lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
+        );
+    }
+    print_sets(m);
+    print_materials(m);
+    let report = quality::check(m, &QualityOptions::default());
+    println!("  volume    {:.9e}", report.volume);
+    println!("  worst Jacobian ratio (min/max det J) {:.4}", report.worst_jacobian_ratio);
+    if report.findings.is_empty() {
+        println!("  quality   no findings");
+    }
+    for f in &report.findings {
+        let tag = match f.severity {
+            Severity::Error => "ERROR",
+            Severity::Warning => "warning",
+        };
+        println!("  {tag}: {}", f.message);
+        if !f.ids.is_empty() {
+            println!("      ids: {}", format_ids(&f.ids, all_ids));
+        }
+    }
+    Ok(report.has_errors())
+}
+
+fn print_sets(m: &Mesh) {
+    if !m.node_sets.is_empty() {
+        println!("  node sets");
+        for (name, set) in &m.node_sets {
+            println!("    {name:<24} {:>8} nodes", set.len());
+        }
+    }
+    if !m.element_sets.is_empty() {
+        let materials: Vec<(&str, &str)> =
+            m.sections.iter().map(|s| (s.element_set.as_str(), s.material.as_str())).collect();
+        println!("  element sets");
+        for (name, set) in &m.element_sets {
+            let mat = materials
+                .iter()
+                .rev()
+                .find(|(es, _)| es.eq_ignore_ascii_case(name))
+                .map(|(_, mat)| format!("  material {mat}"))
+                .unwrap_or_default();
+            println!("    {name:<24} {:>8} elements{mat}", set.len());
+        }
+    }
+}
+
+fn print_materials(m: &Mesh) {
+    if m.materials.is_empty() {
+        println!("  materials none in the file (give them on the command line or in a scene)");
+        return;
+    }
+    println!("  materials");
+    for (name, mat) in &m.materials {
+        let elastic = match mat.elastic {
+            Some(Elastic::Isotropic { young, poisson }) => format!("E = {young:.4e} Pa, nu = {poisson}"),
+            Some(Elastic::EngineeringConstants { e, nu, g }) => format!(
+                "E1,E2,E3 = {:.3e},{:.3e},{:.3e} Pa; nu12,nu13,nu23 = {},{},{}; G12,G13,G23 = {:.3e},{:.3e},{:.3e} Pa",
+                e[0], e[1], e[2], nu[0], nu[1], nu[2], g[0], g[1], g[2]
+            ),
+            None => "no elastic constants".to_string(),
+        };
+        let rho = mat.density.map(|r| format!(", rho = {r} kg/m^3")).unwrap_or_else(|| ", no density".into());
+        println!("    {name:<24} {elastic}{rho}");
+    }
+}
+
+fn format_ids(ids: &[u64], all: bool) -> String {
+    const SHOWN: usize = 12;
+    let shown: Vec<String> = ids.iter().take(if all { ids.len() } else { SHOWN }).map(u64::to_string).collect();
+    let more = if !all && ids.len() > SHOWN { format!(" ... ({} in all; --all-ids lists them)", ids.len()) } else { String::new() };
+    format!("{}{more}", shown.join(" "))
+}
