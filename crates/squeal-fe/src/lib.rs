@@ -1,1 +1,42 @@
-//! squeal-fe (not written yet).
+//! Linear-elastic finite elements for squeal: 10-node tetrahedra, stiffness and consistent
+//! mass, sparse parallel assembly.
+//!
+//! - [`quadrature`]: rules on the reference tetrahedron (degree 2 for stiffness, degree 5 for
+//!   mass, collapsed Gauss of any degree).
+//! - [`material`]: isotropic, transversely isotropic and orthotropic elasticity (Abaqus
+//!   conventions), and the material of each element from the mesh's sections and overrides.
+//! - [`element`]: element stiffness, mass, volume and strain of the isoparametric tet10.
+//! - [`dofmap`]: free dofs after restraints, node-major.
+//! - [`assembly`]: global `K` and `M` as faer sparse matrices (both triangles), deterministic
+//!   for any thread count; volume, mass and size summaries.
+//! - [`export`]: MatrixMarket files with the dof map as CSV.
+//!
+//! ```no_run
+//! use squeal_fe::{DofMap, ElasticMaterial, MaterialTable, Restraint, assemble};
+//! let mesh = squeal_mesh::generate::box_tet10([1.0, 0.1, 0.1], [10, 1, 1]);
+//! let steel = ElasticMaterial::isotropic(210e9, 0.3, 7850.0);
+//! let materials = MaterialTable::uniform(&mesh, steel)?;
+//! let dofs = DofMap::new(&mesh, &[Restraint::clamp("XMIN")])?;
+//! let system = assemble(&mesh, &materials, &dofs)?;
+//! # Ok::<(), squeal_fe::FeError>(())
+//! ```
+
+pub mod assembly;
+pub mod dofmap;
+pub mod element;
+pub mod error;
+pub mod export;
+pub mod material;
+pub mod quadrature;
+
+pub use assembly::{
+    AssemblyOptions, Summary, System, assemble, assemble_with, mesh_volume, total_mass,
+};
+pub use dofmap::{DofMap, DofStatus, NodeSelection, Restraint};
+pub use element::{
+    element_mass, element_mass_scalar, element_stiffness, element_volume, strain_at,
+};
+pub use error::{ElementError, FeError, MaterialError};
+pub use export::write_matrix_market;
+pub use material::{ElasticMaterial, MaterialEntry, MaterialTable, Voigt6};
+pub use quadrature::Quadrature;

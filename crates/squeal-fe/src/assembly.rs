@@ -1,0 +1,519 @@
+//! Global assembly of the sparse stiffness `K` and consistent mass `M` over the free dofs.
+//!
+//! Both matrices are stored with both triangles (`SparseColMat<usize, f64>`, sorted row
+//! indices). The sparsity pattern is built once from the connectivity: the node graph (nodes
+//! sharing an element) expanded to free dofs; `K` couples every free direction of neighbouring
+//! nodes, `M` (which is `m_ab I₃` per element) only equal directions. Values are then filled
+//! element chunk by element chunk: element matrices in parallel, then each node's columns in
+//! parallel, adding the contributions of the node's elements in ascending element order. Every
+//! entry is therefore the same sum in the same order whatever the thread count, and `K`, `M`
+//! are symmetric bit for bit. Memory is proportional to the number of nonzeros.
+
+use crate::dofmap::DofMap;
+use crate::element::{element_mass_scalar, element_stiffness, element_volume};
+use crate::error::FeError;
+use crate::material::MaterialTable;
+use crate::quadrature::Quadrature;
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use rayon::prelude::*;
+use squeal_mesh::Mesh;
+
+/// Quadrature rules used by [`assemble_with`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct AssemblyOptions {
+    /// Default: [`Quadrature::four_point`], exact for straight-sided elements.
+    pub stiffness_rule: Quadrature,
+    /// Default: [`Quadrature::fourteen_point`], exact for straight-sided elements.
+    pub mass_rule: Quadrature,
+}
+
+impl Default for AssemblyOptions {
+    fn default() -> Self {
+        Self {
+            stiffness_rule: Quadrature::four_point(),
+            mass_rule: Quadrature::fourteen_point(),
+        }
+    }
+}
+
+/// Stiffness (N/m) and mass (kg) over the free dofs of a [`DofMap`].
+#[derive(Clone, Debug)]
+pub struct System {
+    pub k: SparseColMat<usize, f64>,
+    pub m: SparseColMat<usize, f64>,
+}
+
+impl System {
+    /// Number of free dofs (rows and columns of `k` and `m`).
+    pub fn num_dofs(&self) -> usize {
+        self.k.nrows()
+    }
+
+    /// Stored entries of `K` (both triangles).
+    pub fn nnz_k(&self) -> usize {
+        self.k.val().len()
+    }
+
+    /// Stored entries of `M` (both triangles).
+    pub fn nnz_m(&self) -> usize {
+        self.m.val().len()
+    }
+}
+
+/// Elements processed per chunk: bounds the element-matrix buffer to about 16 MB. The result
+/// does not depend on it.
+const CHUNK: usize = 2048;
+
+/// [`assemble_with`] with the default rules.
+pub fn assemble(
+    mesh: &Mesh,
+    materials: &MaterialTable,
+    dofmap: &DofMap,
+) -> Result<System, FeError> {
+    assemble_with(mesh, materials, dofmap, &AssemblyOptions::default())
+}
+
+/// Assembles `K = Σ_e K_e` and `M = Σ_e M_e` over the free dofs of `dofmap` (restrained dofs
+/// eliminated), in parallel on the current rayon pool, bit-for-bit identical for any number of
+/// threads.
+pub fn assemble_with(
+    mesh: &Mesh,
+    materials: &MaterialTable,
+    dofmap: &DofMap,
+    options: &AssemblyOptions,
+) -> Result<System, FeError> {
+    check_inputs(mesh, materials, dofmap)?;
+    let graph = NodeGraph::new(mesh);
+    let pattern = Pattern::new(&graph, dofmap);
+    let mut k_val = vec![0.0; pattern.k_rows.len()];
+    let mut m_val = vec![0.0; pattern.m_rows.len()];
+    {
+        let k_start: Vec<usize> = pattern.layout.iter().map(|l| l.k_start).collect();
+        let m_start: Vec<usize> = pattern.layout.iter().map(|l| l.m_start).collect();
+        let mut k_slices = split_by_start(&mut k_val, &k_start);
+        let mut m_slices = split_by_start(&mut m_val, &m_start);
+        let mut cursor = vec![0usize; mesh.num_nodes()];
+        let mut k_buf = vec![[[0.0; 30]; 30]; CHUNK.min(mesh.num_elements())];
+        let mut m_buf = vec![[[0.0; 10]; 10]; CHUNK.min(mesh.num_elements())];
+        for c0 in (0..mesh.num_elements()).step_by(CHUNK) {
+            let c1 = (c0 + CHUNK).min(mesh.num_elements());
+            let statuses: Vec<Result<(), FeError>> = k_buf[..c1 - c0]
+                .par_iter_mut()
+                .zip(m_buf[..c1 - c0].par_iter_mut())
+                .enumerate()
+                .map(|(i, (ke, me))| element_matrices(mesh, materials, options, c0 + i, ke, me))
+                .collect();
+            statuses.into_iter().collect::<Result<(), FeError>>()?;
+            let ctx = ScatterContext {
+                mesh,
+                dofmap,
+                graph: &graph,
+                pattern: &pattern,
+                k_buf: &k_buf,
+                m_buf: &m_buf,
+            };
+            k_slices
+                .par_iter_mut()
+                .zip(m_slices.par_iter_mut())
+                .zip(cursor.par_iter_mut())
+                .enumerate()
+                .for_each(|(node, ((ks, ms), cur))| ctx.scatter_node(node, c0, c1, cur, ks, ms));
+        }
+    }
+    let n = dofmap.num_free();
+    let k_sym = SymbolicSparseColMat::new_checked(n, n, pattern.k_col_ptr, None, pattern.k_rows);
+    let m_sym = SymbolicSparseColMat::new_checked(n, n, pattern.m_col_ptr, None, pattern.m_rows);
+    Ok(System {
+        k: SparseColMat::new(k_sym, k_val),
+        m: SparseColMat::new(m_sym, m_val),
+    })
+}
+
+fn check_inputs(mesh: &Mesh, materials: &MaterialTable, dofmap: &DofMap) -> Result<(), FeError> {
+    if materials.element_entry.len() != mesh.num_elements() {
+        return Err(FeError::TableMismatch {
+            table: materials.element_entry.len(),
+            mesh: mesh.num_elements(),
+        });
+    }
+    if dofmap.num_nodes() != mesh.num_nodes() {
+        return Err(FeError::DofMapMismatch {
+            map: dofmap.num_nodes(),
+            mesh: mesh.num_nodes(),
+        });
+    }
+    let n = mesh.num_nodes();
+    for (e, el) in mesh.elements.iter().enumerate() {
+        if let Some(&node) = el.iter().find(|&&v| v as usize >= n) {
+            return Err(FeError::BadConnectivity {
+                element: mesh.element_ids[e],
+                node,
+                num_nodes: n,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Stiffness and scalar mass of element `e` into the buffers.
+fn element_matrices(
+    mesh: &Mesh,
+    materials: &MaterialTable,
+    options: &AssemblyOptions,
+    e: usize,
+    ke: &mut [[f64; 30]; 30],
+    me: &mut [[f64; 10]; 10],
+) -> Result<(), FeError> {
+    let x = mesh.element_coords(e);
+    let entry = &materials.entries[materials.element_entry[e] as usize];
+    let wrap = |source| FeError::Element {
+        element: mesh.element_ids[e],
+        source,
+    };
+    *ke = element_stiffness(&x, &entry.elasticity, &options.stiffness_rule).map_err(wrap)?;
+    *me = element_mass_scalar(&x, entry.material.density(), &options.mass_rule).map_err(wrap)?;
+    Ok(())
+}
+
+/// Node-to-element incidence and node-to-node adjacency, as compressed lists (ascending).
+struct NodeGraph {
+    elem_ptr: Vec<usize>,
+    elems: Vec<u32>,
+    nbr_ptr: Vec<usize>,
+    nbrs: Vec<u32>,
+}
+
+impl NodeGraph {
+    fn new(mesh: &Mesh) -> Self {
+        let n = mesh.num_nodes();
+        // Counting sort of (node, element) pairs by node; elements stay ascending.
+        let mut elem_ptr = vec![0usize; n + 1];
+        for el in &mesh.elements {
+            for (a, &v) in el.iter().enumerate() {
+                if !el[..a].contains(&v) {
+                    elem_ptr[v as usize + 1] += 1;
+                }
+            }
+        }
+        for i in 0..n {
+            elem_ptr[i + 1] += elem_ptr[i];
+        }
+        let mut fill = elem_ptr.clone();
+        let mut elems = vec![0u32; elem_ptr[n]];
+        for (e, el) in mesh.elements.iter().enumerate() {
+            for (a, &v) in el.iter().enumerate() {
+                if !el[..a].contains(&v) {
+                    elems[fill[v as usize]] = e as u32;
+                    fill[v as usize] += 1;
+                }
+            }
+        }
+        let lists: Vec<Vec<u32>> = (0..n)
+            .into_par_iter()
+            .map(|node| {
+                let mut v: Vec<u32> = elems[elem_ptr[node]..elem_ptr[node + 1]]
+                    .iter()
+                    .flat_map(|&e| mesh.elements[e as usize])
+                    .collect();
+                v.sort_unstable();
+                v.dedup();
+                v
+            })
+            .collect();
+        let mut nbr_ptr = Vec::with_capacity(n + 1);
+        nbr_ptr.push(0);
+        for l in &lists {
+            nbr_ptr.push(nbr_ptr[nbr_ptr.len() - 1] + l.len());
+        }
+        let nbrs = lists.concat();
+        Self {
+            elem_ptr,
+            elems,
+            nbr_ptr,
+            nbrs,
+        }
+    }
+
+    fn incident(&self, node: usize) -> &[u32] {
+        &self.elems[self.elem_ptr[node]..self.elem_ptr[node + 1]]
+    }
+
+    fn neighbors(&self, node: usize) -> &[u32] {
+        &self.nbrs[self.nbr_ptr[node]..self.nbr_ptr[node + 1]]
+    }
+}
+
+/// Where a node's columns live in the value arrays.
+#[derive(Clone, Copy, Debug, Default)]
+struct NodeLayout {
+    /// Offset of the node's first `K` column.
+    k_start: usize,
+    /// Rows per `K` column (the same for the node's free directions).
+    k_count: usize,
+    /// Offset of the node's first `M` column.
+    m_start: usize,
+    /// Rows of the `M` column of each direction (0 if the direction is not free).
+    m_count: [usize; 3],
+}
+
+/// Column pointers and row indices of `K` and `M`, with per-node layout.
+struct Pattern {
+    layout: Vec<NodeLayout>,
+    k_col_ptr: Vec<usize>,
+    k_rows: Vec<usize>,
+    m_col_ptr: Vec<usize>,
+    m_rows: Vec<usize>,
+}
+
+impl Pattern {
+    fn new(graph: &NodeGraph, dofmap: &DofMap) -> Self {
+        let n = dofmap.num_nodes();
+        let free: Vec<[Option<usize>; 3]> = (0..n as u32).map(|v| dofmap.node_dofs(v)).collect();
+        let nfree = |v: usize| free[v].iter().flatten().count();
+        let mut layout = vec![NodeLayout::default(); n];
+        let mut k_col_ptr = vec![0usize];
+        let mut m_col_ptr = vec![0usize];
+        let (mut k_off, mut m_off) = (0usize, 0usize);
+        for (v, lay) in layout.iter_mut().enumerate() {
+            let nbrs = graph.neighbors(v);
+            lay.k_start = k_off;
+            lay.m_start = m_off;
+            if nfree(v) == 0 {
+                continue;
+            }
+            lay.k_count = nbrs.iter().map(|&w| nfree(w as usize)).sum();
+            for d in (0..3).filter(|&d| free[v][d].is_some()) {
+                lay.m_count[d] = nbrs
+                    .iter()
+                    .filter(|&&w| free[w as usize][d].is_some())
+                    .count();
+                k_off += lay.k_count;
+                m_off += lay.m_count[d];
+                k_col_ptr.push(k_off);
+                m_col_ptr.push(m_off);
+            }
+        }
+        let mut k_rows = vec![0usize; k_off];
+        let mut m_rows = vec![0usize; m_off];
+        {
+            let k_start: Vec<usize> = layout.iter().map(|l| l.k_start).collect();
+            let m_start: Vec<usize> = layout.iter().map(|l| l.m_start).collect();
+            let mut k_slices = split_by_start(&mut k_rows, &k_start);
+            let mut m_slices = split_by_start(&mut m_rows, &m_start);
+            k_slices
+                .par_iter_mut()
+                .zip(m_slices.par_iter_mut())
+                .enumerate()
+                .for_each(|(v, (ks, ms))| {
+                    let nbrs = graph.neighbors(v);
+                    let mut ki = 0;
+                    let mut mi = 0;
+                    for d in (0..3).filter(|&d| free[v][d].is_some()) {
+                        for &w in nbrs {
+                            for r in free[w as usize].iter().flatten() {
+                                ks[ki] = *r;
+                                ki += 1;
+                            }
+                            if let Some(r) = free[w as usize][d] {
+                                ms[mi] = r;
+                                mi += 1;
+                            }
+                        }
+                    }
+                });
+        }
+        Self {
+            layout,
+            k_col_ptr,
+            k_rows,
+            m_col_ptr,
+            m_rows,
+        }
+    }
+}
+
+/// Splits `data` into one slice per node: node `i` gets `start[i]..start[i + 1]` (the last
+/// node runs to the end).
+fn split_by_start<'a, T>(mut data: &'a mut [T], start: &[usize]) -> Vec<&'a mut [T]> {
+    let mut out = Vec::with_capacity(start.len());
+    for i in 0..start.len() {
+        let end = start.get(i + 1).copied().unwrap_or(start[i] + data.len());
+        let (head, tail) = std::mem::take(&mut data).split_at_mut(end - start[i]);
+        out.push(head);
+        data = tail;
+    }
+    out
+}
+
+/// What a node needs to add its elements' contributions to its own columns.
+struct ScatterContext<'a> {
+    mesh: &'a Mesh,
+    dofmap: &'a DofMap,
+    graph: &'a NodeGraph,
+    pattern: &'a Pattern,
+    k_buf: &'a [[[f64; 30]; 30]],
+    m_buf: &'a [[[f64; 10]; 10]],
+}
+
+impl ScatterContext<'_> {
+    /// Adds, in ascending element order, the contributions of the node's elements in
+    /// `c0..c1` to the node's columns `ks` (of `K`) and `ms` (of `M`). `cursor` is the
+    /// position in the node's incidence list reached so far.
+    fn scatter_node(
+        &self,
+        node: usize,
+        c0: usize,
+        c1: usize,
+        cursor: &mut usize,
+        ks: &mut [f64],
+        ms: &mut [f64],
+    ) {
+        let incident = self.graph.incident(node);
+        while let Some(&e) = incident.get(*cursor) {
+            let e = e as usize;
+            if e >= c1 {
+                break;
+            }
+            *cursor += 1;
+            if !ks.is_empty() {
+                self.scatter_element(node, e, &self.k_buf[e - c0], &self.m_buf[e - c0], ks, ms);
+            }
+        }
+    }
+
+    fn scatter_element(
+        &self,
+        node: usize,
+        e: usize,
+        ke: &[[f64; 30]; 30],
+        me: &[[f64; 10]; 10],
+        ks: &mut [f64],
+        ms: &mut [f64],
+    ) {
+        let conn = &self.mesh.elements[e];
+        let Some(a) = conn.iter().position(|&v| v as usize == node) else {
+            return;
+        };
+        let lay = &self.pattern.layout[node];
+        let dofs_n = self.dofmap.node_dofs(node as u32);
+        let k_rows = &self.pattern.k_rows[lay.k_start..lay.k_start + lay.k_count];
+        for (b, &other) in conn.iter().enumerate() {
+            let dofs_m = self.dofmap.node_dofs(other);
+            let Some(first) = dofs_m.iter().flatten().next() else {
+                continue;
+            };
+            // The rows of `other` are consecutive in every column of `node`.
+            let o = k_rows.partition_point(|&r| r < *first);
+            let mut col = 0;
+            let mut m_col_start = 0;
+            for d in (0..3).filter(|&d| dofs_n[d].is_some()) {
+                let base = col * lay.k_count + o;
+                for (j, d2) in (0..3).filter(|&d2| dofs_m[d2].is_some()).enumerate() {
+                    ks[base + j] += ke[3 * b + d2][3 * a + d];
+                }
+                col += 1;
+                if let Some(r) = dofs_m[d] {
+                    let s = lay.m_start + m_col_start;
+                    let pos =
+                        self.pattern.m_rows[s..s + lay.m_count[d]].partition_point(|&x| x < r);
+                    ms[m_col_start + pos] += me[b][a];
+                }
+                m_col_start += lay.m_count[d];
+            }
+        }
+    }
+}
+
+/// Volume of the mesh, `Σ_e ∫ det J` with `rule` (summed in element order).
+pub fn mesh_volume(mesh: &Mesh, rule: &Quadrature) -> Result<f64, FeError> {
+    let mut v = 0.0;
+    for e in 0..mesh.num_elements() {
+        v += element_volume(&mesh.element_coords(e), rule).map_err(|source| FeError::Element {
+            element: mesh.element_ids[e],
+            source,
+        })?;
+    }
+    Ok(v)
+}
+
+/// Total mass `Σ_e ρ_e V_e` (kg) including restrained nodes' share, summed in element order.
+pub fn total_mass(
+    mesh: &Mesh,
+    materials: &MaterialTable,
+    rule: &Quadrature,
+) -> Result<f64, FeError> {
+    if materials.element_entry.len() != mesh.num_elements() {
+        return Err(FeError::TableMismatch {
+            table: materials.element_entry.len(),
+            mesh: mesh.num_elements(),
+        });
+    }
+    let mut m = 0.0;
+    for e in 0..mesh.num_elements() {
+        let rho = materials.entries[materials.element_entry[e] as usize]
+            .material
+            .density();
+        let v =
+            element_volume(&mesh.element_coords(e), rule).map_err(|source| FeError::Element {
+                element: mesh.element_ids[e],
+                source,
+            })?;
+        m += rho * v;
+    }
+    Ok(m)
+}
+
+/// Cheap figures for the CLI to print.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Summary {
+    pub nodes: usize,
+    pub elements: usize,
+    pub free_dofs: usize,
+    pub restrained_dofs: usize,
+    pub nnz_k: usize,
+    pub nnz_m: usize,
+    /// m³
+    pub volume: f64,
+    /// kg
+    pub mass: f64,
+}
+
+impl Summary {
+    pub fn new(
+        mesh: &Mesh,
+        materials: &MaterialTable,
+        dofmap: &DofMap,
+        system: &System,
+    ) -> Result<Self, FeError> {
+        // Degree 5: exact for det J, which is cubic on curved elements.
+        let rule = Quadrature::fourteen_point();
+        Ok(Self {
+            nodes: mesh.num_nodes(),
+            elements: mesh.num_elements(),
+            free_dofs: dofmap.num_free(),
+            restrained_dofs: dofmap.num_restrained(),
+            nnz_k: system.nnz_k(),
+            nnz_m: system.nnz_m(),
+            volume: mesh_volume(mesh, &rule)?,
+            mass: total_mass(mesh, materials, &rule)?,
+        })
+    }
+}
+
+impl std::fmt::Display for Summary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} nodes, {} elements, {} free dofs ({} restrained), K {} nonzeros, M {} nonzeros, \
+             volume {:.6e} m^3, mass {:.6e} kg",
+            self.nodes,
+            self.elements,
+            self.free_dofs,
+            self.restrained_dofs,
+            self.nnz_k,
+            self.nnz_m,
+            self.volume,
+            self.mass
+        )
+    }
+}

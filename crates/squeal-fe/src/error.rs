@@ -1,0 +1,83 @@
+//! Typed errors of the finite-element stage.
+
+/// Why a material's constants cannot be used.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MaterialError {
+    #[error("a constant is not a finite number")]
+    NotFinite,
+    #[error("density {0} kg/m^3 is not positive")]
+    NonPositiveDensity(f64),
+    #[error("the material axis has zero length")]
+    ZeroAxis,
+    #[error(
+        "the elasticity matrix is not positive definite (isotropic: need E > 0 and -1 < nu < 0.5; \
+         engineering constants: need E_i, G_ij > 0 and nu_ij^2 < E_i/E_j, \
+         1 - nu12 nu21 - nu23 nu32 - nu13 nu31 - 2 nu21 nu32 nu13 > 0)"
+    )]
+    NotPositiveDefinite,
+}
+
+/// Why an element matrix cannot be computed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ElementError {
+    #[error(
+        "Jacobian determinant {det:e} is not positive at quadrature point {point} \
+         (inverted element, or midside nodes curved too far)"
+    )]
+    NonPositiveJacobian { point: usize, det: f64 },
+}
+
+/// An error of the finite-element stage. Elements and nodes are named by their ids in the
+/// mesh file.
+#[derive(Debug, thiserror::Error)]
+pub enum FeError {
+    #[error(
+        "element {element} has no material ({others} more elements have none): \
+         give its element set a *SOLID SECTION or a material override"
+    )]
+    NoMaterial { element: u64, others: usize },
+    #[error("material '{material}' (section of element set '{element_set}') is not defined")]
+    UnknownMaterial {
+        material: String,
+        element_set: String,
+    },
+    #[error("material '{material}' has no {missing}")]
+    IncompleteMaterial {
+        material: String,
+        missing: &'static str,
+    },
+    #[error("material '{material}': {source}")]
+    InvalidMaterial {
+        material: String,
+        #[source]
+        source: MaterialError,
+    },
+    #[error("no element set named '{0}'")]
+    UnknownElementSet(String),
+    #[error("no node set named '{0}'")]
+    UnknownNodeSet(String),
+    #[error("restraint names node index {index}, but the mesh has {num_nodes} nodes")]
+    NodeOutOfRange { index: u32, num_nodes: usize },
+    #[error("element {element} uses node index {node}, but the mesh has {num_nodes} nodes")]
+    BadConnectivity {
+        element: u64,
+        node: u32,
+        num_nodes: usize,
+    },
+    #[error("the mesh has {nodes} nodes; at most {max} are supported")]
+    TooManyNodes { nodes: usize, max: usize },
+    #[error("the material table covers {table} elements, the mesh has {mesh}")]
+    TableMismatch { table: usize, mesh: usize },
+    #[error("the dof map was built for {map} nodes, the mesh has {mesh}")]
+    DofMapMismatch { map: usize, mesh: usize },
+    #[error("element {element}: {source}")]
+    Element {
+        element: u64,
+        #[source]
+        source: ElementError,
+    },
+    #[error("quadrature with {0} Gauss points per axis is not supported (1..=32)")]
+    QuadratureOrder(usize),
+    #[error(transparent)]
+    Io(#[from] squeal_io::IoError),
+}
