@@ -1,0 +1,448 @@
+//! Interface models: how a part's nine contact points are tied to its mesh.
+//!
+//! - **node** (the paper's model): each contact point is one mesh node of the `CONTACT` set,
+//!   with its three dofs kept as boundary dofs.
+//! - **patch**: the contact face (`CONTACT_FACE`) is split on a grid in radius and angle about
+//!   the disc axis (3 × 3 by default) and each contact point moves as the area-weighted mean of
+//!   its patch, `r = C u` with `C_pk = (1/A_p) ∫_{patch p} N_k dA` (the RBE3 idea); the point's
+//!   force is spread back as `Cᵀ f`. A spring on a single node feels the point compliance of a
+//!   3-D continuum, which grows without bound as the mesh is refined; a patch's mean motion
+//!   converges.
+//!
+//! Patches are numbered radius-major from the inner radius and the smallest angle (angles
+//! counter-clockwise about the axis), the numbering of the bundled meshes' `CONTACT_PATCH_k`.
+
+use squeal_mesh::{Mesh, tet10};
+use std::collections::HashMap;
+
+/// Errors of the interface models.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum InterfaceError {
+    #[error("node set {0} is missing from the mesh")]
+    MissingSet(String),
+    #[error("node set {0} is empty")]
+    EmptySet(String),
+    #[error("node set {set} has no boundary triangle: no element face has all six nodes in it")]
+    NoFaces { set: String },
+    #[error(
+        "patch {patch} of the {radial} x {angular} grid on {set} holds no triangle: the mesh is too coarse for that grid"
+    )]
+    EmptyPatch {
+        set: String,
+        patch: usize,
+        radial: usize,
+        angular: usize,
+    },
+    #[error("the disc axis has zero length")]
+    BadAxis,
+}
+
+/// The disc's axis of rotation: radii and angles are measured about it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Axis {
+    pub origin: [f64; 3],
+    /// Direction (need not be unit); angles are counter-clockwise seen from its tip.
+    pub direction: [f64; 3],
+}
+
+impl Default for Axis {
+    /// The z axis through the origin, as in the bundled meshes.
+    fn default() -> Self {
+        Self {
+            origin: [0.0; 3],
+            direction: [0.0, 0.0, 1.0],
+        }
+    }
+}
+
+/// A contact patch: its area, centroid and the weights of the face nodes in its mean motion.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Patch {
+    /// 1-based patch number.
+    pub number: usize,
+    pub area: f64,
+    pub centroid: [f64; 3],
+    /// `(node index, weight)`, weights summing to 1, sorted by node index.
+    pub weights: Vec<(u32, f64)>,
+}
+
+/// Cylindrical coordinates about an axis.
+struct Frame {
+    origin: [f64; 3],
+    e3: [f64; 3],
+    e1: [f64; 3],
+    e2: [f64; 3],
+}
+
+impl Frame {
+    /// Frame with `e1` along `reference` projected on the plane normal to the axis.
+    fn new(axis: &Axis, reference: [f64; 3]) -> Result<Self, InterfaceError> {
+        let e3 = unit(axis.direction).ok_or(InterfaceError::BadAxis)?;
+        let mut e1 = sub(reference, scale(e3, dot(reference, e3)));
+        if norm(e1) < 1e-12 * norm(reference).max(1.0) {
+            e1 = if e3[0].abs() < 0.9 {
+                [1.0, 0.0, 0.0]
+            } else {
+                [0.0, 1.0, 0.0]
+            };
+            e1 = sub(e1, scale(e3, dot(e1, e3)));
+        }
+        let e1 = unit(e1).ok_or(InterfaceError::BadAxis)?;
+        Ok(Self {
+            origin: axis.origin,
+            e3,
+            e1,
+            e2: cross(e3, e1),
+        })
+    }
+
+    /// `(radius, angle from e1)`.
+    fn polar(&self, p: [f64; 3]) -> (f64, f64) {
+        let d = sub(p, self.origin);
+        let (a, b) = (dot(d, self.e1), dot(d, self.e2));
+        let _ = self.e3;
+        ((a * a + b * b).sqrt(), b.atan2(a))
+    }
+}
+
+/// The node interface: the nodes of `set` (e.g. `CONTACT`), ordered by radius then angle about
+/// `axis` (radii equal to 1e-9 relative count as equal), matching the patch numbering.
+pub fn contact_nodes(mesh: &Mesh, set: &str, axis: &Axis) -> Result<Vec<u32>, InterfaceError> {
+    let nodes = mesh
+        .node_set(set)
+        .ok_or_else(|| InterfaceError::MissingSet(set.into()))?;
+    if nodes.is_empty() {
+        return Err(InterfaceError::EmptySet(set.into()));
+    }
+    let mean = mean_point(nodes.iter().map(|&n| mesh.nodes[n as usize]));
+    let frame = Frame::new(axis, sub(mean, axis.origin))?;
+    let mut keyed: Vec<(f64, f64, u32)> = nodes
+        .iter()
+        .map(|&n| {
+            let (r, t) = frame.polar(mesh.nodes[n as usize]);
+            (r, t, n)
+        })
+        .collect();
+    let scale = keyed
+        .iter()
+        .map(|k| k.0)
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    keyed.sort_by(|a, b| {
+        let same_r = (a.0 - b.0).abs() <= 1e-9 * scale;
+        let by_r = if same_r {
+            std::cmp::Ordering::Equal
+        } else {
+            a.0.total_cmp(&b.0)
+        };
+        by_r.then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2))
+    });
+    Ok(keyed.into_iter().map(|k| k.2).collect())
+}
+
+/// The patch interface: `face_set` split on a `radial x angular` grid about `axis`.
+pub fn patches(
+    mesh: &Mesh,
+    face_set: &str,
+    radial: usize,
+    angular: usize,
+    axis: &Axis,
+) -> Result<Vec<Patch>, InterfaceError> {
+    let nodes = mesh
+        .node_set(face_set)
+        .ok_or_else(|| InterfaceError::MissingSet(face_set.into()))?;
+    if nodes.is_empty() {
+        return Err(InterfaceError::EmptySet(face_set.into()));
+    }
+    let triangles = boundary_triangles(mesh, nodes);
+    if triangles.is_empty() {
+        return Err(InterfaceError::NoFaces {
+            set: face_set.into(),
+        });
+    }
+    let mean = mean_point(nodes.iter().map(|&n| mesh.nodes[n as usize]));
+    let frame = Frame::new(axis, sub(mean, axis.origin))?;
+    // Grid bounds from the face nodes' extent.
+    let (mut r0, mut r1, mut t0, mut t1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &n in nodes {
+        let (r, t) = frame.polar(mesh.nodes[n as usize]);
+        r0 = r0.min(r);
+        r1 = r1.max(r);
+        t0 = t0.min(t);
+        t1 = t1.max(t);
+    }
+    let (radial, angular) = (radial.max(1), angular.max(1));
+    let cell = |v: f64, lo: f64, hi: f64, n: usize| -> usize {
+        let f = if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
+        ((f * n as f64).floor().max(0.0) as usize).min(n - 1)
+    };
+    let mut acc: Vec<PatchSums> = (0..radial * angular)
+        .map(|_| PatchSums::default())
+        .collect();
+    for tri in &triangles {
+        let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
+        let (r, t) = frame.polar(triangle_centroid(&x));
+        let p = cell(r, r0, r1, radial) * angular + cell(t, t0, t1, angular);
+        acc[p].add_triangle(tri, &x);
+    }
+    acc.into_iter()
+        .enumerate()
+        .map(|(i, s)| {
+            if s.area <= 0.0 {
+                return Err(InterfaceError::EmptyPatch {
+                    set: face_set.into(),
+                    patch: i + 1,
+                    radial,
+                    angular,
+                });
+            }
+            Ok(s.finish(i + 1))
+        })
+        .collect()
+}
+
+/// Running integrals of one patch.
+#[derive(Default)]
+struct PatchSums {
+    area: f64,
+    moment: [f64; 3],
+    weights: HashMap<u32, f64>,
+}
+
+impl PatchSums {
+    /// Adds `∫ N_k dA` and `∫ x dA` of one 6-node triangle (degree-4 Dunavant rule: exact for
+    /// the shape functions times the area Jacobian of a straight-sided triangle, and
+    /// accurate to the mesh's order for curved ones).
+    fn add_triangle(&mut self, nodes: &[u32; 6], x: &[[f64; 3]; 6]) {
+        for (s, t, w) in DUNAVANT4 {
+            let (n, ds, dt) = tri6_shape(s, t);
+            let mut xs = [0.0; 3];
+            let mut xt = [0.0; 3];
+            let mut xp = [0.0; 3];
+            for a in 0..6 {
+                for d in 0..3 {
+                    xs[d] += ds[a] * x[a][d];
+                    xt[d] += dt[a] * x[a][d];
+                    xp[d] += n[a] * x[a][d];
+                }
+            }
+            let da = 0.5 * w * norm(cross(xs, xt));
+            self.area += da;
+            for d in 0..3 {
+                self.moment[d] += da * xp[d];
+            }
+            for a in 0..6 {
+                *self.weights.entry(nodes[a]).or_default() += da * n[a];
+            }
+        }
+    }
+
+    fn finish(self, number: usize) -> Patch {
+        let mut weights: Vec<(u32, f64)> = self
+            .weights
+            .into_iter()
+            .map(|(k, v)| (k, v / self.area))
+            .collect();
+        weights.sort_by_key(|w| w.0);
+        Patch {
+            number,
+            area: self.area,
+            centroid: self.moment.map(|m| m / self.area),
+            weights,
+        }
+    }
+}
+
+/// Degree-4, 6-point rule on the reference triangle (Dunavant 1985): `(s, t, weight)`, weights
+/// summing to 1 (multiply by the reference area 1/2).
+const DUNAVANT4: [(f64, f64, f64); 6] = [
+    (
+        0.445_948_490_915_965,
+        0.445_948_490_915_965,
+        0.223_381_589_678_011,
+    ),
+    (
+        0.445_948_490_915_965,
+        0.108_103_018_168_070,
+        0.223_381_589_678_011,
+    ),
+    (
+        0.108_103_018_168_070,
+        0.445_948_490_915_965,
+        0.223_381_589_678_011,
+    ),
+    (
+        0.091_576_213_509_771,
+        0.091_576_213_509_771,
+        0.109_951_743_655_322,
+    ),
+    (
+        0.091_576_213_509_771,
+        0.816_847_572_980_459,
+        0.109_951_743_655_322,
+    ),
+    (
+        0.816_847_572_980_459,
+        0.091_576_213_509_771,
+        0.109_951_743_655_322,
+    ),
+];
+
+/// 6-node triangle `[v0, v1, v2, m01, m12, m20]`: values and derivatives in `(s, t)`.
+fn tri6_shape(s: f64, t: f64) -> ([f64; 6], [f64; 6], [f64; 6]) {
+    let l = [1.0 - s - t, s, t];
+    let dl_ds = [-1.0, 1.0, 0.0];
+    let dl_dt = [-1.0, 0.0, 1.0];
+    let edges = [(0, 1), (1, 2), (2, 0)];
+    let mut n = [0.0; 6];
+    let mut ds = [0.0; 6];
+    let mut dt = [0.0; 6];
+    for i in 0..3 {
+        n[i] = l[i] * (2.0 * l[i] - 1.0);
+        ds[i] = (4.0 * l[i] - 1.0) * dl_ds[i];
+        dt[i] = (4.0 * l[i] - 1.0) * dl_dt[i];
+    }
+    for (k, (a, b)) in edges.iter().enumerate() {
+        n[3 + k] = 4.0 * l[*a] * l[*b];
+        ds[3 + k] = 4.0 * (dl_ds[*a] * l[*b] + l[*a] * dl_ds[*b]);
+        dt[3 + k] = 4.0 * (dl_dt[*a] * l[*b] + l[*a] * dl_dt[*b]);
+    }
+    (n, ds, dt)
+}
+
+fn triangle_centroid(x: &[[f64; 3]; 6]) -> [f64; 3] {
+    let (n, _, _) = tri6_shape(1.0 / 3.0, 1.0 / 3.0);
+    let mut c = [0.0; 3];
+    for a in 0..6 {
+        for d in 0..3 {
+            c[d] += n[a] * x[a][d];
+        }
+    }
+    c
+}
+
+/// Element faces (6-node triangles, tet10::FACES order) whose six nodes are all in `set` and
+/// that belong to a single element (boundary faces).
+fn boundary_triangles(mesh: &Mesh, set: &[u32]) -> Vec<[u32; 6]> {
+    let mut member = vec![false; mesh.num_nodes()];
+    for &n in set {
+        member[n as usize] = true;
+    }
+    let mut seen: HashMap<[u32; 3], (usize, [u32; 6])> = HashMap::new();
+    for el in &mesh.elements {
+        for f in tet10::FACES {
+            let tri: [u32; 6] = f.map(|i| el[i]);
+            if tri.iter().all(|&n| member[n as usize]) {
+                let mut key = [tri[0], tri[1], tri[2]];
+                key.sort_unstable();
+                seen.entry(key).and_modify(|e| e.0 += 1).or_insert((1, tri));
+            }
+        }
+    }
+    let mut out: Vec<([u32; 3], [u32; 6])> = seen
+        .into_iter()
+        .filter(|(_, (count, _))| *count == 1)
+        .map(|(k, (_, t))| (k, t))
+        .collect();
+    out.sort_unstable_by_key(|(k, _)| *k);
+    out.into_iter().map(|(_, t)| t).collect()
+}
+
+fn mean_point(points: impl Iterator<Item = [f64; 3]>) -> [f64; 3] {
+    let mut s = [0.0; 3];
+    let mut n = 0usize;
+    for p in points {
+        for d in 0..3 {
+            s[d] += p[d];
+        }
+        n += 1;
+    }
+    s.map(|v| v / n.max(1) as f64)
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
+    a.map(|v| v * s)
+}
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
+    let n = norm(a);
+    (n > 0.0 && n.is_finite()).then(|| scale(a, 1.0 / n))
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use squeal_mesh::generate::box_tet10_origin;
+
+    #[test]
+    fn dunavant_rule_integrates_degree_four_exactly() {
+        // ∫ s^a t^b over the reference triangle = a! b! / (a + b + 2)!.
+        let fact = |n: u32| (1..=n).product::<u32>() as f64;
+        for a in 0..=4u32 {
+            for b in 0..=(4 - a) {
+                let q: f64 = DUNAVANT4
+                    .iter()
+                    .map(|(s, t, w)| 0.5 * w * s.powi(a as i32) * t.powi(b as i32))
+                    .sum();
+                let exact = fact(a) * fact(b) / fact(a + b + 2);
+                // The rule's weights and points are given to 15 digits.
+                assert!((q - exact).abs() < 1e-14, "s^{a} t^{b}: {q} vs {exact}");
+            }
+        }
+    }
+
+    #[test]
+    fn patches_of_an_annular_footprint_partition_its_area() {
+        // A flat box face stands in for a footprint: 1 x 1 face at z = 0.1 centred on +y,
+        // far from the axis so that radius and angle bins are non-degenerate.
+        let mut mesh = box_tet10_origin([-0.5, 2.0, 0.0], [1.0, 1.0, 0.1], [6, 6, 1]);
+        let face = mesh.node_set("ZMAX").unwrap().to_vec();
+        mesh.node_sets.insert("CONTACT_FACE".into(), face);
+        let p = patches(&mesh, "CONTACT_FACE", 3, 3, &Axis::default()).unwrap();
+        assert_eq!(p.len(), 9);
+        let total: f64 = p.iter().map(|q| q.area).sum();
+        // Straight-sided triangles: areas are exact to round-off.
+        assert!((total - 1.0).abs() < 1e-13, "total area {total}");
+        for q in &p {
+            let s: f64 = q.weights.iter().map(|w| w.1).sum();
+            assert!(
+                (s - 1.0).abs() < 1e-13,
+                "weights of patch {} sum to {s}",
+                q.number
+            );
+            // The mean motion of a rigid translation is that translation: Σ w_k x_k = centroid.
+            let mut c = [0.0; 3];
+            for &(n, w) in &q.weights {
+                for d in 0..3 {
+                    c[d] += w * mesh.nodes[n as usize][d];
+                }
+            }
+            for d in 0..3 {
+                assert!((c[d] - q.centroid[d]).abs() < 1e-12);
+            }
+        }
+        // Patch 1: inner radius, smallest angle (x > 0 side for a footprint on +y).
+        assert!(p[0].centroid[0] > 0.0 && p[0].centroid[1] < p[8].centroid[1]);
+        assert!(p[2].centroid[0] < 0.0);
+    }
+}
