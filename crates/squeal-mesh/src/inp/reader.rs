@@ -64,6 +64,7 @@ struct Repeated {
     index: usize,
     count: usize,
     stem: String,
+    tail: &'static str,
 }
 
 pub(super) struct Reader<'a> {
@@ -210,15 +211,16 @@ impl<'a> Reader<'a> {
         self.warnings.push(self.lx.warning(loc, message));
     }
 
-    /// A warning given once per `key`, at its first occurrence, with the number of
-    /// occurrences added at the end.
-    fn warn_once(&mut self, key: String, loc: Loc, stem: String) {
+    /// A warning given once per `key`, at its first occurrence: `stem`, then the number of
+    /// occurrences (patched in at the end) if more than one, then `tail`.
+    fn warn_once(&mut self, key: String, loc: Loc, stem: String, tail: &'static str) {
         if let Some(r) = self.repeated.get_mut(&key) {
             r.count += 1;
             return;
         }
-        self.repeated.insert(key, Repeated { index: self.warnings.len(), count: 1, stem: stem.clone() });
-        self.warn(loc, stem);
+        let message = format!("{stem}{tail}");
+        self.repeated.insert(key, Repeated { index: self.warnings.len(), count: 1, stem, tail });
+        self.warn(loc, message);
     }
 
     fn next_data(&mut self) -> Option<&'a DataLine> {
@@ -296,8 +298,9 @@ impl<'a> Reader<'a> {
             },
             _ => {
                 self.skip_data();
-                let stem = format!("skipped *{} and its data lines (squeal reads only the mesh, sets and materials)", kw.name);
-                self.warn_once(format!("keyword {key}"), kw.loc, stem);
+                let stem = format!("skipped *{} and its data lines", kw.name);
+                let tail = ": squeal reads only nodes, elements, sets, materials and sections";
+                self.warn_once(format!("keyword {key}"), kw.loc, stem, tail);
                 Ok(())
             }
         }
@@ -308,7 +311,7 @@ impl<'a> Reader<'a> {
         for p in &kw.params {
             if !known.contains(&p.name.as_str()) {
                 let stem = format!("ignored the parameter {} of *{}", p.name, kw.name);
-                self.warn_once(format!("param {} {}", kw.key, p.name), kw.loc, stem);
+                self.warn_once(format!("param {} {}", kw.key, p.name), kw.loc, stem, "");
             }
         }
     }
@@ -908,18 +911,14 @@ impl<'a> Reader<'a> {
         }
         for p in &self.parts {
             if !p.instanced {
-                let w = format!(
-                    "part {} is never instanced: its {} nodes and {} elements are not in the mesh",
-                    p.name,
-                    p.store.nodes.len(),
-                    p.store.count(Kind::Element)
-                );
+                let (n, e) = (p.store.nodes.len(), p.store.count(Kind::Element));
+                let w = format!("part {} is never instanced: its {n} node(s) and {e} element(s) are not in the mesh", p.name);
                 late.push(self.lx.warning(p.loc, w));
             }
         }
         for r in self.repeated.values() {
             if r.count > 1 {
-                self.warnings[r.index].message = format!("{} ({} times; the first is here)", r.stem, r.count);
+                self.warnings[r.index].message = format!("{}, {} times (the first is here){}", r.stem, r.count, r.tail);
             }
         }
         self.warnings.extend(late);
