@@ -1,1 +1,35 @@
-//! squeal-eigs (not written yet).
+//! squeal-eigs: sparse Cholesky factorization and the lowest modes of
+//! K phi = w^2 M phi for the Craig-Bampton reduction (Coudeyras, Sinou,
+//! Nacivet, JSV 2009, eqs. 3-5).
+//!
+//! Input convention: K and M are `faer::sparse::SparseColMat<usize, f64>`
+//! storing BOTH triangles (full symmetric storage), as squeal-fe assembles
+//! them. A matrix holding one triangle only is rejected with
+//! [`EigError::NotSymmetric`].
+//!
+//! - [`SparseCholesky`]: AMD-ordered sparse Cholesky (faer), multi-RHS solves,
+//!   [`SparseCholesky::constraint_modes`] for T_C = -K_II^-1 K_IB (eq. 3).
+//! - [`lowest_modes`] / [`lowest_modes_with_factor`]: shift-invert Lanczos
+//!   (pure Rust, default) or ARPACK (feature `arpack`), with a Sturm check.
+//! - [`count_below`] / [`inertia`]: Sturm counts from a sparse LBL^T.
+//! - [`model_problems`]: matrices with known spectra for tests and benchmarks.
+
+mod cholesky;
+mod error;
+mod inertia;
+mod lanczos;
+pub mod model_problems;
+mod solver;
+mod sparse;
+
+#[cfg(feature = "arpack")]
+mod arpack;
+
+pub use cholesky::{CholeskyOptions, FactorStats, SparseCholesky};
+pub use error::EigError;
+pub use inertia::{Inertia, count_below, inertia};
+pub use solver::{
+    Backend, EigOptions, EigStats, Modes, backward_errors, lowest_modes, lowest_modes_with_factor,
+    sturm_check,
+};
+pub use sparse::{check_pair, check_symmetric, shifted};

@@ -1,0 +1,402 @@
+//! Sparse Cholesky factorization A = P^T L L^T P with a fill-reducing (AMD)
+//! ordering, wrapping faer 0.24's supernodal/simplicial sparse Cholesky.
+//!
+//! Used for K_II (constraint modes, eq. 3 of Coudeyras et al. 2009) and for
+//! K - sigma M (the shift-invert operator of the fixed-interface modes, eqs. 4-5).
+
+use crate::EigError;
+use crate::sparse::{check_pair, check_symmetric, shifted, sym_matvec};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+    factorize_symbolic_cholesky,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Col, Conj, Mat, MatMut, MatRef, Par, Side};
+use rayon::prelude::*;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Right-hand-side columns per task in the multi-RHS solves (fixed so that
+/// the result bits do not depend on the thread count).
+const RHS_BLOCK: usize = 16;
+
+/// Options of the Cholesky factorization.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CholeskyOptions {
+    /// A pivot L_jj^2 smaller than this times the diagonal entry A_jj it came
+    /// from means that all but the last ~12 digits cancelled: the matrix is
+    /// singular to working precision (e.g. K_II of a part that is not held)
+    /// and is reported as [`EigError::NotPositiveDefinite`]. A well-posed
+    /// matrix has every such ratio above 1/cond(A).
+    pub singular_pivot_ratio: f64,
+    /// Parallelism of faer's dense kernels inside the factorization.
+    pub par: Par,
+}
+
+impl Default for CholeskyOptions {
+    fn default() -> Self {
+        Self {
+            singular_pivot_ratio: 1e-12,
+            par: faer::get_global_parallelism(),
+        }
+    }
+}
+
+/// What the factorization cost.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FactorStats {
+    /// Order of the matrix.
+    pub n: usize,
+    /// Stored entries of A (both triangles).
+    pub nnz_a: usize,
+    /// Nonzeros of the factor L (lower triangle including the diagonal).
+    pub nnz_l: usize,
+    /// Values stored for L (supernodal storage keeps dense diagonal blocks, so
+    /// this is a bit above `nnz_l`).
+    pub stored_l: usize,
+    /// Bytes held by the factor: values, indices and the ordering.
+    pub factor_bytes: usize,
+    /// Whether faer chose its supernodal (blocked) variant.
+    pub supernodal: bool,
+    /// AMD ordering + symbolic analysis time.
+    pub symbolic_time: Duration,
+    /// Numeric factorization time.
+    pub numeric_time: Duration,
+}
+
+/// A sparse Cholesky factor of a symmetric positive definite matrix.
+#[derive(Debug, Clone)]
+pub struct SparseCholesky {
+    symbolic: Arc<SymbolicCholesky<usize>>,
+    values: Vec<f64>,
+    stats: FactorStats,
+}
+
+impl SparseCholesky {
+    /// Factorizes a symmetric positive definite `a` (both triangles stored;
+    /// only the lower one is read by the factorization) with default options.
+    pub fn factorize(a: SparseColMatRef<'_, usize, f64>) -> Result<Self, EigError> {
+        Self::factorize_with(a, &CholeskyOptions::default())
+    }
+
+    /// Factorizes `a`: AMD ordering and symbolic analysis, then numeric.
+    pub fn factorize_with(
+        a: SparseColMatRef<'_, usize, f64>,
+        opts: &CholeskyOptions,
+    ) -> Result<Self, EigError> {
+        check_symmetric(a, "A")?;
+        let t0 = Instant::now();
+        let symbolic = Arc::new(analyze(a.symbolic())?);
+        let symbolic_time = t0.elapsed();
+        Self::numeric(symbolic, a, symbolic_time, opts)
+    }
+
+    /// Factorizes K - sigma M (the shift-invert operator of the generalized problem).
+    pub fn factorize_shifted(
+        k: SparseColMatRef<'_, usize, f64>,
+        m: SparseColMatRef<'_, usize, f64>,
+        sigma: f64,
+        opts: &CholeskyOptions,
+    ) -> Result<Self, EigError> {
+        check_pair(k, m)?;
+        let a = shifted(k, m, sigma)?;
+        let t0 = Instant::now();
+        let symbolic = Arc::new(analyze(a.symbolic())?);
+        let symbolic_time = t0.elapsed();
+        Self::numeric(symbolic, a.as_ref(), symbolic_time, opts)
+    }
+
+    /// Numeric factorization of a matrix with the same pattern as the one this
+    /// factor was made from, reusing the ordering and symbolic analysis.
+    pub fn refactorize(
+        &self,
+        a: SparseColMatRef<'_, usize, f64>,
+        opts: &CholeskyOptions,
+    ) -> Result<Self, EigError> {
+        check_symmetric(a, "A")?;
+        if a.nrows() != self.stats.n || a.compute_nnz() != self.stats.nnz_a {
+            return Err(EigError::DimensionMismatch {
+                what: "refactorize: pattern differs from the analysed one".into(),
+            });
+        }
+        Self::numeric(self.symbolic.clone(), a, Duration::ZERO, opts)
+    }
+
+    fn numeric(
+        symbolic: Arc<SymbolicCholesky<usize>>,
+        a: SparseColMatRef<'_, usize, f64>,
+        symbolic_time: Duration,
+        opts: &CholeskyOptions,
+    ) -> Result<Self, EigError> {
+        let t0 = Instant::now();
+        let len = symbolic.len_val();
+        let mut values = Vec::new();
+        values
+            .try_reserve_exact(len)
+            .map_err(|_| EigError::Factorization {
+                what: format!("cannot allocate {len} factor values"),
+            })?;
+        values.resize(len, 0.0);
+        let par = opts.par;
+        let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+        let mut mem = MemBuffer::try_new(req).map_err(|_| EigError::Factorization {
+            what: "cannot allocate factorization workspace".into(),
+        })?;
+        let result = symbolic.factorize_numeric_llt::<f64>(
+            &mut values,
+            a,
+            Side::Lower,
+            LltRegularization::default(),
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
+        let perm_fwd = symbolic.perm().map(|p| p.arrays().0.to_vec());
+        let to_input = |j: usize| {
+            perm_fwd
+                .as_ref()
+                .and_then(|f| f.get(j).copied())
+                .unwrap_or(j)
+        };
+        if let Err(LltError::NonPositivePivot { index }) = result {
+            return Err(EigError::NotPositiveDefinite {
+                column: to_input(index),
+            });
+        }
+        let numeric_time = t0.elapsed();
+        let (nnz_l, pivots) = pivots_and_nnz(&symbolic, &values);
+        let diag = diagonal(a);
+        for (j, &p) in pivots.iter().enumerate() {
+            let col = to_input(j);
+            if p * p <= opts.singular_pivot_ratio * diag[col].abs() {
+                return Err(EigError::NotPositiveDefinite { column: col });
+            }
+        }
+        let stats = FactorStats {
+            n: a.nrows(),
+            nnz_a: a.compute_nnz(),
+            nnz_l,
+            stored_l: len,
+            factor_bytes: factor_bytes(&symbolic, len),
+            supernodal: matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
+            symbolic_time,
+            numeric_time,
+        };
+        Ok(Self {
+            symbolic,
+            values,
+            stats,
+        })
+    }
+
+    /// Order of the factored matrix.
+    pub fn n(&self) -> usize {
+        self.stats.n
+    }
+
+    /// Sizes and timings.
+    pub fn stats(&self) -> FactorStats {
+        self.stats
+    }
+
+    /// Solves A X = B in place for all columns of `rhs`. Columns are solved in
+    /// blocks of 16 in parallel; each block is solved sequentially so the
+    /// result bits do not depend on the thread count.
+    pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError> {
+        if rhs.nrows() != self.n() {
+            return Err(EigError::DimensionMismatch {
+                what: format!(
+                    "right-hand side has {} rows, factor is {}",
+                    rhs.nrows(),
+                    self.n()
+                ),
+            });
+        }
+        let mut blocks = Vec::new();
+        let mut rest = rhs;
+        while rest.ncols() > 0 {
+            let w = RHS_BLOCK.min(rest.ncols());
+            let (left, right) = rest.split_at_col_mut(w);
+            blocks.push(left);
+            rest = right;
+        }
+        blocks.into_par_iter().try_for_each(|b| self.solve_block(b))
+    }
+
+    /// Solves one block of columns sequentially.
+    fn solve_block(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError> {
+        let req = self
+            .symbolic
+            .solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq);
+        let mut mem = MemBuffer::try_new(req).map_err(|_| EigError::Factorization {
+            what: "cannot allocate solve workspace".into(),
+        })?;
+        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            Par::Seq,
+            MemStack::new(&mut mem),
+        );
+        Ok(())
+    }
+
+    /// Returns X = A^-1 B.
+    pub fn solve(&self, rhs: MatRef<'_, f64>) -> Result<Mat<f64>, EigError> {
+        let mut x = rhs.to_owned();
+        self.solve_in_place(x.as_mut())?;
+        Ok(x)
+    }
+
+    /// Solves one column in place (sequential: used inside the Lanczos loop).
+    pub fn solve_col_in_place(&self, rhs: &mut Col<f64>) -> Result<(), EigError> {
+        if rhs.nrows() != self.n() {
+            return Err(EigError::DimensionMismatch {
+                what: format!(
+                    "right-hand side has {} rows, factor is {}",
+                    rhs.nrows(),
+                    self.n()
+                ),
+            });
+        }
+        self.solve_block(rhs.as_mat_mut())
+    }
+
+    /// Eq. (3): constraint modes X = -K_II^-1 K_IB for all boundary columns at
+    /// once, with this factor being the one of K_II. `k_ib` is the sparse
+    /// interior-boundary block (n_I x n_B); the result is dense n_I x n_B.
+    pub fn constraint_modes(
+        &self,
+        k_ib: SparseColMatRef<'_, usize, f64>,
+    ) -> Result<Mat<f64>, EigError> {
+        if k_ib.nrows() != self.n() {
+            return Err(EigError::DimensionMismatch {
+                what: format!("K_IB has {} rows, K_II is {}", k_ib.nrows(), self.n()),
+            });
+        }
+        let n = self.n();
+        let nb = k_ib.ncols();
+        let mut x = try_zeros(n, nb)?;
+        for j in 0..nb {
+            for (i, &v) in k_ib.row_idx_of_col(j).zip(k_ib.val_of_col(j)) {
+                x[(i, j)] -= v;
+            }
+        }
+        self.solve_in_place(x.as_mut())?;
+        Ok(x)
+    }
+
+    /// Relative error ||x - A_f^-1 A x|| / ||x|| for a fixed test vector x,
+    /// where A_f is the factored matrix: checks that this factor belongs to `a`.
+    pub fn mismatch(&self, a: SparseColMatRef<'_, usize, f64>) -> Result<f64, EigError> {
+        let n = self.n();
+        if a.nrows() != n {
+            return Err(EigError::DimensionMismatch {
+                what: format!("matrix is {}x{}, factor is {n}", a.nrows(), a.ncols()),
+            });
+        }
+        let x = Col::<f64>::from_fn(n, |i| 1.0 + ((i * 7919) % 101) as f64 / 101.0);
+        let mut y = Col::<f64>::zeros(n);
+        sym_matvec(a, x.as_ref(), y.as_mut());
+        self.solve_col_in_place(&mut y)?;
+        let err = (&y - &x).norm_l2() / x.norm_l2();
+        Ok(err)
+    }
+}
+
+/// A zeroed n x m matrix, or an error instead of an abort when the memory is not there.
+pub(crate) fn try_zeros(n: usize, m: usize) -> Result<Mat<f64>, EigError> {
+    let count = n
+        .checked_mul(m)
+        .ok_or_else(|| EigError::DimensionMismatch {
+            what: format!("{n} x {m} overflows"),
+        })?;
+    let mut probe: Vec<f64> = Vec::new();
+    probe
+        .try_reserve_exact(count)
+        .map_err(|_| EigError::Factorization {
+            what: format!("cannot allocate a {n} x {m} dense matrix"),
+        })?;
+    drop(probe);
+    Ok(Mat::zeros(n, m))
+}
+
+/// AMD ordering and symbolic analysis of a symmetric pattern (both triangles given).
+pub(crate) fn analyze(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+) -> Result<SymbolicCholesky<usize>, EigError> {
+    analyze_with(pattern, CholeskySymbolicParams::default())
+}
+
+/// AMD ordering and symbolic analysis with explicit faer parameters.
+pub(crate) fn analyze_with(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    params: CholeskySymbolicParams<'_>,
+) -> Result<SymbolicCholesky<usize>, EigError> {
+    factorize_symbolic_cholesky(pattern, Side::Lower, SymmetricOrdering::Amd, params).map_err(|e| {
+        EigError::Factorization {
+            what: format!("{e:?}"),
+        }
+    })
+}
+
+/// Diagonal entries of a (summing duplicates).
+fn diagonal(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
+    (0..a.ncols())
+        .map(|j| {
+            a.row_idx_of_col(j)
+                .zip(a.val_of_col(j))
+                .filter(|(i, _)| *i == j)
+                .map(|(_, v)| *v)
+                .sum()
+        })
+        .collect()
+}
+
+/// Diagonal pivots L_jj (permuted order) and the true nonzero count of L.
+fn pivots_and_nnz(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize, Vec<f64>) {
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => {
+            let cp = s.col_ptr();
+            let ri = s.row_idx();
+            let n = s.nrows();
+            let piv = (0..n)
+                .map(|j| {
+                    (cp[j]..cp[j + 1])
+                        .find(|&p| ri[p] == j)
+                        .map_or(0.0, |p| values[p])
+                })
+                .collect();
+            (s.len_val(), piv)
+        }
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let begin = s.supernode_begin();
+            let end = s.supernode_end();
+            let cpv = s.col_ptr_for_val();
+            let nnz_per = s.nnz_per_super();
+            let mut piv = Vec::with_capacity(s.nrows());
+            let mut nnz = 0usize;
+            for sn in 0..s.n_supernodes() {
+                let ncols = end[sn] - begin[sn];
+                let nrows = ncols + nnz_per[sn];
+                nnz += ncols * (ncols + 1) / 2 + ncols * nnz_per[sn];
+                let block = &values[cpv[sn]..cpv[sn + 1]];
+                for c in 0..ncols {
+                    piv.push(block[c * nrows + c]);
+                }
+            }
+            (nnz, piv)
+        }
+    }
+}
+
+/// Bytes of the factor: values, row indices, column pointers, permutation.
+fn factor_bytes(symbolic: &SymbolicCholesky<usize>, len_val: usize) -> usize {
+    let w = std::mem::size_of::<usize>();
+    let idx = match symbolic.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => s.row_idx().len() + s.col_ptr().len(),
+        SymbolicCholeskyRaw::Supernodal(s) => s.row_idx().len() + 4 * (s.n_supernodes() + 1),
+    };
+    len_val * 8 + (idx + 2 * symbolic.nrows()) * w
+}

@@ -1,0 +1,372 @@
+//! Thick-restart Lanczos (Wu & Simon, SIAM J. Matrix Anal. Appl. 22, 2000)
+//! in shift-invert mode for K phi = lambda M phi.
+//!
+//! The operator OP = (K - sigma M)^-1 M is self-adjoint in the M inner
+//! product <x, y>_M = x^T M y; its eigenvalues theta = 1 / (lambda - sigma)
+//! are largest for the lambda nearest above sigma (Ericsson & Ruhe, Math.
+//! Comp. 35, 1980). The basis V is kept M-orthonormal by full
+//! reorthogonalization (classical Gram-Schmidt applied twice, "CGS2"), with
+//! M V stored beside V so that each step costs one solve and one product
+//! with M. At a restart the wanted Ritz vectors (and more, up to half the
+//! free space, as ARPACK's dsaup2 does) are kept; the projected matrix is
+//! then diagonal with an arrow row, and the expansion continues from the
+//! last residual vector. A Ritz pair (theta, y) is converged when the
+//! estimate |beta_m s_m| of ||OP y - theta y||_M is at most tol * |theta|
+//! (ARPACK's criterion).
+
+use crate::EigError;
+use crate::cholesky::SparseCholesky;
+use crate::sparse::{project, subtract_combination, sym_matvec, update_rows};
+use faer::sparse::SparseColMatRef;
+use faer::{Accum, Col, ColRef, Mat, Side};
+
+/// Eigenvectors already found (M-orthonormal columns X) and M X: the
+/// operator is deflated to P OP with P = I - X X^T M, whose spectrum is that
+/// of OP with the found eigenvalues replaced by zero ("locking").
+pub(crate) struct Locked {
+    /// Locked vectors.
+    pub x: Mat<f64>,
+    /// M times the locked vectors.
+    pub mx: Mat<f64>,
+}
+
+/// The shift-invert operator: a factor of K - sigma M, M itself, and
+/// optionally locked vectors to deflate.
+pub(crate) struct ShiftInvert<'a> {
+    /// Mass matrix (both triangles stored).
+    pub m: SparseColMatRef<'a, usize, f64>,
+    /// Cholesky factor of K - sigma M.
+    pub factor: &'a SparseCholesky,
+    /// Vectors to deflate, if any.
+    pub locked: Option<Locked>,
+}
+
+impl ShiftInvert<'_> {
+    /// Order of the matrices.
+    pub fn n(&self) -> usize {
+        self.m.nrows()
+    }
+
+    /// Dimension of the space the deflated operator acts on.
+    pub fn dim(&self) -> usize {
+        self.n() - self.locked.as_ref().map_or(0, |l| l.x.ncols())
+    }
+
+    /// y = M x.
+    pub fn mass(&self, x: ColRef<'_, f64>) -> Col<f64> {
+        let mut y = Col::zeros(self.n());
+        sym_matvec(self.m, x, y.as_mut());
+        y
+    }
+
+    /// y = P (K - sigma M)^-1 b, where b = M x for OP x.
+    pub fn solve(&self, b: ColRef<'_, f64>) -> Result<Col<f64>, EigError> {
+        let mut y = b.to_owned();
+        self.factor.solve_col_in_place(&mut y)?;
+        if let Some(l) = &self.locked {
+            // Twice: one pass leaves rounding-level components along X.
+            for _ in 0..2 {
+                let h = project(l.mx.as_ref(), y.as_ref());
+                subtract_combination(y.as_mut(), l.x.as_ref(), &h);
+            }
+        }
+        Ok(y)
+    }
+}
+
+/// Parameters of one Lanczos run.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LanczosParams {
+    /// Eigenpairs wanted (largest theta).
+    pub nwant: usize,
+    /// Basis size before a restart (ncv), nwant < ncv <= n, or ncv = n.
+    pub ncv: usize,
+    /// Relative tolerance on ||OP y - theta y||_M / |theta|.
+    pub tol: f64,
+    /// Maximum number of restart cycles.
+    pub max_iter: usize,
+    /// Seed of the start vector.
+    pub seed: u64,
+}
+
+/// Result of a converged Lanczos run.
+#[derive(Debug, Clone)]
+pub(crate) struct LanczosOutcome {
+    /// Ritz values theta, descending (nwant of them).
+    pub theta: Vec<f64>,
+    /// Ritz vectors, M-orthonormal, in the order of `theta`.
+    pub vectors: Mat<f64>,
+    /// Restart cycles done (the first expansion counts as one).
+    pub iterations: usize,
+    /// Applications of OP (solves).
+    pub applications: usize,
+}
+
+/// Deterministic pseudo-random vector with entries in [-1, 1) (xorshift64*).
+pub(crate) fn start_vector(n: usize, seed: u64) -> Col<f64> {
+    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    Col::from_fn(n, |_| {
+        s ^= s >> 12;
+        s ^= s << 25;
+        s ^= s >> 27;
+        let r = s.wrapping_mul(0x2545_F491_4F6C_DD1D);
+        (r >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    })
+}
+
+/// Lanczos basis: V (M-orthonormal columns), M V, and the projected matrix T.
+struct Basis {
+    v: Mat<f64>,
+    mv: Mat<f64>,
+    t: Mat<f64>,
+}
+
+/// Outcome of orthogonalizing a new vector against the basis.
+struct Orthogonalized {
+    w: Col<f64>,
+    mw: Col<f64>,
+    coeffs: Vec<f64>,
+    norm: f64,
+}
+
+/// Classical Gram-Schmidt with reorthogonalization (Daniel, Gragg, Kaufman
+/// & Stewart, Math. Comp. 30, 1976) in the M inner product:
+/// w <- w - V h with h = (M V)^T w, repeated while a pass removes more than
+/// 1 - 1/sqrt(2) of the M-norm (at most 5 passes). The M-norm between passes
+/// is updated by Pythagoras; at the end M w is recomputed from w (keeping
+/// M V by the same recurrence as V would let its error grow geometrically).
+fn orthogonalize(
+    op: &ShiftInvert<'_>,
+    basis: &Basis,
+    cols: usize,
+    mut w: Col<f64>,
+    mw: Col<f64>,
+) -> Orthogonalized {
+    let v = basis.v.subcols(0, cols);
+    let mv = basis.mv.subcols(0, cols);
+    let mut coeffs = vec![0.0; cols];
+    let mut norm2 = crate::sparse::dot(w.as_ref(), mw.as_ref()).max(0.0);
+    for _ in 0..5 {
+        if cols == 0 || norm2 == 0.0 {
+            break;
+        }
+        let h = project(mv, w.as_ref());
+        subtract_combination(w.as_mut(), v, &h);
+        let removed: f64 = h.iter().map(|x| x * x).sum();
+        for (c, x) in coeffs.iter_mut().zip(&h) {
+            *c += x;
+        }
+        let after = (norm2 - removed).max(0.0);
+        let enough = after > 0.5 * norm2;
+        norm2 = after;
+        if enough {
+            break;
+        }
+    }
+    let mw = op.mass(w.as_ref());
+    let norm = crate::sparse::dot(w.as_ref(), mw.as_ref()).max(0.0).sqrt();
+    Orthogonalized {
+        w,
+        mw,
+        coeffs,
+        norm,
+    }
+}
+
+/// A fresh direction: OP applied to a pseudo-random vector, M-orthogonal to
+/// the first `cols` basis vectors and M-normalized. None if nothing is left
+/// (the basis spans the whole range of OP).
+fn fresh_direction(
+    op: &ShiftInvert<'_>,
+    basis: &Basis,
+    cols: usize,
+    seed: u64,
+    applications: &mut usize,
+) -> Result<Option<(Col<f64>, Col<f64>)>, EigError> {
+    let r = start_vector(op.n(), seed);
+    let mr = op.mass(r.as_ref());
+    let w = op.solve(mr.as_ref())?;
+    *applications += 1;
+    let mw = op.mass(w.as_ref());
+    let before = crate::sparse::dot(w.as_ref(), mw.as_ref()).max(0.0).sqrt();
+    let o = orthogonalize(op, basis, cols, w, mw);
+    // Tolerance: after CGS2, a remainder below 1e-10 of the input is rounding noise.
+    if !(o.norm > 1e-10 * before) {
+        return Ok(None);
+    }
+    Ok(Some((o.w / o.norm, o.mw / o.norm)))
+}
+
+/// Runs thick-restart Lanczos until the `nwant` largest Ritz values of OP
+/// converge, or fails with the residual estimates reached.
+pub(crate) fn thick_restart_lanczos(
+    op: &ShiftInvert<'_>,
+    p: &LanczosParams,
+) -> Result<LanczosOutcome, EigError> {
+    let n = op.n();
+    let m = p.ncv;
+    let dim = op.dim();
+    if p.nwant == 0 || p.nwant > m || m > dim || (p.nwant == m && m < dim) {
+        return Err(EigError::InvalidOption {
+            what: format!(
+                "need 0 < nev < ncv <= n (or nev <= ncv = n): nev {}, ncv {m}, n {dim}",
+                p.nwant
+            ),
+        });
+    }
+    let mut basis = Basis {
+        v: Mat::zeros(n, m + 1),
+        mv: Mat::zeros(n, m + 1),
+        t: Mat::zeros(m, m),
+    };
+    let mut applications = 0usize;
+    let mut seed = p.seed;
+    let Some((v0, mv0)) = fresh_direction(op, &basis, 0, seed, &mut applications)? else {
+        return Err(EigError::DimensionMismatch {
+            what: "operator has an empty range".into(),
+        });
+    };
+    basis.v.col_mut(0).copy_from(&v0);
+    basis.mv.col_mut(0).copy_from(&mv0);
+    let mut k = 0usize;
+    let mut iterations = 0usize;
+    loop {
+        iterations += 1;
+        let (size, beta) = expand(op, &mut basis, k, m, &mut seed, &mut applications)?;
+        let t = basis.t.submatrix(0, 0, size, size);
+        let evd = t
+            .self_adjoint_eigen(Side::Lower)
+            .map_err(|_| EigError::DenseEigen)?;
+        // faer sorts ascending: reverse to get the largest theta first.
+        let order: Vec<usize> = (0..size).rev().collect();
+        let theta: Vec<f64> = order.iter().map(|&i| evd.S()[i]).collect();
+        let s = Mat::<f64>::from_fn(size, size, |r, c| evd.U()[(r, order[c])]);
+        let estimates: Vec<f64> = (0..size)
+            .map(|i| (beta * s[(size - 1, i)]).abs() / theta[i].abs().max(f64::MIN_POSITIVE))
+            .collect();
+        let wanted = p.nwant.min(size);
+        let converged = |i: usize| estimates[i] <= p.tol;
+        let nconv = (0..wanted).filter(|&i| converged(i)).count();
+        if nconv == p.nwant {
+            let mut vectors = Mat::zeros(n, p.nwant);
+            update_rows(
+                vectors.as_mut(),
+                basis.v.subcols(0, size),
+                s.subcols(0, p.nwant),
+                Accum::Replace,
+                1.0,
+            );
+            return Ok(LanczosOutcome {
+                theta: theta[..p.nwant].to_vec(),
+                vectors,
+                iterations,
+                applications,
+            });
+        }
+        if iterations >= p.max_iter || size < m {
+            let residuals = estimates[..wanted].to_vec();
+            let worst = residuals.iter().copied().fold(0.0, f64::max);
+            return Err(EigError::NotConverged {
+                converged: nconv,
+                requested: p.nwant,
+                iterations,
+                residuals,
+                worst,
+            });
+        }
+        k = restart(&mut basis, &s, &theta, beta, p.nwant, nconv, m);
+    }
+}
+
+/// Lanczos steps j = k .. m-1 (vector j is in place). Returns the basis size
+/// reached (m, or less if the range of OP is exhausted) and beta, the M-norm
+/// of the residual coupling the last basis vector to the next.
+fn expand(
+    op: &ShiftInvert<'_>,
+    basis: &mut Basis,
+    k: usize,
+    m: usize,
+    seed: &mut u64,
+    applications: &mut usize,
+) -> Result<(usize, f64), EigError> {
+    let mut beta = 0.0;
+    for j in k..m {
+        let w = op.solve(basis.mv.col(j))?;
+        *applications += 1;
+        let mw = op.mass(w.as_ref());
+        let before = crate::sparse::dot(w.as_ref(), mw.as_ref()).max(0.0).sqrt();
+        let o = orthogonalize(op, basis, j + 1, w, mw);
+        for (i, &c) in o.coeffs.iter().enumerate() {
+            basis.t[(i, j)] = c;
+            basis.t[(j, i)] = c;
+        }
+        // Tolerance: a residual below 1e-12 of OP v_j means an invariant
+        // subspace (rounding level after CGS2): continue with a fresh direction.
+        let (next, coupling) = if o.norm > 1e-12 * before {
+            (Some((o.w / o.norm, o.mw / o.norm)), o.norm)
+        } else {
+            *seed = seed.wrapping_add(1);
+            let fresh = if j + 1 < op.dim() {
+                fresh_direction(op, basis, j + 1, *seed, applications)?
+            } else {
+                None
+            };
+            (fresh, 0.0)
+        };
+        beta = coupling;
+        let Some((vn, mvn)) = next else {
+            return Ok((j + 1, 0.0));
+        };
+        basis.v.col_mut(j + 1).copy_from(&vn);
+        basis.mv.col_mut(j + 1).copy_from(&mvn);
+        if j + 1 < m {
+            basis.t[(j + 1, j)] = coupling;
+            basis.t[(j, j + 1)] = coupling;
+        }
+    }
+    Ok((m, beta))
+}
+
+/// Thick restart: keep the first `keep` Ritz vectors, make the projected
+/// matrix diag(theta) with the arrow beta * s_m, and move the residual
+/// vector to position `keep`. Returns `keep`.
+fn restart(
+    basis: &mut Basis,
+    s: &Mat<f64>,
+    theta: &[f64],
+    beta: f64,
+    nwant: usize,
+    nconv: usize,
+    m: usize,
+) -> usize {
+    let keep = (nwant + nconv.min((m - nwant) / 2)).clamp(1, m - 1);
+    let n = basis.v.nrows();
+    let mut tmp = Mat::zeros(n, keep);
+    update_rows(
+        tmp.as_mut(),
+        basis.v.subcols(0, m),
+        s.subcols(0, keep),
+        Accum::Replace,
+        1.0,
+    );
+    basis.v.subcols_mut(0, keep).copy_from(&tmp);
+    update_rows(
+        tmp.as_mut(),
+        basis.mv.subcols(0, m),
+        s.subcols(0, keep),
+        Accum::Replace,
+        1.0,
+    );
+    basis.mv.subcols_mut(0, keep).copy_from(&tmp);
+    let (left, right) = basis.v.as_mut().split_at_col_mut(m);
+    left.col_mut(keep).copy_from(right.col(0));
+    let (left, right) = basis.mv.as_mut().split_at_col_mut(m);
+    left.col_mut(keep).copy_from(right.col(0));
+    basis.t.fill(0.0);
+    for i in 0..keep {
+        basis.t[(i, i)] = theta[i];
+        basis.t[(keep, i)] = beta * s[(m - 1, i)];
+        basis.t[(i, keep)] = beta * s[(m - 1, i)];
+    }
+    keep
+}

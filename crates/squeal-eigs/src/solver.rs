@@ -1,0 +1,509 @@
+//! The eigensolver front end: the `nev` lowest eigenpairs of
+//! K phi = w^2 M phi (eqs. 4-5 of Coudeyras et al. 2009: fixed-interface
+//! modes, mass-normalized), by shift-invert about a shift sigma below the
+//! lowest eigenvalue, with a Sturm check for missed eigenvalues.
+
+use crate::EigError;
+use crate::cholesky::{CholeskyOptions, FactorStats, SparseCholesky};
+use crate::inertia::count_below_unchecked;
+use crate::lanczos::{LanczosParams, Locked, ShiftInvert, thick_restart_lanczos};
+use crate::sparse::{check_pair, dot, norm1, shifted, sym_matvec};
+use faer::sparse::SparseColMatRef;
+use faer::{Col, Mat, Par};
+use std::time::{Duration, Instant};
+
+/// Which eigensolver runs the shift-invert iteration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Backend {
+    /// Thick-restart Lanczos of this crate (pure Rust, always available).
+    #[default]
+    Lanczos,
+    /// ARPACK dsaupd_/dseupd_ in mode 3 (needs the cargo feature `arpack`).
+    Arpack,
+}
+
+/// Options of [`lowest_modes`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EigOptions {
+    /// Shift sigma: must lie below the lowest eigenvalue so that K - sigma M
+    /// is positive definite. 0 for a held structure; negative (e.g. -1e-2 of
+    /// the first flexible w^2) for a free one with rigid-body modes.
+    pub shift: f64,
+    /// Relative tolerance on the Ritz residual ||OP y - theta y||_M / |theta|
+    /// (ARPACK's criterion); eigenvalue errors are about its square.
+    pub tol: f64,
+    /// Maximum number of restart cycles.
+    pub max_iter: usize,
+    /// Lanczos basis size; default max(2 * nwanted + 1, 20), capped at n.
+    pub ncv: Option<usize>,
+    /// Solver backend.
+    pub backend: Backend,
+    /// Count the eigenvalues below a bound just above the highest one kept
+    /// (inertia of K - bound M from a sparse LBL^T factorization) and fail
+    /// with [`EigError::MissedEigenvalues`] if the solver missed any. Costs
+    /// one more factorization.
+    pub sturm_check: bool,
+    /// Extra eigenpairs computed above the `nev` wanted, so that the Sturm
+    /// bound can be put in a gap of the spectrum even when the nev-th
+    /// eigenvalue is part of a multiplet (up to `guard + 1` copies).
+    pub guard: usize,
+    /// Seed of the start vector (results are deterministic for a given seed).
+    pub seed: u64,
+    /// Parallelism of the factorizations.
+    pub par: Par,
+}
+
+impl Default for EigOptions {
+    fn default() -> Self {
+        Self {
+            shift: 0.0,
+            tol: 1e-10,
+            max_iter: 300,
+            ncv: None,
+            backend: Backend::Lanczos,
+            sturm_check: true,
+            guard: 3,
+            seed: 1,
+            par: faer::get_global_parallelism(),
+        }
+    }
+}
+
+/// What the solve cost.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EigStats {
+    /// Restart cycles (ARPACK: "Arnoldi update iterations").
+    pub iterations: usize,
+    /// Restarts (iterations - 1).
+    pub restarts: usize,
+    /// Applications of OP = (K - sigma M)^-1 M (sparse triangular solve pairs).
+    pub operator_applications: usize,
+    /// Basis size used.
+    pub ncv: usize,
+    /// Eigenpairs computed (nev + guard, plus any found in later rounds).
+    pub computed: usize,
+    /// Solver rounds: 1, plus one per locked restart after a Sturm miss
+    /// (single-vector Krylov methods find extra copies of a multiple
+    /// eigenvalue only through rounding; the Sturm count tells how many are
+    /// missing and a restart with the found vectors locked finds them).
+    pub rounds: usize,
+    /// Factorization of K - sigma M, if this call made it.
+    pub factor: Option<FactorStats>,
+    /// Time of the iteration, including Sturm checks (without the first factorization).
+    pub solve_time: Duration,
+    /// Sturm bound and the count of eigenvalues below it, if checked.
+    pub sturm: Option<(f64, usize)>,
+    /// Time of the Sturm check.
+    pub sturm_time: Duration,
+    /// Total wall time of the call.
+    pub time: Duration,
+}
+
+/// The lowest eigenpairs.
+#[derive(Debug, Clone)]
+pub struct Modes {
+    /// Eigenvalues w^2, ascending.
+    pub values: Vec<f64>,
+    /// Eigenvectors as columns, M-orthonormal: phi^T M phi = I.
+    pub vectors: Mat<f64>,
+    /// Normwise backward errors ||K phi - w^2 M phi|| / ((||K|| + w^2 ||M||) ||phi||)
+    /// (1-norms of the matrices, 2-norms of vectors; Higham & Higham 1998),
+    /// meaningful for rigid-body (w^2 = 0) modes too.
+    pub residuals: Vec<f64>,
+    /// Costs.
+    pub stats: EigStats,
+}
+
+/// The `nev` lowest eigenpairs of K phi = w^2 M phi (K, M symmetric with
+/// both triangles stored, M positive definite), by shift-invert about
+/// `opts.shift`: factorizes K - sigma M, then calls [`lowest_modes_with_factor`].
+pub fn lowest_modes(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    nev: usize,
+    opts: &EigOptions,
+) -> Result<Modes, EigError> {
+    let t0 = Instant::now();
+    check_pair(k, m)?;
+    check_options(opts)?;
+    let chol = CholeskyOptions {
+        par: opts.par,
+        ..Default::default()
+    };
+    let factor = SparseCholesky::factorize_shifted(k, m, opts.shift, &chol)?;
+    let mut modes = solve_checked(k, m, &factor, nev, opts)?;
+    modes.stats.factor = Some(factor.stats());
+    modes.stats.time = t0.elapsed();
+    Ok(modes)
+}
+
+/// As [`lowest_modes`], reusing an existing Cholesky factor of
+/// K - opts.shift * M (e.g. the factor of K_II made for the constraint modes,
+/// with shift 0). A factor of another matrix is detected (one test solve)
+/// and reported as [`EigError::FactorMismatch`].
+pub fn lowest_modes_with_factor(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    factor: &SparseCholesky,
+    nev: usize,
+    opts: &EigOptions,
+) -> Result<Modes, EigError> {
+    let t0 = Instant::now();
+    check_pair(k, m)?;
+    check_options(opts)?;
+    check_factor(k, m, factor, opts.shift)?;
+    let mut modes = solve_checked(k, m, factor, nev, opts)?;
+    modes.stats.time = t0.elapsed();
+    Ok(modes)
+}
+
+fn check_options(opts: &EigOptions) -> Result<(), EigError> {
+    let bad = |what: String| Err(EigError::InvalidOption { what });
+    if !opts.shift.is_finite() {
+        return bad(format!("shift {} is not finite", opts.shift));
+    }
+    if !(opts.tol > 0.0 && opts.tol < 1.0) {
+        return bad(format!("tol {} must be in (0, 1)", opts.tol));
+    }
+    if opts.max_iter == 0 {
+        return bad("max_iter must be at least 1".into());
+    }
+    Ok(())
+}
+
+/// Normwise backward error of one solve with the factor, for a fixed vector:
+/// about 1e-16 for the right factor, large for another matrix.
+fn check_factor(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    factor: &SparseCholesky,
+    sigma: f64,
+) -> Result<(), EigError> {
+    let n = k.nrows();
+    if factor.n() != n {
+        return Err(EigError::DimensionMismatch {
+            what: format!("factor is {}, K is {n}", factor.n()),
+        });
+    }
+    let a = shifted(k, m, sigma)?;
+    let x = Col::<f64>::from_fn(n, |i| 1.0 + ((i * 7919) % 101) as f64 / 101.0);
+    let mut b = Col::<f64>::zeros(n);
+    sym_matvec(a.as_ref(), x.as_ref(), b.as_mut());
+    let mut y = b.clone();
+    factor.solve_col_in_place(&mut y)?;
+    let mut ay = Col::<f64>::zeros(n);
+    sym_matvec(a.as_ref(), y.as_ref(), ay.as_mut());
+    let err = (&ay - &b).norm_l2() / (norm1(a.as_ref()) * y.norm_l2() + b.norm_l2());
+    // Tolerance: a backward-stable solve gives ~1e-16; a factor of a matrix
+    // differing by a relative 1e-8 or more is not the one asked for.
+    if err.is_finite() && err <= 1e-9 {
+        Ok(())
+    } else {
+        Err(EigError::FactorMismatch { error: err })
+    }
+}
+
+/// Runs the backend, post-processes and Sturm-checks.
+fn solve_checked(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    factor: &SparseCholesky,
+    nev: usize,
+    opts: &EigOptions,
+) -> Result<Modes, EigError> {
+    let n = k.nrows();
+    if nev == 0 || nev > n {
+        return Err(EigError::TooManyRequested {
+            requested: nev,
+            available: n,
+        });
+    }
+    let nwant = nev.saturating_add(opts.guard).min(n);
+    let ncv = match opts.ncv {
+        Some(c) => c.min(n),
+        None => (2 * nwant + 1).max(20).min(n),
+    };
+    if ncv < nwant || (ncv == nwant && ncv < n) {
+        return Err(EigError::InvalidOption {
+            what: format!("ncv {ncv} must exceed nev + guard = {nwant} (or equal n = {n})"),
+        });
+    }
+    let t0 = Instant::now();
+    let mut op = ShiftInvert {
+        m,
+        factor,
+        locked: None,
+    };
+    let raw = run_backend(&op, nwant, ncv, opts)?;
+    let (mut iterations, mut applications) = (raw.iterations, raw.applications);
+    let (mut values, mut vectors) = normalize(m, raw.values, raw.vectors);
+    let mut sturm = None;
+    let mut sturm_time = Duration::ZERO;
+    let mut rounds = 1;
+    if opts.sturm_check {
+        loop {
+            let t1 = Instant::now();
+            let checked = sturm_check_unchecked(k, m, &values, nev, opts.par);
+            sturm_time += t1.elapsed();
+            match checked {
+                Ok(found) => {
+                    sturm = Some(found);
+                    break;
+                }
+                Err(EigError::MissedEigenvalues {
+                    expected, found, ..
+                }) if expected > found && rounds < MAX_ROUNDS => {
+                    // Lock what was found and look for the missing ones
+                    // (typically further copies of a multiple eigenvalue).
+                    rounds += 1;
+                    let dim = n - vectors.ncols();
+                    let more = (expected - found).saturating_add(opts.guard).min(dim);
+                    let ncv_more = (2 * more + 1).max(20).min(dim);
+                    if more == 0 || (more == ncv_more && ncv_more < dim) {
+                        return Err(EigError::MissedEigenvalues {
+                            bound: f64::NAN,
+                            expected,
+                            found,
+                        });
+                    }
+                    op.locked = Some(Locked {
+                        x: vectors.clone(),
+                        mx: m * &vectors,
+                    });
+                    let extra = run_backend(&op, more, ncv_more, opts)?;
+                    iterations += extra.iterations;
+                    applications += extra.applications;
+                    let (v2, x2) = normalize(m, extra.values, extra.vectors);
+                    (values, vectors) = merge(values, vectors, v2, x2);
+                }
+                Err(e) => return Err(e),
+            }
+        }
+    }
+    let solve_time = t0.elapsed();
+    let residuals = backward_errors(k, m, &values, &vectors);
+    // Tolerance: the backward error is about tol times sqrt(cond(M)) (M-norm
+    // to 2-norm); 1e4 tol leaves room for cond(M) up to 1e8 before a pair
+    // that the solver called converged is rejected as not converged.
+    let limit = 1e4 * opts.tol.max(f64::EPSILON);
+    if residuals.iter().any(|r| !(*r <= limit)) {
+        let worst = residuals.iter().copied().fold(0.0, f64::max);
+        let converged = residuals.iter().filter(|r| **r <= limit).count();
+        return Err(EigError::NotConverged {
+            converged,
+            requested: values.len(),
+            iterations,
+            residuals,
+            worst,
+        });
+    }
+    let stats = EigStats {
+        iterations,
+        restarts: iterations.saturating_sub(rounds),
+        operator_applications: applications,
+        ncv,
+        computed: values.len(),
+        rounds,
+        solve_time,
+        sturm,
+        sturm_time,
+        ..Default::default()
+    };
+    Ok(Modes {
+        values: values[..nev].to_vec(),
+        vectors: vectors.subcols(0, nev).to_owned(),
+        residuals: residuals[..nev].to_vec(),
+        stats,
+    })
+}
+
+/// Solver rounds at most: the first plus locked restarts after Sturm misses.
+const MAX_ROUNDS: usize = 4;
+
+fn run_backend(
+    op: &ShiftInvert<'_>,
+    nwant: usize,
+    ncv: usize,
+    opts: &EigOptions,
+) -> Result<RawModes, EigError> {
+    match opts.backend {
+        Backend::Lanczos => run_lanczos(op, nwant, ncv, opts),
+        Backend::Arpack => run_arpack(op, nwant, ncv, opts),
+    }
+}
+
+/// Joins two sets of eigenpairs, sorted ascending (stable).
+fn merge(v1: Vec<f64>, x1: Mat<f64>, v2: Vec<f64>, x2: Mat<f64>) -> (Vec<f64>, Mat<f64>) {
+    let values: Vec<f64> = v1.iter().chain(&v2).copied().collect();
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+    let n = x1.nrows();
+    let n1 = v1.len();
+    let vectors = Mat::from_fn(n, order.len(), |i, c| {
+        let j = order[c];
+        if j < n1 { x1[(i, j)] } else { x2[(i, j - n1)] }
+    });
+    (order.iter().map(|&j| values[j]).collect(), vectors)
+}
+
+/// Eigenpairs as returned by a backend (any order, any scaling).
+pub(crate) struct RawModes {
+    pub values: Vec<f64>,
+    pub vectors: Mat<f64>,
+    pub iterations: usize,
+    pub applications: usize,
+}
+
+fn run_lanczos(
+    op: &ShiftInvert<'_>,
+    nwant: usize,
+    ncv: usize,
+    opts: &EigOptions,
+) -> Result<RawModes, EigError> {
+    let params = LanczosParams {
+        nwant,
+        ncv,
+        tol: opts.tol,
+        max_iter: opts.max_iter,
+        seed: opts.seed,
+    };
+    let out = thick_restart_lanczos(op, &params)?;
+    Ok(RawModes {
+        values: out.theta.iter().map(|t| opts.shift + 1.0 / t).collect(),
+        vectors: out.vectors,
+        iterations: out.iterations,
+        applications: out.applications,
+    })
+}
+
+#[cfg(feature = "arpack")]
+fn run_arpack(
+    op: &ShiftInvert<'_>,
+    nwant: usize,
+    ncv: usize,
+    opts: &EigOptions,
+) -> Result<RawModes, EigError> {
+    crate::arpack::shift_invert(op, nwant, ncv, opts.shift, opts.tol, opts.max_iter)
+}
+
+#[cfg(not(feature = "arpack"))]
+fn run_arpack(
+    _op: &ShiftInvert<'_>,
+    _nwant: usize,
+    _ncv: usize,
+    _opts: &EigOptions,
+) -> Result<RawModes, EigError> {
+    Err(EigError::BackendUnavailable("arpack"))
+}
+
+/// Sorts ascending (ties keep the backend's order) and scales every vector to
+/// unit M-norm.
+fn normalize(
+    m: SparseColMatRef<'_, usize, f64>,
+    values: Vec<f64>,
+    vectors: Mat<f64>,
+) -> (Vec<f64>, Mat<f64>) {
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+    let n = vectors.nrows();
+    let mut out = Mat::zeros(n, order.len());
+    let mut mx = Col::<f64>::zeros(n);
+    for (c, &j) in order.iter().enumerate() {
+        let x = vectors.col(j);
+        sym_matvec(m, x, mx.as_mut());
+        let s = dot(x, mx.as_ref()).max(f64::MIN_POSITIVE).sqrt();
+        out.col_mut(c).copy_from(x);
+        out.col_mut(c).iter_mut().for_each(|v| *v /= s);
+    }
+    (order.iter().map(|&j| values[j]).collect(), out)
+}
+
+/// Normwise backward errors of the eigenpairs (see [`Modes::residuals`]).
+pub fn backward_errors(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    values: &[f64],
+    vectors: &Mat<f64>,
+) -> Vec<f64> {
+    let n = k.nrows();
+    let (nk, nm) = (norm1(k), norm1(m));
+    let mut kx = Col::<f64>::zeros(n);
+    let mut mx = Col::<f64>::zeros(n);
+    values
+        .iter()
+        .enumerate()
+        .map(|(j, &lam)| {
+            let x = vectors.col(j);
+            sym_matvec(k, x, kx.as_mut());
+            sym_matvec(m, x, mx.as_mut());
+            let r = Col::<f64>::from_fn(n, |i| kx[i] - lam * mx[i]);
+            r.norm_l2() / ((nk + lam.abs() * nm) * x.norm_l2())
+        })
+        .collect()
+}
+
+/// Sturm check of computed eigenvalues `values` (ascending, all of them
+/// from the lowest up, possibly more than `nev`): places a bound in the
+/// first gap at or above the nev-th value and compares the number of
+/// computed values below it with the inertia of K - bound M. Returns the
+/// bound and the count, or [`EigError::MissedEigenvalues`].
+pub fn sturm_check(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    values: &[f64],
+    nev: usize,
+) -> Result<(f64, usize), EigError> {
+    check_pair(k, m)?;
+    if nev == 0 || nev > values.len() || values.iter().any(|v| !v.is_finite()) {
+        return Err(EigError::InvalidOption {
+            what: format!("sturm_check: nev {nev} of {} finite values", values.len()),
+        });
+    }
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sturm_check_unchecked(k, m, &sorted, nev, faer::get_global_parallelism())
+}
+
+fn sturm_check_unchecked(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    values: &[f64],
+    nev: usize,
+    par: Par,
+) -> Result<(f64, usize), EigError> {
+    let (bound, found) = sturm_bound(values, nev);
+    let expected = count_below_unchecked(k, m, bound, par)?;
+    if expected != found {
+        return Err(EigError::MissedEigenvalues {
+            bound,
+            expected,
+            found,
+        });
+    }
+    Ok((bound, expected))
+}
+
+/// Relative separation below which two computed eigenvalues are taken as
+/// copies of one (multiple) eigenvalue when placing the Sturm bound.
+const SAME_EIGENVALUE: f64 = 1e-6;
+
+/// Places the Sturm bound in the first gap of the computed (ascending)
+/// spectrum at or above index nev - 1, halfway between the two eigenvalues;
+/// returns the bound and how many computed eigenvalues lie below it. Without
+/// such a gap among the computed values, the bound is just above the last one.
+/// Eigenvalues below 1e-3 of the largest computed one are compared on that
+/// absolute scale, so that rounding-level rigid-body values (w^2 ~ 0) are
+/// taken as one multiple zero.
+fn sturm_bound(values: &[f64], nev: usize) -> (f64, usize) {
+    let vmax = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    for j in nev..values.len() {
+        let (a, b) = (values[j - 1], values[j]);
+        let scale = a.abs().max(b.abs()).max(1e-3 * vmax).max(f64::MIN_POSITIVE);
+        if b - a > SAME_EIGENVALUE * scale {
+            return (0.5 * (a + b), j);
+        }
+    }
+    let last = values[values.len() - 1];
+    let bump = SAME_EIGENVALUE * vmax.max(f64::MIN_POSITIVE);
+    (last + bump, values.len())
+}
