@@ -74,15 +74,24 @@ fn read_inp(c: &mut Criterion) {
     let mut group = c.benchmark_group("read_inp");
     group.sample_size(20);
     for path in files(&dir) {
-        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
         match squeal_mesh::inp::read(&path) {
-            Ok(r) => println!("{name}: {} nodes, {} tet10", r.mesh.num_nodes(), r.mesh.num_elements()),
+            Ok(r) => println!(
+                "{name}: {} nodes, {} tet10",
+                r.mesh.num_nodes(),
+                r.mesh.num_elements()
+            ),
             Err(e) => {
                 println!("{name}: not benchmarked: {e}");
                 continue;
             }
         }
-        group.bench_function(name, |b| b.iter(|| squeal_mesh::inp::read(black_box(&path))));
+        group.bench_function(name, |b| {
+            b.iter(|| squeal_mesh::inp::read(black_box(&path)))
+        });
     }
     group.finish();
     let _ = std::fs::remove_dir_all(&dir);

@@ -97,22 +97,36 @@ pub struct NoIncludes;
 
 impl IncludeResolver for NoIncludes {
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
-        Err(std::io::Error::new(std::io::ErrorKind::NotFound, format!("{} is not available", path.display())))
+        Err(std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            format!("{} is not available", path.display()),
+        ))
     }
 }
 
 /// Reads an Abaqus / CalculiX `.inp` file and the files it includes.
 pub fn read(path: &Path) -> Result<ReadMesh, MeshError> {
-    let bytes = std::fs::read(path).map_err(|source| MeshError::Io { file: path.to_path_buf(), source })?;
+    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+        file: path.to_path_buf(),
+        source,
+    })?;
     parse(&bytes, path, &FileSystem)
 }
 
 /// Parses `.inp` text held in memory. `path` names the text in messages and is the folder
 /// includes are relative to; `resolver` supplies included files.
-pub fn parse(text: &[u8], path: &Path, resolver: &dyn IncludeResolver) -> Result<ReadMesh, MeshError> {
+pub fn parse(
+    text: &[u8],
+    path: &Path,
+    resolver: &dyn IncludeResolver,
+) -> Result<ReadMesh, MeshError> {
     let lexed = lex::lex(text, path, resolver)?;
     if lexed.items.is_empty() {
-        return Err(MeshError::invalid(path, Location::File, "expected .inp keywords, found no keyword or data line"));
+        return Err(MeshError::invalid(
+            path,
+            Location::File,
+            "expected .inp keywords, found no keyword or data line",
+        ));
     }
     reader::Reader::new(&lexed).run()
 }

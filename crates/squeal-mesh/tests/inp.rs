@@ -8,7 +8,9 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 fn data(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(rel)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(rel)
 }
 
 fn read(rel: &str) -> ReadMesh {
@@ -16,11 +18,17 @@ fn read(rel: &str) -> ReadMesh {
 }
 
 fn set_len(sets: &BTreeMap<String, Vec<u32>>, name: &str) -> usize {
-    sets.get(name).unwrap_or_else(|| panic!("no set {name} in {:?}", sets.keys().collect::<Vec<_>>())).len()
+    sets.get(name)
+        .unwrap_or_else(|| panic!("no set {name} in {:?}", sets.keys().collect::<Vec<_>>()))
+        .len()
 }
 
 fn node_of(m: &Mesh, id: u64) -> [f64; 3] {
-    let i = m.node_ids.iter().position(|&x| x == id).unwrap_or_else(|| panic!("no node {id}"));
+    let i = m
+        .node_ids
+        .iter()
+        .position(|&x| x == id)
+        .unwrap_or_else(|| panic!("no node {id}"));
     m.nodes[i]
 }
 
@@ -41,8 +49,10 @@ fn midside_check(m: &Mesh) -> (f64, bool) {
     let mut nearest_own = true;
     for e in 0..m.num_elements() {
         let x = m.element_coords(e);
-        let mid = |[a, b]: [usize; 2]| -> [f64; 3] { std::array::from_fn(|d| 0.5 * (x[a][d] + x[b][d])) };
-        let dist = |p: [f64; 3], q: [f64; 3]| (0..3).map(|d| (p[d] - q[d]).powi(2)).sum::<f64>().sqrt();
+        let mid =
+            |[a, b]: [usize; 2]| -> [f64; 3] { std::array::from_fn(|d| 0.5 * (x[a][d] + x[b][d])) };
+        let dist =
+            |p: [f64; 3], q: [f64; 3]| (0..3).map(|d| (p[d] - q[d]).powi(2)).sum::<f64>().sqrt();
         for (k, edge) in tet10::EDGES.iter().enumerate() {
             let len = dist(x[edge[0]], x[edge[1]]);
             let own = dist(x[4 + k], mid(*edge));
@@ -83,7 +93,10 @@ fn keywords_file_reads_every_form() {
     assert_eq!(set_len(&m.node_sets, "NALL"), 18);
     assert_eq!(ids(m, &m.node_sets["BASE"]), vec![1, 2, 3, 5, 6, 7, 15]);
     assert_eq!(ids(m, &m.node_sets["Top"]), vec![11, 12, 13, 14]);
-    assert_eq!(ids(m, &m.node_sets["MIXED"]), vec![1, 2, 3, 4, 5, 6, 7, 11, 12, 13, 14]);
+    assert_eq!(
+        ids(m, &m.node_sets["MIXED"]),
+        vec![1, 2, 3, 4, 5, 6, 7, 11, 12, 13, 14]
+    );
     assert_eq!(m.element_sets["EALL"], vec![0, 1, 2]);
     assert_eq!(m.element_sets["FIRST"], vec![0, 2]);
     assert_eq!(m.element_sets["ALLPLUS"], vec![0, 1, 2]);
@@ -92,16 +105,32 @@ fn keywords_file_reads_every_form() {
     assert_eq!(m.node_set("mixed").map(<[u32]>::len), Some(11));
     // Materials: values as written; the section's "steel" resolves to "Steel".
     let steel = &m.materials["Steel"];
-    assert_eq!(steel.elastic, Some(Elastic::Isotropic { young: 210e9, poisson: 0.3 }));
+    assert_eq!(
+        steel.elastic,
+        Some(Elastic::Isotropic {
+            young: 210e9,
+            poisson: 0.3
+        })
+    );
     assert_eq!(steel.density, Some(7850.0));
     let pad = &m.materials["Pad Lining"];
     assert_eq!(
         pad.elastic,
-        Some(Elastic::EngineeringConstants { e: [1e9, 2e9, 3e9], nu: [0.1, 0.2, 0.3], g: [4e8, 5e8, 6e8] })
+        Some(Elastic::EngineeringConstants {
+            e: [1e9, 2e9, 3e9],
+            nu: [0.1, 0.2, 0.3],
+            g: [4e8, 5e8, 6e8]
+        })
     );
     assert_eq!(pad.density, Some(2500.0));
     assert_eq!(m.sections.len(), 1);
-    assert_eq!((m.sections[0].element_set.as_str(), m.sections[0].material.as_str()), ("EALL", "Steel"));
+    assert_eq!(
+        (
+            m.sections[0].element_set.as_str(),
+            m.sections[0].material.as_str()
+        ),
+        ("EALL", "Steel")
+    );
     assert_eq!(m.element_materials(), vec![Some("Steel"); 3]);
     // Warnings: one per skipped element block (S3, B31), one per distinct unknown keyword
     // (BOUNDARY twice, STEP, STATIC, END STEP).
@@ -109,7 +138,11 @@ fn keywords_file_reads_every_form() {
     assert_eq!(r.warnings.len(), 6, "{msgs:#?}");
     assert!(has_warning(&r, "skipped 2 elements of type S3"));
     assert!(has_warning(&r, "skipped 1 element of type B31"));
-    let boundary = r.warnings.iter().find(|w| w.message.contains("*BOUNDARY")).unwrap();
+    let boundary = r
+        .warnings
+        .iter()
+        .find(|w| w.message.contains("*BOUNDARY"))
+        .unwrap();
     assert!(boundary.message.contains("2 times"), "{}", boundary.message);
     assert_eq!(boundary.location, Location::Line(52));
     assert!(has_warning(&r, "*END STEP"));
@@ -126,7 +159,14 @@ fn assembly_instances_are_renumbered_placed_and_prefixed() {
     assert_eq!(m.node_ids[0], 1);
     assert_eq!(m.node_ids[1], INSTANCE_STRIDE + 1);
     assert_eq!(m.node_ids[30], 3 * INSTANCE_STRIDE + 10);
-    assert_eq!(m.element_ids, vec![INSTANCE_STRIDE + 1, 2 * INSTANCE_STRIDE + 1, 3 * INSTANCE_STRIDE + 1]);
+    assert_eq!(
+        m.element_ids,
+        vec![
+            INSTANCE_STRIDE + 1,
+            2 * INSTANCE_STRIDE + 1,
+            3 * INSTANCE_STRIDE + 1
+        ]
+    );
     // Placement: A as defined; B translated by (10, 0, 0); C rotated 90 degrees about z, which
     // takes (2, 0, 0) to (0, 2, 0) and leaves (0, 0, 2). sin/cos of pi/2 are exact to 1e-16.
     assert_eq!(node_of(m, 1), [5.0, 5.0, 5.0]);
@@ -141,11 +181,20 @@ fn assembly_instances_are_renumbered_placed_and_prefixed() {
         assert_eq!(set_len(&m.element_sets, &format!("{inst}.All")), 1);
     }
     let b = 2 * INSTANCE_STRIDE;
-    assert_eq!(ids(m, &m.node_sets["Bases"]), vec![b + 1, b + 2, b + 3, b + 4]);
+    assert_eq!(
+        ids(m, &m.node_sets["Bases"]),
+        vec![b + 1, b + 2, b + 3, b + 4]
+    );
     let c = 3 * INSTANCE_STRIDE;
-    assert_eq!(ids(m, &m.node_sets["Mixed"]), vec![1, INSTANCE_STRIDE + 1, c + 1, c + 2, c + 3]);
+    assert_eq!(
+        ids(m, &m.node_sets["Mixed"]),
+        vec![1, INSTANCE_STRIDE + 1, c + 1, c + 2, c + 3]
+    );
     assert_eq!(ids(m, &m.node_sets["Ref"]), vec![1]);
-    assert_eq!(ids(m, &m.node_sets["A.Local"]), vec![INSTANCE_STRIDE + 1, INSTANCE_STRIDE + 2]);
+    assert_eq!(
+        ids(m, &m.node_sets["A.Local"]),
+        vec![INSTANCE_STRIDE + 1, INSTANCE_STRIDE + 2]
+    );
     assert_eq!(m.element_sets["Both"], vec![0, 1]);
     // The part's section applies to each instance; "Iron" resolves to the material "IRON".
     assert_eq!(m.sections.len(), 3);
@@ -175,7 +224,13 @@ fn calculix_beam10p() {
     assert!(m.dangling.is_empty());
     // Node 1 is written "1, 1., 0." (z omitted).
     assert_eq!(node_of(m, 1), [1.0, 0.0, 0.0]);
-    assert_eq!(m.materials["EL"].elastic, Some(Elastic::Isotropic { young: 210000.0, poisson: 0.3 }));
+    assert_eq!(
+        m.materials["EL"].elastic,
+        Some(Elastic::Isotropic {
+            young: 210000.0,
+            poisson: 0.3
+        })
+    );
     assert_eq!(m.element_materials(), vec![Some("EL"); 31]);
     // Skipped: BOUNDARY, STEP, STATIC, CLOAD, NODE PRINT, EL PRINT, END STEP.
     assert_eq!(r.warnings.len(), 7, "{:#?}", r.warnings);
@@ -216,12 +271,21 @@ fn calculix_segmenttet() {
     assert_eq!(set_len(&m.node_sets, "Nright"), 235);
     assert!(m.dangling.is_empty());
     let el = &m.materials["EL"];
-    assert_eq!(el.elastic, Some(Elastic::Isotropic { young: 210000.0, poisson: 0.3 }));
+    assert_eq!(
+        el.elastic,
+        Some(Elastic::Isotropic {
+            young: 210000.0,
+            poisson: 0.3
+        })
+    );
     assert_eq!(el.density, Some(7.8e-9));
     // Skipped: SURFACE (twice, one warning), TIE, CYCLIC SYMMETRY MODEL, STEP, FREQUENCY,
     // SELECT CYCLIC SYMMETRY MODES, END STEP; *HEADING is read, not skipped.
     assert_eq!(r.warnings.len(), 7, "{:#?}", r.warnings);
-    assert!(has_warning(&r, "skipped *SURFACE and its data lines, 2 times (the first is here): squeal reads only"));
+    assert!(has_warning(
+        &r,
+        "skipped *SURFACE and its data lines, 2 times (the first is here): squeal reads only"
+    ));
     assert!(has_warning(&r, "*CYCLIC SYMMETRY MODEL"));
 }
 
@@ -246,22 +310,36 @@ fn midside_nodes_sit_on_their_edges_in_canonical_order() {
         let (worst, nearest) = midside_check(&m);
         println!("{file}: largest midside offset / edge length = {worst:.3e}");
         assert!(worst <= tol, "{file}: midside offset {worst} > {tol}");
-        assert!(nearest, "{file}: a midside node is nearer another edge's midpoint");
+        assert!(
+            nearest,
+            "{file}: a midside node is nearer another edge's midpoint"
+        );
     }
 }
 
-/// Reads the broken-file manifest: (file, expected place or None for "ok", fragment).
-fn manifest() -> Vec<(String, Option<(String, Location)>, String)> {
+/// Where a broken file's error must be: the file named (possibly an included one) and the
+/// place in it; `None` when the file must read with a warning.
+type Expected = Option<(String, Location)>;
+
+/// Reads the broken-file manifest: (file, expected place, message fragment).
+fn manifest() -> Vec<(String, Expected, String)> {
     let text = std::fs::read_to_string(data("broken/inp/MANIFEST")).unwrap();
     let mut out = Vec::new();
-    for line in text.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty()) {
+    for line in text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+    {
         let cols: Vec<&str> = line.split(" | ").collect();
         assert_eq!(cols.len(), 3, "bad manifest line {line}");
         let place = if cols[1] == "ok" {
             None
         } else {
             let (file, at) = cols[1].rsplit_once(':').unwrap();
-            let loc = if at == "-" { Location::File } else { Location::Line(at.parse().unwrap()) };
+            let loc = if at == "-" {
+                Location::File
+            } else {
+                Location::Line(at.parse().unwrap())
+            };
             Some((file.to_string(), loc))
         };
         out.push((cols[0].to_string(), place, cols[2].to_string()));
@@ -273,27 +351,52 @@ fn manifest() -> Vec<(String, Option<(String, Location)>, String)> {
 fn broken_files_give_located_errors() {
     let entries = manifest();
     // Every file in the folder is in the manifest (include_loop_b.inp only as included).
-    let listed: Vec<&str> = entries.iter().map(|e| e.0.as_str()).chain(["include_loop_b.inp", "MANIFEST"]).collect();
+    let listed: Vec<&str> = entries
+        .iter()
+        .map(|e| e.0.as_str())
+        .chain(["include_loop_b.inp", "MANIFEST"])
+        .collect();
     for f in std::fs::read_dir(data("broken/inp")).unwrap() {
         let name = f.unwrap().file_name().into_string().unwrap();
-        assert!(listed.contains(&name.as_str()), "{name} is not in the manifest");
+        assert!(
+            listed.contains(&name.as_str()),
+            "{name} is not in the manifest"
+        );
     }
     for (file, place, fragment) in entries {
         let path = data("broken/inp").join(&file);
         let result = std::panic::catch_unwind(|| inp::read(&path));
         let result = result.unwrap_or_else(|_| panic!("{file}: the reader panicked"));
         match (place, result) {
-            (None, Ok(r)) => assert!(has_warning(&r, &fragment), "{file}: no warning '{fragment}' in {:#?}", r.warnings),
+            (None, Ok(r)) => assert!(
+                has_warning(&r, &fragment),
+                "{file}: no warning '{fragment}' in {:#?}",
+                r.warnings
+            ),
             (None, Err(e)) => panic!("{file}: expected a mesh, got {e}"),
             (Some(_), Ok(_)) => panic!("{file}: expected an error"),
             (Some((err_file, loc)), Err(e)) => {
                 let shown = e.to_string();
                 match e {
-                    MeshError::Invalid { file: f, location, message } => {
-                        assert!(f.ends_with(&err_file), "{file}: error names {} not {err_file}", f.display());
+                    MeshError::Invalid {
+                        file: f,
+                        location,
+                        message,
+                    } => {
+                        assert!(
+                            f.ends_with(&err_file),
+                            "{file}: error names {} not {err_file}",
+                            f.display()
+                        );
                         assert_eq!(location, loc, "{file}: {shown}");
-                        assert!(message.contains(&fragment), "{file}: '{message}' lacks '{fragment}'");
-                        assert!(shown.contains(&err_file), "{file}: the message '{shown}' does not name the file");
+                        assert!(
+                            message.contains(&fragment),
+                            "{file}: '{message}' lacks '{fragment}'"
+                        );
+                        assert!(
+                            shown.contains(&err_file),
+                            "{file}: the message '{shown}' does not name the file"
+                        );
                     }
                     other => panic!("{file}: expected MeshError::Invalid, got {other}"),
                 }
@@ -318,7 +421,10 @@ impl IncludeResolver for Memory {
 #[test]
 fn includes_resolve_relative_to_the_including_file_and_loops_are_named() {
     let main = b"*NODE\n1, 0., 0., 0.\n*INCLUDE, INPUT=sub/b.inp\n";
-    let files = Memory(vec![("m/sub/b.inp", "2, 1., 0., 0.\n*INCLUDE, INPUT=../c/c.inp\n"), ("m/sub/../c/c.inp", "3, 2., 0., 0.\n")]);
+    let files = Memory(vec![
+        ("m/sub/b.inp", "2, 1., 0., 0.\n*INCLUDE, INPUT=../c/c.inp\n"),
+        ("m/sub/../c/c.inp", "3, 2., 0., 0.\n"),
+    ]);
     let r = inp::parse(main, Path::new("m/main.inp"), &files).unwrap();
     // Node 2 from m/sub/b.inp, node 3 from m/sub/../c/c.inp (relative to m/sub/, not m/;
     // the resolver gets the joined path, so that the file system resolves symbolic links).
@@ -326,12 +432,25 @@ fn includes_resolve_relative_to_the_including_file_and_loops_are_named() {
     assert_eq!(r.mesh.nodes[2], [2.0, 0.0, 0.0]);
 
     // m/sub/b.inp includes ../main.inp = m/main.inp: a loop through a path spelled differently.
-    let looping = Memory(vec![("m/sub/b.inp", "*INCLUDE, INPUT=../main.inp\n"), ("m/sub/../main.inp", "*NODE\n")]);
-    let e = inp::parse(main, Path::new("m/main.inp"), &looping).unwrap_err().to_string();
-    assert!(e.contains("m/sub/b.inp:1: include loop: m/main.inp -> m/sub/b.inp -> m/sub/../main.inp"), "{e}");
+    let looping = Memory(vec![
+        ("m/sub/b.inp", "*INCLUDE, INPUT=../main.inp\n"),
+        ("m/sub/../main.inp", "*NODE\n"),
+    ]);
+    let e = inp::parse(main, Path::new("m/main.inp"), &looping)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("m/sub/b.inp:1: include loop: m/main.inp -> m/sub/b.inp -> m/sub/../main.inp"),
+        "{e}"
+    );
 
-    let e = inp::parse(main, Path::new("m/main.inp"), &NoIncludes).unwrap_err().to_string();
-    assert!(e.starts_with("m/main.inp:3: cannot read included file m/sub/b.inp"), "{e}");
+    let e = inp::parse(main, Path::new("m/main.inp"), &NoIncludes)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("m/main.inp:3: cannot read included file m/sub/b.inp"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -346,8 +465,22 @@ fn input_parameter_reads_data_lines_from_a_file() {
 
 #[test]
 fn invalid_utf8_in_memory_names_the_line() {
-    let e = inp::parse(b"*NODE\n1, 0., 0., 0.\n2, 0.\xe9, 0., 0.\n", Path::new("x.inp"), &NoIncludes).unwrap_err();
-    assert!(matches!(e, MeshError::Invalid { location: Location::Line(3), .. }), "{e}");
+    let e = inp::parse(
+        b"*NODE\n1, 0., 0., 0.\n2, 0.\xe9, 0., 0.\n",
+        Path::new("x.inp"),
+        &NoIncludes,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            MeshError::Invalid {
+                location: Location::Line(3),
+                ..
+            }
+        ),
+        "{e}"
+    );
 }
 
 #[test]
@@ -367,7 +500,11 @@ fn generate_ranges_take_defined_labels_only() {
     let r = inp::parse(text, Path::new("x.inp"), &NoIncludes).unwrap();
     assert_eq!(r.mesh.node_sets["ALL"], vec![0, 1, 2]);
     assert_eq!(r.mesh.node_sets["ODD"], vec![0, 1, 2]);
-    assert!(has_warning(&r, "name 3999999997 node labels that are not defined"), "{:#?}", r.warnings);
+    assert!(
+        has_warning(&r, "name 3999999997 node labels that are not defined"),
+        "{:#?}",
+        r.warnings
+    );
     // 1, 3, 5, 7, 9: 3 and 9 are not defined.
     assert!(has_warning(&r, "name 2 node labels"), "{:#?}", r.warnings);
 }
@@ -378,6 +515,9 @@ fn cylindrical_nodes_are_converted() {
     let text = b"*NODE, SYSTEM=C\n1, 2., 90., 3.\n2, 1., 0., 0.\n";
     let r = inp::parse(text, Path::new("x.inp"), &NoIncludes).unwrap();
     let x = r.mesh.nodes[0];
-    assert!(x[0].abs() < 1e-15 && (x[1] - 2.0).abs() < 1e-15 && x[2] == 3.0, "{x:?}");
+    assert!(
+        x[0].abs() < 1e-15 && (x[1] - 2.0).abs() < 1e-15 && x[2] == 3.0,
+        "{x:?}"
+    );
     assert_eq!(r.mesh.nodes[1], [1.0, 0.0, 0.0]);
 }

@@ -8,18 +8,30 @@ use nom::number::complete::double;
 /// ignored (`1, 2,` has two fields); an empty line has none.
 pub(super) fn fields(line: &str) -> impl Iterator<Item = &str> {
     let body = line.strip_suffix(',').unwrap_or(line);
-    let n = if body.trim().is_empty() { 0 } else { usize::MAX };
+    let n = if body.trim().is_empty() {
+        0
+    } else {
+        usize::MAX
+    };
     body.split(',').map(str::trim).take(n)
 }
 
 /// A label (node or element id): a non-negative decimal integer.
 pub(super) fn label(s: &str) -> Option<u64> {
-    all_consuming(nom::character::complete::u64::<&str, nom::error::Error<&str>>).parse(s).ok().map(|(_, v)| v)
+    all_consuming(nom::character::complete::u64::<&str, nom::error::Error<&str>>)
+        .parse(s)
+        .ok()
+        .map(|(_, v)| v)
 }
 
 /// A finite real number: `1`, `1.`, `.5`, `-2.5e-3`, and the Fortran exponent `1.0D+05`.
 pub(super) fn real(s: &str) -> Option<f64> {
-    let parse = |t: &str| all_consuming(double::<&str, nom::error::Error<&str>>).parse(t).ok().map(|(_, v)| v);
+    let parse = |t: &str| {
+        all_consuming(double::<&str, nom::error::Error<&str>>)
+            .parse(t)
+            .ok()
+            .map(|(_, v)| v)
+    };
     let v = match parse(s) {
         Some(v) => v,
         None if s.contains(['d', 'D']) => parse(&s.replace(['d', 'D'], "e"))?,

@@ -113,11 +113,21 @@ impl Lexed {
 }
 
 /// Reads `text` (the file at `path`) and everything it includes.
-pub(super) fn lex(text: &[u8], path: &Path, resolver: &dyn IncludeResolver) -> Result<Lexed, MeshError> {
+pub(super) fn lex(
+    text: &[u8],
+    path: &Path,
+    resolver: &dyn IncludeResolver,
+) -> Result<Lexed, MeshError> {
     let text = decode(text, path)?;
     let mut lexer = Lexer {
         resolver,
-        out: Lexed { sources: vec![Source { path: path.to_path_buf(), text }], items: Vec::new() },
+        out: Lexed {
+            sources: vec![Source {
+                path: path.to_path_buf(),
+                text,
+            }],
+            items: Vec::new(),
+        },
         chain: vec![(normalize(path), path.to_path_buf())],
         expansions: 0,
     };
@@ -136,12 +146,17 @@ fn decode(bytes: &[u8], path: &Path) -> Result<Rc<str>, MeshError> {
             "expected text, found bytes that are not UTF-8 (is this a binary file?)",
         )
     })?;
-    if let Some(i) = bytes.iter().position(|&b| (b < 0x20 && !matches!(b, b'\t' | b'\n' | b'\r' | 0x0c)) || b == 0x7f)
+    if let Some(i) = bytes
+        .iter()
+        .position(|&b| (b < 0x20 && !matches!(b, b'\t' | b'\n' | b'\r' | 0x0c)) || b == 0x7f)
     {
         return Err(MeshError::invalid(
             path,
             Location::Line(line_of(i)),
-            format!("expected text, found the control character 0x{:02x} (is this a binary file?)", bytes[i]),
+            format!(
+                "expected text, found the control character 0x{:02x} (is this a binary file?)",
+                bytes[i]
+            ),
         ));
     }
     Ok(Rc::from(text))
@@ -212,12 +227,18 @@ struct Lexer<'r> {
 impl Lexer<'_> {
     fn source(&mut self, src: u32) -> Result<(), MeshError> {
         let text = Rc::clone(&self.out.sources[src as usize].text);
-        let mut lines = Lines { text: &text, pos: 0, line: 0 };
+        let mut lines = Lines {
+            text: &text,
+            pos: 0,
+            line: 0,
+        };
         while let Some((line, start, end)) = lines.next() {
             let loc = Loc { src, line };
             let s = &text[start..end];
             if !s.starts_with('*') {
-                self.out.items.push(Item::Data(DataLine { loc, start, end }));
+                self.out
+                    .items
+                    .push(Item::Data(DataLine { loc, start, end }));
                 continue;
             }
             // A keyword line ending with a comma continues on the next line, if that line
@@ -227,7 +248,9 @@ impl Lexer<'_> {
             while joined.ends_with(',') {
                 let mut ahead = lines.clone();
                 match ahead.next() {
-                    Some((_, s2, e2)) if text[s2..e2].starts_with(|c: char| c.is_alphabetic() || c == '"') => {
+                    Some((_, s2, e2))
+                        if text[s2..e2].starts_with(|c: char| c.is_alphabetic() || c == '"') =>
+                    {
                         joined.to_mut().push_str(&text[s2..e2]);
                         lines = ahead;
                     }
@@ -239,7 +262,11 @@ impl Lexer<'_> {
                 self.include(&kw)?;
                 continue;
             }
-            let input = if DATA_KEYWORDS.contains(&kw.key.as_str()) { kw.param("INPUT").cloned() } else { None };
+            let input = if DATA_KEYWORDS.contains(&kw.key.as_str()) {
+                kw.param("INPUT").cloned()
+            } else {
+                None
+            };
             self.out.items.push(Item::Keyword(Box::new(kw.clone())));
             if let Some(p) = input {
                 self.include_param(&kw, &p)?;
@@ -261,31 +288,51 @@ impl Lexer<'_> {
     fn include_param(&mut self, kw: &Keyword, p: &Param) -> Result<(), MeshError> {
         let name = match p.value.as_deref() {
             Some(v) if !v.is_empty() => v,
-            _ => return Err(self.out.error(kw.loc, format!("*{} needs INPUT=file, found INPUT without a file", kw.name))),
+            _ => {
+                return Err(self.out.error(
+                    kw.loc,
+                    format!("*{} needs INPUT=file, found INPUT without a file", kw.name),
+                ));
+            }
         };
         let here = self.out.path(kw.loc);
         let path = here.parent().unwrap_or(Path::new("")).join(name);
         let norm = normalize(&path);
         if let Some(i) = self.chain.iter().position(|(n, _)| *n == norm) {
-            let names: Vec<String> =
-                self.chain[i..].iter().map(|(_, p)| p.display().to_string()).chain([path.display().to_string()]).collect();
-            return Err(self.out.error(kw.loc, format!("include loop: {}", names.join(" -> "))));
+            let names: Vec<String> = self.chain[i..]
+                .iter()
+                .map(|(_, p)| p.display().to_string())
+                .chain([path.display().to_string()])
+                .collect();
+            return Err(self
+                .out
+                .error(kw.loc, format!("include loop: {}", names.join(" -> "))));
         }
         if self.chain.len() >= MAX_INCLUDE_DEPTH {
-            return Err(self.out.error(kw.loc, format!("includes are nested more than {MAX_INCLUDE_DEPTH} deep")));
+            return Err(self.out.error(
+                kw.loc,
+                format!("includes are nested more than {MAX_INCLUDE_DEPTH} deep"),
+            ));
         }
         self.expansions += 1;
         if self.expansions > MAX_INCLUDES {
-            return Err(self.out.error(kw.loc, format!("more than {MAX_INCLUDES} files included")));
+            return Err(self
+                .out
+                .error(kw.loc, format!("more than {MAX_INCLUDES} files included")));
         }
-        let bytes = self
-            .resolver
-            .read(&path)
-            .map_err(|e| self.out.error(kw.loc, format!("cannot read included file {}: {e}", path.display())))?;
+        let bytes = self.resolver.read(&path).map_err(|e| {
+            self.out.error(
+                kw.loc,
+                format!("cannot read included file {}: {e}", path.display()),
+            )
+        })?;
         let text = decode(&bytes, &path)?;
         let src = u32::try_from(self.out.sources.len())
             .map_err(|_| self.out.error(kw.loc, "too many included files"))?;
-        self.out.sources.push(Source { path: path.clone(), text });
+        self.out.sources.push(Source {
+            path: path.clone(),
+            text,
+        });
         self.chain.push((norm, path));
         self.source(src)?;
         self.chain.pop();
@@ -297,7 +344,11 @@ type Raw<'a> = (&'a str, Vec<(&'a str, Option<&'a str>)>);
 
 /// `"name"` with optional blanks after it.
 fn quoted(input: &str) -> IResult<&str, &str> {
-    terminated(delimited(char('"'), take_till(|c| c == '"'), char('"')), space0).parse(input)
+    terminated(
+        delimited(char('"'), take_till(|c| c == '"'), char('"')),
+        space0,
+    )
+    .parse(input)
 }
 
 /// A parameter value: quoted, or everything up to the next comma.
@@ -307,42 +358,75 @@ fn value(input: &str) -> IResult<&str, &str> {
 
 /// `NAME` or `NAME = value`.
 fn param(input: &str) -> IResult<&str, (&str, Option<&str>)> {
-    (take_till(|c| c == ',' || c == '='), opt(preceded(char('='), value))).parse(input)
+    (
+        take_till(|c| c == ',' || c == '='),
+        opt(preceded(char('='), value)),
+    )
+        .parse(input)
 }
 
 /// `*NAME, PARAM=value, FLAG, ...`.
 fn keyword_line(input: &str) -> IResult<&str, Raw<'_>> {
-    preceded(char('*'), (take_till(|c| c == ','), many0(preceded(char(','), param)))).parse(input)
+    preceded(
+        char('*'),
+        (take_till(|c| c == ','), many0(preceded(char(','), param))),
+    )
+    .parse(input)
 }
 
 /// Parses a keyword line into its normalised name and parameters.
 fn parse_keyword(text: &str, loc: Loc) -> Result<Keyword, String> {
-    let (_, (name, raw)) = all_consuming(keyword_line)
-        .parse(text)
-        .map_err(|_| format!("cannot read the keyword line '{}' (a quoted name followed by more text?)", excerpt(text)))?;
-    let name = name.split_whitespace().collect::<Vec<_>>().join(" ").to_ascii_uppercase();
+    let (_, (name, raw)) = all_consuming(keyword_line).parse(text).map_err(|_| {
+        format!(
+            "cannot read the keyword line '{}' (a quoted name followed by more text?)",
+            excerpt(text)
+        )
+    })?;
+    let name = name
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .to_ascii_uppercase();
     if name.is_empty() {
-        return Err(format!("expected a keyword name after '*', found '{}'", excerpt(text)));
+        return Err(format!(
+            "expected a keyword name after '*', found '{}'",
+            excerpt(text)
+        ));
     }
     let key: String = name.chars().filter(|c| *c != ' ').collect();
     let mut params = Vec::with_capacity(raw.len());
     for (n, v) in raw {
-        let pname: String = n.chars().filter(|c| !c.is_whitespace()).collect::<String>().to_ascii_uppercase();
+        let pname: String = n
+            .chars()
+            .filter(|c| !c.is_whitespace())
+            .collect::<String>()
+            .to_ascii_uppercase();
         if pname.is_empty() {
             if v.is_some() {
-                return Err(format!("expected a parameter name before '=' in '{}'", excerpt(text)));
+                return Err(format!(
+                    "expected a parameter name before '=' in '{}'",
+                    excerpt(text)
+                ));
             }
             continue;
         }
         let value = match v.map(|v| v.trim_matches(is_blank)) {
             Some(v) if v.starts_with('"') => {
-                return Err(format!("unterminated quoted value of {pname} in '{}'", excerpt(text)));
+                return Err(format!(
+                    "unterminated quoted value of {pname} in '{}'",
+                    excerpt(text)
+                ));
             }
             other => other.map(str::to_string),
         };
         params.push(Param { name: pname, value });
     }
-    Ok(Keyword { name, key, params, loc })
+    Ok(Keyword {
+        name,
+        key,
+        params,
+        loc,
+    })
 }
 
 /// At most 60 characters of `s`, for messages.
@@ -362,12 +446,19 @@ mod tests {
 
     #[test]
     fn keyword_lines_are_case_and_blank_insensitive() {
-        let k = parse_keyword("*Solid  Section, elset = Disc , Material=\"Grey, Iron\" ,DLOAD", AT).unwrap();
+        let k = parse_keyword(
+            "*Solid  Section, elset = Disc , Material=\"Grey, Iron\" ,DLOAD",
+            AT,
+        )
+        .unwrap();
         assert_eq!(k.name, "SOLID SECTION");
         assert_eq!(k.key, "SOLIDSECTION");
         assert_eq!(k.params.len(), 3);
         assert_eq!(k.param("ELSET").unwrap().value.as_deref(), Some("Disc"));
-        assert_eq!(k.param("MATERIAL").unwrap().value.as_deref(), Some("Grey, Iron"));
+        assert_eq!(
+            k.param("MATERIAL").unwrap().value.as_deref(),
+            Some("Grey, Iron")
+        );
         assert!(k.flag("DLOAD") && k.param("DLOAD").unwrap().value.is_none());
     }
 
@@ -381,7 +472,10 @@ mod tests {
 
     #[test]
     fn normalize_removes_dot_segments() {
-        assert_eq!(normalize(Path::new("a/./b/../c.inp")), PathBuf::from("a/c.inp"));
+        assert_eq!(
+            normalize(Path::new("a/./b/../c.inp")),
+            PathBuf::from("a/c.inp")
+        );
         assert_eq!(normalize(Path::new("../x/../y")), PathBuf::from("../y"));
     }
 }

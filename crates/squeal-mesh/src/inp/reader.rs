@@ -85,7 +85,8 @@ pub(super) struct Reader<'a> {
 /// Whether an element type is a 10-node tetrahedron: `C3D10` and its variants (`C3D10M`,
 /// `C3D10H`, `C3D10HS`, `C3D10I`, ...), which share its geometry and node order.
 fn is_tet10(ty: &str) -> bool {
-    ty.strip_prefix("C3D10").is_some_and(|rest| rest.chars().all(|c| c.is_ascii_alphabetic()))
+    ty.strip_prefix("C3D10")
+        .is_some_and(|rest| rest.chars().all(|c| c.is_ascii_alphabetic()))
 }
 
 /// Node count of common element types squeal skips, so that their records can be delimited
@@ -143,9 +144,15 @@ fn other_node_count(ty: &str) -> Option<usize> {
 fn node_line(text: &str) -> Result<(u64, [f64; 3]), String> {
     const WHAT: [&str; 6] = ["x", "y", "z", "normal x", "normal y", "normal z"];
     let mut it = fields(text);
-    let first = it.next().ok_or("expected a node line 'id, x, y[, z]', found an empty line")?;
-    let id = label(first)
-        .ok_or_else(|| format!("expected a node id (a non-negative integer), found '{}'", excerpt(first)))?;
+    let first = it
+        .next()
+        .ok_or("expected a node line 'id, x, y[, z]', found an empty line")?;
+    let id = label(first).ok_or_else(|| {
+        format!(
+            "expected a node id (a non-negative integer), found '{}'",
+            excerpt(first)
+        )
+    })?;
     let mut x = [0.0; 3];
     let mut n = 0;
     for f in it {
@@ -154,15 +161,21 @@ fn node_line(text: &str) -> Result<(u64, [f64; 3]), String> {
                 "node {id} has more than 6 numbers after its id; expected 'id, x, y[, z]' (and at most a normal)"
             ));
         };
-        let v = real_or_zero(f)
-            .ok_or_else(|| format!("expected the {what} coordinate of node {id} as a number, found '{}'", excerpt(f)))?;
+        let v = real_or_zero(f).ok_or_else(|| {
+            format!(
+                "expected the {what} coordinate of node {id} as a number, found '{}'",
+                excerpt(f)
+            )
+        })?;
         if n < 3 {
             x[n] = v;
         }
         n += 1;
     }
     if n == 0 {
-        return Err(format!("node {id} has no coordinates: expected 'id, x, y[, z]'"));
+        return Err(format!(
+            "node {id} has no coordinates: expected 'id, x, y[, z]'"
+        ));
     }
     Ok((id, x))
 }
@@ -193,7 +206,10 @@ impl<'a> Reader<'a> {
                 Item::Data(d) => {
                     return Err(self.err(
                         d.loc,
-                        format!("expected a keyword line (starting with '*'), found the data line '{}'", excerpt(lx.text(d))),
+                        format!(
+                            "expected a keyword line (starting with '*'), found the data line '{}'",
+                            excerpt(lx.text(d))
+                        ),
                     ));
                 }
                 Item::Keyword(kw) => self.keyword(kw)?,
@@ -219,7 +235,15 @@ impl<'a> Reader<'a> {
             return;
         }
         let message = format!("{stem}{tail}");
-        self.repeated.insert(key, Repeated { index: self.warnings.len(), count: 1, stem, tail });
+        self.repeated.insert(
+            key,
+            Repeated {
+                index: self.warnings.len(),
+                count: 1,
+                stem,
+                tail,
+            },
+        );
         self.warn(loc, message);
     }
 
@@ -323,13 +347,17 @@ impl<'a> Reader<'a> {
             None => Ok(None),
             Some(param) => match param.value.as_deref() {
                 Some(v) if !v.is_empty() => Ok(Some(v)),
-                _ => Err(self.err(kw.loc, format!("*{} needs {p}=name, found {p} without a name", kw.name))),
+                _ => Err(self.err(
+                    kw.loc,
+                    format!("*{} needs {p}=name, found {p} without a name", kw.name),
+                )),
             },
         }
     }
 
     fn required(&self, kw: &'a Keyword, p: &str) -> Result<&'a str, MeshError> {
-        self.name_param(kw, p)?.ok_or_else(|| self.err(kw.loc, format!("*{} needs the parameter {p}=", kw.name)))
+        self.name_param(kw, p)?
+            .ok_or_else(|| self.err(kw.loc, format!("*{} needs the parameter {p}=", kw.name)))
     }
 
     fn target(&self) -> Target {
@@ -372,7 +400,14 @@ impl<'a> Reader<'a> {
 
     fn duplicate(&self, kind: Kind, id: u64, loc: Loc, first: Loc) -> MeshError {
         let noun = kind.noun();
-        self.err(loc, format!("{noun} {id} is defined twice (first at {}:{})", self.lx.path(first).display(), first.line))
+        self.err(
+            loc,
+            format!(
+                "{noun} {id} is defined twice (first at {}:{})",
+                self.lx.path(first).display(),
+                first.line
+            ),
+        )
     }
 
     /// Renumbering offset of instance `i` (the (i+1)-th `*INSTANCE`).
@@ -380,15 +415,29 @@ impl<'a> Reader<'a> {
         (i as u64 + 1) * INSTANCE_STRIDE
     }
 
+    /// The `*INSTANCE` line of an instance target (the first line for the others).
+    fn instance_loc(&self, t: Target) -> Loc {
+        match t {
+            Target::Instance(i) => self.instances[i].loc,
+            _ => Loc { src: 0, line: 1 },
+        }
+    }
+
     fn find_instance(&self, name: &str) -> Option<usize> {
-        self.instances.iter().position(|x| x.name.eq_ignore_ascii_case(name))
+        self.instances
+            .iter()
+            .position(|x| x.name.eq_ignore_ascii_case(name))
     }
 
     /// `*NODE`.
     fn node(&mut self, kw: &'a Keyword) -> Result<(), MeshError> {
         self.check_params(kw, &["NSET", "SYSTEM", "INPUT"]);
         let nset = self.name_param(kw, "NSET")?;
-        let cylindrical = match self.name_param(kw, "SYSTEM")?.map(str::to_ascii_uppercase).as_deref() {
+        let cylindrical = match self
+            .name_param(kw, "SYSTEM")?
+            .map(str::to_ascii_uppercase)
+            .as_deref()
+        {
             None | Some("R") => false,
             Some("C") => true,
             Some(v) => {
@@ -424,7 +473,11 @@ impl<'a> Reader<'a> {
     /// `*ELEMENT`: C3D10 (and variants) kept, other types skipped with one warning.
     fn element(&mut self, kw: &'a Keyword) -> Result<(), MeshError> {
         self.check_params(kw, &["TYPE", "ELSET", "INPUT"]);
-        let ty: String = self.required(kw, "TYPE")?.split_whitespace().collect::<String>().to_ascii_uppercase();
+        let ty: String = self
+            .required(kw, "TYPE")?
+            .split_whitespace()
+            .collect::<String>()
+            .to_ascii_uppercase();
         let elset = self.name_param(kw, "ELSET")?;
         let tet = is_tet10(&ty);
         let needed = if tet { Some(10) } else { other_node_count(&ty) };
@@ -436,10 +489,17 @@ impl<'a> Reader<'a> {
             self.check_label(r.id, r.first)?;
             let nodes = if tet {
                 if r.count != 10 {
-                    let hint = if r.count < 10 { " (a record continued on the next line must end with a comma)" } else { "" };
+                    let hint = if r.count < 10 {
+                        " (a record continued on the next line must end with a comma)"
+                    } else {
+                        ""
+                    };
                     return Err(self.err(
                         r.last,
-                        format!("element {} has {} node ids; {ty} needs 10{hint}", r.id, r.count),
+                        format!(
+                            "element {} has {} node ids; {ty} needs 10{hint}",
+                            r.id, r.count
+                        ),
                     ));
                 }
                 for &n in &r.nodes {
@@ -459,17 +519,32 @@ impl<'a> Reader<'a> {
         }
         if skipped > 0 {
             let s = if skipped == 1 { "" } else { "s" };
-            self.warn(kw.loc, format!("skipped {skipped} element{s} of type {ty} (squeal uses only C3D10 tetrahedra)"));
+            self.warn(
+                kw.loc,
+                format!(
+                    "skipped {skipped} element{s} of type {ty} (squeal uses only C3D10 tetrahedra)"
+                ),
+            );
         }
         if let Some(name) = elset {
-            self.store_mut(target).element_sets.entry(name).ids.extend(ids);
+            self.store_mut(target)
+                .element_sets
+                .entry(name)
+                .ids
+                .extend(ids);
         }
         Ok(())
     }
 
     /// Reads one element record: its lines continue while they end with a comma and fewer
     /// than `needed` node ids (if known) were read. Node ids are parsed only if `parse_nodes`.
-    fn record(&mut self, first: &DataLine, needed: Option<usize>, parse_nodes: bool, ty: &str) -> Result<Record, MeshError> {
+    fn record(
+        &mut self,
+        first: &DataLine,
+        needed: Option<usize>,
+        parse_nodes: bool,
+        ty: &str,
+    ) -> Result<Record, MeshError> {
         let mut vals = [0u64; 11];
         let mut n = 0usize;
         let mut line = *first;
@@ -489,7 +564,10 @@ impl<'a> Reader<'a> {
                 n += 1;
             }
             if n == 0 {
-                return Err(self.err(line.loc, "expected an element line 'id, node, node, ...', found an empty line"));
+                return Err(self.err(
+                    line.loc,
+                    "expected an element line 'id, node, node, ...', found an empty line",
+                ));
             }
             let continues = text.ends_with(',') && needed.is_none_or(|k| n < k + 1);
             if !continues {
@@ -512,7 +590,13 @@ impl<'a> Reader<'a> {
         }
         let mut nodes = [0u64; 10];
         nodes.copy_from_slice(&vals[1..]);
-        Ok(Record { id: vals[0], nodes, count: n - 1, first: first.loc, last: line.loc })
+        Ok(Record {
+            id: vals[0],
+            nodes,
+            count: n - 1,
+            first: first.loc,
+            last: line.loc,
+        })
     }
 
     /// `*NSET` / `*ELSET`, with or without `GENERATE`, at part, instance or assembly level.
@@ -521,10 +605,18 @@ impl<'a> Reader<'a> {
             Kind::Node => "NSET",
             Kind::Element => "ELSET",
         };
-        self.check_params(kw, &[pname, "GENERATE", "INSTANCE", "UNSORTED", "INTERNAL", "INPUT", "ELSET"]);
+        self.check_params(
+            kw,
+            &[
+                pname, "GENERATE", "INSTANCE", "UNSORTED", "INTERNAL", "INPUT", "ELSET",
+            ],
+        );
         let name = self.required(kw, pname)?;
         if kind == Kind::Node && kw.flag("ELSET") {
-            return Err(self.err(kw.loc, "*NSET with ELSET= (the nodes of an element set) is not supported"));
+            return Err(self.err(
+                kw.loc,
+                "*NSET with ELSET= (the nodes of an element set) is not supported",
+            ));
         }
         let generate = kw.flag("GENERATE");
         let dest = self.target();
@@ -534,9 +626,12 @@ impl<'a> Reader<'a> {
                 if self.context != Context::Assembly {
                     return Err(self.err(kw.loc, "INSTANCE= names an instance only at assembly level (inside *ASSEMBLY, outside *INSTANCE)"));
                 }
-                let i = self
-                    .find_instance(inst)
-                    .ok_or_else(|| self.err(kw.loc, format!("instance {inst} is not defined (before this line)")))?;
+                let i = self.find_instance(inst).ok_or_else(|| {
+                    self.err(
+                        kw.loc,
+                        format!("instance {inst} is not defined (before this line)"),
+                    )
+                })?;
                 (Target::Instance(i), Self::offset(i))
             }
         };
@@ -560,20 +655,37 @@ impl<'a> Reader<'a> {
                 format!("GENERATE ranges of set {name} name {missing} {noun} labels that are not defined (before this line): they are left out"),
             );
         }
-        self.store_mut(dest).sets_mut(kind).entry(name).ids.extend(members);
+        self.store_mut(dest)
+            .sets_mut(kind)
+            .entry(name)
+            .ids
+            .extend(members);
         Ok(())
     }
 
     /// One `start, end[, step]` line of a `GENERATE` set: adds the labels in the range that
     /// are defined in `src` and returns how many in the range are not. The work is bounded
     /// by the number of labels defined, not by the size of the range.
-    fn generate(&mut self, d: &DataLine, kind: Kind, src: Target, offset: u64, out: &mut BTreeSet<u64>) -> Result<u64, MeshError> {
+    fn generate(
+        &mut self,
+        d: &DataLine,
+        kind: Kind,
+        src: Target,
+        offset: u64,
+        out: &mut BTreeSet<u64>,
+    ) -> Result<u64, MeshError> {
         let text = self.lx.text(d);
         let mut v = [0u64; 3];
         let mut n = 0;
         for f in fields(text) {
             if n == 3 {
-                return Err(self.err(d.loc, format!("expected GENERATE data 'start, end[, step]', found '{}'", excerpt(text))));
+                return Err(self.err(
+                    d.loc,
+                    format!(
+                        "expected GENERATE data 'start, end[, step]', found '{}'",
+                        excerpt(text)
+                    ),
+                ));
             }
             v[n] = label(f).ok_or_else(|| {
                 self.err(d.loc, format!("expected GENERATE data 'start, end[, step]' as non-negative integers, found '{}'", excerpt(f)))
@@ -581,14 +693,23 @@ impl<'a> Reader<'a> {
             n += 1;
         }
         if n < 2 {
-            return Err(self.err(d.loc, format!("expected GENERATE data 'start, end[, step]', found '{}'", excerpt(text))));
+            return Err(self.err(
+                d.loc,
+                format!(
+                    "expected GENERATE data 'start, end[, step]', found '{}'",
+                    excerpt(text)
+                ),
+            ));
         }
         let (start, end, step) = (v[0], v[1], if n == 3 { v[2] } else { 1 });
         if step == 0 {
             return Err(self.err(d.loc, "GENERATE step is 0; expected a positive step"));
         }
         if end < start {
-            return Err(self.err(d.loc, format!("GENERATE range ends ({end}) before it starts ({start})")));
+            return Err(self.err(
+                d.loc,
+                format!("GENERATE range ends ({end}) before it starts ({start})"),
+            ));
         }
         let count = (end - start) / step + 1;
         if count > MAX_GENERATE {
@@ -612,7 +733,10 @@ impl<'a> Reader<'a> {
                 }
             }
         } else {
-            for id in store.labels(kind).filter(|&id| id >= start && id <= end && (id - start) % step == 0) {
+            for id in store
+                .labels(kind)
+                .filter(|&id| id >= start && id <= end && (id - start) % step == 0)
+            {
                 out.insert(id + offset);
                 found += 1;
             }
@@ -622,11 +746,26 @@ impl<'a> Reader<'a> {
 
     /// One member of a set's data line: a label, a set name, or (at assembly level)
     /// `instance.label` / `instance.set`.
-    fn member(&self, token: &str, kind: Kind, src: Target, offset: u64, loc: Loc, out: &mut BTreeSet<u64>) -> Result<(), MeshError> {
+    fn member(
+        &self,
+        token: &str,
+        kind: Kind,
+        src: Target,
+        offset: u64,
+        loc: Loc,
+        out: &mut BTreeSet<u64>,
+    ) -> Result<(), MeshError> {
         let noun = kind.noun();
         if token.starts_with(|c: char| c.is_ascii_digit() || matches!(c, '+' | '-' | '.')) {
-            let id = label(token)
-                .ok_or_else(|| self.err(loc, format!("expected a {noun} label or a set name, found '{}'", excerpt(token))))?;
+            let id = label(token).ok_or_else(|| {
+                self.err(
+                    loc,
+                    format!(
+                        "expected a {noun} label or a set name, found '{}'",
+                        excerpt(token)
+                    ),
+                )
+            })?;
             if src != Target::Global {
                 self.check_instance_label(id, loc)?;
             }
@@ -651,22 +790,43 @@ impl<'a> Reader<'a> {
                         out.extend(set.ids.iter().map(|&v| v + off));
                         return Ok(());
                     }
-                    return Err(self.err(loc, format!("instance {inst} has no {noun} set '{rest}' (before this line)")));
+                    return Err(self.err(
+                        loc,
+                        format!("instance {inst} has no {noun} set '{rest}' (before this line)"),
+                    ));
                 }
             }
         }
-        Err(self.err(loc, format!("{noun} set '{}' is not defined (before this line)", excerpt(name))))
+        Err(self.err(
+            loc,
+            format!(
+                "{noun} set '{}' is not defined (before this line)",
+                excerpt(name)
+            ),
+        ))
     }
 
     fn check_instance_label(&self, id: u64, loc: Loc) -> Result<(), MeshError> {
         if id >= INSTANCE_STRIDE {
-            return Err(self.err(loc, format!("label {id} is too large for a part or instance (at most {})", INSTANCE_STRIDE - 1)));
+            return Err(self.err(
+                loc,
+                format!(
+                    "label {id} is too large for a part or instance (at most {})",
+                    INSTANCE_STRIDE - 1
+                ),
+            ));
         }
         Ok(())
     }
 
     /// `*END PART`, `*END ASSEMBLY`, `*END INSTANCE`.
-    fn end(&mut self, kw: &Keyword, open: impl Fn(Context) -> bool, outer: Context, opener: &str) -> Result<(), MeshError> {
+    fn end(
+        &mut self,
+        kw: &Keyword,
+        open: impl Fn(Context) -> bool,
+        outer: Context,
+        opener: &str,
+    ) -> Result<(), MeshError> {
         if !open(self.context) {
             return Err(self.err(kw.loc, format!("*{} without an open {opener}", kw.name)));
         }
@@ -681,10 +841,25 @@ impl<'a> Reader<'a> {
             return Err(self.err(kw.loc, "*PART inside another *PART or *ASSEMBLY (close it with *END PART / *END ASSEMBLY first)"));
         }
         let name = self.required(kw, "NAME")?;
-        if let Some(p) = self.parts.iter().find(|p| p.name.eq_ignore_ascii_case(name)) {
-            return Err(self.err(kw.loc, format!("part {name} is defined twice (first at line {})", p.loc.line)));
+        if let Some(p) = self
+            .parts
+            .iter()
+            .find(|p| p.name.eq_ignore_ascii_case(name))
+        {
+            return Err(self.err(
+                kw.loc,
+                format!(
+                    "part {name} is defined twice (first at line {})",
+                    p.loc.line
+                ),
+            ));
         }
-        self.parts.push(Part { name: name.to_string(), store: Store::default(), loc: kw.loc, instanced: false });
+        self.parts.push(Part {
+            name: name.to_string(),
+            store: Store::default(),
+            loc: kw.loc,
+            instanced: false,
+        });
         self.context = Context::Part(self.parts.len() - 1);
         Ok(())
     }
@@ -696,7 +871,10 @@ impl<'a> Reader<'a> {
             return Err(self.err(kw.loc, "*ASSEMBLY inside a *PART or another *ASSEMBLY"));
         }
         if let Some(first) = self.assembly {
-            return Err(self.err(kw.loc, format!("a second *ASSEMBLY (the first is at line {})", first.line)));
+            return Err(self.err(
+                kw.loc,
+                format!("a second *ASSEMBLY (the first is at line {})", first.line),
+            ));
         }
         self.assembly = Some(kw.loc);
         self.context = Context::Assembly;
@@ -707,28 +885,55 @@ impl<'a> Reader<'a> {
     fn instance(&mut self, kw: &'a Keyword) -> Result<(), MeshError> {
         self.check_params(kw, &["NAME", "PART", "INSTANCE", "LIBRARY"]);
         if self.context != Context::Assembly {
-            return Err(self.err(kw.loc, "*INSTANCE outside *ASSEMBLY (or inside another *INSTANCE)"));
+            return Err(self.err(
+                kw.loc,
+                "*INSTANCE outside *ASSEMBLY (or inside another *INSTANCE)",
+            ));
         }
         if kw.flag("INSTANCE") || kw.flag("LIBRARY") {
             return Err(self.err(kw.loc, "instances imported from a previous analysis (INSTANCE=, LIBRARY=) are not supported"));
         }
         let name = self.required(kw, "NAME")?;
         let part = self.required(kw, "PART")?;
-        if let Some(x) = self.instances.iter().find(|x| x.name.eq_ignore_ascii_case(name)) {
-            return Err(self.err(kw.loc, format!("instance {name} is defined twice (first at line {})", x.loc.line)));
+        if let Some(x) = self
+            .instances
+            .iter()
+            .find(|x| x.name.eq_ignore_ascii_case(name))
+        {
+            return Err(self.err(
+                kw.loc,
+                format!(
+                    "instance {name} is defined twice (first at line {})",
+                    x.loc.line
+                ),
+            ));
         }
         let p = self
             .parts
             .iter()
             .position(|x| x.name.eq_ignore_ascii_case(part))
-            .ok_or_else(|| self.err(kw.loc, format!("part {part} is not defined (before this line)")))?;
-        if (self.instances.len() as u64 + 1).checked_mul(INSTANCE_STRIDE).and_then(|o| o.checked_add(INSTANCE_STRIDE)).is_none() {
+            .ok_or_else(|| {
+                self.err(
+                    kw.loc,
+                    format!("part {part} is not defined (before this line)"),
+                )
+            })?;
+        if (self.instances.len() as u64 + 1)
+            .checked_mul(INSTANCE_STRIDE)
+            .and_then(|o| o.checked_add(INSTANCE_STRIDE))
+            .is_none()
+        {
             return Err(self.err(kw.loc, "too many instances to renumber"));
         }
         let placement = self.placement()?;
         self.parts[p].instanced = true;
         let store = self.parts[p].store.clone();
-        self.instances.push(Instance { name: name.to_string(), store, placement, loc: kw.loc });
+        self.instances.push(Instance {
+            name: name.to_string(),
+            store,
+            placement,
+            loc: kw.loc,
+        });
         self.context = Context::Instance(self.instances.len() - 1);
         Ok(())
     }
@@ -744,8 +949,9 @@ impl<'a> Reader<'a> {
             let r = self.reals::<7>(d, 7, "a rotation 'ax, ay, az, bx, by, bz, angle'")?;
             if r[6] != 0.0 {
                 p.rotation = Some(
-                    Rotation::about_axis([r[0], r[1], r[2]], [r[3], r[4], r[5]], r[6])
-                        .ok_or_else(|| self.err(d.loc, "the rotation axis points a and b coincide"))?,
+                    Rotation::about_axis([r[0], r[1], r[2]], [r[3], r[4], r[5]], r[6]).ok_or_else(
+                        || self.err(d.loc, "the rotation axis points a and b coincide"),
+                    )?,
                 );
             }
         }
@@ -753,15 +959,25 @@ impl<'a> Reader<'a> {
     }
 
     /// Up to `N` reals (blank = 0) from a data line that must have at least `min` fields.
-    fn reals<const N: usize>(&self, d: &DataLine, min: usize, what: &str) -> Result<[f64; N], MeshError> {
+    fn reals<const N: usize>(
+        &self,
+        d: &DataLine,
+        min: usize,
+        what: &str,
+    ) -> Result<[f64; N], MeshError> {
         let text = self.lx.text(d);
         let mut v = [0.0; N];
         let mut n = 0;
         for f in fields(text) {
             if n == N {
-                return Err(self.err(d.loc, format!("expected {what}, found more numbers: '{}'", excerpt(text))));
+                return Err(self.err(
+                    d.loc,
+                    format!("expected {what}, found more numbers: '{}'", excerpt(text)),
+                ));
             }
-            v[n] = real_or_zero(f).ok_or_else(|| self.err(d.loc, format!("expected {what}, found '{}'", excerpt(f))))?;
+            v[n] = real_or_zero(f).ok_or_else(|| {
+                self.err(d.loc, format!("expected {what}, found '{}'", excerpt(f)))
+            })?;
             n += 1;
         }
         if n < min {
@@ -774,23 +990,36 @@ impl<'a> Reader<'a> {
     fn material(&mut self, kw: &'a Keyword) -> Result<(), MeshError> {
         self.check_params(kw, &["NAME"]);
         let name = self.required(kw, "NAME")?;
-        if self.materials.iter().any(|m| m.name.eq_ignore_ascii_case(name)) {
+        if self
+            .materials
+            .iter()
+            .any(|m| m.name.eq_ignore_ascii_case(name))
+        {
             return Err(self.err(kw.loc, format!("material {name} is defined twice")));
         }
-        self.materials.push(MaterialDef { name: name.to_string(), material: Material::default() });
+        self.materials.push(MaterialDef {
+            name: name.to_string(),
+            material: Material::default(),
+        });
         self.material = Some(self.materials.len() - 1);
         Ok(())
     }
 
     fn current_material(&self, kw: &Keyword) -> Result<usize, MeshError> {
-        self.material.ok_or_else(|| self.err(kw.loc, format!("*{} must follow *MATERIAL", kw.name)))
+        self.material
+            .ok_or_else(|| self.err(kw.loc, format!("*{} must follow *MATERIAL", kw.name)))
     }
 
     /// Reals of the data lines following a material option: at least `min` fields must be
     /// present on the first line(s); values are taken in order across lines until `want`
     /// are read. Returns the values and the number of lines left over (temperature
     /// dependence, which squeal ignores).
-    fn option_values(&mut self, kw: &Keyword, want: usize, names: &[&str]) -> Result<(Vec<f64>, usize), MeshError> {
+    fn option_values(
+        &mut self,
+        kw: &Keyword,
+        want: usize,
+        names: &[&str],
+    ) -> Result<(Vec<f64>, usize), MeshError> {
         let mut vals = Vec::with_capacity(want);
         let mut extra = 0;
         while let Some(d) = self.next_data() {
@@ -806,7 +1035,12 @@ impl<'a> Reader<'a> {
                 let v = if f.is_empty() {
                     None
                 } else {
-                    Some(real(f).ok_or_else(|| self.err(d.loc, format!("expected {what} as a number, found '{}'", excerpt(f))))?)
+                    Some(real(f).ok_or_else(|| {
+                        self.err(
+                            d.loc,
+                            format!("expected {what} as a number, found '{}'", excerpt(f)),
+                        )
+                    })?)
                 };
                 vals.push(v.unwrap_or(0.0));
             }
@@ -814,7 +1048,13 @@ impl<'a> Reader<'a> {
         if vals.len() < want {
             return Err(self.err(
                 kw.loc,
-                format!("*{} needs {want} value{} ({}), found {}", kw.name, if want == 1 { "" } else { "s" }, names.join(", "), vals.len()),
+                format!(
+                    "*{} needs {want} value{} ({}), found {}",
+                    kw.name,
+                    if want == 1 { "" } else { "s" },
+                    names.join(", "),
+                    vals.len()
+                ),
             ));
         }
         Ok((vals, extra))
@@ -825,18 +1065,32 @@ impl<'a> Reader<'a> {
     fn elastic(&mut self, kw: &'a Keyword) -> Result<(), MeshError> {
         self.check_params(kw, &["TYPE", "MODULI", "DEPENDENCIES"]);
         let m = self.current_material(kw)?;
-        let ty = self.name_param(kw, "TYPE")?.unwrap_or("ISOTROPIC").split_whitespace().collect::<String>().to_ascii_uppercase();
+        let ty = self
+            .name_param(kw, "TYPE")?
+            .unwrap_or("ISOTROPIC")
+            .split_whitespace()
+            .collect::<String>()
+            .to_ascii_uppercase();
         let elastic = match ty.as_str() {
             "ISOTROPIC" | "ISO" => {
                 let (v, extra) = self.option_values(kw, 2, &["E", "nu"])?;
                 self.warn_temperature(kw, extra);
-                Elastic::Isotropic { young: v[0], poisson: v[1] }
+                Elastic::Isotropic {
+                    young: v[0],
+                    poisson: v[1],
+                }
             }
             "ENGINEERINGCONSTANTS" => {
-                let names = ["E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23"];
+                let names = [
+                    "E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23",
+                ];
                 let (v, extra) = self.option_values(kw, 9, &names)?;
                 self.warn_temperature(kw, extra);
-                Elastic::EngineeringConstants { e: [v[0], v[1], v[2]], nu: [v[3], v[4], v[5]], g: [v[6], v[7], v[8]] }
+                Elastic::EngineeringConstants {
+                    e: [v[0], v[1], v[2]],
+                    nu: [v[3], v[4], v[5]],
+                    g: [v[6], v[7], v[8]],
+                }
             }
             other => {
                 return Err(self.err(
@@ -874,11 +1128,20 @@ impl<'a> Reader<'a> {
         let elset = self.required(kw, "ELSET")?;
         let material = self.required(kw, "MATERIAL")?;
         if let Some(o) = self.name_param(kw, "ORIENTATION")? {
-            self.warn(kw.loc, format!("ORIENTATION={o} ignored: squeal takes material constants in the global axes"));
+            self.warn(
+                kw.loc,
+                format!(
+                    "ORIENTATION={o} ignored: squeal takes material constants in the global axes"
+                ),
+            );
         }
         self.skip_data();
         let t = self.target();
-        self.store_mut(t).sections.push(SectionRef { element_set: elset.to_string(), material: material.to_string(), loc: kw.loc });
+        self.store_mut(t).sections.push(SectionRef {
+            element_set: elset.to_string(),
+            material: material.to_string(),
+            loc: kw.loc,
+        });
         Ok(())
     }
 
@@ -886,11 +1149,21 @@ impl<'a> Reader<'a> {
     fn check_closed(&self) -> Result<(), MeshError> {
         let (loc, what) = match self.context {
             Context::Model => return Ok(()),
-            Context::Part(p) => (self.parts[p].loc, format!("*PART {} is not closed by *END PART", self.parts[p].name)),
-            Context::Instance(i) => {
-                (self.instances[i].loc, format!("*INSTANCE {} is not closed by *END INSTANCE", self.instances[i].name))
-            }
-            Context::Assembly => (self.assembly.unwrap_or(Loc { src: 0, line: 1 }), "*ASSEMBLY is not closed by *END ASSEMBLY".to_string()),
+            Context::Part(p) => (
+                self.parts[p].loc,
+                format!("*PART {} is not closed by *END PART", self.parts[p].name),
+            ),
+            Context::Instance(i) => (
+                self.instances[i].loc,
+                format!(
+                    "*INSTANCE {} is not closed by *END INSTANCE",
+                    self.instances[i].name
+                ),
+            ),
+            Context::Assembly => (
+                self.assembly.unwrap_or(Loc { src: 0, line: 1 }),
+                "*ASSEMBLY is not closed by *END ASSEMBLY".to_string(),
+            ),
         };
         Err(self.err(loc, format!("the file ends, but {what}")))
     }
@@ -903,26 +1176,49 @@ impl<'a> Reader<'a> {
             b.set_material(&m.name, m.material);
         }
         let mut late = Vec::new();
-        self.flush(&mut b, Target::Global, 0, &Placement::default(), "", &mut late)?;
+        self.flush(
+            &mut b,
+            Target::Global,
+            0,
+            &Placement::default(),
+            "",
+            &mut late,
+        )?;
         for i in 0..self.instances.len() {
             let prefix = format!("{}.", self.instances[i].name);
             let placement = self.instances[i].placement;
-            self.flush(&mut b, Target::Instance(i), Self::offset(i), &placement, &prefix, &mut late)?;
+            self.flush(
+                &mut b,
+                Target::Instance(i),
+                Self::offset(i),
+                &placement,
+                &prefix,
+                &mut late,
+            )?;
         }
         for p in &self.parts {
             if !p.instanced {
                 let (n, e) = (p.store.nodes.len(), p.store.count(Kind::Element));
-                let w = format!("part {} is never instanced: its {n} node(s) and {e} element(s) are not in the mesh", p.name);
+                let w = format!(
+                    "part {} is never instanced: its {n} node(s) and {e} element(s) are not in the mesh",
+                    p.name
+                );
                 late.push(self.lx.warning(p.loc, w));
             }
         }
         for r in self.repeated.values() {
             if r.count > 1 {
-                self.warnings[r.index].message = format!("{}, {} times (the first is here){}", r.stem, r.count, r.tail);
+                self.warnings[r.index].message = format!(
+                    "{}, {} times (the first is here){}",
+                    r.stem, r.count, r.tail
+                );
             }
         }
         self.warnings.extend(late);
-        Ok(ReadMesh { mesh: b.finish(), warnings: self.warnings })
+        Ok(ReadMesh {
+            mesh: b.finish(),
+            warnings: self.warnings,
+        })
     }
 
     fn flush(
@@ -940,38 +1236,65 @@ impl<'a> Reader<'a> {
             MeshError::invalid(
                 root,
                 Location::File,
-                format!("{m} after renumbering instances (instance k's labels become k*{INSTANCE_STRIDE} + label)"),
+                format!(
+                    "{m} after renumbering instances (instance k's labels become k*{INSTANCE_STRIDE} + label)"
+                ),
             )
         };
         let identity = placement.is_identity();
         for &(id, x) in &store.nodes {
-            b.add_node(id + offset, if identity { x } else { placement.apply(x) }).map_err(clash)?;
+            let y = if identity { x } else { placement.apply(x) };
+            if !y.iter().all(|v| v.is_finite()) {
+                let w = format!(
+                    "node {id} of instance {} is placed at {y:?}, not a finite point",
+                    prefix.trim_end_matches('.')
+                );
+                return Err(self.err(self.instance_loc(t), w));
+            }
+            b.add_node(id + offset, y).map_err(clash)?;
         }
         for (id, nodes) in &store.elements {
-            b.add_element(id + offset, nodes.map(|n| n + offset)).map_err(clash)?;
+            b.add_element(id + offset, nodes.map(|n| n + offset))
+                .map_err(clash)?;
         }
         for &id in &store.skipped {
             b.skip_element(id + offset);
         }
         for set in store.node_sets.iter() {
-            b.add_to_node_set(&format!("{prefix}{}", set.name), set.ids.iter().map(|&v| v + offset));
+            b.add_to_node_set(
+                &format!("{prefix}{}", set.name),
+                set.ids.iter().map(|&v| v + offset),
+            );
         }
         for set in store.element_sets.iter() {
-            b.add_to_element_set(&format!("{prefix}{}", set.name), set.ids.iter().map(|&v| v + offset));
+            b.add_to_element_set(
+                &format!("{prefix}{}", set.name),
+                set.ids.iter().map(|&v| v + offset),
+            );
         }
         for s in &store.sections {
             let elset = match store.element_sets.get(&s.element_set) {
                 Some(set) => set.name.clone(),
                 None => {
-                    let w = format!("*SOLID SECTION names element set {}, which is not defined", s.element_set);
+                    let w = format!(
+                        "*SOLID SECTION names element set {}, which is not defined",
+                        s.element_set
+                    );
                     warnings.push(self.lx.warning(s.loc, w));
                     s.element_set.clone()
                 }
             };
-            let material = match self.materials.iter().find(|m| m.name.eq_ignore_ascii_case(&s.material)) {
+            let material = match self
+                .materials
+                .iter()
+                .find(|m| m.name.eq_ignore_ascii_case(&s.material))
+            {
                 Some(m) => m.name.clone(),
                 None => {
-                    let w = format!("*SOLID SECTION names material {}, which is not defined", s.material);
+                    let w = format!(
+                        "*SOLID SECTION names material {}, which is not defined",
+                        s.material
+                    );
                     warnings.push(self.lx.warning(s.loc, w));
                     s.material.clone()
                 }
@@ -1006,7 +1329,10 @@ mod tests {
     fn node_lines() {
         assert_eq!(node_line("7, 1., 2.").unwrap(), (7, [1.0, 2.0, 0.0]));
         assert_eq!(node_line("7, 1., , 3,").unwrap(), (7, [1.0, 0.0, 3.0]));
-        assert_eq!(node_line("7, 1, 2, 3, 0, 0, 1").unwrap(), (7, [1.0, 2.0, 3.0]));
+        assert_eq!(
+            node_line("7, 1, 2, 3, 0, 0, 1").unwrap(),
+            (7, [1.0, 2.0, 3.0])
+        );
         assert!(node_line("7").is_err());
         assert!(node_line("7, 1, 2, 3, 0, 0, 1, 9").is_err());
         assert!(node_line("x, 1, 2").is_err());

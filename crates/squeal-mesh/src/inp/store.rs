@@ -26,7 +26,10 @@ impl Sets {
     pub fn entry(&mut self, name: &str) -> &mut NamedSet {
         self.map
             .entry(name.to_ascii_uppercase())
-            .or_insert_with(|| NamedSet { name: name.to_string(), ids: BTreeSet::new() })
+            .or_insert_with(|| NamedSet {
+                name: name.to_string(),
+                ids: BTreeSet::new(),
+            })
     }
 
     pub fn iter(&self) -> impl Iterator<Item = &NamedSet> {

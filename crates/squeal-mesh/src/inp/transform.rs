@@ -12,7 +12,10 @@ pub(super) struct Placement {
 
 impl Default for Placement {
     fn default() -> Self {
-        Self { translation: [0.0; 3], rotation: None }
+        Self {
+            translation: [0.0; 3],
+            rotation: None,
+        }
     }
 }
 
@@ -42,7 +45,10 @@ impl Rotation {
                 *v = c * id + s * cross[i][j] + (1.0 - c) * k[i] * k[j];
             }
         }
-        Some(Self { origin: a, matrix: m })
+        Some(Self {
+            origin: a,
+            matrix: m,
+        })
     }
 }
 
@@ -52,13 +58,20 @@ impl Placement {
     }
 
     pub fn apply(&self, x: [f64; 3]) -> [f64; 3] {
-        let y = [x[0] + self.translation[0], x[1] + self.translation[1], x[2] + self.translation[2]];
+        let y = [
+            x[0] + self.translation[0],
+            x[1] + self.translation[1],
+            x[2] + self.translation[2],
+        ];
         match &self.rotation {
             None => y,
             Some(r) => {
                 let d = [y[0] - r.origin[0], y[1] - r.origin[1], y[2] - r.origin[2]];
                 std::array::from_fn(|i| {
-                    r.origin[i] + r.matrix[i][0] * d[0] + r.matrix[i][1] * d[1] + r.matrix[i][2] * d[2]
+                    r.origin[i]
+                        + r.matrix[i][0] * d[0]
+                        + r.matrix[i][1] * d[1]
+                        + r.matrix[i][2] * d[2]
                 })
             }
         }
