@@ -42,6 +42,8 @@ const D_ROWS: usize = MAX_ORDER + 3;
 /// (CVODE's `DGMAX` rule); Newton then converges somewhat slower, and a
 /// failure triggers a refactorization before a new Jacobian.
 const LU_REUSE_TOL: f64 = 0.3;
+/// Decay of the remembered Newton contraction rate (CVODE's `CRDOWN`).
+const RATE_DECAY: f64 = 0.3;
 
 /// A first-order system `y' = f(t, y)` with an analytic dense Jacobian.
 pub trait OdeSystem {
@@ -130,6 +132,9 @@ struct NewtonMatrix {
     tmp: Vec<f64>,
     /// `c` of the current factorization, `None` if there is none.
     c: Option<f64>,
+    /// Newton contraction rate measured with this factorization (CVODE's
+    /// `crate`), used to accept a converged first iteration.
+    rate: Option<f64>,
 }
 
 impl NewtonMatrix {
@@ -141,6 +146,7 @@ impl NewtonMatrix {
             scratch: MemBuffer::new(StackReq::new::<usize>(n)),
             tmp: vec![0.0; n],
             c: None,
+            rate: None,
         }
     }
 
@@ -162,6 +168,7 @@ impl NewtonMatrix {
             Default::default(),
         );
         self.c = Some(c);
+        self.rate = None;
     }
 
     /// Solve `(I - c J) x = b` in place (`P A = L U`).
@@ -498,8 +505,15 @@ impl<S: OdeSystem> Bdf<S> {
             if !dy_norm.is_finite() {
                 break;
             }
-            let rate = dy_norm_old.map(|old| dy_norm / old);
-            if let Some(rate) = rate
+            let measured = dy_norm_old.map(|old| dy_norm / old);
+            if let Some(r) = measured {
+                let decayed = self.newton.rate.map_or(0.0, |old| RATE_DECAY * old);
+                self.newton.rate = Some(r.max(decayed));
+            }
+            // Without a measured rate yet, the one remembered from earlier
+            // steps with the same LU (CVODE) lets a first iteration converge.
+            let rate = measured.or(if k == 0 { self.newton.rate } else { None });
+            if let Some(rate) = measured
                 && (rate >= 1.0
                     || rate.powi((max_iter - k) as i32) / (1.0 - rate) * dy_norm
                         > self.newton_tol)
@@ -511,7 +525,7 @@ impl<S: OdeSystem> Bdf<S> {
                 self.dsum[i] += self.dy[i];
             }
             let done = dy_norm == 0.0
-                || rate.is_some_and(|r| r / (1.0 - r) * dy_norm < self.newton_tol);
+                || rate.is_some_and(|r| r < 1.0 && r / (1.0 - r) * dy_norm < self.newton_tol);
             if done {
                 return NewtonOutcome {
                     converged: true,
@@ -604,8 +618,11 @@ impl<S: OdeSystem> Bdf<S> {
                 self.rescale(NEWTON_FAIL_FACTOR);
                 continue;
             }
+            // scipy's safety factor; a first iteration accepted on the
+            // remembered rate counts as two so that it does not enlarge h.
             let maxit = self.opts.max_newton_iter as f64;
-            let safety = 0.9 * (2.0 * maxit + 1.0) / (2.0 * maxit + outcome.iterations as f64);
+            let iters = outcome.iterations.max(2) as f64;
+            let safety = 0.9 * (2.0 * maxit + 1.0) / (2.0 * maxit + iters);
             for i in 0..self.n {
                 self.scale[i] = self.atol[i] + self.rtol * self.y_new[i].abs();
             }
