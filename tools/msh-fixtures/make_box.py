@@ -1,8 +1,11 @@
 """Writes the box fixtures of the .msh reader tests with Gmsh itself.
 
 One small straight-sided tet10 mesh of a box (a brake-pad-like block), written by Gmsh as
-MSH 2.2 ASCII, 2.2 binary, 4.1 ASCII and 4.1 binary (little-endian, Gmsh's native order);
-`swap_endian.py` then makes big-endian copies of the binary files.
+MSH 2.2 ASCII, 2.2 binary, 4.1 ASCII and 4.1 binary (little-endian, Gmsh's native order), and
+as 4.1 ASCII and binary with parametric node coordinates (Mesh.SaveParametric);
+`swap_endian.py` then makes big-endian copies of the binary files:
+  python3 tools/msh-fixtures/swap_endian.py box_v41_binary.msh box_v41_binary_be.msh
+  python3 tools/msh-fixtures/swap_endian.py box_v22_binary.msh box_v22_binary_be.msh
 
 Physical groups (what the reader turns into sets):
   volume  1 "pad"            -> element set
@@ -72,6 +75,11 @@ def main(out_dir):
         (4.1, 1, "box_v41_binary.msh"),
     ]:
         gmsh.option.setNumber("Mesh.MshFileVersion", version)
+        gmsh.option.setNumber("Mesh.Binary", binary)
+        gmsh.write(os.path.join(out_dir, name))
+    # MSH 4.1 with parametric coordinates (u on curves, u v on surfaces) in the node blocks.
+    gmsh.option.setNumber("Mesh.SaveParametric", 1)
+    for binary, name in [(0, "box_v41_parametric_ascii.msh"), (1, "box_v41_parametric_binary.msh")]:
         gmsh.option.setNumber("Mesh.Binary", binary)
         gmsh.write(os.path.join(out_dir, name))
     _, tets, _ = gmsh.model.mesh.getElements(3)

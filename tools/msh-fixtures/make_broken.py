@@ -115,6 +115,7 @@ def main(fixtures, out):
     files = {}
     # ASCII edits.
     files["bad_number.msh"] = edit(ONE_TET_V22, "8 0 0 0.5\n", "8 0 0 0.5x\n")
+    files["nan_coordinate.msh"] = edit(ONE_TET_V22, "8 0 0 0.5\n", "8 0 0 nan\n")
     files["wrong_node_count.msh"] = edit(ONE_TET_V22, " 8 9 10\n", " 8 9\n")
     files["wrong_node_count_v41.msh"] = edit(ONE_TET_V41, "2 1 2 3 4 5 6 7 8 9 10\n", "2 1 2 3 4 5 6 7 8 9\n")
     files["unknown_element_type.msh"] = edit(ONE_TET_V22, "2 11 2 2 1", "2 200 2 2 1")

@@ -8,9 +8,9 @@
 //! reads MSH 4.1 only (the AMfe test meshes and many users' files are 2.2), ignores
 //! `$PhysicalNames` (which is where the set names come from), does not say on which line or byte
 //! a file went wrong, and is no longer maintained. The format itself is small: `$Section` ...
-//! `$EndSection` blocks whose contents are counted, so a cursor over the bytes (module `cursor`) that
-//! reads lines, whitespace-separated fields (nom's `u64`, `i32` and `double` text parsers) and
-//! binary integers and doubles (nom's `i32`, `u64`, `f64` in the file's byte order) covers
+//! `$EndSection` blocks whose contents are counted. A cursor over the bytes (module `cursor`)
+//! that reads lines, whitespace-separated fields (nom's `u64`, `i32` and `double` text parsers)
+//! and binary integers and doubles (nom's `i32`, `u64`, `f64` in the file's byte order) covers
 //! it.
 //!
 //! # What becomes what
@@ -39,10 +39,11 @@
 //!
 //! # Errors
 //! [`MeshError::Invalid`] with [`Location::Line`] in ASCII files and [`Location::Byte`] in
-//! binary ones, and what was expected there: truncated files, missing `$End...` lines, bad
-//! numbers, element lines with the wrong number of nodes for their type, unknown element types,
-//! declared counts larger than the rest of the file can hold (nothing is allocated from a count
-//! before that check), and MSH versions other than 2.x and 4.1. Node tags that elements or sets
+//! binary ones, and what was expected there: truncated files (including a file that ends
+//! before its `$Nodes` or `$Elements` section), missing `$End...` lines, bad numbers, element
+//! lines with the wrong number of nodes for their type, unknown element types, declared counts
+//! larger than the rest of the file can hold (nothing is allocated from a count before that
+//! check), and MSH versions other than 2.x and 4.1. Node tags that elements or sets
 //! reference but `$Nodes` never defines are not errors here: the [`MeshBuilder`] lists them in
 //! [`crate::Mesh::dangling`].
 
@@ -402,6 +403,12 @@ impl<'a> Reader<'a> {
             for &tag in tags {
                 groups.entry((dim, tag)).or_default();
             }
+        }
+        // A node is shared by several elements of an owner: list it once before copying it
+        // into each of the owner's groups.
+        for members in self.members.values_mut() {
+            members.nodes.sort_unstable();
+            members.nodes.dedup();
         }
         let mut orphans = Vec::new();
         for (owner, members) in &self.members {

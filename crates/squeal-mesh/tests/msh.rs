@@ -139,20 +139,32 @@ fn curved_sphere_volume() {
     assert!(r.warnings.is_empty(), "{:?}", r.warnings);
 }
 
-const BOX_FILES: [&str; 6] = [
+/// The box in MSH 4.1 (the first file is the reference of the comparisons).
+const BOX_V41: [&str; 5] = [
     "msh/box_v41_ascii.msh",
     "msh/box_v41_binary.msh",
     "msh/box_v41_binary_be.msh",
+    "msh/box_v41_parametric_ascii.msh",
+    "msh/box_v41_parametric_binary.msh",
+];
+
+/// The box in MSH 2.2.
+const BOX_V22: [&str; 3] = [
     "msh/box_v22_ascii.msh",
     "msh/box_v22_binary.msh",
     "msh/box_v22_binary_be.msh",
 ];
 
+fn box_files() -> impl Iterator<Item = &'static str> {
+    BOX_V41.into_iter().chain(BOX_V22)
+}
+
 /// The box written by Gmsh in every format (tools/msh-fixtures/make_box.py, big-endian copies by
-/// swap_endian.py) reads into the same mesh, with Gmsh's counts.
+/// swap_endian.py; with and without parametric coordinates) reads into the same mesh, with
+/// Gmsh's counts.
 #[test]
 fn box_formats_read_into_the_same_mesh() {
-    let reference = read_ok(BOX_FILES[0]).mesh;
+    let reference = read_ok(BOX_V41[0]).mesh;
     assert_eq!(reference.num_nodes(), 694);
     assert_eq!(reference.num_elements(), 310);
     // Set sizes counted by Gmsh (count.py): element sets are tet10, node sets distinct nodes.
@@ -166,24 +178,17 @@ fn box_formats_read_into_the_same_mesh() {
     for (name, n) in node_sets {
         assert_eq!(reference.node_sets[name].len(), n, "{name}");
     }
-    let binary = read_ok(BOX_FILES[1]).mesh;
-    for file in &BOX_FILES[1..] {
+    let binary = read_ok(BOX_V41[1]).mesh;
+    for file in box_files().skip(1) {
         let m = read_ok(file).mesh;
         // ASCII files print 16 significant digits (relative error <= 5e-16); binary files hold
         // the doubles themselves: files of one kind agree to the bit, ASCII and binary to 1e-15.
-        let same_kind = if file.contains("ascii") {
-            &reference
-        } else {
-            &binary
-        };
+        let kind = if file.contains("ascii") { 0 } else { 1 };
+        let same_kind = [&reference, &binary][kind];
         assert!(
             m.nodes == same_kind.nodes,
             "{file}: coordinates differ from {}",
-            if file.contains("ascii") {
-                BOX_FILES[0]
-            } else {
-                BOX_FILES[1]
-            }
+            BOX_V41[kind]
         );
         let worst = m
             .nodes
@@ -203,7 +208,7 @@ fn box_formats_read_into_the_same_mesh() {
         assert!(m.dangling.is_empty(), "{file}");
     }
     // Element numbers differ between versions (MSH 2 renumbers its records), not within one.
-    for group in [&BOX_FILES[..3], &BOX_FILES[3..]] {
+    for group in [&BOX_V41[..], &BOX_V22[..]] {
         let first = read_ok(group[0]).mesh.element_ids;
         for file in &group[1..] {
             assert_eq!(read_ok(file).mesh.element_ids, first, "{file}");
@@ -239,7 +244,7 @@ fn box_sets_match_the_geometry() {
 /// 620); the reader keeps one element per node list and says so.
 #[test]
 fn msh2_repeated_elements_are_read_once() {
-    for file in &BOX_FILES[3..] {
+    for file in BOX_V22 {
         let r = read_ok(file);
         assert_eq!(r.mesh.num_elements(), 310, "{file}");
         let repeats: Vec<_> = r
@@ -267,7 +272,7 @@ fn midside_nodes_sit_at_edge_midpoints() {
         "msh/one_tet_v22.msh",
         "msh/one_tet_v41.msh",
     ];
-    for file in files.iter().chain(BOX_FILES.iter()) {
+    for file in files.into_iter().chain(box_files()) {
         let m = read_ok(file).mesh;
         // Gmsh computes midpoints in doubles and prints 16-17 digits: offsets are ~1e-16 of the
         // size; a node on the wrong edge is off by a good fraction of an edge (> 1e-3 of the size).
@@ -457,6 +462,11 @@ fn broken_files_fail_with_located_errors() {
             "expected $EndNodes, found `$Elements`",
         ),
         ("msh_version_1.msh", Location::Line(1), "MSH version 1"),
+        (
+            "nan_coordinate.msh",
+            Location::Line(18),
+            "expected the z coordinate, found `nan`",
+        ),
         (
             "node_total_mismatch.msh",
             Location::Line(14),
