@@ -425,8 +425,8 @@ impl<'a> Reader<'a> {
             self.warn(
                 Location::File,
                 format!(
-                    "{} entities have elements but are not in $Entities (first: dimension {dim}, tag {tag}): \
-                     their elements belong to no physical group",
+                    "entities missing from $Entities hold elements ({}, first: dimension {dim}, \
+                     tag {tag}): their elements belong to no physical group",
                     orphans.len()
                 ),
             );

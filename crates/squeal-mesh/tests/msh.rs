@@ -167,7 +167,9 @@ fn box_formats_read_into_the_same_mesh() {
     let reference = read_ok(BOX_V41[0]).mesh;
     assert_eq!(reference.num_nodes(), 694);
     assert_eq!(reference.num_elements(), 310);
-    // Set sizes counted by Gmsh (count.py): element sets are tet10, node sets distinct nodes.
+    // Set sizes counted by Gmsh (count.py): element sets are tet10, node sets distinct nodes of
+    // the group's elements. The top face's own node block in MSH 4.1 (`2 6 0 131`) holds only
+    // its 131 interior nodes: 175 includes the 44 on its boundary curves.
     let element_sets = [("pad", 310), ("pad_again", 310)];
     let node_sets = [("PHYSICAL_1_7", 44), ("corner", 1), ("friction_face", 175)];
     assert_eq!(reference.element_sets.len(), element_sets.len());
@@ -390,6 +392,27 @@ fn skipped_sections_types_and_dangling_nodes() {
             element: 4,
             node: 99
         }]
+    );
+}
+
+/// MSH 4.1 without `$Entities`: elements still read, their entity's groups unknown (warned).
+#[test]
+fn msh41_without_entities() {
+    let text = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n\
+                0 0 0\n1 0 0\n0 1 0\n$EndNodes\n$Elements\n1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n";
+    let r = parse_str(text).unwrap();
+    assert_eq!(r.mesh.num_nodes(), 3);
+    assert!(r.mesh.node_sets.is_empty());
+    let w: Vec<_> = r
+        .warnings
+        .iter()
+        .filter(|w| w.message.contains("missing from $Entities"))
+        .collect();
+    assert_eq!(w.len(), 1, "{:?}", r.warnings);
+    assert!(
+        w[0].message.contains("(1, first: dimension 2, tag 1)"),
+        "{}",
+        w[0].message
     );
 }
 
