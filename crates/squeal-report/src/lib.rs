@@ -52,18 +52,26 @@ pub enum ReportError {
 /// Notes about data that was left out of a figure (one line each, naming panel and series).
 pub type Notes = Vec<String>;
 
-/// Renders `fig` as an SVG document (1 SVG pixel per figure pixel).
+/// Internal units per SVG pixel: coordinates and stroke widths are whole numbers in plotters'
+/// SVG output, so drawing at 4x (shown at 1x through the `viewBox`) keeps curves smooth and
+/// widths within an eighth of a pixel.
+const SVG_UNITS_PER_PX: f64 = 4.0;
+
+/// Renders `fig` as an SVG document, `fig.panel_size` pixels per panel.
 pub fn render_svg(fig: &Figure) -> Result<(String, Notes), ReportError> {
     if !font::ensure_registered() {
         return Err(ReportError::Font);
     }
-    let size = render::figure_pixels(fig, 1.0)?;
+    let (w, h) = render::figure_pixels(fig, 1.0)?;
+    let (iw, ih) = render::figure_pixels(fig, SVG_UNITS_PER_PX)?;
     let mut svg = String::new();
     let notes = {
-        let area = SVGBackend::with_string(&mut svg, size).into_drawing_area();
-        render::draw_figure(&area, fig, 1.0, false)?
+        let area = SVGBackend::with_string(&mut svg, (iw, ih)).into_drawing_area();
+        render::draw_figure(&area, fig, SVG_UNITS_PER_PX, false)?
     };
-    Ok((svg, notes))
+    let inner = format!("<svg width=\"{iw}\" height=\"{ih}\"");
+    let outer = format!("<svg width=\"{w}\" height=\"{h}\"");
+    Ok((svg.replacen(&inner, &outer, 1), notes))
 }
 
 /// Renders `fig` as a PNG image at `fig.png_scale` pixels per SVG pixel.

@@ -13,8 +13,9 @@ pub struct Section {
     /// Paragraphs separated by blank lines (Markdown is passed through to `index.md`; the HTML
     /// shows it as plain text).
     pub text: String,
-    /// Figure files relative to the report folder, with captions. A path without extension or
-    /// ending in `.png` is shown as the `.svg` beside it when that exists.
+    /// Figure files relative to the report folder, with captions: a stem (`figs/fig2`, as given
+    /// to [`crate::write_svg_and_png`]) or a file name. A stem or a `.png` is shown as the
+    /// `.svg` beside it when that exists, with a link to the PNG.
     pub figures: Vec<(PathBuf, String)>,
     /// Tables with captions.
     pub tables: Vec<(Table, String)>,
@@ -56,16 +57,15 @@ fn resolve(dir: &Path, p: &Path, notes: &mut Notes) -> Result<Shown, ReportError
     let (svg, png) = match ext.as_deref() {
         Some("svg") => (p.to_path_buf(), p.with_extension("png")),
         Some("png") => (p.with_extension("svg"), p.to_path_buf()),
-        None => (with_suffix(p, "svg"), with_suffix(p, "png")),
-        Some(_) => {
-            if !dir.join(p).is_file() {
-                notes.push(format!("figure file {} is missing", p.display()));
-            }
+        // Another existing file (a JPEG, say) is shown as it is.
+        Some(_) if dir.join(p).is_file() => {
             return Ok(Shown {
                 display: url(p),
                 alternative: None,
             });
         }
+        // Otherwise a stem, possibly with dots in it ("mu0.25").
+        _ => (with_suffix(p, "svg"), with_suffix(p, "png")),
     };
     let (has_svg, has_png) = (dir.join(&svg).is_file(), dir.join(&png).is_file());
     Ok(match (has_svg, has_png) {
