@@ -3,5 +3,6 @@
 // Index loops over the three directions read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+pub mod craig_bampton;
 pub mod interface;
 pub mod rom;

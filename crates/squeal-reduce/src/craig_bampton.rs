@@ -1,0 +1,718 @@
+//! Craig–Bampton reduction of one part, eqs (1)–(7).
+//!
+//! The boundary coordinates `r` are given as rows of a constraint `r = C u` on the part's free
+//! dofs: one dof per row for the node interface and the piston nodes, the patch weights of
+//! [`crate::interface`] for the patch interface. Each row is solved for one "master" dof that
+//! appears in no other row (for a patch: a face node inside it), `u_S = A u_I + B r`, so that
+//! `u = T v + G r` with `v = u_I` the interior dofs, `T = [I; A]`, `G = [0; B]`. This is the
+//! null-space form of the saddle-point system `[[K, Cᵀ], [C, 0]]`: the same constraint modes
+//! and fixed-interface modes, but with a symmetric positive definite interior matrix
+//! `K_vv = Tᵀ K T`, so one sparse Cholesky factorization serves both. For the node interface
+//! `A = 0` and it reduces to the paper's partition into `u_B` and `u_I`.
+//!
+//! - constraint modes, eq (3): `v = -K_vv⁻¹ K_vr`, `K_vr = Tᵀ K G`;
+//! - fixed-interface modes, eqs (4)–(5): the `N` lowest of `K_vv φ = ω² M_vv φ` (`r = 0`,
+//!   i.e. `C φ = 0`), mass-normalized, by shift-invert Lanczos on that same factorization;
+//! - eqs (6)–(7): `K̂ = Bᵀ K B`, `M̂ = Bᵀ M B` with the full-space basis
+//!   `B = [T Ψ_v + G, T Φ_v]`; `K̂` is block diagonal (`K̂_CN = 0` to round-off).
+
+use crate::interface::{Axis, InterfaceError, contact_nodes, patches};
+use crate::rom::{
+    Basis, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo, PartInfo, PointRole,
+    ReducedPart, RestraintInfo,
+};
+use faer::sparse::linalg::matmul::sparse_dense_matmul;
+use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
+use faer::{Accum, Mat, Par};
+use squeal_eigs::{EigError, EigOptions, SparseCholesky, lowest_modes_with_factor};
+use squeal_fe::{DofMap, FeError, MaterialTable, Restraint, assemble};
+use squeal_mesh::Mesh;
+use std::collections::HashMap;
+use std::time::{Duration, Instant};
+
+/// Errors of the reduction, named in the user's terms.
+#[derive(Debug, thiserror::Error)]
+pub enum ReduceError {
+    #[error(transparent)]
+    Fe(#[from] FeError),
+    #[error(transparent)]
+    Interface(#[from] InterfaceError),
+    #[error(
+        "{part}: the interior stiffness K_II is singular: the part is not held (check its restraints: {restraints})"
+    )]
+    NotHeld { part: String, restraints: String },
+    #[error("{part}: eigensolver: {source}")]
+    Eigen { part: String, source: EigError },
+    #[error(
+        "{part}: boundary node {node} ({set}) is restrained in direction {direction}: a boundary dof cannot also be clamped"
+    )]
+    BoundaryRestrained {
+        part: String,
+        set: String,
+        node: u64,
+        direction: char,
+    },
+    #[error(
+        "{part}: contact point {point} has no dof of its own in direction {direction}: the patch shares all its face nodes with its neighbours (refine the mesh or use a coarser grid)"
+    )]
+    NoMaster {
+        part: String,
+        point: usize,
+        direction: char,
+    },
+    #[error("{part}: {what}")]
+    Invalid { part: String, what: String },
+}
+
+const AXES: [char; 3] = ['x', 'y', 'z'];
+
+/// What to keep of one part and how it is held.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartSpec {
+    pub name: String,
+    pub mesh: MeshInfo,
+    pub restraints: Vec<Restraint>,
+    pub interface: InterfaceKind,
+    /// Node set of the contact points (node interface).
+    pub contact_set: String,
+    /// Node set of the contact face (patch interface).
+    pub contact_face_set: String,
+    /// Patch grid `[radial, angular]`.
+    pub grid: [usize; 2],
+    pub axis: Axis,
+    /// Node set whose nodes keep their `normal_direction` dof (the pad's pistons).
+    pub piston_set: Option<String>,
+    /// Direction (0 = x, 1 = y, 2 = z) of the piston dofs: the contact normal.
+    pub normal_direction: usize,
+    /// Fixed-interface modes kept.
+    pub modes: usize,
+}
+
+/// Options of [`reduce_part`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReduceOptions {
+    pub eig: EigOptions,
+    /// M-orthonormalize the kept modes again after the solve, so that the modal block of `M̂`
+    /// is the identity and that of `K̂` is `diag(ω²)` to round-off.
+    pub orthonormalize: bool,
+    /// Keep the full-space basis in the result (needed to expand results onto the mesh).
+    pub keep_basis: bool,
+    /// Parallelism of the dense and sparse products.
+    pub par: Par,
+}
+
+impl Default for ReduceOptions {
+    fn default() -> Self {
+        Self {
+            eig: EigOptions::default(),
+            orthonormalize: true,
+            keep_basis: true,
+            par: faer::get_global_parallelism(),
+        }
+    }
+}
+
+/// Stages, reported to a progress callback as they start.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    Assemble,
+    Interface,
+    Factor,
+    ConstraintModes,
+    Eigensolve,
+    Project,
+}
+
+impl Stage {
+    pub fn label(&self) -> &'static str {
+        match self {
+            Stage::Assemble => "assemble K, M",
+            Stage::Interface => "interface",
+            Stage::Factor => "order and factor K_II",
+            Stage::ConstraintModes => "constraint modes",
+            Stage::Eigensolve => "fixed-interface modes",
+            Stage::Project => "project K, M",
+        }
+    }
+}
+
+/// What the reduction of one part did and cost.
+#[derive(Clone, Debug)]
+pub struct ReduceReport {
+    pub free_dofs: usize,
+    pub interior_dofs: usize,
+    pub boundary_dofs: usize,
+    pub nnz_k: usize,
+    pub nnz_factor: usize,
+    pub timings: Vec<(Stage, Duration)>,
+    pub eig: squeal_eigs::EigStats,
+    /// Largest eigen backward error of the kept modes.
+    pub max_residual: f64,
+    /// `max |M̂_NN - I|` before re-orthonormalization.
+    pub modal_mass_deviation: f64,
+    /// `||K̂_CN|| / ||K̂||` (zero in exact arithmetic, eq 6).
+    pub coupling: f64,
+}
+
+/// One boundary coordinate: `r = Σ c_k u_k` over free dofs.
+struct Row {
+    point: usize,
+    direction: usize,
+    entries: Vec<(usize, f64)>,
+}
+
+/// Reduces one part (eqs 1–7).
+pub fn reduce_part(
+    mesh: &Mesh,
+    materials: &MaterialTable,
+    spec: &PartSpec,
+    opts: &ReduceOptions,
+    progress: &mut dyn FnMut(Stage),
+) -> Result<(ReducedPart, ReduceReport), ReduceError> {
+    let part = spec.name.clone();
+    let mut timings = Vec::new();
+    let clock = |stage: Stage, t: Instant, timings: &mut Vec<(Stage, Duration)>| {
+        timings.push((stage, t.elapsed()))
+    };
+
+    progress(Stage::Assemble);
+    let t = Instant::now();
+    let dofmap = DofMap::new(mesh, &spec.restraints)?;
+    let system = assemble(mesh, materials, &dofmap)?;
+    clock(Stage::Assemble, t, &mut timings);
+
+    progress(Stage::Interface);
+    let t = Instant::now();
+    let (points, rows) = boundary_rows(mesh, &dofmap, spec)?;
+    let split = Split::new(&rows, dofmap.num_free(), &part)?;
+    let k_vv = split.interior(&system.k);
+    let m_vv = split.interior(&system.m);
+    clock(Stage::Interface, t, &mut timings);
+
+    progress(Stage::Factor);
+    let t = Instant::now();
+    let chol = squeal_eigs::CholeskyOptions {
+        par: opts.eig.par,
+        ..Default::default()
+    };
+    let factor = SparseCholesky::factorize_with(k_vv.as_ref(), &chol).map_err(|e| match e {
+        EigError::NotPositiveDefinite { .. } => ReduceError::NotHeld {
+            part: part.clone(),
+            restraints: describe(&spec.restraints),
+        },
+        other => ReduceError::Eigen {
+            part: part.clone(),
+            source: other,
+        },
+    })?;
+    clock(Stage::Factor, t, &mut timings);
+
+    progress(Stage::ConstraintModes);
+    let t = Instant::now();
+    let k_vr = split.coupling(&system.k);
+    let mut psi_v = k_vr;
+    factor
+        .solve_in_place(psi_v.as_mut())
+        .map_err(|source| ReduceError::Eigen {
+            part: part.clone(),
+            source,
+        })?;
+    for v in psi_v.col_iter_mut() {
+        for x in v.iter_mut() {
+            *x = -*x;
+        }
+    }
+    clock(Stage::ConstraintModes, t, &mut timings);
+
+    progress(Stage::Eigensolve);
+    let t = Instant::now();
+    let eig_opts = EigOptions {
+        shift: 0.0,
+        ..opts.eig
+    };
+    let modes =
+        lowest_modes_with_factor(k_vv.as_ref(), m_vv.as_ref(), &factor, spec.modes, &eig_opts)
+            .map_err(|source| ReduceError::Eigen {
+                part: part.clone(),
+                source,
+            })?;
+    clock(Stage::Eigensolve, t, &mut timings);
+
+    progress(Stage::Project);
+    let t = Instant::now();
+    let nb = rows.len();
+    let nm = modes.values.len();
+    let n = nb + nm;
+    let mut basis = Mat::<f64>::zeros(dofmap.num_free(), n);
+    for b in 0..nb {
+        split.expand_into(psi_v.col(b), basis.col_mut(b));
+        let (m, inv) = split.masters[b];
+        basis[(m, b)] += inv;
+    }
+    for j in 0..nm {
+        split.expand_into(modes.vectors.col(j), basis.col_mut(nb + j));
+    }
+    let mut k_hat = project(&system.k, &basis, opts.par);
+    let mut m_hat = project(&system.m, &basis, opts.par);
+    let modal_mass_deviation = max_deviation_from_identity(&m_hat, nb);
+    if opts.orthonormalize && nm > 0 {
+        orthonormalize_modes(
+            &mut basis, &mut k_hat, &mut m_hat, nb, &system, opts.par, &part,
+        )?;
+    }
+    let coupling = block_norm(&k_hat, 0..nb, nb..n) / frobenius(&k_hat).max(f64::MIN_POSITIVE);
+    clock(Stage::Project, t, &mut timings);
+
+    let dofs: Vec<DofLabel> = rows
+        .iter()
+        .map(|r| DofLabel::Point {
+            point: r.point,
+            direction: r.direction as u8,
+        })
+        .chain((0..nm).map(|mode| DofLabel::Mode { mode }))
+        .collect();
+    let fixed_interface_hz: Vec<f64> = modes
+        .values
+        .iter()
+        .map(|w2| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+        .collect();
+    let info = PartInfo {
+        name: part.clone(),
+        mesh: spec.mesh.clone(),
+        interface: spec.interface,
+        materials: material_infos(materials),
+        restraints: restraint_infos(mesh, &spec.restraints),
+        points,
+        dofs,
+        fixed_interface_hz,
+        full_dofs: dofmap.num_free(),
+    };
+    let basis = opts.keep_basis.then(|| {
+        let (dof_node, dof_dir): (Vec<u64>, Vec<u8>) = (0..dofmap.num_free())
+            .map(|f| {
+                let (node, dir) = dofmap.node_dir(f).unwrap_or((0, 0));
+                (mesh.node_ids[node as usize], dir as u8)
+            })
+            .unzip();
+        Basis {
+            dof_node,
+            dof_dir,
+            values: basis,
+        }
+    });
+    let report = ReduceReport {
+        free_dofs: dofmap.num_free(),
+        interior_dofs: split.interior.len(),
+        boundary_dofs: nb,
+        nnz_k: system.nnz_k(),
+        nnz_factor: factor.stats().nnz_l,
+        timings,
+        eig: modes.stats,
+        max_residual: modes.residuals.iter().copied().fold(0.0, f64::max),
+        modal_mass_deviation,
+        coupling,
+    };
+    Ok((
+        ReducedPart {
+            info,
+            k: k_hat,
+            m: m_hat,
+            basis,
+        },
+        report,
+    ))
+}
+
+fn describe(restraints: &[Restraint]) -> String {
+    if restraints.is_empty() {
+        return "none".into();
+    }
+    restraints
+        .iter()
+        .map(|r| format!("{r:?}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Boundary points and rows: contact points (3 rows each), then piston nodes (1 row each).
+fn boundary_rows(
+    mesh: &Mesh,
+    dofmap: &DofMap,
+    spec: &PartSpec,
+) -> Result<(Vec<InterfacePoint>, Vec<Row>), ReduceError> {
+    let part = &spec.name;
+    let mut points = Vec::new();
+    let mut rows = Vec::new();
+    let restrained = |set: &str, node: u32, d: usize| ReduceError::BoundaryRestrained {
+        part: part.clone(),
+        set: set.into(),
+        node: mesh.node_ids[node as usize],
+        direction: AXES[d],
+    };
+    match spec.interface {
+        InterfaceKind::Node => {
+            for node in contact_nodes(mesh, &spec.contact_set, &spec.axis)? {
+                let p = points.len();
+                points.push(InterfacePoint {
+                    role: PointRole::Contact,
+                    node_id: Some(mesh.node_ids[node as usize]),
+                    patch: None,
+                    position: mesh.nodes[node as usize],
+                    area: None,
+                });
+                for d in 0..3 {
+                    let dof = dofmap
+                        .free_dof(node, d)
+                        .ok_or_else(|| restrained(&spec.contact_set, node, d))?;
+                    rows.push(Row {
+                        point: p,
+                        direction: d,
+                        entries: vec![(dof, 1.0)],
+                    });
+                }
+            }
+        }
+        InterfaceKind::Patch => {
+            let patches = patches(
+                mesh,
+                &spec.contact_face_set,
+                spec.grid[0],
+                spec.grid[1],
+                &spec.axis,
+            )?;
+            for patch in patches {
+                let p = points.len();
+                points.push(InterfacePoint {
+                    role: PointRole::Contact,
+                    node_id: None,
+                    patch: Some(patch.number),
+                    position: patch.centroid,
+                    area: Some(patch.area),
+                });
+                for d in 0..3 {
+                    // Restrained face dofs are zero and drop out of the mean.
+                    let entries: Vec<(usize, f64)> = patch
+                        .weights
+                        .iter()
+                        .filter_map(|&(n, w)| dofmap.free_dof(n, d).map(|f| (f, w)))
+                        .collect();
+                    if entries.is_empty() {
+                        return Err(ReduceError::NoMaster {
+                            part: part.clone(),
+                            point: p,
+                            direction: AXES[d],
+                        });
+                    }
+                    rows.push(Row {
+                        point: p,
+                        direction: d,
+                        entries,
+                    });
+                }
+            }
+        }
+    }
+    if let Some(set) = &spec.piston_set {
+        let nodes = mesh
+            .node_set(set)
+            .ok_or_else(|| InterfaceError::MissingSet(set.clone()))?;
+        if nodes.is_empty() {
+            return Err(InterfaceError::EmptySet(set.clone()).into());
+        }
+        let d = spec.normal_direction;
+        for &node in nodes {
+            let p = points.len();
+            points.push(InterfacePoint {
+                role: PointRole::Piston,
+                node_id: Some(mesh.node_ids[node as usize]),
+                patch: None,
+                position: mesh.nodes[node as usize],
+                area: None,
+            });
+            let dof = dofmap
+                .free_dof(node, d)
+                .ok_or_else(|| restrained(set, node, d))?;
+            rows.push(Row {
+                point: p,
+                direction: d,
+                entries: vec![(dof, 1.0)],
+            });
+        }
+    }
+    Ok((points, rows))
+}
+
+/// The elimination `u_S = A u_I + B r` and the interior numbering.
+struct Split {
+    /// Master free dof of each row and `1 / c_bm`.
+    masters: Vec<(usize, f64)>,
+    /// Free dofs of the interior, ascending; `interior_index[f]` their position.
+    interior: Vec<usize>,
+    interior_index: Vec<Option<usize>>,
+    /// Rows of `A` in interior numbering: `u_{m_b} = Σ a_bk v_k + r_b / c_bm`.
+    a: Vec<Vec<(usize, f64)>>,
+}
+
+impl Split {
+    fn new(rows: &[Row], n_free: usize, part: &str) -> Result<Self, ReduceError> {
+        let mut uses: HashMap<usize, usize> = HashMap::new();
+        for r in rows {
+            for &(f, _) in &r.entries {
+                *uses.entry(f).or_default() += 1;
+            }
+        }
+        let mut masters = Vec::with_capacity(rows.len());
+        let mut is_master = vec![false; n_free];
+        for r in rows {
+            let best = r
+                .entries
+                .iter()
+                .filter(|(f, w)| uses[f] == 1 && *w != 0.0)
+                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()).then(b.0.cmp(&a.0)));
+            let &(m, c) = best.ok_or_else(|| ReduceError::NoMaster {
+                part: part.into(),
+                point: r.point,
+                direction: AXES[r.direction],
+            })?;
+            masters.push((m, 1.0 / c));
+            is_master[m] = true;
+        }
+        let interior: Vec<usize> = (0..n_free).filter(|&f| !is_master[f]).collect();
+        let mut interior_index = vec![None; n_free];
+        for (i, &f) in interior.iter().enumerate() {
+            interior_index[f] = Some(i);
+        }
+        let a = rows
+            .iter()
+            .zip(&masters)
+            .map(|(r, &(m, inv))| {
+                r.entries
+                    .iter()
+                    .filter(|(f, _)| *f != m)
+                    .filter_map(|&(f, w)| interior_index[f].map(|i| (i, -w * inv)))
+                    .collect()
+            })
+            .collect();
+        Ok(Self {
+            masters,
+            interior,
+            interior_index,
+            a,
+        })
+    }
+
+    /// `Tᵀ X T = X_II + X_IS A + Aᵀ X_SI + Aᵀ X_SS A` for a symmetric sparse `X`.
+    fn interior(&self, x: &SparseColMat<usize, f64>) -> SparseColMat<usize, f64> {
+        let base = self.extract_interior(x);
+        let mut extra: Vec<Triplet<usize, usize, f64>> = Vec::new();
+        for (b, &(m, _)) in self.masters.iter().enumerate() {
+            // Column m of X on interior rows, times row b of A (and its transpose).
+            for (r, &v) in x.as_ref().row_idx_of_col(m).zip(x.as_ref().val_of_col(m)) {
+                if let Some(i) = self.interior_index[r] {
+                    for &(k, a) in &self.a[b] {
+                        extra.push(Triplet::new(i, k, v * a));
+                        extra.push(Triplet::new(k, i, v * a));
+                    }
+                }
+            }
+            for (b2, &(m2, _)) in self.masters.iter().enumerate() {
+                let v = entry(x, m, m2);
+                if v != 0.0 {
+                    for &(k, a) in &self.a[b] {
+                        for &(k2, a2) in &self.a[b2] {
+                            extra.push(Triplet::new(k, k2, a * v * a2));
+                        }
+                    }
+                }
+            }
+        }
+        if extra.is_empty() {
+            return base;
+        }
+        let n = self.interior.len();
+        // Indices are in range by construction.
+        let e =
+            SparseColMat::try_new_from_triplets(n, n, &extra).expect("interior triplets in range");
+        faer::sparse::ops::add(base.as_ref(), e.as_ref()).expect("same dimensions")
+    }
+
+    /// `X_II` as a sparse matrix (rows and columns of the interior dofs).
+    fn extract_interior(&self, x: &SparseColMat<usize, f64>) -> SparseColMat<usize, f64> {
+        let n = self.interior.len();
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::new();
+        let mut val = Vec::new();
+        col_ptr.push(0);
+        let xr = x.as_ref();
+        for &f in &self.interior {
+            for (r, &v) in xr.row_idx_of_col(f).zip(xr.val_of_col(f)) {
+                if let Some(i) = self.interior_index[r] {
+                    row_idx.push(i);
+                    val.push(v);
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        SparseColMat::new(
+            SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx),
+            val,
+        )
+    }
+
+    /// `K_vr = Tᵀ K G`: column b is `(K_{I,m_b} + Σ_b' A_b'ᵀ K_{m_b', m_b}) / c_bm`.
+    fn coupling(&self, k: &SparseColMat<usize, f64>) -> Mat<f64> {
+        let nb = self.masters.len();
+        let mut out = Mat::<f64>::zeros(self.interior.len(), nb);
+        let kr = k.as_ref();
+        for (b, &(m, inv)) in self.masters.iter().enumerate() {
+            for (r, &v) in kr.row_idx_of_col(m).zip(kr.val_of_col(m)) {
+                if let Some(i) = self.interior_index[r] {
+                    out[(i, b)] += v * inv;
+                }
+            }
+            for (b2, &(m2, _)) in self.masters.iter().enumerate() {
+                let v = entry(k, m2, m);
+                if v != 0.0 {
+                    for &(i, a) in &self.a[b2] {
+                        out[(i, b)] += a * v * inv;
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Writes `T v` (full free-dof vector) into `out`.
+    fn expand_into(&self, v: faer::ColRef<'_, f64>, mut out: faer::ColMut<'_, f64>) {
+        for (i, &f) in self.interior.iter().enumerate() {
+            out[f] = v[i];
+        }
+        for (b, &(m, _)) in self.masters.iter().enumerate() {
+            out[m] = self.a[b].iter().map(|&(i, a)| a * v[i]).sum();
+        }
+    }
+}
+
+/// `X[r, c]` of a sparse matrix with sorted row indices.
+fn entry(x: &SparseColMat<usize, f64>, r: usize, c: usize) -> f64 {
+    let xr = x.as_ref();
+    let rows = xr.row_idx_of_col_raw(c);
+    match rows.binary_search(&r) {
+        Ok(k) => xr.val_of_col(c)[k],
+        Err(_) => 0.0,
+    }
+}
+
+/// `Bᵀ X B` for sparse symmetric `X` and dense `B`, symmetrized.
+fn project(x: &SparseColMat<usize, f64>, basis: &Mat<f64>, par: Par) -> Mat<f64> {
+    let mut xb = Mat::<f64>::zeros(basis.nrows(), basis.ncols());
+    sparse_dense_matmul(
+        xb.as_mut(),
+        Accum::Replace,
+        x.as_ref(),
+        basis.as_ref(),
+        1.0,
+        par,
+    );
+    let p = basis.transpose() * &xb;
+    let n = p.nrows();
+    Mat::from_fn(n, n, |i, j| 0.5 * (p[(i, j)] + p[(j, i)]))
+}
+
+fn max_deviation_from_identity(m: &Mat<f64>, from: usize) -> f64 {
+    let n = m.nrows();
+    let mut worst: f64 = 0.0;
+    for i in from..n {
+        for j in from..n {
+            let target = if i == j { 1.0 } else { 0.0 };
+            worst = worst.max((m[(i, j)] - target).abs());
+        }
+    }
+    worst
+}
+
+/// Re-orthonormalizes the modal columns in the mass metric (`Φ ← Φ L⁻ᵀ` with
+/// `Φᵀ M Φ = L Lᵀ`) and re-projects.
+fn orthonormalize_modes(
+    basis: &mut Mat<f64>,
+    k_hat: &mut Mat<f64>,
+    m_hat: &mut Mat<f64>,
+    nb: usize,
+    system: &squeal_fe::System,
+    par: Par,
+    part: &str,
+) -> Result<(), ReduceError> {
+    let n = basis.ncols();
+    let nm = n - nb;
+    let mnn = Mat::from_fn(nm, nm, |i, j| m_hat[(nb + i, nb + j)]);
+    let llt = mnn
+        .llt(faer::Side::Lower)
+        .map_err(|_| ReduceError::Invalid {
+            part: part.into(),
+            what: "the modal block of the reduced mass is not positive definite".into(),
+        })?;
+    let l = llt.L().to_owned();
+    // Φ L⁻ᵀ: solve X Lᵀ = Φ row by row (forward substitution on Lᵀ from the left).
+    let rows = basis.nrows();
+    for r in 0..rows {
+        let mut x = vec![0.0; nm];
+        for j in 0..nm {
+            let mut s = basis[(r, nb + j)];
+            for k in 0..j {
+                s -= x[k] * l[(j, k)];
+            }
+            x[j] = s / l[(j, j)];
+        }
+        for j in 0..nm {
+            basis[(r, nb + j)] = x[j];
+        }
+    }
+    *k_hat = project(&system.k, basis, par);
+    *m_hat = project(&system.m, basis, par);
+    Ok(())
+}
+
+fn block_norm(a: &Mat<f64>, rows: std::ops::Range<usize>, cols: std::ops::Range<usize>) -> f64 {
+    let mut s = 0.0;
+    for i in rows {
+        for j in cols.clone() {
+            s += a[(i, j)] * a[(i, j)];
+        }
+    }
+    s.sqrt()
+}
+
+fn frobenius(a: &Mat<f64>) -> f64 {
+    block_norm(a, 0..a.nrows(), 0..a.ncols())
+}
+
+fn material_infos(materials: &MaterialTable) -> Vec<MaterialInfo> {
+    materials
+        .entries
+        .iter()
+        .map(|e| MaterialInfo {
+            element_set: e.name.clone(),
+            description: format!("{:?}", e.material),
+            density: e.material.density(),
+        })
+        .collect()
+}
+
+fn restraint_infos(mesh: &Mesh, restraints: &[Restraint]) -> Vec<RestraintInfo> {
+    restraints
+        .iter()
+        .map(|r| {
+            let (name, nodes) = match &r.nodes {
+                squeal_fe::NodeSelection::Set(s) => {
+                    (s.clone(), mesh.node_set(s).map_or(0, <[u32]>::len))
+                }
+                squeal_fe::NodeSelection::Indices(v) => ("(nodes)".to_string(), v.len()),
+            };
+            RestraintInfo {
+                node_set: name,
+                directions: r.directions,
+                nodes,
+            }
+        })
+        .collect()
+}
