@@ -23,6 +23,8 @@ enum Command {
     /// Inspect and convert tet10 meshes (Abaqus .inp, Gmsh .msh)
     #[command(subcommand)]
     Mesh(commands::mesh::MeshCommand),
+    /// Craig-Bampton reduction of a disc and a pad to the reduced brake (.rom)
+    Reduce(commands::reduce::ReduceArgs),
 }
 
 fn main() -> ExitCode {
@@ -33,6 +35,7 @@ fn main() -> ExitCode {
     }
     let result = match cli.command {
         Command::Mesh(cmd) => commands::mesh::run(cmd),
+        Command::Reduce(args) => commands::reduce::run(args),
     };
     match result {
         Ok(code) => code,
