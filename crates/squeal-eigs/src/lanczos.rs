@@ -173,6 +173,9 @@ fn orthogonalize(
     }
 }
 
+/// A basis vector and M times it.
+type Direction = (Col<f64>, Col<f64>);
+
 /// A fresh direction: OP applied to a pseudo-random vector, M-orthogonal to
 /// the first `cols` basis vectors and M-normalized. None if nothing is left
 /// (the basis spans the whole range of OP).
@@ -182,7 +185,7 @@ fn fresh_direction(
     cols: usize,
     seed: u64,
     applications: &mut usize,
-) -> Result<Option<(Col<f64>, Col<f64>)>, EigError> {
+) -> Result<Option<Direction>, EigError> {
     let r = start_vector(op.n(), seed);
     let mr = op.mass(r.as_ref());
     let w = op.solve(mr.as_ref())?;
@@ -191,7 +194,7 @@ fn fresh_direction(
     let before = crate::sparse::dot(w.as_ref(), mw.as_ref()).max(0.0).sqrt();
     let o = orthogonalize(op, basis, cols, w, mw);
     // Tolerance: after CGS2, a remainder below 1e-10 of the input is rounding noise.
-    if !(o.norm > 1e-10 * before) {
+    if o.norm.is_nan() || o.norm <= 1e-10 * before {
         return Ok(None);
     }
     Ok(Some((o.w / o.norm, o.mw / o.norm)))

@@ -165,8 +165,8 @@ fn tensor_box<const NC: usize>(
                         let ent = [0, 1, 2].map(|d| bar_entry(h[d], e[d]));
                         let mass = ent[0].1 * ent[1].1 * ent[2].1;
                         let qn = idx(q[0] as usize, q[1] as usize, q[2] as usize);
-                        for c2 in 0..NC {
-                            let mut kval = coupling[c][c2] * mass;
+                        for (c2, &couple) in coupling[c].iter().enumerate() {
+                            let mut kval = couple * mass;
                             if c == c2 {
                                 kval += alpha[c][0] * ent[0].0 * ent[1].1 * ent[2].1
                                     + alpha[c][1] * ent[0].1 * ent[1].0 * ent[2].1

@@ -286,7 +286,7 @@ fn solve_checked(
     // to 2-norm); 1e4 tol leaves room for cond(M) up to 1e8 before a pair
     // that the solver called converged is rejected as not converged.
     let limit = 1e4 * opts.tol.max(f64::EPSILON);
-    if residuals.iter().any(|r| !(*r <= limit)) {
+    if residuals.iter().any(|r| r.is_nan() || *r > limit) {
         let worst = residuals.iter().copied().fold(0.0, f64::max);
         let converged = residuals.iter().filter(|r| **r <= limit).count();
         return Err(EigError::NotConverged {
