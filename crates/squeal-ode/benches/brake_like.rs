@@ -88,7 +88,11 @@ impl BrakeLike {
                 .sum()
         });
         let qu = (0..n).map(|i| q[(i, u)]).collect();
-        let kc = Mat::from_fn(n, 2 * n, |i, j| if j < n { k[(i, j)] } else { c[(i, j - n)] });
+        let kc = Mat::from_fn(
+            n,
+            2 * n,
+            |i, j| if j < n { k[(i, j)] } else { c[(i, j - n)] },
+        );
         Self {
             k,
             c,
@@ -150,7 +154,13 @@ impl OdeSystem for BrakeLike {
 fn options(sys: &BrakeLike, rtol: f64, max_order: usize) -> BdfOptions {
     // Absolute tolerance: 1% of a unit modal amplitude's scale, times rtol.
     let atol: Vec<f64> = (0..2 * N_DOF)
-        .map(|i| if i < N_DOF { 1e-2 * rtol } else { 1e-2 * rtol * sys.wu })
+        .map(|i| {
+            if i < N_DOF {
+                1e-2 * rtol
+            } else {
+                1e-2 * rtol * sys.wu
+            }
+        })
         .collect();
     BdfOptions {
         rtol,
@@ -162,8 +172,8 @@ fn options(sys: &BrakeLike, rtol: f64, max_order: usize) -> BdfOptions {
 
 fn initial(sys: &BrakeLike) -> Vec<f64> {
     let mut y0 = vec![0.0; 2 * N_DOF];
-    for i in 0..N_DOF {
-        y0[i] = 1e-3 * sys.qu[i];
+    for (y, q) in y0.iter_mut().zip(&sys.qu) {
+        *y = 1e-3 * q;
     }
     y0
 }
@@ -175,7 +185,9 @@ fn main() {
         .unwrap_or(1000.0);
     let sys = BrakeLike::new();
     let t_end = cycles / F_UNSTABLE;
-    println!("316-state brake-like system, {cycles} cycles of {F_UNSTABLE} Hz (t_end = {t_end:.4} s)");
+    println!(
+        "316-state brake-like system, {cycles} cycles of {F_UNSTABLE} Hz (t_end = {t_end:.4} s)"
+    );
     println!(
         "{:>6} {:>5} {:>9} {:>10} {:>9} {:>9} {:>7} {:>7} {:>9} {:>10}",
         "rtol", "order", "wall [s]", "steps", "steps/cyc", "rej(err)", "rej(N)", "jac", "LU", "rhs"
@@ -213,7 +225,10 @@ fn main() {
         if let Some(e) = failure {
             println!("        stopped: {e}");
         }
-        println!("        final modal amplitude q_u = {:.6}", sys.modal_u(bdf.y()));
+        println!(
+            "        final modal amplitude q_u = {:.6}",
+            sys.modal_u(bdf.y())
+        );
     }
     // Steady-state detection on q_u at rtol 1e-6.
     let opts = options(&sys, 1e-6, 2);

@@ -119,7 +119,7 @@ impl BdfOptions {
         {
             return Err(invalid("first_step", "must be finite and > 0"));
         }
-        if !(self.max_step > 0.0) {
+        if self.max_step.is_nan() || self.max_step <= 0.0 {
             return Err(invalid("max_step", "must be > 0"));
         }
         if !(self.min_step >= 0.0 && self.min_step.is_finite() && self.min_step <= self.max_step) {

@@ -96,7 +96,7 @@ impl SteadyOptions {
         if !(1..=MAX_SUBDIVISIONS).contains(&self.subdivisions) {
             return bad("subdivisions", "must be in 1..=1000");
         }
-        if !(self.min_amplitude >= 0.0) {
+        if self.min_amplitude.is_nan() || self.min_amplitude < 0.0 {
             return bad("min_amplitude", "must be >= 0");
         }
         Ok(())
@@ -243,9 +243,8 @@ impl FourierSums {
     }
 
     fn next_time(&self) -> Option<f64> {
-        (self.active && self.next < self.n_samples).then(|| {
-            self.t_start + self.next as f64 * self.period / self.n_samples as f64
-        })
+        (self.active && self.next < self.n_samples)
+            .then(|| self.t_start + self.next as f64 * self.period / self.n_samples as f64)
     }
 
     /// Discrete Fourier sums of sample `next` (trapezoidal rule on the cycle).
@@ -357,10 +356,7 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
 
     /// Process the last accepted step of `bdf` (call after every step, and
     /// once before the first). Returns the steady state once it is reached.
-    pub fn observe<S: OdeSystem>(
-        &mut self,
-        bdf: &Bdf<S>,
-    ) -> Result<Option<SteadyState>, OdeError> {
+    pub fn observe<S: OdeSystem>(&mut self, bdf: &Bdf<S>) -> Result<Option<SteadyState>, OdeError> {
         let (t0, t1) = (bdf.t_prev(), bdf.t());
         if self.prev[1].is_none() || t1 <= t0 {
             let g = self.g_at(bdf, t1)?;
@@ -443,9 +439,15 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
             }
         }
         Ok(if f1 >= f2 {
-            Sample { t: x1, g: sign * f1 }
+            Sample {
+                t: x1,
+                g: sign * f1,
+            }
         } else {
-            Sample { t: x2, g: sign * f2 }
+            Sample {
+                t: x2,
+                g: sign * f2,
+            }
         })
     }
 
@@ -582,7 +584,11 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
         inclusive: bool,
     ) -> Result<(), OdeError> {
         while let Some(ts) = self.fourier.next_time() {
-            let due = if inclusive { ts <= t_limit } else { ts < t_limit };
+            let due = if inclusive {
+                ts <= t_limit
+            } else {
+                ts < t_limit
+            };
             if !due {
                 break;
             }

@@ -87,7 +87,13 @@ fn nan_rhs_is_an_error() {
 #[test]
 fn nan_jacobian_is_an_error() {
     let err = Bdf::new(NanJacobian, 0.0, &[1.0], 1.0, &BdfOptions::default()).err();
-    assert_eq!(err, Some(OdeError::NonFinite { what: "Jacobian", t: 0.0 }));
+    assert_eq!(
+        err,
+        Some(OdeError::NonFinite {
+            what: "Jacobian",
+            t: 0.0
+        })
+    );
 }
 
 #[test]
@@ -97,7 +103,10 @@ fn too_many_steps() {
         ..Default::default()
     };
     let err = solve(complex_pair(0.0, 1.0), 0.0, &[1.0, 0.0], &[100.0], &opts).unwrap_err();
-    assert!(matches!(err, OdeError::TooManySteps { max_steps: 10, .. }), "{err:?}");
+    assert!(
+        matches!(err, OdeError::TooManySteps { max_steps: 10, .. }),
+        "{err:?}"
+    );
 }
 
 #[test]
@@ -106,7 +115,11 @@ fn invalid_inputs() {
     let o = BdfOptions::default();
     assert!(matches!(
         Bdf::new(&sys, 0.0, &[1.0], 1.0, &o).err(),
-        Some(OdeError::DimensionMismatch { expected: 2, got: 1, .. })
+        Some(OdeError::DimensionMismatch {
+            expected: 2,
+            got: 1,
+            ..
+        })
     ));
     let bad_atol = BdfOptions {
         atol: Atol::PerComponent(vec![1e-6]),
@@ -170,8 +183,8 @@ fn decaying_oscillation_is_not_steady() {
         ..Default::default()
     };
     let mut bdf = Bdf::new(&sys, 0.0, &[0.0, -1.0], 100.0, &opts).unwrap();
-    let err = run_to_steady_state(&mut bdf, |y: &[f64]| y[1], &SteadyOptions::default())
-        .unwrap_err();
+    let err =
+        run_to_steady_state(&mut bdf, |y: &[f64]| y[1], &SteadyOptions::default()).unwrap_err();
     match err {
         OdeError::NotSteady { cycles, t, .. } => {
             assert_eq!(t, 100.0);

@@ -4,9 +4,7 @@
 mod common;
 
 use common::{Linear, complex_pair, complex_pair_exact};
-use squeal_ode::{
-    Atol, Bdf, BdfOptions, FixedStep, OscillationMonitor, SteadyOptions, solve,
-};
+use squeal_ode::{Atol, Bdf, BdfOptions, FixedStep, OscillationMonitor, SteadyOptions, solve};
 
 fn opts(rtol: f64, atol: f64) -> BdfOptions {
     BdfOptions {
@@ -41,7 +39,10 @@ fn real_exponentials() {
                 "lambda {lambda} rtol {rtol:e}: worst rel error / rtol = {worst:.2}, {} steps",
                 sol.stats.steps
             );
-            assert!(worst < sol.stats.steps as f64, "lambda {lambda} rtol {rtol}: {worst}");
+            assert!(
+                worst < sol.stats.steps as f64,
+                "lambda {lambda} rtol {rtol}: {worst}"
+            );
             assert!(worst < 100.0, "lambda {lambda} rtol {rtol}: {worst} rtol");
         }
     }
@@ -75,7 +76,10 @@ fn complex_pair_dense_output() {
             sol.stats
         );
         let bound = 2f64.sqrt() * sol.stats.steps as f64 * rtol;
-        assert!(worst < bound, "rtol {rtol}: worst error {worst:e} > {bound:e}");
+        assert!(
+            worst < bound,
+            "rtol {rtol}: worst error {worst:e} > {bound:e}"
+        );
         assert!(
             worst < 2.0 * scipy_worst && worst > 0.5 * scipy_worst,
             "rtol {rtol}: worst error {worst:e} vs scipy {scipy_worst:e}"
@@ -104,8 +108,8 @@ fn convergence_order_fixed_step() {
                 let past: Vec<Vec<f64>> = (0..=k)
                     .map(|j| complex_pair_exact(a, b, -(j as f64) * h).to_vec())
                     .collect();
-                let mut bdf = Bdf::with_history(complex_pair(a, b), 0.0, &past, t_end, &opts)
-                    .unwrap();
+                let mut bdf =
+                    Bdf::with_history(complex_pair(a, b), 0.0, &past, t_end, &opts).unwrap();
                 while !bdf.is_finished() {
                     bdf.step().unwrap();
                 }
@@ -165,8 +169,14 @@ fn harmonic_oscillator_damping() {
             sol.stats.steps as f64 / 100.0
         );
         let bound = 2f64.sqrt() * sol.stats.steps as f64 * rtol;
-        assert!(amp_err < bound, "rtol {rtol}: amplitude error {amp_err:e} > {bound:e}");
-        assert!(phase < bound, "rtol {rtol}: phase error {phase:e} > {bound:e}");
+        assert!(
+            amp_err < bound,
+            "rtol {rtol}: amplitude error {amp_err:e} > {bound:e}"
+        );
+        assert!(
+            phase < bound,
+            "rtol {rtol}: phase error {phase:e} > {bound:e}"
+        );
         assert!(
             amp_err < 2.0 * scipy_amp && amp_err > 0.5 * scipy_amp,
             "rtol {rtol}: amplitude error {amp_err:e} vs scipy {scipy_amp:e}"
@@ -233,11 +243,18 @@ fn growth_rate_from_peaks() {
     }
     assert!(peaks.len() >= 10, "only {} peaks", peaks.len());
     let rate = fit_slope(&peaks);
-    println!("growth rate {rate:.8} (eigenvalue real part {s1}) from {} peaks", peaks.len());
+    println!(
+        "growth rate {rate:.8} (eigenvalue real part {s1}) from {} peaks",
+        peaks.len()
+    );
     assert!((rate - s1).abs() < 1e-4, "rate {rate}");
     // Successive periods equal 2 pi / omega_1 (linear system: exact).
     let r = mon.window().back().unwrap();
-    assert!((r.period - 2.0 * std::f64::consts::PI / w1).abs() < 1e-6, "period {}", r.period);
+    assert!(
+        (r.period - 2.0 * std::f64::consts::PI / w1).abs() < 1e-6,
+        "period {}",
+        r.period
+    );
 }
 
 fn invert4(a: [[f64; 4]; 4]) -> [[f64; 4]; 4] {
@@ -248,7 +265,9 @@ fn invert4(a: [[f64; 4]; 4]) -> [[f64; 4]; 4] {
         m[i][4 + i] = 1.0;
     }
     for c in 0..4 {
-        let p = (c..4).max_by(|&x, &y| m[x][c].abs().total_cmp(&m[y][c].abs())).unwrap();
+        let p = (c..4)
+            .max_by(|&x, &y| m[x][c].abs().total_cmp(&m[y][c].abs()))
+            .unwrap();
         m.swap(c, p);
         let d = m[c][c];
         for v in m[c].iter_mut() {
