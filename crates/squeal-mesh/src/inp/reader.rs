@@ -1207,12 +1207,11 @@ impl<'a> Reader<'a> {
             }
         }
         for r in self.repeated.values() {
-            if r.count > 1 {
-                self.warnings[r.index].message = format!(
-                    "{}, {} times (the first is here){}",
-                    r.stem, r.count, r.tail
-                );
-            }
+            let times = match r.count {
+                1 => "once".to_string(),
+                n => format!("{n} times, the first here"),
+            };
+            self.warnings[r.index].message = format!("{} ({times}){}", r.stem, r.tail);
         }
         self.warnings.extend(late);
         Ok(ReadMesh {
