@@ -6,7 +6,7 @@
 
 use crate::ReportError;
 use crate::font::{FAMILY, text_size};
-use crate::geom::{Px, Rect, clip_polyline, dash_polyline};
+use crate::geom::{Px, Rect, clip_polyline, dash_polyline, m4_decimate};
 use crate::model::{
     Annotation, CategoryGrid, Dash, Figure, Layout, LegendPosition, MARKERS, Marker, Panel, Rgb,
     Scale, Series, SeriesKind, palette_color,
@@ -670,17 +670,21 @@ fn prepare_panel<'a>(panel: &'a Panel, name: &str) -> Result<PanelData<'a>, Repo
         ys.push(0.0);
     }
     for a in &panel.annotations {
-        match a {
-            Annotation::VLine { x, .. } => xs.extend(to_axis(panel.x_scale, *x)),
-            Annotation::HLine { y, .. } => ys.extend(to_axis(panel.y_scale, *y)),
-            Annotation::Label { at, .. } => {
-                if let Some((x, y)) = to_axis(panel.x_scale, at.0).zip(to_axis(panel.y_scale, at.1))
-                {
-                    xs.push(x);
-                    ys.push(y);
-                }
-            }
+        let (x, y, text) = match a {
+            Annotation::VLine { x, label, .. } => (Some(*x), None, label),
+            Annotation::HLine { y, label, .. } => (None, Some(*y), label),
+            Annotation::Label { at, text } => (Some(at.0), Some(at.1), text),
+        };
+        let tx = x.map(|v| to_axis(panel.x_scale, v));
+        let ty = y.map(|v| to_axis(panel.y_scale, v));
+        if tx == Some(None) || ty == Some(None) {
+            d.notes.push(format!(
+                "{name}: annotation '{text}' is at a NaN, infinite or (log axis) non-positive coordinate and was left out"
+            ));
+            continue;
         }
+        xs.extend(tx.flatten());
+        ys.extend(ty.flatten());
     }
     let edges = |e: &[f64]| {
         e.first()
@@ -1135,7 +1139,8 @@ fn draw_bars<DB: DrawingBackend>(
     Ok(())
 }
 
-/// Pixel polylines of a series: split at skipped points, clipped to the plot rectangle.
+/// Pixel polylines of a series: split at skipped points, long time histories reduced to four
+/// points per pixel column ([`m4_decimate`]), clipped to the plot rectangle.
 fn series_pieces(f: &Frame, ps: &Prepared) -> Vec<Vec<Px>> {
     let mut pieces = Vec::new();
     let mut run: Vec<Px> = Vec::new();
@@ -1148,6 +1153,13 @@ fn series_pieces(f: &Frame, ps: &Prepared) -> Vec<Vec<Px>> {
     }
     if !run.is_empty() {
         pieces.push(run);
+    }
+    let columns = f.r.width().max(1.0);
+    for piece in &mut pieces {
+        let monotone = piece.windows(2).all(|w| w[1].0 >= w[0].0);
+        if piece.len() as f64 > 4.0 * columns && monotone {
+            *piece = m4_decimate(piece);
+        }
     }
     pieces
         .iter()

@@ -478,3 +478,34 @@ fn svg_and_png_files_are_written_without_leftovers() {
     roxmltree::Document::parse(&svg).expect("written SVG parses");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn annotations_that_cannot_be_placed_are_noted() {
+    let panel = Panel {
+        y_scale: Scale::Log,
+        series: vec![Series::line("a", vec![(0.0, 1.0), (1.0, 10.0)])],
+        annotations: vec![
+            Annotation::HLine {
+                y: 0.0,
+                label: "Re = 0".into(),
+                dash: Default::default(),
+            },
+            Annotation::VLine {
+                x: f64::NAN,
+                label: "mu0".into(),
+                dash: Default::default(),
+            },
+            Annotation::Label {
+                at: (0.5, 3.0),
+                text: "fine".into(),
+            },
+        ],
+        ..Panel::default()
+    };
+    let (_, notes) = render_svg(&Figure::single("", panel)).unwrap();
+    assert_eq!(notes.len(), 2, "{notes:?}");
+    assert!(
+        notes[0].contains("'Re = 0'") && notes[1].contains("'mu0'"),
+        "{notes:?}"
+    );
+}
