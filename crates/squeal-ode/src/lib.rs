@@ -31,8 +31,10 @@
 //! (order 5 at rtol 1e-6 over 1000 cycles: 60155 rejected steps, 31810 LU
 //! factorizations). Order 2 is A-stable and runs the same problem with
 //! 3084 rejections and 6040 LUs, 3x faster. Order 2 costs accuracy per step:
-//! at rtol 1e-6 the limit-cycle frequency came out 4.4e-5 low (phase lag of
-//! the formula), at rtol 1e-8 it is far smaller but 4.7x more steps.
+//! at rtol 1e-6 the steady limit-cycle frequency came out 3.8e-5 low and the
+//! amplitude 1.9e-5 low against an rtol 1e-8 order-5 run (numerical
+//! dispersion and dissipation of BDF2); the run reached the steady state
+//! after 351 cycles in 12 s.
 //!
 //! ## Use
 //! ```
