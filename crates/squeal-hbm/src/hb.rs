@@ -246,6 +246,8 @@ impl<L: DynamicStiffness, F: NonlinearForce> LeastSquaresProblem for AutonomousP
 
     fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), HbmError> {
         let len = self.hb.layout.len();
+        check_len("unknowns [U~, omega]", len + 1, z.len())?;
+        check_len("residual", len + 1, r.len())?;
         let (u, omega) = (&z[..len], z[len]);
         nan_on_nonfinite(self.hb.residual(u, omega, &mut r[..len]), r)?;
         r[len] = u[self.phase_index];
@@ -254,6 +256,9 @@ impl<L: DynamicStiffness, F: NonlinearForce> LeastSquaresProblem for AutonomousP
 
     fn jacobian(&mut self, z: &[f64], mut jac: MatMut<'_, f64>) -> Result<(), HbmError> {
         let len = self.hb.layout.len();
+        check_len("unknowns [U~, omega]", len + 1, z.len())?;
+        check_len("Jacobian rows", len + 1, jac.nrows())?;
+        check_len("Jacobian columns", len + 1, jac.ncols())?;
         let (u, omega) = (&z[..len], z[len]);
         self.hb.jacobian(
             u,
@@ -311,6 +316,18 @@ impl<L: DynamicStiffness, F: NonlinearForce> LeastSquaresProblem for ForcedProbl
 
     fn jacobian(&mut self, z: &[f64], jac: MatMut<'_, f64>) -> Result<(), HbmError> {
         self.hb.jacobian(z, self.omega, jac, &mut self.jac_omega)
+    }
+}
+
+fn check_len(what: &'static str, expected: usize, got: usize) -> Result<(), HbmError> {
+    if expected == got {
+        Ok(())
+    } else {
+        Err(HbmError::Dimension {
+            what,
+            expected,
+            got,
+        })
     }
 }
 

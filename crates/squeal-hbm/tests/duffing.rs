@@ -143,3 +143,30 @@ fn single_harmonic_hb_matches_frequency_amplitude_relation() {
         assert!((a_hb - lo).abs() < 1e-9, "w = {omega}: {a_hb} vs {lo}");
     }
 }
+
+#[test]
+fn poor_guess_is_reported_as_not_converged() {
+    // At w = 1.3 the linear-response guess F / (1 - w^2) = -1.45 lies on the wrong side of
+    // the hardening resonance; from there LM descends into a local minimum of ||r|| that
+    // is not a root (||r|| ~ 0.735). The typed error must say so and carry the report; the
+    // tolerance on the stuck residual only identifies the minimum (1e-6).
+    let mut hb = duffing(1);
+    let layout = hb.layout();
+    let mut u0 = vec![0.0; layout.len()];
+    u0[layout.index(1, Part::Cos, 0).unwrap()] = F / (1.0 - 1.3 * 1.3);
+    match solve_forced(&mut hb, 1.3, &u0, &LmOptions::default()) {
+        Err(HbmError::NotConverged { report }) => {
+            assert!(!report.stop.is_converged());
+            assert!(
+                (report.residual_norm - 0.735_021).abs() < 1e-6,
+                "{}",
+                report.residual_norm
+            );
+            assert_eq!(report.history.len(), report.iterations);
+        }
+        other => panic!(
+            "expected NotConverged, got {:?}",
+            other.map(|s| s.report.stop)
+        ),
+    }
+}

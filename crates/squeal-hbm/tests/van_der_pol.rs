@@ -210,3 +210,17 @@ fn periodic_forcing_with_unknown_frequency_is_rejected() {
         Err(HbmError::BadFrequency { .. })
     ));
 }
+
+#[test]
+fn zero_guess_returns_the_trivial_solution() {
+    // The caveat of classical HB for self-excited systems (paper section 4.1.2): the static
+    // equilibrium solves the equations for every omega, so a zero guess "converges" at once
+    // with zero amplitude. This is what the CHBM constraint exists to reject.
+    let mut hb = van_der_pol(3, 0.0);
+    let u0 = vec![0.0; hb.layout().len()];
+    let phase = PhaseCondition::FirstSineZero { dof: 0 };
+    let sol = solve_autonomous(&mut hb, phase, &u0, 1.0, &LmOptions::default()).unwrap();
+    assert_eq!(sol.report.iterations, 0);
+    assert_eq!(sol.report.residual_norm, 0.0);
+    assert_eq!(hb.layout().amplitude(&sol.coeffs, 1, 0), Some(0.0));
+}
