@@ -4,12 +4,19 @@
 //! exits non-zero; output files are written atomically.
 
 mod commands;
+mod output;
+mod scene;
+mod setup;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "squeal", version, about = "Disc-brake squeal: meshes -> Craig-Bampton brake -> stability -> CHBM limit cycles")]
+#[command(
+    name = "squeal",
+    version,
+    about = "Disc-brake squeal: meshes -> Craig-Bampton brake -> stability -> CHBM limit cycles"
+)]
 struct Cli {
     /// Worker threads (default: all cores). Results are bit-identical for any count.
     #[arg(long, global = true)]
@@ -25,17 +32,22 @@ enum Command {
     Mesh(commands::mesh::MeshCommand),
     /// Craig-Bampton reduction of a disc and a pad to the reduced brake (.rom)
     Reduce(commands::reduce::ReduceArgs),
+    /// Static equilibrium, complex eigenvalues against friction and the Hopf point mu0
+    Stability(commands::stability::StabilityArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     if let Some(n) = cli.threads {
         // A second initialisation cannot happen here: this is the only call.
-        let _ = rayon::ThreadPoolBuilder::new().num_threads(n.max(1)).build_global();
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(n.max(1))
+            .build_global();
     }
     let result = match cli.command {
         Command::Mesh(cmd) => commands::mesh::run(cmd),
         Command::Reduce(args) => commands::reduce::run(args),
+        Command::Stability(args) => commands::stability::run(args),
     };
     match result {
         Ok(code) => code,

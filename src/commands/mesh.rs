@@ -38,7 +38,11 @@ pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
                 }
                 any_error |= info(f, all_ids)?;
             }
-            Ok(if any_error { ExitCode::from(2) } else { ExitCode::SUCCESS })
+            Ok(if any_error {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            })
         }
         MeshCommand::Convert { input, output } => {
             let read = read_mesh(&input)?;
@@ -57,7 +61,8 @@ pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
 
 /// Reads a mesh and prints the reader's warnings to stderr.
 pub fn read_mesh(path: &Path) -> Result<ReadMesh> {
-    let read = squeal_mesh::read(path).with_context(|| format!("reading mesh {}", path.display()))?;
+    let read =
+        squeal_mesh::read(path).with_context(|| format!("reading mesh {}", path.display()))?;
     for w in &read.warnings {
         eprintln!("warning: {w}");
     }
@@ -71,7 +76,11 @@ fn info(path: &Path, all_ids: bool) -> Result<bool> {
     let elapsed = t.elapsed();
     let m = &read.mesh;
     println!("{}", path.display());
-    println!("  read in {:.3} s ({} warning(s))", elapsed.as_secs_f64(), read.warnings.len());
+    println!(
+        "  read in {:.3} s ({} warning(s))",
+        elapsed.as_secs_f64(),
+        read.warnings.len()
+    );
     println!("  nodes     {:>10}", m.num_nodes());
     println!("  elements  {:>10}  (10-node tetrahedra)", m.num_elements());
     if let Some((lo, hi)) = m.bounding_box() {
@@ -84,7 +93,10 @@ fn info(path: &Path, all_ids: bool) -> Result<bool> {
     print_materials(m);
     let report = quality::check(m, &QualityOptions::default());
     println!("  volume    {:.9e}", report.volume);
-    println!("  worst Jacobian ratio (min/max det J) {:.4}", report.worst_jacobian_ratio);
+    println!(
+        "  worst Jacobian ratio (min/max det J) {:.4}",
+        report.worst_jacobian_ratio
+    );
     if report.findings.is_empty() {
         println!("  quality   no findings");
     }
@@ -109,8 +121,11 @@ fn print_sets(m: &Mesh) {
         }
     }
     if !m.element_sets.is_empty() {
-        let materials: Vec<(&str, &str)> =
-            m.sections.iter().map(|s| (s.element_set.as_str(), s.material.as_str())).collect();
+        let materials: Vec<(&str, &str)> = m
+            .sections
+            .iter()
+            .map(|s| (s.element_set.as_str(), s.material.as_str()))
+            .collect();
         println!("  element sets");
         for (name, set) in &m.element_sets {
             let mat = materials
@@ -132,21 +147,34 @@ fn print_materials(m: &Mesh) {
     println!("  materials");
     for (name, mat) in &m.materials {
         let elastic = match mat.elastic {
-            Some(Elastic::Isotropic { young, poisson }) => format!("E = {young:.4e} Pa, nu = {poisson}"),
+            Some(Elastic::Isotropic { young, poisson }) => {
+                format!("E = {young:.4e} Pa, nu = {poisson}")
+            }
             Some(Elastic::EngineeringConstants { e, nu, g }) => format!(
                 "E1,E2,E3 = {:.3e},{:.3e},{:.3e} Pa; nu12,nu13,nu23 = {},{},{}; G12,G13,G23 = {:.3e},{:.3e},{:.3e} Pa",
                 e[0], e[1], e[2], nu[0], nu[1], nu[2], g[0], g[1], g[2]
             ),
             None => "no elastic constants".to_string(),
         };
-        let rho = mat.density.map(|r| format!(", rho = {r} kg/m^3")).unwrap_or_else(|| ", no density".into());
+        let rho = mat
+            .density
+            .map(|r| format!(", rho = {r} kg/m^3"))
+            .unwrap_or_else(|| ", no density".into());
         println!("    {name:<24} {elastic}{rho}");
     }
 }
 
 fn format_ids(ids: &[u64], all: bool) -> String {
     const SHOWN: usize = 12;
-    let shown: Vec<String> = ids.iter().take(if all { ids.len() } else { SHOWN }).map(u64::to_string).collect();
-    let more = if !all && ids.len() > SHOWN { format!(" ... ({} in all; --all-ids lists them)", ids.len()) } else { String::new() };
+    let shown: Vec<String> = ids
+        .iter()
+        .take(if all { ids.len() } else { SHOWN })
+        .map(u64::to_string)
+        .collect();
+    let more = if !all && ids.len() > SHOWN {
+        format!(" ... ({} in all; --all-ids lists them)", ids.len())
+    } else {
+        String::new()
+    };
     format!("{}{more}", shown.join(" "))
 }

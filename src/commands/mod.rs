@@ -1,2 +1,3 @@
 pub mod mesh;
 pub mod reduce;
+pub mod stability;

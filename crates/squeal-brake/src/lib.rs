@@ -12,6 +12,8 @@
 // Index loops over dofs read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+pub mod analysis;
+pub mod assemble;
 pub mod equilibrium;
 pub mod error;
 pub mod modal;

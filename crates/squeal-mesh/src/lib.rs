@@ -37,10 +37,14 @@ pub struct ReadMesh {
 /// Reads a mesh file, choosing the reader by extension: `.inp` (Abaqus/CalculiX) or `.msh`
 /// (Gmsh 2.2 / 4.1, ASCII or binary).
 pub fn read(path: &Path) -> Result<ReadMesh, MeshError> {
-    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
     match ext.as_deref() {
         Some("inp") => inp::read(path),
         Some("msh") => msh::read(path),
-        _ => Err(MeshError::UnknownFormat { file: path.to_path_buf() }),
+        _ => Err(MeshError::UnknownFormat {
+            file: path.to_path_buf(),
+        }),
     }
 }

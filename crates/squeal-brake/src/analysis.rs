@@ -1,0 +1,139 @@
+//! Section 3 of the paper as one call: the damping of eqs (12)–(13) with the coalescing pair
+//! picked automatically or by index, the friction sweep, and the Hopf point.
+
+use crate::equilibrium::NewtonOptions;
+use crate::error::BrakeError;
+use crate::modal::Damping;
+use crate::model::Brake;
+use crate::spectrum::Reference;
+use crate::sweep::{Sweep, SweepOptions, reference, sweep};
+
+/// Which two modes of the frictionless basis get eq (13)'s `D1`, `D2`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PairChoice {
+    /// The two modes that coalesce at the first in-band Hopf point of a sweep with the global
+    /// damping only: `D1` on the one that stays stable, `D2` on the one that goes unstable
+    /// (the paper's "Mode 1" and "Mode 2").
+    Auto,
+    /// Frictionless mode numbers (0-based) of Mode 1 and Mode 2.
+    Modes(usize, usize),
+}
+
+/// The damping of eqs (12)–(13): a global modal ratio on every mode plus ratios on the pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DampingSpec {
+    pub global_ratio: f64,
+    pub pair: PairChoice,
+    /// Modal damping ratios `ζ1`, `ζ2` added on Mode 1 and Mode 2: `D_jj += 2 ζ ω_j`.
+    pub pair_ratios: [f64; 2],
+}
+
+/// A stability analysis: the damping used, the pair, the sweep.
+#[derive(Clone, Debug)]
+pub struct Stability {
+    pub damping: Damping,
+    /// Frictionless mode numbers (0-based) of Mode 1 (stays stable) and Mode 2 (goes
+    /// unstable), when known.
+    pub pair: Option<(usize, usize)>,
+    pub reference: Reference,
+    pub sweep: Sweep,
+}
+
+/// The frictionless mode a tracked branch starts from: the largest modal coordinate of its
+/// vector at the first sweep point.
+pub fn basis_mode_of_branch(s: &Sweep, branch: usize) -> usize {
+    let j = s.branches[branch][0];
+    let q = &s.points[0].spectrum.modes;
+    let mut best = (0.0, 0);
+    for i in 0..q.nrows() {
+        let v = q[(i, j)].norm_sqr();
+        if v > best.0 {
+            best = (v, i);
+        }
+    }
+    best.1
+}
+
+/// Sweeps `mus` with the damping of `spec` (a preliminary sweep picks the pair when
+/// [`PairChoice::Auto`] needs it).
+pub fn stability(
+    brake: &Brake,
+    spec: &DampingSpec,
+    mus: &[f64],
+    opts: &SweepOptions,
+) -> Result<Stability, BrakeError> {
+    let newton: NewtonOptions = opts.newton;
+    let global = Damping {
+        global_ratio: spec.global_ratio,
+        extra: vec![],
+    };
+    let has_pair_damping = spec.pair_ratios.iter().any(|r| *r != 0.0);
+    let (pair, preliminary) = match spec.pair {
+        PairChoice::Modes(a, b) => (Some((a, b)), None),
+        PairChoice::Auto => {
+            let r = reference(brake, &global, &newton)?;
+            let s = sweep(brake, &r, mus, opts)?;
+            let pair = s.hopf.as_ref().and_then(|h| {
+                h.partner.map(|p| {
+                    (
+                        basis_mode_of_branch(&s, p),
+                        basis_mode_of_branch(&s, h.branch),
+                    )
+                })
+            });
+            (pair, Some((r, s)))
+        }
+    };
+    if has_pair_damping && pair.is_none() {
+        return Err(BrakeError::Invalid(
+            "the coalescing pair could not be picked automatically (no Hopf point in the band with the global damping alone): give it by mode numbers".into(),
+        ));
+    }
+    let damping = match (pair, has_pair_damping) {
+        (Some((m1, m2)), true) => Damping {
+            global_ratio: spec.global_ratio,
+            extra: vec![(m1, 0.0), (m2, 0.0)],
+        },
+        _ => global.clone(),
+    };
+    if let (Some((r, s)), false) = (&preliminary, has_pair_damping) {
+        return Ok(Stability {
+            damping,
+            pair,
+            reference: r.clone(),
+            sweep: s.clone(),
+        });
+    }
+    let mut reference = reference(brake, &damping, &newton)?;
+    if let Some((m1, m2)) = pair {
+        let n = reference.basis.omega.len();
+        if m1 >= n || m2 >= n {
+            return Err(BrakeError::Invalid(format!(
+                "pair modes ({}, {}) outside the {n} modes",
+                m1 + 1,
+                m2 + 1
+            )));
+        }
+        // The extras are ratios of each mode's own frequency.
+        reference.damping[m1] += 2.0 * spec.pair_ratios[0] * reference.basis.omega[m1];
+        reference.damping[m2] += 2.0 * spec.pair_ratios[1] * reference.basis.omega[m2];
+    }
+    let damping = Damping {
+        global_ratio: spec.global_ratio,
+        extra: pair
+            .map(|(m1, m2)| {
+                vec![
+                    (m1, 2.0 * spec.pair_ratios[0] * reference.basis.omega[m1]),
+                    (m2, 2.0 * spec.pair_ratios[1] * reference.basis.omega[m2]),
+                ]
+            })
+            .unwrap_or_default(),
+    };
+    let sweep = sweep(brake, &reference, mus, opts)?;
+    Ok(Stability {
+        damping,
+        pair,
+        reference,
+        sweep,
+    })
+}

@@ -1,0 +1,479 @@
+//! Scene files: one TOML file describing a brake study (meshes, reduction, contact, friction,
+//! piston load, damping, analyses). Paths are relative to the scene file.
+//!
+//! Unknown keys are errors (a misspelt key must not be silently ignored); values that parse but
+//! make no physical sense are errors naming the key and its line.
+
+use anyhow::{Context, Result, anyhow, bail};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// The scene as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    pub title: Option<String>,
+    pub model: ModelSection,
+    pub contact: ContactSection,
+    pub friction: FrictionSection,
+    pub piston: PistonSection,
+    #[serde(default)]
+    pub damping: DampingSection,
+    #[serde(default)]
+    pub stability: StabilitySection,
+}
+
+/// `[model]`: the meshes and their reduction.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSection {
+    pub disc: PathBuf,
+    pub pad: PathBuf,
+    /// `patch` (default) or `node`.
+    #[serde(default = "default_interface")]
+    pub interface: Spanned<String>,
+    /// Fixed-interface modes per part.
+    #[serde(default = "default_modes")]
+    pub modes: Spanned<usize>,
+    /// Where the reduced model is kept (relative to the scene); default: in the output folder.
+    pub rom: Option<PathBuf>,
+}
+
+fn default_interface() -> Spanned<String> {
+    Spanned::new(0..0, "patch".into())
+}
+fn default_modes() -> Spanned<usize> {
+    Spanned::new(0..0, 50)
+}
+
+/// `[contact]`: eq (8)'s law and how points pair.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSection {
+    /// Unit normal from the disc into the pad.
+    #[serde(default = "default_normal")]
+    pub normal: Spanned<[f64; 3]>,
+    #[serde(default = "default_pairing")]
+    pub pairing_tolerance: Spanned<f64>,
+    /// A pad compression curve to fit `p = κ_l δ + κ_nl δ³` to.
+    pub compression_curve: Option<CompressionCurve>,
+    /// Or the stiffnesses per unit area directly (Pa/m, Pa/m³).
+    pub k_linear_per_area: Option<Spanned<f64>>,
+    pub k_cubic_per_area: Option<Spanned<f64>>,
+    /// Scale factor on both stiffnesses (for studies: 0.7, 1, 1.3).
+    #[serde(default = "one")]
+    pub stiffness_scale: Spanned<f64>,
+}
+
+fn default_normal() -> Spanned<[f64; 3]> {
+    Spanned::new(0..0, [0.0, 0.0, 1.0])
+}
+fn default_pairing() -> Spanned<f64> {
+    Spanned::new(0..0, 1e-3)
+}
+fn one() -> Spanned<f64> {
+    Spanned::new(0..0, 1.0)
+}
+
+/// Measured (or assumed) pad compression: contact pressure against closure.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CompressionCurve {
+    pub pressure_mpa: Spanned<Vec<f64>>,
+    pub closure_um: Spanned<Vec<f64>>,
+}
+
+/// `[friction]`: eq (9).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSection {
+    /// Friction coefficient for single-point analyses.
+    pub mu: Option<Spanned<f64>>,
+    /// Direction in which the disc surface slides under the pad.
+    pub sliding_direction: Spanned<[f64; 3]>,
+}
+
+/// `[piston]`: the clamp load.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PistonSection {
+    /// Hydraulic line pressure (bar).
+    pub line_pressure_bar: Spanned<f64>,
+    /// Total piston area (m²).
+    pub area: Spanned<f64>,
+}
+
+/// `[damping]`: eqs (12)–(13).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DampingSection {
+    #[serde(default = "default_global")]
+    pub global_ratio: Spanned<f64>,
+    /// `"auto"` or `[mode1, mode2]` (1-based frictionless mode numbers).
+    #[serde(default = "default_pair")]
+    pub pair: Spanned<toml::Value>,
+    /// Ratios ζ1 (stable Mode 1), ζ2 (unstable Mode 2) added on the pair.
+    #[serde(default)]
+    pub pair_ratios: Option<Spanned<[f64; 2]>>,
+}
+
+impl Default for DampingSection {
+    fn default() -> Self {
+        Self {
+            global_ratio: default_global(),
+            pair: default_pair(),
+            pair_ratios: None,
+        }
+    }
+}
+
+fn default_global() -> Spanned<f64> {
+    Spanned::new(0..0, 0.01)
+}
+fn default_pair() -> Spanned<toml::Value> {
+    Spanned::new(0..0, toml::Value::String("auto".into()))
+}
+
+/// `[stability]`.
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct StabilitySection {
+    /// `"start:end:count"` or a list of values.
+    pub mu: Option<Spanned<toml::Value>>,
+    /// The band μ0 must lie in (Hz), besides the model's valid band.
+    pub band_hz: Option<Spanned<[f64; 2]>>,
+}
+
+/// A scene read from a file: the parsed values plus where it came from.
+#[derive(Debug)]
+pub struct Scene {
+    pub path: PathBuf,
+    pub text: String,
+    pub file: SceneFile,
+}
+
+impl Scene {
+    /// Reads and validates a scene file.
+    pub fn read(path: &Path) -> Result<Scene> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("reading scene {}", path.display()))?;
+        let file: SceneFile = toml::from_str(&text)
+            .map_err(|e| anyhow!("{}: {}", path.display(), e.to_string().trim_end()))?;
+        let scene = Scene {
+            path: path.to_path_buf(),
+            text,
+            file,
+        };
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// The folder paths in the scene are relative to.
+    pub fn dir(&self) -> PathBuf {
+        self.path
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default()
+    }
+
+    /// A path from the scene, made relative to the working directory.
+    pub fn resolve(&self, p: &Path) -> PathBuf {
+        if p.is_absolute() {
+            p.to_path_buf()
+        } else {
+            self.dir().join(p)
+        }
+    }
+
+    /// `file:line: key: message` for a spanned value.
+    pub fn error_at<T>(
+        &self,
+        key: &str,
+        value: &Spanned<T>,
+        message: impl std::fmt::Display,
+    ) -> anyhow::Error {
+        let span = value.span();
+        if span.is_empty() && span.start == 0 {
+            return anyhow!("{}: {key}: {message}", self.path.display());
+        }
+        let line = self.text[..span.start.min(self.text.len())]
+            .matches('\n')
+            .count()
+            + 1;
+        anyhow!("{}:{line}: {key}: {message}", self.path.display())
+    }
+
+    fn positive(&self, key: &str, v: &Spanned<f64>) -> Result<()> {
+        let x = *v.get_ref();
+        if !(x.is_finite() && x > 0.0) {
+            return Err(self.error_at(key, v, format!("must be a positive number (got {x})")));
+        }
+        Ok(())
+    }
+
+    fn non_negative(&self, key: &str, v: &Spanned<f64>) -> Result<()> {
+        let x = *v.get_ref();
+        if !(x.is_finite() && x >= 0.0) {
+            return Err(self.error_at(key, v, format!("must be zero or positive (got {x})")));
+        }
+        Ok(())
+    }
+
+    fn direction(&self, key: &str, v: &Spanned<[f64; 3]>) -> Result<[f64; 3]> {
+        let d = *v.get_ref();
+        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        if !(n.is_finite() && n > 0.0) {
+            return Err(self.error_at(key, v, "must be a non-zero direction [x, y, z]"));
+        }
+        Ok(d.map(|x| x / n))
+    }
+
+    fn validate(&self) -> Result<()> {
+        let f = &self.file;
+        let iface = f.model.interface.get_ref().as_str();
+        if iface != "patch" && iface != "node" {
+            return Err(self.error_at(
+                "model.interface",
+                &f.model.interface,
+                format!("'{iface}' is neither 'patch' nor 'node'"),
+            ));
+        }
+        if *f.model.modes.get_ref() == 0 {
+            return Err(self.error_at("model.modes", &f.model.modes, "must be at least 1"));
+        }
+        let n = self.direction("contact.normal", &f.contact.normal)?;
+        let s = self.direction("friction.sliding_direction", &f.friction.sliding_direction)?;
+        let dot = n[0] * s[0] + n[1] * s[1] + n[2] * s[2];
+        if dot.abs() > 1e-6 {
+            return Err(self.error_at(
+                "friction.sliding_direction",
+                &f.friction.sliding_direction,
+                "must be tangent to the contact (orthogonal to contact.normal)",
+            ));
+        }
+        self.positive("contact.pairing_tolerance", &f.contact.pairing_tolerance)?;
+        self.positive("contact.stiffness_scale", &f.contact.stiffness_scale)?;
+        match (
+            &f.contact.compression_curve,
+            &f.contact.k_linear_per_area,
+            &f.contact.k_cubic_per_area,
+        ) {
+            (Some(_), None, None) => {
+                self.stiffness()?;
+            }
+            (None, Some(kl), Some(kn)) => {
+                self.positive("contact.k_linear_per_area", kl)?;
+                self.non_negative("contact.k_cubic_per_area", kn)?;
+            }
+            _ => bail!(
+                "{}: [contact] needs either compression_curve or both k_linear_per_area and k_cubic_per_area",
+                self.path.display()
+            ),
+        }
+        if let Some(mu) = &f.friction.mu {
+            self.non_negative("friction.mu", mu)?;
+        }
+        self.positive("piston.line_pressure_bar", &f.piston.line_pressure_bar)?;
+        self.positive("piston.area", &f.piston.area)?;
+        self.non_negative("damping.global_ratio", &f.damping.global_ratio)?;
+        self.pair()?;
+        if let Some(r) = &f.damping.pair_ratios
+            && r.get_ref().iter().any(|x| !(x.is_finite() && *x >= 0.0))
+        {
+            return Err(self.error_at("damping.pair_ratios", r, "must be two ratios >= 0"));
+        }
+        if let Some(b) = &f.stability.band_hz {
+            let [lo, hi] = *b.get_ref();
+            if !(lo >= 0.0 && hi > lo) {
+                return Err(self.error_at(
+                    "stability.band_hz",
+                    b,
+                    "must be [low, high] with 0 <= low < high",
+                ));
+            }
+        }
+        self.mu_values()?;
+        Ok(())
+    }
+
+    /// Contact stiffness per unit area `(κ_l, κ_nl)`, scaled, and the fit report if fitted.
+    pub fn stiffness(&self) -> Result<(f64, f64, Option<Fit>)> {
+        let c = &self.file.contact;
+        let scale = *c.stiffness_scale.get_ref();
+        if let (Some(kl), Some(kn)) = (&c.k_linear_per_area, &c.k_cubic_per_area) {
+            return Ok((kl.get_ref() * scale, kn.get_ref() * scale, None));
+        }
+        let curve = c
+            .compression_curve
+            .as_ref()
+            .ok_or_else(|| anyhow!("no contact stiffness"))?;
+        let (p, d) = (curve.pressure_mpa.get_ref(), curve.closure_um.get_ref());
+        if p.len() != d.len() || p.len() < 2 {
+            return Err(self.error_at(
+                "contact.compression_curve",
+                &curve.pressure_mpa,
+                "needs at least two (pressure, closure) points, as many of each",
+            ));
+        }
+        let fit = fit_cubic(
+            &d.iter().map(|x| x * 1e-6).collect::<Vec<_>>(),
+            &p.iter().map(|x| x * 1e6).collect::<Vec<_>>(),
+        )
+        .ok_or_else(|| {
+            self.error_at(
+                "contact.compression_curve",
+                &curve.closure_um,
+                "cannot fit p = k1 d + k3 d^3 to these points",
+            )
+        })?;
+        if !(fit.linear > 0.0 && fit.cubic >= 0.0) {
+            return Err(self.error_at(
+                "contact.compression_curve",
+                &curve.closure_um,
+                format!(
+                    "the fit gives k_l = {:.3e} Pa/m, k_nl = {:.3e} Pa/m^3: both must be positive",
+                    fit.linear, fit.cubic
+                ),
+            ));
+        }
+        Ok((fit.linear * scale, fit.cubic * scale, Some(fit)))
+    }
+
+    /// The pair choice (0-based modes).
+    pub fn pair(&self) -> Result<Option<(usize, usize)>> {
+        let v = &self.file.damping.pair;
+        match v.get_ref() {
+            toml::Value::String(s) if s == "auto" => Ok(None),
+            toml::Value::Array(a) if a.len() == 2 => {
+                let m: Vec<i64> = a.iter().filter_map(toml::Value::as_integer).collect();
+                if m.len() != 2 || m.iter().any(|x| *x < 1) {
+                    return Err(self.error_at(
+                        "damping.pair",
+                        v,
+                        "must be \"auto\" or two mode numbers >= 1",
+                    ));
+                }
+                Ok(Some(((m[0] - 1) as usize, (m[1] - 1) as usize)))
+            }
+            _ => Err(self.error_at("damping.pair", v, "must be \"auto\" or [mode1, mode2]")),
+        }
+    }
+
+    /// Friction values of the sweep.
+    pub fn mu_values(&self) -> Result<Vec<f64>> {
+        match &self.file.stability.mu {
+            None => Ok(parse_range("0:1:201").unwrap_or_default()),
+            Some(v) => match v.get_ref() {
+                toml::Value::String(s) => {
+                    parse_range(s).map_err(|e| self.error_at("stability.mu", v, e))
+                }
+                toml::Value::Array(a) => {
+                    let m: Vec<f64> = a
+                        .iter()
+                        .filter_map(|x| x.as_float().or(x.as_integer().map(|i| i as f64)))
+                        .collect();
+                    if m.len() != a.len() || m.is_empty() || m.windows(2).any(|w| w[1] <= w[0]) {
+                        return Err(self.error_at("stability.mu", v, "must be ascending numbers"));
+                    }
+                    Ok(m)
+                }
+                _ => Err(self.error_at("stability.mu", v, "must be \"start:end:count\" or a list")),
+            },
+        }
+    }
+}
+
+/// `p = κ_l δ + κ_nl δ³` fitted by least squares to `(δ_i, p_i)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fit {
+    pub linear: f64,
+    pub cubic: f64,
+    /// RMS of the pressure residual relative to the largest pressure.
+    pub relative_rms: f64,
+}
+
+/// Least-squares fit of `p = a d + b d³` (2×2 normal equations).
+pub fn fit_cubic(d: &[f64], p: &[f64]) -> Option<Fit> {
+    let (mut s11, mut s13, mut s33, mut t1, mut t3) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (&x, &y) in d.iter().zip(p) {
+        let x3 = x * x * x;
+        s11 += x * x;
+        s13 += x * x3;
+        s33 += x3 * x3;
+        t1 += x * y;
+        t3 += x3 * y;
+    }
+    let det = s11 * s33 - s13 * s13;
+    if !(det.is_finite() && det.abs() > 1e-300) {
+        return None;
+    }
+    let a = (t1 * s33 - t3 * s13) / det;
+    let b = (s11 * t3 - s13 * t1) / det;
+    let pmax = p
+        .iter()
+        .map(|x| x.abs())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let rms = (d
+        .iter()
+        .zip(p)
+        .map(|(&x, &y)| (a * x + b * x.powi(3) - y).powi(2))
+        .sum::<f64>()
+        / d.len() as f64)
+        .sqrt();
+    Some(Fit {
+        linear: a,
+        cubic: b,
+        relative_rms: rms / pmax,
+    })
+}
+
+/// `"start:end:count"` → `count` evenly spaced values (MATLAB's linspace).
+pub fn parse_range(s: &str) -> std::result::Result<Vec<f64>, String> {
+    let parts: Vec<&str> = s.split(':').collect();
+    let bad = || format!("'{s}' is not start:end:count (e.g. 0:1:201)");
+    if parts.len() != 3 {
+        return Err(bad());
+    }
+    let a: f64 = parts[0].trim().parse().map_err(|_| bad())?;
+    let b: f64 = parts[1].trim().parse().map_err(|_| bad())?;
+    let n: usize = parts[2].trim().parse().map_err(|_| bad())?;
+    if !(a.is_finite() && b.is_finite() && b > a) || n < 2 || n > 100_000 {
+        return Err(format!("'{s}': need start < end and 2 <= count <= 100000"));
+    }
+    Ok((0..n)
+        .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cubic_fit_recovers_an_exact_law() {
+        // p = 1.25e10 d + 2e19 d^3 sampled exactly: the fit must return it to round-off.
+        let d: Vec<f64> = (1..=8).map(|k| k as f64 * 5e-6).collect();
+        let p: Vec<f64> = d.iter().map(|x| 1.25e10 * x + 2e19 * x.powi(3)).collect();
+        let f = fit_cubic(&d, &p).unwrap();
+        assert!(
+            (f.linear / 1.25e10 - 1.0).abs() < 1e-10 && (f.cubic / 2e19 - 1.0).abs() < 1e-9,
+            "{f:?}"
+        );
+        assert!(f.relative_rms < 1e-12);
+    }
+
+    #[test]
+    fn ranges_parse_like_linspace() {
+        assert_eq!(
+            parse_range("0:1:5").unwrap(),
+            vec![0.0, 0.25, 0.5, 0.75, 1.0]
+        );
+        assert!(
+            parse_range("1:0:5").is_err()
+                && parse_range("0:1").is_err()
+                && parse_range("a:1:3").is_err()
+        );
+    }
+}
