@@ -1,13 +1,16 @@
-//! Sparse Cholesky factorization A = P^T L L^T P with a fill-reducing (AMD)
-//! ordering, wrapping faer 0.24's supernodal/simplicial sparse Cholesky.
+//! Sparse Cholesky factorization A = P^T L L^T P with a fill-reducing
+//! ordering (nested dissection by default, or AMD; see [`crate::ordering`]),
+//! wrapping faer 0.24's supernodal/simplicial sparse Cholesky.
 //!
 //! Used for K_II (constraint modes, eq. 3 of Coudeyras et al. 2009) and for
 //! K - sigma M (the shift-invert operator of the fixed-interface modes, eqs. 4-5).
 
 use crate::EigError;
+use crate::ordering::{FillOrdering, nested_dissection};
 use crate::sparse::{check_pair, check_symmetric, shifted, sym_matvec};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
@@ -33,6 +36,8 @@ pub struct CholeskyOptions {
     pub singular_pivot_ratio: f64,
     /// Parallelism of faer's dense kernels inside the factorization.
     pub par: Par,
+    /// Fill-reducing ordering (default: nested dissection).
+    pub ordering: FillOrdering,
 }
 
 impl Default for CholeskyOptions {
@@ -40,6 +45,7 @@ impl Default for CholeskyOptions {
         Self {
             singular_pivot_ratio: 1e-12,
             par: faer::get_global_parallelism(),
+            ordering: FillOrdering::default(),
         }
     }
 }
@@ -60,8 +66,10 @@ pub struct FactorStats {
     pub factor_bytes: usize,
     /// Whether faer chose its supernodal (blocked) variant.
     pub supernodal: bool,
-    /// AMD ordering + symbolic analysis time.
+    /// Ordering + symbolic analysis time.
     pub symbolic_time: Duration,
+    /// Of which the fill-reducing ordering.
+    pub ordering_time: Duration,
     /// Numeric factorization time.
     pub numeric_time: Duration,
 }
@@ -88,9 +96,9 @@ impl SparseCholesky {
     ) -> Result<Self, EigError> {
         check_symmetric(a, "A")?;
         let t0 = Instant::now();
-        let symbolic = Arc::new(analyze(a.symbolic())?);
-        let symbolic_time = t0.elapsed();
-        Self::numeric(symbolic, a, symbolic_time, opts)
+        let (symbolic, ordering_time) = analyze(a.symbolic(), opts.ordering)?;
+        let times = (t0.elapsed(), ordering_time);
+        Self::numeric(Arc::new(symbolic), a, times, opts)
     }
 
     /// Factorizes K - sigma M (the shift-invert operator of the generalized problem).
@@ -103,9 +111,9 @@ impl SparseCholesky {
         check_pair(k, m)?;
         let a = shifted(k, m, sigma)?;
         let t0 = Instant::now();
-        let symbolic = Arc::new(analyze(a.symbolic())?);
-        let symbolic_time = t0.elapsed();
-        Self::numeric(symbolic, a.as_ref(), symbolic_time, opts)
+        let (symbolic, ordering_time) = analyze(a.symbolic(), opts.ordering)?;
+        let times = (t0.elapsed(), ordering_time);
+        Self::numeric(Arc::new(symbolic), a.as_ref(), times, opts)
     }
 
     /// Numeric factorization of a matrix with the same pattern as the one this
@@ -121,13 +129,14 @@ impl SparseCholesky {
                 what: "refactorize: pattern differs from the analysed one".into(),
             });
         }
-        Self::numeric(self.symbolic.clone(), a, Duration::ZERO, opts)
+        let times = (Duration::ZERO, Duration::ZERO);
+        Self::numeric(self.symbolic.clone(), a, times, opts)
     }
 
     fn numeric(
         symbolic: Arc<SymbolicCholesky<usize>>,
         a: SparseColMatRef<'_, usize, f64>,
-        symbolic_time: Duration,
+        (symbolic_time, ordering_time): (Duration, Duration),
         opts: &CholeskyOptions,
     ) -> Result<Self, EigError> {
         let t0 = Instant::now();
@@ -182,6 +191,7 @@ impl SparseCholesky {
             factor_bytes: factor_bytes(&symbolic, len),
             supernodal: matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
             symbolic_time,
+            ordering_time,
             numeric_time,
         };
         Ok(Self {
@@ -199,6 +209,11 @@ impl SparseCholesky {
     /// Sizes and timings.
     pub fn stats(&self) -> FactorStats {
         self.stats
+    }
+
+    /// The fill-reducing permutation (`perm[new] = old`), if any.
+    pub fn permutation(&self) -> Option<&[usize]> {
+        self.symbolic.perm().map(|p| p.arrays().0)
     }
 
     /// Solves A X = B in place for all columns of `rhs`. Columns are solved in
@@ -322,23 +337,61 @@ pub(crate) fn try_zeros(n: usize, m: usize) -> Result<Mat<f64>, EigError> {
     Ok(Mat::zeros(n, m))
 }
 
-/// AMD ordering and symbolic analysis of a symmetric pattern (both triangles given).
+/// Fill-reducing ordering and symbolic analysis of a symmetric pattern
+/// (both triangles given). Returns the analysis and the ordering time.
 pub(crate) fn analyze(
     pattern: SymbolicSparseColMatRef<'_, usize>,
-) -> Result<SymbolicCholesky<usize>, EigError> {
-    analyze_with(pattern, CholeskySymbolicParams::default())
+    ordering: FillOrdering,
+) -> Result<(SymbolicCholesky<usize>, Duration), EigError> {
+    let t0 = Instant::now();
+    let perm = match ordering {
+        FillOrdering::Amd => None,
+        FillOrdering::NestedDissection => Some(nested_dissection(pattern)?),
+    };
+    let ordering_time = t0.elapsed();
+    let symbolic = analyze_with(pattern, perm.as_deref(), CholeskySymbolicParams::default())?;
+    // AMD runs inside faer's symbolic analysis.
+    let ordering_time = match ordering {
+        FillOrdering::Amd => t0.elapsed(),
+        FillOrdering::NestedDissection => ordering_time,
+    };
+    Ok((symbolic, ordering_time))
 }
 
-/// AMD ordering and symbolic analysis with explicit faer parameters.
+/// Symbolic analysis with a given permutation (`perm[new] = old`), or AMD
+/// when `None`, and explicit faer parameters.
 pub(crate) fn analyze_with(
     pattern: SymbolicSparseColMatRef<'_, usize>,
+    perm: Option<&[usize]>,
     params: CholeskySymbolicParams<'_>,
 ) -> Result<SymbolicCholesky<usize>, EigError> {
-    factorize_symbolic_cholesky(pattern, Side::Lower, SymmetricOrdering::Amd, params).map_err(|e| {
-        EigError::Factorization {
-            what: format!("{e:?}"),
+    let fail = |what: String| EigError::Factorization { what };
+    let n = pattern.nrows();
+    let inv = match perm {
+        Some(p) => {
+            if p.len() != n {
+                return Err(fail(format!(
+                    "permutation of length {} for order {n}",
+                    p.len()
+                )));
+            }
+            let mut inv = vec![usize::MAX; n];
+            for (new, &old) in p.iter().enumerate() {
+                if old >= n || inv[old] != usize::MAX {
+                    return Err(fail("ordering is not a permutation".into()));
+                }
+                inv[old] = new;
+            }
+            Some(inv)
         }
-    })
+        None => None,
+    };
+    let ordering = match (perm, inv.as_deref()) {
+        (Some(p), Some(i)) => SymmetricOrdering::Custom(PermRef::new_checked(p, i, n)),
+        _ => SymmetricOrdering::Amd,
+    };
+    factorize_symbolic_cholesky(pattern, Side::Lower, ordering, params)
+        .map_err(|e| fail(format!("{e:?}")))
 }
 
 /// Diagonal entries of a (summing duplicates).

@@ -16,6 +16,7 @@
 
 use crate::EigError;
 use crate::cholesky::analyze_with;
+use crate::ordering::nested_dissection;
 use crate::sparse::{check_pair, check_symmetric, shifted};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::SparseColMatRef;
@@ -38,7 +39,7 @@ pub struct Inertia {
 /// supernodal intranode LBL^T factorization.
 pub fn inertia(a: SparseColMatRef<'_, usize, f64>) -> Result<Inertia, EigError> {
     check_symmetric(a, "A")?;
-    inertia_unchecked(a, faer::get_global_parallelism())
+    inertia_unchecked(a, faer::get_global_parallelism(), None)
 }
 
 /// Sturm count: the number of eigenvalues of K phi = lambda M phi strictly
@@ -50,15 +51,19 @@ pub fn count_below(
     sigma: f64,
 ) -> Result<usize, EigError> {
     check_pair(k, m)?;
-    count_below_unchecked(k, m, sigma, faer::get_global_parallelism())
+    count_below_unchecked(k, m, sigma, faer::get_global_parallelism(), None)
 }
 
-/// [`count_below`] without the input checks (the caller has done them).
+/// [`count_below`] without the input checks (the caller has done them),
+/// with a fill-reducing permutation (`perm[new] = old`) to reuse, e.g. the
+/// one of a Cholesky factor of K - sigma' M (any permutation keeps the
+/// inertia; `None`: nested dissection of K - sigma M).
 pub(crate) fn count_below_unchecked(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
     sigma: f64,
     par: Par,
+    perm: Option<&[usize]>,
 ) -> Result<usize, EigError> {
     if !sigma.is_finite() {
         return Err(EigError::InvalidOption {
@@ -66,20 +71,32 @@ pub(crate) fn count_below_unchecked(
         });
     }
     let a = shifted(k, m, sigma)?;
-    let i = inertia_unchecked(a.as_ref(), par)?;
+    let i = inertia_unchecked(a.as_ref(), par, perm)?;
     if i.zero > 0 {
         return Err(EigError::SingularShift { sigma });
     }
     Ok(i.negative)
 }
 
-fn inertia_unchecked(a: SparseColMatRef<'_, usize, f64>, par: Par) -> Result<Inertia, EigError> {
+fn inertia_unchecked(
+    a: SparseColMatRef<'_, usize, f64>,
+    par: Par,
+    perm: Option<&[usize]>,
+) -> Result<Inertia, EigError> {
     let n = a.nrows();
     let params = CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
         ..Default::default()
     };
-    let symbolic = analyze_with(a.symbolic(), params)?;
+    let own;
+    let perm = match perm {
+        Some(p) => p,
+        None => {
+            own = nested_dissection(a.symbolic())?;
+            &own
+        }
+    };
+    let symbolic = analyze_with(a.symbolic(), Some(perm), params)?;
     let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
         return Err(EigError::Factorization {
             what: "expected a supernodal symbolic factorization".into(),

@@ -19,6 +19,7 @@ mod error;
 mod inertia;
 mod lanczos;
 pub mod model_problems;
+mod ordering;
 mod solver;
 mod sparse;
 
@@ -28,6 +29,7 @@ mod arpack;
 pub use cholesky::{CholeskyOptions, FactorStats, SparseCholesky};
 pub use error::EigError;
 pub use inertia::{Inertia, count_below, inertia};
+pub use ordering::FillOrdering;
 pub use solver::{
     Backend, EigOptions, EigStats, Modes, backward_errors, lowest_modes, lowest_modes_with_factor,
     sturm_check,

@@ -243,7 +243,7 @@ fn solve_checked(
     if opts.sturm_check {
         loop {
             let t1 = Instant::now();
-            let checked = sturm_check_unchecked(k, m, &values, nev, opts.par);
+            let checked = sturm_check_unchecked(k, m, &values, nev, opts.par, factor.permutation());
             sturm_time += t1.elapsed();
             match checked {
                 Ok(found) => {
@@ -461,7 +461,7 @@ pub fn sturm_check(
     }
     let mut sorted = values.to_vec();
     sorted.sort_by(f64::total_cmp);
-    sturm_check_unchecked(k, m, &sorted, nev, faer::get_global_parallelism())
+    sturm_check_unchecked(k, m, &sorted, nev, faer::get_global_parallelism(), None)
 }
 
 fn sturm_check_unchecked(
@@ -470,9 +470,10 @@ fn sturm_check_unchecked(
     values: &[f64],
     nev: usize,
     par: Par,
+    perm: Option<&[usize]>,
 ) -> Result<(f64, usize), EigError> {
     let (bound, found) = sturm_bound(values, nev);
-    let expected = count_below_unchecked(k, m, bound, par)?;
+    let expected = count_below_unchecked(k, m, bound, par, perm)?;
     if expected != found {
         return Err(EigError::MissedEigenvalues {
             bound,

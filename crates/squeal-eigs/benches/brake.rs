@@ -1,0 +1,157 @@
+//! Factorization and 50 fixed-interface modes of the bundled brake meshes
+//! (tet10, assembled by squeal-fe), printing a table. One configuration per
+//! process so that the peak memory (VmHWM) is that configuration's:
+//!
+//! ```text
+//! nice cargo bench -p squeal-eigs --bench brake -- --mesh=disc
+//! nice cargo bench -p squeal-eigs --bench brake -- --mesh=pad
+//! options: --mesh=disc|pad|PATH.inp  --level=fine|medium|coarse  --nev=N (50)
+//! ```
+//!
+//! The disc is clamped on `CLAMP`; the pad is held as its interior problem in
+//! the Craig-Bampton reduction: `ABUTMENT` in x and y, `PISTON` and `CONTACT`
+//! nodes in all directions.
+
+use squeal_eigs::{
+    CholeskyOptions, EigOptions, FillOrdering, SparseCholesky, lowest_modes_with_factor,
+};
+use squeal_fe::{DofMap, MaterialTable, Restraint, assemble};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Peak resident memory of this process in MiB (VmHWM of /proc/self/status).
+fn peak_mib() -> f64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find(|l| l.starts_with("VmHWM:"))
+        .and_then(|l| l.split_whitespace().nth(1))
+        .and_then(|kb| kb.parse::<f64>().ok())
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
+fn arg<'a>(args: &'a [String], key: &str) -> Option<&'a str> {
+    args.iter().find_map(|a| a.strip_prefix(key))
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let which = arg(&args, "--mesh=").unwrap_or("disc");
+    let level = arg(&args, "--level=").unwrap_or("fine");
+    let nev: usize = arg(&args, "--nev=")
+        .and_then(|x| x.parse().ok())
+        .unwrap_or(50);
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes");
+    let (path, restraints) = match which {
+        "disc" => (
+            root.join(format!("disc_{level}.inp")),
+            vec![Restraint::clamp("CLAMP")],
+        ),
+        "pad" => (
+            root.join(format!("pad_{level}.inp")),
+            vec![
+                Restraint::set("ABUTMENT", [true, true, false]),
+                Restraint::clamp("PISTON"),
+                Restraint::clamp("CONTACT"),
+            ],
+        ),
+        other => (PathBuf::from(other), vec![Restraint::clamp("CLAMP")]),
+    };
+    let t = Instant::now();
+    let mesh = squeal_mesh::read(&path).expect("mesh").mesh;
+    let materials = MaterialTable::from_mesh(&mesh, &[]).expect("materials");
+    let dofs = DofMap::new(&mesh, &restraints).expect("dof map");
+    let sys = assemble(&mesh, &materials, &dofs).expect("assembly");
+    let assemble_time = t.elapsed();
+    let n = sys.k.nrows();
+    println!(
+        "# squeal-eigs brake bench: {}, n = {n}, nnz(K) = {}, nev = {nev}",
+        path.display(),
+        sys.k.compute_nnz()
+    );
+    println!("# threads: {}", rayon::current_num_threads());
+    println!(
+        "read + assemble (s)     {:8.2}",
+        assemble_time.as_secs_f64()
+    );
+    let ordering = match arg(&args, "--ordering=") {
+        Some("amd") => FillOrdering::Amd,
+        _ => FillOrdering::NestedDissection,
+    };
+    println!("# ordering: {ordering:?}");
+    let copts = CholeskyOptions {
+        ordering,
+        ..Default::default()
+    };
+    let t = Instant::now();
+    let f = SparseCholesky::factorize_with(sys.k.as_ref(), &copts).expect("factorization");
+    let total_factor = t.elapsed();
+    let s = f.stats();
+    println!(
+        "ordering (s)            {:8.2}",
+        s.ordering_time.as_secs_f64()
+    );
+    println!(
+        "ordering + symbolic (s) {:8.2}",
+        s.symbolic_time.as_secs_f64()
+    );
+    println!(
+        "numeric Cholesky (s)    {:8.2}",
+        s.numeric_time.as_secs_f64()
+    );
+    println!("factorize incl. checks  {:8.2}", total_factor.as_secs_f64());
+    println!("nnz(L)                  {:>12}", s.nnz_l);
+    println!(
+        "factor memory (MiB)     {:8.1}",
+        s.factor_bytes as f64 / 1048576.0
+    );
+    let t = Instant::now();
+    let x = f
+        .solve(faer::Mat::<f64>::ones(n, 64).as_ref())
+        .expect("solve");
+    println!("64-RHS solve (s)        {:8.2}", t.elapsed().as_secs_f64());
+    drop(x);
+    let t = Instant::now();
+    for _ in 0..10 {
+        let mut c = faer::Col::<f64>::ones(n);
+        f.solve_col_in_place(&mut c).expect("solve");
+    }
+    println!(
+        "1-RHS solve (ms)        {:8.2}",
+        t.elapsed().as_secs_f64() * 1000.0 / 10.0
+    );
+    if args.iter().any(|a| a == "--no-eig") {
+        println!("peak memory VmHWM (MiB) {:8.1}", peak_mib());
+        return;
+    }
+    let opts = EigOptions::default();
+    let t = Instant::now();
+    let modes = lowest_modes_with_factor(sys.k.as_ref(), sys.m.as_ref(), &f, nev, &opts)
+        .expect("eigensolve");
+    let total = t.elapsed();
+    let st = modes.stats;
+    println!("eigensolve total (s)    {:8.2}", total.as_secs_f64());
+    println!(
+        "  iteration (s)         {:8.2}",
+        (st.solve_time - st.sturm_time).as_secs_f64()
+    );
+    println!(
+        "  Sturm check (s)       {:8.2}",
+        st.sturm_time.as_secs_f64()
+    );
+    println!(
+        "  iterations / rounds   {:>5} / {}",
+        st.iterations, st.rounds
+    );
+    println!("  OP applications       {:>8}", st.operator_applications);
+    println!(
+        "  f_1 / f_{nev} (Hz)         {:.3} / {:.3}",
+        modes.values[0].sqrt() / std::f64::consts::TAU,
+        modes.values[nev - 1].sqrt() / std::f64::consts::TAU
+    );
+    println!(
+        "  worst backward error  {:.2e}",
+        modes.residuals.iter().copied().fold(0.0, f64::max)
+    );
+    println!("peak memory VmHWM (MiB) {:8.1}", peak_mib());
+}
