@@ -36,6 +36,8 @@ const MISSING_CELL: Rgb = Rgb(235, 235, 235);
 
 /// Font sizes and lengths at scale 1 (SVG pixels).
 struct Sizes {
+    /// Pixels per SVG pixel.
+    scale: f64,
     fig_title: f64,
     title: f64,
     axis: f64,
@@ -51,6 +53,7 @@ struct Sizes {
 impl Sizes {
     fn scaled(s: f64) -> Sizes {
         Sizes {
+            scale: s,
             fig_title: 19.0 * s,
             title: 17.0 * s,
             axis: 15.5 * s,
@@ -852,44 +855,31 @@ fn build_legend(d: &PanelData, z: &Sizes, s: f64) -> Option<Legend> {
 /// The label boxes of a panel's texts, so that later ones avoid earlier ones.
 type Obstacles = Vec<Rect>;
 
-/// Draws one panel inside `cell`; returns its notes.
-fn draw_panel<DB: DrawingBackend>(
-    p: &Painter<DB>,
-    panel: &Panel,
-    cell: Rect,
-    name: &str,
-) -> Result<Vec<String>, ReportError> {
-    let z = &p.z;
-    let s = p.s;
-    let d = prepare_panel(panel, name)?;
-    let (xr, yr) = (d.xr, d.yr);
-    let mut legend = if panel.legend == LegendPosition::None {
-        None
-    } else {
-        build_legend(&d, z, s)
-    };
-    let outside = match panel.legend {
-        LegendPosition::Outside => true,
-        LegendPosition::Auto => {
-            d.grid.is_some() || legend.as_ref().is_some_and(|l| l.entries.len() > 8)
-        }
-        _ => false,
-    };
-    let legend_right = match (&legend, outside) {
-        (Some(l), true) => l.w + 2.0 * z.pad,
-        _ => 0.0,
-    };
-    let footnotes: Vec<String> = if d.footnotes.len() > MAX_FOOTNOTES {
-        let mut f = d.footnotes[..MAX_FOOTNOTES - 1].to_vec();
-        f.push(format!(
-            "... and {} more notes",
-            d.footnotes.len() - (MAX_FOOTNOTES - 1)
-        ));
-        f
-    } else {
-        d.footnotes.clone()
-    };
+/// Where a panel's plot rectangle goes and what its axes show.
+struct PanelLayout {
+    f: Frame,
+    x_ticks: AxisTicks,
+    y_ticks: AxisTicks,
+    x_title: String,
+    y_title: String,
+    tick_h: f64,
+    xlabel_h: f64,
+    ylabel_w: f64,
+    foot_h: f64,
+}
 
+/// Lays out a panel in `cell`, leaving `legend_right` pixels free right of the plot.
+fn layout_panel(
+    panel: &Panel,
+    d: &PanelData,
+    cell: Rect,
+    legend_right: f64,
+    n_footnotes: usize,
+    z: &Sizes,
+    name: &str,
+) -> Result<PanelLayout, ReportError> {
+    let s = z.scale;
+    let (xr, yr) = (d.xr, d.yr);
     // Vertical layout first: the y ticks depend only on the plot height.
     let title_h = if panel.title.is_empty() {
         z.pad
@@ -903,7 +893,7 @@ fn draw_panel<DB: DrawingBackend>(
     } else {
         z.axis * 1.5
     };
-    let foot_h = footnotes.len() as f64 * z.note * 1.3;
+    let foot_h = n_footnotes as f64 * z.note * 1.3;
     let bottom = cell.y1 - z.pad - foot_h - xlabel_h - tick_h - z.tick_len - 3.0 * s;
     let plot_h = bottom - top;
     let y_ticks = axis_ticks(
@@ -944,6 +934,84 @@ fn draw_panel<DB: DrawingBackend>(
         yr,
     };
 
+    Ok(PanelLayout {
+        f,
+        x_ticks,
+        y_ticks,
+        x_title,
+        y_title,
+        tick_h,
+        xlabel_h,
+        ylabel_w,
+        foot_h,
+    })
+}
+
+/// Draws one panel inside `cell`; returns its notes.
+fn draw_panel<DB: DrawingBackend>(
+    p: &Painter<DB>,
+    panel: &Panel,
+    cell: Rect,
+    name: &str,
+) -> Result<Vec<String>, ReportError> {
+    let z = &p.z;
+    let s = p.s;
+    let d = prepare_panel(panel, name)?;
+    let mut legend = if panel.legend == LegendPosition::None {
+        None
+    } else {
+        build_legend(&d, z, s)
+    };
+    let mut outside = match panel.legend {
+        LegendPosition::Outside => true,
+        LegendPosition::Auto => {
+            d.grid.is_some() || legend.as_ref().is_some_and(|l| l.entries.len() > 8)
+        }
+        _ => false,
+    };
+    let legend_right = match (&legend, outside) {
+        (Some(l), true) => l.w + 2.0 * z.pad,
+        _ => 0.0,
+    };
+    let footnotes: Vec<String> = if d.footnotes.len() > MAX_FOOTNOTES {
+        let mut f = d.footnotes[..MAX_FOOTNOTES - 1].to_vec();
+        f.push(format!(
+            "... and {} more notes",
+            d.footnotes.len() - (MAX_FOOTNOTES - 1)
+        ));
+        f
+    } else {
+        d.footnotes.clone()
+    };
+
+    let mut lay = layout_panel(panel, &d, cell, legend_right, footnotes.len(), z, name)?;
+    // Auto: an inside legend that would hide more than 2 % of the ink goes outside instead
+    // (if the panel has room for that).
+    let mut ink = ink_points(&lay.f, &d, panel, 3.0 * s);
+    if let (Some(l), false, LegendPosition::Auto) = (&legend, outside, panel.legend) {
+        let (_, covered) = legend_origin(l, &lay.f, &ink, panel, false, z);
+        if covered as f64 > 0.02 * ink.len() as f64 {
+            if let Ok(wide) =
+                layout_panel(panel, &d, cell, l.w + 2.0 * z.pad, footnotes.len(), z, name)
+            {
+                lay = wide;
+                outside = true;
+                ink = ink_points(&lay.f, &d, panel, 3.0 * s);
+            }
+        }
+    }
+    let PanelLayout {
+        f,
+        x_ticks,
+        y_ticks,
+        x_title,
+        y_title,
+        tick_h,
+        xlabel_h,
+        ylabel_w,
+        foot_h,
+    } = lay;
+
     draw_grid_lines(p, &f, &x_ticks, &y_ticks, panel)?;
     if let Some(g) = &d.grid {
         draw_cells(p, &f, g)?;
@@ -957,9 +1025,8 @@ fn draw_panel<DB: DrawingBackend>(
     draw_axes(p, &f, &x_ticks, &y_ticks)?;
 
     // Legend: outside, a fixed corner, or the corner covering the fewest points.
-    let ink = ink_points(&f, &d, panel, 3.0 * s);
     if let Some(l) = legend.take() {
-        let at = legend_origin(&l, &f, &ink, panel, outside, z);
+        let (at, _) = legend_origin(&l, &f, &ink, panel, outside, z);
         let r = Rect {
             x0: at.0,
             y0: at.1,
@@ -1377,8 +1444,15 @@ fn ink_points(f: &Frame, d: &PanelData, panel: &Panel, spacing: f64) -> Vec<Px> 
     ink
 }
 
-/// Top-left corner of the legend box.
-fn legend_origin(l: &Legend, f: &Frame, ink: &[Px], panel: &Panel, outside: bool, z: &Sizes) -> Px {
+/// Top-left corner of the legend box, and how many ink samples it hides.
+fn legend_origin(
+    l: &Legend,
+    f: &Frame,
+    ink: &[Px],
+    panel: &Panel,
+    outside: bool,
+    z: &Sizes,
+) -> (Px, usize) {
     let inset = z.pad;
     let corner = |pos: LegendPosition| -> Px {
         let left = f.r.x0 + inset;
@@ -1392,11 +1466,21 @@ fn legend_origin(l: &Legend, f: &Frame, ink: &[Px], panel: &Panel, outside: bool
             _ => (right, top),
         }
     };
+    let hidden = |at: Px| {
+        let r = Rect {
+            x0: at.0 - inset,
+            y0: at.1 - inset,
+            x1: at.0 + l.w + inset,
+            y1: at.1 + l.h + inset,
+        };
+        ink.iter().filter(|&&q| r.contains(q)).count()
+    };
     if outside {
-        return (f.r.x1 + 2.0 * z.pad, f.r.y0);
+        return ((f.r.x1 + 2.0 * z.pad, f.r.y0), 0);
     }
     if panel.legend != LegendPosition::Auto {
-        return corner(panel.legend);
+        let at = corner(panel.legend);
+        return (at, hidden(at));
     }
     // Auto: the first corner (UR, UL, LR, LL) hiding the least ink.
     let candidates = [
@@ -1405,21 +1489,15 @@ fn legend_origin(l: &Legend, f: &Frame, ink: &[Px], panel: &Panel, outside: bool
         LegendPosition::LowerRight,
         LegendPosition::LowerLeft,
     ];
-    let mut best = (usize::MAX, corner(LegendPosition::UpperRight));
+    let mut best = (corner(LegendPosition::UpperRight), usize::MAX);
     for c in candidates {
         let at = corner(c);
-        let r = Rect {
-            x0: at.0 - inset,
-            y0: at.1 - inset,
-            x1: at.0 + l.w + inset,
-            y1: at.1 + l.h + inset,
-        };
-        let covered = ink.iter().filter(|&&q| r.contains(q)).count();
-        if covered < best.0 {
-            best = (covered, at);
+        let covered = hidden(at);
+        if covered < best.1 {
+            best = (at, covered);
         }
     }
-    best.1
+    best
 }
 
 fn draw_legend<DB: DrawingBackend>(

@@ -509,3 +509,27 @@ fn annotations_that_cannot_be_placed_are_noted() {
         "{notes:?}"
     );
 }
+
+#[test]
+fn legend_goes_outside_when_every_corner_hides_data() {
+    // Markers on a 21 x 21 lattice cover the whole plot: no corner is free.
+    let pts: Vec<(f64, f64)> = (0..441)
+        .map(|k| ((k % 21) as f64 / 20.0, (k / 21) as f64 / 20.0))
+        .collect();
+    let panel = Panel {
+        legend: LegendPosition::Auto,
+        ..unit_panel(vec![Series::markers("lattice", pts)])
+    };
+    let (svg, _) = render_svg(&Figure::single("", panel)).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let (_, _, x1, _) = frame(&doc);
+    let legend = doc
+        .descendants()
+        .find(|n| n.has_tag_name("rect") && n.attribute("stroke") == Some("#BEBEBE"))
+        .expect("legend box");
+    let lx: f64 = legend.attribute("x").unwrap().parse().unwrap();
+    assert!(
+        lx > x1,
+        "legend at x = {lx} inside the frame ending at {x1}"
+    );
+}
