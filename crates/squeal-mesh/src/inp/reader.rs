@@ -639,7 +639,8 @@ impl<'a> Reader<'a> {
         let mut missing = 0u64;
         while let Some(d) = self.next_data() {
             if generate {
-                missing += self.generate(d, kind, src, offset, &mut members)?;
+                missing =
+                    missing.saturating_add(self.generate(d, kind, src, offset, &mut members)?);
             } else {
                 for f in fields(self.lx.text(d)) {
                     if !f.is_empty() {
@@ -711,13 +712,17 @@ impl<'a> Reader<'a> {
                 format!("GENERATE range ends ({end}) before it starts ({start})"),
             ));
         }
-        let count = (end - start) / step + 1;
-        if count > MAX_GENERATE {
-            return Err(self.err(
-                d.loc,
-                format!("GENERATE range {start} to {end} step {step} has {count} members, more than the {MAX_GENERATE} a mesh can hold"),
-            ));
-        }
+        // In u128: 0 to u64::MAX has 2^64 members, one more than a u64 holds.
+        let members = u128::from(end - start) / u128::from(step) + 1;
+        let count = match u64::try_from(members) {
+            Ok(c) if c <= MAX_GENERATE => c,
+            _ => {
+                return Err(self.err(
+                    d.loc,
+                    format!("GENERATE range {start} to {end} step {step} has {members} members, more than the {MAX_GENERATE} a mesh can hold"),
+                ));
+            }
+        };
         let store = self.store(src);
         let mut found = 0u64;
         if count <= store.count(kind) as u64 {
