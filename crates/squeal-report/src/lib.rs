@@ -5,12 +5,53 @@
 //!   or [`write_svg_and_png`]. Log axes tick at decades; linear axes share an engineering
 //!   multiplier (x10³) so kHz and µm read well. Points that cannot be drawn (NaN, inf, <= 0 on a
 //!   log axis) are skipped, reported in the returned notes and in a footnote under the panel.
-//! * Tables: [`Table`] renders as aligned text, Markdown, HTML and CSV; [`format`] has the
+//! * Tables: [`Table`] renders as aligned text, Markdown, HTML and CSV; [`format`](mod@format) has the
 //!   number formatters with explicit significant digits.
 //! * Reports: [`Report`] writes `index.md` and a self-contained `index.html` into a folder.
 //!
 //! Text uses an embedded DejaVu Sans (no system font or fontconfig is needed), and every file is
 //! written atomically with [`squeal_io::atomic_write`].
+//!
+//! ```no_run
+//! use squeal_report::{Annotation, Dash, Figure, Panel, Report, Section, Series, Table};
+//! use std::path::Path;
+//!
+//! // Figure 2 (a) of Coudeyras et al. 2009: real parts against friction.
+//! let mus: Vec<f64> = (0..=50).map(|i| 0.01 * i as f64).collect();
+//! let panel = Panel {
+//!     title: "(a) Real parts".into(),
+//!     x_label: "Friction coefficient μ".into(),
+//!     y_label: "Real part [1/s]".into(),
+//!     series: vec![
+//!         Series::line("mode 1", mus.iter().map(|&m| (m, 100.0 * (m - 0.2))).collect()),
+//!         Series::line("mode 2", mus.iter().map(|&m| (m, -100.0 * m)).collect()).with_dash(Dash::Dashed),
+//!     ],
+//!     annotations: vec![
+//!         Annotation::HLine { y: 0.0, label: "Re = 0".into(), dash: Dash::Dotted },
+//!         Annotation::VLine { x: 0.2, label: "μ0".into(), dash: Dash::Dashed },
+//!     ],
+//!     ..Panel::default()
+//! };
+//! let dir = Path::new("out/report");
+//! let notes = squeal_report::write_svg_and_png(&Figure::single("Stability", panel), &dir.join("fig2"))?;
+//! for n in notes {
+//!     eprintln!("note: {n}"); // points that could not be drawn (NaN, <= 0 on a log axis)
+//! }
+//! let mut modes = Table::new(["mode", "f [Hz]"]);
+//! modes.push_row(["1", "2905"]);
+//! let report = Report {
+//!     title: "Brake squeal study".into(),
+//!     intro: String::new(),
+//!     sections: vec![Section {
+//!         heading: "Stability".into(),
+//!         text: "Modes against friction.".into(),
+//!         figures: vec![("fig2".into(), "Real parts".into())],
+//!         tables: vec![(modes.align_numbers_right(), "Unstable modes".into())],
+//!     }],
+//! };
+//! report.write(dir)?; // index.md, index.html, table-1.csv
+//! # Ok::<(), squeal_report::ReportError>(())
+//! ```
 
 mod font;
 pub mod format;
