@@ -623,8 +623,14 @@ fn axis_range(a: &AxisData, what: &str, notes: &mut Vec<String>) -> (f64, f64) {
         .flat_map(|&(a, b)| [a, b])
         .chain(a.fixed.iter().copied())
         .collect();
-    match extent(&all) {
-        Some((lo, hi)) => widen(lo, hi, scale),
+    match extent(&all).map(|(lo, hi)| widen(lo, hi, scale)) {
+        Some((lo, hi)) if (hi - lo).is_finite() => (lo, hi),
+        Some(_) => {
+            notes.push(format!(
+                "{what} values span more than f64 can subtract; axis shown as 0..1"
+            ));
+            (0.0, 1.0)
+        }
         None => (0.0, 1.0),
     }
 }

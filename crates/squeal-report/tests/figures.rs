@@ -3,7 +3,7 @@
 
 use squeal_report::{
     Annotation, Category, CategoryGrid, Figure, LegendPosition, Panel, ReportError, Rgb, Scale,
-    Series, render_png, render_svg, write_svg_and_png,
+    Series, SeriesKind, render_png, render_svg, write_svg_and_png,
 };
 use std::path::PathBuf;
 
@@ -532,4 +532,116 @@ fn legend_goes_outside_when_every_corner_hides_data() {
         lx > x1,
         "legend at x = {lx} inside the frame ending at {x1}"
     );
+}
+
+#[test]
+fn values_near_f64_max_do_not_break_the_axes() {
+    let panel = Panel {
+        series: vec![Series::line("huge", vec![(0.0, -1e308), (1.0, 1e308)])],
+        ..Panel::default()
+    };
+    let fig = Figure::single("", panel);
+    let (svg, notes) = render_svg(&fig).unwrap();
+    assert!(
+        notes.iter().any(|n| n.contains("span more than f64")),
+        "{notes:?}"
+    );
+    roxmltree::Document::parse(&svg).unwrap();
+    render_png(&fig).unwrap();
+}
+
+/// xorshift64*: a fixed pseudo-random sequence without a dependency.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    fn pick<T: Copy>(&mut self, v: &[T]) -> T {
+        v[(self.next() % v.len() as u64) as usize]
+    }
+}
+
+#[test]
+fn random_awkward_figures_never_panic() {
+    // Values mixing ordinary numbers with the ones that break naive plotting code.
+    let awkward = [
+        0.0,
+        -0.0,
+        1.0,
+        -1.0,
+        1e-300,
+        5e-324,
+        1e300,
+        -1e300,
+        f64::NAN,
+        f64::INFINITY,
+        3.7,
+        1e-7,
+        42.0,
+    ];
+    let kinds = [
+        SeriesKind::Line,
+        SeriesKind::Markers,
+        SeriesKind::LineMarkers,
+        SeriesKind::Bars,
+    ];
+    let scales = [Scale::Linear, Scale::Log];
+    let legends = [
+        LegendPosition::Auto,
+        LegendPosition::Outside,
+        LegendPosition::LowerLeft,
+        LegendPosition::None,
+    ];
+    let mut rng = Rng(0x5EED);
+    for case in 0..150 {
+        let mut panel = Panel {
+            title: "t".repeat((rng.next() % 3) as usize),
+            x_label: "x".into(),
+            x_scale: rng.pick(&scales),
+            y_scale: rng.pick(&scales),
+            legend: rng.pick(&legends),
+            ..Panel::default()
+        };
+        if rng.next() % 4 == 0 {
+            panel.x_range = Some((rng.pick(&awkward), rng.pick(&awkward)));
+        }
+        for s in 0..(rng.next() % 4) {
+            let n = (rng.next() % 6) as usize;
+            let pts = (0..n)
+                .map(|_| (rng.pick(&awkward), rng.pick(&awkward)))
+                .collect();
+            panel.series.push(Series {
+                name: format!("s{s}"),
+                points: pts,
+                kind: rng.pick(&kinds),
+                ..Series::default()
+            });
+        }
+        if rng.next() % 3 == 0 {
+            panel.annotations.push(Annotation::Label {
+                at: (rng.pick(&awkward), rng.pick(&awkward)),
+                text: "p".into(),
+            });
+            panel.annotations.push(Annotation::VLine {
+                x: rng.pick(&awkward),
+                label: "v".into(),
+                dash: Default::default(),
+            });
+        }
+        let fig = Figure::single("", panel);
+        let (svg, _) = render_svg(&fig).unwrap_or_else(|e| panic!("case {case}: {e}"));
+        roxmltree::Document::parse(&svg).unwrap_or_else(|e| panic!("case {case}: {e}"));
+        if case % 15 == 0 {
+            let fig = Figure {
+                png_scale: 1.0,
+                ..fig
+            };
+            render_png(&fig).unwrap_or_else(|e| panic!("case {case}: {e}"));
+        }
+    }
 }
