@@ -75,6 +75,10 @@ pub enum Export {
 }
 
 pub fn run(args: ReduceArgs) -> Result<ExitCode> {
+    // faer's dense kernels follow the global parallelism and their bits depend on the thread
+    // count; the large sparse factorizations get rayon's pool explicitly (BrakeInputs::par)
+    // and do not. So the .rom is the same bits for any --threads.
+    faer::set_global_parallelism(faer::Par::Seq);
     let inputs = inputs(&args)?;
     let mut bars = StageBars::default();
     let (model, report) = reduce_brake(&inputs, &mut |part, stage| bars.start(part, stage))

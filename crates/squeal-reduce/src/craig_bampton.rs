@@ -21,9 +21,9 @@ use crate::rom::{
     Basis, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo, PartInfo, PointRole,
     ReducedPart, RestraintInfo,
 };
-use faer::sparse::linalg::matmul::sparse_dense_matmul;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Accum, Mat, Par};
+use rayon::prelude::*;
 use squeal_eigs::{EigError, EigOptions, SparseCholesky, lowest_modes_with_factor};
 use squeal_fe::{DofMap, FeError, MaterialTable, Restraint, assemble};
 use squeal_mesh::Mesh;
@@ -33,6 +33,27 @@ use std::time::{Duration, Instant};
 /// Errors of the reduction, named in the user's terms.
 #[derive(Debug, thiserror::Error)]
 pub enum ReduceError {
+    #[error(transparent)]
+    Mesh(#[from] squeal_mesh::MeshError),
+    #[error(transparent)]
+    Rom(#[from] crate::rom::RomError),
+    #[error("invalid option: {0}")]
+    Options(String),
+    #[error(
+        "the disc has {disc} contact points and the pad {pad}: they must pair one to one (same interface sets and grid on both parts)"
+    )]
+    ContactCountMismatch { disc: usize, pad: usize },
+    #[error(
+        "disc contact point {point} at ({:.6}, {:.6}, {:.6}) m finds no pad contact point within {tolerance:.3e} m (nearest {nearest:.3e} m away): the parts' contact sets do not face each other",
+        position[0], position[1], position[2]
+    )]
+    NoPartner {
+        /// 1-based.
+        point: usize,
+        position: [f64; 3],
+        nearest: f64,
+        tolerance: f64,
+    },
     #[error(transparent)]
     Fe(#[from] FeError),
     #[error(transparent)]
@@ -59,6 +80,15 @@ pub enum ReduceError {
         part: String,
         point: usize,
         direction: char,
+    },
+    #[error(
+        "{part}: {count} fixed-interface modes lie below {below_hz} Hz, more than the limit of {limit}: lower the frequency or raise the limit"
+    )]
+    TooManyModes {
+        part: String,
+        below_hz: f64,
+        count: usize,
+        limit: usize,
     },
     #[error("{part}: {what}")]
     Invalid { part: String, what: String },
@@ -97,8 +127,10 @@ pub struct ReduceOptions {
     pub orthonormalize: bool,
     /// Keep the full-space basis in the result (needed to expand results onto the mesh).
     pub keep_basis: bool,
-    /// Parallelism of the dense and sparse products.
-    pub par: Par,
+    /// Keep the fixed-interface modes below this frequency (Hz) instead of a fixed number:
+    /// their count comes from a Sturm count of `K_vv - (2π f)² M_vv`, and
+    /// [`PartSpec::modes`] is then the most that may be kept.
+    pub modes_below_hz: Option<f64>,
 }
 
 impl Default for ReduceOptions {
@@ -107,25 +139,42 @@ impl Default for ReduceOptions {
             eig: EigOptions::default(),
             orthonormalize: true,
             keep_basis: true,
-            par: faer::get_global_parallelism(),
+            modes_below_hz: None,
         }
     }
 }
 
-/// Stages, reported to a progress callback as they start.
+/// Stages, reported to a progress callback as they start. [`reduce_part`] goes from
+/// `Assemble` to `Project`; `Read` and `Write` are the brake-level stages around it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
+    Read,
     Assemble,
     Interface,
     Factor,
     ConstraintModes,
     Eigensolve,
     Project,
+    Write,
 }
 
 impl Stage {
+    /// All stages in the order they run.
+    pub const ALL: [Stage; 8] = [
+        Stage::Read,
+        Stage::Assemble,
+        Stage::Interface,
+        Stage::Factor,
+        Stage::ConstraintModes,
+        Stage::Eigensolve,
+        Stage::Project,
+        Stage::Write,
+    ];
+
     pub fn label(&self) -> &'static str {
         match self {
+            Stage::Read => "read mesh",
+            Stage::Write => "write",
             Stage::Assemble => "assemble K, M",
             Stage::Interface => "interface",
             Stage::Factor => "order and factor K_II",
@@ -142,10 +191,19 @@ pub struct ReduceReport {
     pub free_dofs: usize,
     pub interior_dofs: usize,
     pub boundary_dofs: usize,
+    /// Fixed-interface modes kept.
+    pub modes: usize,
+    /// Stored entries of `K` (both triangles).
     pub nnz_k: usize,
+    /// Nonzeros of the Cholesky factor of `K_vv`.
     pub nnz_factor: usize,
+    /// Bytes held by that factor.
+    pub factor_bytes: usize,
     pub timings: Vec<(Stage, Duration)>,
     pub eig: squeal_eigs::EigStats,
+    /// Sturm check of the kept modes: the bound `ω²` and the number of eigenvalues of the
+    /// fixed-interface problem below it (equal to the modes found below it).
+    pub sturm: Option<(f64, usize)>,
     /// Largest eigen backward error of the kept modes.
     pub max_residual: f64,
     /// `max |M̂_NN - I|` before re-orthonormalization.
@@ -161,7 +219,11 @@ struct Row {
     entries: Vec<(usize, f64)>,
 }
 
-/// Reduces one part (eqs 1–7).
+/// Reduces one part (eqs 1–7): assembles `K` and `M`, builds the boundary rows of the
+/// interface, factors the interior stiffness once, solves the constraint modes (eq 3) and the
+/// fixed-interface modes (eqs 4–5) with that factor, and projects (eqs 6–7).
+///
+/// `progress` is told each stage as it starts.
 pub fn reduce_part(
     mesh: &Mesh,
     materials: &MaterialTable,
@@ -170,6 +232,10 @@ pub fn reduce_part(
     progress: &mut dyn FnMut(Stage),
 ) -> Result<(ReducedPart, ReduceReport), ReduceError> {
     let part = spec.name.clone();
+    let eigen = |source: EigError| ReduceError::Eigen {
+        part: part.clone(),
+        source,
+    };
     let mut timings = Vec::new();
     let clock = |stage: Stage, t: Instant, timings: &mut Vec<(Stage, Duration)>| {
         timings.push((stage, t.elapsed()))
@@ -200,23 +266,14 @@ pub fn reduce_part(
             part: part.clone(),
             restraints: describe(&spec.restraints),
         },
-        other => ReduceError::Eigen {
-            part: part.clone(),
-            source: other,
-        },
+        other => eigen(other),
     })?;
     clock(Stage::Factor, t, &mut timings);
 
     progress(Stage::ConstraintModes);
     let t = Instant::now();
-    let k_vr = split.coupling(&system.k);
-    let mut psi_v = k_vr;
-    factor
-        .solve_in_place(psi_v.as_mut())
-        .map_err(|source| ReduceError::Eigen {
-            part: part.clone(),
-            source,
-        })?;
+    let mut psi_v = split.coupling(&system.k);
+    factor.solve_in_place(psi_v.as_mut()).map_err(eigen)?;
     for v in psi_v.col_iter_mut() {
         for x in v.iter_mut() {
             *x = -*x;
@@ -226,16 +283,7 @@ pub fn reduce_part(
 
     progress(Stage::Eigensolve);
     let t = Instant::now();
-    let eig_opts = EigOptions {
-        shift: 0.0,
-        ..opts.eig
-    };
-    let modes =
-        lowest_modes_with_factor(k_vv.as_ref(), m_vv.as_ref(), &factor, spec.modes, &eig_opts)
-            .map_err(|source| ReduceError::Eigen {
-                part: part.clone(),
-                source,
-            })?;
+    let modes = fixed_interface_modes(&k_vv, &m_vv, &factor, spec, opts)?;
     clock(Stage::Eigensolve, t, &mut timings);
 
     progress(Stage::Project);
@@ -243,22 +291,21 @@ pub fn reduce_part(
     let nb = rows.len();
     let nm = modes.values.len();
     let n = nb + nm;
-    let mut basis = Mat::<f64>::zeros(dofmap.num_free(), n);
+    let mut basis = try_zeros(dofmap.num_free(), n, &part)?;
     for b in 0..nb {
         split.expand_into(psi_v.col(b), basis.col_mut(b));
         let (m, inv) = split.masters[b];
         basis[(m, b)] += inv;
     }
+    drop(psi_v);
     for j in 0..nm {
         split.expand_into(modes.vectors.col(j), basis.col_mut(nb + j));
     }
-    let mut k_hat = project(&system.k, &basis, opts.par);
-    let mut m_hat = project(&system.m, &basis, opts.par);
+    let mut k_hat = project(&system.k, &basis);
+    let mut m_hat = project(&system.m, &basis);
     let modal_mass_deviation = max_deviation_from_identity(&m_hat, nb);
     if opts.orthonormalize && nm > 0 {
-        orthonormalize_modes(
-            &mut basis, &mut k_hat, &mut m_hat, nb, &system, opts.par, &part,
-        )?;
+        orthonormalize_modes(&mut basis, &mut k_hat, &mut m_hat, nb, &system, &part)?;
     }
     let coupling = block_norm(&k_hat, 0..nb, nb..n) / frobenius(&k_hat).max(f64::MIN_POSITIVE);
     clock(Stage::Project, t, &mut timings);
@@ -271,11 +318,7 @@ pub fn reduce_part(
         })
         .chain((0..nm).map(|mode| DofLabel::Mode { mode }))
         .collect();
-    let fixed_interface_hz: Vec<f64> = modes
-        .values
-        .iter()
-        .map(|w2| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
-        .collect();
+    let fixed_interface_hz: Vec<f64> = modes.values.iter().map(|&w2| hz(w2)).collect();
     let info = PartInfo {
         name: part.clone(),
         mesh: spec.mesh.clone(),
@@ -286,6 +329,8 @@ pub fn reduce_part(
         dofs,
         fixed_interface_hz,
         full_dofs: dofmap.num_free(),
+        has_basis: opts.keep_basis,
+        build: None,
     };
     let basis = opts.keep_basis.then(|| {
         let (dof_node, dof_dir): (Vec<u64>, Vec<u8>) = (0..dofmap.num_free())
@@ -304,10 +349,13 @@ pub fn reduce_part(
         free_dofs: dofmap.num_free(),
         interior_dofs: split.interior.len(),
         boundary_dofs: nb,
+        modes: nm,
         nnz_k: system.nnz_k(),
         nnz_factor: factor.stats().nnz_l,
+        factor_bytes: factor.stats().factor_bytes,
         timings,
         eig: modes.stats,
+        sturm: modes.sturm,
         max_residual: modes.residuals.iter().copied().fold(0.0, f64::max),
         modal_mass_deviation,
         coupling,
@@ -321,6 +369,124 @@ pub fn reduce_part(
         },
         report,
     ))
+}
+
+/// Natural frequency (Hz) of an eigenvalue `ω²` (negative round-off clipped to 0).
+pub fn hz(omega2: f64) -> f64 {
+    omega2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
+}
+
+/// The eigenvalue `ω² = (2π f)²` of a frequency in Hz.
+pub fn omega2(hz: f64) -> f64 {
+    (2.0 * std::f64::consts::PI * hz).powi(2)
+}
+
+/// Fixed-interface modes as found: eigenvalues, vectors, residuals, and the Sturm check made.
+struct FixedModes {
+    values: Vec<f64>,
+    vectors: Mat<f64>,
+    residuals: Vec<f64>,
+    stats: squeal_eigs::EigStats,
+    /// Sturm bound `ω²` and the count of eigenvalues below it.
+    sturm: Option<(f64, usize)>,
+}
+
+/// Eqs (4)–(5): the fixed-interface modes of `K_vv φ = ω² M_vv φ` with the factor of `K_vv`,
+/// mass-normalized. A fixed number (`spec.modes`), or with `opts.modes_below_hz` all those
+/// below that frequency (counted by a Sturm count; at most `spec.modes`, else an error).
+fn fixed_interface_modes(
+    k_vv: &SparseColMat<usize, f64>,
+    m_vv: &SparseColMat<usize, f64>,
+    factor: &SparseCholesky,
+    spec: &PartSpec,
+    opts: &ReduceOptions,
+) -> Result<FixedModes, ReduceError> {
+    let part = &spec.name;
+    let eigen = |source: EigError| ReduceError::Eigen {
+        part: part.clone(),
+        source,
+    };
+    let n = k_vv.nrows();
+    let mut eig_opts = EigOptions {
+        shift: 0.0,
+        ..opts.eig
+    };
+    let mut below = None;
+    let nm = match opts.modes_below_hz {
+        None => spec.modes,
+        Some(f) => {
+            if !(f.is_finite() && f > 0.0) {
+                return Err(ReduceError::Invalid {
+                    part: part.clone(),
+                    what: format!("the mode cut-off frequency {f} Hz is not a positive number"),
+                });
+            }
+            let bound = omega2(f);
+            let count =
+                squeal_eigs::count_below(k_vv.as_ref(), m_vv.as_ref(), bound).map_err(eigen)?;
+            if count > spec.modes {
+                return Err(ReduceError::TooManyModes {
+                    part: part.clone(),
+                    below_hz: f,
+                    count,
+                    limit: spec.modes,
+                });
+            }
+            // The count is itself the Sturm check: the solver's own one is not needed
+            // unless the solve misses a mode below the bound.
+            eig_opts.sturm_check = false;
+            below = Some((bound, count));
+            count
+        }
+    };
+    if nm == 0 {
+        return Ok(FixedModes {
+            values: Vec::new(),
+            vectors: Mat::zeros(n, 0),
+            residuals: Vec::new(),
+            stats: Default::default(),
+            sturm: below,
+        });
+    }
+    if nm >= n {
+        return Err(ReduceError::Invalid {
+            part: part.clone(),
+            what: format!("{nm} fixed-interface modes asked for, the interior has {n} dofs"),
+        });
+    }
+    let modes = lowest_modes_with_factor(k_vv.as_ref(), m_vv.as_ref(), factor, nm, &eig_opts)
+        .map_err(eigen)?;
+    let modes = match below {
+        Some((bound, _)) if modes.values.iter().any(|&v| v >= bound) => {
+            // A mode below the bound was missed: solve again with the solver's Sturm check,
+            // which finds missed copies of multiple eigenvalues by locked restarts.
+            eig_opts.sturm_check = true;
+            lowest_modes_with_factor(k_vv.as_ref(), m_vv.as_ref(), factor, nm, &eig_opts)
+                .map_err(eigen)?
+        }
+        _ => modes,
+    };
+    let sturm = below.or(modes.stats.sturm);
+    Ok(FixedModes {
+        values: modes.values,
+        vectors: modes.vectors,
+        residuals: modes.residuals,
+        stats: modes.stats,
+        sturm,
+    })
+}
+
+/// A zeroed dense matrix, or an error naming the part when the memory is not there.
+fn try_zeros(rows: usize, cols: usize, part: &str) -> Result<Mat<f64>, ReduceError> {
+    let too_big = || ReduceError::Invalid {
+        part: part.into(),
+        what: format!("cannot allocate the {rows} x {cols} reduction basis"),
+    };
+    let count = rows.checked_mul(cols).ok_or_else(too_big)?;
+    let mut probe: Vec<f64> = Vec::new();
+    probe.try_reserve_exact(count).map_err(|_| too_big())?;
+    drop(probe);
+    Ok(Mat::zeros(rows, cols))
 }
 
 fn describe(restraints: &[Restraint]) -> String {
@@ -390,18 +556,14 @@ fn boundary_rows(
                     area: Some(patch.area),
                 });
                 for d in 0..3 {
-                    // Restrained face dofs are zero and drop out of the mean.
-                    let entries: Vec<(usize, f64)> = patch
-                        .weights
-                        .iter()
-                        .filter_map(|&(n, w)| dofmap.free_dof(n, d).map(|f| (f, w)))
-                        .collect();
-                    if entries.is_empty() {
-                        return Err(ReduceError::NoMaster {
-                            part: part.clone(),
-                            point: p,
-                            direction: AXES[d],
-                        });
+                    // A restrained face node would pin the patch's mean motion: refuse it,
+                    // as for a restrained contact node.
+                    let mut entries = Vec::with_capacity(patch.weights.len());
+                    for &(node, w) in &patch.weights {
+                        let dof = dofmap
+                            .free_dof(node, d)
+                            .ok_or_else(|| restrained(&spec.contact_face_set, node, d))?;
+                        entries.push((dof, w));
                     }
                     rows.push(Row {
                         point: p,
@@ -603,19 +765,55 @@ fn entry(x: &SparseColMat<usize, f64>, r: usize, c: usize) -> f64 {
     }
 }
 
-/// `Bᵀ X B` for sparse symmetric `X` and dense `B`, symmetrized.
-fn project(x: &SparseColMat<usize, f64>, basis: &Mat<f64>, par: Par) -> Mat<f64> {
-    let mut xb = Mat::<f64>::zeros(basis.nrows(), basis.ncols());
-    sparse_dense_matmul(
-        xb.as_mut(),
-        Accum::Replace,
-        x.as_ref(),
-        basis.as_ref(),
-        1.0,
-        par,
-    );
-    let p = basis.transpose() * &xb;
-    let n = p.nrows();
+/// Rows per block in the sums of [`project`]: fixed, so that the bits of the result do not
+/// depend on the thread count.
+const ROW_BLOCK: usize = 4096;
+
+/// Eqs (6)–(7): `Bᵀ X B` for sparse symmetric `X` (both triangles stored) and dense `B`,
+/// symmetrized. `X B` is formed column by column (columns in parallel, each entry summed in
+/// stored order), then `Bᵀ (X B)` as a sum over fixed blocks of rows taken in order: the
+/// result is the same bits for any number of threads.
+fn project(x: &SparseColMat<usize, f64>, basis: &Mat<f64>) -> Mat<f64> {
+    let (rows, n) = (basis.nrows(), basis.ncols());
+    let xr = x.as_ref();
+    let columns: Vec<Vec<f64>> = (0..n)
+        .into_par_iter()
+        .map(|j| {
+            let b = basis.col(j);
+            // Column i of a symmetric X is its row i.
+            (0..rows)
+                .map(|i| {
+                    xr.row_idx_of_col(i)
+                        .zip(xr.val_of_col(i))
+                        .map(|(r, v)| v * b[r])
+                        .sum()
+                })
+                .collect()
+        })
+        .collect();
+    let xb = Mat::from_fn(rows, n, |i, j| columns[j][i]);
+    drop(columns);
+    let starts: Vec<usize> = (0..rows).step_by(ROW_BLOCK).collect();
+    let partials: Vec<Mat<f64>> = starts
+        .par_iter()
+        .map(|&r0| {
+            let len = ROW_BLOCK.min(rows - r0);
+            let mut p = Mat::<f64>::zeros(n, n);
+            faer::linalg::matmul::matmul(
+                p.as_mut(),
+                Accum::Replace,
+                basis.subrows(r0, len).transpose(),
+                xb.subrows(r0, len),
+                1.0,
+                Par::Seq,
+            );
+            p
+        })
+        .collect();
+    let mut p = Mat::<f64>::zeros(n, n);
+    for part in &partials {
+        p += part;
+    }
     Mat::from_fn(n, n, |i, j| 0.5 * (p[(i, j)] + p[(j, i)]))
 }
 
@@ -639,23 +837,19 @@ fn orthonormalize_modes(
     m_hat: &mut Mat<f64>,
     nb: usize,
     system: &squeal_fe::System,
-    par: Par,
     part: &str,
 ) -> Result<(), ReduceError> {
     let n = basis.ncols();
     let nm = n - nb;
     let mnn = Mat::from_fn(nm, nm, |i, j| m_hat[(nb + i, nb + j)]);
-    let llt = mnn
-        .llt(faer::Side::Lower)
-        .map_err(|_| ReduceError::Invalid {
-            part: part.into(),
-            what: "the modal block of the reduced mass is not positive definite".into(),
-        })?;
-    let l = llt.L().to_owned();
+    let l = dense_cholesky(&mnn).ok_or_else(|| ReduceError::Invalid {
+        part: part.into(),
+        what: "the modal block of the reduced mass is not positive definite".into(),
+    })?;
     // Φ L⁻ᵀ: solve X Lᵀ = Φ row by row (forward substitution on Lᵀ from the left).
     let rows = basis.nrows();
+    let mut x = vec![0.0; nm];
     for r in 0..rows {
-        let mut x = vec![0.0; nm];
         for j in 0..nm {
             let mut s = basis[(r, nb + j)];
             for k in 0..j {
@@ -667,9 +861,35 @@ fn orthonormalize_modes(
             basis[(r, nb + j)] = x[j];
         }
     }
-    *k_hat = project(&system.k, basis, par);
-    *m_hat = project(&system.m, basis, par);
+    *k_hat = project(&system.k, basis);
+    *m_hat = project(&system.m, basis);
     Ok(())
+}
+
+/// Lower Cholesky factor `L` of a small symmetric positive definite matrix (`A = L Lᵀ`,
+/// textbook column order), or `None` at a pivot that is not positive.
+pub(crate) fn dense_cholesky(a: &Mat<f64>) -> Option<Mat<f64>> {
+    let n = a.nrows();
+    let mut l = Mat::<f64>::zeros(n, n);
+    for j in 0..n {
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= l[(j, k)] * l[(j, k)];
+        }
+        if !(d > 0.0 && d.is_finite()) {
+            return None;
+        }
+        let d = d.sqrt();
+        l[(j, j)] = d;
+        for i in j + 1..n {
+            let mut s = a[(i, j)];
+            for k in 0..j {
+                s -= l[(i, k)] * l[(j, k)];
+            }
+            l[(i, j)] = s / d;
+        }
+    }
+    Some(l)
 }
 
 fn block_norm(a: &Mat<f64>, rows: std::ops::Range<usize>, cols: std::ops::Range<usize>) -> f64 {

@@ -38,7 +38,7 @@ pub enum InterfaceError {
 }
 
 /// The disc's axis of rotation: radii and angles are measured about it.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Axis {
     pub origin: [f64; 3],
     /// Direction (need not be unit); angles are counter-clockwise seen from its tip.

@@ -3,6 +3,8 @@
 // Index loops over the three directions read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+pub mod brake;
+pub mod check;
 pub mod craig_bampton;
 pub mod interface;
 pub mod rom;

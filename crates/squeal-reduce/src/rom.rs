@@ -25,8 +25,12 @@ use std::path::{Path, PathBuf};
 
 /// Name of the format in the header.
 pub const FORMAT: &str = "squeal-rom";
-/// Version of the format written by this code; readers refuse newer major versions.
-pub const VERSION: u32 = 1;
+/// Version of the format written by this code; readers refuse newer versions.
+/// Version 2 added `has_basis` and `build` to each part (version 1 files still read).
+pub const VERSION: u32 = 2;
+
+/// Largest JSON header accepted when reading (the header of the fine brake is about 20 kB).
+const MAX_HEADER_BYTES: u64 = 64 << 20;
 
 /// Errors reading or writing a reduced-model file.
 #[derive(Debug, thiserror::Error)]
@@ -130,6 +134,38 @@ pub struct PartInfo {
     pub fixed_interface_hz: Vec<f64>,
     /// Free dofs of the full part (rows of the basis).
     pub full_dofs: usize,
+    /// Whether the file holds the part's basis (`p.basis`, `p.dof_node`, `p.dof_dir`).
+    #[serde(default)]
+    pub has_basis: bool,
+    /// The options the part was reduced with, to tell whether the file is still valid for
+    /// given inputs (see [`crate::brake::freshness`]); absent in files made part by part.
+    #[serde(default)]
+    pub build: Option<BuildRecord>,
+}
+
+/// The options a part was reduced with, as given (before reading the mesh).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BuildRecord {
+    /// Restraints: node set (or `nodes i,j,...` for indices) and restrained directions x, y, z.
+    pub restraints: Vec<(String, [bool; 3])>,
+    /// Material overrides (element set, material) applied after the mesh's sections.
+    pub material_overrides: Vec<(String, squeal_fe::ElasticMaterial)>,
+    pub contact_set: String,
+    pub contact_face_set: String,
+    pub piston_set: Option<String>,
+    /// Patch grid `[radial, angular]`.
+    pub grid: [usize; 2],
+    pub axis: crate::interface::Axis,
+    /// Direction of the contact normal and of the piston dofs (0 = x, 1 = y, 2 = z).
+    pub normal_direction: usize,
+    pub modes: crate::brake::ModeChoice,
+    /// Most fixed-interface modes a part may keep.
+    pub max_modes: usize,
+    /// Eigensolver backend (`lanczos` or `arpack`) and relative tolerance.
+    pub backend: String,
+    pub eig_tol: f64,
+    /// Modal block of `M̂` made the identity after the solve.
+    pub orthonormalize: bool,
 }
 
 /// The JSON header stored in `__metadata__.squeal`.
@@ -197,7 +233,14 @@ impl ReducedModel {
             format: FORMAT.into(),
             version: VERSION,
             tool_version: self.tool_version.clone(),
-            parts: self.parts.iter().map(|p| p.info.clone()).collect(),
+            parts: self
+                .parts
+                .iter()
+                .map(|p| PartInfo {
+                    has_basis: p.basis.is_some(),
+                    ..p.info.clone()
+                })
+                .collect(),
         };
         let json =
             serde_json::to_string(&header).map_err(|e| RomError::Serialize(e.to_string()))?;
@@ -256,17 +299,7 @@ impl ReducedModel {
             .as_ref()
             .and_then(|m| m.get("squeal"))
             .ok_or_else(|| bad("no squeal header in __metadata__".into()))?;
-        let header: RomHeader =
-            serde_json::from_str(json).map_err(|e| bad(format!("header: {e}")))?;
-        if header.format != FORMAT {
-            return Err(bad(format!("format '{}' is not '{FORMAT}'", header.format)));
-        }
-        if header.version > VERSION {
-            return Err(RomError::Version {
-                path: path.to_path_buf(),
-                found: header.version,
-            });
-        }
+        let header = parse_header(json, path)?;
         let mut parts = Vec::with_capacity(header.parts.len());
         for info in header.parts {
             let n = info.dofs.len();
@@ -292,6 +325,10 @@ impl ReducedModel {
             } else {
                 None
             };
+            let info = PartInfo {
+                has_basis: basis.is_some(),
+                ..info
+            };
             parts.push(ReducedPart { info, k, m, basis });
         }
         Ok(ReducedModel {
@@ -299,6 +336,64 @@ impl ReducedModel {
             parts,
         })
     }
+}
+
+/// Reads only the JSON header of a reduced-model file (not its arrays).
+pub fn read_header(path: &Path) -> Result<RomHeader, RomError> {
+    use std::io::Read;
+    let io = |source| RomError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let bad = |message: String| RomError::Format {
+        path: path.to_path_buf(),
+        message,
+    };
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let mut len = [0u8; 8];
+    file.read_exact(&mut len)
+        .map_err(|e| bad(format!("no header length: {e}")))?;
+    let n = u64::from_le_bytes(len);
+    if n > MAX_HEADER_BYTES {
+        return Err(bad(format!(
+            "header of {n} bytes, more than the {MAX_HEADER_BYTES} accepted"
+        )));
+    }
+    let mut json = Vec::new();
+    file.take(n).read_to_end(&mut json).map_err(io)?;
+    if json.len() as u64 != n {
+        return Err(bad(format!(
+            "header cut short: {} of {n} bytes",
+            json.len()
+        )));
+    }
+    let outer: serde_json::Value =
+        serde_json::from_slice(&json).map_err(|e| bad(format!("header: {e}")))?;
+    let inner = outer
+        .get("__metadata__")
+        .and_then(|m| m.get("squeal"))
+        .and_then(|v| v.as_str())
+        .ok_or_else(|| bad("no squeal header in __metadata__".into()))?;
+    parse_header(inner, path)
+}
+
+/// Parses and checks the `squeal` header JSON.
+fn parse_header(json: &str, path: &Path) -> Result<RomHeader, RomError> {
+    let bad = |message: String| RomError::Format {
+        path: path.to_path_buf(),
+        message,
+    };
+    let header: RomHeader = serde_json::from_str(json).map_err(|e| bad(format!("header: {e}")))?;
+    if header.format != FORMAT {
+        return Err(bad(format!("format '{}' is not '{FORMAT}'", header.format)));
+    }
+    if header.version > VERSION {
+        return Err(RomError::Version {
+            path: path.to_path_buf(),
+            found: header.version,
+        });
+    }
+    Ok(header)
 }
 
 /// An array ready for serialization: row-major little-endian bytes.
@@ -420,6 +515,8 @@ mod tests {
             ],
             fixed_interface_hz: vec![1234.5],
             full_dofs: 4,
+            has_basis: true,
+            build: None,
         };
         let k = Mat::from_fn(n, n, |i, j| (i * 10 + j) as f64 + 0.1);
         let m = Mat::from_fn(

@@ -1,0 +1,635 @@
+//! The brake: a disc and a pad, from their mesh files to the reduced model of eqs (1)–(7).
+//!
+//! [`reduce_brake`] reads both meshes (recording their SHA-256), checks that every disc
+//! contact point faces a pad contact point, then reduces the disc and then the pad with
+//! [`reduce_part`]. With [`BrakeInputs::default`] (the bundled setup: disc clamped on `CLAMP`,
+//! pad held in-plane on `ABUTMENT` with its `PISTON` nodes' normal dof kept, nine contact points
+//! per part, 50 fixed-interface modes) the result is the paper's 158-dof brake:
+//! 27 + 50 disc dofs and 27 + 4 + 50 pad dofs (Sec. 2.1).
+//!
+//! Each part's [`BuildRecord`] is stored in the file, so that [`freshness`] can tell whether an
+//! existing `.rom` still matches given inputs (mesh hashes, options, tool version).
+
+use crate::craig_bampton::{
+    PartSpec, ReduceError, ReduceOptions, ReduceReport, Stage, reduce_part,
+};
+use crate::interface::{Axis, contact_nodes, patches};
+use crate::rom::{
+    BuildRecord, InterfaceKind, MeshInfo, ReducedModel, RomError, RomHeader, read_header,
+    sha256_file,
+};
+use faer::Par;
+use serde::{Deserialize, Serialize};
+use squeal_eigs::{Backend, EigOptions};
+use squeal_fe::{ElasticMaterial, MaterialTable, NodeSelection, Restraint};
+use squeal_mesh::Mesh;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// The version written into every `.rom` file; a file made by another version is stale.
+pub const TOOL_VERSION: &str = concat!("squeal ", env!("CARGO_PKG_VERSION"));
+
+/// Default multiple of the highest frequency of interest below which modes are kept in
+/// [`ModeChoice::Auto`] (see `docs/reduction.md` for how the choice moves the frequencies).
+pub const DEFAULT_AUTO_FACTOR: f64 = 2.0;
+
+/// Default limit on the fixed-interface modes of one part: the basis is
+/// `free dofs x (boundary + modes)` doubles, about 1 GB for 1000 modes of the fine disc.
+pub const DEFAULT_MAX_MODES: usize = 1000;
+
+/// Default pairing tolerance, as a fraction of the smallest distance between two of the disc's
+/// contact points (the patch size).
+pub const DEFAULT_PAIRING_TOLERANCE: f64 = 0.05;
+
+/// How many fixed-interface modes each part keeps (eqs 4–5).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ModeChoice {
+    /// The `n` lowest (the paper: 50).
+    Fixed(usize),
+    /// All modes below `factor × fmax_hz`: the fewest a study up to `fmax_hz` needs.
+    Auto { fmax_hz: f64, factor: f64 },
+}
+
+impl ModeChoice {
+    /// [`ModeChoice::Auto`] with [`DEFAULT_AUTO_FACTOR`].
+    pub fn auto(fmax_hz: f64) -> Self {
+        Self::Auto {
+            fmax_hz,
+            factor: DEFAULT_AUTO_FACTOR,
+        }
+    }
+}
+
+/// One part: its mesh file and how it is held and tied to the other part.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartInput {
+    /// Mesh file (`.inp` or `.msh`).
+    pub mesh: PathBuf,
+    /// Materials by element set, applied after the mesh's own sections (a `.msh` has none).
+    pub material_overrides: Vec<(String, ElasticMaterial)>,
+    pub restraints: Vec<Restraint>,
+    /// Node set of the contact points (node interface).
+    pub contact_set: String,
+    /// Node set of the contact face (patch interface).
+    pub contact_face_set: String,
+    /// Node set whose normal dof is kept (the pad's pistons).
+    pub piston_set: Option<String>,
+}
+
+impl PartInput {
+    /// The bundled disc: clamped on `CLAMP` (all dofs), contact on `CONTACT` / `CONTACT_FACE`.
+    pub fn disc(mesh: impl Into<PathBuf>) -> Self {
+        Self {
+            mesh: mesh.into(),
+            material_overrides: Vec::new(),
+            restraints: vec![Restraint::clamp("CLAMP")],
+            contact_set: "CONTACT".into(),
+            contact_face_set: "CONTACT_FACE".into(),
+            piston_set: None,
+        }
+    }
+
+    /// The bundled pad: `ABUTMENT` held in x and y (free only along the normal z), the
+    /// `PISTON` nodes' z dof kept, contact on `CONTACT` / `CONTACT_FACE`.
+    pub fn pad(mesh: impl Into<PathBuf>) -> Self {
+        Self {
+            mesh: mesh.into(),
+            material_overrides: Vec::new(),
+            restraints: vec![Restraint::set("ABUTMENT", [true, true, false])],
+            contact_set: "CONTACT".into(),
+            contact_face_set: "CONTACT_FACE".into(),
+            piston_set: Some("PISTON".into()),
+        }
+    }
+}
+
+/// Everything [`reduce_brake`] needs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BrakeInputs {
+    pub disc: PartInput,
+    pub pad: PartInput,
+    pub interface: InterfaceKind,
+    pub modes: ModeChoice,
+    /// Most fixed-interface modes a part may keep (bounds the memory of the basis).
+    pub max_modes: usize,
+    /// Patch grid `[radial, angular]` of the patch interface.
+    pub grid: [usize; 2],
+    /// The disc's axis: patches are cut in radius and angle about it.
+    pub axis: Axis,
+    /// Direction of the contact normal (0 = x, 1 = y, 2 = z): the pistons' kept dof.
+    pub normal_direction: usize,
+    pub backend: Backend,
+    /// Relative tolerance of the eigensolver's Ritz residuals.
+    pub eig_tol: f64,
+    /// Make the modal block of `M̂` the identity and that of `K̂` `diag(ω²)` after the solve.
+    pub orthonormalize: bool,
+    /// Keep each part's basis in the model (needed to expand results onto the meshes).
+    pub keep_basis: bool,
+    /// Contact points pair when closer than this fraction of the smallest distance between
+    /// two of the disc's contact points.
+    pub pairing_tolerance: f64,
+    /// Parallelism of the sparse factorizations (the rest runs on rayon in fixed-size
+    /// blocks). Their bits do not depend on it; faer's dense kernels on small matrices, which
+    /// follow `faer::get_global_parallelism()`, do: set that to `Par::Seq` for results that
+    /// are bit-identical for any thread count (`squeal reduce` does).
+    pub par: Par,
+}
+
+impl Default for BrakeInputs {
+    /// The bundled fine meshes, patch interface on a 3 x 3 grid about the z axis, 50 modes.
+    fn default() -> Self {
+        Self {
+            disc: PartInput::disc("meshes/disc_fine.inp"),
+            pad: PartInput::pad("meshes/pad_fine.inp"),
+            interface: InterfaceKind::Patch,
+            modes: ModeChoice::Fixed(50),
+            max_modes: DEFAULT_MAX_MODES,
+            grid: [3, 3],
+            axis: Axis::default(),
+            normal_direction: 2,
+            backend: Backend::Lanczos,
+            eig_tol: EigOptions::default().tol,
+            orthonormalize: true,
+            keep_basis: true,
+            pairing_tolerance: DEFAULT_PAIRING_TOLERANCE,
+            par: Par::rayon(0),
+        }
+    }
+}
+
+impl BrakeInputs {
+    /// The bundled setup on the given mesh files.
+    pub fn bundled(disc: impl Into<PathBuf>, pad: impl Into<PathBuf>) -> Self {
+        Self {
+            disc: PartInput::disc(disc),
+            pad: PartInput::pad(pad),
+            ..Self::default()
+        }
+    }
+
+    /// The two parts with their names, disc first.
+    pub fn parts(&self) -> [(&'static str, &PartInput); 2] {
+        [("disc", &self.disc), ("pad", &self.pad)]
+    }
+
+    /// The record stored with part `input` in the `.rom` file.
+    pub fn record(&self, input: &PartInput) -> BuildRecord {
+        BuildRecord {
+            restraints: input
+                .restraints
+                .iter()
+                .map(|r| (selection_name(&r.nodes), r.directions))
+                .collect(),
+            material_overrides: input.material_overrides.clone(),
+            contact_set: input.contact_set.clone(),
+            contact_face_set: input.contact_face_set.clone(),
+            piston_set: input.piston_set.clone(),
+            grid: self.grid,
+            axis: self.axis,
+            normal_direction: self.normal_direction,
+            modes: self.modes,
+            max_modes: self.max_modes,
+            backend: backend_name(self.backend).into(),
+            eig_tol: self.eig_tol,
+            orthonormalize: self.orthonormalize,
+        }
+    }
+
+    /// Checks the options that do not need the meshes.
+    pub fn validate(&self) -> Result<(), ReduceError> {
+        let bad = |what: String| Err(ReduceError::Options(what));
+        if self.normal_direction > 2 {
+            return bad(format!(
+                "normal direction {} is not 0 (x), 1 (y) or 2 (z)",
+                self.normal_direction
+            ));
+        }
+        if self.grid[0] == 0
+            || self.grid[1] == 0
+            || self.grid[0].saturating_mul(self.grid[1]) > 10_000
+        {
+            return bad(format!(
+                "patch grid {} x {} must have 1 to 10000 cells",
+                self.grid[0], self.grid[1]
+            ));
+        }
+        match self.modes {
+            ModeChoice::Fixed(n) if n > self.max_modes => {
+                return bad(format!(
+                    "{n} modes asked for, more than the limit of {}",
+                    self.max_modes
+                ));
+            }
+            ModeChoice::Auto { fmax_hz, factor }
+                if !(fmax_hz.is_finite()
+                    && fmax_hz > 0.0
+                    && factor.is_finite()
+                    && factor > 0.0) =>
+            {
+                return bad(format!(
+                    "automatic mode choice needs a positive fmax and factor (got {fmax_hz} Hz, x{factor})"
+                ));
+            }
+            _ => {}
+        }
+        if !(self.pairing_tolerance > 0.0 && self.pairing_tolerance.is_finite()) {
+            return bad(format!(
+                "pairing tolerance {} must be a positive fraction",
+                self.pairing_tolerance
+            ));
+        }
+        if !(self.eig_tol > 0.0 && self.eig_tol < 1.0) {
+            return bad(format!(
+                "eigensolver tolerance {} must be in (0, 1)",
+                self.eig_tol
+            ));
+        }
+        Ok(())
+    }
+
+    fn reduce_options(&self) -> ReduceOptions {
+        ReduceOptions {
+            eig: EigOptions {
+                backend: self.backend,
+                tol: self.eig_tol,
+                par: self.par,
+                ..EigOptions::default()
+            },
+            orthonormalize: self.orthonormalize,
+            keep_basis: self.keep_basis,
+            modes_below_hz: match self.modes {
+                ModeChoice::Fixed(_) => None,
+                ModeChoice::Auto { fmax_hz, factor } => Some(fmax_hz * factor),
+            },
+        }
+    }
+
+    fn spec(&self, name: &str, input: &PartInput, mesh: MeshInfo) -> PartSpec {
+        PartSpec {
+            name: name.into(),
+            mesh,
+            restraints: input.restraints.clone(),
+            interface: self.interface,
+            contact_set: input.contact_set.clone(),
+            contact_face_set: input.contact_face_set.clone(),
+            grid: self.grid,
+            axis: self.axis,
+            piston_set: input.piston_set.clone(),
+            normal_direction: self.normal_direction,
+            modes: match self.modes {
+                ModeChoice::Fixed(n) => n,
+                ModeChoice::Auto { .. } => self.max_modes,
+            },
+        }
+    }
+}
+
+/// The name of an eigensolver backend as written in files and on the command line.
+pub fn backend_name(backend: Backend) -> &'static str {
+    match backend {
+        Backend::Lanczos => "lanczos",
+        Backend::Arpack => "arpack",
+    }
+}
+
+fn selection_name(nodes: &NodeSelection) -> String {
+    match nodes {
+        NodeSelection::Set(s) => s.clone(),
+        NodeSelection::Indices(v) => {
+            let list: Vec<String> = v.iter().map(u32::to_string).collect();
+            format!("nodes {}", list.join(","))
+        }
+    }
+}
+
+/// A part's mesh as read, with what the `.rom` records about the file.
+#[derive(Clone, Debug)]
+pub struct LoadedPart {
+    pub mesh: Mesh,
+    pub info: MeshInfo,
+    /// The reader's warnings.
+    pub warnings: Vec<String>,
+    pub read_time: Duration,
+}
+
+/// Reads a mesh file and hashes it.
+pub fn load_part(path: &Path) -> Result<LoadedPart, ReduceError> {
+    let t = Instant::now();
+    let read = squeal_mesh::read(path)?;
+    let sha256 = sha256_file(path)?;
+    let mesh = read.mesh;
+    let info = MeshInfo {
+        path: path.display().to_string(),
+        sha256,
+        nodes: mesh.num_nodes(),
+        elements: mesh.num_elements(),
+    };
+    Ok(LoadedPart {
+        info,
+        warnings: read.warnings.iter().map(|w| w.to_string()).collect(),
+        mesh,
+        read_time: t.elapsed(),
+    })
+}
+
+/// A disc contact point and the pad contact point it faces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactPair {
+    /// Index among the disc's contact points (0-based, the order of its `dofs`).
+    pub disc_point: usize,
+    /// Index among the pad's contact points.
+    pub pad_point: usize,
+    /// Distance between the two (m).
+    pub distance: f64,
+}
+
+/// What [`reduce_brake`] did and cost.
+#[derive(Clone, Debug)]
+pub struct BrakeReport {
+    /// Disc, then pad.
+    pub parts: Vec<PartReport>,
+    pub pairs: Vec<ContactPair>,
+    /// Pairing tolerance in metres.
+    pub pairing_tolerance: f64,
+    pub total: Duration,
+}
+
+/// One part's share of a [`BrakeReport`].
+#[derive(Clone, Debug)]
+pub struct PartReport {
+    pub name: String,
+    pub mesh: MeshInfo,
+    pub warnings: Vec<String>,
+    pub read_time: Duration,
+    pub reduce: ReduceReport,
+}
+
+impl PartReport {
+    /// Time of a stage (read included).
+    pub fn time(&self, stage: Stage) -> Duration {
+        if stage == Stage::Read {
+            return self.read_time;
+        }
+        self.reduce
+            .timings
+            .iter()
+            .filter(|(s, _)| *s == stage)
+            .map(|(_, d)| *d)
+            .sum()
+    }
+}
+
+/// Reads both meshes, pairs their contact points and reduces the disc, then the pad.
+/// `progress(part, stage)` is told each stage as it starts.
+pub fn reduce_brake(
+    inputs: &BrakeInputs,
+    progress: &mut dyn FnMut(&str, Stage),
+) -> Result<(ReducedModel, BrakeReport), ReduceError> {
+    inputs.validate()?;
+    progress("disc", Stage::Read);
+    let disc = load_part(&inputs.disc.mesh)?;
+    progress("pad", Stage::Read);
+    let pad = load_part(&inputs.pad.mesh)?;
+    reduce_brake_loaded(inputs, disc, pad, progress)
+}
+
+/// [`reduce_brake`] on meshes already read (the mesh paths of `inputs` are not opened).
+pub fn reduce_brake_loaded(
+    inputs: &BrakeInputs,
+    disc: LoadedPart,
+    pad: LoadedPart,
+    progress: &mut dyn FnMut(&str, Stage),
+) -> Result<(ReducedModel, BrakeReport), ReduceError> {
+    let t0 = Instant::now();
+    inputs.validate()?;
+    let disc_points = contact_positions(&disc.mesh, &inputs.disc, inputs)?;
+    let pad_points = contact_positions(&pad.mesh, &inputs.pad, inputs)?;
+    let (pairs, tolerance) =
+        pair_contact_points(&disc_points, &pad_points, inputs.pairing_tolerance)?;
+    let opts = inputs.reduce_options();
+    let mut parts = Vec::with_capacity(2);
+    let mut reports = Vec::with_capacity(2);
+    for (loaded, (name, input)) in [disc, pad].into_iter().zip(inputs.parts()) {
+        let materials = MaterialTable::from_mesh(&loaded.mesh, &input.material_overrides)?;
+        let spec = inputs.spec(name, input, loaded.info.clone());
+        let (mut part, reduce) = reduce_part(&loaded.mesh, &materials, &spec, &opts, &mut |s| {
+            progress(name, s)
+        })?;
+        part.info.build = Some(inputs.record(input));
+        parts.push(part);
+        reports.push(PartReport {
+            name: name.into(),
+            mesh: loaded.info,
+            warnings: loaded.warnings,
+            read_time: loaded.read_time,
+            reduce,
+        });
+    }
+    let model = ReducedModel {
+        tool_version: TOOL_VERSION.into(),
+        parts,
+    };
+    let read: Duration = reports.iter().map(|r| r.read_time).sum();
+    let report = BrakeReport {
+        parts: reports,
+        pairs,
+        pairing_tolerance: tolerance,
+        total: t0.elapsed() + read,
+    };
+    Ok((model, report))
+}
+
+/// Positions of a part's contact points, in the order of its reduced dofs: the `CONTACT`
+/// nodes (node interface) or the patch centroids (patch interface).
+pub fn contact_positions(
+    mesh: &Mesh,
+    input: &PartInput,
+    inputs: &BrakeInputs,
+) -> Result<Vec<[f64; 3]>, ReduceError> {
+    Ok(match inputs.interface {
+        InterfaceKind::Node => contact_nodes(mesh, &input.contact_set, &inputs.axis)?
+            .into_iter()
+            .map(|n| mesh.nodes[n as usize])
+            .collect(),
+        InterfaceKind::Patch => patches(
+            mesh,
+            &input.contact_face_set,
+            inputs.grid[0],
+            inputs.grid[1],
+            &inputs.axis,
+        )?
+        .into_iter()
+        .map(|p| p.centroid)
+        .collect(),
+    })
+}
+
+/// Pairs each disc contact point with the nearest pad contact point not yet taken, which must
+/// lie within `relative_tolerance` times the smallest distance between two disc points (any
+/// distance if the disc has a single point). Returns the pairs and the tolerance in metres.
+pub fn pair_contact_points(
+    disc: &[[f64; 3]],
+    pad: &[[f64; 3]],
+    relative_tolerance: f64,
+) -> Result<(Vec<ContactPair>, f64), ReduceError> {
+    if disc.len() != pad.len() {
+        return Err(ReduceError::ContactCountMismatch {
+            disc: disc.len(),
+            pad: pad.len(),
+        });
+    }
+    let mut spacing = f64::INFINITY;
+    for (i, a) in disc.iter().enumerate() {
+        for b in &disc[i + 1..] {
+            spacing = spacing.min(distance(*a, *b));
+        }
+    }
+    let tolerance = relative_tolerance * spacing;
+    let mut taken = vec![false; pad.len()];
+    let mut pairs = Vec::with_capacity(disc.len());
+    for (i, &x) in disc.iter().enumerate() {
+        let nearest = (0..pad.len())
+            .filter(|&j| !taken[j])
+            .map(|j| (j, distance(x, pad[j])))
+            .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+        match nearest {
+            Some((j, d)) if d <= tolerance => {
+                taken[j] = true;
+                pairs.push(ContactPair {
+                    disc_point: i,
+                    pad_point: j,
+                    distance: d,
+                });
+            }
+            other => {
+                return Err(ReduceError::NoPartner {
+                    point: i + 1,
+                    position: x,
+                    nearest: other.map_or(f64::INFINITY, |o| o.1),
+                    tolerance,
+                });
+            }
+        }
+    }
+    Ok((pairs, tolerance))
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// Whether a `.rom` file can stand for given inputs.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Freshness {
+    /// Made from the same mesh files (by SHA-256) with the same options and tool version.
+    Fresh,
+    /// No file at that path.
+    Missing,
+    /// The reasons it cannot be used.
+    Stale(Vec<String>),
+}
+
+/// Whether the `.rom` at `path` matches `inputs`: the meshes' SHA-256, every recorded
+/// option, the tool version and (if `inputs.keep_basis`) the presence of the bases.
+/// Reads only the file's header; an unreadable file is stale, an unreadable mesh an error.
+pub fn freshness(path: &Path, inputs: &BrakeInputs) -> Result<Freshness, ReduceError> {
+    if !path.exists() {
+        return Ok(Freshness::Missing);
+    }
+    let header = match read_header(path) {
+        Ok(h) => h,
+        Err(e @ (RomError::Format { .. } | RomError::Version { .. } | RomError::Io { .. })) => {
+            return Ok(Freshness::Stale(vec![e.to_string()]));
+        }
+        Err(e) => return Err(e.into()),
+    };
+    let hashes = [
+        sha256_file(&inputs.disc.mesh)?,
+        sha256_file(&inputs.pad.mesh)?,
+    ];
+    let reasons = stale_reasons(&header, inputs, &hashes);
+    Ok(if reasons.is_empty() {
+        Freshness::Fresh
+    } else {
+        Freshness::Stale(reasons)
+    })
+}
+
+/// Why a header does not match `inputs` whose mesh files hash to `hashes` (disc, pad);
+/// empty if it matches.
+pub fn stale_reasons(
+    header: &RomHeader,
+    inputs: &BrakeInputs,
+    hashes: &[String; 2],
+) -> Vec<String> {
+    let mut reasons = Vec::new();
+    if header.tool_version != TOOL_VERSION {
+        reasons.push(format!(
+            "made by {}, this is {TOOL_VERSION}",
+            header.tool_version
+        ));
+    }
+    if header.parts.len() != 2 {
+        reasons.push(format!(
+            "{} parts, expected disc and pad",
+            header.parts.len()
+        ));
+    }
+    for ((name, input), hash) in inputs.parts().into_iter().zip(hashes) {
+        let Some(info) = header.parts.iter().find(|p| p.name == name) else {
+            reasons.push(format!("no part named {name}"));
+            continue;
+        };
+        if &info.mesh.sha256 != hash {
+            reasons.push(format!(
+                "{name}: mesh {} changed (SHA-256 {} in the file, {} now)",
+                input.mesh.display(),
+                short(&info.mesh.sha256),
+                short(hash)
+            ));
+        }
+        if info.interface != inputs.interface {
+            reasons.push(format!(
+                "{name}: interface {:?} in the file, {:?} asked for",
+                info.interface, inputs.interface
+            ));
+        }
+        match &info.build {
+            None => reasons.push(format!("{name}: the file does not record its options")),
+            Some(b) => {
+                let want = inputs.record(input);
+                if *b != want {
+                    reasons.push(format!(
+                        "{name}: options differ ({})",
+                        record_differences(b, &want).join("; ")
+                    ));
+                }
+            }
+        }
+        if inputs.keep_basis && !info.has_basis {
+            reasons.push(format!("{name}: the file holds no basis"));
+        }
+    }
+    reasons
+}
+
+fn short(hash: &str) -> &str {
+    hash.get(..12).unwrap_or(hash)
+}
+
+/// The fields in which two records differ, as `field: file -> asked`.
+fn record_differences(file: &BuildRecord, want: &BuildRecord) -> Vec<String> {
+    let a = serde_json::to_value(file).unwrap_or_default();
+    let b = serde_json::to_value(want).unwrap_or_default();
+    let (Some(a), Some(b)) = (a.as_object(), b.as_object()) else {
+        return vec!["record".into()];
+    };
+    b.iter()
+        .filter(|(k, v)| a.get(*k) != Some(v))
+        .map(|(k, v)| {
+            let old = a.get(k).map_or("-".to_string(), |o| o.to_string());
+            format!("{k}: {old} -> {v}")
+        })
+        .collect()
+}
