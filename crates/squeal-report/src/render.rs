@@ -146,12 +146,13 @@ pub(crate) fn draw_figure<DB: DrawingBackend>(
     );
     if !fig.title.is_empty() {
         let (w, _) = area.dim_in_pixel();
-        p.text(
-            &fig.title,
+        p.text_fit(
+            (&fig.title, ""),
             (f64::from(w) / 2.0, top / 2.0),
             p.z.fig_title,
-            TEXT,
+            f64::from(w) - 2.0 * p.z.pad,
             (HPos::Center, VPos::Center),
+            false,
         )?;
     }
     let mut notes = Vec::new();
@@ -230,6 +231,20 @@ impl<DB: DrawingBackend> Painter<'_, DB> {
             .color(&color)
             .pos(Pos::new(anchor.0, anchor.1));
         self.area.draw_text(text, &style, ipt(at)).map_err(draw_err)
+    }
+
+    /// Text shrunk or shortened to at most `max_w` pixels long ([`fit_text`]).
+    fn text_fit(
+        &self,
+        text: (&str, &str),
+        at: Px,
+        size: f64,
+        max_w: f64,
+        anchor: (HPos, VPos),
+        vertical: bool,
+    ) -> Result<(), ReportError> {
+        let (t, sz) = fit_text(text.0, text.1, size, max_w);
+        self.text_styled(&t, at, sz, TEXT, anchor, vertical)
     }
 
     fn polyline(&self, pts: &[Px], color: Rgb, width: f64) -> Result<(), ReportError> {
@@ -364,6 +379,29 @@ impl<DB: DrawingBackend> Painter<'_, DB> {
             }
         }
     }
+}
+
+/// `text` followed by `suffix` at `size`, made to fit `max_w` pixels: first shrunk down to
+/// 75 % of `size`, then `text` shortened with an ellipsis (the suffix is kept whole).
+fn fit_text(text: &str, suffix: &str, size: f64, max_w: f64) -> (String, f64) {
+    let width = |t: &str, sz: f64| text_size(t, sz).0;
+    let whole = format!("{text}{suffix}");
+    let full = width(&whole, size);
+    if full <= max_w {
+        return (whole, size);
+    }
+    let smaller = (size * max_w / full).max(0.75 * size);
+    if width(&whole, smaller) <= max_w {
+        return (whole, smaller);
+    }
+    let chars: Vec<char> = text.chars().take(400).collect();
+    for n in (0..chars.len()).rev() {
+        let t = format!("{}…{suffix}", chars[..n].iter().collect::<String>());
+        if width(&t, smaller) <= max_w {
+            return (t, smaller);
+        }
+    }
+    (suffix.to_string(), smaller)
 }
 
 /// On/off lengths of a dash pattern at scale 1.
@@ -782,11 +820,13 @@ fn axis_ticks(
 }
 
 /// Axis label with the shared tick multiplier appended.
-fn axis_title(label: &str, ticks: &AxisTicks) -> String {
+/// Axis label and the shared tick multiplier to append, kept apart so that shortening a long
+/// label never cuts the multiplier.
+fn axis_title(label: &str, ticks: &AxisTicks) -> (String, String) {
     match (&ticks.multiplier, label.is_empty()) {
-        (Some(m), true) => m.clone(),
-        (Some(m), false) => format!("{label}  ({m})"),
-        (None, _) => label.to_string(),
+        (Some(m), true) => (String::new(), m.clone()),
+        (Some(m), false) => (label.to_string(), format!("  ({m})")),
+        (None, _) => (label.to_string(), String::new()),
     }
 }
 
@@ -866,8 +906,8 @@ struct PanelLayout {
     f: Frame,
     x_ticks: AxisTicks,
     y_ticks: AxisTicks,
-    x_title: String,
-    y_title: String,
+    x_title: (String, String),
+    y_title: (String, String),
     tick_h: f64,
     xlabel_h: f64,
     ylabel_w: f64,
@@ -914,7 +954,7 @@ fn layout_panel(
         .iter()
         .map(|t| text_size(&t.label, z.tick).0)
         .fold(0.0, f64::max);
-    let ylabel_w = if y_title.is_empty() {
+    let ylabel_w = if y_title.0.is_empty() && y_title.1.is_empty() {
         0.0
     } else {
         z.axis * 1.5
@@ -991,15 +1031,14 @@ fn draw_panel<DB: DrawingBackend>(
     };
 
     let mut lay = layout_panel(panel, &d, cell, legend_right, footnotes.len(), z, name)?;
-    // Auto: an inside legend that would hide more than 2 % of the ink goes outside instead
-    // (if the panel has room for that).
+    // Auto: an inside legend that would hide more than 2 % of the ink goes outside instead,
+    // if the plot keeps at least 60 % of its width.
     let mut ink = ink_points(&lay.f, &d, panel, 3.0 * s);
     if let (Some(l), false, LegendPosition::Auto) = (&legend, outside, panel.legend) {
         let (_, covered) = legend_origin(l, &lay.f, &ink, panel, false, z);
         if covered as f64 > 0.02 * ink.len() as f64 {
-            if let Ok(wide) =
-                layout_panel(panel, &d, cell, l.w + 2.0 * z.pad, footnotes.len(), z, name)
-            {
+            let wide = layout_panel(panel, &d, cell, l.w + 2.0 * z.pad, footnotes.len(), z, name);
+            if let Some(wide) = wide.ok().filter(|w| w.f.r.width() >= 0.6 * lay.f.r.width()) {
                 lay = wide;
                 outside = true;
                 ink = ink_points(&lay.f, &d, panel, 3.0 * s);
@@ -1044,40 +1083,41 @@ fn draw_panel<DB: DrawingBackend>(
     }
     draw_point_labels(p, &f, panel, &ink, &mut obstacles)?;
 
-    // Texts around the plot.
+    // Texts around the plot, centred on it and kept inside the panel.
+    let cx = (f.r.x0 + f.r.x1) / 2.0;
+    let room = 2.0 * (cx - cell.x0).min(cell.x1 - cx) - 2.0 * z.pad;
+    let centre = (HPos::Center, VPos::Center);
     if !panel.title.is_empty() {
-        p.text(
-            &panel.title,
-            ((f.r.x0 + f.r.x1) / 2.0, cell.y0 + z.pad + z.title * 0.8),
-            z.title,
-            TEXT,
-            (HPos::Center, VPos::Center),
-        )?;
+        let at = (cx, cell.y0 + z.pad + z.title * 0.8);
+        p.text_fit((&panel.title, ""), at, z.title, room, centre, false)?;
     }
     let xt_y = f.r.y1 + z.tick_len + 3.0 * s;
     let xl_y = xt_y + tick_h + xlabel_h * 0.5;
-    p.text(
-        &x_title,
-        ((f.r.x0 + f.r.x1) / 2.0, xl_y),
+    p.text_fit(
+        (&x_title.0, &x_title.1),
+        (cx, xl_y),
         z.axis,
-        TEXT,
-        (HPos::Center, VPos::Center),
+        room,
+        centre,
+        false,
     )?;
     let yl_x = cell.x0 + z.pad + ylabel_w * 0.5;
-    p.text_styled(
-        &y_title,
+    let y_room = f.r.height() + 2.0 * z.tick;
+    p.text_fit(
+        (&y_title.0, &y_title.1),
         (yl_x, (f.r.y0 + f.r.y1) / 2.0),
         z.axis,
-        TEXT,
-        (HPos::Center, VPos::Center),
+        y_room,
+        centre,
         true,
     )?;
     for (k, note) in footnotes.iter().enumerate() {
         let y = cell.y1 - z.pad - foot_h + (k as f64 + 0.5) * z.note * 1.3;
+        let (t, size) = fit_text(note, "", z.note, cell.width() - 2.0 * z.pad);
         p.text(
-            note,
+            &t,
             (cell.x0 + z.pad, y),
-            z.note,
+            size,
             NOTE,
             (HPos::Left, VPos::Center),
         )?;
@@ -1641,4 +1681,29 @@ fn draw_point_labels<DB: DrawingBackend>(
         obstacles.push(chosen);
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_titles_are_shrunk_then_shortened_keeping_the_multiplier() {
+        assert!(crate::font::ensure_registered());
+        let label = "Tangential displacement of the pad centre node";
+        let full = text_size(&format!("{label}  (×10⁻⁶)"), 20.0).0;
+        // Room for 90 %: shrinking to 90 % of the size is enough (widths scale with the size,
+        // up to the rounding of each glyph advance to whole pixels, hence the 2 px slack).
+        let (t, size) = fit_text(label, "  (×10⁻⁶)", 20.0, 0.9 * full);
+        assert_eq!(t, format!("{label}  (×10⁻⁶)"));
+        assert!(size < 20.0 && size >= 15.0 && text_size(&t, size).0 <= 0.9 * full + 2.0);
+        // Room for 40 %: at 75 % size it still does not fit, so the label is cut.
+        let (t, size) = fit_text(label, "  (×10⁻⁶)", 20.0, 0.4 * full);
+        assert_eq!(size, 15.0);
+        assert!(
+            t.ends_with("…  (×10⁻⁶)") && t.starts_with("Tangential"),
+            "{t}"
+        );
+        assert!(text_size(&t, size).0 <= 0.4 * full, "{t}");
+    }
 }
