@@ -1696,7 +1696,7 @@ mod tests {
         // up to the rounding of each glyph advance to whole pixels, hence the 2 px slack).
         let (t, size) = fit_text(label, "  (×10⁻⁶)", 20.0, 0.9 * full);
         assert_eq!(t, format!("{label}  (×10⁻⁶)"));
-        assert!(size < 20.0 && size >= 15.0 && text_size(&t, size).0 <= 0.9 * full + 2.0);
+        assert!((15.0..20.0).contains(&size) && text_size(&t, size).0 <= 0.9 * full + 2.0);
         // Room for 40 %: at 75 % size it still does not fit, so the label is cut.
         let (t, size) = fit_text(label, "  (×10⁻⁶)", 20.0, 0.4 * full);
         assert_eq!(size, 15.0);
