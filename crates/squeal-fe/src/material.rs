@@ -226,7 +226,7 @@ fn invert_spd(a: &Voigt6) -> Result<Voigt6, MaterialError> {
 /// third axis is `axis` normalized.
 fn frame_with_axis(axis: [f64; 3]) -> Result<[[f64; 3]; 3], MaterialError> {
     let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
-    if !(n > 0.0) {
+    if n.is_nan() || n <= 0.0 {
         return Err(MaterialError::ZeroAxis);
     }
     let e3 = axis.map(|v| v / n);

@@ -65,14 +65,14 @@ impl Quadrature {
     /// The 14-point rule of degree 5 with positive weights (Walkington 2000, "Quadrature on
     /// simplices of arbitrary dimension", Keast's rule #6). Exact for the consistent mass of
     /// straight-sided tet10 elements (degree 4). Constants re-derived to 25 digits from the six
-    /// moment equations of the invariant polynomials of degree ≤ 5.
+    /// moment equations of the invariant polynomials of degree ≤ 5, rounded to f64.
     pub fn fourteen_point() -> Self {
-        const A1: f64 = 0.092_735_250_310_891_226_402;
-        const A2: f64 = 0.310_885_919_263_300_609_797;
-        const B: f64 = 0.045_503_704_125_649_649_492;
-        const W1: f64 = 0.012_248_840_519_393_658_257;
-        const W2: f64 = 0.018_781_320_953_002_641_800;
-        const W3: f64 = 0.007_091_003_462_846_911_073;
+        const A1: f64 = 0.092_735_250_310_891_22;
+        const A2: f64 = 0.310_885_919_263_300_6;
+        const B: f64 = 0.045_503_704_125_649_65;
+        const W1: f64 = 0.012_248_840_519_393_659;
+        const W2: f64 = 0.018_781_320_953_002_643;
+        const W3: f64 = 0.007_091_003_462_846_911;
         let mut points = orbit4(A1).to_vec();
         points.extend(orbit4(A2));
         points.extend(orbit6(B));

@@ -26,10 +26,11 @@ fn strain(c: &Voigt6, sigma: [f64; 6]) -> [f64; 6] {
             .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
             .unwrap();
         a.swap(k, p);
-        for i in k + 1..6 {
-            let f = a[i][k] / a[k][k];
-            for j in k..7 {
-                a[i][j] -= f * a[k][j];
+        let pivot = a[k].clone();
+        for row in a.iter_mut().skip(k + 1) {
+            let f = row[k] / pivot[k];
+            for (x, p) in row.iter_mut().zip(&pivot).skip(k) {
+                *x -= f * p;
             }
         }
     }

@@ -73,10 +73,10 @@ fn linear_field_passes_the_patch_test() {
     let (sym, val) = (sys.k.symbolic(), sys.k.val());
     let mut r = vec![0.0; u.len()];
     let mut row_abs = vec![0.0; u.len()];
-    for col in 0..u.len() {
+    for (col, uc) in u.iter().enumerate() {
         for k in sym.col_ptr()[col]..sym.col_ptr()[col + 1] {
-            r[sym.row_idx()[k]] += val[k] * u[col];
-            row_abs[sym.row_idx()[k]] += (val[k] * u[col]).abs();
+            r[sym.row_idx()[k]] += val[k] * uc;
+            row_abs[sym.row_idx()[k]] += (val[k] * uc).abs();
         }
     }
     let boundary = on_box_boundary(&mesh);

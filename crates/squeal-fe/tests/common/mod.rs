@@ -83,7 +83,7 @@ pub fn curve_midside(mesh: &mut Mesh, amp: f64, seed: u64, interior_only: bool) 
     let vertex = is_vertex(mesh);
     let mut rng = Rng(seed);
     for n in 0..mesh.num_nodes() {
-        if !vertex[n] && !(interior_only && boundary[n]) {
+        if !vertex[n] && (!interior_only || !boundary[n]) {
             for d in 0..3 {
                 mesh.nodes[n][d] += amp * rng.next();
             }
@@ -95,9 +95,9 @@ pub fn curve_midside(mesh: &mut Mesh, amp: f64, seed: u64, interior_only: bool) 
 pub fn matvec(a: &Sparse, x: &[f64]) -> Vec<f64> {
     let s = a.symbolic();
     let mut y = vec![0.0; a.nrows()];
-    for c in 0..a.ncols() {
+    for (c, xc) in x.iter().enumerate().take(a.ncols()) {
         for k in s.col_ptr()[c]..s.col_ptr()[c + 1] {
-            y[s.row_idx()[k]] += a.val()[k] * x[c];
+            y[s.row_idx()[k]] += a.val()[k] * xc;
         }
     }
     y
