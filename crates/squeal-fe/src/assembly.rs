@@ -140,12 +140,7 @@ fn node_range(elements: &[[u32; 10]]) -> (usize, usize) {
 }
 
 fn check_inputs(mesh: &Mesh, materials: &MaterialTable, dofmap: &DofMap) -> Result<(), FeError> {
-    if materials.element_entry.len() != mesh.num_elements() {
-        return Err(FeError::TableMismatch {
-            table: materials.element_entry.len(),
-            mesh: mesh.num_elements(),
-        });
-    }
+    check_materials(mesh, materials)?;
     if dofmap.num_nodes() != mesh.num_nodes() {
         return Err(FeError::DofMapMismatch {
             map: dofmap.num_nodes(),
@@ -163,6 +158,29 @@ fn check_inputs(mesh: &Mesh, materials: &MaterialTable, dofmap: &DofMap) -> Resu
         }
     }
     Ok(())
+}
+
+/// The table has one valid entry index per element.
+fn check_materials(mesh: &Mesh, materials: &MaterialTable) -> Result<(), FeError> {
+    if materials.element_entry.len() != mesh.num_elements() {
+        return Err(FeError::TableMismatch {
+            table: materials.element_entry.len(),
+            mesh: mesh.num_elements(),
+        });
+    }
+    let entries = materials.entries.len();
+    match materials
+        .element_entry
+        .iter()
+        .position(|&i| i as usize >= entries)
+    {
+        Some(e) => Err(FeError::MaterialIndex {
+            element: mesh.element_ids[e],
+            index: materials.element_entry[e],
+            entries,
+        }),
+        None => Ok(()),
+    }
 }
 
 /// Stiffness and scalar mass of element `e` into the buffers.
@@ -471,12 +489,7 @@ pub fn total_mass(
     materials: &MaterialTable,
     rule: &Quadrature,
 ) -> Result<f64, FeError> {
-    if materials.element_entry.len() != mesh.num_elements() {
-        return Err(FeError::TableMismatch {
-            table: materials.element_entry.len(),
-            mesh: mesh.num_elements(),
-        });
-    }
+    check_materials(mesh, materials)?;
     let mut m = 0.0;
     for e in 0..mesh.num_elements() {
         let rho = materials.entries[materials.element_entry[e] as usize]

@@ -68,6 +68,12 @@ pub enum FeError {
     TooManyNodes { nodes: usize, max: usize },
     #[error("the material table covers {table} elements, the mesh has {mesh}")]
     TableMismatch { table: usize, mesh: usize },
+    #[error("element {element} refers to material entry {index}, but the table has {entries}")]
+    MaterialIndex {
+        element: u64,
+        index: u32,
+        entries: usize,
+    },
     #[error("the dof map was built for {map} nodes, the mesh has {mesh}")]
     DofMapMismatch { map: usize, mesh: usize },
     #[error("element {element}: {source}")]

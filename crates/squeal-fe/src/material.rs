@@ -374,22 +374,25 @@ impl MaterialTable {
                 others: missing.len() - 1,
             });
         }
-        // Keep the used candidates, in order of first use by element.
-        let mut new_index: Vec<Option<u32>> = vec![None; candidates.len()];
-        let mut slots: Vec<Option<Result<MaterialEntry, FeError>>> =
-            candidates.into_iter().map(Some).collect();
-        let mut entries = Vec::new();
-        let mut element_entry = Vec::with_capacity(assigned.len());
-        for a in assigned.iter().flatten() {
-            let c = *a as usize;
-            if new_index[c].is_none() {
-                if let Some(slot) = slots[c].take() {
-                    entries.push(slot?);
-                }
-                new_index[c] = Some((entries.len() - 1) as u32);
-            }
-            element_entry.push(new_index[c].unwrap_or(0));
+        // Keep the candidates some element ends up with, in order; an invalid one is an error
+        // only then.
+        let mut used = vec![false; candidates.len()];
+        for &c in assigned.iter().flatten() {
+            used[c as usize] = true;
         }
+        let mut remap = vec![0u32; candidates.len()];
+        let mut entries = Vec::new();
+        for (c, candidate) in candidates.into_iter().enumerate() {
+            if used[c] {
+                remap[c] = entries.len() as u32;
+                entries.push(candidate?);
+            }
+        }
+        let element_entry = assigned
+            .iter()
+            .flatten()
+            .map(|&c| remap[c as usize])
+            .collect();
         Ok(Self {
             entries,
             element_entry,

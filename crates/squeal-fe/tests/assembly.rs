@@ -172,6 +172,17 @@ fn bad_inputs_are_errors() {
         assemble(&other, &m2, &dofs),
         Err(squeal_fe::FeError::DofMapMismatch { .. })
     ));
+    // A hand-made table pointing past its entries.
+    let mut broken = materials.clone();
+    broken.element_entry[2] = 5;
+    assert!(matches!(
+        assemble(&mesh, &broken, &dofs),
+        Err(squeal_fe::FeError::MaterialIndex {
+            element: 3,
+            index: 5,
+            entries: 1
+        })
+    ));
     // An inverted element is named by its file id.
     let mut inverted = mesh.clone();
     let el = &mut inverted.elements[3];
