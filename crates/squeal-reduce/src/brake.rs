@@ -13,7 +13,7 @@
 use crate::craig_bampton::{
     PartSpec, ReduceError, ReduceOptions, ReduceReport, Stage, reduce_part,
 };
-use crate::interface::{Axis, contact_nodes, patches};
+use crate::interface::{Axis, InterfaceError, contact_nodes, patches};
 use crate::rom::{
     BuildRecord, InterfaceKind, MeshInfo, ReducedModel, RomError, RomHeader, read_header,
     sha256_file,
@@ -403,6 +403,9 @@ pub fn reduce_brake_loaded(
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     let t0 = Instant::now();
     inputs.validate()?;
+    for (loaded, (name, input)) in [&disc, &pad].into_iter().zip(inputs.parts()) {
+        check_sets(&loaded.mesh, name, input, inputs)?;
+    }
     let disc_points = contact_positions(&disc.mesh, &inputs.disc, inputs)?;
     let pad_points = contact_positions(&pad.mesh, &inputs.pad, inputs)?;
     let (pairs, tolerance) =
@@ -438,6 +441,61 @@ pub fn reduce_brake_loaded(
         total: t0.elapsed() + read,
     };
     Ok((model, report))
+}
+
+/// Checks a part's node sets before any work: every set named exists and is not empty, and
+/// no boundary node (contact node or face node, piston node along the normal) is restrained
+/// in a direction it keeps.
+pub fn check_sets(
+    mesh: &Mesh,
+    name: &str,
+    input: &PartInput,
+    inputs: &BrakeInputs,
+) -> Result<(), ReduceError> {
+    let set = |s: &str| -> Result<&[u32], ReduceError> {
+        let nodes = mesh
+            .node_set(s)
+            .ok_or_else(|| InterfaceError::MissingSet(s.into()))?;
+        if nodes.is_empty() {
+            return Err(InterfaceError::EmptySet(s.into()).into());
+        }
+        Ok(nodes)
+    };
+    let contact_set = match inputs.interface {
+        InterfaceKind::Node => &input.contact_set,
+        InterfaceKind::Patch => &input.contact_face_set,
+    };
+    let mut boundary: Vec<(&str, &[u32], [bool; 3])> =
+        vec![(contact_set, set(contact_set)?, [true; 3])];
+    if let Some(p) = &input.piston_set {
+        let mut dirs = [false; 3];
+        dirs[inputs.normal_direction.min(2)] = true;
+        boundary.push((p, set(p)?, dirs));
+    }
+    for r in &input.restraints {
+        let held: &[u32] = match &r.nodes {
+            NodeSelection::Set(s) => set(s)?,
+            NodeSelection::Indices(v) => v,
+        };
+        let mut held = held.to_vec();
+        held.sort_unstable();
+        for (bset, nodes, kept) in &boundary {
+            for &n in nodes.iter() {
+                let Ok(_) = held.binary_search(&n) else {
+                    continue;
+                };
+                if let Some(d) = (0..3).find(|&d| kept[d] && r.directions[d]) {
+                    return Err(ReduceError::BoundaryRestrained {
+                        part: name.into(),
+                        set: (*bset).into(),
+                        node: mesh.node_ids.get(n as usize).copied().unwrap_or(0),
+                        direction: ['x', 'y', 'z'][d],
+                    });
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Positions of a part's contact points, in the order of its reduced dofs: the `CONTACT`

@@ -1,0 +1,177 @@
+//! The brake-level entry point on the bundled coarse meshes: the 158-dof layout, the file
+//! round trip, freshness of an existing file, and the automatic mode choice.
+
+mod common;
+
+use common::{coarse, coarse_brake, coarse_inputs, mesh_path};
+use squeal_fe::MaterialTable;
+use squeal_reduce::brake::{Freshness, ModeChoice, TOOL_VERSION, freshness, pair_contact_points};
+use squeal_reduce::craig_bampton::{PartSpec, ReduceOptions, reduce_part};
+use squeal_reduce::rom::{DofLabel, InterfaceKind, PointRole, ReducedModel, read_header};
+use std::path::PathBuf;
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("squeal-reduce-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn bundled_brake_has_158_dofs_in_the_papers_layout() {
+    for interface in [InterfaceKind::Patch, InterfaceKind::Node] {
+        let model = coarse_brake(interface);
+        // Sec. 2.1: 9 contact points x 3 + 50 modes on the disc, the same plus 4 piston
+        // dofs on the pad.
+        assert_eq!(model.size(), 158);
+        let disc = model.part("disc").unwrap();
+        let pad = model.part("pad").unwrap();
+        assert_eq!(model.parts[0].info.name, "disc");
+        assert_eq!((disc.size(), pad.size()), (77, 81));
+        let count = |p: &squeal_reduce::rom::ReducedPart, role: PointRole| {
+            p.info.points.iter().filter(|q| q.role == role).count()
+        };
+        assert_eq!(count(disc, PointRole::Contact), 9);
+        assert_eq!(count(pad, PointRole::Contact), 9);
+        assert_eq!(count(pad, PointRole::Piston), 4);
+        // Dof labels: points first (x, y, z per contact point, z per piston), then modes.
+        assert_eq!(
+            pad.info.dofs[27],
+            DofLabel::Point {
+                point: 9,
+                direction: 2
+            }
+        );
+        assert_eq!(pad.info.dofs[31], DofLabel::Mode { mode: 0 });
+        assert_eq!(pad.info.fixed_interface_hz.len(), 50);
+        // The contact points face each other: the 9 pairs are found with their own indices
+        // (both parts number patches the same way).
+        let positions = |p: &squeal_reduce::rom::ReducedPart| -> Vec<[f64; 3]> {
+            p.info
+                .points
+                .iter()
+                .filter(|q| q.role == PointRole::Contact)
+                .map(|q| q.position)
+                .collect()
+        };
+        let (pairs, tol) = pair_contact_points(&positions(disc), &positions(pad), 0.05).unwrap();
+        for (k, p) in pairs.iter().enumerate() {
+            assert_eq!((p.disc_point, p.pad_point), (k, k));
+            // Node interface: the same node coordinates bit for bit; patches: centroids
+            // of the same footprint, equal to the arcs' discretisation (1e-5 m measured
+            // in tests/interface_bundled.rs), far inside 5% of the 16.7 mm spacing.
+            assert!(p.distance < 1e-5 && tol > 5e-4, "{p:?} {tol}");
+        }
+        // Record of the options.
+        let build = disc.info.build.as_ref().unwrap();
+        assert_eq!(build.modes, ModeChoice::Fixed(50));
+        assert_eq!(build.restraints, vec![("CLAMP".to_string(), [true; 3])]);
+        assert_eq!(model.tool_version, TOOL_VERSION);
+    }
+}
+
+#[test]
+fn file_round_trip_and_freshness() {
+    let model = coarse_brake(InterfaceKind::Patch);
+    let dir = temp_dir("fresh");
+    let path = dir.join("brake.rom");
+    let inputs = coarse_inputs(InterfaceKind::Patch);
+    assert_eq!(freshness(&path, &inputs).unwrap(), Freshness::Missing);
+    model.write(&path).unwrap();
+    let back = ReducedModel::read(&path).unwrap();
+    assert_eq!(&back, model);
+    assert_eq!(read_header(&path).unwrap().parts[1].name, "pad");
+    assert_eq!(freshness(&path, &inputs).unwrap(), Freshness::Fresh);
+
+    // Other options: each difference is named.
+    let mut other = inputs.clone();
+    other.modes = ModeChoice::Fixed(40);
+    let Freshness::Stale(reasons) = freshness(&path, &other).unwrap() else {
+        panic!("40 modes asked for, 50 in the file");
+    };
+    assert!(reasons.iter().any(|r| r.contains("modes")), "{reasons:?}");
+    other = inputs.clone();
+    other.interface = InterfaceKind::Node;
+    assert!(matches!(
+        freshness(&path, &other).unwrap(),
+        Freshness::Stale(_)
+    ));
+
+    // The same mesh under another name is the same mesh (by SHA-256); a changed byte is not.
+    let copy = dir.join("pad.inp");
+    std::fs::copy(mesh_path("pad_coarse.inp"), &copy).unwrap();
+    other = inputs.clone();
+    other.pad.mesh = copy.clone();
+    assert_eq!(freshness(&path, &other).unwrap(), Freshness::Fresh);
+    let mut text = std::fs::read_to_string(&copy).unwrap();
+    text.push_str("** edited\n");
+    std::fs::write(&copy, text).unwrap();
+    let Freshness::Stale(reasons) = freshness(&path, &other).unwrap() else {
+        panic!("an edited mesh");
+    };
+    assert!(
+        reasons.iter().any(|r| r.contains("pad: mesh")),
+        "{reasons:?}"
+    );
+
+    // A file without bases does not serve inputs that keep them; garbage is stale.
+    let mut bare = model.clone();
+    for p in &mut bare.parts {
+        p.basis = None;
+    }
+    bare.write(&path).unwrap();
+    let Freshness::Stale(reasons) = freshness(&path, &inputs).unwrap() else {
+        panic!("no basis");
+    };
+    assert!(reasons.iter().any(|r| r.contains("basis")), "{reasons:?}");
+    let mut no_basis = inputs.clone();
+    no_basis.keep_basis = false;
+    assert_eq!(freshness(&path, &no_basis).unwrap(), Freshness::Fresh);
+    std::fs::write(&path, b"\x10\0\0\0\0\0\0\0{\"a\":1}").unwrap();
+    assert!(matches!(
+        freshness(&path, &inputs).unwrap(),
+        Freshness::Stale(_)
+    ));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn automatic_choice_keeps_exactly_the_modes_below_the_cutoff() {
+    // The pad's fixed-interface modes below 15 kHz, counted by a Sturm count, against the 50
+    // lowest computed with a fixed count: the same modes, the same frequencies.
+    let reference = &coarse_brake(InterfaceKind::Patch)
+        .part("pad")
+        .unwrap()
+        .info
+        .fixed_interface_hz;
+    let cutoff = 15_000.0;
+    let below = reference.iter().filter(|&&f| f < cutoff).count();
+    assert!(below > 3 && below < 50);
+    let loaded = coarse("pad");
+    let materials = MaterialTable::from_mesh(&loaded.mesh, &[]).unwrap();
+    let inputs = coarse_inputs(InterfaceKind::Patch);
+    let spec = PartSpec {
+        name: "pad".into(),
+        mesh: loaded.info.clone(),
+        restraints: inputs.pad.restraints.clone(),
+        interface: InterfaceKind::Patch,
+        contact_set: "CONTACT".into(),
+        contact_face_set: "CONTACT_FACE".into(),
+        grid: [3, 3],
+        axis: inputs.axis,
+        piston_set: Some("PISTON".into()),
+        normal_direction: 2,
+        modes: 100,
+    };
+    let opts = ReduceOptions {
+        modes_below_hz: Some(cutoff),
+        ..ReduceOptions::default()
+    };
+    let (part, report) = reduce_part(&loaded.mesh, &materials, &spec, &opts, &mut |_| {}).unwrap();
+    assert_eq!(part.info.fixed_interface_hz.len(), below);
+    assert_eq!(report.sturm.map(|s| s.1), Some(below));
+    assert_eq!(part.size(), 31 + below);
+    for (a, b) in part.info.fixed_interface_hz.iter().zip(reference) {
+        // Two converged solves (residual tolerance 1e-10) of the same problem.
+        assert!((a - b).abs() < 1e-9 * b, "{a} vs {b}");
+    }
+}
