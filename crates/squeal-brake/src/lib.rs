@@ -14,9 +14,11 @@
 
 pub mod analysis;
 pub mod assemble;
+pub mod dynamics;
 pub mod equilibrium;
 pub mod error;
 pub mod modal;
+pub mod modal_brake;
 pub mod model;
 pub mod spectrum;
 pub mod sweep;
