@@ -34,6 +34,12 @@ enum Command {
     Reduce(commands::reduce::ReduceArgs),
     /// Static equilibrium, complex eigenvalues against friction and the Hopf point mu0
     Stability(commands::stability::StabilityArgs),
+    /// Limit cycle by the Constrained Harmonic Balance Method
+    Chbm(commands::chbm::ChbmArgs),
+    /// Parametric stability studies: piston pressure, contact stiffness, modal damping
+    Study(commands::study::StudyArgs),
+    /// CHBM against time integration: accuracy, speed, robustness
+    Compare(commands::compare::CompareArgs),
 }
 
 fn main() -> ExitCode {
@@ -48,6 +54,9 @@ fn main() -> ExitCode {
         Command::Mesh(cmd) => commands::mesh::run(cmd),
         Command::Reduce(args) => commands::reduce::run(args),
         Command::Stability(args) => commands::stability::run(args),
+        Command::Chbm(args) => commands::chbm::run(args),
+        Command::Study(args) => commands::study::run(args),
+        Command::Compare(args) => commands::compare::run(args),
     };
     match result {
         Ok(code) => code,
