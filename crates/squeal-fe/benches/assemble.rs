@@ -2,9 +2,10 @@
 //! readable, the bundled fine brake meshes (meshes/disc_fine.inp, meshes/pad_fine.inp), on a
 //! rayon pool of 1 and of 2 threads.
 //!
-//! Before criterion's timings, one run per case prints a table with the wall and CPU time and
-//! the peak resident memory of that run (VmHWM from /proc/self/status after resetting it through
-//! /proc/self/clear_refs; the mesh itself is already resident and counted).
+//! Before criterion's timings, a table gives per case the best wall time of three runs with
+//! its CPU time (all threads), and the peak resident memory of the first run (VmHWM from
+//! /proc/self/status after resetting it through /proc/self/clear_refs; the mesh itself is
+//! already resident and counted in "before").
 //!
 //! `nice cargo bench -p squeal-fe --bench assemble`
 
@@ -111,12 +112,20 @@ fn table(cases: &[Case]) {
             let before = status_kb("VmRSS:").unwrap_or(0);
             let (t, c) = (Instant::now(), cpu_seconds());
             let sys = p.install(|| run(case));
-            let (secs, cpu) = (t.elapsed().as_secs_f64(), cpu_seconds() - c);
+            let (mut secs, mut cpu) = (t.elapsed().as_secs_f64(), cpu_seconds() - c);
             let peak = if reset {
                 status_kb("VmHWM:").unwrap_or(0)
             } else {
                 0
             };
+            // Best wall time of three runs: the machine is shared.
+            for _ in 0..2 {
+                let (t, c) = (Instant::now(), cpu_seconds());
+                drop(black_box(p.install(|| run(case))));
+                if t.elapsed().as_secs_f64() < secs {
+                    (secs, cpu) = (t.elapsed().as_secs_f64(), cpu_seconds() - c);
+                }
+            }
             println!(
                 "| {} | {} | {} | {} | {} | {} | {threads} | {secs:.3} | {cpu:.2} | {:.0} | {:.0} |",
                 case.name,
