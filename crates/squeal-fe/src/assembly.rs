@@ -85,43 +85,7 @@ pub fn assemble_with(
     check_inputs(mesh, materials, dofmap)?;
     let graph = NodeGraph::new(mesh);
     let pattern = Pattern::new(&graph, dofmap);
-    let mut k_val = vec![0.0; pattern.k_rows.len()];
-    let mut m_val = vec![0.0; pattern.m_rows.len()];
-    {
-        let k_start: Vec<usize> = pattern.layout.iter().map(|l| l.k_start).collect();
-        let m_start: Vec<usize> = pattern.layout.iter().map(|l| l.m_start).collect();
-        let mut k_slices = split_by_start(&mut k_val, &k_start);
-        let mut m_slices = split_by_start(&mut m_val, &m_start);
-        let mut cursor = vec![0usize; mesh.num_nodes()];
-        let mut k_buf = vec![[[0.0; 30]; 30]; CHUNK.min(mesh.num_elements())];
-        let mut m_buf = vec![[[0.0; 10]; 10]; CHUNK.min(mesh.num_elements())];
-        for c0 in (0..mesh.num_elements()).step_by(CHUNK) {
-            let c1 = (c0 + CHUNK).min(mesh.num_elements());
-            let statuses: Vec<Result<(), FeError>> = k_buf[..c1 - c0]
-                .par_iter_mut()
-                .zip(m_buf[..c1 - c0].par_iter_mut())
-                .enumerate()
-                .map(|(i, (ke, me))| element_matrices(mesh, materials, options, c0 + i, ke, me))
-                .collect();
-            statuses.into_iter().collect::<Result<(), FeError>>()?;
-            let ctx = ScatterContext {
-                mesh,
-                dofmap,
-                graph: &graph,
-                pattern: &pattern,
-                k_buf: &k_buf,
-                m_buf: &m_buf,
-            };
-            // Only the nodes of this chunk's elements have anything to add.
-            let (lo, hi) = node_range(&mesh.elements[c0..c1]);
-            k_slices[lo..hi]
-                .par_iter_mut()
-                .zip(m_slices[lo..hi].par_iter_mut())
-                .zip(cursor[lo..hi].par_iter_mut())
-                .enumerate()
-                .for_each(|(i, ((ks, ms), cur))| ctx.scatter_node(lo + i, c0, c1, cur, ks, ms));
-        }
-    }
+    let (k_val, m_val) = fill_values(mesh, materials, dofmap, options, &graph, &pattern)?;
     let n = dofmap.num_free();
     let k_sym = SymbolicSparseColMat::new_checked(n, n, pattern.k_col_ptr, None, pattern.k_rows);
     let m_sym = SymbolicSparseColMat::new_checked(n, n, pattern.m_col_ptr, None, pattern.m_rows);
@@ -129,6 +93,55 @@ pub fn assemble_with(
         k: SparseColMat::new(k_sym, k_val),
         m: SparseColMat::new(m_sym, m_val),
     })
+}
+
+/// The values of `K` and `M` in the layout of `pattern`: chunk by chunk, the element matrices
+/// in parallel, then every node of the chunk adds them to its own columns in parallel.
+fn fill_values(
+    mesh: &Mesh,
+    materials: &MaterialTable,
+    dofmap: &DofMap,
+    options: &AssemblyOptions,
+    graph: &NodeGraph,
+    pattern: &Pattern,
+) -> Result<(Vec<f64>, Vec<f64>), FeError> {
+    let mut k_val = vec![0.0; pattern.k_rows.len()];
+    let mut m_val = vec![0.0; pattern.m_rows.len()];
+    let k_start: Vec<usize> = pattern.layout.iter().map(|l| l.k_start).collect();
+    let m_start: Vec<usize> = pattern.layout.iter().map(|l| l.m_start).collect();
+    let mut k_slices = split_by_start(&mut k_val, &k_start);
+    let mut m_slices = split_by_start(&mut m_val, &m_start);
+    let mut cursor = vec![0usize; mesh.num_nodes()];
+    let mut k_buf = vec![[[0.0; 30]; 30]; CHUNK.min(mesh.num_elements())];
+    let mut m_buf = vec![[[0.0; 10]; 10]; CHUNK.min(mesh.num_elements())];
+    for c0 in (0..mesh.num_elements()).step_by(CHUNK) {
+        let c1 = (c0 + CHUNK).min(mesh.num_elements());
+        let statuses: Vec<Result<(), FeError>> = k_buf[..c1 - c0]
+            .par_iter_mut()
+            .zip(m_buf[..c1 - c0].par_iter_mut())
+            .enumerate()
+            .map(|(i, (ke, me))| element_matrices(mesh, materials, options, c0 + i, ke, me))
+            .collect();
+        // The first error in element order.
+        statuses.into_iter().collect::<Result<(), FeError>>()?;
+        let ctx = ScatterContext {
+            mesh,
+            dofmap,
+            graph,
+            pattern,
+            k_buf: &k_buf,
+            m_buf: &m_buf,
+        };
+        // Only the nodes of this chunk's elements have anything to add.
+        let (lo, hi) = node_range(&mesh.elements[c0..c1]);
+        k_slices[lo..hi]
+            .par_iter_mut()
+            .zip(m_slices[lo..hi].par_iter_mut())
+            .zip(cursor[lo..hi].par_iter_mut())
+            .enumerate()
+            .for_each(|(i, ((ks, ms), cur))| ctx.scatter_node(lo + i, c0, c1, cur, ks, ms));
+    }
+    Ok((k_val, m_val))
 }
 
 /// The range `lo..hi` of node indices used by `elements`.
