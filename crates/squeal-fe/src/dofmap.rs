@@ -58,6 +58,8 @@ pub enum DofStatus {
     Unused,
 }
 
+/// Used by an element and not restrained; replaced by the free dof's number at the end.
+const PENDING: u32 = 0;
 const RESTRAINED: u32 = u32::MAX;
 const UNUSED: u32 = u32::MAX - 1;
 /// Largest number of free dofs the compact `u32` table can hold.
@@ -96,7 +98,7 @@ impl DofMap {
                         num_nodes: n,
                     });
                 }
-                state[3 * i..3 * i + 3].fill(0);
+                state[3 * i..3 * i + 3].fill(PENDING);
             }
         }
         for r in restraints {
@@ -123,7 +125,7 @@ impl DofMap {
         }
         let mut global_of_free = Vec::new();
         for (g, s) in state.iter_mut().enumerate() {
-            if *s == 0 {
+            if *s == PENDING {
                 *s = global_of_free.len() as u32;
                 global_of_free.push(g);
             }
