@@ -277,6 +277,17 @@ fn print_summary(
             println!("        warning: {w}");
         }
     }
+    if let Some(ModeChoice::Auto { fmax_hz, factor }) = model
+        .parts
+        .first()
+        .and_then(|p| p.info.build.as_ref())
+        .map(|b| b.modes)
+    {
+        println!(
+            "  modes: all fixed-interface modes below {factor} x {fmax_hz} Hz = {} Hz",
+            factor * fmax_hz
+        );
+    }
     println!();
     print_timings(report, write_time);
     println!();

@@ -22,7 +22,7 @@ use crate::rom::{
     ReducedPart, RestraintInfo,
 };
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
-use faer::{Accum, Mat, Par};
+use faer::{Accum, Mat, MatRef, Par};
 use rayon::prelude::*;
 use squeal_eigs::{EigError, EigOptions, SparseCholesky, lowest_modes_with_factor};
 use squeal_fe::{DofMap, FeError, MaterialTable, Restraint, assemble};
@@ -301,11 +301,10 @@ pub fn reduce_part(
     for j in 0..nm {
         split.expand_into(modes.vectors.col(j), basis.col_mut(nb + j));
     }
-    let mut k_hat = project(&system.k, &basis);
-    let mut m_hat = project(&system.m, &basis);
+    let (mut k_hat, mut m_hat) = project_pair(&system.k, &system.m, &basis);
     let modal_mass_deviation = max_deviation_from_identity(&m_hat, nb);
     if opts.orthonormalize && nm > 0 {
-        orthonormalize_modes(&mut basis, &mut k_hat, &mut m_hat, nb, &system, &part)?;
+        orthonormalize_modes(&mut basis, &mut k_hat, &mut m_hat, nb, &part)?;
     }
     let coupling = block_norm(&k_hat, 0..nb, nb..n) / frobenius(&k_hat).max(f64::MIN_POSITIVE);
     clock(Stage::Project, t, &mut timings);
@@ -779,52 +778,60 @@ fn entry(x: &SparseColMat<usize, f64>, r: usize, c: usize) -> f64 {
 /// depend on the thread count.
 const ROW_BLOCK: usize = 4096;
 
-/// Eqs (6)–(7): `Bᵀ X B` for sparse symmetric `X` (both triangles stored) and dense `B`,
-/// symmetrized. `X B` is formed column by column (columns in parallel, each entry summed in
-/// stored order), then `Bᵀ (X B)` as a sum over fixed blocks of rows taken in order: the
-/// result is the same bits for any number of threads.
-fn project(x: &SparseColMat<usize, f64>, basis: &Mat<f64>) -> Mat<f64> {
+/// Eqs (6)–(7): `K̂ = Bᵀ K B` and `M̂ = Bᵀ M B` for sparse symmetric `K`, `M` (both
+/// triangles stored) and dense `B`, symmetrized. Blocks of rows run in parallel: in each, a
+/// row `i` of `X B` sums the stored entries of column `i` of `X` (its row `i`) in stored
+/// order, and the block adds `B_blockᵀ (X B)_block`; the blocks' sums are added in order.
+/// The result is the same bits for any number of threads.
+fn project_pair(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    basis: &Mat<f64>,
+) -> (Mat<f64>, Mat<f64>) {
     let (rows, n) = (basis.nrows(), basis.ncols());
-    let xr = x.as_ref();
-    let columns: Vec<Vec<f64>> = (0..n)
-        .into_par_iter()
-        .map(|j| {
-            let b = basis.col(j);
-            // Column i of a symmetric X is its row i.
-            (0..rows)
-                .map(|i| {
-                    xr.row_idx_of_col(i)
-                        .zip(xr.val_of_col(i))
-                        .map(|(r, v)| v * b[r])
-                        .sum()
-                })
-                .collect()
-        })
-        .collect();
-    let xb = Mat::from_fn(rows, n, |i, j| columns[j][i]);
-    drop(columns);
-    let starts: Vec<usize> = (0..rows).step_by(ROW_BLOCK).collect();
-    let partials: Vec<Mat<f64>> = starts
-        .par_iter()
-        .map(|&r0| {
-            let len = ROW_BLOCK.min(rows - r0);
-            let mut p = Mat::<f64>::zeros(n, n);
-            faer::linalg::matmul::matmul(
-                p.as_mut(),
-                Accum::Replace,
-                basis.subrows(r0, len).transpose(),
-                xb.subrows(r0, len),
-                1.0,
-                Par::Seq,
-            );
-            p
-        })
-        .collect();
-    let mut p = Mat::<f64>::zeros(n, n);
-    for part in &partials {
-        p += part;
+    // Row-major copy of B: a row of X B is then a sum of contiguous rows of B.
+    let mut b_rows = vec![0.0; rows * n];
+    for j in 0..n {
+        for (i, &v) in basis.col(j).iter().enumerate() {
+            b_rows[i * n + j] = v;
+        }
     }
-    Mat::from_fn(n, n, |i, j| 0.5 * (p[(i, j)] + p[(j, i)]))
+    let starts: Vec<usize> = (0..rows).step_by(ROW_BLOCK).collect();
+    let project = |x: &SparseColMat<usize, f64>| {
+        let xr = x.as_ref();
+        let partials: Vec<Mat<f64>> = starts
+            .par_iter()
+            .map(|&r0| {
+                let len = ROW_BLOCK.min(rows - r0);
+                let mut xb = vec![0.0; len * n];
+                for (i, out) in (r0..r0 + len).zip(xb.chunks_exact_mut(n.max(1))) {
+                    for (r, &v) in xr.row_idx_of_col(i).zip(xr.val_of_col(i)) {
+                        for (o, b) in out.iter_mut().zip(&b_rows[r * n..(r + 1) * n]) {
+                            *o += v * b;
+                        }
+                    }
+                }
+                let block = MatRef::from_row_major_slice(&b_rows[r0 * n..(r0 + len) * n], len, n);
+                let xb = MatRef::from_row_major_slice(&xb, len, n);
+                let mut p = Mat::<f64>::zeros(n, n);
+                faer::linalg::matmul::matmul(
+                    p.as_mut(),
+                    Accum::Replace,
+                    block.transpose(),
+                    xb,
+                    1.0,
+                    Par::Seq,
+                );
+                p
+            })
+            .collect();
+        let mut p = Mat::<f64>::zeros(n, n);
+        for part in &partials {
+            p += part;
+        }
+        Mat::from_fn(n, n, |i, j| 0.5 * (p[(i, j)] + p[(j, i)]))
+    };
+    (project(k), project(m))
 }
 
 fn max_deviation_from_identity(m: &Mat<f64>, from: usize) -> f64 {
@@ -839,14 +846,14 @@ fn max_deviation_from_identity(m: &Mat<f64>, from: usize) -> f64 {
     worst
 }
 
-/// Re-orthonormalizes the modal columns in the mass metric (`Φ ← Φ L⁻ᵀ` with
-/// `Φᵀ M Φ = L Lᵀ`) and re-projects.
+/// Re-orthonormalizes the modal columns in the mass metric: with `Φᵀ M Φ = L Lᵀ`,
+/// `Φ ← Φ L⁻ᵀ`, and `K̂ ← Sᵀ K̂ S`, `M̂ ← Sᵀ M̂ S` with `S = diag(I, L⁻ᵀ)` (the projection
+/// of eqs 6–7 on the new basis, done on the small matrices).
 fn orthonormalize_modes(
     basis: &mut Mat<f64>,
     k_hat: &mut Mat<f64>,
     m_hat: &mut Mat<f64>,
     nb: usize,
-    system: &squeal_fe::System,
     part: &str,
 ) -> Result<(), ReduceError> {
     let n = basis.ncols();
@@ -856,23 +863,58 @@ fn orthonormalize_modes(
         part: part.into(),
         what: "the modal block of the reduced mass is not positive definite".into(),
     })?;
-    // Φ L⁻ᵀ: solve X Lᵀ = Φ row by row (forward substitution on Lᵀ from the left).
-    let rows = basis.nrows();
-    let mut x = vec![0.0; nm];
-    for r in 0..rows {
-        for j in 0..nm {
-            let mut s = basis[(r, nb + j)];
-            for k in 0..j {
-                s -= x[k] * l[(j, k)];
+    // L⁻¹ by forward substitution on the identity; S = diag(I, L⁻ᵀ).
+    let mut linv = Mat::<f64>::zeros(nm, nm);
+    for c in 0..nm {
+        for i in c..nm {
+            let mut s = if i == c { 1.0 } else { 0.0 };
+            for k in c..i {
+                s -= l[(i, k)] * linv[(k, c)];
             }
-            x[j] = s / l[(j, j)];
-        }
-        for j in 0..nm {
-            basis[(r, nb + j)] = x[j];
+            linv[(i, c)] = s / l[(i, i)];
         }
     }
-    *k_hat = project(&system.k, basis);
-    *m_hat = project(&system.m, basis);
+    let s = Mat::from_fn(n, n, |i, j| match (i < nb, j < nb) {
+        (true, true) if i == j => 1.0,
+        (false, false) => linv[(j - nb, i - nb)],
+        _ => 0.0,
+    });
+    // Φ L⁻ᵀ, row by row, blocks of rows in parallel.
+    let mut blocks = Vec::new();
+    let mut rest = basis.subcols_mut(nb, nm);
+    while rest.nrows() > 0 {
+        let len = ROW_BLOCK.min(rest.nrows());
+        let (top, bottom) = rest.split_at_row_mut(len);
+        blocks.push(top);
+        rest = bottom;
+    }
+    blocks.into_par_iter().for_each(|mut phi| {
+        let mut row = vec![0.0; nm];
+        for r in 0..phi.nrows() {
+            for (j, x) in row.iter_mut().enumerate() {
+                *x = (j..nm).map(|k| phi[(r, k)] * linv[(k, j)]).sum();
+            }
+            for (j, &x) in row.iter().enumerate() {
+                phi[(r, j)] = x;
+            }
+        }
+    });
+    let congruence = |a: &Mat<f64>| {
+        let mut t = Mat::<f64>::zeros(n, n);
+        faer::linalg::matmul::matmul(t.as_mut(), Accum::Replace, a, &s, 1.0, Par::Seq);
+        let mut out = Mat::<f64>::zeros(n, n);
+        faer::linalg::matmul::matmul(
+            out.as_mut(),
+            Accum::Replace,
+            s.transpose(),
+            &t,
+            1.0,
+            Par::Seq,
+        );
+        Mat::from_fn(n, n, |i, j| 0.5 * (out[(i, j)] + out[(j, i)]))
+    };
+    *k_hat = congruence(k_hat);
+    *m_hat = congruence(m_hat);
     Ok(())
 }
 
@@ -917,13 +959,20 @@ fn frobenius(a: &Mat<f64>) -> f64 {
 }
 
 fn material_infos(materials: &MaterialTable) -> Vec<MaterialInfo> {
+    let mut count = vec![0usize; materials.entries.len()];
+    for &e in &materials.element_entry {
+        if let Some(c) = count.get_mut(e as usize) {
+            *c += 1;
+        }
+    }
     materials
         .entries
         .iter()
-        .map(|e| MaterialInfo {
-            element_set: e.name.clone(),
-            description: format!("{:?}", e.material),
-            density: e.material.density(),
+        .zip(count)
+        .map(|(e, elements)| MaterialInfo {
+            name: e.name.clone(),
+            elements,
+            material: e.material,
         })
         .collect()
 }

@@ -102,13 +102,15 @@ pub struct MeshInfo {
     pub elements: usize,
 }
 
-/// A material as used for a part's element set.
+/// A material as used by a part's elements.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MaterialInfo {
-    pub element_set: String,
-    /// Human-readable description (`isotropic E=..., nu=...`, ...).
-    pub description: String,
-    pub density: f64,
+    /// The mesh's material name, or the element set of an override.
+    pub name: String,
+    /// Elements made of it.
+    pub elements: usize,
+    /// Its constants (`type`: `isotropic`, `transversely_isotropic` or `orthotropic`).
+    pub material: squeal_fe::ElasticMaterial,
 }
 
 /// A restraint applied before reduction.
