@@ -105,26 +105,37 @@ fn main() {
         "factor memory (MiB)     {:8.1}",
         s.factor_bytes as f64 / 1048576.0
     );
-    let t = Instant::now();
-    let x = f
-        .solve(faer::Mat::<f64>::ones(n, 64).as_ref())
-        .expect("solve");
-    println!("64-RHS solve (s)        {:8.2}", t.elapsed().as_secs_f64());
-    drop(x);
-    let t = Instant::now();
-    for _ in 0..10 {
-        let mut c = faer::Col::<f64>::ones(n);
-        f.solve_col_in_place(&mut c).expect("solve");
+    let table: &[usize] = if args.iter().any(|a| a == "--no-table") {
+        &[]
+    } else {
+        &[1, 4, 8, 16, 32, 64]
+    };
+    println!("solve time per right-hand side (ms), by columns solved at once:");
+    for &cols in table {
+        let reps = (64 / cols).clamp(2, 8);
+        let t = Instant::now();
+        for _ in 0..reps {
+            let x = f
+                .solve(faer::Mat::<f64>::ones(n, cols).as_ref())
+                .expect("solve");
+            drop(x);
+        }
+        let per = t.elapsed().as_secs_f64() * 1000.0 / (reps * cols) as f64;
+        println!("  {cols:>3} columns           {per:8.2}");
     }
-    println!(
-        "1-RHS solve (ms)        {:8.2}",
-        t.elapsed().as_secs_f64() * 1000.0 / 10.0
-    );
     if args.iter().any(|a| a == "--no-eig") {
         println!("peak memory VmHWM (MiB) {:8.1}", peak_mib());
         return;
     }
-    let opts = EigOptions::default();
+    let defaults = EigOptions::default();
+    let opts = EigOptions {
+        block_size: arg(&args, "--block=")
+            .and_then(|x| x.parse().ok())
+            .unwrap_or(defaults.block_size),
+        ncv: arg(&args, "--ncv=").and_then(|x| x.parse().ok()),
+        sturm_check: !args.iter().any(|a| a == "--no-sturm"),
+        ..defaults
+    };
     let t = Instant::now();
     let modes = lowest_modes_with_factor(sys.k.as_ref(), sys.m.as_ref(), &f, nev, &opts)
         .expect("eigensolve");
@@ -136,6 +147,10 @@ fn main() {
         (st.solve_time - st.sturm_time).as_secs_f64()
     );
     println!(
+        "    of which solves (s) {:8.2}",
+        st.operator_time.as_secs_f64()
+    );
+    println!(
         "  Sturm check (s)       {:8.2}",
         st.sturm_time.as_secs_f64()
     );
@@ -144,6 +159,7 @@ fn main() {
         st.iterations, st.rounds
     );
     println!("  OP applications       {:>8}", st.operator_applications);
+    println!("  block / ncv           {:>5} / {}", st.block, st.ncv);
     println!(
         "  f_1 / f_{nev} (Hz)         {:.3} / {:.3}",
         modes.values[0].sqrt() / std::f64::consts::TAU,

@@ -253,5 +253,6 @@ pub(crate) fn shift_invert(
         vectors,
         iterations,
         applications,
+        block: 1,
     })
 }

@@ -16,9 +16,12 @@
 
 use crate::EigError;
 use crate::cholesky::SparseCholesky;
-use crate::sparse::{project, subtract_combination, sym_matvec, update_rows};
+use crate::sparse::{inner, project, subtract_combination, sym_matmul, sym_matvec, update_rows};
+use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::SparseColMatRef;
-use faer::{Accum, Col, ColRef, Mat, Side};
+use faer::{Accum, Col, ColRef, Mat, MatMut, MatRef};
+use std::cell::Cell;
+use std::time::{Duration, Instant};
 
 /// Eigenvectors already found (M-orthonormal columns X) and M X: the
 /// operator is deflated to P OP with P = I - X X^T M, whose spectrum is that
@@ -39,6 +42,8 @@ pub(crate) struct ShiftInvert<'a> {
     pub factor: &'a SparseCholesky,
     /// Vectors to deflate, if any.
     pub locked: Option<Locked>,
+    /// Wall time spent in the triangular solves (accumulated).
+    pub solve_time: Cell<Duration>,
 }
 
 impl ShiftInvert<'_> {
@@ -62,7 +67,9 @@ impl ShiftInvert<'_> {
     /// y = P (K - sigma M)^-1 b, where b = M x for OP x.
     pub fn solve(&self, b: ColRef<'_, f64>) -> Result<Col<f64>, EigError> {
         let mut y = b.to_owned();
+        let t0 = Instant::now();
         self.factor.solve_col_in_place(&mut y)?;
+        self.solve_time.set(self.solve_time.get() + t0.elapsed());
         if let Some(l) = &self.locked {
             // Twice: one pass leaves rounding-level components along X.
             for _ in 0..2 {
@@ -71,6 +78,31 @@ impl ShiftInvert<'_> {
             }
         }
         Ok(y)
+    }
+
+    /// Y = M X for a block of columns.
+    pub fn mass_block(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        sym_matmul(self.m, x)
+    }
+
+    /// Y = P (K - sigma M)^-1 B for a block of right-hand sides (B = M X for OP X).
+    pub fn solve_block(&self, b: MatRef<'_, f64>) -> Result<Mat<f64>, EigError> {
+        let t0 = Instant::now();
+        let mut y = self.factor.solve(b)?;
+        self.solve_time.set(self.solve_time.get() + t0.elapsed());
+        self.deflate(y.as_mut());
+        Ok(y)
+    }
+
+    /// Y <- P Y = Y - X (M X)^T Y (twice: one pass leaves rounding-level
+    /// components along the locked vectors X).
+    pub fn deflate(&self, mut y: MatMut<'_, f64>) {
+        if let Some(l) = &self.locked {
+            for _ in 0..2 {
+                let h = inner(l.mx.as_ref(), y.rb());
+                update_rows(y.rb_mut(), l.x.as_ref(), h.as_ref(), Accum::Add, -1.0);
+            }
+        }
     }
 }
 
@@ -236,14 +268,7 @@ pub(crate) fn thick_restart_lanczos(
     loop {
         iterations += 1;
         let (size, beta) = expand(op, &mut basis, k, m, &mut seed, &mut applications)?;
-        let t = basis.t.submatrix(0, 0, size, size);
-        let evd = t
-            .self_adjoint_eigen(Side::Lower)
-            .map_err(|_| EigError::DenseEigen)?;
-        // faer sorts ascending: reverse to get the largest theta first.
-        let order: Vec<usize> = (0..size).rev().collect();
-        let theta: Vec<f64> = order.iter().map(|&i| evd.S()[i]).collect();
-        let s = Mat::<f64>::from_fn(size, size, |r, c| evd.U()[(r, order[c])]);
+        let (theta, s) = crate::block::ritz_pairs(basis.t.submatrix(0, 0, size, size))?;
         let estimates: Vec<f64> = (0..size)
             .map(|i| (beta * s[(size - 1, i)]).abs() / theta[i].abs().max(f64::MIN_POSITIVE))
             .collect();

@@ -7,13 +7,19 @@
 //! them. A matrix holding one triangle only is rejected with
 //! [`EigError::NotSymmetric`].
 //!
-//! - [`SparseCholesky`]: AMD-ordered sparse Cholesky (faer), multi-RHS solves,
-//!   [`SparseCholesky::constraint_modes`] for T_C = -K_II^-1 K_IB (eq. 3).
-//! - [`lowest_modes`] / [`lowest_modes_with_factor`]: shift-invert Lanczos
-//!   (pure Rust, default) or ARPACK (feature `arpack`), with a Sturm check.
-//! - [`count_below`] / [`inertia`]: Sturm counts from a sparse LBL^T.
+//! - [`SparseCholesky`]: sparse Cholesky (faer) with a fill-reducing ordering
+//!   ([`FillOrdering`]: nested dissection of the node graph by default, or
+//!   AMD), multi-RHS solves, [`SparseCholesky::constraint_modes`] for
+//!   T_C = -K_II^-1 K_IB (eq. 3).
+//! - [`lowest_modes`] / [`lowest_modes_with_factor`]: shift-invert block
+//!   Lanczos (pure Rust, default; [`EigOptions::block_size`] = 1 gives the
+//!   single-vector thick-restart Lanczos) or ARPACK (feature `arpack`), with
+//!   a Sturm check.
+//! - [`count_below`] / [`inertia`]: Sturm counts from a sparse LBL^T (same
+//!   orderings; inside [`lowest_modes`] the factor's ordering is reused).
 //! - [`model_problems`]: matrices with known spectra for tests and benchmarks.
 
+mod block;
 mod cholesky;
 mod error;
 mod inertia;

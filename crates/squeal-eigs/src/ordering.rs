@@ -332,9 +332,9 @@ fn coarsen(g: &Graph) -> (Graph, Vec<u32>) {
     let mut adj = Vec::new();
     let mut ewgt: Vec<u32> = Vec::new();
     let mut slot = vec![usize::MAX; nc];
-    for c in 0..nc {
+    for (c, &v) in first.iter().enumerate() {
         let start = adj.len();
-        let v = first[c] as usize;
+        let v = v as usize;
         let m = mate[v] as usize;
         let both = if m == v { vec![v] } else { vec![v, m] };
         for x in both {
@@ -682,8 +682,8 @@ fn postorder(a: SymbolicSparseColMatRef<'_, usize>, perm: &[usize]) -> Vec<usize
     }
     let mut parent = vec![usize::MAX; n];
     let mut ancestor = vec![usize::MAX; n];
-    for k in 0..n {
-        for &i0 in &lower[k] {
+    for (k, rows) in lower.iter().enumerate() {
+        for &i0 in rows {
             let mut i = i0;
             while ancestor[i] != usize::MAX && ancestor[i] != k {
                 let next = ancestor[i];

@@ -9,7 +9,7 @@
 use crate::EigError;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::ReborrowMut;
-use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
+use faer::sparse::{SparseColMat, SparseColMatRef};
 use faer::{Accum, ColMut, ColRef, Mat, MatMut, MatRef, Par};
 use rayon::prelude::*;
 
@@ -145,18 +145,48 @@ pub fn shifted(
         });
     }
     let n = k.ncols();
-    let mut triplets = Vec::with_capacity(k.compute_nnz() + m.compute_nnz());
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    col_ptr.push(0usize);
+    let mut row_idx = Vec::with_capacity(k.compute_nnz() + m.compute_nnz());
+    let mut val = Vec::with_capacity(row_idx.capacity());
+    let sorted_col = |a: SparseColMatRef<'_, usize, f64>, j: usize, scale: f64| {
+        let mut c: Vec<(usize, f64)> = a
+            .row_idx_of_col(j)
+            .zip(a.val_of_col(j))
+            .map(|(i, &v)| (i, scale * v))
+            .collect();
+        if !c.is_sorted_by_key(|e| e.0) {
+            c.sort_by_key(|e| e.0);
+        }
+        c
+    };
     for j in 0..n {
-        for (i, &v) in k.row_idx_of_col(j).zip(k.val_of_col(j)) {
-            triplets.push(Triplet::new(i, j, v));
+        let kc = sorted_col(k, j, 1.0);
+        let mc = sorted_col(m, j, -sigma);
+        // Merge the two sorted columns, summing equal rows (and duplicates).
+        let (mut p, mut q) = (0, 0);
+        while p < kc.len() || q < mc.len() {
+            let take_k = q == mc.len() || (p < kc.len() && kc[p].0 <= mc[q].0);
+            let (i, v) = if take_k {
+                p += 1;
+                kc[p - 1]
+            } else {
+                q += 1;
+                mc[q - 1]
+            };
+            if row_idx.len() > col_ptr[j] && row_idx.last() == Some(&i) {
+                if let Some(last) = val.last_mut() {
+                    *last += v;
+                }
+            } else {
+                row_idx.push(i);
+                val.push(v);
+            }
         }
-        for (i, &v) in m.row_idx_of_col(j).zip(m.val_of_col(j)) {
-            triplets.push(Triplet::new(i, j, -sigma * v));
-        }
+        col_ptr.push(row_idx.len());
     }
-    SparseColMat::try_new_from_triplets(n, n, &triplets).map_err(|e| EigError::Factorization {
-        what: format!("assembling K - sigma M: {e:?}"),
-    })
+    let symbolic = faer::sparse::SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+    Ok(SparseColMat::new(symbolic, val))
 }
 
 /// y = A x for a symmetric A stored with both triangles, as a gather over
@@ -256,4 +286,66 @@ pub fn update_rows(
 /// Euclidean dot product, reduced in fixed chunks.
 pub fn dot(x: ColRef<'_, f64>, y: ColRef<'_, f64>) -> f64 {
     project(x.as_mat(), y)[0]
+}
+
+/// V^T W (V is n x p, W is n x q), reduced in fixed chunks of rows, the
+/// chunk results summed in chunk order.
+pub fn inner(v: MatRef<'_, f64>, w: MatRef<'_, f64>) -> Mat<f64> {
+    let n = v.nrows();
+    let (p, q) = (v.ncols(), w.ncols());
+    let nchunks = n.div_ceil(CHUNK);
+    let partials: Vec<Mat<f64>> = (0..nchunks)
+        .into_par_iter()
+        .map(|c| {
+            let r0 = c * CHUNK;
+            let len = CHUNK.min(n - r0);
+            let mut out = Mat::<f64>::zeros(p, q);
+            matmul(
+                out.as_mut(),
+                Accum::Replace,
+                v.subrows(r0, len).transpose(),
+                w.subrows(r0, len),
+                1.0,
+                Par::Seq,
+            );
+            out
+        })
+        .collect();
+    let mut out = Mat::<f64>::zeros(p, q);
+    for part in &partials {
+        out += part;
+    }
+    out
+}
+
+/// Y = A X for a symmetric A stored with both triangles and a block of
+/// columns X, as a gather over the columns of A (each entry of Y is summed
+/// in the stored order, so the result is thread-count independent).
+pub fn sym_matmul(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
+    let n = a.ncols();
+    let b = x.ncols();
+    if b == 0 {
+        return Mat::zeros(n, 0);
+    }
+    let mut xt = vec![0.0; n * b];
+    for c in 0..b {
+        for (r, v) in x.col(c).iter().enumerate() {
+            xt[r * b + c] = *v;
+        }
+    }
+    let mut yt = vec![0.0; n * b];
+    yt.par_chunks_mut(CHUNK * b)
+        .enumerate()
+        .for_each(|(chunk, out)| {
+            for (o, row) in out.chunks_mut(b).enumerate() {
+                let i = chunk * CHUNK + o;
+                for (r, v) in a.row_idx_of_col(i).zip(a.val_of_col(i)) {
+                    let xr = &xt[r * b..r * b + b];
+                    for (y, xv) in row.iter_mut().zip(xr) {
+                        *y += v * xv;
+                    }
+                }
+            }
+        });
+    Mat::from_fn(n, b, |i, c| yt[i * b + c])
 }
