@@ -30,6 +30,9 @@ enum Command {
     /// Inspect and convert tet10 meshes (Abaqus .inp, Gmsh .msh)
     #[command(subcommand)]
     Mesh(commands::mesh::MeshCommand),
+    /// Finite-element matrices of a mesh
+    #[command(subcommand)]
+    Fe(commands::fe::FeCommand),
     /// Craig-Bampton reduction of a disc and a pad to the reduced brake (.rom)
     Reduce(commands::reduce::ReduceArgs),
     /// Static equilibrium, complex eigenvalues against friction and the Hopf point mu0
@@ -40,10 +43,15 @@ enum Command {
     Study(commands::study::StudyArgs),
     /// CHBM against time integration: accuracy, speed, robustness
     Compare(commands::compare::CompareArgs),
+    /// The whole pipeline on a scene, with a report folder
+    Run(commands::run::RunArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // Dense kernels run sequentially: their results would otherwise depend on the thread
+    // count. Parallelism comes from independent tasks (rayon) and the sparse factorizations.
+    faer::set_global_parallelism(faer::Par::Seq);
     if let Some(n) = cli.threads {
         // A second initialisation cannot happen here: this is the only call.
         let _ = rayon::ThreadPoolBuilder::new()
@@ -52,11 +60,13 @@ fn main() -> ExitCode {
     }
     let result = match cli.command {
         Command::Mesh(cmd) => commands::mesh::run(cmd),
+        Command::Fe(cmd) => commands::fe::run(cmd),
         Command::Reduce(args) => commands::reduce::run(args),
         Command::Stability(args) => commands::stability::run(args),
         Command::Chbm(args) => commands::chbm::run(args),
         Command::Study(args) => commands::study::run(args),
         Command::Compare(args) => commands::compare::run(args),
+        Command::Run(args) => commands::run::run(args),
     };
     match result {
         Ok(code) => code,

@@ -22,6 +22,35 @@ pub struct SceneFile {
     pub damping: DampingSection,
     #[serde(default)]
     pub stability: StabilitySection,
+    #[serde(default)]
+    pub chbm: ChbmSection,
+}
+
+/// `[chbm]`: the limit cycle `squeal run` computes.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChbmSection {
+    /// Friction as a multiple of the Hopf point μ0.
+    #[serde(default = "default_mu_ratio")]
+    pub mu_ratio: Spanned<f64>,
+    #[serde(default = "default_harmonics")]
+    pub harmonics: Spanned<usize>,
+}
+
+impl Default for ChbmSection {
+    fn default() -> Self {
+        Self {
+            mu_ratio: default_mu_ratio(),
+            harmonics: default_harmonics(),
+        }
+    }
+}
+
+fn default_mu_ratio() -> Spanned<f64> {
+    Spanned::new(0..0, 1.02)
+}
+fn default_harmonics() -> Spanned<usize> {
+    Spanned::new(0..0, 3)
 }
 
 /// `[model]`: the meshes and their reduction.
@@ -294,6 +323,22 @@ impl Scene {
             }
         }
         self.mu_values()?;
+        let r = &f.chbm.mu_ratio;
+        if !(r.get_ref().is_finite() && *r.get_ref() > 1.0) {
+            return Err(self.error_at(
+                "chbm.mu_ratio",
+                r,
+                "must be above 1 (a limit cycle exists above the Hopf point)",
+            ));
+        }
+        let h = *f.chbm.harmonics.get_ref();
+        if h == 0 || h > 50 {
+            return Err(self.error_at(
+                "chbm.harmonics",
+                &f.chbm.harmonics,
+                "must be between 1 and 50",
+            ));
+        }
         Ok(())
     }
 

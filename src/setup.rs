@@ -7,10 +7,9 @@ use squeal_brake::Brake;
 use squeal_brake::analysis::{DampingSpec, PairChoice};
 use squeal_brake::assemble::{BrakeParams, Layout, Pairing, Stiffness, assemble};
 use squeal_brake::sweep::{Band, SweepOptions};
-use squeal_fe::{MaterialTable, Restraint};
-use squeal_reduce::craig_bampton::{PartSpec, ReduceOptions, Stage, reduce_part};
-use squeal_reduce::interface::Axis;
-use squeal_reduce::rom::{InterfaceKind, MeshInfo, ReducedModel, sha256_file};
+use squeal_reduce::brake::{BrakeInputs, Freshness, ModeChoice, freshness, reduce_brake};
+use squeal_reduce::craig_bampton::Stage;
+use squeal_reduce::rom::{InterfaceKind, ReducedModel};
 use std::path::{Path, PathBuf};
 
 /// Everything an analysis of the scene needs.
@@ -28,119 +27,68 @@ pub struct Setup {
     pub pad_mesh: PathBuf,
 }
 
-/// The part specifications of the bundled brake layout.
-fn part_specs(scene: &Scene, disc: &Path, pad: &Path) -> Result<[PartSpec; 2]> {
+/// The reduction inputs of a scene: the bundled layout (disc clamped on `CLAMP`, pad held in
+/// plane on `ABUTMENT`, pistons on `PISTON`, contact on `CONTACT` / `CONTACT_FACE`) on the
+/// scene's meshes, interface and mode count.
+pub fn brake_inputs(scene: &Scene) -> BrakeInputs {
     let m = &scene.file.model;
-    let interface = if m.interface.get_ref() == "node" {
+    let mut inputs = BrakeInputs::bundled(scene.resolve(&m.disc), scene.resolve(&m.pad));
+    inputs.interface = if m.interface.get_ref() == "node" {
         InterfaceKind::Node
     } else {
         InterfaceKind::Patch
     };
-    let info = |p: &Path| -> Result<MeshInfo> {
-        Ok(MeshInfo {
-            path: p.display().to_string(),
-            sha256: sha256_file(p)?,
-            nodes: 0,
-            elements: 0,
-        })
-    };
-    let spec = |name: &str, mesh: MeshInfo, restraints, piston: Option<String>| PartSpec {
-        name: name.into(),
-        mesh,
-        restraints,
-        interface,
-        contact_set: "CONTACT".into(),
-        contact_face_set: "CONTACT_FACE".into(),
-        grid: [3, 3],
-        axis: Axis::default(),
-        piston_set: piston,
-        normal_direction: 2,
-        modes: *m.modes.get_ref(),
-    };
-    Ok([
-        spec("disc", info(disc)?, vec![Restraint::clamp("CLAMP")], None),
-        spec(
-            "pad",
-            info(pad)?,
-            vec![Restraint::set("ABUTMENT", [true, true, false])],
-            Some("PISTON".into()),
-        ),
-    ])
-}
-
-/// Whether a stored model was made from these meshes with these options.
-fn matches(rom: &ReducedModel, specs: &[PartSpec; 2]) -> bool {
-    specs.iter().all(|s| {
-        rom.part(&s.name).is_some_and(|p| {
-            p.info.mesh.sha256 == s.mesh.sha256
-                && p.info.interface == s.interface
-                && p.info.fixed_interface_hz.len() == s.modes
-                && p.basis.is_some()
-        })
-    })
+    inputs.modes = ModeChoice::Fixed(*m.modes.get_ref());
+    inputs
 }
 
 /// Loads the scene's reduced model, or reduces the meshes (and stores the result) when it is
-/// missing or was made from other meshes or options.
+/// missing or stale (other meshes, by SHA-256, other options, another tool version).
 pub fn reduced_model(scene: &Scene, out: &Path, verbose: bool) -> Result<(ReducedModel, PathBuf)> {
-    let m = &scene.file.model;
-    let (disc, pad) = (scene.resolve(&m.disc), scene.resolve(&m.pad));
-    let rom_path = match &m.rom {
+    let rom_path = match &scene.file.model.rom {
         Some(p) => scene.resolve(p),
         None => out.join("brake.rom"),
     };
-    let specs = part_specs(scene, &disc, &pad)?;
-    if rom_path.exists()
-        && let Ok(rom) = ReducedModel::read(&rom_path)
-        && matches(&rom, &specs)
-    {
-        if verbose {
-            eprintln!("reduced model: {} (up to date)", rom_path.display());
+    let inputs = brake_inputs(scene);
+    match freshness(&rom_path, &inputs).context("checking the reduced model")? {
+        Freshness::Fresh => {
+            if verbose {
+                eprintln!("reduced model: {} (up to date)", rom_path.display());
+            }
+            let rom = ReducedModel::read(&rom_path)
+                .with_context(|| format!("reading {}", rom_path.display()))?;
+            return Ok((rom, rom_path));
         }
-        return Ok((rom, rom_path));
+        Freshness::Stale(reasons) if verbose => {
+            eprintln!(
+                "reduced model: {} is stale ({}); reducing again",
+                rom_path.display(),
+                reasons.join("; ")
+            )
+        }
+        _ => {}
     }
     if verbose {
         eprintln!(
             "reduced model: reducing {} and {} ...",
-            disc.display(),
-            pad.display()
+            inputs.disc.mesh.display(),
+            inputs.pad.mesh.display()
         );
     }
-    let mut parts = Vec::new();
-    for (spec, path) in specs.into_iter().zip([&disc, &pad]) {
-        let read = crate::commands::mesh::read_mesh(path)?;
-        let materials = MaterialTable::from_mesh(&read.mesh, &[])
-            .with_context(|| format!("materials of {}", path.display()))?;
-        let mut spec = spec;
-        spec.mesh.nodes = read.mesh.num_nodes();
-        spec.mesh.elements = read.mesh.num_elements();
-        let name = spec.name.clone();
-        let t = std::time::Instant::now();
-        let (part, _) = reduce_part(
-            &read.mesh,
-            &materials,
-            &spec,
-            &ReduceOptions::default(),
-            &mut |stage: Stage| {
-                if verbose {
-                    eprintln!("  {name}: {}", stage.label());
-                }
-            },
-        )
-        .with_context(|| format!("reducing the {name} ({})", path.display()))?;
+    let t = std::time::Instant::now();
+    let (rom, _) = reduce_brake(&inputs, &mut |part: &str, stage: Stage| {
         if verbose {
-            eprintln!(
-                "  {name}: {} dofs in {:.1} s",
-                part.size(),
-                t.elapsed().as_secs_f64()
-            );
+            eprintln!("  {part}: {}", stage.label());
         }
-        parts.push(part);
+    })
+    .context("reducing the brake")?;
+    if verbose {
+        eprintln!(
+            "  reduced to {} dofs in {:.1} s",
+            rom.size(),
+            t.elapsed().as_secs_f64()
+        );
     }
-    let rom = ReducedModel {
-        tool_version: env!("CARGO_PKG_VERSION").into(),
-        parts,
-    };
     rom.write(&rom_path)
         .with_context(|| format!("writing {}", rom_path.display()))?;
     Ok((rom, rom_path))

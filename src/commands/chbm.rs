@@ -33,9 +33,10 @@ pub struct ChbmArgs {
     /// AFT time samples per period (default grows with the harmonics)
     #[arg(long)]
     pub samples: Option<usize>,
-    /// Initial amplitude p of eq (48), as a fraction of the smallest static penetration
-    #[arg(long, default_value_t = 0.5)]
-    pub amplitude: f64,
+    /// Initial amplitude p of eq (48), as a fraction of the smallest static penetration; when
+    /// omitted, 0.5, 1, 2 and 0.25 are tried in turn until one converges
+    #[arg(long)]
+    pub amplitude: Option<f64>,
     /// Start all harmonics from eq (48) directly instead of from the one-harmonic solution
     #[arg(long)]
     pub plain: bool,
@@ -137,7 +138,7 @@ pub fn options(args: &ChbmArgs) -> Result<ChbmOptions> {
     Ok(ChbmOptions {
         harmonics: args.harmonics,
         samples: args.samples,
-        amplitude: args.amplitude,
+        amplitude: args.amplitude.unwrap_or(AMPLITUDES[0]),
         ladder: !args.plain,
         fit,
         ..ChbmOptions::default()
@@ -149,7 +150,8 @@ pub fn run(args: ChbmArgs) -> Result<ExitCode> {
     let out = args.out.clone().unwrap_or_else(|| default_out(&args.scene));
     let opts = options(&args)?;
     let p = prepare(&scene, &out, args.mu, args.mu_ratio)?;
-    let sol = solve(&p.modal, &p.start, &opts).context("CHBM")?;
+    let amplitudes: Vec<f64> = args.amplitude.map_or(AMPLITUDES.to_vec(), |a| vec![a]);
+    let sol = solve_with_restarts(&p, &opts, &amplitudes)?;
     print_solution(&p, &sol);
     let dir = out.join("chbm");
     write_solution(&dir, &p, &sol)?;
@@ -168,6 +170,35 @@ pub fn run(args: ChbmArgs) -> Result<ExitCode> {
     } else {
         ExitCode::from(3)
     })
+}
+
+/// Initial amplitudes tried in turn when none is given.
+pub const AMPLITUDES: [f64; 4] = [0.5, 1.0, 2.0, 0.25];
+
+/// Solves from each initial amplitude in turn until a limit cycle converges; returns the first
+/// converged solution, or the last attempt.
+pub fn solve_with_restarts(
+    p: &Prepared,
+    opts: &ChbmOptions,
+    amplitudes: &[f64],
+) -> Result<ChbmSolution> {
+    let mut last = None;
+    for &a in amplitudes {
+        let o = ChbmOptions {
+            amplitude: a,
+            ..opts.clone()
+        };
+        let sol = solve(&p.modal, &p.start, &o).context("CHBM")?;
+        if matches!(sol.outcome, Outcome::LimitCycle) {
+            if amplitudes.len() > 1 {
+                println!("(initial amplitude p = {a} of the smallest static penetration)");
+            }
+            return Ok(sol);
+        }
+        println!("from initial amplitude p = {a}: {}", sol.outcome);
+        last = Some(sol);
+    }
+    last.context("no initial amplitude to try")
 }
 
 /// Physical dof of a point's direction in the brake (disc or pad).

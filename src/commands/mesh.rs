@@ -18,6 +18,8 @@ pub enum MeshCommand {
         /// List every id of each finding instead of the first few
         #[arg(long)]
         all_ids: bool,
+        #[command(flatten)]
+        materials: crate::commands::fe::MaterialArgs,
     },
     /// Write a mesh as VTK XML (.vtu) for ParaView, with node and element sets as flags
     Convert {
@@ -30,13 +32,18 @@ pub enum MeshCommand {
 
 pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
     match cmd {
-        MeshCommand::Info { files, all_ids } => {
+        MeshCommand::Info {
+            files,
+            all_ids,
+            materials,
+        } => {
+            let overrides = materials.overrides()?;
             let mut any_error = false;
             for (k, f) in files.iter().enumerate() {
                 if k > 0 {
                     println!();
                 }
-                any_error |= info(f, all_ids)?;
+                any_error |= info(f, all_ids, &overrides)?;
             }
             Ok(if any_error {
                 ExitCode::from(2)
@@ -70,7 +77,11 @@ pub fn read_mesh(path: &Path) -> Result<ReadMesh> {
 }
 
 /// Prints one mesh's summary; returns whether the quality checks found errors.
-fn info(path: &Path, all_ids: bool) -> Result<bool> {
+fn info(
+    path: &Path,
+    all_ids: bool,
+    overrides: &[(String, squeal_fe::ElasticMaterial)],
+) -> Result<bool> {
     let t = Instant::now();
     let read = read_mesh(path)?;
     let elapsed = t.elapsed();
@@ -92,11 +103,14 @@ fn info(path: &Path, all_ids: bool) -> Result<bool> {
     print_sets(m);
     print_materials(m);
     let report = quality::check(m, &QualityOptions::default());
-    println!("  volume    {:.9e}", report.volume);
+    println!("  volume    {:.9e} m^3", report.volume);
     println!(
         "  worst Jacobian ratio (min/max det J) {:.4}",
         report.worst_jacobian_ratio
     );
+    if !report.has_errors() {
+        print_fe(m, overrides);
+    }
     if report.findings.is_empty() {
         println!("  quality   no findings");
     }
@@ -111,6 +125,48 @@ fn info(path: &Path, all_ids: bool) -> Result<bool> {
         }
     }
     Ok(report.has_errors())
+}
+
+/// Degrees of freedom, nonzeros of K and M (free part, no restraints) and the mass.
+fn print_fe(m: &Mesh, overrides: &[(String, squeal_fe::ElasticMaterial)]) {
+    use squeal_fe::{DofMap, ElasticMaterial, MaterialTable, Summary, assemble};
+    let (materials, known) = match MaterialTable::from_mesh(m, overrides) {
+        Ok(t) => (t, true),
+        // The sparsity pattern does not depend on the material: count it with a placeholder.
+        Err(_) => match MaterialTable::uniform(m, ElasticMaterial::isotropic(1.0, 0.3, 1.0)) {
+            Ok(t) => (t, false),
+            Err(e) => {
+                println!("  fe        not assembled: {e}");
+                return;
+            }
+        },
+    };
+    let t = Instant::now();
+    let result = DofMap::new(m, &[])
+        .map_err(anyhow::Error::from)
+        .and_then(|dofs| {
+            let system = assemble(m, &materials, &dofs)?;
+            Ok(Summary::new(m, &materials, &dofs, &system)?)
+        });
+    match result {
+        Ok(s) => {
+            println!(
+                "  fe        {} dofs (free part), K {} and M {} stored nonzeros, assembled in {:.3} s",
+                s.free_dofs,
+                s.nnz_k,
+                s.nnz_m,
+                t.elapsed().as_secs_f64()
+            );
+            if known {
+                println!("  mass      {:.6e} kg", s.mass);
+            } else {
+                println!(
+                    "  mass      unknown: not every element has a material (give --material SET=E,nu,rho)"
+                );
+            }
+        }
+        Err(e) => println!("  fe        not assembled: {e:#}"),
+    }
 }
 
 fn print_sets(m: &Mesh) {

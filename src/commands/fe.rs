@@ -1,0 +1,128 @@
+//! `squeal fe export`: sparse K and M of a mesh as MatrixMarket files, for MATLAB and Python.
+
+use crate::commands::mesh::read_mesh;
+use anyhow::{Context, Result, bail};
+use clap::{Args, Subcommand};
+use squeal_fe::{DofMap, ElasticMaterial, MaterialTable, Restraint, assemble, write_matrix_market};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Subcommand)]
+pub enum FeCommand {
+    /// Write K and M (MatrixMarket, lower triangle) and the dof map (CSV)
+    Export(ExportArgs),
+}
+
+#[derive(Args)]
+pub struct ExportArgs {
+    /// Mesh file (.inp or .msh)
+    pub mesh: PathBuf,
+    /// Output format (only MatrixMarket for now)
+    #[arg(long, default_value = "mtx")]
+    pub format: String,
+    /// Output folder
+    #[arg(long, short, default_value = ".")]
+    pub out: PathBuf,
+    /// Clamp a node set (all three directions); repeatable
+    #[arg(long)]
+    pub clamp: Vec<String>,
+    /// Restrain a node set in some directions, e.g. ABUTMENT:xy; repeatable
+    #[arg(long)]
+    pub restrain: Vec<String>,
+    #[command(flatten)]
+    pub materials: MaterialArgs,
+}
+
+/// Materials given on the command line (a Gmsh .msh carries none).
+#[derive(Args, Clone, Default)]
+pub struct MaterialArgs {
+    /// Isotropic material of an element set: SET=E,nu,rho (Pa, -, kg/m^3), e.g.
+    /// DISC=125e9,0.26,7200; repeatable; overrides the mesh's own
+    #[arg(long = "material")]
+    pub materials: Vec<String>,
+}
+
+impl MaterialArgs {
+    /// Parses `SET=E,nu,rho` entries.
+    pub fn overrides(&self) -> Result<Vec<(String, ElasticMaterial)>> {
+        self.materials
+            .iter()
+            .map(|s| {
+                let (set, values) = s
+                    .split_once('=')
+                    .with_context(|| format!("--material '{s}': expected SET=E,nu,rho"))?;
+                let v: Vec<f64> = values
+                    .split(',')
+                    .map(|x| x.trim().parse::<f64>())
+                    .collect::<Result<_, _>>()
+                    .with_context(|| format!("--material '{s}': E, nu and rho must be numbers"))?;
+                let [e, nu, rho] = v[..] else {
+                    bail!("--material '{s}': expected three values E,nu,rho")
+                };
+                Ok((set.to_string(), ElasticMaterial::isotropic(e, nu, rho)))
+            })
+            .collect()
+    }
+}
+
+/// Parses `--clamp SET` and `--restrain SET:xyz` into restraints.
+pub fn restraints(clamp: &[String], restrain: &[String]) -> Result<Vec<Restraint>> {
+    let mut out: Vec<Restraint> = clamp.iter().map(|s| Restraint::clamp(s)).collect();
+    for r in restrain {
+        let (set, dirs) = r
+            .split_once(':')
+            .with_context(|| format!("--restrain '{r}': expected SET:xyz"))?;
+        let mut d = [false; 3];
+        for c in dirs.chars() {
+            match c.to_ascii_lowercase() {
+                'x' => d[0] = true,
+                'y' => d[1] = true,
+                'z' => d[2] = true,
+                _ => bail!("--restrain '{r}': directions are letters among x, y, z"),
+            }
+        }
+        out.push(Restraint::set(set, d));
+    }
+    Ok(out)
+}
+
+pub fn run(cmd: FeCommand) -> Result<ExitCode> {
+    let FeCommand::Export(args) = cmd;
+    if args.format != "mtx" {
+        bail!(
+            "--format '{}': only 'mtx' (MatrixMarket) is written",
+            args.format
+        );
+    }
+    let mesh = read_mesh(&args.mesh)?.mesh;
+    let materials =
+        MaterialTable::from_mesh(&mesh, &args.materials.overrides()?).with_context(|| {
+            format!(
+                "materials of {} (a .msh has none: give --material SET=E,nu,rho)",
+                args.mesh.display()
+            )
+        })?;
+    let dofmap = DofMap::new(&mesh, &restraints(&args.clamp, &args.restrain)?)?;
+    let t = Instant::now();
+    let system = assemble(&mesh, &materials, &dofmap)?;
+    let assembled = t.elapsed();
+    let stem = args
+        .mesh
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "mesh".into());
+    write_matrix_market(&args.out, &stem, &system.k, &system.m, &dofmap)?;
+    println!(
+        "{} free dofs ({} restrained), K {} and M {} stored nonzeros, assembled in {:.3} s",
+        dofmap.num_free(),
+        dofmap.num_restrained(),
+        system.nnz_k(),
+        system.nnz_m(),
+        assembled.as_secs_f64()
+    );
+    for f in ["K.mtx", "M.mtx", "dofs.csv"] {
+        println!("wrote {}", args.out.join(format!("{stem}_{f}")).display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
