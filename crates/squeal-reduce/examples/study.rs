@@ -11,7 +11,7 @@
 
 use faer::Mat;
 use squeal_eigs::{EigOptions, lowest_modes};
-use squeal_fe::{DofMap, MaterialTable, assemble};
+use squeal_fe::{DofMap, MaterialTable, Restraint, assemble};
 use squeal_reduce::brake::{
     BrakeInputs, Freshness, ModeChoice, PartInput, freshness, reduce_brake,
 };
@@ -59,6 +59,12 @@ fn inputs(level: &str, interface: InterfaceKind, modes: ModeChoice) -> BrakeInpu
 
 /// The `count` lowest frequencies (Hz) of the full part under its own restraints.
 fn full_frequencies(part: &str, level: &str, count: usize) -> Vec<f64> {
+    full_frequencies_held(part, level, count, false)
+}
+
+/// As [`full_frequencies`]; with `boundary_held` also the contact nodes (all directions) and
+/// the piston nodes (z) restrained: the node interface's fixed boundary.
+fn full_frequencies_held(part: &str, level: &str, count: usize, boundary_held: bool) -> Vec<f64> {
     let input = if part == "disc" {
         PartInput::disc(mesh(part, level))
     } else {
@@ -66,7 +72,14 @@ fn full_frequencies(part: &str, level: &str, count: usize) -> Vec<f64> {
     };
     let m = squeal_mesh::read(&input.mesh).expect("mesh").mesh;
     let materials = MaterialTable::from_mesh(&m, &[]).expect("materials");
-    let dofmap = DofMap::new(&m, &input.restraints).expect("dofs");
+    let mut restraints = input.restraints.clone();
+    if boundary_held {
+        restraints.push(Restraint::set("CONTACT", [true; 3]));
+        if input.piston_set.is_some() {
+            restraints.push(Restraint::set("PISTON", [false, false, true]));
+        }
+    }
+    let dofmap = DofMap::new(&m, &restraints).expect("dofs");
     let system = assemble(&m, &materials, &dofmap).expect("assembly");
     let opts = EigOptions {
         shift: -4e5,
@@ -140,6 +153,27 @@ fn modes_study(level: &str) {
                     .fold(0.0, f64::max);
                 row += &format!(" {worst:.1e} |");
             }
+        }
+        println!("{row}");
+    }
+    println!("\nFixed boundary, node interface: largest relative error of the first min(N, 20)");
+    println!("fixed-interface frequencies against the full model with the contact nodes (and the");
+    println!("pad's piston nodes along z) restrained.\n");
+    println!("| modes | disc | pad |");
+    println!("|---|---|---|");
+    let held: Vec<Vec<f64>> = PARTS
+        .iter()
+        .map(|p| full_frequencies_held(p, level, 20, true))
+        .collect();
+    for n in [10, 20, 50, 100] {
+        let mut row = format!("| {n} |");
+        for (k, part) in PARTS.iter().enumerate() {
+            let p = truncated(models[1].part(part).expect("part"), n);
+            let f = reduced_frequencies(&p, Boundary::Fixed).expect("frequencies");
+            let worst = relative_errors(&f, &held[k])
+                .into_iter()
+                .fold(0.0, f64::max);
+            row += &format!(" {worst:.1e} |");
         }
         println!("{row}");
     }
