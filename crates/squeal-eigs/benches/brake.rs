@@ -5,8 +5,16 @@
 //! ```text
 //! nice cargo bench -p squeal-eigs --bench brake -- --mesh=disc
 //! nice cargo bench -p squeal-eigs --bench brake -- --mesh=pad
+//! nice cargo bench -p squeal-eigs --bench brake -- --mesh=disc --ordering=amd --block=1
 //! options: --mesh=disc|pad|PATH.inp  --level=fine|medium|coarse  --nev=N (50)
+//!          --ordering=nd|amd  --block=B (8; 1 = single-vector Lanczos)  --ncv=N
+//!          --no-sturm  --no-table (skip the multi-RHS solve table)  --no-eig
+//! threads: RAYON_NUM_THREADS=1 (faer's parallelism follows rayon's pool)
 //! ```
+//!
+//! `--ordering=amd --block=1` runs the algorithms the crate had before
+//! nested dissection and the block method (AMD, single-vector Lanczos, the
+//! Sturm LBL^T on the AMD ordering).
 //!
 //! The disc is clamped on `CLAMP`; the pad is held as its interior problem in
 //! the Craig-Bampton reduction: `ABUTMENT` in x and y, `PISTON` and `CONTACT`

@@ -38,7 +38,7 @@ pub enum FillOrdering {
 }
 
 /// Graph pieces with at most this many vertices (nodes) are ordered by AMD.
-const LEAF_VERTICES: usize = 120;
+const LEAF_VERTICES: usize = 60;
 /// Coarsening stops at this many vertices.
 const COARSEST: usize = 60;
 /// A side of a bisection may hold at most this fraction of the weight.

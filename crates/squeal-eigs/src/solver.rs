@@ -8,7 +8,7 @@ use crate::block::{BlockParams, block_lanczos};
 use crate::cholesky::{CholeskyOptions, FactorStats, SparseCholesky};
 use crate::inertia::count_below_unchecked;
 use crate::lanczos::{LanczosParams, Locked, ShiftInvert, thick_restart_lanczos};
-use crate::sparse::{check_pair, dot, norm1, sym_matvec};
+use crate::sparse::{check_pair, dot, norm1, sym_matmul, sym_matvec};
 use faer::sparse::SparseColMatRef;
 use faer::{Col, Mat, Par};
 use std::time::{Duration, Instant};
@@ -468,14 +468,15 @@ fn normalize(
     let mut order: Vec<usize> = (0..values.len()).collect();
     order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
     let n = vectors.nrows();
-    let mut out = Mat::zeros(n, order.len());
-    let mut mx = Col::<f64>::zeros(n);
-    for (c, &j) in order.iter().enumerate() {
-        let x = vectors.col(j);
-        sym_matvec(m, x, mx.as_mut());
-        let s = dot(x, mx.as_ref()).max(f64::MIN_POSITIVE).sqrt();
-        out.col_mut(c).copy_from(x);
-        out.col_mut(c).iter_mut().for_each(|v| *v /= s);
+    let mut out = Mat::from_fn(n, order.len(), |i, c| vectors[(i, order[c])]);
+    for start in (0..order.len()).step_by(8) {
+        let cols = 8.min(order.len() - start);
+        let mx = sym_matmul(m, out.subcols(start, cols));
+        for c in 0..cols {
+            let x = out.col(start + c);
+            let s = dot(x, mx.col(c)).max(f64::MIN_POSITIVE).sqrt();
+            out.col_mut(start + c).iter_mut().for_each(|v| *v /= s);
+        }
     }
     (order.iter().map(|&j| values[j]).collect(), out)
 }
@@ -487,21 +488,20 @@ pub fn backward_errors(
     values: &[f64],
     vectors: &Mat<f64>,
 ) -> Vec<f64> {
-    let n = k.nrows();
     let (nk, nm) = (norm1(k), norm1(m));
-    let mut kx = Col::<f64>::zeros(n);
-    let mut mx = Col::<f64>::zeros(n);
-    values
-        .iter()
-        .enumerate()
-        .map(|(j, &lam)| {
-            let x = vectors.col(j);
-            sym_matvec(k, x, kx.as_mut());
-            sym_matvec(m, x, mx.as_mut());
-            let r = Col::<f64>::from_fn(n, |i| kx[i] - lam * mx[i]);
-            r.norm_l2() / ((nk + lam.abs() * nm) * x.norm_l2())
-        })
-        .collect()
+    let mut out = Vec::with_capacity(values.len());
+    for start in (0..values.len()).step_by(8) {
+        let cols = 8.min(values.len() - start);
+        let x = vectors.subcols(start, cols);
+        let kx = sym_matmul(k, x);
+        let mx = sym_matmul(m, x);
+        for c in 0..cols {
+            let lam = values[start + c];
+            let r = kx.col(c) - lam * mx.col(c);
+            out.push(r.norm_l2() / ((nk + lam.abs() * nm) * x.col(c).norm_l2()));
+        }
+    }
+    out
 }
 
 /// Sturm check of computed eigenvalues `values` (ascending, all of them

@@ -336,16 +336,44 @@ pub fn sym_matmul(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>) -> Mat
     let mut yt = vec![0.0; n * b];
     yt.par_chunks_mut(CHUNK * b)
         .enumerate()
-        .for_each(|(chunk, out)| {
-            for (o, row) in out.chunks_mut(b).enumerate() {
-                let i = chunk * CHUNK + o;
-                for (r, v) in a.row_idx_of_col(i).zip(a.val_of_col(i)) {
-                    let xr = &xt[r * b..r * b + b];
-                    for (y, xv) in row.iter_mut().zip(xr) {
-                        *y += v * xv;
+        .for_each(|(chunk, out)| match b {
+            4 => gather_rows::<4>(a, &xt, chunk * CHUNK, out),
+            8 => gather_rows::<8>(a, &xt, chunk * CHUNK, out),
+            16 => gather_rows::<16>(a, &xt, chunk * CHUNK, out),
+            _ => {
+                for (o, row) in out.chunks_mut(b).enumerate() {
+                    let i = chunk * CHUNK + o;
+                    for (r, v) in a.row_idx_of_col(i).zip(a.val_of_col(i)) {
+                        let xr = &xt[r * b..r * b + b];
+                        for (y, xv) in row.iter_mut().zip(xr) {
+                            *y += v * xv;
+                        }
                     }
                 }
             }
         });
     Mat::from_fn(n, b, |i, c| yt[i * b + c])
+}
+
+/// Rows `first..` of Y = A X into `out` (row-major, B values per row) from
+/// X in row-major `xt`: a fixed-width accumulator the compiler vectorizes.
+fn gather_rows<const B: usize>(
+    a: SparseColMatRef<'_, usize, f64>,
+    xt: &[f64],
+    first: usize,
+    out: &mut [f64],
+) {
+    for (o, row) in out.chunks_exact_mut(B).enumerate() {
+        let i = first + o;
+        let mut acc = [0.0f64; B];
+        for (r, &v) in a.row_idx_of_col(i).zip(a.val_of_col(i)) {
+            let Some(xr) = xt.get(r * B..r * B + B) else {
+                continue;
+            };
+            for (y, x) in acc.iter_mut().zip(xr) {
+                *y += v * x;
+            }
+        }
+        row.copy_from_slice(&acc);
+    }
 }
