@@ -16,6 +16,7 @@
 //! - [`Fit::Samples`]: the stiffness-only fit over all AFT samples,
 //!   `k = Σ (F_j - F̄)(δ_j - δ̄) / Σ (δ_j - δ̄)²`, `c = 0`: eq (45) taken literally for a
 //!   displacement-dependent force; `f2` is then only approximately zero at the limit cycle.
+//!
 //! Both tend to the tangent stiffness `k_t(δ̄)` of the stability analysis (and `c → 0`) as the
 //! amplitude goes to zero.
 //!

@@ -26,7 +26,7 @@ use crate::contact::ContactForce;
 use faer::{Mat, MatMut, c64};
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_hbm::lm::{self, LeastSquaresProblem, LmError, LmIteration, LmOptions, LmStop};
-use squeal_hbm::{HarmonicBalance, HarmonicLayout, HbmError, Part};
+use squeal_hbm::{HarmonicBalance, HarmonicLayout, HbmError, NonlinearForce, Part};
 use std::time::{Duration, Instant};
 
 /// Errors of a CHBM solve (a solve that runs but does not converge is not an error: see
@@ -156,7 +156,24 @@ pub struct ChbmSolution {
 }
 
 impl ChbmSolution {
-    /// First-harmonic amplitude of physical dof `d`.
+    /// The cycle of every physical dof (velocities by differentiating eq 23).
+    pub fn cycle(&self) -> crate::cycle::CycleCoefficients {
+        let n = self.coeffs.len() / (2 * self.harmonics + 1);
+        crate::cycle::CycleCoefficients::from_displacement(
+            self.harmonics,
+            self.omega,
+            n,
+            self.coeffs.clone(),
+        )
+    }
+
+    /// Bytes of what CHBM stores: the Fourier coefficients of the nonlinear dofs and ω (every
+    /// other dof follows from them by eq 35).
+    pub fn storage_bytes(&self) -> usize {
+        (self.nl_coeffs.len() + 1) * 8
+    }
+
+    /// Harmonic `k` amplitude of physical dof `d` (`|mean|` for `k = 0`).
     pub fn amplitude(&self, d: usize, k: usize) -> f64 {
         let n = self.coeffs.len() / (2 * self.harmonics + 1);
         if k == 0 {
@@ -375,12 +392,7 @@ pub fn solve_from(
     let phase = layout
         .index(1, Part::Sin, phase_dof(mb, &z0, &layout))
         .unwrap_or(0);
-    let f_scale = f_eq
-        .iter()
-        .map(|v| v * v)
-        .sum::<f64>()
-        .sqrt()
-        .max(f64::MIN_POSITIVE);
+    let f_scale = force_scale(mb, start, &f_eq);
     let x_scale = mb
         .pairs
         .iter()
@@ -538,7 +550,8 @@ fn initial_guess(
         dmax = dmax.max(2.0 * g.norm());
         pen = pen.min(p.penetration(&x0));
     }
-    if !(dmax > 0.0) || !(pen > 0.0) {
+    let positive = |v: f64| v > 0.0; // false for NaN too
+    if !positive(dmax) || !positive(pen) {
         return Err(ChbmError::Invalid(
             "the unstable mode does not move the contact, or the contact is open at equilibrium"
                 .into(),
@@ -624,6 +637,17 @@ fn recovery_error(
 /// Largest relative difference between the analytic Jacobian of the stage-1 residual
 /// `[f1; phase; f2]` and central finite differences, at the initial guess (eq 48): for tests
 /// and diagnostics. Returns `(worst over the f1 rows, worst over the f2 row)`.
+/// The force scale of `f1`'s tolerance: the larger of the condensed static load and the
+/// static contact forces. A brake held only by a preloading gap (no piston force) has a zero
+/// load but not zero contact forces.
+fn force_scale(mb: &ModalBrake, start: &ChbmStart, f_eq: &[f64]) -> f64 {
+    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let x: Vec<f64> = mb.nl_dofs.iter().map(|&d| start.equilibrium[d]).collect();
+    let mut f = vec![0.0; x.len()];
+    ContactForce::new(mb).eval(&x, &vec![0.0; x.len()], &mut f, None);
+    norm(f_eq).max(norm(&f)).max(f64::MIN_POSITIVE)
+}
+
 pub fn check_jacobian(
     mb: &ModalBrake,
     start: &ChbmStart,
@@ -652,7 +676,7 @@ pub fn check_jacobian(
         mb: mb.clone(),
         layout,
         phase,
-        f_scale: f_eq.iter().map(|v| v * v).sum::<f64>().sqrt(),
+        f_scale: force_scale(mb, start, &f_eq),
         x_scale: 1e-6,
         w_scale: omega0,
         weight: 1.0,

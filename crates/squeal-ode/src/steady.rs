@@ -29,6 +29,10 @@ const MAX_WINDOW: usize = 100_000;
 /// Golden-section iterations for an extremum (0.618^40 = 4e-9 of a step in
 /// time, so the peak value is exact to ~1e-17 relative).
 const GOLDEN_ITERATIONS: usize = 40;
+/// A cycle whose dip below the level is under this fraction of its rise above it is a
+/// spurious double crossing, not a cycle.
+const SPURIOUS_DIP: f64 = 1e-3;
+
 /// Iteration cap of the Illinois crossing search.
 const CROSSING_ITERATIONS: usize = 100;
 
@@ -464,6 +468,16 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
         };
         if !(last.g < level && cur.g >= level) {
             return Ok(None);
+        }
+        if let Some(open) = self.open {
+            // A cycle must dip below the level. Consecutive steps' interpolants differ by
+            // the local error at their common end, so a step ending just past a crossing can
+            // show a second crossing a round-off later: such a "cycle" rises but never dips,
+            // and is ignored (the open cycle goes on).
+            let rise = (open.max.g - level).max(0.0);
+            if level - open.min.g <= SPURIOUS_DIP * rise {
+                return Ok(None);
+            }
         }
         let tc = self.crossing(bdf, last, cur)?;
         self.take_samples(bdf, tc, false)?;
