@@ -132,7 +132,6 @@ pub fn assemble(
                 )
             })
             .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(k, d)| (k, d))
             .ok_or_else(|| BrakeError::Invalid("no pad contact point left to pair".into()))?;
         if dist > params.pairing_tolerance {
             return Err(BrakeError::Invalid(format!(

@@ -8,19 +8,52 @@
 //! costs `O(n n_nl)`; the Jacobian `O(n² n_nl)`.
 
 use crate::modal_brake::ModalBrake;
-use faer::MatMut;
+use faer::linalg::solvers::Solve;
+use faer::{Mat, MatMut};
 use squeal_ode::OdeSystem;
+use std::cell::RefCell;
+
+/// Scratch vectors of one right-hand side evaluation (`x_n` and `G(x_n)`).
+#[derive(Default)]
+struct Scratch {
+    xn: Vec<f64>,
+    g: Vec<f64>,
+}
 
 /// The brake's equations of motion for [`squeal_ode`].
 pub struct BrakeDynamics<'a> {
     pub brake: &'a ModalBrake,
+    scratch: RefCell<Scratch>,
 }
 
-impl BrakeDynamics<'_> {
-    /// State of a physical displacement `x` and velocity `v` (modal projection
-    /// `q = Φ⁻¹ x = Φᵀ M x` needs `M`; callers pass modal coordinates directly instead).
+impl<'a> BrakeDynamics<'a> {
+    pub fn new(brake: &'a ModalBrake) -> Self {
+        Self {
+            brake,
+            scratch: RefCell::new(Scratch::default()),
+        }
+    }
+
+    /// State `[q; v]` of modal displacements and velocities.
     pub fn state(q: &[f64], v: &[f64]) -> Vec<f64> {
         q.iter().chain(v).copied().collect()
+    }
+
+    /// State `[q; v]` of physical displacements `x` and velocities `v`: `q = Φ⁻¹ x`
+    /// (one LU of the square modal matrix). `None` if the lengths differ from the brake's
+    /// dofs or `Φ` is singular.
+    pub fn state_from_physical(brake: &ModalBrake, x: &[f64], v: &[f64]) -> Option<Vec<f64>> {
+        let n = brake.modes();
+        if x.len() != n || v.len() != n || brake.phi.nrows() != n || brake.phi.ncols() != n {
+            return None;
+        }
+        let rhs = Mat::from_fn(n, 2, |i, j| if j == 0 { x[i] } else { v[i] });
+        let sol = brake.phi.partial_piv_lu().solve(&rhs);
+        let y: Vec<f64> = (0..n)
+            .map(|i| sol[(i, 0)])
+            .chain((0..n).map(|i| sol[(i, 1)]))
+            .collect();
+        y.iter().all(|v| v.is_finite()).then_some(y)
     }
 }
 
@@ -31,15 +64,18 @@ impl OdeSystem for BrakeDynamics<'_> {
 
     fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
         let mb = self.brake;
-        let n = mb.modes();
+        let (n, nn) = (mb.modes(), mb.nl());
         let (q, v) = y.split_at(n);
-        let mut xn = vec![0.0; mb.nl()];
-        mb.nonlinear_part(q, &mut xn);
-        let mut g = vec![0.0; mb.nl()];
-        mb.add_reduced_force(&xn, &mut g);
+        let mut s = self.scratch.borrow_mut();
+        let Scratch { xn, g } = &mut *s;
+        xn.resize(nn, 0.0);
+        g.clear();
+        g.resize(nn, 0.0);
+        mb.nonlinear_part(q, xn);
+        mb.add_reduced_force(xn, g);
         for j in 0..n {
             dy[j] = v[j];
-            let coupling: f64 = (0..mb.nl()).map(|i| mb.phi_n[(i, j)] * g[i]).sum();
+            let coupling: f64 = (0..nn).map(|i| mb.phi_n[(i, j)] * g[i]).sum();
             dy[n + j] =
                 mb.load[j] - mb.damping[j] * v[j] - mb.omega[j] * mb.omega[j] * q[j] - coupling;
         }
@@ -50,13 +86,13 @@ impl OdeSystem for BrakeDynamics<'_> {
         let (n, nn) = (mb.modes(), mb.nl());
         let mut xn = vec![0.0; nn];
         mb.nonlinear_part(&y[..n], &mut xn);
-        let mut kg = faer::Mat::<f64>::zeros(nn, nn);
+        let mut kg = Mat::<f64>::zeros(nn, nn);
         mb.add_reduced_jacobian(&xn, &mut kg);
         // Φ_nᵀ kg Φ_n in two products.
         let kphi = &kg * &mb.phi_n;
         let block = mb.phi_n.transpose() * &kphi;
-        for r in 0..2 * n {
-            for c in 0..2 * n {
+        for c in 0..2 * n {
+            for r in 0..2 * n {
                 jac[(r, c)] = 0.0;
             }
         }

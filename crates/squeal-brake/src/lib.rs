@@ -8,19 +8,28 @@
 //! - [`spectrum`]: the complex eigenvalues of the linearized brake (eqs 20–22).
 //! - [`tracking`]: following modes across a parameter sweep by eigenvector correlation.
 //! - [`sweep`]: friction sweeps, the Hopf point `mu0` and its refinement.
+//! - [`lowrank`]: the linearized brake as a diagonal-plus-rank-`P` quadratic eigenproblem.
+//! - [`continuation`]: exact continuation of its eigenpairs from one friction value to the next.
+//! - [`hopf`]: the Hopf point by Newton's method on the continued eigenvalue.
+//! - [`studies`]: parametric studies (pressure, contact stiffness, pair damping), the
+//!   damping-induced destabilization at small friction, and mode-shape measures.
 
 // Index loops over dofs read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
 pub mod analysis;
 pub mod assemble;
+pub mod continuation;
 pub mod dynamics;
 pub mod equilibrium;
 pub mod error;
+pub mod hopf;
+pub mod lowrank;
 pub mod modal;
 pub mod modal_brake;
 pub mod model;
 pub mod spectrum;
+pub mod studies;
 pub mod sweep;
 pub mod tracking;
 

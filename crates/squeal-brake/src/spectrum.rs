@@ -16,7 +16,10 @@ use crate::equilibrium::Equilibrium;
 use crate::error::BrakeError;
 use crate::modal::ModalBasis;
 use crate::model::Brake;
-use faer::{Mat, c64};
+use faer::diag::Diag;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::evd::{ComputeEigenvectors, evd_real, evd_scratch};
+use faer::{Mat, Par, c64};
 
 /// The frictionless reference: equilibrium at μ = 0, its tangent stiffness, modal basis and
 /// the damping diagonal `D` of eq (12).
@@ -111,19 +114,9 @@ pub fn spectrum_of(
 ) -> Result<Spectrum, BrakeError> {
     let n = basis.omega.len();
     let a = state_matrix(basis, damping, dk);
-    let evd = a.eigen().map_err(|e| BrakeError::Eigen(format!("{e:?}")))?;
-    let s = evd.S();
-    let u = evd.U();
-    // One of each conjugate pair: the n eigenvalues of largest imaginary part.
-    let mut order: Vec<usize> = (0..2 * n).collect();
-    order.sort_by(|&a, &b| {
-        s[b].im
-            .total_cmp(&s[a].im)
-            .then(s[b].re.total_cmp(&s[a].re))
-            .then(a.cmp(&b))
-    });
-    order.truncate(n);
-    order.sort_by(|&a, &b| s[a].im.total_cmp(&s[b].im).then(a.cmp(&b)));
+    let (s, u) = real_eigen(&a, true)?;
+    let u = u.ok_or_else(|| BrakeError::Eigen("no eigenvectors".into()))?;
+    let order = upper_half(&s, n);
     let mut values = Vec::with_capacity(n);
     let mut modes = Mat::<c64>::zeros(n, n);
     for (col, &k) in order.iter().enumerate() {
@@ -141,6 +134,83 @@ pub fn spectrum_of(
         }
     }
     Ok(Spectrum { mu, values, modes })
+}
+
+/// The eigenvalues of the state matrix with `Im λ >= 0` (one of each conjugate pair), as
+/// [`spectrum_of`] orders them, without the modes (faster).
+pub fn eigenvalues_of(
+    basis: &ModalBasis,
+    damping: &[f64],
+    dk: &Mat<f64>,
+) -> Result<Vec<c64>, BrakeError> {
+    let n = basis.omega.len();
+    let a = state_matrix(basis, damping, dk);
+    let (s, _) = real_eigen(&a, false)?;
+    Ok(upper_half(&s, n).into_iter().map(|k| s[k]).collect())
+}
+
+/// Indices of the `n` eigenvalues of largest imaginary part (one of each conjugate pair),
+/// ascending in `Im λ`, ties by index.
+fn upper_half(s: &[c64], n: usize) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..s.len()).collect();
+    order.sort_by(|&a, &b| {
+        s[b].im
+            .total_cmp(&s[a].im)
+            .then(s[b].re.total_cmp(&s[a].re))
+            .then(a.cmp(&b))
+    });
+    order.truncate(n);
+    order.sort_by(|&a, &b| s[a].im.total_cmp(&s[b].im).then(a.cmp(&b)));
+    order
+}
+
+/// Eigenvalues and (optionally) right eigenvectors of a real square matrix, by faer's dense
+/// real eigensolver run sequentially so that the bits do not depend on the thread count.
+/// A complex pair's vectors are `u_j ± i u_(j+1)` of the real quasi-triangular form's vectors.
+pub fn real_eigen(a: &Mat<f64>, vectors: bool) -> Result<(Vec<c64>, Option<Mat<c64>>), BrakeError> {
+    let n = a.nrows();
+    let mut s_re = Diag::<f64>::zeros(n);
+    let mut s_im = Diag::<f64>::zeros(n);
+    let mut u_real = vectors.then(|| Mat::<f64>::zeros(n, n));
+    let want = if vectors {
+        ComputeEigenvectors::Yes
+    } else {
+        ComputeEigenvectors::No
+    };
+    let par = Par::Seq;
+    let scratch = evd_scratch::<f64>(n, ComputeEigenvectors::No, want, par, Default::default());
+    evd_real(
+        a.as_ref(),
+        s_re.as_mut(),
+        s_im.as_mut(),
+        None,
+        u_real.as_mut().map(|u| u.as_mut()),
+        par,
+        MemStack::new(&mut MemBuffer::new(scratch)),
+        Default::default(),
+    )
+    .map_err(|e| BrakeError::Eigen(format!("{e:?}")))?;
+    let values: Vec<c64> = (0..n).map(|j| c64::new(s_re[j], s_im[j])).collect();
+    let modes = u_real.map(|ur| {
+        let mut u = Mat::<c64>::zeros(n, n);
+        let mut j = 0;
+        while j < n {
+            if s_im[j] == 0.0 || j + 1 == n {
+                for i in 0..n {
+                    u[(i, j)] = c64::new(ur[(i, j)], 0.0);
+                }
+                j += 1;
+            } else {
+                for i in 0..n {
+                    u[(i, j)] = c64::new(ur[(i, j)], ur[(i, j + 1)]);
+                    u[(i, j + 1)] = c64::new(ur[(i, j)], -ur[(i, j + 1)]);
+                }
+                j += 2;
+            }
+        }
+        u
+    });
+    Ok((values, modes))
 }
 
 #[cfg(test)]

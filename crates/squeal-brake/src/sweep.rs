@@ -1,13 +1,32 @@
 //! Friction sweeps: equilibrium and spectrum at each μ, modes tracked into branches, and the
 //! Hopf point `μ0` (the first crossing of a real part through zero inside the band the model
 //! can speak for), refined by root finding.
+//!
+//! Two methods ([`SweepMethod`]):
+//! - [`SweepMethod::Continuation`] (default): a dense eigen-decomposition at the first point
+//!   only; from there every eigenpair is continued exactly to the next μ
+//!   ([`crate::continuation`], `O(n² P)` per point instead of `O(n³)`), so each branch is
+//!   followed by construction. A continued spectrum that fails its checks makes the step be
+//!   halved, and after [`ContinuationOptions::max_halvings`] halvings the point is computed by
+//!   the dense solver and matched by correlation. Every
+//!   [`ContinuationOptions::check_every`] points the continued eigenvalues are compared with a
+//!   dense solve. The Hopf point is refined by Newton's method on `Re λ(μ)` with the exact
+//!   derivative from the left and right eigenvectors ([`crate::hopf`]).
+//! - [`SweepMethod::Dense`]: a dense eigen-decomposition at every point (in parallel), modes
+//!   tracked by correlation and assignment ([`crate::tracking`]), the Hopf point by the
+//!   Illinois variant of regula falsi.
 
+use crate::continuation::{
+    ContinuationOptions, Eigenpair, agrees_with, continue_all, seed, validate,
+};
 use crate::equilibrium::{Equilibrium, NewtonOptions, static_equilibrium};
 use crate::error::BrakeError;
+use crate::lowrank::{Coupling, LowRank};
 use crate::modal::{Damping, modal_basis};
 use crate::model::Brake;
-use crate::spectrum::{Reference, Spectrum, spectrum};
+use crate::spectrum::{Reference, Spectrum, eigenvalues_of, spectrum, spectrum_of};
 use crate::tracking::{mac, match_modes};
+use faer::{Mat, c64};
 use rayon::prelude::*;
 
 /// The frequency band a result is trusted in.
@@ -28,6 +47,16 @@ impl Band {
     }
 }
 
+/// How the spectra of a sweep are computed (see the module documentation).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SweepMethod {
+    /// Dense eigen-decomposition at every point, tracking by correlation.
+    Dense,
+    /// Exact continuation of every eigenpair, dense solves only to start and to check.
+    #[default]
+    Continuation,
+}
+
 /// Controls of a sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SweepOptions {
@@ -42,6 +71,9 @@ pub struct SweepOptions {
     /// the scaled state matrix of [`crate::spectrum`]). The Hopf point is the root of
     /// `Re λ - threshold`, shifted from that of `Re λ` by `threshold / (dRe λ/dμ)`.
     pub threshold: Option<f64>,
+    pub method: SweepMethod,
+    /// Controls of [`SweepMethod::Continuation`].
+    pub continuation: ContinuationOptions,
 }
 
 impl Default for SweepOptions {
@@ -55,8 +87,26 @@ impl Default for SweepOptions {
             mu_tolerance: 1e-8,
             max_refinements: 80,
             threshold: None,
+            method: SweepMethod::default(),
+            continuation: ContinuationOptions::default(),
         }
     }
+}
+
+/// What a sweep's spectra cost.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SweepStats {
+    /// Dense eigen-decompositions with vectors (the dense method's every point; the
+    /// continuation's first point and fallbacks).
+    pub dense: usize,
+    /// Dense eigenvalue-only checks of continued spectra.
+    pub checks: usize,
+    /// Continued spectra accepted (sweep points and the extra points of halved steps).
+    pub continued: usize,
+    /// Continued spectra rejected (the step was then halved or computed dense).
+    pub rejected: usize,
+    /// Inverse-iteration steps over all branches and points.
+    pub iterations: usize,
 }
 
 /// Equilibrium and spectrum at one μ.
@@ -107,6 +157,7 @@ pub struct Sweep {
     pub branches: Vec<Vec<usize>>,
     pub crossings: Vec<Crossing>,
     pub hopf: Option<Hopf>,
+    pub stats: SweepStats,
 }
 
 impl Sweep {
@@ -134,8 +185,8 @@ pub fn reference(
     })
 }
 
-/// Sweeps `mus` (ascending): equilibria by continuation, spectra in parallel, branches by
-/// tracking, crossings, and the refined Hopf point.
+/// Sweeps `mus` (ascending): equilibria by continuation, spectra by the method of `opts`,
+/// branches, crossings, and the refined Hopf point.
 pub fn sweep(
     brake: &Brake,
     reference: &Reference,
@@ -151,6 +202,49 @@ pub fn sweep(
             "the friction values of a sweep must be ascending".into(),
         ));
     }
+    let low_rank = match opts.method {
+        SweepMethod::Continuation => LowRank::new(brake, reference),
+        SweepMethod::Dense => None,
+    };
+    let (points, branches, stats) = match &low_rank {
+        Some(lr) => continued_points(brake, reference, lr, mus, opts)?,
+        None => dense_points(brake, reference, mus, opts)?,
+    };
+    let tau = opts
+        .threshold
+        .unwrap_or_else(|| default_threshold(reference));
+    let crossings = crossings(&points, &branches, opts, tau);
+    let mut sweep = Sweep {
+        points,
+        branches,
+        crossings,
+        hopf: None,
+        stats,
+    };
+    if let Some(first) = sweep.crossings.iter().find(|c| c.in_band).copied() {
+        let continued = match &low_rank {
+            Some(lr) => crate::hopf::refine(brake, reference, lr, &sweep, &first, opts, tau)?,
+            None => None,
+        };
+        sweep.hopf = match continued {
+            Some(h) => Some(h),
+            None => Some(refine(brake, reference, &sweep, &first, opts, tau)?),
+        };
+    }
+    Ok(sweep)
+}
+
+/// Points of a sweep, the branches tracked through them (pair index per point) and the
+/// work counts.
+type SweptPoints = (Vec<SweepPoint>, Vec<Vec<usize>>, SweepStats);
+
+/// Points and branches with [`SweepMethod::Dense`].
+fn dense_points(
+    brake: &Brake,
+    reference: &Reference,
+    mus: &[f64],
+    opts: &SweepOptions,
+) -> Result<SweptPoints, BrakeError> {
     let mut equilibria = Vec::with_capacity(mus.len());
     let mut start: Option<Vec<f64>> = None;
     for &mu in mus {
@@ -171,20 +265,209 @@ pub fn sweep(
         })
         .collect();
     let branches = track(&points);
-    let tau = opts
-        .threshold
-        .unwrap_or_else(|| default_threshold(reference));
-    let crossings = crossings(&points, &branches, opts, tau);
-    let mut sweep = Sweep {
-        points,
-        branches,
-        crossings,
-        hopf: None,
+    let stats = SweepStats {
+        dense: points.len(),
+        ..SweepStats::default()
     };
-    if let Some(first) = sweep.crossings.iter().find(|c| c.in_band).copied() {
-        sweep.hopf = Some(refine(brake, reference, &sweep, &first, opts, tau)?);
+    Ok((points, branches, stats))
+}
+
+/// Points and branches with [`SweepMethod::Continuation`].
+fn continued_points(
+    brake: &Brake,
+    reference: &Reference,
+    lr: &LowRank,
+    mus: &[f64],
+    opts: &SweepOptions,
+) -> Result<SweptPoints, BrakeError> {
+    let mut walker = Walker {
+        brake,
+        reference,
+        lr,
+        opts,
+        stats: SweepStats::default(),
+    };
+    let check_every = opts.continuation.check_every;
+    let mut state = walker.start(mus[0])?;
+    let mut points = Vec::with_capacity(mus.len());
+    let mut branches: Vec<Vec<usize>> = vec![Vec::with_capacity(mus.len()); state.pairs.len()];
+    for (k, &mu) in mus.iter().enumerate() {
+        if k > 0 {
+            let mut next = walker.step(&state, mu)?;
+            if check_every > 0 && k % check_every == 0 {
+                walker.check(&mut next, &state)?;
+            }
+            state = next;
+        }
+        let (point, position) = sweep_point(&state);
+        for (b, br) in branches.iter_mut().enumerate() {
+            br.push(position[b]);
+        }
+        points.push(point);
     }
-    Ok(sweep)
+    Ok((points, branches, walker.stats))
+}
+
+/// A point of the continuation: equilibrium, coupling, and eigenpairs by branch.
+pub(crate) struct State {
+    pub eq: Equilibrium,
+    pub c: Coupling,
+    pub pairs: Vec<Eigenpair>,
+}
+
+/// The sweep point of a state (eigenvalues ascending in frequency, as [`spectrum_of`] orders
+/// them) and the position of each branch in it.
+pub(crate) fn sweep_point(state: &State) -> (SweepPoint, Vec<usize>) {
+    let pairs = &state.pairs;
+    let n = pairs.len();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| {
+        pairs[a]
+            .lambda
+            .im
+            .total_cmp(&pairs[b].lambda.im)
+            .then(a.cmp(&b))
+    });
+    let mut position = vec![0; n];
+    for (i, &b) in order.iter().enumerate() {
+        position[b] = i;
+    }
+    let rows = pairs.first().map_or(0, |p| p.right.len());
+    let spectrum = Spectrum {
+        mu: state.eq.mu,
+        values: order.iter().map(|&b| pairs[b].lambda).collect(),
+        modes: Mat::from_fn(rows, n, |i, j| pairs[order[j]].right[i]),
+    };
+    let point = SweepPoint {
+        equilibrium: state.eq.clone(),
+        spectrum,
+    };
+    (point, position)
+}
+
+/// Eigenpairs as a [`Spectrum`] in branch order (for matching by correlation).
+fn branch_spectrum(mu: f64, pairs: &[Eigenpair]) -> Spectrum {
+    let rows = pairs.first().map_or(0, |p| p.right.len());
+    Spectrum {
+        mu,
+        values: pairs.iter().map(|p| p.lambda).collect(),
+        modes: Mat::from_fn(rows, pairs.len(), |i, j| pairs[j].right[i]),
+    }
+}
+
+/// Walks the friction values: equilibria, continued eigenpairs, halvings and fallbacks.
+pub(crate) struct Walker<'a> {
+    pub brake: &'a Brake,
+    pub reference: &'a Reference,
+    pub lr: &'a LowRank,
+    pub opts: &'a SweepOptions,
+    pub stats: SweepStats,
+}
+
+impl Walker<'_> {
+    /// Equilibrium at `mu` by Newton's method from `from`.
+    pub fn equilibrium(&self, mu: f64, from: &Equilibrium) -> Result<Equilibrium, BrakeError> {
+        static_equilibrium(self.brake, mu, Some(&from.x), &self.opts.newton)
+    }
+
+    /// The first point: equilibrium from scratch, dense spectrum.
+    fn start(&mut self, mu: f64) -> Result<State, BrakeError> {
+        let eq = static_equilibrium(self.brake, mu, None, &self.opts.newton)?;
+        let c = self.lr.coupling(self.brake, &eq);
+        let pairs = self.dense(&c, None)?;
+        Ok(State { eq, c, pairs })
+    }
+
+    /// Eigenpairs at `c` by the dense solver, in the branch order of `prev` (matched by
+    /// correlation and eigenvalue distance, [`match_modes`]) or in ascending frequency.
+    pub fn dense(
+        &mut self,
+        c: &Coupling,
+        prev: Option<&[Eigenpair]>,
+    ) -> Result<Vec<Eigenpair>, BrakeError> {
+        self.stats.dense += 1;
+        let dk = self.lr.stiffness_change(c);
+        let sp = spectrum_of(&self.reference.basis, &self.reference.damping, &dk, c.mu)?;
+        let order: Vec<usize> = match prev {
+            Some(p) => match_modes(&branch_spectrum(c.mu, p), &sp),
+            None => (0..sp.values.len()).collect(),
+        };
+        let copts = &self.opts.continuation;
+        Ok(order
+            .par_iter()
+            .map(|&i| {
+                let right: Vec<c64> = (0..sp.modes.nrows()).map(|r| sp.modes[(r, i)]).collect();
+                seed(self.lr, c, sp.values[i], right, copts)
+            })
+            .collect())
+    }
+
+    /// The next point at `mu`: continued from `from`, or dense when continuation fails.
+    pub fn step(&mut self, from: &State, mu: f64) -> Result<State, BrakeError> {
+        let eq = self.equilibrium(mu, &from.eq)?;
+        let c = self.lr.coupling(self.brake, &eq);
+        self.step_to(from, eq, c)
+    }
+
+    /// The next point at a given equilibrium and coupling.
+    pub fn step_to(
+        &mut self,
+        from: &State,
+        eq: Equilibrium,
+        c: Coupling,
+    ) -> Result<State, BrakeError> {
+        let pairs = match self.advance(from, &eq, &c, 0)? {
+            Some(p) => p,
+            None => self.dense(&c, Some(&from.pairs))?,
+        };
+        Ok(State { eq, c, pairs })
+    }
+
+    /// Continues `from` to `(eq, c)`, halving the step while the result is rejected; `None`
+    /// after [`ContinuationOptions::max_halvings`] halvings.
+    fn advance(
+        &mut self,
+        from: &State,
+        eq: &Equilibrium,
+        c: &Coupling,
+        depth: usize,
+    ) -> Result<Option<Vec<Eigenpair>>, BrakeError> {
+        let copts = &self.opts.continuation;
+        if let Some((pairs, steps)) = continue_all(self.lr, c, &from.pairs, copts) {
+            self.stats.iterations += steps;
+            if validate(self.lr, c, &from.pairs, &pairs, copts).is_ok() {
+                self.stats.continued += 1;
+                return Ok(Some(pairs));
+            }
+        }
+        self.stats.rejected += 1;
+        if depth >= copts.max_halvings {
+            return Ok(None);
+        }
+        let mid_eq = self.equilibrium(0.5 * (from.eq.mu + eq.mu), &from.eq)?;
+        let mid_c = self.lr.coupling(self.brake, &mid_eq);
+        let Some(pairs) = self.advance(from, &mid_eq, &mid_c, depth + 1)? else {
+            return Ok(None);
+        };
+        let mid = State {
+            eq: mid_eq,
+            c: mid_c,
+            pairs,
+        };
+        self.advance(&mid, eq, c, depth + 1)
+    }
+
+    /// Compares a continued point with a dense eigenvalue solve; on disagreement replaces it
+    /// by the dense eigenpairs matched to `prev`.
+    fn check(&mut self, state: &mut State, prev: &State) -> Result<(), BrakeError> {
+        self.stats.checks += 1;
+        let dk = self.lr.stiffness_change(&state.c);
+        let dense = eigenvalues_of(&self.reference.basis, &self.reference.damping, &dk)?;
+        if !agrees_with(&state.pairs, &dense, self.opts.continuation.check_tolerance) {
+            state.pairs = self.dense(&state.c, Some(&prev.pairs))?;
+        }
+        Ok(())
+    }
 }
 
 /// Branch indices: branch `b` starts as mode `b` of the first spectrum.
@@ -305,18 +588,7 @@ fn refine(
         }
     }
     let frequency_hz = hi.1.spectrum.frequency_hz(hi.2);
-    // The partner: the other in-band branch nearest in frequency at the upper bracket point
-    // of the sweep (where the branch is tracked).
-    let k = c.k + 1;
-    let partner = (0..sweep.branches.len())
-        .filter(|&b| b != c.branch)
-        .min_by(|&a, &b| {
-            let fa = (sweep.points[k].spectrum.frequency_hz(sweep.branches[a][k]) - c.frequency_hz)
-                .abs();
-            let fb = (sweep.points[k].spectrum.frequency_hz(sweep.branches[b][k]) - c.frequency_hz)
-                .abs();
-            fa.total_cmp(&fb)
-        });
+    let partner = partner(sweep, c);
     Ok(Hopf {
         mu0: 0.5 * (lo.0 + hi.0),
         frequency_hz,
@@ -328,4 +600,16 @@ fn refine(
         index: hi.2,
         point: hi.1,
     })
+}
+
+/// The branch a crossing's branch coalesces with: the other branch nearest in frequency at the
+/// upper point of the crossing (where the branch is tracked).
+pub(crate) fn partner(sweep: &Sweep, c: &Crossing) -> Option<usize> {
+    let k = c.k + 1;
+    let distance = |b: usize| {
+        (sweep.points[k].spectrum.frequency_hz(sweep.branches[b][k]) - c.frequency_hz).abs()
+    };
+    (0..sweep.branches.len())
+        .filter(|&b| b != c.branch)
+        .min_by(|&a, &b| distance(a).total_cmp(&distance(b)))
 }

@@ -1,0 +1,70 @@
+//! Prints a table of where a friction sweep's time goes on the coarse bundled brake.
+
+#[path = "../tests/sweep_support/mod.rs"]
+mod sweep_support;
+
+use squeal_brake::sweep::{SweepMethod, SweepOptions, sweep};
+use std::time::Instant;
+
+fn best<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
+    let mut best = f64::INFINITY;
+    let mut out = None;
+    for _ in 0..reps {
+        let t = Instant::now();
+        let r = f();
+        best = best.min(t.elapsed().as_secs_f64());
+        out = Some(r);
+    }
+    (best, out.unwrap())
+}
+
+fn main() {
+    let t = Instant::now();
+    let c = sweep_support::coarse();
+    eprintln!("coarse brake built in {:.1?}", t.elapsed());
+    let (b, r) = (&c.brake, &c.reference);
+    let mus = sweep_support::mus(0.0, 1.0, 201);
+    let cont = sweep_support::options(c);
+    let dense = SweepOptions {
+        method: SweepMethod::Dense,
+        ..cont
+    };
+    let (tc, sc) = best(3, || sweep(b, r, &mus, &cont).unwrap());
+    println!("continuation: {:.3} s; stats {:?}", tc, sc.stats);
+    println!(
+        "  hopf {:?}",
+        sc.hopf
+            .as_ref()
+            .map(|h| (h.mu0, h.frequency_hz, h.evaluations, h.bracket))
+    );
+    let (td, sd) = best(1, || sweep(b, r, &mus, &dense).unwrap());
+    println!("dense: {:.3} s; stats {:?}", td, sd.stats);
+    println!(
+        "  hopf {:?}",
+        sd.hopf
+            .as_ref()
+            .map(|h| (h.mu0, h.frequency_hz, h.evaluations, h.bracket))
+    );
+    let mut worst = (0.0f64, 0, 0);
+    let mut swaps = 0;
+    for k in 0..mus.len() {
+        for br in 0..sc.branches.len() {
+            let lc = sc.value(br, k);
+            let ld = sd.value(br, k);
+            let e = (lc - ld).norm() / ld.norm();
+            if e > 1e-6 {
+                swaps += 1;
+            }
+            if e > worst.0 && e < 1e-6 {
+                worst = (e, br, k);
+            }
+        }
+    }
+    println!(
+        "worst relative difference (same branch) {:?}; branch mismatches {}",
+        worst, swaps
+    );
+    for (a, bb) in sc.crossings.iter().zip(&sd.crossings) {
+        println!("  crossing cont {:?}\n           dense {:?}", a, bb);
+    }
+}
