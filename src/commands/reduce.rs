@@ -317,6 +317,16 @@ fn print_summary(
             red.max_residual
         );
         println!("    Sturm count                        {sturm}");
+        let e = &red.eig;
+        println!(
+            "    eigensolver: {} solves with the factor (block {}, basis {}, {} restarts), {:.2} s of solves, Sturm check {:.2} s",
+            e.operator_applications,
+            e.block,
+            e.ncv,
+            e.restarts,
+            e.operator_time.as_secs_f64(),
+            e.sturm_time.as_secs_f64()
+        );
     }
     let worst = report.pairs.iter().map(|p| p.distance).fold(0.0, f64::max);
     println!(

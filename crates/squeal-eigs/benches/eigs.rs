@@ -60,7 +60,7 @@ fn main() {
     let total_factor = t.elapsed();
     let s = f.stats();
     println!(
-        "AMD + symbolic (s)      {:8.2}",
+        "ordering + symbolic (s) {:8.2}",
         s.symbolic_time.as_secs_f64()
     );
     println!(

@@ -37,6 +37,8 @@ struct Run {
     total: f64,
     peak_mb: f64,
     factor_mb: f64,
+    /// User + system CPU seconds of the process.
+    cpu: f64,
 }
 
 fn peak_mb() -> f64 {
@@ -46,6 +48,23 @@ fn peak_mb() -> f64 {
         .find_map(|l| l.strip_prefix("VmHWM:"))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
         .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
+/// User + system CPU time of this process (fields 14 and 15 of /proc/self/stat, in
+/// clock ticks of 1/100 s, Linux's USER_HZ).
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // The command name (field 2) is in parentheses and may hold spaces: count after it.
+    let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let ticks = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(f64::NAN)
+    };
+    // Fields 14 and 15 overall are the 12th and 13th after the command name.
+    (ticks(11) + ticks(12)) / 100.0
 }
 
 /// Runs one reduction and prints its line.
@@ -79,11 +98,12 @@ fn child(level: &str, backend: Backend) {
     let dofs: usize = report.parts.iter().map(|p| p.reduce.free_dofs).sum();
     let factor: usize = report.parts.iter().map(|p| p.reduce.factor_bytes).sum();
     println!(
-        "RUN level={level} backend={} dofs={dofs} stages={} total={total} peak_mb={} factor_mb={}",
+        "RUN level={level} backend={} dofs={dofs} stages={} total={total} peak_mb={} factor_mb={} cpu={}",
         backend_name(backend),
         stages.join(","),
         peak_mb(),
-        factor as f64 / 1e6
+        factor as f64 / 1e6,
+        cpu_seconds()
     );
 }
 
@@ -104,6 +124,7 @@ fn parse(line: &str) -> Option<Run> {
             "total" => run.total = v.parse().ok()?,
             "peak_mb" => run.peak_mb = v.parse().ok()?,
             "factor_mb" => run.factor_mb = v.parse().ok()?,
+            "cpu" => run.cpu = v.parse().ok()?,
             _ => {}
         }
     }
@@ -205,15 +226,18 @@ fn print_table(runs: &[Run]) {
         head += &format!(" {} |", s.label());
         rule += "---|";
     }
-    head += " total (s) | peak memory (MB) | factors (MB) |";
-    rule += "---|---|---|";
+    head += " total (s) | CPU (s) | peak memory (MB) | factors (MB) |";
+    rule += "---|---|---|---|";
     println!("{head}\n{rule}");
     for r in runs {
         let mut row = format!("| {} | {} | {} |", r.level, r.backend, r.dofs);
         for t in &r.stages {
             row += &format!(" {t:.2} |");
         }
-        row += &format!(" {:.1} | {:.0} | {:.0} |", r.total, r.peak_mb, r.factor_mb);
+        row += &format!(
+            " {:.1} | {:.1} | {:.0} | {:.0} |",
+            r.total, r.cpu, r.peak_mb, r.factor_mb
+        );
         println!("{row}");
     }
 }

@@ -380,9 +380,6 @@ pub fn omega2(hz: f64) -> f64 {
     (2.0 * std::f64::consts::PI * hz).powi(2)
 }
 
-/// Smallest Lanczos basis used for the fixed-interface modes.
-const MIN_NCV: usize = 40;
-
 /// Fixed-interface modes as found: eigenvalues, vectors, residuals, and the Sturm check made.
 struct FixedModes {
     values: Vec<f64>,
@@ -455,13 +452,6 @@ fn fixed_interface_modes(
             part: part.clone(),
             what: format!("{nm} fixed-interface modes asked for, the interior has {n} dofs"),
         });
-    }
-    if eig_opts.ncv.is_none() {
-        // squeal-eigs' default basis, max(2 (nm + guard) + 1, 20), stalls on the last guard
-        // pair for a few modes of the coarse pad (10 wanted, 300 restarts, residual 9e-10);
-        // 40 or more converges in a few restarts.
-        let wanted = nm + eig_opts.guard;
-        eig_opts.ncv = Some((2 * wanted + 1).max(MIN_NCV).min(n));
     }
     let modes = lowest_modes_with_factor(k_vv.as_ref(), m_vv.as_ref(), factor, nm, &eig_opts)
         .map_err(eigen)?;

@@ -237,7 +237,7 @@ fn static_block_is_the_guyan_condensation_computed_from_the_full_flexibility() {
         let reduced = coarse_brake(interface).part("disc").unwrap();
         let kcc = reduced.k.submatrix(0, 0, nb, nb);
         let scale = guyan.norm_max();
-        let diff = (&kcc - &guyan).norm_max() / scale;
+        let diff = (kcc - &guyan).norm_max() / scale;
         eprintln!("disc {interface:?}: Guyan difference {diff:.2e}");
         // Two factorizations and a dense inverse of a 27 x 27 flexibility whose condition
         // number is below 1e4 here: agreement to about 1e-12, asserted at 1e-9.
