@@ -69,7 +69,8 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         println!("\n== 4. CHBM against time integration");
         let t = Instant::now();
         compare::run(compare::CompareArgs {
-            scene: args.scene.clone(),
+            out: Some(out.clone()),
+            ..compare::CompareArgs::for_scene(args.scene.clone())
         })?;
         timings.push(("comparison", t.elapsed().as_secs_f64()));
     }

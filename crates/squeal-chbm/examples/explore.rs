@@ -12,7 +12,8 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let ratio: f64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(1.05);
     let harmonics: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(3);
-    let rom = ReducedModel::read(Path::new("/tmp/out_coarse/brake.rom")).unwrap();
+    let rom_path = std::env::var("ROM").unwrap_or("/tmp/h13/out/brake.rom".into());
+    let rom = ReducedModel::read(Path::new(&rom_path)).unwrap();
     let params = BrakeParams {
         normal: [0.0, 0.0, 1.0],
         sliding: [1.0, 0.0, 0.0],
@@ -66,86 +67,87 @@ fn main() {
         .get(3)
         .map(|s| s.split(",").map(|x| x.parse().unwrap()).collect())
         .unwrap_or(vec![0.3]);
-    if std::env::var("TI").is_ok() {
-        use squeal_brake::dynamics::BrakeDynamics;
-        use squeal_ode::{Atol, Bdf, BdfOptions, SteadyOptions, run_to_steady_state};
-        let n = mb.modes();
-        let mphi = &brake.m * &mb.phi;
-        let proj = |x: &[f64]| -> Vec<f64> {
-            (0..n)
-                .map(|j| (0..n).map(|i| mphi[(i, j)] * x[i]).sum())
-                .collect()
+    if let Ok(rtol) = std::env::var("TI") {
+        use squeal_chbm::timeint::{TiOptions, integrate_to_limit_cycle};
+        let env = |k: &str, d: f64| -> f64 {
+            std::env::var(k)
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(d)
         };
-        let pen0 = eq
-            .penetrations
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min);
-        let psi = &start.mode;
-        let gmax = brake
-            .pairs
-            .iter()
-            .map(|p| {
-                p.normal
-                    .iter()
-                    .map(|&(i, g)| psi[i] * g)
-                    .sum::<faer::c64>()
-                    .norm()
-            })
-            .fold(0.0, f64::max);
-        let eps = 0.1 * pen0 / gmax;
-        let x: Vec<f64> = (0..n).map(|i| eq.x[i] + eps * psi[i].re).collect();
-        let v: Vec<f64> = (0..n).map(|i| eps * (start.lambda * psi[i]).re).collect();
-        let y0 = BrakeDynamics::state(&proj(&x), &proj(&v));
-        let sys = BrakeDynamics { brake: &mb };
-        let rtol: f64 = std::env::var("TI").unwrap().parse().unwrap_or(1e-6);
-        let o = BdfOptions {
-            rtol,
-            atol: Atol::Scalar(rtol * 1e-6),
-            max_order: 2,
-            max_steps: 50_000_000,
+        let o = TiOptions {
+            rtol: rtol.parse().unwrap_or(1e-6),
+            atol_factor: env("ATOL", 1.0),
+            max_order: env("ORDER", 2.0) as usize,
+            perturbation: env("PERT", 0.5),
+            steady_rtol: env("SRTOL", 1e-5),
+            drift_tol: env("DRIFT", 1e-5),
+            max_cycles: env("CYCLES", 5000.0),
             ..Default::default()
         };
-        let t_end = 10.0;
-        let mut bdf = Bdf::new(&sys, 0.0, &y0, t_end, &o).unwrap();
-        let pair = &mb.pairs[4];
-        let level = pair.penetration(
-            &(0..mb.nl())
-                .map(|i| eq.x[mb.nl_dofs[i]])
-                .collect::<Vec<_>>(),
+        let run = integrate_to_limit_cycle(&mb, start.lambda, &start.mode, &start.equilibrium, &o)
+            .unwrap();
+        let st = run.stats;
+        eprintln!(
+            "TI rtol {:e}: wall {:.1?}, t {:.4} s, steps {} ({:.0}/cycle), rejected {}+{}, lu {}, jac {}, newton {}, rhs {}, orders {:?}",
+            o.rtol,
+            run.wall,
+            run.t_end,
+            st.steps,
+            st.steps as f64 / run.history.len().max(1) as f64,
+            st.rejected_error,
+            st.rejected_newton,
+            st.lu_decomps,
+            st.jac_evals,
+            st.newton_iters,
+            st.rhs_evals,
+            st.order_histogram
         );
-        let so = SteadyOptions {
-            level,
-            rtol: 1e-6,
-            cycles: 20,
-            harmonics: 10,
-            samples_per_cycle: 128,
-            subdivisions: 4,
-            min_amplitude: 1e-12,
-        };
-        let t = std::time::Instant::now();
-        let obs = |y: &[f64]| {
-            let mut xn = vec![0.0; mb.nl()];
-            mb.nonlinear_part(&y[..n], &mut xn);
-            pair.penetration(&xn)
-        };
-        match run_to_steady_state(&mut bdf, obs, &so) {
-            Ok(ss) => eprintln!(
-                "TI steady: f = {:.4} Hz, amp p2p {:.3e} (static pen {:.3e}), cycles {}, t {:.4} s, wall {:.1?}, stats {:?}",
-                1.0 / ss.period,
-                ss.amplitude,
-                level,
-                ss.cycles,
-                ss.t_start,
-                t.elapsed(),
-                bdf.stats()
-            ),
-            Err(e) => eprintln!(
-                "TI failed: {e} after {:.1?} t = {}, stats {:?}",
-                t.elapsed(),
-                bdf.t(),
-                bdf.stats()
-            ),
+        eprintln!("drifts {:?}", run.drifts);
+        if let Some(f) = &run.failure {
+            eprintln!("TI failed: {f}");
+        }
+        if let Some(s) = &run.steady {
+            eprintln!(
+                "TI steady: f = {:.5} Hz after {} cycles (t {:.4}), drift {:.2e}, detections {}",
+                1.0 / s.period,
+                s.cycles,
+                s.t,
+                s.drift,
+                s.detections
+            );
+            let eb = squeal_chbm::cycle::energy_balance(&mb, &s.cycle, 1024);
+            eprintln!("energy balance {:?}", eb);
+            let ho = ChbmOptions {
+                harmonics: 10,
+                amplitude: 0.5,
+                ..Default::default()
+            };
+            let sol = solve(&mb, &start, &ho).unwrap();
+            let mut c = sol.cycle();
+            let d = s.cycle.strongest_dof(&mb.nl_dofs);
+            c.align_to(&s.cycle, d);
+            let all: Vec<usize> = (0..mb.modes()).collect();
+            eprintln!(
+                "H=10 vs TI: {:?} nl {:?}",
+                squeal_chbm::cycle::relative_errors(&c, &s.cycle, &all),
+                squeal_chbm::cycle::relative_errors(&c, &s.cycle, &mb.nl_dofs)
+            );
+        }
+        let every = (run.history.len() / 30).max(1);
+        let tail = run.history.len().saturating_sub(12);
+        for r in run
+            .history
+            .iter()
+            .step_by(every)
+            .chain(&run.history[tail..])
+        {
+            eprintln!(
+                "  t {:.4} T {:.6e} amp {:.4e}",
+                r.t_start,
+                r.period,
+                r.amplitude()
+            );
         }
     }
     for h in [1usize, 3] {

@@ -1,0 +1,470 @@
+//! Issue #6, items 6–7: CHBM against the time integration of [`crate::timeint`] at one
+//! friction level (the paper's Tables 1–2 and Figures 4–5), and where each method fails over a
+//! grid of friction levels and initial amplitudes.
+//!
+//! Everything here is computation returning plain data; the `squeal compare` command turns it
+//! into tables and figures. Error measures are those of [`crate::cycle`]: phase-aligned on the
+//! reference's most moving contact dof, relative RMS over the cycle, on all physical dofs and
+//! on the nonlinear (contact) dofs.
+
+use crate::cycle::{
+    CycleCoefficients, EnergyBalance, RelativeErrors, energy_balance, harmonic_power,
+    relative_errors,
+};
+use crate::solve::{ChbmOptions, ChbmSolution, ChbmStart, Outcome, solve};
+use crate::start::start_at;
+use crate::timeint::{TiError, TiOptions, TiRun, integrate_to_limit_cycle};
+use squeal_brake::Brake;
+use squeal_brake::equilibrium::NewtonOptions;
+use squeal_brake::modal_brake::ModalBrake;
+use squeal_brake::spectrum::Reference;
+use squeal_brake::sweep::Band;
+use std::f64::consts::PI;
+use std::time::{Duration, Instant};
+
+/// Errors of a comparison.
+#[derive(Debug, thiserror::Error)]
+pub enum CompareError {
+    #[error("time integration: {0}")]
+    Ti(#[from] TiError),
+    #[error("the reference time integration found no steady cycle: {0}")]
+    NoReference(String),
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// Options of [`compare_at`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct CompareOptions {
+    /// Harmonics of the CHBM solves (Table 1's columns).
+    pub harmonics: Vec<usize>,
+    /// Base CHBM options (the harmonics and amplitude are set per solve).
+    pub chbm: ChbmOptions,
+    /// Initial amplitudes `p` tried in turn until a limit cycle converges.
+    pub amplitudes: Vec<f64>,
+    /// Base time-integration options (`rtol` set per run).
+    pub ti: TiOptions,
+    /// Tolerances of the time integrations placed on the speed–accuracy chart.
+    pub rtols: Vec<f64>,
+    /// Tolerance of the reference integration every error is measured against.
+    pub reference_rtol: f64,
+}
+
+impl Default for CompareOptions {
+    fn default() -> Self {
+        Self {
+            harmonics: vec![1, 2, 3, 5, 10],
+            chbm: ChbmOptions::default(),
+            amplitudes: vec![0.5, 1.0, 2.0, 0.25],
+            ti: TiOptions::default(),
+            rtols: vec![1e-5, 1e-6],
+            reference_rtol: 1e-7,
+        }
+    }
+}
+
+/// Measures of one cycle against the reference.
+#[derive(Clone, Debug)]
+pub struct Measures {
+    /// On every physical dof.
+    pub all: RelativeErrors,
+    /// On the nonlinear (contact) dofs.
+    pub contact: RelativeErrors,
+    /// Eq (49) per harmonic (index `j - 1`), on every dof.
+    pub power: Vec<f64>,
+    pub energy: EnergyBalance,
+    /// Fraction of the cycle each pair is open.
+    pub open_fraction: Vec<f64>,
+}
+
+/// One CHBM solve of the comparison.
+#[derive(Clone, Debug)]
+pub struct ChbmRow {
+    pub harmonics: usize,
+    /// Initial amplitude that converged (or the last one tried).
+    pub amplitude: f64,
+    pub solution: ChbmSolution,
+    /// The cycle, aligned on the reference.
+    pub cycle: CycleCoefficients,
+    pub measures: Measures,
+    /// Wall time and LM iterations of all the attempts (restarts included).
+    pub wall: Duration,
+    pub iterations: usize,
+}
+
+/// One time integration of the comparison.
+#[derive(Clone, Debug)]
+pub struct TiRow {
+    pub rtol: f64,
+    pub run: TiRun,
+    /// Its steady cycle aligned on the reference, and its measures (`None` if no steady cycle).
+    pub cycle: Option<CycleCoefficients>,
+    pub measures: Option<Measures>,
+}
+
+/// A full comparison at one friction level.
+#[derive(Clone, Debug)]
+pub struct Comparison {
+    pub mu: f64,
+    pub reference: TiRow,
+    pub ti: Vec<TiRow>,
+    pub chbm: Vec<ChbmRow>,
+    /// Physical dof of the phase alignment.
+    pub phase_dof: usize,
+    /// Total power of the reference's oscillation, `P_temporal` of eq (50).
+    pub power_reference: f64,
+}
+
+/// Fraction of `samples` phases of the cycle where each pair is open.
+pub fn open_fraction(mb: &ModalBrake, c: &CycleCoefficients, samples: usize) -> Vec<f64> {
+    let nl = c.restrict(&mb.nl_dofs);
+    let samples = samples.max(1);
+    let mut open = vec![0usize; mb.pairs.len()];
+    let mut xn = vec![0.0; mb.nl()];
+    for s in 0..samples {
+        let th = 2.0 * PI * s as f64 / samples as f64;
+        for (i, x) in xn.iter_mut().enumerate() {
+            *x = nl.value_at(i, th, false);
+        }
+        for (o, p) in open.iter_mut().zip(&mb.pairs) {
+            if p.penetration(&xn) <= 0.0 {
+                *o += 1;
+            }
+        }
+    }
+    open.iter().map(|&o| o as f64 / samples as f64).collect()
+}
+
+fn measures(mb: &ModalBrake, c: &CycleCoefficients, reference: &CycleCoefficients) -> Measures {
+    let all: Vec<usize> = (0..c.n_dofs).collect();
+    Measures {
+        all: relative_errors(c, reference, &all),
+        contact: relative_errors(c, reference, &mb.nl_dofs),
+        power: harmonic_power(c, &all),
+        energy: energy_balance(mb, c, 1024),
+        open_fraction: open_fraction(mb, c, 1024),
+    }
+}
+
+/// CHBM from each amplitude in turn until a limit cycle converges.
+pub fn solve_with_restarts(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &ChbmOptions,
+    amplitudes: &[f64],
+) -> Result<(ChbmSolution, f64, Duration, usize), crate::ChbmError> {
+    let t0 = Instant::now();
+    let mut iterations = 0;
+    let mut last = None;
+    for &a in amplitudes {
+        let o = ChbmOptions {
+            amplitude: a,
+            ..opts.clone()
+        };
+        let s = solve(mb, start, &o)?;
+        iterations += s.iterations;
+        let done = s.outcome == Outcome::LimitCycle;
+        last = Some((s, a));
+        if done {
+            break;
+        }
+    }
+    let (s, a) = last.ok_or_else(|| crate::ChbmError::Invalid("no amplitude to try".into()))?;
+    Ok((s, a, t0.elapsed(), iterations))
+}
+
+fn ti_row(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &TiOptions,
+    rtol: f64,
+) -> Result<TiRow, CompareError> {
+    let o = TiOptions {
+        rtol,
+        ..opts.clone()
+    };
+    let run = integrate_to_limit_cycle(mb, start.lambda, &start.mode, &start.equilibrium, &o)?;
+    Ok(TiRow {
+        rtol,
+        run,
+        cycle: None,
+        measures: None,
+    })
+}
+
+/// CHBM with each number of harmonics and the time integrations at each tolerance, all
+/// measured against the reference integration, at the friction of `mb`.
+pub fn compare_at(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &CompareOptions,
+) -> Result<Comparison, CompareError> {
+    let mut reference = ti_row(mb, start, &opts.ti, opts.reference_rtol)?;
+    let ref_cycle = match (&reference.run.steady, &reference.run.failure) {
+        (Some(s), _) => s.cycle.clone(),
+        (None, f) => {
+            return Err(CompareError::NoReference(
+                f.as_ref()
+                    .map_or("no reason given".into(), |e| e.to_string()),
+            ));
+        }
+    };
+    let phase_dof = ref_cycle.strongest_dof(&mb.nl_dofs);
+    reference.measures = Some(measures(mb, &ref_cycle, &ref_cycle));
+    reference.cycle = Some(ref_cycle.clone());
+    let all: Vec<usize> = (0..mb.modes()).collect();
+    let power_reference: f64 = harmonic_power(&ref_cycle, &all).iter().sum();
+    let mut ti = Vec::new();
+    for &rtol in &opts.rtols {
+        let mut row = ti_row(mb, start, &opts.ti, rtol)?;
+        if let Some(s) = &row.run.steady {
+            let mut c = s.cycle.clone();
+            c.align_to(&ref_cycle, phase_dof);
+            row.measures = Some(measures(mb, &c, &ref_cycle));
+            row.cycle = Some(c);
+        }
+        ti.push(row);
+    }
+    let mut chbm = Vec::new();
+    for &h in &opts.harmonics {
+        let o = ChbmOptions {
+            harmonics: h,
+            ..opts.chbm.clone()
+        };
+        let (solution, amplitude, wall, iterations) =
+            solve_with_restarts(mb, start, &o, &opts.amplitudes)
+                .map_err(|e| CompareError::Invalid(format!("CHBM with {h} harmonics: {e}")))?;
+        let mut cycle = solution.cycle();
+        cycle.align_to(&ref_cycle, phase_dof);
+        let m = measures(mb, &cycle, &ref_cycle);
+        chbm.push(ChbmRow {
+            harmonics: h,
+            amplitude,
+            solution,
+            cycle,
+            measures: m,
+            wall,
+            iterations,
+        });
+    }
+    Ok(Comparison {
+        mu: mb.mu,
+        reference,
+        ti,
+        chbm,
+        phase_dof,
+        power_reference,
+    })
+}
+
+/// What a CHBM solve of the robustness grid ended on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CellOutcome {
+    LimitCycle,
+    /// Harmonic balance converged, `|Re λ|` above `eps2`.
+    Unconstrained,
+    Static,
+    NotConverged,
+    /// The solve stopped with an error (e.g. the eigenvalue could not be followed).
+    Failed,
+}
+
+impl CellOutcome {
+    pub fn label(self) -> &'static str {
+        match self {
+            CellOutcome::LimitCycle => "limit cycle",
+            CellOutcome::Unconstrained => "HB root, |Re lambda| > eps2",
+            CellOutcome::Static => "static solution",
+            CellOutcome::NotConverged => "not converged",
+            CellOutcome::Failed => "failed",
+        }
+    }
+}
+
+/// One CHBM solve of the grid.
+#[derive(Clone, Debug)]
+pub struct GridCell {
+    pub mu_ratio: f64,
+    pub amplitude: f64,
+    pub harmonics: usize,
+    pub outcome: CellOutcome,
+    pub iterations: usize,
+    pub time: Duration,
+    pub frequency_hz: f64,
+    /// Largest fraction of the cycle any pair is open (0 when not a limit cycle).
+    pub open_fraction: f64,
+}
+
+/// One time integration of the grid.
+#[derive(Clone, Debug)]
+pub struct TiCell {
+    pub mu_ratio: f64,
+    pub run: Option<TiRun>,
+    /// Why there is no run or no steady cycle.
+    pub failure: Option<String>,
+    pub open_fraction: f64,
+}
+
+/// Options of [`robustness`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct GridOptions {
+    pub mu_ratios: Vec<f64>,
+    pub amplitudes: Vec<f64>,
+    pub harmonics: Vec<usize>,
+    pub chbm: ChbmOptions,
+    pub ti: TiOptions,
+    /// Run the time integration at each μ.
+    pub with_ti: bool,
+}
+
+impl Default for GridOptions {
+    fn default() -> Self {
+        Self {
+            mu_ratios: vec![1.01, 1.02, 1.05, 1.1, 1.2, 1.4, 1.7, 2.0],
+            amplitudes: vec![0.1, 0.3, 0.5, 1.0, 2.0, 4.0],
+            harmonics: vec![1, 2, 3, 5, 10],
+            chbm: ChbmOptions::default(),
+            ti: TiOptions {
+                max_cycles: 2000.0,
+                ..TiOptions::default()
+            },
+            with_ti: true,
+        }
+    }
+}
+
+/// The brake and where its analyses start, for [`robustness`].
+pub struct GridModel<'a> {
+    pub brake: &'a Brake,
+    pub reference: &'a Reference,
+    pub mu0: f64,
+    pub band: Band,
+    pub newton: NewtonOptions,
+}
+
+fn grid_cell(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &ChbmOptions,
+    (mu_ratio, amplitude, harmonics): (f64, f64, usize),
+) -> GridCell {
+    let o = ChbmOptions {
+        harmonics,
+        amplitude,
+        ..opts.clone()
+    };
+    let t0 = Instant::now();
+    let mut cell = GridCell {
+        mu_ratio,
+        amplitude,
+        harmonics,
+        outcome: CellOutcome::Failed,
+        iterations: 0,
+        time: Duration::ZERO,
+        frequency_hz: f64::NAN,
+        open_fraction: 0.0,
+    };
+    if let Ok(s) = solve(mb, start, &o) {
+        cell.outcome = match s.outcome {
+            Outcome::LimitCycle => CellOutcome::LimitCycle,
+            Outcome::LimitCycleUnconstrained => CellOutcome::Unconstrained,
+            Outcome::Static => CellOutcome::Static,
+            Outcome::NotConverged => CellOutcome::NotConverged,
+        };
+        cell.iterations = s.iterations;
+        cell.frequency_hz = s.omega / (2.0 * PI);
+        if cell.outcome == CellOutcome::LimitCycle {
+            cell.open_fraction = s.open_fraction.iter().copied().fold(0.0, f64::max);
+        }
+    }
+    cell.time = t0.elapsed();
+    cell
+}
+
+/// CHBM over `μ/μ0 × p × H`, and the time integration at each μ (issue #6, item 7). A μ where
+/// the brake has no start (stable, or no equilibrium) gives `Failed` cells and says why in
+/// its [`TiCell`]. `progress` is called after each μ.
+pub fn robustness(
+    model: &GridModel<'_>,
+    opts: &GridOptions,
+    progress: &mut dyn FnMut(f64),
+) -> (Vec<GridCell>, Vec<TiCell>) {
+    let mut cells = Vec::new();
+    let mut ti = Vec::new();
+    for &r in &opts.mu_ratios {
+        let mu = r * model.mu0;
+        let start = start_at(
+            model.brake,
+            model.reference,
+            mu,
+            &model.band,
+            &model.newton,
+            None,
+        );
+        let start = match start {
+            Ok(s) => s,
+            Err(e) => {
+                for &a in &opts.amplitudes {
+                    for &h in &opts.harmonics {
+                        cells.push(GridCell {
+                            mu_ratio: r,
+                            amplitude: a,
+                            harmonics: h,
+                            outcome: CellOutcome::Failed,
+                            iterations: 0,
+                            time: Duration::ZERO,
+                            frequency_hz: f64::NAN,
+                            open_fraction: 0.0,
+                        });
+                    }
+                }
+                ti.push(TiCell {
+                    mu_ratio: r,
+                    run: None,
+                    failure: Some(e.to_string()),
+                    open_fraction: f64::NAN,
+                });
+                progress(r);
+                continue;
+            }
+        };
+        let mb = ModalBrake::new(model.brake, model.reference, mu);
+        for &a in &opts.amplitudes {
+            for &h in &opts.harmonics {
+                cells.push(grid_cell(&mb, &start, &opts.chbm, (r, a, h)));
+            }
+        }
+        if opts.with_ti {
+            let cell = match integrate_to_limit_cycle(
+                &mb,
+                start.lambda,
+                &start.mode,
+                &start.equilibrium,
+                &opts.ti,
+            ) {
+                Ok(run) => {
+                    let open = run.steady.as_ref().map_or(f64::NAN, |s| {
+                        open_fraction(&mb, &s.cycle, 1024)
+                            .into_iter()
+                            .fold(0.0, f64::max)
+                    });
+                    TiCell {
+                        mu_ratio: r,
+                        failure: run.failure.as_ref().map(|e| e.to_string()),
+                        run: Some(run),
+                        open_fraction: open,
+                    }
+                }
+                Err(e) => TiCell {
+                    mu_ratio: r,
+                    run: None,
+                    failure: Some(e.to_string()),
+                    open_fraction: f64::NAN,
+                },
+            };
+            ti.push(cell);
+        }
+        progress(r);
+    }
+    (cells, ti)
+}

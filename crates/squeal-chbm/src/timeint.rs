@@ -1,0 +1,474 @@
+//! The reference of issue #6 (item 5): time integration of the full nonlinear brake (every
+//! mode of [`ModalBrake`], eq 11 as [`BrakeDynamics`]) from the static equilibrium perturbed
+//! along the unstable mode until the steady limit cycle, with the variable-step BDF of
+//! [`squeal_ode`] (the paper's "variable order solver").
+//!
+//! **Start.** `x = x_eq + ε Re ψ`, `x' = ε Re(λ ψ)`: the real solution `ε Re(ψ e^{λt})` of the
+//! linearization at `t = 0`, with `ε` such that the contact pair moving most has a normal
+//! amplitude of [`TiOptions::perturbation`] times the smallest static penetration (the same
+//! `p` as the CHBM guess of eq 48).
+//!
+//! **Tolerances.** The error test is `rms(err_i / (atol_i + rtol |y_i|)) <= 1`. Modal
+//! coordinates are mass-normalized, so a unit of any `q_j` is worth the same in physical
+//! displacement: one absolute tolerance `atol_q = atol_factor · rtol · Q` for every `q_j`, with
+//! `Q` the largest modal coordinate of the unstable mode scaled to move the contact by its
+//! static penetration (the size of the oscillation to resolve), and `atol_v = ω₀ atol_q` for
+//! the velocities, which are `ω` times larger.
+//!
+//! **Steady state.** Cycles are delimited by the upward zero crossings of the penetration rate
+//! of the pair that moves most (its mean is exactly zero on a periodic orbit). A first
+//! detection needs the periods and peak-to-peak amplitudes of the last
+//! [`TiOptions::steady_cycles`] cycles to agree within [`TiOptions::steady_rtol`]; single-cycle
+//! measures carry the integrator's noise (about `30 rtol` relative at order 2), so this
+//! tolerance cannot be tight. From then on the Fourier coefficients of every state are averaged
+//! over blocks of [`TiOptions::confirm_cycles`] periods (sampled at the window's mean period),
+//! and two consecutive blocks are compared (phase-aligned relative RMS difference of every dof,
+//! [`crate::cycle::relative_errors`]): near the Hopf point the approach to the limit cycle is
+//! slow and the amplitude still creeps when the spread test first passes, so the integration
+//! goes on, block after block, until that drift is below [`TiOptions::drift_tol`]. Only the
+//! running block's sums and one record per cycle are kept, never the history.
+
+use crate::cycle::{CycleCoefficients, relative_errors};
+use faer::c64;
+use squeal_brake::dynamics::BrakeDynamics;
+use squeal_brake::modal_brake::ModalBrake;
+use squeal_ode::{
+    Atol, Bdf, BdfOptions, BdfStats, CycleRecord, OdeError, OscillationMonitor, SteadyOptions,
+};
+use std::f64::consts::PI;
+use std::time::{Duration, Instant};
+
+/// Options of [`integrate_to_limit_cycle`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct TiOptions {
+    pub rtol: f64,
+    /// `atol_q = atol_factor · rtol · Q` (module docs).
+    pub atol_factor: f64,
+    /// Highest BDF order (2: A-stable; orders 3–5 fight the lightly damped high modes).
+    pub max_order: usize,
+    /// Initial normal amplitude of the most moving pair, as a fraction of the smallest static
+    /// penetration.
+    pub perturbation: f64,
+    /// Relative spread of periods and amplitudes over `steady_cycles` cycles.
+    pub steady_rtol: f64,
+    pub steady_cycles: usize,
+    /// Cycles of each Fourier average taken once steady; two consecutive averages are compared.
+    pub confirm_cycles: usize,
+    /// Largest accepted relative change between two consecutive averages.
+    pub drift_tol: f64,
+    /// Harmonics kept of the last cycle, and samples per cycle of its Fourier sums.
+    pub harmonics: usize,
+    pub samples_per_cycle: usize,
+    /// Give up after this many periods of the unstable mode.
+    pub max_cycles: f64,
+    /// Give up after this many accepted steps.
+    pub max_steps: usize,
+}
+
+impl Default for TiOptions {
+    fn default() -> Self {
+        Self {
+            rtol: 1e-6,
+            atol_factor: 1.0,
+            max_order: 2,
+            perturbation: 0.5,
+            steady_rtol: 1e-4,
+            steady_cycles: 10,
+            confirm_cycles: 20,
+            drift_tol: 1e-4,
+            harmonics: 10,
+            samples_per_cycle: 128,
+            max_cycles: 5000.0,
+            max_steps: 20_000_000,
+        }
+    }
+}
+
+/// The steady cycle found.
+#[derive(Clone, Debug)]
+pub struct TiSteady {
+    /// Fourier coefficients of every physical dof over the last cycle (velocities from the
+    /// integrated velocities, not by differentiation).
+    pub cycle: CycleCoefficients,
+    pub period: f64,
+    /// Cycles completed when accepted, and the time then.
+    pub cycles: usize,
+    pub t: f64,
+    /// Relative change of the cycle over the last `confirm_cycles` cycles.
+    pub drift: f64,
+    /// Detections needed until the drift was small enough.
+    pub detections: usize,
+}
+
+/// One time integration: the steady cycle or why there is none, with the integrator's
+/// counters and one record per cycle.
+#[derive(Clone, Debug)]
+pub struct TiRun {
+    pub steady: Option<TiSteady>,
+    pub failure: Option<OdeError>,
+    pub stats: BdfStats,
+    pub wall: Duration,
+    /// Every completed cycle of the observable (start, period, extrema).
+    pub history: Vec<CycleRecord>,
+    /// Time reached.
+    pub t_end: f64,
+    /// State dimension (for the storage a full history would take).
+    pub dim: usize,
+    /// Initial amplitude factor ε of the unstable mode.
+    pub epsilon: f64,
+    /// `(time, drift)` of every comparison of two consecutive Fourier averages.
+    pub drifts: Vec<(f64, f64)>,
+}
+
+impl TiRun {
+    /// Bytes a stored history of every accepted step would take (`steps × dim` doubles plus
+    /// the times), as the paper's Table 2 counts for the temporal integration.
+    pub fn history_bytes(&self) -> usize {
+        self.stats
+            .steps
+            .saturating_mul(self.dim + 1)
+            .saturating_mul(8)
+    }
+}
+
+/// Why the integration could not start.
+#[derive(Debug, thiserror::Error)]
+pub enum TiError {
+    #[error(transparent)]
+    Ode(#[from] OdeError),
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// Initial state and the scales of the module docs.
+struct Start {
+    y0: Vec<f64>,
+    /// Row `w` with `w · v = δ'` of the most moving pair (modal velocities).
+    observable: Vec<f64>,
+    /// Modal displacement scale `Q`.
+    q_scale: f64,
+    epsilon: f64,
+    omega0: f64,
+}
+
+fn start_state(
+    mb: &ModalBrake,
+    lambda: c64,
+    mode: &[c64],
+    equilibrium: &[f64],
+    perturbation: f64,
+) -> Result<Start, TiError> {
+    let n = mb.modes();
+    if mode.len() != n || equilibrium.len() != n {
+        return Err(TiError::Invalid(
+            "the mode and the equilibrium must cover every dof".into(),
+        ));
+    }
+    let psi_n: Vec<c64> = mb.nl_dofs.iter().map(|&d| mode[d]).collect();
+    let x_n: Vec<f64> = mb.nl_dofs.iter().map(|&d| equilibrium[d]).collect();
+    let (mut best, mut gmax, mut pen) = (0, 0.0f64, f64::INFINITY);
+    for (i, p) in mb.pairs.iter().enumerate() {
+        let g: c64 = p.normal.iter().map(|&(k, a)| psi_n[k] * a).sum();
+        if g.norm() > gmax {
+            (best, gmax) = (i, g.norm());
+        }
+        pen = pen.min(p.penetration(&x_n));
+    }
+    if !(gmax > 0.0 && pen > 0.0 && pen.is_finite()) {
+        return Err(TiError::Invalid(
+            "the unstable mode does not move the contact, or the contact is open at equilibrium"
+                .into(),
+        ));
+    }
+    if !(perturbation.is_finite() && perturbation > 0.0) {
+        return Err(TiError::Invalid("the perturbation must be > 0".into()));
+    }
+    let unit = pen / gmax;
+    let epsilon = perturbation * unit;
+    let x: Vec<f64> = (0..n)
+        .map(|i| equilibrium[i] + epsilon * mode[i].re)
+        .collect();
+    let v: Vec<f64> = (0..n).map(|i| epsilon * (lambda * mode[i]).re).collect();
+    let y0 = BrakeDynamics::state_from_physical(mb, &x, &v)
+        .ok_or_else(|| TiError::Invalid("the modal matrix is singular".into()))?;
+    // Q: the mode's largest modal coordinate for a contact motion of one penetration.
+    let re: Vec<f64> = mode.iter().map(|z| z.re).collect();
+    let im: Vec<f64> = mode.iter().map(|z| z.im).collect();
+    let qm = BrakeDynamics::state_from_physical(mb, &re, &im)
+        .ok_or_else(|| TiError::Invalid("the modal matrix is singular".into()))?;
+    let q_scale = unit * (0..n).map(|j| qm[j].hypot(qm[n + j])).fold(0.0, f64::max);
+    let pair = &mb.pairs[best];
+    let observable = (0..n)
+        .map(|j| pair.normal.iter().map(|&(i, g)| g * mb.phi_n[(i, j)]).sum())
+        .collect();
+    Ok(Start {
+        y0,
+        observable,
+        q_scale,
+        epsilon,
+        omega0: lambda.im.abs(),
+    })
+}
+
+/// Fourier sums of every state over `cycles` periods sampled at `t0 + j T / N`
+/// (`j < cycles · N`): the DFT over several periods averages out the integrator's cycle-to-cycle
+/// noise, which a single cycle between two detected crossings would keep.
+struct CycleSums {
+    harmonics: usize,
+    per_cycle: usize,
+    total: usize,
+    t0: f64,
+    period: f64,
+    next: usize,
+    cos: Vec<f64>,
+    sin: Vec<f64>,
+    /// Per state `[a0, a1, b1, ...]`.
+    sums: Vec<f64>,
+}
+
+impl CycleSums {
+    fn new(
+        dim: usize,
+        harmonics: usize,
+        per_cycle: usize,
+        cycles: usize,
+        t0: f64,
+        period: f64,
+    ) -> Self {
+        let angle = |j: usize| 2.0 * PI * j as f64 / per_cycle as f64;
+        Self {
+            harmonics,
+            per_cycle,
+            total: per_cycle * cycles.max(1),
+            t0,
+            period,
+            next: 0,
+            cos: (0..per_cycle).map(|j| angle(j).cos()).collect(),
+            sin: (0..per_cycle).map(|j| angle(j).sin()).collect(),
+            sums: vec![0.0; dim * (2 * harmonics + 1)],
+        }
+    }
+
+    fn next_time(&self) -> Option<f64> {
+        (self.next < self.total)
+            .then(|| self.t0 + self.next as f64 * self.period / self.per_cycle as f64)
+    }
+
+    fn add(&mut self, y: &[f64]) {
+        let w = 2 * self.harmonics + 1;
+        let j = self.next % self.per_cycle;
+        for (i, &yi) in y.iter().enumerate() {
+            let s = &mut self.sums[i * w..(i + 1) * w];
+            s[0] += yi;
+            for k in 1..=self.harmonics {
+                let idx = (k * j) % self.per_cycle;
+                s[2 * k - 1] += yi * self.cos[idx];
+                s[2 * k] += yi * self.sin[idx];
+            }
+        }
+        self.next += 1;
+    }
+
+    /// Takes every sample due by the end of `bdf`'s last step.
+    fn take<S: squeal_ode::OdeSystem>(
+        &mut self,
+        bdf: &Bdf<S>,
+        y: &mut [f64],
+    ) -> Result<(), OdeError> {
+        while let Some(t) = self.next_time() {
+            if t > bdf.t() {
+                break;
+            }
+            bdf.interpolate(t.max(bdf.t_prev()), y)?;
+            self.add(y);
+        }
+        Ok(())
+    }
+
+    fn done(&self) -> bool {
+        self.next >= self.total
+    }
+
+    /// Physical displacement and velocity coefficients (`x = Φ q`, `x' = Φ v`).
+    fn physical(&self, mb: &ModalBrake) -> CycleCoefficients {
+        let n = mb.modes();
+        let h = self.harmonics;
+        let w = 2 * h + 1;
+        let total = self.total as f64;
+        let coeff = |i: usize, b: usize| {
+            let s = self.sums[i * w + b];
+            if b == 0 { s / total } else { 2.0 * s / total }
+        };
+        let mut x = vec![0.0; w * n];
+        let mut v = vec![0.0; w * n];
+        for j in 0..n {
+            for b in 0..w {
+                let (cq, cv) = (coeff(j, b), coeff(n + j, b));
+                for d in 0..n {
+                    let p = mb.phi[(d, j)];
+                    x[b * n + d] += p * cq;
+                    v[b * n + d] += p * cv;
+                }
+            }
+        }
+        CycleCoefficients {
+            harmonics: h,
+            omega: 2.0 * PI / self.period,
+            n_dofs: n,
+            x,
+            v,
+        }
+    }
+}
+
+/// Mean period of the monitor's window (its spread is below the steady tolerance).
+fn mean_period(window: &[CycleRecord]) -> f64 {
+    window.iter().map(|r| r.period).sum::<f64>() / window.len().max(1) as f64
+}
+
+/// Phase-aligned relative change between two detections (on every dof).
+fn drift(a: &CycleCoefficients, b: &CycleCoefficients, dof: usize) -> f64 {
+    let mut b = b.clone();
+    b.align_to(a, dof);
+    let all: Vec<usize> = (0..a.n_dofs).collect();
+    let e = relative_errors(&b, a, &all);
+    e.displacement
+        .max(e.velocity)
+        .max(e.frequency_relative.abs())
+}
+
+/// Integrates the brake from its equilibrium perturbed along the unstable mode `(λ, ψ)` until
+/// the steady limit cycle (module docs). A failure of the integrator or no steady state within
+/// the limits is reported in [`TiRun::failure`], with the counters so far.
+pub fn integrate_to_limit_cycle(
+    mb: &ModalBrake,
+    lambda: c64,
+    mode: &[c64],
+    equilibrium: &[f64],
+    opts: &TiOptions,
+) -> Result<TiRun, TiError> {
+    let t0 = Instant::now();
+    let s = start_state(mb, lambda, mode, equilibrium, opts.perturbation)?;
+    let n = mb.modes();
+    let atol_q = opts.atol_factor * opts.rtol * s.q_scale;
+    let atol: Vec<f64> = (0..2 * n)
+        .map(|i| if i < n { atol_q } else { atol_q * s.omega0 })
+        .collect();
+    let bdf_opts = BdfOptions {
+        rtol: opts.rtol,
+        atol: Atol::PerComponent(atol),
+        max_order: opts.max_order,
+        max_steps: opts.max_steps,
+        ..BdfOptions::default()
+    };
+    let period0 = 2.0 * PI / s.omega0;
+    let t_end = opts.max_cycles * period0;
+    let sys = BrakeDynamics::new(mb);
+    let mut bdf = Bdf::new(&sys, 0.0, &s.y0, t_end, &bdf_opts)?;
+    let w = s.observable.clone();
+    let observable = move |y: &[f64]| (0..n).map(|j| w[j] * y[n + j]).sum::<f64>();
+    // A cycle must be at least a millionth of the initial rate amplitude to count.
+    let rate0: f64 = (0..n)
+        .map(|j| s.observable[j] * s.y0[n + j])
+        .sum::<f64>()
+        .abs();
+    let steady_opts = SteadyOptions {
+        level: 0.0,
+        rtol: opts.steady_rtol,
+        cycles: opts.steady_cycles,
+        harmonics: opts.harmonics,
+        samples_per_cycle: opts.samples_per_cycle,
+        subdivisions: 4,
+        min_amplitude: 1e-6 * rate0,
+    };
+    let mut monitor = OscillationMonitor::new(2 * n, observable, &steady_opts)?;
+    let mut history = Vec::new();
+    let mut failure = None;
+    let mut steady = None;
+    let mut sums: Option<CycleSums> = None;
+    let mut previous: Option<CycleCoefficients> = None;
+    let mut detections = 0;
+    let mut drifts = Vec::new();
+    let mut y = vec![0.0; 2 * n];
+    let result: Result<(), OdeError> = (|| {
+        monitor.observe(&bdf)?;
+        while !bdf.is_finished() {
+            bdf.step()?;
+            let before = monitor.cycles_completed();
+            let found = monitor.observe(&bdf)?;
+            if monitor.cycles_completed() > before
+                && let Some(r) = monitor.window().back()
+            {
+                history.push(*r);
+            }
+            if sums.is_none() && found.is_some() {
+                let window: Vec<CycleRecord> = monitor.window().iter().copied().collect();
+                sums = Some(CycleSums::new(
+                    2 * n,
+                    opts.harmonics,
+                    opts.samples_per_cycle,
+                    opts.confirm_cycles,
+                    bdf.t(),
+                    mean_period(&window),
+                ));
+            }
+            let Some(acc) = sums.as_mut() else { continue };
+            acc.take(&bdf, &mut y)?;
+            if !acc.done() {
+                continue;
+            }
+            detections += 1;
+            let cycle = acc.physical(mb);
+            let next_t0 = acc.t0 + acc.total as f64 * acc.period / acc.per_cycle as f64;
+            if let Some(prev) = &previous {
+                let d = drift(prev, &cycle, prev.strongest_dof(&mb.nl_dofs));
+                drifts.push((bdf.t(), d));
+                if d <= opts.drift_tol {
+                    steady = Some(TiSteady {
+                        period: 2.0 * PI / cycle.omega,
+                        cycle,
+                        cycles: monitor.cycles_completed(),
+                        t: bdf.t(),
+                        drift: d,
+                        detections,
+                    });
+                    return Ok(());
+                }
+            }
+            previous = Some(cycle);
+            // The next average starts where this one ended, with the latest mean period.
+            let window: Vec<CycleRecord> = monitor.window().iter().copied().collect();
+            let mut next = CycleSums::new(
+                2 * n,
+                opts.harmonics,
+                opts.samples_per_cycle,
+                opts.confirm_cycles,
+                next_t0,
+                mean_period(&window),
+            );
+            next.take(&bdf, &mut y)?;
+            sums = Some(next);
+        }
+        let last = monitor.window().back().copied();
+        Err(OdeError::NotSteady {
+            t: bdf.t(),
+            cycles: monitor.cycles_completed(),
+            last_period: last.map_or(f64::NAN, |r| r.period),
+            last_amplitude: last.map_or(f64::NAN, |r| r.amplitude()),
+        })
+    })();
+    if let Err(e) = result {
+        failure = Some(e);
+    }
+    Ok(TiRun {
+        steady,
+        failure,
+        stats: *bdf.stats(),
+        wall: t0.elapsed(),
+        history,
+        t_end: bdf.t(),
+        dim: 2 * n,
+        epsilon: s.epsilon,
+        drifts,
+    })
+}
