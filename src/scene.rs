@@ -484,7 +484,7 @@ pub fn parse_range(s: &str) -> std::result::Result<Vec<f64>, String> {
     let a: f64 = parts[0].trim().parse().map_err(|_| bad())?;
     let b: f64 = parts[1].trim().parse().map_err(|_| bad())?;
     let n: usize = parts[2].trim().parse().map_err(|_| bad())?;
-    if !(a.is_finite() && b.is_finite() && b > a) || n < 2 || n > 100_000 {
+    if !(a.is_finite() && b.is_finite() && b > a && (2..=100_000).contains(&n)) {
         return Err(format!("'{s}': need start < end and 2 <= count <= 100000"));
     }
     Ok((0..n)

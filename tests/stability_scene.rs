@@ -1,0 +1,228 @@
+//! End-to-end tests of `squeal stability` on scene files: errors that name the key and its
+//! line, and the bundled brake's Hopf point on the coarse meshes (issue #5's requirement:
+//! 0.2 < μ0 < 0.8, 1 < f < 15 kHz).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("squeal-stability-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The bundled scene with its meshes at `level`, as absolute paths (the scene is written
+/// elsewhere).
+fn bundled_scene(level: &str) -> String {
+    let text = std::fs::read_to_string(root().join("meshes/brake.toml")).unwrap();
+    let meshes = root().join("meshes");
+    let mut replaced = 0;
+    let out: Vec<String> = text
+        .lines()
+        .map(|l| {
+            for part in ["disc", "pad"] {
+                if l.starts_with(&format!("{part} = ")) {
+                    replaced += 1;
+                    return format!(
+                        "{part} = {:?}",
+                        meshes
+                            .join(format!("{part}_{level}.inp"))
+                            .display()
+                            .to_string()
+                    );
+                }
+            }
+            l.to_string()
+        })
+        .collect();
+    // The test must not silently run the scene's own (medium) meshes.
+    assert_eq!(replaced, 2, "meshes/brake.toml lost its disc/pad lines");
+    out.join("\n") + "\n"
+}
+
+fn squeal(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_squeal"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// Runs `squeal stability` on `text`; returns (stderr, the 1-based line of `marker` in it).
+fn scene_error(name: &str, text: &str, marker: &str) -> (String, usize) {
+    let dir = temp_dir(name);
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out = squeal(&[
+        "stability",
+        scene.to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+        "--no-vtu",
+    ]);
+    assert!(!out.status.success(), "{name}: the scene was accepted");
+    let line = text
+        .lines()
+        .position(|l| l.contains(marker))
+        .expect("marker not in the scene")
+        + 1;
+    let _ = std::fs::remove_dir_all(&dir);
+    (String::from_utf8_lossy(&out.stderr).into_owned(), line)
+}
+
+fn with_line(text: &str, after_prefix: &str, new: &str) -> String {
+    let mut done = false;
+    let lines: Vec<String> = text
+        .lines()
+        .flat_map(|l| {
+            if !done && l.starts_with(after_prefix) {
+                done = true;
+                vec![l.to_string(), new.to_string()]
+            } else {
+                vec![l.to_string()]
+            }
+        })
+        .collect();
+    assert!(done, "no line starts with {after_prefix}");
+    lines.join("\n") + "\n"
+}
+
+fn replace_line(text: &str, prefix: &str, new: &str) -> String {
+    assert!(
+        text.lines().any(|l| l.starts_with(prefix)),
+        "no line {prefix}"
+    );
+    text.lines()
+        .map(|l| if l.starts_with(prefix) { new } else { l })
+        .collect::<Vec<_>>()
+        .join("\n")
+        + "\n"
+}
+
+#[test]
+fn a_negative_contact_stiffness_is_reported_with_its_key_and_line() {
+    let text = replace_line(
+        &bundled_scene("coarse"),
+        "compression_curve",
+        "k_linear_per_area = -1.25e10\nk_cubic_per_area = 2.0e19",
+    );
+    let (err, line) = scene_error("negative-k", &text, "k_linear_per_area");
+    assert!(
+        err.contains(&format!(
+            "scene.toml:{line}: contact.k_linear_per_area: must be a positive number"
+        )),
+        "{err}"
+    );
+    let text = with_line(
+        &bundled_scene("coarse"),
+        "[contact]",
+        "stiffness_scale = -0.7",
+    );
+    let (err, line) = scene_error("negative-scale", &text, "stiffness_scale");
+    assert!(
+        err.contains(&format!("scene.toml:{line}: contact.stiffness_scale:")),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_unknown_key_is_reported_with_its_name_and_line() {
+    let text = with_line(
+        &bundled_scene("coarse"),
+        "[piston]",
+        "line_presure_bar = 12.0",
+    );
+    let (err, line) = scene_error("unknown-key", &text, "line_presure_bar");
+    assert!(
+        err.contains(&format!("line {line}")) && err.contains("unknown field `line_presure_bar`"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_misspelt_interface_is_reported_with_its_key_and_line() {
+    let text = replace_line(
+        &bundled_scene("coarse"),
+        "interface =",
+        "interface = \"pach\"",
+    );
+    let (err, line) = scene_error("interface", &text, "interface = \"pach\"");
+    assert!(
+        err.contains(&format!(
+            "scene.toml:{line}: model.interface: 'pach' is neither 'patch' nor 'node'"
+        )),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_bad_friction_range_is_reported_with_its_key_and_line() {
+    for bad in ["\"1:0:5\"", "\"0:1\"", "[0.1, 0.05]"] {
+        let text = replace_line(
+            &bundled_scene("coarse"),
+            "mu = \"0:1:",
+            &format!("mu = {bad}"),
+        );
+        let (err, line) = scene_error("mu", &text, &format!("mu = {bad}"));
+        assert!(
+            err.contains(&format!("scene.toml:{line}: stability.mu:")),
+            "{bad}: {err}"
+        );
+    }
+}
+
+fn json_number(v: &serde_json::Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} missing in {v}"))
+}
+
+#[test]
+fn the_bundled_brake_squeals_in_band_on_the_coarse_meshes() {
+    // Issue #5: a Hopf point with 0.2 < mu0 < 0.8 and the unstable frequency in 1..15 kHz.
+    // A 41-point sweep is enough: the Hopf point is refined to 1e-8 in mu afterwards.
+    let dir = temp_dir("bundled");
+    let scene = dir.join("brake_coarse.toml");
+    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
+    let out_dir = dir.join("out");
+    let out = squeal(&[
+        "stability",
+        scene.to_str().unwrap(),
+        "--mu",
+        "0:1:41",
+        "--out",
+        out_dir.to_str().unwrap(),
+        "--no-vtu",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(out_dir.join("stability/summary.json")).unwrap(),
+    )
+    .unwrap();
+    let mu0 = json_number(&summary, "mu0");
+    let f = json_number(&summary, "frequency_hz");
+    assert!(mu0 > 0.2 && mu0 < 0.8, "mu0 = {mu0}");
+    assert!(f > 1000.0 && f < 15000.0, "f = {f}");
+    // Mode coupling: the unstable frequency at the Hopf point lies between the frictionless
+    // frequencies of the two modes that coalesce (lock-in), read from the printed pair.
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("coalescing pair"))
+        .unwrap_or_else(|| panic!("no coalescing pair in\n{stdout}"));
+    let hz: Vec<f64> = line
+        .split(" Hz")
+        .filter_map(|s| s.rsplit(' ').next()?.parse().ok())
+        .collect();
+    assert_eq!(hz.len(), 2, "{line}");
+    let (lo, hi) = (hz[0].min(hz[1]), hz[0].max(hz[1]));
+    assert!(f > lo && f < hi, "f = {f} not within the pair {lo}..{hi}");
+    let _ = std::fs::remove_dir_all(Path::new(&dir));
+}
