@@ -279,12 +279,15 @@ fn write_figures(dir: &Path, st: &Stability, s: &Setup) -> Result<()> {
         title: "(a) real parts".into(),
         x_label: "friction coefficient mu".into(),
         y_label: "Re(lambda) (1/s)".into(),
+        // The same series as panel (b), whose legend sits outside: none here to hide a curve.
+        legend: squeal_report::LegendPosition::None,
         ..Panel::default()
     };
     let mut fr = Panel {
         title: "(b) frequencies".into(),
         x_label: "friction coefficient mu".into(),
         y_label: "frequency (Hz)".into(),
+        legend: squeal_report::LegendPosition::Outside,
         ..Panel::default()
     };
     for (i, &b) in shown.iter().enumerate() {
