@@ -20,12 +20,22 @@
 //! `q_k = diag(1/den_j(kω)) (Φᵀ F_piston δ_k0 - Φ_nᵀ G_k)`, `x = Φ q`, with `G` the harmonics of
 //! the nonlinear force, which also returns the nonlinear dofs themselves (a check).
 
-use faer::linalg::solvers::Solve;
-use faer::{Mat, MatMut, c64};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::lu::partial_pivoting::{factor as lu_factor, inverse as lu_inverse};
+use faer::linalg::matmul::matmul;
+use faer::perm::PermRef;
+use faer::{Accum, Mat, MatMut, Par, c64};
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_hbm::{DynamicStiffness, HarmonicLayout, Part};
 
 /// `Λ_eq(ω)` of eq (32) for harmonics `0..=H`, cached for the last ω.
+///
+/// `Λ_eq,0` does not depend on ω and is computed once. For `k >= 1` a change of ω costs one
+/// real product `[Φ_n diag(Re r_k); Φ_n diag(Im r_k)]_k Φ_nᵀ` for all harmonics at once and
+/// an `n_nl × n_nl` complex inverse per harmonic. The Jacobian's `(dΛ_eq/dω) U` is applied by
+/// matrix–vector products ([`Self::add_omega_derivative`]), never as a matrix. All products
+/// are sequential: the blocks are small (`n_nl = 36` on the brake), and thread hand-offs cost
+/// more than they save.
 pub struct CondensedStiffness {
     phi_n: Mat<f64>,
     omega_j: Vec<f64>,
@@ -33,76 +43,199 @@ pub struct CondensedStiffness {
     harmonics: usize,
     cached: Option<f64>,
     z: Vec<Mat<c64>>,
-    dz: Vec<Mat<c64>>,
+    /// Scratch: scaled copies of `Φ_n` stacked by harmonic (`2 H n_nl × n`), their product with
+    /// `Φ_nᵀ`, and the LU factor and permutations of one block.
+    scaled: Mat<f64>,
+    product: Mat<f64>,
+    lu: Mat<c64>,
+    perm: (Vec<usize>, Vec<usize>),
+    mem: MemBuffer,
 }
 
 impl CondensedStiffness {
     pub fn new(mb: &ModalBrake, harmonics: usize) -> Self {
-        Self {
+        let (nn, n) = (mb.phi_n.nrows(), mb.omega.len());
+        let scratch = lu_factor::lu_in_place_scratch::<usize, c64>(nn, nn, Par::Seq, default())
+            .or(lu_inverse::inverse_scratch::<usize, c64>(nn, Par::Seq));
+        let mut s = Self {
             phi_n: mb.phi_n.clone(),
             omega_j: mb.omega.clone(),
             damping: mb.damping.clone(),
             harmonics,
             cached: None,
-            z: Vec::new(),
-            dz: Vec::new(),
-        }
+            z: vec![Mat::zeros(nn, nn); harmonics + 1],
+            scaled: Mat::zeros(2 * harmonics.max(1) * nn, n),
+            product: Mat::zeros(2 * harmonics.max(1) * nn, nn),
+            lu: Mat::zeros(nn, nn),
+            perm: (vec![0; nn], vec![0; nn]),
+            mem: MemBuffer::new(scratch),
+        };
+        // Λ_eq,0 = (Φ_n diag(1/ω_j²) Φ_nᵀ)⁻¹, real and independent of ω.
+        let (h0, _) = s.receptance(0, 0.0);
+        s.lu.copy_from(&h0);
+        s.invert_lu_into(0);
+        s
     }
 
     /// Receptance `H_nn(kω)` and `dH_nn/dω` on the nonlinear dofs:
     /// `Φ_n diag(r) Φ_nᵀ` as real products for the real and imaginary parts of `r`.
     pub fn receptance(&self, k: usize, omega: f64) -> (Mat<c64>, Mat<c64>) {
         let (nn, n) = (self.phi_n.nrows(), self.omega_j.len());
-        let kf = k as f64;
-        let w = kf * omega;
-        // Columns scaled by Re r, Im r, Re dr, Im dr.
-        let mut scaled = [
-            Mat::<f64>::zeros(nn, n),
-            Mat::<f64>::zeros(nn, n),
-            Mat::<f64>::zeros(nn, n),
-            Mat::<f64>::zeros(nn, n),
-        ];
+        let mut scaled = Mat::<f64>::zeros(4 * nn, n);
         for j in 0..n {
-            let den = c64::new(self.omega_j[j].powi(2) - w * w, w * self.damping[j]);
-            let r = c64::new(1.0, 0.0) / den;
-            // d(1/den)/dω = -k (-2w + i d_j) / den².
-            let dr = -(c64::new(-2.0 * w, self.damping[j]) * kf) * r * r;
-            for (m, v) in scaled.iter_mut().zip([r.re, r.im, dr.re, dr.im]) {
+            let (r, dr) = self.modal_receptance(k, omega, j);
+            for (b, v) in [r.re, r.im, dr.re, dr.im].into_iter().enumerate() {
                 for i in 0..nn {
-                    m[(i, j)] = self.phi_n[(i, j)] * v;
+                    scaled[(b * nn + i, j)] = self.phi_n[(i, j)] * v;
                 }
             }
         }
-        let pt = self.phi_n.transpose();
-        let [a, b, c, d] = scaled.map(|m| &m * pt);
-        let h = Mat::from_fn(nn, nn, |i, j| c64::new(a[(i, j)], b[(i, j)]));
-        let dh = Mat::from_fn(nn, nn, |i, j| c64::new(c[(i, j)], d[(i, j)]));
+        let mut p = Mat::<f64>::zeros(4 * nn, nn);
+        matmul(
+            p.as_mut(),
+            Accum::Replace,
+            scaled.as_ref(),
+            self.phi_n.transpose(),
+            1.0,
+            Par::Seq,
+        );
+        let h = Mat::from_fn(nn, nn, |i, j| c64::new(p[(i, j)], p[(nn + i, j)]));
+        let dh = Mat::from_fn(nn, nn, |i, j| {
+            c64::new(p[(2 * nn + i, j)], p[(3 * nn + i, j)])
+        });
         (h, dh)
     }
 
-    /// Updates `Λ_eq,k` and `dΛ_eq,k/dω` for ω (eq 32 and its derivative
-    /// `dΛ = -Λ (dH) Λ`).
+    /// Mode `j`'s receptance `r = 1 / (ω_j² - (kω)² + i kω d_j)` and `dr/dω`.
+    fn modal_receptance(&self, k: usize, omega: f64, j: usize) -> (c64, c64) {
+        let kf = k as f64;
+        let w = kf * omega;
+        let den = c64::new(self.omega_j[j].powi(2) - w * w, w * self.damping[j]);
+        let r = c64::new(1.0, 0.0) / den;
+        // d(1/den)/dω = -k (-2w + i d_j) / den².
+        let dr = -(c64::new(-2.0 * w, self.damping[j]) * kf) * r * r;
+        (r, dr)
+    }
+
+    /// `[Φ_n diag(Re r_k); Φ_n diag(Im r_k)]_{k=1..H} Φ_nᵀ` into `product`: the real and
+    /// imaginary parts of the receptances `H_nn(kω)`.
+    fn stacked_receptance(&mut self, omega: f64) {
+        let (nn, n) = (self.phi_n.nrows(), self.omega_j.len());
+        for k in 1..=self.harmonics {
+            let row = 2 * (k - 1) * nn;
+            for j in 0..n {
+                let (v, _) = self.modal_receptance(k, omega, j);
+                let col = self.phi_n.col(j);
+                for i in 0..nn {
+                    self.scaled[(row + i, j)] = col[i] * v.re;
+                    self.scaled[(row + nn + i, j)] = col[i] * v.im;
+                }
+            }
+        }
+        let rows = 2 * self.harmonics * nn;
+        matmul(
+            self.product.as_mut().subrows_mut(0, rows),
+            Accum::Replace,
+            self.scaled.as_ref().subrows(0, rows),
+            self.phi_n.transpose(),
+            1.0,
+            Par::Seq,
+        );
+    }
+
+    /// Block `k` of `product` as a complex matrix.
+    fn product_block(&self, k: usize) -> impl Fn(usize, usize) -> c64 + '_ {
+        let nn = self.phi_n.nrows();
+        let row = 2 * (k - 1) * nn;
+        move |i, j| c64::new(self.product[(row + i, j)], self.product[(row + nn + i, j)])
+    }
+
+    /// `z[k] = lu⁻¹` (LU with partial pivoting, sequential).
+    fn invert_lu_into(&mut self, k: usize) {
+        let stack = MemStack::new(&mut self.mem);
+        let (fwd, bwd) = (&mut self.perm.0, &mut self.perm.1);
+        let (_, perm) =
+            lu_factor::lu_in_place(self.lu.as_mut(), fwd, bwd, Par::Seq, stack, default());
+        let perm: PermRef<'_, usize> = perm;
+        let stack = MemStack::new(&mut self.mem);
+        lu_inverse::inverse(
+            self.z[k].as_mut(),
+            self.lu.as_ref(),
+            self.lu.as_ref(),
+            perm,
+            Par::Seq,
+            stack,
+        );
+    }
+
+    /// Updates `Λ_eq,k` for ω (eq 32: the inverse of the receptance's nonlinear block).
     pub fn update(&mut self, omega: f64) {
         if self.cached == Some(omega) {
             return;
         }
-        self.z.clear();
-        self.dz.clear();
-        for k in 0..=self.harmonics {
-            let (h, dh) = self.receptance(k, omega);
-            let nn = h.nrows();
-            let z = h.partial_piv_lu().solve(Mat::<c64>::identity(nn, nn));
-            let dz = -(&z * &dh * &z);
-            self.z.push(z);
-            self.dz.push(dz);
+        if self.harmonics > 0 {
+            self.stacked_receptance(omega);
+        }
+        for k in 1..=self.harmonics {
+            let nn = self.phi_n.nrows();
+            let block = self.product_block(k);
+            let h = Mat::from_fn(nn, nn, block);
+            self.lu.copy_from(&h);
+            self.invert_lu_into(k);
         }
         self.cached = Some(omega);
+    }
+
+    /// `d_omega += (dΛ_eq/dω) u` at the cached ω, block by block without forming
+    /// `dΛ_eq,k/dω = -Λ_eq,k (dH_k/dω) Λ_eq,k`: for `v = U_kc - i U_ks`,
+    /// `-Λ_eq,k Φ_n diag(dr_k/dω) Φ_nᵀ Λ_eq,k v` by matrix–vector products (`dΛ_eq,0/dω = 0`).
+    fn add_omega_derivative(&self, layout: &HarmonicLayout, u: &[f64], d_omega: &mut [f64]) {
+        let Some(omega) = self.cached else {
+            return;
+        };
+        let (nn, n) = (self.phi_n.nrows(), self.omega_j.len());
+        let matvec = |m: &Mat<c64>, v: &[c64]| -> Vec<c64> {
+            (0..nn)
+                .map(|i| (0..nn).map(|j| m[(i, j)] * v[j]).sum())
+                .collect()
+        };
+        for k in 1..=self.harmonics.min(layout.n_harmonics()) {
+            let (Some(bc), Some(bs)) = (layout.block(k, Part::Cos), layout.block(k, Part::Sin))
+            else {
+                continue;
+            };
+            let (rc, rs) = (layout.block_range(bc), layout.block_range(bs));
+            let v: Vec<c64> = (0..nn)
+                .map(|i| c64::new(u[rc.start + i], -u[rs.start + i]))
+                .collect();
+            let a = matvec(&self.z[k], &v);
+            // Φ_n diag(dr) Φ_nᵀ a.
+            let mut d = vec![c64::new(0.0, 0.0); nn];
+            for j in 0..n {
+                let col = self.phi_n.col(j);
+                let b: c64 = (0..nn).map(|i| a[i] * col[i]).sum();
+                let c = b * self.modal_receptance(k, omega, j).1;
+                for i in 0..nn {
+                    d[i] += c * col[i];
+                }
+            }
+            let e = matvec(&self.z[k], &d);
+            for i in 0..nn {
+                // y = -e is the complex y_kc - i y_ks.
+                d_omega[rc.start + i] -= e[i].re;
+                d_omega[rs.start + i] += e[i].im;
+            }
+        }
     }
 
     /// `Λ_eq,k` (complex) at the cached ω.
     pub fn block(&self, k: usize) -> &Mat<c64> {
         &self.z[k]
     }
+}
+
+fn default<T: Default>() -> T {
+    T::default()
 }
 
 /// Applies complex blocks to the layout: block 0 real, harmonic `k` as `[[A, B], [-B, A]]` on
@@ -182,7 +315,7 @@ impl DynamicStiffness for CondensedStiffness {
                 }
             }
         }
-        apply(layout, &self.dz, u, d_omega);
+        self.add_omega_derivative(layout, u, d_omega);
     }
 }
 

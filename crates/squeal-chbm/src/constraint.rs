@@ -29,8 +29,9 @@
 //! null vectors of `S`. Its derivatives: `dλ/dk_p = -(ψᴴ a_p)(b_pᵀ φ) / (ψᴴ Q'(λ) φ)` with
 //! `a_p = Φ_nᵀ (g_p + μ h_p)`, `b_p = Φ_nᵀ g_p`, and `dλ/dc_p = λ dλ/dk_p`.
 
+use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::Solve;
-use faer::{Mat, c64};
+use faer::{Accum, Mat, Par, c64};
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_brake::model::contact_law;
 use squeal_hbm::{HarmonicLayout, Part, TimeSamples};
@@ -58,9 +59,31 @@ pub struct EquivalentLinearization {
     pub open_fraction: Vec<f64>,
 }
 
-/// Projection of per-sample weights on the layout's Fourier basis, times a pair's normal.
+/// The layout's Fourier basis at the `nt` samples, block by block: `1`, `cos(2π h j / nt)`,
+/// `sin(2π h j / nt)` (row `b` of the result holds block `b`'s `nt` values).
+fn basis(layout: &HarmonicLayout, nt: usize) -> Vec<f64> {
+    let mut out = vec![0.0; layout.n_blocks() * nt];
+    for b in 0..layout.n_blocks() {
+        let row = &mut out[b * nt..(b + 1) * nt];
+        match layout.block_kind(b) {
+            Some((0, _)) => row.fill(1.0),
+            Some((h, part)) => {
+                for (j, v) in row.iter_mut().enumerate() {
+                    let (sn, cs) = (2.0 * PI * (h * j) as f64 / nt as f64).sin_cos();
+                    *v = if part == Part::Cos { cs } else { sn };
+                }
+            }
+            None => {}
+        }
+    }
+    out
+}
+
+/// Projection of per-sample weights on the layout's Fourier basis (from [`basis`]), times a
+/// pair's normal.
 fn project(
     layout: &HarmonicLayout,
+    basis: &[f64],
     weights: &[f64],
     normal: &[(usize, f64)],
     n: usize,
@@ -68,16 +91,11 @@ fn project(
     let nt = weights.len();
     let mut grad = vec![0.0; layout.len()];
     for b in 0..layout.n_blocks() {
-        let proj: f64 = match layout.block_kind(b) {
-            Some((0, _)) => weights.iter().sum(),
-            Some((h, Part::Cos)) => (0..nt)
-                .map(|j| weights[j] * (2.0 * PI * (h * j) as f64 / nt as f64).cos())
-                .sum(),
-            Some((h, Part::Sin)) => (0..nt)
-                .map(|j| weights[j] * (2.0 * PI * (h * j) as f64 / nt as f64).sin())
-                .sum(),
-            None => 0.0,
-        };
+        let proj: f64 = basis[b * nt..(b + 1) * nt]
+            .iter()
+            .zip(weights)
+            .map(|(c, w)| c * w)
+            .sum();
         for &(i, g) in normal {
             grad[b * n + i] += g * proj;
         }
@@ -110,6 +128,7 @@ pub fn equivalent_linearization(
         .map(|j| (2.0 * PI * j as f64 / nt as f64).sin_cos())
         .map(|(s, c)| (c, s))
         .unzip();
+    let basis = basis(layout, nt);
     for p in &mb.pairs {
         for j in 0..nt {
             delta[j] = p.penetration(&s.x[j * n..(j + 1) * n]);
@@ -149,7 +168,7 @@ pub fn equivalent_linearization(
                     .collect();
                 out.k.push(kp);
                 out.c.push(0.0);
-                out.dk.push(project(layout, &w, &p.normal, n));
+                out.dk.push(project(layout, &basis, &w, &p.normal, n));
                 out.dc.push(zero);
                 out.dc_domega.push(0.0);
             }
@@ -174,9 +193,9 @@ pub fn equivalent_linearization(
                 let wi: Vec<f64> = w.iter().map(|v| v.im).collect();
                 out.k.push(kc.re);
                 out.c.push(kc.im / omega);
-                out.dk.push(project(layout, &wr, &p.normal, n));
+                out.dk.push(project(layout, &basis, &wr, &p.normal, n));
                 out.dc.push(
-                    project(layout, &wi, &p.normal, n)
+                    project(layout, &basis, &wi, &p.normal, n)
                         .into_iter()
                         .map(|v| v / omega)
                         .collect(),
@@ -227,13 +246,31 @@ impl Eigenproblem {
         };
         let gm = Mat::from_fn(n, np, |j, p| proj(&mb.pairs[p].normal, j));
         let hm = Mat::from_fn(n, np, |j, p| proj(&mb.pairs[p].tangent, j));
-        Self {
-            mu: mb.mu,
-            omega: mb.omega.clone(),
-            damping: mb.damping.clone(),
+        Self::from_parts(
+            mb.mu,
+            mb.omega.clone(),
+            mb.damping.clone(),
             gm,
             hm,
-            k_s: mb.pairs.iter().map(|p| p.k_reference).collect(),
+            mb.pairs.iter().map(|p| p.k_reference).collect(),
+        )
+    }
+
+    fn from_parts(
+        mu: f64,
+        omega: Vec<f64>,
+        damping: Vec<f64>,
+        gm: Mat<f64>,
+        hm: Mat<f64>,
+        k_s: Vec<f64>,
+    ) -> Self {
+        Self {
+            mu,
+            omega,
+            damping,
+            gm,
+            hm,
+            k_s,
         }
     }
 
@@ -345,24 +382,39 @@ impl Eigenproblem {
     }
 
     /// `S(λ) = I + Vᵀ Δ⁻¹ U(λ)` and `S'(λ) = Vᵀ (Δ⁻¹ U' - Δ⁻² Δ' U)`.
+    ///
+    /// Both are `Vᵀ T` for complex `n × P` matrices `T` (`Δ⁻¹ U`, resp. `Δ⁻¹ U' - Δ⁻² Δ' U`),
+    /// with `V = Φ_nᵀ G` real: one real product `Vᵀ [Re T, Im T, Re T', Im T']`.
     fn secular(&self, u: &Mat<c64>, du: &Mat<c64>, d: &[c64], l: c64) -> (Mat<c64>, Mat<c64>) {
         let (n, np) = (u.nrows(), u.ncols());
-        let mut s = Mat::<c64>::identity(np, np);
-        let mut ds = Mat::<c64>::zeros(np, np);
+        let mut t = Mat::<f64>::zeros(n, 4 * np);
         for j in 0..n {
             let inv = c64::new(1.0, 0.0) / d[j];
             let dinv = -(l * 2.0 + self.damping[j]) * inv * inv;
-            for a in 0..np {
-                let va = self.gm[(j, a)];
-                if va == 0.0 {
-                    continue;
-                }
-                for b in 0..np {
-                    s[(a, b)] += inv * u[(j, b)] * va;
-                    ds[(a, b)] += (dinv * u[(j, b)] + inv * du[(j, b)]) * va;
-                }
+            for b in 0..np {
+                let v = inv * u[(j, b)];
+                let dv = dinv * u[(j, b)] + inv * du[(j, b)];
+                t[(j, b)] = v.re;
+                t[(j, np + b)] = v.im;
+                t[(j, 2 * np + b)] = dv.re;
+                t[(j, 3 * np + b)] = dv.im;
             }
         }
+        let mut p = Mat::<f64>::zeros(np, 4 * np);
+        matmul(
+            p.as_mut(),
+            Accum::Replace,
+            self.gm.transpose(),
+            t.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        let s = Mat::from_fn(np, np, |a, b| {
+            c64::new(f64::from(u8::from(a == b)) + p[(a, b)], p[(a, np + b)])
+        });
+        let ds = Mat::from_fn(np, np, |a, b| {
+            c64::new(p[(a, 2 * np + b)], p[(a, 3 * np + b)])
+        });
         (s, ds)
     }
 }
@@ -375,14 +427,14 @@ mod tests {
     /// eigen-decomposition of the state matrix, and dλ/dk with a finite difference.
     #[test]
     fn tracked_eigenvalue_and_derivative_match_a_dense_solve() {
-        let ep = Eigenproblem {
-            mu: 0.6,
-            omega: vec![900.0, 1000.0, 1700.0],
-            damping: vec![5.0, 5.0, 8.0],
-            gm: Mat::from_fn(3, 1, |j, _| [0.8, -0.5, 0.3][j]),
-            hm: Mat::from_fn(3, 1, |j, _| [0.4, 0.7, -0.2][j]),
-            k_s: vec![2.0e5],
-        };
+        let ep = Eigenproblem::from_parts(
+            0.6,
+            vec![900.0, 1000.0, 1700.0],
+            vec![5.0, 5.0, 8.0],
+            Mat::from_fn(3, 1, |j, _| [0.8, -0.5, 0.3][j]),
+            Mat::from_fn(3, 1, |j, _| [0.4, 0.7, -0.2][j]),
+            vec![2.0e5],
+        );
         let k = [3.0e5];
         let c = [40.0];
         // Dense reference: eigenvalues of [[0, I], [-(Ω² + ΔK), -(D + ΔC)]].

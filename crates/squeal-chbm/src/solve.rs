@@ -23,6 +23,7 @@ use crate::constraint::{
     Eigenproblem, EquivalentLinearization, Fit, Tracked, equivalent_linearization,
 };
 use crate::contact::ContactForce;
+use faer::reborrow::ReborrowMut;
 use faer::{Mat, MatMut, c64};
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_hbm::lm::{self, LeastSquaresProblem, LmError, LmIteration, LmOptions, LmStop};
@@ -199,6 +200,8 @@ struct Problem {
     last: Option<(Vec<f64>, EquivalentLinearization, Tracked)>,
     evaluations: Vec<Evaluation>,
     r1: Vec<f64>,
+    /// `dr1/dω` of the Jacobian (scratch).
+    jw: Vec<f64>,
 }
 
 impl Problem {
@@ -280,22 +283,34 @@ impl LeastSquaresProblem for Problem {
     fn jacobian(&mut self, z: &[f64], mut jac: MatMut<'_, f64>) -> Result<(), HbmError> {
         let l = self.len();
         let (u, omega) = (&z[..l], z[l]);
-        let mut ju = Mat::<f64>::zeros(l, l);
-        let mut jw = vec![0.0; l];
-        self.hb.jacobian(u, omega, ju.as_mut(), &mut jw)?;
-        for i in 0..l {
-            for j in 0..l {
-                jac[(i, j)] = ju[(i, j)] / self.f_scale;
+        // The f1 block is written in place and scaled after.
+        self.hb.jacobian(
+            u,
+            omega,
+            jac.rb_mut().submatrix_mut(0, 0, l, l),
+            &mut self.jw,
+        )?;
+        let inv = 1.0 / self.f_scale;
+        for j in 0..l {
+            for v in jac.rb_mut().col_mut(j).subrows_mut(0, l).iter_mut() {
+                *v *= inv;
             }
-            jac[(i, l)] = jw[i] / self.f_scale;
+        }
+        for i in 0..l {
+            jac[(i, l)] = self.jw[i] * inv;
         }
         for j in 0..=l {
             jac[(l, j)] = 0.0;
         }
         jac[(l, self.phase)] = 1.0 / self.x_scale;
         if self.weight > 0.0 {
-            // The AFT samples are those of this z (the Jacobian call evaluated them).
-            let (eql, tracked) = self.constraint(z)?;
+            // The constraint at z: LM asks for the Jacobian at the last accepted trial, whose
+            // residual call already evaluated it (the AFT samples then and now are those of z).
+            let cached = self.last.take().filter(|(zl, _, _)| zl.as_slice() == z);
+            let (eql, tracked) = match cached {
+                Some((_, eql, tracked)) => (eql, tracked),
+                None => self.constraint(z)?,
+            };
             for j in 0..l {
                 let mut d = 0.0;
                 for p in 0..eql.k.len() {
@@ -309,6 +324,7 @@ impl LeastSquaresProblem for Problem {
                 .map(|p| tracked.dlambda_dc[p].re * eql.dc_domega[p])
                 .sum();
             jac[(l + 1, l)] = self.weight * dw / self.w_scale;
+            self.last = Some((z.to_vec(), eql, tracked));
         }
         Ok(())
     }
@@ -415,6 +431,7 @@ pub fn solve_from(
         last: None,
         evaluations: Vec::new(),
         r1: vec![0.0; layout.len()],
+        jw: vec![0.0; layout.len()],
     };
     let mut z = z0.clone();
     z.push(omega0);
@@ -685,6 +702,7 @@ pub fn check_jacobian(
         last: None,
         evaluations: Vec::new(),
         r1: vec![0.0; layout.len()],
+        jw: vec![0.0; layout.len()],
     };
     let mut z = z0;
     z.push(omega0);
