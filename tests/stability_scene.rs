@@ -2,53 +2,13 @@
 //! line, and the bundled brake's Hopf point on the coarse meshes (issue #5's requirement:
 //! 0.2 < μ0 < 0.8, 1 < f < 15 kHz).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use common::{bundled_scene, squeal};
+use std::path::Path;
 
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("squeal-stability-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// The bundled scene with its meshes at `level`, as absolute paths (the scene is written
-/// elsewhere).
-fn bundled_scene(level: &str) -> String {
-    let text = std::fs::read_to_string(root().join("meshes/brake.toml")).unwrap();
-    let meshes = root().join("meshes");
-    let mut replaced = 0;
-    let out: Vec<String> = text
-        .lines()
-        .map(|l| {
-            for part in ["disc", "pad"] {
-                if l.starts_with(&format!("{part} = ")) {
-                    replaced += 1;
-                    return format!(
-                        "{part} = {:?}",
-                        meshes
-                            .join(format!("{part}_{level}.inp"))
-                            .display()
-                            .to_string()
-                    );
-                }
-            }
-            l.to_string()
-        })
-        .collect();
-    // The test must not silently run the scene's own (medium) meshes.
-    assert_eq!(replaced, 2, "meshes/brake.toml lost its disc/pad lines");
-    out.join("\n") + "\n"
-}
-
-fn squeal(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_squeal"))
-        .args(args)
-        .output()
-        .unwrap()
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    common::temp_dir("stability", name)
 }
 
 /// Runs `squeal stability` on `text`; returns (stderr, the 1-based line of `marker` in it).

@@ -3,54 +3,25 @@
 //! theory and the modal damping ratio, and the mesh study's patch model against
 //! `squeal stability`.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use std::path::PathBuf;
+use std::process::Output;
 
 fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("squeal-study-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::temp_dir("study", name)
 }
 
 /// The bundled scene on the coarse meshes (absolute paths), written to `dir`.
 fn coarse_scene(dir: &std::path::Path) -> PathBuf {
-    let text = std::fs::read_to_string(root().join("meshes/brake.toml")).unwrap();
-    let meshes = root().join("meshes");
-    let mut replaced = 0;
-    let lines: Vec<String> = text
-        .lines()
-        .map(|l| {
-            for part in ["disc", "pad"] {
-                if l.starts_with(&format!("{part} = ")) {
-                    replaced += 1;
-                    // The mesh study finds the other levels by the _<level> suffix.
-                    return format!(
-                        "{part} = {:?}",
-                        meshes
-                            .join(format!("{part}_coarse.inp"))
-                            .display()
-                            .to_string()
-                    );
-                }
-            }
-            l.to_string()
-        })
-        .collect();
-    assert_eq!(replaced, 2, "meshes/brake.toml lost its disc/pad lines");
     let path = dir.join("brake_coarse.toml");
-    std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+    std::fs::write(&path, common::bundled_scene("coarse")).unwrap();
     path
 }
 
+/// Runs `squeal`, which must succeed.
 fn squeal(args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_squeal"))
-        .args(args)
-        .output()
-        .unwrap();
+    let out = common::squeal(args);
     assert!(
         out.status.success(),
         "squeal {args:?} failed:\n{}",

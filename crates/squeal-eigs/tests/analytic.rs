@@ -1,7 +1,7 @@
 //! Eigenvalues, Sturm counts and factor solves against closed-form references.
 
 use faer::Mat;
-use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
+use faer::sparse::{SparseColMat, Triplet};
 use squeal_eigs::model_problems::{
     Ends, bar, bar_eigenvalues, box_scalar, box_scalar_eigenvalues, box_vector,
 };
@@ -10,23 +10,8 @@ use squeal_eigs::{
     lowest_modes_with_factor, shifted, sturm_check,
 };
 
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs().max(f64::MIN_POSITIVE)
-}
-
-/// max |Phi^T M Phi - I|.
-fn orthonormality_error(m: SparseColMatRef<'_, usize, f64>, phi: &Mat<f64>) -> f64 {
-    let mphi = m * phi;
-    let g = phi.transpose() * &mphi;
-    let mut worst = 0.0f64;
-    for i in 0..g.nrows() {
-        for j in 0..g.ncols() {
-            let target = if i == j { 1.0 } else { 0.0 };
-            worst = worst.max((g[(i, j)] - target).abs());
-        }
-    }
-    worst
-}
+mod common;
+use common::{orthonormality_error, rel};
 
 #[test]
 fn fixed_fixed_bar_matches_closed_form() {

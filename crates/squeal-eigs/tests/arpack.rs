@@ -6,9 +6,8 @@ use squeal_eigs::model_problems::{
 };
 use squeal_eigs::{Backend, EigOptions, lowest_modes};
 
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs().max(f64::MIN_POSITIVE)
-}
+mod common;
+use common::rel;
 
 fn both(
     k: &faer::sparse::SparseColMat<usize, f64>,

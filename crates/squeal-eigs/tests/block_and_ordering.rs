@@ -2,7 +2,7 @@
 //! forms, the single-vector solver and AMD.
 
 use faer::Mat;
-use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
+use faer::sparse::{SparseColMat, Triplet};
 use squeal_eigs::model_problems::{
     Ends, bar, bar_eigenvalues, box_scalar, box_scalar_eigenvalues, box_vector,
 };
@@ -10,22 +10,8 @@ use squeal_eigs::{
     CholeskyOptions, EigOptions, FillOrdering, SparseCholesky, count_below, lowest_modes,
 };
 
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs().max(f64::MIN_POSITIVE)
-}
-
-/// max |Phi^T M Phi - I|.
-fn orthonormality_error(m: SparseColMatRef<'_, usize, f64>, phi: &Mat<f64>) -> f64 {
-    let g = phi.transpose() * (m * phi);
-    let mut worst = 0.0f64;
-    for i in 0..g.nrows() {
-        for j in 0..g.ncols() {
-            let target = if i == j { 1.0 } else { 0.0 };
-            worst = worst.max((g[(i, j)] - target).abs());
-        }
-    }
-    worst
-}
+mod common;
+use common::{orthonormality_error, rel};
 
 fn block_opts(block_size: usize) -> EigOptions {
     EigOptions {
