@@ -62,19 +62,18 @@ pub struct CompareArgs {
 }
 
 impl CompareArgs {
-    /// The defaults for a scene (what `squeal run` uses).
-    pub fn for_scene(scene: PathBuf) -> Self {
-        Self {
-            scene,
-            mu_ratio: vec![1.01, 1.1],
-            harmonics: vec![1, 2, 3, 5, 10],
-            rtol: vec![1e-5, 1e-6],
-            reference_rtol: 1e-7,
-            perturbation: 0.5,
-            max_order: 2,
-            grid: false,
-            out: None,
+    /// The command line's defaults for a scene (what `squeal run` uses), taken from the
+    /// argument definitions above so that they cannot drift apart.
+    pub fn for_scene(scene: PathBuf) -> Result<Self> {
+        use clap::{FromArgMatches, Parser};
+        #[derive(Parser)]
+        struct Defaults {
+            #[command(flatten)]
+            args: CompareArgs,
         }
+        let matches = <Defaults as clap::CommandFactory>::command()
+            .try_get_matches_from([std::ffi::OsString::from("compare"), scene.into_os_string()])?;
+        Ok(Defaults::from_arg_matches(&matches)?.args)
     }
 
     fn validate(&self) -> Result<()> {
@@ -882,4 +881,23 @@ fn ti_grid_table(cells: &[TiCell]) -> Table {
         ]);
     }
     t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn run_uses_the_command_line_defaults() {
+        let a = CompareArgs::for_scene(PathBuf::from("meshes/brake.toml")).unwrap();
+        assert_eq!(a.scene, PathBuf::from("meshes/brake.toml"));
+        assert_eq!(a.mu_ratio, [1.01, 1.1]);
+        assert_eq!(a.harmonics, [1, 2, 3, 5, 10]);
+        assert_eq!(a.rtol, [1e-5, 1e-6]);
+        assert_eq!(
+            (a.reference_rtol, a.perturbation, a.max_order),
+            (1e-7, 0.5, 2)
+        );
+        assert!(!a.grid && a.out.is_none());
+    }
 }

@@ -70,7 +70,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         let t = Instant::now();
         compare::run(compare::CompareArgs {
             out: Some(out.clone()),
-            ..compare::CompareArgs::for_scene(args.scene.clone())
+            ..compare::CompareArgs::for_scene(args.scene.clone())?
         })?;
         timings.push(("comparison", t.elapsed().as_secs_f64()));
     }
