@@ -4,9 +4,6 @@
 //! exits non-zero; output files are written atomically.
 
 mod commands;
-mod output;
-mod scene;
-mod setup;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

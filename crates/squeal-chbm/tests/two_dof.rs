@@ -1,55 +1,31 @@
-//! Independent checks of CHBM and of the time-integration reference on a 2-dof mode-coupling
-//! friction model built as a `squeal_brake::Brake` with one contact pair (issue #6, item 9):
-//!
-//! `M = m I`, `C = c I`, linear `K = [[k11, k12], [k12, k22]]`, a pair whose normal is dof 1
-//! (eq 8's `F = k_l δ + k_nl δ³`, δ = x1 + gap) and whose friction acts along `-e0`
-//! (coupling `-μ k_t` in `K[0][1]`). The cubic term hardens the contact as the vibration grows;
-//! with the stiffnesses chosen here a stiffer contact raises the flutter threshold, so the
-//! Hopf point is supercritical and, near it, the limit cycle's amplitude squared grows
-//! linearly with `μ - μ0` (normal form of the Hopf bifurcation).
+//! Independent checks of CHBM and of the time-integration reference on the 2-dof
+//! mode-coupling friction oscillator of `examples/friction_oscillator.rs` (issue #6, item 9;
+//! the example itself runs here): a pair whose normal is dof 1 (eq 8's
+//! `F = k_l δ + k_nl δ³`, δ = x1 + gap) and whose friction acts along `-e0` (coupling
+//! `-μ k_t` in `K[0][1]`). The cubic term hardens the contact as the vibration grows; with
+//! the stiffnesses chosen a stiffer contact raises the flutter threshold, so the Hopf point
+//! is supercritical and, near it, the limit cycle's amplitude squared grows linearly with
+//! `μ - μ0` (normal form of the Hopf bifurcation).
 
-use faer::Mat;
+#[path = "../examples/friction_oscillator.rs"]
+mod example;
+
+use example::{KL, KNL, band, brake, frictionless};
 use faer::c64;
+use squeal_brake::Brake;
 use squeal_brake::equilibrium::{NewtonOptions, static_equilibrium};
-use squeal_brake::modal::Damping;
+use squeal_brake::harmonic::{BrakeEigen, ContactForce};
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_brake::spectrum::{Reference, spectrum};
-use squeal_brake::sweep::{Band, reference};
-use squeal_brake::{Brake, ContactPair};
-use squeal_chbm::compare::solve_with_restarts;
-use squeal_chbm::constraint::{Eigenproblem, Fit, equivalent_linearization};
-use squeal_chbm::contact::ContactForce;
 use squeal_chbm::cycle::relative_errors;
 use squeal_chbm::start::start_at;
 use squeal_chbm::timeint::{TiOptions, integrate_to_limit_cycle};
-use squeal_chbm::{ChbmOptions, ChbmStart, Outcome, check_jacobian};
-use squeal_hbm::{Aft, HarmonicLayout, Part};
-
-const M: f64 = 1.0;
-const C: f64 = 20.0;
-const K11: f64 = 1.0e6;
-const K12: f64 = 1.0e5;
-const K22: f64 = 1.0e6;
-const GAP: f64 = 2.0e-4;
-
-fn brake(k_linear: f64, k_cubic: f64) -> Brake {
-    let pair = ContactPair {
-        disc_point: 0,
-        pad_point: 0,
-        position: [0.0; 3],
-        normal: vec![(1, 1.0)],
-        tangent: vec![(0, -1.0)],
-        gap: GAP,
-        k_linear,
-        k_cubic,
-    };
-    Brake {
-        m: Mat::from_fn(2, 2, |i, j| if i == j { M } else { 0.0 }),
-        k: Mat::from_fn(2, 2, |i, j| [[K11, K12], [K12, K22]][i][j]),
-        f_piston: vec![0.0, 0.0],
-        pairs: vec![pair],
-    }
-}
+use squeal_chbm::{
+    ChbmOptions, ChbmStart, Outcome, RESTART_AMPLITUDES, check_jacobian, solve_with_restarts,
+};
+use squeal_hbm::{
+    Aft, DescribingFunction, HarmonicLayout, LinearizedEigen, Part, reference_jacobian,
+};
 
 struct Model {
     brake: Brake,
@@ -58,11 +34,7 @@ struct Model {
 
 fn model(k_linear: f64, k_cubic: f64) -> Model {
     let b = brake(k_linear, k_cubic);
-    let damping = Damping {
-        global_ratio: 0.0,
-        extra: vec![(0, C / M), (1, C / M)],
-    };
-    let reference = reference(&b, &damping, &NewtonOptions::default()).unwrap();
+    let reference = frictionless(&b);
     Model {
         brake: b,
         reference,
@@ -94,19 +66,6 @@ fn hopf(m: &Model) -> f64 {
     0.5 * (lo + hi)
 }
 
-const KL: f64 = 3.0e5;
-const KNL: f64 = 7.5e11;
-
-/// Initial amplitudes of eq (48) tried in turn (fractions of the static penetration).
-const AMPLITUDES: [f64; 4] = [0.1, 0.3, 0.03, 1.0];
-
-fn band() -> Band {
-    Band {
-        valid_max_hz: f64::INFINITY,
-        user: None,
-    }
-}
-
 fn start(m: &Model, mu: f64) -> ChbmStart {
     start_at(
         &m.brake,
@@ -119,6 +78,17 @@ fn start(m: &Model, mu: f64) -> ChbmStart {
     .unwrap()
 }
 
+#[test]
+fn the_example_runs_and_agrees_with_the_bisected_hopf_point() {
+    // The example's μ0 (sweep + Newton refinement) against bisection on the dense spectrum:
+    // both resolve μ0 to ~1e-9 relative.
+    let m = model(KL, KNL);
+    let mu0 = example::hopf(&m.brake, &m.reference);
+    assert!((mu0 / hopf(&m) - 1.0).abs() < 1e-7, "{mu0} vs {}", hopf(&m));
+    let s = example::limit_cycle(&m.brake, &m.reference, 1.001 * mu0, 3).unwrap();
+    assert_eq!(s.outcome, Outcome::LimitCycle);
+}
+
 /// First-harmonic amplitude of the normal dof, CHBM with `h` harmonics.
 fn chbm_amplitude(m: &Model, mu: f64, h: usize) -> (f64, f64) {
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
@@ -129,7 +99,7 @@ fn chbm_amplitude(m: &Model, mu: f64, h: usize) -> (f64, f64) {
             harmonics: h,
             ..ChbmOptions::default()
         },
-        &AMPLITUDES,
+        &RESTART_AMPLITUDES,
     )
     .unwrap();
     assert_eq!(s.outcome, Outcome::LimitCycle, "CHBM at mu = {mu}");
@@ -231,11 +201,11 @@ fn chbm_matches_time_integration_on_the_two_dof_model() {
             harmonics: 5,
             ..ChbmOptions::default()
         },
-        &AMPLITUDES,
+        &RESTART_AMPLITUDES,
     )
     .unwrap();
     assert_eq!(s.outcome, Outcome::LimitCycle);
-    let mut c = s.cycle();
+    let mut c = s.cycle().unwrap();
     c.align_to(&reference.cycle, 1);
     let e = relative_errors(&c, &reference.cycle, &[0, 1]);
     eprintln!("{e:?}");
@@ -255,6 +225,8 @@ fn equivalent_linearization_is_the_tangent_one_at_zero_amplitude() {
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
     let layout = HarmonicLayout::new(mb.nl(), 3).unwrap();
     let force = ContactForce::new(&mb);
+    let x0: Vec<f64> = mb.nl_dofs.iter().map(|&d| st.equilibrium[d]).collect();
+    let (k0, c0) = reference_jacobian(&force, &x0);
     for amplitude in [0.0, 1e-9] {
         // The equilibrium as a cycle, with (for the second case) a tiny first harmonic.
         let mut u = vec![0.0; layout.len()];
@@ -267,23 +239,24 @@ fn equivalent_linearization_is_the_tangent_one_at_zero_amplitude() {
         let mut aft = Aft::new(layout, 32).unwrap();
         let mut f = vec![0.0; layout.len()];
         aft.forces(&force, &u, st.lambda.im, &mut f).unwrap();
-        for fit in [Fit::Fundamental, Fit::Samples] {
-            let eql = equivalent_linearization(&mb, &layout, &aft.samples(), st.lambda.im, fit);
-            let t = Eigenproblem::new(&mb)
-                .track(&eql.k, &eql.c, st.lambda * c64::new(1.0, 1e-4))
-                .unwrap();
-            // The stability analysis' eigenvalue comes from a dense eigensolver on the
-            // physical tangent stiffness; the tracked one from Newton on the secular equation
-            // with the fitted stiffness. At zero amplitude the fit is the tangent stiffness
-            // exactly; at 1e-9 m the cubic term changes it by 3 k_nl A²/4 ~ 1e-13 relative.
-            assert!(
-                (t.lambda - st.lambda).norm() < 1e-9 * st.lambda.norm(),
-                "{fit:?} at amplitude {amplitude}: {} vs {}",
-                t.lambda,
-                st.lambda
-            );
-            assert!(eql.c[0].abs() < 1e-9 * eql.k[0] / st.lambda.im);
-        }
+        let df = DescribingFunction::new(&layout, &u, st.lambda.im, &f, &k0, &c0);
+        let t = BrakeEigen::new(&mb, None)
+            .track(
+                df.n_k.as_ref(),
+                df.n_c.as_ref(),
+                st.lambda * c64::new(1.0, 1e-4),
+            )
+            .unwrap();
+        // The stability analysis' eigenvalue comes from a dense eigensolver on the tangent
+        // linearization; the tracked one from the describing function. At zero amplitude
+        // the describing function is the tangent linearization exactly; at 1e-9 m the cubic
+        // term changes it by 3 k_nl A²/4 ~ 1e-13 relative.
+        assert!(
+            (t.lambda - st.lambda).norm() < 1e-9 * st.lambda.norm(),
+            "amplitude {amplitude}: {} vs {}",
+            t.lambda,
+            st.lambda
+        );
     }
 }
 

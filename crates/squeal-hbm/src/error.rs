@@ -108,6 +108,24 @@ pub enum HbmError {
     /// Invalid solver options.
     #[error("invalid solver option: {0}")]
     BadOption(&'static str),
+    /// A row scale that is not a positive number.
+    #[error("the {what} of the residual rows must be a positive number (got {value})")]
+    BadScale {
+        /// Which scale.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// The eigenvalue the CHBM constraint follows could not be followed.
+    #[error(
+        "the eigenvalue of the equivalent linearization could not be followed from {from:.6e}: {why}"
+    )]
+    EigenvalueLost {
+        /// The last eigenvalue that was known.
+        from: faer::c64,
+        /// What failed.
+        why: String,
+    },
     /// The Levenberg-Marquardt solver stopped without meeting the residual tolerance.
     /// The report holds the last iterate and the full history.
     #[error("harmonic balance did not converge ({stop}); last residual norm {residual_norm:e}", stop = .report.stop, residual_norm = .report.residual_norm)]
