@@ -32,8 +32,8 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::{Accum, Mat, MatMut, MatRef, Par, c64};
 use squeal_hbm::{
-    DynamicStiffness, EigenTrack, HarmonicLayout, HbmError, LinearizedEigen, LocalJacobian,
-    NonlinearForce, Part,
+    DynamicStiffness, EigenTrack, HarmonicLayout, HbmError, LinearUpdate, LinearizedEigen,
+    LocalJacobian, NonlinearForce, Part,
 };
 use std::collections::BTreeMap;
 
@@ -552,6 +552,8 @@ pub struct BrakeEigen {
     phi_n: Mat<f64>,
     mu: f64,
     last: Option<Eigenpair>,
+    /// The reference's row basis, kept from one call to the next.
+    reference: Option<ReferenceBasis>,
     /// Continuation steps taken and dense restarts made.
     pub iterations: usize,
     pub dense_restarts: usize,
@@ -571,27 +573,70 @@ impl BrakeEigen {
             phi_n: mb.phi_n.clone(),
             mu: mb.mu,
             last: start,
+            reference: None,
             iterations: 0,
             dense_restarts: 0,
             options: ContinuationOptions::default(),
         }
     }
 
-    fn coupling(&self, n_k: MatRef<'_, f64>, n_c: MatRef<'_, f64>) -> Coupling {
+    /// The coupling of `N_K + λ N_C` on the nonlinear dofs, compressed to its rank. With `B`
+    /// an orthonormal basis of the rows of `[N_K; N_C]`, `N_K = (N_K B) Bᵀ` and
+    /// `N_C = (N_C B) Bᵀ`, so `V = Φ_nᵀ B`, `U₀ = Φ_nᵀ N_K B`, `U₁ = Φ_nᵀ N_C B`. `B` is the
+    /// basis of the reference's rows (from a thin SVD of `[K₀; C₀]`, dropping singular values
+    /// below `1e-13` of the largest, which round-off makes anyway; computed once per
+    /// reference) extended by the correction's right factor, orthogonalized against it. The
+    /// describing-function update has the rank of the contact's Jacobian plus two (`P + 2`
+    /// for `P` pairs, a quarter of the nonlinear dofs on the brake), and the bordered solves
+    /// cost the square of the rank.
+    fn coupling(&mut self, update: &LinearUpdate<'_>) -> Coupling {
         let (nn, n) = (self.phi_n.nrows(), self.phi_n.ncols());
-        // Column p of V is row p of Φ_n; column p of U₀ is Φ_nᵀ N_K e_p.
-        let v: Vec<f64> = (0..nn)
-            .flat_map(|p| (0..n).map(move |j| (p, j)))
-            .map(|(p, j)| self.phi_n[(p, j)])
-            .collect();
-        let column = |m: MatRef<'_, f64>| -> Vec<f64> {
-            (0..nn)
-                .flat_map(|p| (0..n).map(move |j| (p, j)))
-                .map(|(p, j)| (0..nn).map(|i| self.phi_n[(i, j)] * m[(i, p)]).sum())
+        let fresh = self
+            .reference
+            .as_ref()
+            .is_some_and(|r| r.k0.as_ref() == update.k0 && r.c0.as_ref() == update.c0);
+        if !fresh {
+            self.reference = None;
+        }
+        let reference = self
+            .reference
+            .get_or_insert_with(|| ReferenceBasis::new(update.k0, update.c0));
+        // The correction's right columns, made orthogonal to the basis (twice, for accuracy).
+        let mut basis = reference.basis.clone();
+        for c in 0..update.right.ncols() {
+            let mut q: Vec<f64> = (0..nn).map(|i| update.right[(i, c)]).collect();
+            let size = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+            for _ in 0..2 {
+                for b in 0..basis.ncols() {
+                    let d: f64 = (0..nn).map(|i| basis[(i, b)] * q[i]).sum();
+                    for (i, v) in q.iter_mut().enumerate() {
+                        *v -= d * basis[(i, b)];
+                    }
+                }
+            }
+            let rest = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+            if rest > 1e-13 * size {
+                let r = basis.ncols();
+                basis = Mat::from_fn(
+                    nn,
+                    r + 1,
+                    |i, k| if k < r { basis[(i, k)] } else { q[i] / rest },
+                );
+            }
+        }
+        let (n_k, n_c) = update.dense();
+        let damped = (0..nn).any(|i| (0..nn).any(|p| n_c[(i, p)] != 0.0));
+        let pt = self.phi_n.transpose();
+        let flat = |m: Mat<f64>| -> Vec<f64> {
+            (0..m.ncols())
+                .flat_map(|c| (0..m.nrows()).map(move |r| (r, c)))
+                .map(|(r, c)| m[(r, c)])
                 .collect()
         };
-        let damped = (0..nn).any(|i| (0..nn).any(|p| n_c[(i, p)] != 0.0));
-        Coupling::from_columns(self.mu, v, column(n_k), damped.then(|| column(n_c)), n)
+        let v = flat(pt * &basis);
+        let u0 = flat(pt * (&n_k * &basis));
+        let u1 = damped.then(|| flat(pt * (&n_c * &basis)));
+        Coupling::from_columns(self.mu, v, u0, u1, n)
     }
 
     /// The dense spectrum's eigenpair nearest `to`.
@@ -613,13 +658,8 @@ impl BrakeEigen {
 }
 
 impl LinearizedEigen for BrakeEigen {
-    fn track(
-        &mut self,
-        n_k: MatRef<'_, f64>,
-        n_c: MatRef<'_, f64>,
-        guess: c64,
-    ) -> Result<EigenTrack, HbmError> {
-        let c = self.coupling(n_k, n_c);
+    fn track(&mut self, update: &LinearUpdate<'_>, guess: c64) -> Result<EigenTrack, HbmError> {
+        let c = self.coupling(update);
         let pair = match self
             .last
             .as_ref()
@@ -649,5 +689,36 @@ impl LinearizedEigen for BrakeEigen {
         };
         self.last = Some(pair);
         Ok(track)
+    }
+}
+
+/// An orthonormal basis of the rows of a reference `[K₀; C₀]`, with the reference it is of.
+struct ReferenceBasis {
+    k0: Mat<f64>,
+    c0: Mat<f64>,
+    basis: Mat<f64>,
+}
+
+impl ReferenceBasis {
+    fn new(k0: MatRef<'_, f64>, c0: MatRef<'_, f64>) -> Self {
+        let nn = k0.nrows();
+        let stacked = Mat::from_fn(2 * nn, nn, |i, j| {
+            if i < nn { k0[(i, j)] } else { c0[(i - nn, j)] }
+        });
+        let basis = match stacked.thin_svd() {
+            Ok(svd) => {
+                let s = svd.S();
+                let top = (0..nn).map(|k| s[k].abs()).fold(0.0, f64::max);
+                let r = (0..nn).filter(|&k| s[k].abs() > 1e-13 * top).count();
+                svd.V().subcols(0, r).to_owned()
+            }
+            // Without a decomposition, the identity basis (no compression) is exact.
+            Err(_) => Mat::identity(nn, nn),
+        };
+        Self {
+            k0: k0.to_owned(),
+            c0: c0.to_owned(),
+            basis,
+        }
     }
 }

@@ -241,11 +241,7 @@ fn equivalent_linearization_is_the_tangent_one_at_zero_amplitude() {
         aft.forces(&force, &u, st.lambda.im, &mut f).unwrap();
         let df = DescribingFunction::new(&layout, &u, st.lambda.im, &f, &k0, &c0);
         let t = BrakeEigen::new(&mb, None)
-            .track(
-                df.n_k.as_ref(),
-                df.n_c.as_ref(),
-                st.lambda * c64::new(1.0, 1e-4),
-            )
+            .track(&df.update(&k0, &c0), st.lambda * c64::new(1.0, 1e-4))
             .unwrap();
         // The stability analysis' eigenvalue comes from a dense eigensolver on the tangent
         // linearization; the tracked one from the describing function. At zero amplitude

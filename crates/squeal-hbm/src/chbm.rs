@@ -50,17 +50,36 @@ pub struct EigenTrack {
     pub slope: c64,
 }
 
+/// An update `N(λ) = N_K + λ N_C` on the force's dofs, as a reference plus a low-rank
+/// correction: `N_K = K₀ + L_K Rᵀ`, `N_C = C₀ + L_C Rᵀ` (`R`, `L_K`, `L_C` with a few columns).
+/// The reference is the same from one call to the next within a solve, so an implementation
+/// can prepare it once.
+#[derive(Clone, Copy, Debug)]
+pub struct LinearUpdate<'a> {
+    pub k0: MatRef<'a, f64>,
+    pub c0: MatRef<'a, f64>,
+    pub left_k: MatRef<'a, f64>,
+    pub left_c: MatRef<'a, f64>,
+    pub right: MatRef<'a, f64>,
+}
+
+impl LinearUpdate<'_> {
+    /// `(N_K, N_C)` as dense matrices.
+    pub fn dense(&self) -> (Mat<f64>, Mat<f64>) {
+        let rt = self.right.transpose();
+        (
+            self.k0.to_owned() + self.left_k * rt,
+            self.c0.to_owned() + self.left_c * rt,
+        )
+    }
+}
+
 /// A linear part that can follow an eigenvalue of itself plus an update on the force's dofs.
 pub trait LinearizedEigen {
-    /// The eigenvalue of `Z(λ) + N_K + λ N_C` (`Z(λ) = λ² M + λ C + K` the linear part,
-    /// `N_K`, `N_C` square on the force's dofs) that continues the one followed so far, or
-    /// the one nearest `guess` on the first call.
-    fn track(
-        &mut self,
-        n_k: MatRef<'_, f64>,
-        n_c: MatRef<'_, f64>,
-        guess: c64,
-    ) -> Result<EigenTrack, HbmError>;
+    /// The eigenvalue of `Z(λ) + N_K + λ N_C` (`Z(λ) = λ² M + λ C + K` the linear part, the
+    /// update square on the force's dofs) that continues the one followed so far, or the one
+    /// nearest `guess` on the first call.
+    fn track(&mut self, update: &LinearUpdate<'_>, guess: c64) -> Result<EigenTrack, HbmError>;
 }
 
 /// The force's Jacobians `(∂f/∂x, ∂f/∂ẋ)` at `x` with `ẋ = 0`, as dense matrices: the
@@ -98,6 +117,12 @@ pub struct DescribingFunction {
     /// `N_K`, `N_C` (square on the force's dofs).
     pub n_k: Mat<f64>,
     pub n_c: Mat<f64>,
+    /// The correction to `J₀` as `N_K - K₀ = L_K Rᵀ`, `N_C - C₀ = L_C Rᵀ` with
+    /// `R = [x_r, x_i]`, `L_K = [a_r, a_i] / |X|²`, `L_C = [a_i, -a_r] / (ω |X|²)` (no columns
+    /// at zero amplitude).
+    pub left_k: Mat<f64>,
+    pub left_c: Mat<f64>,
+    pub right: Mat<f64>,
     /// `X`, `F`, `a = F - J₀(iω) X` and `|X|²`.
     x: Vec<c64>,
     a: Vec<c64>,
@@ -138,7 +163,20 @@ impl DescribingFunction {
         let a: Vec<c64> = f.iter().zip(&jx).map(|(f, j)| f - j).collect();
         let norm2: f64 = x.iter().map(|v| v.norm_sqr()).sum();
         let (mut n_k, mut n_c) = (k0.clone(), c0.clone());
-        if norm2 > 0.0 && norm2.is_finite() {
+        let cols = if norm2 > 0.0 && norm2.is_finite() {
+            2
+        } else {
+            0
+        };
+        // Re(a Xᴴ) = a_r x_rᵀ + a_i x_iᵀ and Im(a Xᴴ) = a_i x_rᵀ - a_r x_iᵀ.
+        let right = Mat::from_fn(n, cols, |i, c| if c == 0 { x[i].re } else { x[i].im });
+        let left_k = Mat::from_fn(n, cols, |i, c| {
+            (if c == 0 { a[i].re } else { a[i].im }) / norm2
+        });
+        let left_c = Mat::from_fn(n, cols, |i, c| {
+            (if c == 0 { a[i].im } else { -a[i].re }) / (omega * norm2)
+        });
+        if cols > 0 {
             for i in 0..n {
                 for j in 0..n {
                     // a_i conj(x_j) / |X|².
@@ -151,9 +189,23 @@ impl DescribingFunction {
         Self {
             n_k,
             n_c,
+            left_k,
+            left_c,
+            right,
             x,
             a,
             norm2,
+        }
+    }
+
+    /// The update about the reference `(k0, c0)` this linearization was made with.
+    pub fn update<'a>(&'a self, k0: &'a Mat<f64>, c0: &'a Mat<f64>) -> LinearUpdate<'a> {
+        LinearUpdate {
+            k0: k0.as_ref(),
+            c0: c0.as_ref(),
+            left_k: self.left_k.as_ref(),
+            left_c: self.left_c.as_ref(),
+            right: self.right.as_ref(),
         }
     }
 }
@@ -244,7 +296,7 @@ impl<T: LinearizedEigen> ReLambda<T> {
         );
         let t = self
             .tracker
-            .track(df.n_k.as_ref(), df.n_c.as_ref(), self.lambda)?;
+            .track(&df.update(&self.k0, &self.c0), self.lambda)?;
         self.lambda = t.lambda;
         Ok((df, t))
     }
@@ -395,12 +447,8 @@ impl DenseEigen {
 }
 
 impl LinearizedEigen for DenseEigen {
-    fn track(
-        &mut self,
-        n_k: MatRef<'_, f64>,
-        n_c: MatRef<'_, f64>,
-        guess: c64,
-    ) -> Result<EigenTrack, HbmError> {
+    fn track(&mut self, update: &LinearUpdate<'_>, guess: c64) -> Result<EigenTrack, HbmError> {
+        let (n_k, n_c) = update.dense();
         let n = self.m.nrows();
         let from = self.last.unwrap_or(guess);
         let lost = |why: &str| HbmError::EigenvalueLost {

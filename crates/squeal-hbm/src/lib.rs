@@ -59,8 +59,8 @@ mod periodic;
 
 pub use aft::{Aft, TimeSamples, default_samples, min_samples_exact};
 pub use chbm::{
-    ChbmResult, DenseEigen, DescribingFunction, EigenTrack, LinearizedEigen, ReLambda,
-    initial_guess, reference_jacobian, solve_chbm,
+    ChbmResult, DenseEigen, DescribingFunction, EigenTrack, LinearUpdate, LinearizedEigen,
+    ReLambda, initial_guess, reference_jacobian, solve_chbm,
 };
 pub use error::HbmError;
 pub use force::{FnForce, LocalJacobian, NonlinearForce};

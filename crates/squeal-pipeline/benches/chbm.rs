@@ -79,12 +79,8 @@ fn breakdown(mb: &ModalBrake, start: &ChbmStart, s: &ChbmSolution, reps: usize) 
         DescribingFunction::new(&layout, &s.nl_coeffs, s.omega, &f, &k0, &c0)
     });
     let mut eig = BrakeEigen::new(mb, None);
-    eig.track(df.n_k.as_ref(), df.n_c.as_ref(), s.lambda)
-        .unwrap();
-    let (t_track, _) = best(reps, || {
-        eig.track(df.n_k.as_ref(), df.n_c.as_ref(), s.lambda)
-            .unwrap()
-    });
+    eig.track(&df.update(&k0, &c0), s.lambda).unwrap();
+    let (t_track, _) = best(reps, || eig.track(&df.update(&k0, &c0), s.lambda).unwrap());
     // LM's linear algebra per iteration (lm.rs): `JᵀJ` of the `(l + 2) × (l + 1)` Jacobian
     // (lower triangle) and one Cholesky factorization of the damped matrix, same sizes.
     let (m, n) = (l + 2, l + 1);
