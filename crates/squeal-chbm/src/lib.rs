@@ -5,7 +5,7 @@
 //! nonlinear force, the constraint `f2 = Re λ`); the brake's condensed linear part, contact
 //! force and eigenvalue tracking are in [`squeal_brake::harmonic`]. This crate adds:
 //!
-//! - [`solve`]: the start from the unstable mode (eq 48), the harmonic ladder and restarts,
+//! - [`solve`](mod@solve): the start from the unstable mode (eq 48), the harmonic ladder and restarts,
 //!   recovery of all dofs (eq 35) and diagnostics.
 //! - [`timeint`]: the reference of issue #6, BDF time integration of the full brake from the
 //!   perturbed equilibrium to the steady limit cycle.
