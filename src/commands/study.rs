@@ -5,41 +5,20 @@
 
 use crate::commands::stability::say;
 use anyhow::{Context, Result};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use squeal_pipeline::model::default_out;
 use squeal_pipeline::study::{self, Kind as StudyKind};
 use squeal_scene::{Scene, parse_range};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-/// Which study to run.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Kind {
-    /// Piston pressure 0.8, 1, 1.2 of nominal (paper Table 4, Figure 9)
-    Pressure,
-    /// Both contact stiffnesses 0.7, 1, 1.3 of nominal (Table 5, Figure 10)
-    Stiffness,
-    /// Pair damping D1/D2 of Table 6 (Figure 11)
-    Damping,
-    /// Damping on the pair alone vs with the global part, at vanishing friction
-    Paradox,
-    /// mu0 on the coarse, medium and fine meshes, patch and node contact (slow)
-    Mesh,
-    /// pressure, stiffness, damping and paradox (not mesh)
-    All,
-}
-
-impl From<Kind> for StudyKind {
-    fn from(k: Kind) -> Self {
-        match k {
-            Kind::Pressure => StudyKind::Pressure,
-            Kind::Stiffness => StudyKind::Stiffness,
-            Kind::Damping => StudyKind::Damping,
-            Kind::Paradox => StudyKind::Paradox,
-            Kind::Mesh => StudyKind::Mesh,
-            Kind::All => StudyKind::All,
-        }
-    }
+/// A study's name on the command line, with its help.
+fn kind_parser() -> clap::builder::PossibleValuesParser {
+    clap::builder::PossibleValuesParser::new(
+        StudyKind::CHOICES
+            .iter()
+            .map(|(_, name, help)| clap::builder::PossibleValue::new(*name).help(*help)),
+    )
 }
 
 #[derive(Args)]
@@ -47,8 +26,8 @@ pub struct StudyArgs {
     /// Scene file (TOML), e.g. meshes/brake.toml
     pub scene: PathBuf,
     /// Which study
-    #[arg(long, value_enum, default_value = "all")]
-    pub kind: Kind,
+    #[arg(long, value_parser = kind_parser(), default_value = "all")]
+    pub kind: String,
     /// Output folder (default: out/<scene name>); results go to <out>/study
     #[arg(long, short)]
     pub out: Option<PathBuf>,
@@ -68,7 +47,12 @@ pub fn run(args: StudyArgs) -> Result<ExitCode> {
         Some(r) => parse_range(r).map_err(anyhow::Error::msg).context("--mu")?,
         None => scene.mu_values()?,
     };
-    study::run(&scene, &out, args.kind.into(), &mus, &args.levels, &say)?;
+    let kind = StudyKind::CHOICES
+        .iter()
+        .find(|c| c.1 == args.kind)
+        .map(|c| c.0)
+        .context("--kind")?;
+    study::run(&scene, &out, kind, &mus, &args.levels, &say)?;
     println!("results in {}", out.join("study").display());
     Ok(ExitCode::SUCCESS)
 }

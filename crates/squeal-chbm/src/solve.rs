@@ -112,27 +112,31 @@ pub enum Outcome {
 }
 
 impl Outcome {
+    /// A short label for tables and a full sentence for messages.
+    fn texts(self) -> (&'static str, &'static str) {
+        match self {
+            Outcome::LimitCycle => ("limit cycle", "limit cycle (converged on eps1 and eps2)"),
+            Outcome::LimitCycleUnconstrained => (
+                "HB root, |Re lambda| > eps2",
+                "limit cycle of the harmonic balance, but |Re lambda| above eps2",
+            ),
+            Outcome::Static => (
+                "static solution",
+                "static solution (the oscillation died out): not a limit cycle",
+            ),
+            Outcome::NotConverged => ("not converged", "not converged"),
+        }
+    }
+
     /// A short label for tables (`limit cycle`, `static solution`, ...).
     pub fn label(self) -> &'static str {
-        match self {
-            Outcome::LimitCycle => "limit cycle",
-            Outcome::LimitCycleUnconstrained => "HB root, |Re lambda| > eps2",
-            Outcome::Static => "static solution",
-            Outcome::NotConverged => "not converged",
-        }
+        self.texts().0
     }
 }
 
 impl std::fmt::Display for Outcome {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Outcome::LimitCycle => "limit cycle (converged on eps1 and eps2)",
-            Outcome::LimitCycleUnconstrained => {
-                "limit cycle of the harmonic balance, but |Re lambda| above eps2"
-            }
-            Outcome::Static => "static solution (the oscillation died out): not a limit cycle",
-            Outcome::NotConverged => "not converged",
-        })
+        f.write_str(self.texts().1)
     }
 }
 

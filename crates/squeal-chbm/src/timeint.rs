@@ -399,13 +399,7 @@ pub fn integrate_to_limit_cycle(
             take(&mut next, &bdf, &mut y)?;
             sums = Some(next);
         }
-        let last = monitor.window().back().copied();
-        Err(OdeError::NotSteady {
-            t: bdf.t(),
-            cycles: monitor.cycles_completed(),
-            last_period: last.map_or(f64::NAN, |r| r.period),
-            last_amplitude: last.map_or(f64::NAN, |r| r.amplitude()),
-        })
+        Err(monitor.not_steady(bdf.t()))
     })();
     if let Err(e) = result {
         failure = Some(e);

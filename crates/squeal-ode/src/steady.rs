@@ -214,6 +214,17 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
         self.completed
     }
 
+    /// The error of an oscillation still not steady at time `t`, with the last cycle seen.
+    pub fn not_steady(&self, t: f64) -> OdeError {
+        let last = self.window.back().copied();
+        OdeError::NotSteady {
+            t,
+            cycles: self.completed,
+            last_period: last.map_or(f64::NAN, |r| r.period),
+            last_amplitude: last.map_or(f64::NAN, |r| r.amplitude()),
+        }
+    }
+
     /// Observable at `t` on the current step's interpolant.
     fn g_at<S: OdeSystem>(&mut self, bdf: &Bdf<S>, t: f64) -> Result<f64, OdeError> {
         bdf.eval_polynomial(t, &mut self.y);
@@ -529,11 +540,5 @@ pub fn run_to_steady_state<S: OdeSystem, G: FnMut(&[f64]) -> f64>(
             return Ok(steady);
         }
     }
-    let last = monitor.window().back().copied();
-    Err(OdeError::NotSteady {
-        t: bdf.t(),
-        cycles: monitor.cycles_completed(),
-        last_period: last.map_or(f64::NAN, |r| r.period),
-        last_amplitude: last.map_or(f64::NAN, |r| r.amplitude()),
-    })
+    Err(monitor.not_steady(bdf.t()))
 }

@@ -49,6 +49,42 @@ pub enum Kind {
     All,
 }
 
+impl Kind {
+    /// Every study with its name and a line of help (the command line's choices).
+    pub const CHOICES: [(Kind, &'static str, &'static str); 6] = [
+        (
+            Kind::Pressure,
+            "pressure",
+            "piston pressure 0.8, 1, 1.2 of nominal (paper Table 4, Figure 9)",
+        ),
+        (
+            Kind::Stiffness,
+            "stiffness",
+            "both contact stiffnesses 0.7, 1, 1.3 of nominal (Table 5, Figure 10)",
+        ),
+        (
+            Kind::Damping,
+            "damping",
+            "pair damping D1/D2 of Table 6 (Figure 11)",
+        ),
+        (
+            Kind::Paradox,
+            "paradox",
+            "damping on the pair alone vs with the global part, at vanishing friction",
+        ),
+        (
+            Kind::Mesh,
+            "mesh",
+            "mu0 on the coarse, medium and fine meshes, patch and node contact (slow)",
+        ),
+        (
+            Kind::All,
+            "all",
+            "pressure, stiffness, damping and paradox (not mesh)",
+        ),
+    ];
+}
+
 /// Runs the study `kind` of a scene over the friction values `mus` into `dir` (the mesh study
 /// over the mesh `levels`).
 pub fn run(
@@ -115,14 +151,10 @@ pub fn run(
 // Pressure, stiffness, damping (Tables 4-6, Figures 9-11 (a, b))
 
 fn name(kind: Kind) -> &'static str {
-    match kind {
-        Kind::Pressure => "pressure",
-        Kind::Stiffness => "stiffness",
-        Kind::Damping => "damping",
-        Kind::Paradox => "paradox",
-        Kind::Mesh => "mesh",
-        Kind::All => "all",
-    }
+    Kind::CHOICES
+        .iter()
+        .find(|c| c.0 == kind)
+        .map_or("study", |c| c.1)
 }
 
 /// Runs one parametric study: the nominal outcome is case 1 of every table.
@@ -1152,10 +1184,19 @@ fn mesh_study(scene: &Scene, dir: &Path, mus: &[f64], levels: &[String], log: Lo
                 Ok(o) => o,
                 Err(e) => {
                     // A model without a Hopf point in the band is a result (node contact on
-                    // fine meshes), not a failure of the study: the row says so.
-                    failures.push(format!("{e:#}"));
+                    // fine meshes), not a failure of the study: the row says so. Any other
+                    // error is a failure, and the row says that.
+                    let none = no_hopf_point(e);
+                    failures.push(if none {
+                        format!(
+                            "{} meshes, {iface}: no Hopf point in the band ({e})",
+                            m.level
+                        )
+                    } else {
+                        format!("{} meshes, {iface}: the analysis failed: {e}", m.level)
+                    });
                     let mut row = vec![m.level.clone(), iface.to_string(), m.nodes.to_string()];
-                    row.push("none".into());
+                    row.push(if none { "none" } else { "failed" }.into());
                     row.extend(std::iter::repeat_n("-".to_string(), 7));
                     t.push_row(row);
                     prev = None;
@@ -1194,7 +1235,7 @@ fn mesh_study(scene: &Scene, dir: &Path, mus: &[f64], levels: &[String], log: Lo
     log("\nMesh convergence of the Hopf point (patch and node contact):");
     log(&t.to_text());
     for f in &failures {
-        log(&format!("no Hopf point: {f}"));
+        log(f);
     }
     t.write_csv(&dir.join("mesh.csv"))?;
     squeal_io::atomic_write_bytes(&dir.join("mesh.md"), t.to_markdown().as_bytes())?;
@@ -1233,4 +1274,15 @@ fn create_dir(dir: &Path) -> Result<()> {
         path: dir.to_path_buf(),
         source,
     })
+}
+
+/// Whether an analysis stopped because the brake has no Hopf point in the band (a result),
+/// rather than because something failed.
+fn no_hopf_point(e: &PipelineError) -> bool {
+    match e {
+        PipelineError::Context { source, .. } => no_hopf_point(source),
+        PipelineError::Brake(squeal_brake::BrakeError::NoPairFound)
+        | PipelineError::NoHopfPoint { .. } => true,
+        _ => false,
+    }
 }
