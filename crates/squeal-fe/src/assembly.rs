@@ -207,10 +207,7 @@ fn element_matrices(
 ) -> Result<(), FeError> {
     let x = mesh.element_coords(e);
     let entry = &materials.entries[materials.element_entry[e] as usize];
-    let wrap = |source| FeError::Element {
-        element: mesh.element_ids[e],
-        source,
-    };
+    let wrap = FeError::in_element(mesh.element_ids[e]);
     *ke = element_stiffness(&x, &entry.elasticity, &options.stiffness_rule).map_err(wrap)?;
     *me = element_mass_scalar(&x, entry.material.density(), &options.mass_rule).map_err(wrap)?;
     Ok(())
@@ -488,10 +485,8 @@ impl ScatterContext<'_> {
 pub fn mesh_volume(mesh: &Mesh, rule: &Quadrature) -> Result<f64, FeError> {
     let mut v = 0.0;
     for e in 0..mesh.num_elements() {
-        v += element_volume(&mesh.element_coords(e), rule).map_err(|source| FeError::Element {
-            element: mesh.element_ids[e],
-            source,
-        })?;
+        v += element_volume(&mesh.element_coords(e), rule)
+            .map_err(FeError::in_element(mesh.element_ids[e]))?;
     }
     Ok(v)
 }
@@ -508,11 +503,8 @@ pub fn total_mass(
         let rho = materials.entries[materials.element_entry[e] as usize]
             .material
             .density();
-        let v =
-            element_volume(&mesh.element_coords(e), rule).map_err(|source| FeError::Element {
-                element: mesh.element_ids[e],
-                source,
-            })?;
+        let v = element_volume(&mesh.element_coords(e), rule)
+            .map_err(FeError::in_element(mesh.element_ids[e]))?;
         m += rho * v;
     }
     Ok(m)

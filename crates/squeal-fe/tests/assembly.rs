@@ -190,9 +190,14 @@ fn bad_inputs_are_errors() {
     el.swap(4, 6);
     el.swap(8, 9);
     match assemble(&inverted, &materials, &dofs) {
-        Err(squeal_fe::FeError::Element { element, .. }) => assert_eq!(element, 4),
+        Err(e @ squeal_fe::FeError::Element { element: 4, .. }) => {
+            // The message is printed once, also in an error chain (`{:#}`, as the CLI prints).
+            let chain = format!("{:#}", anyhow::Error::from(e));
+            assert_eq!(chain.matches("Jacobian determinant").count(), 1, "{chain}");
+            assert!(chain.starts_with("element 4: "), "{chain}");
+        }
         other => panic!(
-            "expected an element error, got {:?}",
+            "expected an element error of element 4, got {:?}",
             other.map(|s| s.num_dofs())
         ),
     }

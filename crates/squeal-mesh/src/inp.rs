@@ -106,9 +106,9 @@ impl IncludeResolver for NoIncludes {
 
 /// Reads an Abaqus / CalculiX `.inp` file and the files it includes.
 pub fn read(path: &Path) -> Result<ReadMesh, MeshError> {
-    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+    let bytes = std::fs::read(path).map_err(|error| MeshError::Io {
         file: path.to_path_buf(),
-        source,
+        error,
     })?;
     parse(&bytes, path, &FileSystem)
 }

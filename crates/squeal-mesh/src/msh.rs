@@ -61,9 +61,9 @@ use types::{ElementType, TET10};
 
 /// Reads a Gmsh `.msh` file (MSH 2.2 or 4.1, ASCII or binary).
 pub fn read(path: &Path) -> Result<ReadMesh, MeshError> {
-    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+    let bytes = std::fs::read(path).map_err(|error| MeshError::Io {
         file: path.to_path_buf(),
-        source,
+        error,
     })?;
     parse(&bytes, path)
 }
