@@ -60,32 +60,35 @@ where
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let tmp = TempFile(dir.join(temp_name(&name, std::process::id())));
-    let file = File::create(&tmp.0).map_err(wrap)?;
+    let mut tmp = TempFile {
+        path: dir.join(temp_name(&name, std::process::id())),
+        keep: false,
+    };
+    let file = File::create(&tmp.path).map_err(wrap)?;
     let mut w = BufWriter::new(file);
     let result = (|| {
         fill(&mut w)?;
         let file = w.into_inner().map_err(|e| e.into_error())?;
         file.sync_all()?;
-        fs::rename(&tmp.0, path)
+        fs::rename(&tmp.path, path)
     })();
-    match result {
-        Ok(()) => {
-            // Renamed: nothing left to remove.
-            std::mem::forget(tmp);
-            Ok(())
-        }
-        // `tmp` is dropped here, which removes the temporary file.
-        Err(e) => Err(wrap(e)),
-    }
+    // Renamed: nothing left to remove. Otherwise dropping `tmp` removes the temporary file.
+    tmp.keep = result.is_ok();
+    result.map_err(wrap)
 }
 
-/// A temporary file that is removed when dropped (on an error or a panic) unless forgotten.
-struct TempFile(PathBuf);
+/// A temporary file that is removed when dropped (on an error, or a panic in the filler)
+/// unless `keep` was set.
+struct TempFile {
+    path: PathBuf,
+    keep: bool,
+}
 
 impl Drop for TempFile {
     fn drop(&mut self) {
-        let _ = fs::remove_file(&self.0);
+        if !self.keep {
+            let _ = fs::remove_file(&self.path);
+        }
     }
 }
 
