@@ -25,12 +25,15 @@ impl fmt::Display for Location {
 }
 
 /// A reader's error: the file, the place, and what was expected.
+///
+/// Each message is complete in `Display`; no variant has a `source()`, so an error chain
+/// printed with `{:#}` (anyhow) shows every piece once.
 #[derive(Debug, thiserror::Error)]
 pub enum MeshError {
-    #[error("{}: {source}", file.display())]
+    #[error("cannot read {}: {error}", file.display())]
     Io {
         file: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
     },
     #[error("{}{location}: {message}", file.display())]
     Invalid {

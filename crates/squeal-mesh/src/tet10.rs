@@ -124,6 +124,21 @@ pub fn volume(x: &[[f64; 3]; 10]) -> f64 {
         / 6.0
 }
 
+/// How far the element is from straight-sided: the largest distance of a midside node from
+/// the midpoint of its edge, relative to that edge's length (0 for a straight-sided element,
+/// whose map from the reference element is affine; infinite for an edge of zero length).
+pub fn midside_offset(x: &[[f64; 3]; 10]) -> f64 {
+    let mut worst = 0.0_f64;
+    for (k, &[a, b]) in EDGES.iter().enumerate() {
+        let sq = |f: &dyn Fn(usize) -> f64| (0..3).map(|d| f(d).powi(2)).sum::<f64>();
+        let off = sq(&|d| x[4 + k][d] - 0.5 * (x[a][d] + x[b][d]));
+        let len = sq(&|d| x[b][d] - x[a][d]);
+        let r = (off / len).sqrt();
+        worst = worst.max(if r.is_nan() { f64::INFINITY } else { r });
+    }
+    worst
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -162,6 +177,22 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn midside_offset_is_relative_to_the_edge() {
+        assert_eq!(midside_offset(&NODES_REF), 0.0);
+        // Midside node 9 of edge (2, 3), length √2, moved by 0.1 across it.
+        let mut x = NODES_REF;
+        x[9][0] += 0.1;
+        assert!((midside_offset(&x) - 0.1 / 2f64.sqrt()).abs() < 1e-15);
+        // Scaled by 1000: the same.
+        let big = x.map(|p| p.map(|v| 1000.0 * v));
+        assert!((midside_offset(&big) - 0.1 / 2f64.sqrt()).abs() < 1e-15);
+        // A collapsed edge.
+        let mut flat = NODES_REF;
+        flat[1] = flat[0];
+        assert_eq!(midside_offset(&flat), f64::INFINITY);
     }
 
     #[test]

@@ -1218,6 +1218,14 @@ impl<'a> Reader<'a> {
             self.warnings[r.index].message = format!("{} ({times}){}", r.stem, r.tail);
         }
         self.warnings.extend(late);
+        if b.num_elements() == 0 {
+            let root = &self.lx.sources[0].path;
+            self.warnings.push(Warning {
+                file: root.clone(),
+                location: Location::File,
+                message: crate::NO_TET10.to_string(),
+            });
+        }
         Ok(ReadMesh {
             mesh: b.finish(),
             warnings: self.warnings,
