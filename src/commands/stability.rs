@@ -62,6 +62,11 @@ pub fn write(p: &Pipeline, vtu: bool) -> Result<()> {
         "{}",
         stability::summary_text(m, st, t.elapsed().as_secs_f64())
     );
+    match stability::normal_form(m, st) {
+        Ok(Some(nf)) => print!("{}", stability::criticality_text(m, st, &nf)),
+        Ok(None) => {}
+        Err(e) => println!("criticality of the Hopf point not computed: {e}"),
+    }
     stability::write_tables(&dir, m, st)?;
     stability::write_figures(&dir, st, m)?;
     if vtu {

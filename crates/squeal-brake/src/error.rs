@@ -81,6 +81,10 @@ pub enum BrakeError {
         bracket: (f64, f64),
         real_parts: (f64, f64),
     },
+    #[error(
+        "contact pair {pair} is open at the Hopf point's equilibrium: the contact law is not smooth there and the normal form does not apply"
+    )]
+    OpenAtHopf { pair: usize },
     #[error("a sweep needs at least one friction value")]
     NoFrictionValues,
     #[error(

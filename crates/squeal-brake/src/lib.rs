@@ -16,6 +16,8 @@
 //! - [`continuation`]: exact continuation of its eigenpairs from one friction value to the next.
 //! - [`harmonic`]: the brake for harmonic balance: its contact force, its linear part
 //!   condensed on the nonlinear dofs (eqs 30–35), the eigenvalue CHBM's constraint follows.
+//! - [`criticality`]: the first Lyapunov coefficient at μ0 (super- or subcritical) and the
+//!   small-amplitude asymptote of the branch of limit cycles.
 //! - [`hopf`]: the Hopf point by Newton's method on the continued eigenvalue.
 //! - [`studies`]: parametric studies (pressure, contact stiffness, pair damping), the
 //!   damping-induced destabilization at small friction, and mode-shape measures.
@@ -27,6 +29,7 @@ pub mod analysis;
 pub mod assemble;
 pub mod contact;
 pub mod continuation;
+pub mod criticality;
 pub mod damping;
 pub mod dynamics;
 pub mod equilibrium;

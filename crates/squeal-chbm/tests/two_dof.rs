@@ -317,3 +317,154 @@ fn a_full_modal_damping_matrix_agrees_between_chbm_and_time_integration() {
     assert!(e.displacement < 1e-4, "{e:?}");
     assert!(e.frequency_relative.abs() < 1e-7, "{e:?}");
 }
+
+/// The Hopf normal form of the oscillator with contact stiffnesses `(kl, knl)`.
+fn normal_form_of(m: &Model) -> squeal_brake::criticality::NormalForm {
+    let mu0 = hopf(m);
+    let eq = static_equilibrium(&m.brake, mu0, None, &NewtonOptions::default()).unwrap();
+    let sp = spectrum(&m.brake, &m.reference, &eq).unwrap();
+    let guess = sp
+        .values
+        .iter()
+        .copied()
+        .max_by(|a, b| a.re.total_cmp(&b.re))
+        .unwrap();
+    squeal_brake::criticality::normal_form(
+        &m.brake,
+        &m.reference,
+        mu0,
+        guess,
+        &NewtonOptions::default(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn the_lyapunov_coefficient_predicts_the_supercritical_branch() {
+    // Supercritical (l1 < 0): the normal form's first harmonic of the normal dof against
+    // CHBM's at 0.05 % above μ0. The asymptote is exact to first order in ε = μ/μ0 - 1; the
+    // CHBM ratio A²/ε drifts by 0.2 % from ε = 5e-4 to 2e-3 (the O(ε) term), so at 5e-4 the two
+    // must agree to well under 1 %.
+    let m = model(KL, KNL);
+    let nf = normal_form_of(&m);
+    assert_eq!(
+        nf.criticality(),
+        squeal_brake::criticality::Criticality::Supercritical
+    );
+    let mu = 1.0005 * nf.mu0;
+    let x = nf.first_harmonic(mu).expect("a cycle above mu0");
+    let phi = &m.reference.basis.phi;
+    let predicted = (0..2).map(|j| x[j] * phi[(1, j)]).sum::<c64>().norm();
+    let s = example::limit_cycle(&m.brake, &m.reference, mu, 5).unwrap();
+    let measured = s.amplitude(1, 1);
+    let reference = ti(&m, mu);
+    let integrated = reference.cycle.amplitude(1, 1);
+    eprintln!(
+        "first harmonic of x1: normal form {predicted:e}, CHBM {measured:e}, BDF {integrated:e}"
+    );
+    assert!(
+        (predicted / measured - 1.0).abs() < 1e-2,
+        "{predicted} vs {measured}"
+    );
+    assert!(
+        (predicted / integrated - 1.0).abs() < 1e-2,
+        "{predicted} vs {integrated}"
+    );
+    let f = nf.omega_at(mu);
+    assert!((f / s.omega - 1.0).abs() < 1e-5, "omega {f} vs {}", s.omega);
+}
+
+/// The subcritical variant: K = [[1e6, 2e5], [2e5, 8e5]] (l1 = +8.4, μ0 = 0.665).
+fn subcritical() -> Model {
+    let mut b = brake(KL, KNL);
+    b.k = faer::Mat::from_fn(2, 2, |i, j| [[1.0e6, 2.0e5], [2.0e5, 0.8e6]][i][j]);
+    let reference = frictionless(&b);
+    Model {
+        brake: b,
+        reference,
+    }
+}
+
+/// Integrates the oscillator at `mu` from its equilibrium plus `Re(X e^{iωt})` at t = 0 (the
+/// normal form's first harmonic `X`, physical, times `factor`) for `periods` periods, and
+/// returns the ratio of the closure's oscillation amplitude over the last five periods to
+/// that over the first five.
+fn envelope_ratio(
+    m: &Model,
+    nf: &squeal_brake::criticality::NormalForm,
+    mu: f64,
+    x: &[c64],
+    factor: f64,
+    periods: f64,
+) -> f64 {
+    use squeal_brake::dynamics::BrakeDynamics;
+    use squeal_ode::{Atol, Bdf, BdfOptions};
+    let eq = static_equilibrium(&m.brake, mu, None, &NewtonOptions::default()).unwrap();
+    let mb = ModalBrake::new(&m.brake, &m.reference, mu);
+    let w = nf.omega_at(mu);
+    let x0: Vec<f64> = (0..2).map(|i| eq.x[i] + factor * x[i].re).collect();
+    let v0: Vec<f64> = (0..2)
+        .map(|i| factor * (c64::new(0.0, w) * x[i]).re)
+        .collect();
+    let y0 = BrakeDynamics::state_from_physical(&mb, &x0, &v0).unwrap();
+    let sys = BrakeDynamics::new(&mb);
+    let period = 2.0 * std::f64::consts::PI / w;
+    let opts = BdfOptions {
+        rtol: 1e-10,
+        atol: Atol::Scalar(1e-16),
+        max_order: 5,
+        ..BdfOptions::default()
+    };
+    let mut bdf = Bdf::new(&sys, 0.0, &y0, periods * period, &opts).unwrap();
+    let closure = |y: &[f64]| {
+        let x = mb.physical(&y[..2]);
+        x[1] - eq.x[1]
+    };
+    let (mut first, mut last) = (0.0f64, 0.0f64);
+    let mut y = vec![0.0; 4];
+    let mut t = 0.0;
+    while !bdf.is_finished() {
+        bdf.step().unwrap();
+        while t <= bdf.t() {
+            bdf.interpolate(t, &mut y).unwrap();
+            let a = closure(&y).abs();
+            if t < 5.0 * period {
+                first = first.max(a);
+            }
+            if t > (periods - 5.0) * period {
+                last = last.max(a);
+            }
+            t += period / 64.0;
+        }
+    }
+    last / first
+}
+
+#[test]
+fn the_lyapunov_coefficient_says_subcritical_and_time_integration_agrees() {
+    // l1 > 0: the branch leaves μ0 to lower friction, where it is the threshold between
+    // decay and growth (an unstable cycle). At μ = 0.998 μ0 the equilibrium is stable; started
+    // at 0.7 of the normal form's cycle the motion decays, at 1.4 it grows. (The normal form's
+    // amplitude is right to O(ε) = 0.2 %, far inside that margin.)
+    let m = subcritical();
+    let nf = normal_form_of(&m);
+    assert_eq!(
+        nf.criticality(),
+        squeal_brake::criticality::Criticality::Subcritical
+    );
+    assert!(
+        nf.radius_squared(1.001 * nf.mu0).is_none(),
+        "no cycle above mu0"
+    );
+    let mu = 0.998 * nf.mu0;
+    let xm = nf.first_harmonic(mu).expect("a cycle below mu0");
+    let phi = &m.reference.basis.phi;
+    let x: Vec<c64> = (0..2)
+        .map(|i| (0..2).map(|j| xm[j] * phi[(i, j)]).sum())
+        .collect();
+    let decays = envelope_ratio(&m, &nf, mu, &x, 0.7, 300.0);
+    let grows = envelope_ratio(&m, &nf, mu, &x, 1.4, 300.0);
+    eprintln!("envelope ratio after 300 periods: 0.7 x cycle {decays:.3}, 1.4 x cycle {grows:.3}");
+    assert!(decays < 0.9, "{decays}");
+    assert!(grows > 1.1, "{grows}");
+}

@@ -6,6 +6,7 @@ use crate::error::{Result, json_text};
 use crate::model::{Log, Model};
 use crate::shapes::{Meshes, PartFields, normalize_mode, write_brake_vtu};
 use squeal_brake::analysis::Stability;
+use squeal_brake::criticality::{Criticality, NormalForm, pair_closure};
 use squeal_report::format::fmt_sig;
 use squeal_report::{Annotation, Dash, Figure, Panel, Rgb, Series, Table, write_svg_and_png};
 use std::fmt::Write as _;
@@ -17,6 +18,79 @@ pub fn analyse(m: &Model, mus: &[f64]) -> Result<Stability> {
     Ok(squeal_brake::analysis::stability(
         &m.brake, &m.damping, mus, &m.sweep,
     )?)
+}
+
+/// The Hopf normal form at μ0 (criticality and the branch's asymptote), when there is a Hopf
+/// point.
+pub fn normal_form(m: &Model, st: &Stability) -> Result<Option<NormalForm>> {
+    let Some(h) = &st.sweep.hopf else {
+        return Ok(None);
+    };
+    let guess = h.point.spectrum.values[h.index];
+    Ok(Some(squeal_brake::criticality::normal_form(
+        &m.brake,
+        &st.reference,
+        h.mu0,
+        guess,
+        &m.sweep.newton,
+    )?))
+}
+
+/// The largest first-harmonic closure over the pairs of the normal form's cycle at `mu` (m),
+/// with the pair (0-based).
+pub fn loudest_closure(
+    m: &Model,
+    st: &Stability,
+    nf: &NormalForm,
+    mu: f64,
+) -> Option<(usize, f64)> {
+    let x = nf.first_harmonic(mu)?;
+    m.brake
+        .pairs
+        .iter()
+        .enumerate()
+        .map(|(p, pair)| (p, pair_closure(pair, &st.reference.basis.phi, &x).norm()))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+/// The normal form's lines: the verdict, `l1`, and the branch's asymptote.
+pub fn criticality_text(m: &Model, st: &Stability, nf: &NormalForm) -> String {
+    let mut out = String::new();
+    let (s1, w1) = (nf.dlambda_dmu.re, nf.dlambda_dmu.im);
+    let _ = writeln!(
+        out,
+        "Hopf point is {}: first Lyapunov coefficient l1 = {:.4e} (Re c1 = {:.4e} 1/s), dRe(lambda)/dmu = {:.4e} 1/s",
+        nf.criticality(),
+        nf.l1,
+        nf.c1.re,
+        s1
+    );
+    let _ = w1;
+    // The asymptote: closure amplitude of the loudest pair per square root of |μ/μ0 - 1|.
+    let eps = 1e-3;
+    let side = if nf.radius_squared(nf.mu0 * (1.0 + eps)).is_some() {
+        1.0
+    } else {
+        -1.0
+    };
+    let mu = nf.mu0 * (1.0 + side * eps);
+    if let Some((p, a)) = loudest_closure(m, st, nf, mu) {
+        let _ = writeln!(
+            out,
+            "  small-amplitude branch: limit cycles for mu {} mu0, pair {} closure amplitude {:.3} um x sqrt(|mu/mu0 - 1| / 1e-3), frequency {:+.3} Hz per 0.1 % of mu",
+            if side > 0.0 { "above" } else { "below" },
+            p + 1,
+            a * 1e6,
+            (nf.omega_at(nf.mu0 * 1.001) - nf.omega0) / std::f64::consts::TAU
+        );
+    }
+    if nf.criticality() == Criticality::Subcritical {
+        let _ = writeln!(
+            out,
+            "  (subcritical: below mu0 the equilibrium is stable but a large enough disturbance can start squeal; `squeal branch` follows the cycles)"
+        );
+    }
+    out
 }
 
 /// The contact pairs as formed: points, distance, area and element parameters.
