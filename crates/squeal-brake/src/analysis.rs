@@ -22,7 +22,9 @@ pub enum PairChoice {
 /// The damping of eqs (12)–(13): a global modal ratio on every mode plus ratios on the pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DampingSpec {
+    /// Modal damping ratio ζ on every frictionless mode: `D_jj = 2 ζ ω_j`.
     pub global_ratio: f64,
+    /// Which two modes get `pair_ratios`.
     pub pair: PairChoice,
     /// Modal damping ratios `ζ1`, `ζ2` added on Mode 1 and Mode 2: `D_jj += 2 ζ ω_j`.
     pub pair_ratios: [f64; 2],
@@ -31,11 +33,14 @@ pub struct DampingSpec {
 /// A stability analysis: the damping used, the pair, the sweep.
 #[derive(Clone, Debug)]
 pub struct Stability {
+    /// The damping of the final sweep, its extras as `D_jj` values (s⁻¹) on the pair.
     pub damping: Damping,
     /// Frictionless mode numbers (0-based) of Mode 1 (stays stable) and Mode 2 (goes
     /// unstable), when known.
     pub pair: Option<(usize, usize)>,
+    /// The frictionless reference of the final sweep, with that damping.
     pub reference: Reference,
+    /// The friction sweep with that damping, and its Hopf point.
     pub sweep: Sweep,
 }
 

@@ -15,12 +15,20 @@ use std::sync::Arc;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Stiffness {
     /// `k_l` (N/m) and `k_nl` (N/m³) of every pair.
-    PerPoint { linear: f64, cubic: f64 },
+    PerPoint {
+        /// `k_l` (N/m).
+        linear: f64,
+        /// `k_nl` (N/m³).
+        cubic: f64,
+    },
     /// `κ_l` (Pa/m) and `κ_nl` (Pa/m³): `k = κ A` with `A` the pair's area; `point_area`
     /// is used where the model has no patch areas (node interface).
     PerArea {
+        /// `κ_l` (Pa/m).
         linear: f64,
+        /// `κ_nl` (Pa/m³).
         cubic: f64,
+        /// Area (m²) of a pair whose points carry none.
         point_area: Option<f64>,
     },
 }
@@ -32,10 +40,12 @@ pub struct BrakeParams {
     pub normal: [f64; 3],
     /// Direction in which the disc surface slides under the pad.
     pub sliding: [f64; 3],
+    /// Contact stiffness of every pair's element.
     pub stiffness: Stiffness,
     /// How close paired contact points must be.
     pub pairing_tolerance: PairingTolerance,
-    /// Total piston force (N) pressing the pad on the disc, shared equally by the piston dofs.
+    /// Total piston force (N) pressing the pad on the disc, shared equally by the pad's piston
+    /// points, each pushed along `-normal`.
     pub piston_force: f64,
     /// The disc's surface speed under the pad (m/s), when known.
     pub surface_speed: Option<f64>,
@@ -44,9 +54,13 @@ pub struct BrakeParams {
 /// How a pair was formed.
 #[derive(Clone, Debug)]
 pub struct Pairing {
+    /// Index of the disc's point among the disc part's points.
     pub disc_point: usize,
+    /// Index of the pad's point among the pad part's points.
     pub pad_point: usize,
+    /// Distance between the two points (m).
     pub distance: f64,
+    /// The pair's area (m²): the mean of the two points' areas, or the one given.
     pub area: Option<f64>,
     /// The pair's contact element.
     pub law: Law,
@@ -55,7 +69,9 @@ pub struct Pairing {
 /// Index of each part's dofs in the brake: the disc first, then the pad.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Layout {
+    /// The disc's dofs, `0..n_disc`.
     pub disc: std::ops::Range<usize>,
+    /// The pad's dofs, after the disc's.
     pub pad: std::ops::Range<usize>,
 }
 
@@ -81,7 +97,7 @@ fn point_dof(part: &ReducedPart, p: usize, d: u8) -> Option<usize> {
     })
 }
 
-/// `v / |v|`.
+/// `v / |v|`; [`BrakeError::BadDirection`] naming `what` if `v` is zero or not finite.
 pub fn unit(v: [f64; 3], what: &'static str) -> Result<[f64; 3], BrakeError> {
     let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     if !(n > 0.0 && n.is_finite()) {

@@ -47,9 +47,11 @@ pub struct Response {
     pub normal: f64,
     /// `F_t` (N): the disc drags the pad along the sliding direction.
     pub tangential: f64,
+    /// `[∂F_n/∂δ (N/m), ∂F_n/∂δ' (N·s/m), ∂F_n/∂v (N·s/m)]`.
     pub normal_derivatives: [f64; 3],
+    /// `[∂F_t/∂δ (N/m), ∂F_t/∂δ' (N·s/m), ∂F_t/∂v (N·s/m)]`.
     pub tangential_derivatives: [f64; 3],
-    /// `∂F_t/∂μ` at fixed kinematics (the normal force does not depend on μ).
+    /// `∂F_t/∂μ` (N) at fixed kinematics (the normal force does not depend on μ).
     pub tangential_mu: f64,
 }
 
@@ -142,7 +144,9 @@ impl ContactLaw for PenaltyCoulomb {
 /// contact-stiffness factor of the parametric studies (Table 5), for any law.
 #[derive(Debug)]
 pub struct Scaled {
+    /// The element whose forces are scaled.
     pub inner: Law,
+    /// The factor on every force, derivative and force parameter (dimensionless).
     pub factor: f64,
 }
 

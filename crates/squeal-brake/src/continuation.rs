@@ -25,8 +25,11 @@ use rayon::prelude::*;
 /// One eigenvalue with its right and left vectors (modal coordinates, unit 2-norm).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Eigenpair {
+    /// The eigenvalue `λ = a + iω` (eq 22; s⁻¹ and rad/s).
     pub lambda: c64,
+    /// Right vector `x`, `T(λ) x = 0`.
     pub right: Vec<c64>,
+    /// Left vector `y`, `yᴴ T(λ) = 0`.
     pub left: Vec<c64>,
 }
 
@@ -190,13 +193,32 @@ pub fn continue_all(
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Rejection {
     /// A branch left the upper half plane (its conjugate is the one the dense solver keeps).
-    LowerHalfPlane { branch: usize },
+    LowerHalfPlane {
+        /// The branch (0-based).
+        branch: usize,
+    },
     /// A branch's vector lost its correlation with the previous point's.
-    Correlation { branch: usize, mac: f64 },
+    Correlation {
+        /// The branch (0-based).
+        branch: usize,
+        /// Its MAC with the previous vector, below
+        /// [`ContinuationOptions::min_correlation`].
+        mac: f64,
+    },
     /// Two branches hold the same eigenpair.
-    Duplicate { a: usize, b: usize },
+    Duplicate {
+        /// The lower of the two branches (0-based).
+        a: usize,
+        /// The higher of the two branches (0-based).
+        b: usize,
+    },
     /// `Σ λ` or `Σ λ²` over the `2n` eigenvalues disagrees with `tr A` or `tr A²`.
-    Trace { sum: f64, expected: f64 },
+    Trace {
+        /// The sum over the continued eigenvalues and their conjugates (s⁻¹ or s⁻²).
+        sum: f64,
+        /// The trace it should equal.
+        expected: f64,
+    },
 }
 
 /// Relative closeness of two eigenvalues below which they may be one eigenvalue found twice.

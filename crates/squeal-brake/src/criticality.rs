@@ -62,6 +62,7 @@ impl std::fmt::Display for Criticality {
 /// The Hopf normal form of the brake at μ0.
 #[derive(Clone, Debug)]
 pub struct NormalForm {
+    /// The Hopf point's friction coefficient.
     pub mu0: f64,
     /// `ω0` (rad/s).
     pub omega0: f64,

@@ -25,11 +25,13 @@ struct Scratch {
 
 /// The brake's equations of motion for [`squeal_ode`].
 pub struct BrakeDynamics<'a> {
+    /// The brake in modal coordinates whose eq (11) this is.
     pub brake: &'a ModalBrake,
     scratch: RefCell<Scratch>,
 }
 
 impl<'a> BrakeDynamics<'a> {
+    /// The equations of motion of `brake`, state `y = [q; q']` of dimension `2 n`.
     pub fn new(brake: &'a ModalBrake) -> Self {
         Self {
             brake,

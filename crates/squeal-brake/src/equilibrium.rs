@@ -16,6 +16,7 @@ pub struct NewtonOptions {
     /// relative to the forces being balanced (the contact forces carry the load even when a
     /// preload, not the piston, closes the contact).
     pub tolerance: f64,
+    /// Newton iterations allowed before [`BrakeError::NewtonFailed`].
     pub max_iterations: usize,
     /// Halvings of the step allowed by the line search.
     pub max_halvings: usize,
@@ -34,6 +35,7 @@ impl Default for NewtonOptions {
 /// A converged static equilibrium.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Equilibrium {
+    /// Friction coefficient μ the brake slides at.
     pub mu: f64,
     /// `x0` of eq (14).
     pub x: Vec<f64>,

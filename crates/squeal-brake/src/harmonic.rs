@@ -48,6 +48,8 @@ pub struct ContactForce {
 }
 
 impl ContactForce {
+    /// The contact force of `mb` (a copy of it is kept), with the sparsity pattern of its
+    /// Jacobians on the nonlinear dofs.
     pub fn new(mb: &ModalBrake) -> Self {
         let mut index: BTreeMap<(usize, usize), usize> = BTreeMap::new();
         let velocity = mb.velocity_dependent();
@@ -91,6 +93,7 @@ impl ContactForce {
         }
     }
 
+    /// The modal brake whose force this is.
     pub fn modal_brake(&self) -> &ModalBrake {
         &self.mb
     }
@@ -197,6 +200,8 @@ pub struct CondensedStiffness {
 }
 
 impl CondensedStiffness {
+    /// The condensed stiffness of `mb` for harmonics `0..=harmonics`, with `Λ_eq,0` computed;
+    /// the others wait for [`CondensedStiffness::update`].
     pub fn new(mb: &ModalBrake, harmonics: usize) -> Self {
         let (nn, n) = (mb.phi_n.nrows(), mb.omega.len());
         let diagonal = mb.damping.diagonal().is_some();
@@ -377,7 +382,7 @@ impl CondensedStiffness {
         }
     }
 
-    /// `Λ_eq,k` (complex) at the cached ω.
+    /// `Λ_eq,k` (complex) at the cached ω; `k` at most the harmonics it was built for.
     pub fn block(&self, k: usize) -> &Mat<c64> {
         &self.z[k]
     }
@@ -554,8 +559,9 @@ pub struct BrakeEigen {
     last: Option<Eigenpair>,
     /// The reference's row basis, kept from one call to the next.
     reference: Option<ReferenceBasis>,
-    /// Continuation steps taken and dense restarts made.
+    /// Inverse-iteration steps of the continuation, over all calls.
     pub iterations: usize,
+    /// Times the continuation failed and the eigenvalue was taken from a dense decomposition.
     pub dense_restarts: usize,
     options: ContinuationOptions,
 }

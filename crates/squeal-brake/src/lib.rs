@@ -22,6 +22,7 @@
 //! - [`studies`]: parametric studies (pressure, contact stiffness, pair damping), the
 //!   damping-induced destabilization at small friction, and mode-shape measures.
 
+#![warn(missing_docs)]
 // Index loops over dofs read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 

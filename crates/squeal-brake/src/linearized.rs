@@ -40,6 +40,7 @@ use faer::{Mat, c64};
 pub struct LinearizedBrake {
     /// ω_j (rad/s).
     pub omega: Vec<f64>,
+    /// The modal damping `D` of eq (12) (s⁻¹).
     pub damping: ModalDamping,
     /// `Φᵀ g_p` and `Φᵀ h_p`, column-major `n × P`.
     vg: Vec<f64>,
@@ -54,6 +55,7 @@ pub struct LinearizedBrake {
 /// `T(λ)`'s coupling at one state: `U₀`, `U₁`, `V`, and what made them.
 #[derive(Clone, Debug)]
 pub struct Coupling {
+    /// Friction coefficient μ of the state.
     pub mu: f64,
     /// Each pair's element response at the state (empty for a general update).
     pub responses: Vec<Response>,
@@ -407,9 +409,12 @@ impl LinearizedBrake {
         uy.iter().zip(&vx).map(|(a, b)| a.conj() * b).sum()
     }
 
-    /// `dU₀/dμ`, `dU₁/dμ` along the equilibrium path of the sweep: the elements' responses
-    /// change with μ directly and through the equilibrium, `K_t dx/dμ = -Σ_q F_t,μ h_q`
-    /// (eq 14 differentiated; `Φᵀ K_t Φ = T(0)`), so `dδ/dμ = -Vᵀ T(0)⁻¹ Φᵀ H F_t,μ`. The
+    /// `dU₀/dμ`, `dU₁/dμ` (column-major like `U₀`, `U₁`) along the equilibrium path of the
+    /// sweep, for a coupling made by [`LinearizedBrake::coupling`] (it reads the pairs'
+    /// responses and penetrations, which [`Coupling::from_columns`] leaves empty: with pairs,
+    /// such a coupling panics). The elements' responses change with μ directly and through
+    /// the equilibrium, `K_t dx/dμ = -Σ_q F_t,μ h_q` (eq 14 differentiated;
+    /// `Φᵀ K_t Φ = T(0)`), so `dδ/dμ = -Vᵀ T(0)⁻¹ Φᵀ H F_t,μ`. The
     /// elements' derivatives with respect to μ and δ are taken by central differences of their
     /// responses along that path (exact up to round-off for the paper's element, whose
     /// stiffness is quadratic in δ).
@@ -546,7 +551,9 @@ fn consistent(brake: &Brake, reference: &Reference, k0: &[f64]) -> Result<(), Br
 
 /// `T(λ)` factored for solves.
 pub enum Factor {
+    /// Diagonal `D`: the bordered system of a diagonal plus rank-`r` matrix.
     Bordered(Bordered),
+    /// Full `D`: a dense LU factorization.
     Dense(DenseFactor),
 }
 

@@ -20,6 +20,7 @@ use faer::Mat;
 /// The brake in modal coordinates.
 #[derive(Clone, Debug)]
 pub struct ModalBrake {
+    /// Friction coefficient μ of the contact forces.
     pub mu: f64,
     /// Natural frequencies ω_j of the frictionless brake (rad/s).
     pub omega: Vec<f64>,
@@ -33,7 +34,8 @@ pub struct ModalBrake {
     pub phi_n: Mat<f64>,
     /// The contact pairs on the nonlinear dofs' local numbering.
     pub pairs: Vec<ContactPair>,
-    /// Each pair's normal stiffness at the frictionless equilibrium (its part of `K_s`).
+    /// Each pair's normal stiffness `∂F_n/∂δ` (N/m) at the frictionless equilibrium (its part
+    /// of `K_s`).
     pub k_reference: Vec<f64>,
     /// `K_s` on the nonlinear dofs (`n_nl × n_nl`, symmetric).
     pub k_s: Mat<f64>,

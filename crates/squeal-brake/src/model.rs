@@ -32,10 +32,11 @@ pub fn dot_sparse(v: &[(usize, f64)], x: &[f64]) -> f64 {
 /// One disc–pad contact pair.
 #[derive(Clone, Debug)]
 pub struct ContactPair {
-    /// Index of the disc's contact point and of the pad's.
+    /// Index of the disc's contact point among the disc part's points.
     pub disc_point: usize,
+    /// Index of the pad's contact point among the pad part's points.
     pub pad_point: usize,
-    /// Where the pair sits (the disc point's position).
+    /// Where the pair sits: the disc point's position (m).
     pub position: [f64; 3],
     /// Unit normal `n` from the disc into the pad.
     pub normal_direction: [f64; 3],
@@ -45,7 +46,8 @@ pub struct ContactPair {
     pub normal: SparseVec,
     /// `h_p`: the friction force acts along `h_p`, the slip velocity is `V + h_p · x'`.
     pub tangent: SparseVec,
-    /// Initial penetration (m); 0 when the points coincide.
+    /// Penetration (m) at `x = 0`, positive when the pad point starts inside the disc; 0 when
+    /// the points coincide.
     pub gap: f64,
     /// `V_p`: the disc's surface speed at the pair along `s` (m/s), when known.
     pub surface_speed: Option<f64>,
@@ -177,11 +179,13 @@ pub fn contact_jacobians(
 /// The reduced brake: linear part, contact pairs, piston load.
 #[derive(Clone, Debug)]
 pub struct Brake {
-    /// Reduced mass and stiffness (the parts' dofs one after the other).
+    /// Reduced mass matrix `M` of eq (11) (the parts' dofs one after the other).
     pub m: Mat<f64>,
+    /// Reduced stiffness matrix `K` of eq (11), without the contact.
     pub k: Mat<f64>,
-    /// `F_piston` of eq (11).
+    /// `F_piston` of eq (11) (N), on the pad's piston dofs.
     pub f_piston: Vec<f64>,
+    /// The disc–pad contact pairs whose forces make `F_nl` of eq (10).
     pub pairs: Vec<ContactPair>,
 }
 

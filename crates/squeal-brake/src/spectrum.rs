@@ -28,15 +28,20 @@ use faer::{Mat, Par, c64};
 /// the modal damping `D` of eq (12).
 #[derive(Clone, Debug)]
 pub struct Reference {
+    /// The static equilibrium of eq (14) at μ = 0.
     pub equilibrium: Equilibrium,
+    /// The tangent stiffness `K_t0 = K + K_NL(x0, μ = 0)` there (symmetric).
     pub kt0: Mat<f64>,
+    /// The undamped modes of `(K_t0, M)`, mass-normalized.
     pub basis: ModalBasis,
+    /// The modal damping `D` of eq (12) in that basis (s⁻¹).
     pub damping: ModalDamping,
 }
 
 /// Eigenvalues of eq (21) with `Im λ >= 0` (one of each conjugate pair) and their modes.
 #[derive(Clone, Debug)]
 pub struct Spectrum {
+    /// Friction coefficient μ of the linearization.
     pub mu: f64,
     /// `λ = a + iω` (eq 22), ascending in `ω`.
     pub values: Vec<c64>,

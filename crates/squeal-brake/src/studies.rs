@@ -151,6 +151,7 @@ pub fn case_damping(
 pub struct BranchCurve {
     /// The frictionless mode (0-based) the branch starts from.
     pub basis_mode: usize,
+    /// The sweep's friction values.
     pub mu: Vec<f64>,
     /// Eigenvalue `λ = a + iω` (eq 22) at each μ.
     pub values: Vec<c64>,
@@ -171,16 +172,19 @@ impl BranchCurve {
 /// What a case's tables and figures need from its stability analysis.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CaseOutcome {
+    /// The case.
     pub case: Case,
-    /// The refined Hopf point μ0 and the frequency of the unstable mode there (Hz).
+    /// The refined Hopf point μ0, when the sweep has one.
     pub mu0: Option<f64>,
+    /// Frequency (Hz) of the unstable mode at μ0, when there is a Hopf point.
     pub frequency_hz: Option<f64>,
     /// Frictionless modes (0-based) of Mode 1 (stays stable) and Mode 2 (goes unstable).
     pub pair: Option<(usize, usize)>,
     /// Their frictionless frequencies (Hz).
     pub pair_hz: Option<(f64, f64)>,
-    /// The branch that goes unstable (Mode 2) and its partner (Mode 1), when found.
+    /// The branch that goes unstable (Mode 2), when found.
     pub unstable: Option<BranchCurve>,
+    /// The partner branch (Mode 1), when found.
     pub partner: Option<BranchCurve>,
     /// Every upward crossing of the sweep.
     pub crossings: Vec<Crossing>,
@@ -288,13 +292,15 @@ pub fn second_order_real_part(omega: &[f64], d: &[f64], dk: &Mat<f64>, j: usize)
 /// The growth of the modes outside the coalescing pair at one friction value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GrowthRow {
+    /// Friction coefficient of the sweep point.
     pub mu: f64,
     /// Largest `Re λ / |λ|` over the in-band modes outside the pair (`-ζ` of a damped mode).
     pub max_ratio: f64,
     /// That mode's `Re λ` (s⁻¹).
     pub real_part: f64,
-    /// Frequency (Hz) and frictionless mode (0-based) of that mode.
+    /// Frequency (Hz) of that mode.
     pub frequency_hz: f64,
+    /// Frictionless mode (0-based) the most unstable branch starts from.
     pub basis_mode: usize,
     /// In-band modes outside the pair with `Re λ` above the instability threshold.
     pub unstable: usize,
@@ -589,6 +595,7 @@ pub fn energy_share(m: &Mat<f64>, x: &[c64], range: Range<usize>) -> f64 {
 /// What a mode's shape shows, for telling which modes couple.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShapeSummary {
+    /// The mode's frequency (Hz).
     pub frequency_hz: f64,
     /// Share of the kinetic energy in the disc ([`energy_share`]).
     pub disc_energy: f64,

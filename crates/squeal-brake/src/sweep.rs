@@ -60,7 +60,9 @@ pub enum SweepMethod {
 /// Controls of a sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SweepOptions {
+    /// Where a crossing may define μ0 ([`Band::contains`] at its frequency).
     pub band: Band,
+    /// Controls of the static equilibrium at every friction value.
     pub newton: NewtonOptions,
     /// Width of the final bracket around μ0.
     pub mu_tolerance: f64,
@@ -71,6 +73,7 @@ pub struct SweepOptions {
     /// the scaled state matrix of [`crate::spectrum`]). The Hopf point is the root of
     /// `Re λ - threshold`, shifted from that of `Re λ` by `threshold / (dRe λ/dμ)`.
     pub threshold: Option<f64>,
+    /// How the spectra are computed.
     pub method: SweepMethod,
     /// Controls of [`SweepMethod::Continuation`].
     pub continuation: ContinuationOptions,
@@ -112,51 +115,68 @@ pub struct SweepStats {
 /// Equilibrium and spectrum at one μ.
 #[derive(Clone, Debug)]
 pub struct SweepPoint {
+    /// The static equilibrium of eq (14) at this μ.
     pub equilibrium: Equilibrium,
+    /// The complex eigenvalues and modes of the brake linearized there (eqs 20–22).
     pub spectrum: Spectrum,
 }
 
-/// A real part crossing zero upward between two sweep points.
+/// A real part crossing the instability threshold `τ` ([`SweepOptions::threshold`]) upward
+/// between two consecutive sweep points.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Crossing {
+    /// The branch that crosses (index into [`Sweep::branches`]).
     pub branch: usize,
-    /// Sweep points bracketing the crossing.
+    /// Sweep points bracketing the crossing: `k` below (`Re λ <= τ`), `k + 1` above.
     pub k: usize,
+    /// μ at point `k`.
     pub mu_lo: f64,
+    /// μ at point `k + 1`.
     pub mu_hi: f64,
     /// Frequency at the upper point.
     pub frequency_hz: f64,
+    /// Whether that frequency is in [`SweepOptions::band`] (only in-band crossings define
+    /// μ0).
     pub in_band: bool,
 }
 
 /// The refined Hopf point.
 #[derive(Clone, Debug)]
 pub struct Hopf {
+    /// The Hopf point μ0: the middle of `bracket`.
     pub mu0: f64,
     /// Frequency of the mode that goes unstable, at μ0 (the coalescence frequency).
     pub frequency_hz: f64,
-    /// Branch that goes unstable, and the branch it coalesces with (nearest in frequency).
+    /// Branch that goes unstable.
     pub branch: usize,
+    /// The branch followed with it through the refinement (the other one of the coalescing
+    /// pair), when the sweep has one.
     pub partner: Option<usize>,
     /// Final bracket `[μ-, μ+]` with the mode stable at μ- and unstable at μ+, and
     /// `Re λ - threshold` at its ends.
     pub bracket: (f64, f64),
+    /// `Re λ - τ` (s⁻¹) of the larger of the two followed modes at `μ-` (≤ 0) and `μ+` (> 0).
     pub real_part_at_bracket: (f64, f64),
     /// Spectrum evaluations used by the refinement.
     pub evaluations: usize,
-    /// Equilibrium and spectrum at the upper end of the bracket, and the mode's index there.
+    /// Equilibrium and spectrum at the upper end of the bracket.
     pub point: SweepPoint,
+    /// Index of the mode that goes unstable in `point.spectrum`.
     pub index: usize,
 }
 
 /// A sweep: its points, the branches, every upward crossing, and μ0.
 #[derive(Clone, Debug)]
 pub struct Sweep {
+    /// Equilibrium and spectrum at each friction value, in the order swept.
     pub points: Vec<SweepPoint>,
     /// `branches[b][k]`: index of branch `b` in `points[k].spectrum`.
     pub branches: Vec<Vec<usize>>,
+    /// Every upward crossing of the threshold, ordered by μ then frequency.
     pub crossings: Vec<Crossing>,
+    /// The refined first in-band crossing; `None` when no crossing is in band.
     pub hopf: Option<Hopf>,
+    /// What the spectra cost.
     pub stats: SweepStats,
 }
 
@@ -229,7 +249,9 @@ pub fn sweep(
     Ok(sweep)
 }
 
-/// Friction values must be finite and strictly ascending.
+/// Checks that friction values are given, finite and strictly ascending:
+/// [`BrakeError::NoFrictionValues`] for none, [`BrakeError::FrictionNotAscending`] at the
+/// first value that is not.
 pub fn check_ascending(mus: &[f64]) -> Result<(), BrakeError> {
     if mus.is_empty() {
         return Err(BrakeError::NoFrictionValues);
@@ -508,13 +530,15 @@ fn track(points: &[SweepPoint]) -> Vec<Vec<usize>> {
     branches
 }
 
-/// Every upward crossing of a real part through zero, ordered by μ then frequency.
-/// `64 ε ω_max` of the reference's modal basis.
+/// The default instability threshold `τ = 64 ε ω_max` (s⁻¹), with `ω_max` the highest
+/// frequency (rad/s) of the reference's modal basis ([`SweepOptions::threshold`]).
 pub fn default_threshold(reference: &Reference) -> f64 {
     let w = reference.basis.omega.iter().copied().fold(0.0, f64::max);
     64.0 * f64::EPSILON * w
 }
 
+/// Every upward crossing of a real part through the threshold `tau`, ordered by μ then
+/// frequency.
 fn crossings(
     points: &[SweepPoint],
     branches: &[Vec<usize>],

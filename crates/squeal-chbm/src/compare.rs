@@ -27,12 +27,21 @@ use std::time::{Duration, Instant};
 /// Errors of a comparison.
 #[derive(Debug, thiserror::Error)]
 pub enum CompareError {
+    /// A time integration could not start.
     #[error("time integration: {0}")]
     Ti(#[from] TiError),
+    /// The reference integration ended without a steady cycle (why, in words).
     #[error("the reference time integration found no steady cycle: {0}")]
     NoReference(String),
+    /// A CHBM solve stopped with an error (not merely unconverged).
     #[error("CHBM with {harmonics} harmonics: {source}")]
-    Chbm { harmonics: usize, source: ChbmError },
+    Chbm {
+        /// Harmonics of the solve.
+        harmonics: usize,
+        /// Its error.
+        source: ChbmError,
+    },
+    /// A cycle could not be built or measured (its layout or dofs do not fit).
     #[error("the cycle measures: {0}")]
     Measures(#[from] squeal_hbm::HbmError),
 }
@@ -76,6 +85,7 @@ pub struct Measures {
     pub contact: RelativeErrors,
     /// Eq (49) per harmonic (index `j - 1`), on every dof.
     pub power: Vec<f64>,
+    /// Power balance over the cycle: friction input against modal damping.
     pub energy: EnergyBalance,
     /// Fraction of the cycle each pair is open.
     pub open_fraction: Vec<f64>,
@@ -84,34 +94,46 @@ pub struct Measures {
 /// One CHBM solve of the comparison.
 #[derive(Clone, Debug)]
 pub struct ChbmRow {
+    /// Harmonics of the solve.
     pub harmonics: usize,
     /// Initial amplitude that converged (or the last one tried).
     pub amplitude: f64,
+    /// The solve's result (its `time` is the last attempt's only).
     pub solution: ChbmSolution,
     /// The cycle, aligned on the reference.
     pub cycle: Cycle,
+    /// Its measures against the reference.
     pub measures: Measures,
-    /// Wall time and LM iterations of all the attempts (restarts included).
+    /// Wall time of all the attempts (restarts included).
     pub wall: Duration,
+    /// Levenberg–Marquardt trial steps of all the attempts.
     pub iterations: usize,
 }
 
 /// One time integration of the comparison.
 #[derive(Clone, Debug)]
 pub struct TiRow {
+    /// Relative tolerance of the integration.
     pub rtol: f64,
+    /// The integration.
     pub run: TiRun,
-    /// Its steady cycle aligned on the reference, and its measures (`None` if no steady cycle).
+    /// Its steady cycle aligned on the reference (`None` if no steady cycle).
     pub cycle: Option<Cycle>,
+    /// Its measures against the reference (`None` if no steady cycle).
     pub measures: Option<Measures>,
 }
 
 /// A full comparison at one friction level.
 #[derive(Clone, Debug)]
 pub struct Comparison {
+    /// Friction coefficient of the modal brake.
     pub mu: f64,
+    /// The reference integration at [`CompareOptions::reference_rtol`], measured against
+    /// itself.
     pub reference: TiRow,
+    /// The integrations at each of [`CompareOptions::rtols`], in that order.
     pub ti: Vec<TiRow>,
+    /// The CHBM solves with each of [`CompareOptions::harmonics`], in that order.
     pub chbm: Vec<ChbmRow>,
     /// Physical dof of the phase alignment.
     pub phase_dof: usize,
@@ -245,16 +267,20 @@ pub fn compare_at(
 /// What a CHBM solve of the robustness grid ended on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CellOutcome {
+    /// A limit cycle ([`Outcome::LimitCycle`]).
     LimitCycle,
     /// Harmonic balance converged, `|Re λ|` above `eps2`.
     Unconstrained,
+    /// The static solution ([`Outcome::Static`]).
     Static,
+    /// No convergence ([`Outcome::NotConverged`]).
     NotConverged,
     /// The solve stopped with an error (e.g. the eigenvalue could not be followed).
     Failed,
 }
 
 impl CellOutcome {
+    /// A short label for tables: [`Outcome::label`]'s, or `failed`.
     pub fn label(self) -> &'static str {
         match self {
             CellOutcome::LimitCycle => Outcome::LimitCycle.label(),
@@ -269,12 +295,19 @@ impl CellOutcome {
 /// One CHBM solve of the grid.
 #[derive(Clone, Debug)]
 pub struct GridCell {
+    /// Friction level as a ratio μ/μ0.
     pub mu_ratio: f64,
+    /// Initial amplitude `p` of eq (48).
     pub amplitude: f64,
+    /// Harmonics of the solve.
     pub harmonics: usize,
+    /// What the solve ended on.
     pub outcome: CellOutcome,
+    /// Levenberg–Marquardt trial steps (0 when the solve failed).
     pub iterations: usize,
+    /// Wall time of the solve.
     pub time: Duration,
+    /// Frequency `ω / 2π` (Hz) where the solve ended, converged or not; NaN when it failed.
     pub frequency_hz: f64,
     /// Largest fraction of the cycle any pair is open (0 when not a limit cycle).
     pub open_fraction: f64,
@@ -285,20 +318,28 @@ pub struct GridCell {
 /// One time integration of the grid.
 #[derive(Clone, Debug)]
 pub struct TiCell {
+    /// Friction level as a ratio μ/μ0.
     pub mu_ratio: f64,
+    /// The integration; `None` when there is no start at this μ or it could not start.
     pub run: Option<TiRun>,
     /// Why there is no run or no steady cycle.
     pub failure: Option<String>,
+    /// Largest fraction of the steady cycle any pair is open; NaN without a steady cycle.
     pub open_fraction: f64,
 }
 
 /// Options of [`robustness`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct GridOptions {
+    /// Friction levels as ratios μ/μ0.
     pub mu_ratios: Vec<f64>,
+    /// Initial amplitudes `p` of eq (48), each solved alone (no restarts).
     pub amplitudes: Vec<f64>,
+    /// Harmonics of the CHBM solves.
     pub harmonics: Vec<usize>,
+    /// Base CHBM options (the harmonics and amplitude are set per cell).
     pub chbm: ChbmOptions,
+    /// Options of the time integrations.
     pub ti: TiOptions,
     /// Run the time integration at each μ.
     pub with_ti: bool,
@@ -322,10 +363,15 @@ impl Default for GridOptions {
 
 /// The brake and where its analyses start, for [`robustness`].
 pub struct GridModel<'a> {
+    /// The reduced brake.
     pub brake: &'a Brake,
+    /// Its frictionless reference (modes and damping).
     pub reference: &'a Reference,
+    /// The Hopf point μ0 that [`GridOptions::mu_ratios`] multiply.
     pub mu0: f64,
+    /// The band in which the unstable mode of each start is sought.
     pub band: Band,
+    /// Controls of the static equilibria.
     pub newton: NewtonOptions,
 }
 

@@ -27,7 +27,9 @@ use std::f64::consts::PI;
 /// ([`Cycle::from_displacement`]); a time integration measures its own.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Cycle {
+    /// Displacements, in the layout of eq (25) over every dof.
     pub x: Periodic,
+    /// Velocities, in the same layout and at the same frequency.
     pub v: Periodic,
 }
 

@@ -15,6 +15,7 @@
 //! - [`cycle`]: Fourier coefficients of a cycle of every dof, phase alignment, the relative
 //!   errors, the power per harmonic (eqs 49–50) and the energy balance of a cycle.
 
+#![warn(missing_docs)]
 // Index loops over dofs and harmonics read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 

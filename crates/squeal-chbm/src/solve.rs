@@ -31,18 +31,32 @@ use std::time::{Duration, Instant};
 /// [`Outcome`]).
 #[derive(Debug, thiserror::Error)]
 pub enum ChbmError {
+    /// The harmonic balance machinery of [`squeal_hbm`] refused the problem or failed in it
+    /// (layout, AFT samples, a non-positive start frequency, the eigenvalue lost, ...).
     #[error(transparent)]
     Hbm(#[from] HbmError),
+    /// [`ChbmOptions::harmonics`] is 0.
     #[error("CHBM needs at least one harmonic")]
     NoHarmonics,
+    /// [`ChbmStart::mode`] or [`ChbmStart::equilibrium`] does not hold one value per dof of
+    /// the modal brake.
     #[error("the start's mode and equilibrium must cover the brake's {expected} dofs (got {got})")]
-    StartSize { expected: usize, got: usize },
+    StartSize {
+        /// The modal brake's number of dofs.
+        expected: usize,
+        /// The length given.
+        got: usize,
+    },
+    /// Eq (48) cannot be scaled: the start's mode has no normal motion at any pair, or some
+    /// pair is open at the equilibrium (the smallest static penetration is ≤ 0).
     #[error(
         "the unstable mode does not move the contact, or the contact is open at equilibrium: eq (48) has no start"
     )]
     NoContactMotion,
+    /// [`ChbmOptions::amplitude`] is not a finite positive number (the value given).
     #[error("the initial amplitude must be a positive number (got {0})")]
     BadAmplitude(f64),
+    /// [`solve_with_restarts`] was given no amplitude.
     #[error("no initial amplitude to try")]
     NoAmplitudes,
 }
@@ -50,6 +64,7 @@ pub enum ChbmError {
 /// Options of [`solve`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct ChbmOptions {
+    /// Harmonics `H` of the Fourier series of eq (23) (at least 1).
     pub harmonics: usize,
     /// AFT time samples (default: [`squeal_hbm::default_samples`]).
     pub samples: Option<usize>,
@@ -58,10 +73,12 @@ pub struct ChbmOptions {
     pub amplitude: f64,
     /// Weight of `f2`.
     pub weight: f64,
-    /// Converged when `||f1|| <= eps1 ||F_eq||` ...
+    /// Converged when `||f1|| <= eps1` times the force scale (the larger of `||F_eq||` and the
+    /// norm of the static contact forces) ...
     pub eps1: f64,
     /// ... and `|Re λ| <= eps2 ω`.
     pub eps2: f64,
+    /// Levenberg–Marquardt trial steps allowed in each solve (each rung of the ladder).
     pub max_iterations: usize,
     /// Harmonic ladder: solve with one harmonic first (from eq 48), then with all of them
     /// from that solution (the paper's "starting from previous results").
@@ -145,32 +162,44 @@ impl std::fmt::Display for Outcome {
 pub struct Evaluation {
     /// Harmonics of the solve that made it (the ladder's first solve has one).
     pub harmonics: usize,
-    /// `||f1|| / ||F_eq||`.
+    /// `||f1||` over the force scale (see [`ChbmOptions::eps1`]).
     pub f1: f64,
+    /// `Re λ` (s⁻¹) of the followed eigenvalue there.
     pub re_lambda: f64,
+    /// ω (rad/s) there.
     pub omega: f64,
 }
 
 /// A CHBM result.
 #[derive(Clone, Debug)]
 pub struct ChbmSolution {
+    /// What the solve found.
     pub outcome: Outcome,
+    /// Harmonics of the solve that produced it (1 when the ladder stopped at its first rung).
     pub harmonics: usize,
+    /// AFT time samples per period.
     pub samples: usize,
+    /// Fundamental frequency ω (rad/s).
     pub omega: f64,
     /// Fourier coefficients of the nonlinear dofs (layout of eq 25).
     pub nl_coeffs: Vec<f64>,
     /// Fourier coefficients of every physical dof (eq 35), same layout over all dofs.
     pub coeffs: Vec<f64>,
+    /// Physical index of each nonlinear dof, in the order of `nl_coeffs`' blocks.
     pub nl_dofs: Vec<usize>,
-    /// `||f1|| / ||F_eq||` and `Re λ` at the solution.
+    /// `||f1||` over the force scale at the solution (see [`ChbmOptions::eps1`]).
     pub f1: f64,
+    /// `Re λ` (s⁻¹) of the followed eigenvalue at the solution.
     pub re_lambda: f64,
+    /// The followed eigenvalue of the cycle's describing-function linearization (s⁻¹, rad/s).
     pub lambda: c64,
     /// LM trial steps (all solves of the ladder).
     pub iterations: usize,
+    /// Why the last Levenberg–Marquardt solve stopped.
     pub stop: LmStop,
+    /// Levenberg–Marquardt iterations of all solves of the ladder.
     pub lm_history: Vec<LmIteration>,
+    /// Every residual evaluation of all solves of the ladder.
     pub evaluations: Vec<Evaluation>,
     /// Fraction of the AFT samples where each pair is open.
     pub open_fraction: Vec<f64>,
@@ -178,6 +207,7 @@ pub struct ChbmSolution {
     pub aliasing: f64,
     /// Largest `|x_n - U_n|` of the recovered nonlinear dofs relative to their amplitude.
     pub recovery_error: f64,
+    /// Wall time of the whole solve, ladder included.
     pub time: Duration,
 }
 
@@ -341,7 +371,8 @@ fn setup(
     })
 }
 
-/// One CHBM solve, from eq (48) or from a solution with fewer harmonics.
+/// One CHBM solve with `opts.harmonics` harmonics (no ladder), from eq (48), or from
+/// `previous` (a solution with fewer harmonics, padded with zero harmonics) when given.
 pub fn solve_from(
     mb: &ModalBrake,
     start: &ChbmStart,

@@ -42,6 +42,7 @@ use std::time::{Duration, Instant};
 /// Options of [`integrate_to_limit_cycle`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct TiOptions {
+    /// Relative tolerance of the BDF error test.
     pub rtol: f64,
     /// `atol_q = atol_factor · rtol · Q` (module docs).
     pub atol_factor: f64,
@@ -52,13 +53,15 @@ pub struct TiOptions {
     pub perturbation: f64,
     /// Relative spread of periods and amplitudes over `steady_cycles` cycles.
     pub steady_rtol: f64,
+    /// Consecutive cycles whose periods and amplitudes must agree for a first detection.
     pub steady_cycles: usize,
     /// Cycles of each Fourier average taken once steady; two consecutive averages are compared.
     pub confirm_cycles: usize,
     /// Largest accepted relative change between two consecutive averages.
     pub drift_tol: f64,
-    /// Harmonics kept of the last cycle, and samples per cycle of its Fourier sums.
+    /// Harmonics kept in the Fourier averages of the cycle.
     pub harmonics: usize,
+    /// Samples per period of the Fourier averages (more than `2 harmonics`).
     pub samples_per_cycle: usize,
     /// Give up after this many periods of the unstable mode.
     pub max_cycles: f64,
@@ -88,12 +91,15 @@ impl Default for TiOptions {
 /// The steady cycle found.
 #[derive(Clone, Debug)]
 pub struct TiSteady {
-    /// Fourier coefficients of every physical dof over the last cycle (velocities from the
-    /// integrated velocities, not by differentiation).
+    /// Fourier coefficients of every physical dof averaged over the last
+    /// [`TiOptions::confirm_cycles`] periods (velocities from the integrated velocities, not
+    /// by differentiation).
     pub cycle: Cycle,
+    /// Its period (s).
     pub period: f64,
     /// Cycles completed when accepted, and the time then.
     pub cycles: usize,
+    /// Time (s) when accepted.
     pub t: f64,
     /// Relative change of the cycle over the last `confirm_cycles` cycles.
     pub drift: f64,
@@ -105,13 +111,17 @@ pub struct TiSteady {
 /// counters and one record per cycle.
 #[derive(Clone, Debug)]
 pub struct TiRun {
+    /// The steady cycle, `None` when not reached.
     pub steady: Option<TiSteady>,
+    /// Why not: the integrator's error, or [`OdeError::NotSteady`] at the limits.
     pub failure: Option<OdeError>,
+    /// The integrator's counters (steps, rejections, ...).
     pub stats: BdfStats,
+    /// Wall time of the run.
     pub wall: Duration,
     /// Every completed cycle of the observable (start, period, extrema).
     pub history: Vec<CycleRecord>,
-    /// Time reached.
+    /// Time reached (s).
     pub t_end: f64,
     /// State dimension (for the storage a full history would take).
     pub dim: usize,
@@ -135,18 +145,32 @@ impl TiRun {
 /// Why the integration could not start.
 #[derive(Debug, thiserror::Error)]
 pub enum TiError {
+    /// The integrator or the steady-state monitor could not be set up (invalid options, a
+    /// non-finite start, ...).
     #[error(transparent)]
     Ode(#[from] OdeError),
+    /// The Fourier averages rejected the options (samples per cycle not above twice the
+    /// harmonics, ...).
     #[error(transparent)]
     Hbm(#[from] HbmError),
+    /// The mode or the equilibrium does not hold one value per dof of the modal brake.
     #[error("the mode and the equilibrium must cover the brake's {expected} dofs (got {got})")]
-    Dimension { expected: usize, got: usize },
+    Dimension {
+        /// The modal brake's number of dofs.
+        expected: usize,
+        /// The shorter of the two lengths given.
+        got: usize,
+    },
+    /// The start cannot be scaled: the mode has no normal motion at any pair, or some pair is
+    /// open at the equilibrium (the smallest static penetration is ≤ 0).
     #[error(
         "the unstable mode does not move the contact, or the contact is open at equilibrium: no perturbation along it can start a limit cycle"
     )]
     NoContactMotion,
+    /// [`TiOptions::perturbation`] is not a finite positive number (the value given).
     #[error("the initial perturbation must be a positive number (got {0})")]
     BadPerturbation(f64),
+    /// The modal matrix `Φ` is singular: the physical start has no modal coordinates.
     #[error("the modal matrix is singular")]
     SingularModes,
 }

@@ -20,6 +20,8 @@
 //!   fields, and `.pvd` collections for time series, for ParaView.
 //! - [`generate`]: structured tet10 meshes of boxes, for tests and convergence studies.
 
+#![warn(missing_docs)]
+
 pub mod builder;
 pub mod error;
 pub mod generate;
@@ -40,7 +42,10 @@ use std::path::Path;
 /// non-tetrahedral elements, ...).
 #[derive(Clone, Debug)]
 pub struct ReadMesh {
+    /// The mesh, with the file's ids resolved to dense indices and the elements in canonical
+    /// node order.
     pub mesh: Mesh,
+    /// What the reader skipped or doubted without failing, each with its file and place.
     pub warnings: Vec<Warning>,
 }
 

@@ -102,9 +102,9 @@ pub fn det3(m: &[[f64; 3]; 3]) -> f64 {
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
 }
 
-/// Volume of an element (exact for straight-sided elements; for curved ones, the degree-2
-/// rule on a Jacobian determinant of degree 3 is an approximation: [`crate::quality`] reports
-/// the curvature).
+/// Volume of an element from its nodes' coordinates in canonical order: the integral of the
+/// Jacobian determinant by Keast's 5-point degree-3 rule, exact for straight-sided and curved
+/// elements alike (the determinant is a cubic). Negative for an inverted element.
 pub fn volume(x: &[[f64; 3]; 10]) -> f64 {
     // Keast degree-3 rule (5 points, one negative weight) is exact for det J of a
     // straight-sided element (constant) and of degree 3 in general.
