@@ -231,11 +231,10 @@ pub fn assemble(
     let mut f_piston = vec![0.0; n];
     let share = params.piston_force / pistons.len() as f64;
     for &p in &pistons {
-        for d in 0..3u8 {
-            if let Some(dof) = point_dof(pad, p, d) {
-                // The piston pushes the pad toward the disc: along -n.
-                f_piston[nd + dof] -= share * normal[d as usize];
-            }
+        // The piston pushes the pad toward the disc: along -n. Every direction of the normal
+        // needs its dof, or part of the load would be lost.
+        for (dof, w) in along(pad, "pad", p, normal, nd, -1.0)? {
+            f_piston[dof] += share * w;
         }
     }
     let brake = Brake {

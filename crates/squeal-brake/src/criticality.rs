@@ -318,7 +318,7 @@ pub fn normal_form(
     let l = pair.lambda;
     let omega0 = l.im;
     // dλ/dμ along the equilibrium path.
-    let (du0, du1) = lin.mu_rates(brake, &c);
+    let (du0, du1) = lin.mu_rates(brake, &c)?;
     let (_, slope) = lin.rayleigh(&c, l, &pair.right, &pair.left);
     let dlambda =
         -lin.coupling_derivative(&c, &du0, du1.as_deref(), l, &pair.right, &pair.left) / slope;

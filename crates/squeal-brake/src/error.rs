@@ -173,6 +173,15 @@ pub enum BrakeError {
         /// `Re λ` (s⁻¹) of the followed modes (the larger of the pair) at its ends.
         real_parts: (f64, f64),
     },
+    /// [`Damping::modal`](crate::modal::Damping::modal): extra damping on a mode the basis does
+    /// not have.
+    #[error("extra damping on mode {mode}, but the brake has {modes} modes")]
+    ModeOutOfRange {
+        /// The mode asked (1-based).
+        mode: usize,
+        /// How many modes there are.
+        modes: usize,
+    },
     /// [`normal_form`](crate::criticality::normal_form): a pair (1-based) is open at the
     /// equilibrium at μ0, where the normal form needs a smooth contact law.
     #[error(

@@ -47,7 +47,11 @@ impl Eval {
 
 /// `Re dλ/dμ` of an eigenpair at coupling `c`.
 fn slope(brake: &Brake, lr: &LinearizedBrake, c: &Coupling, p: &Eigenpair) -> f64 {
-    let (du0, du1) = lr.mu_rates(brake, c);
+    // The coupling is the brake's own (it cannot fail); without rates the refinement falls
+    // back on regula falsi (a NaN slope gives no Newton step).
+    let Ok((du0, du1)) = lr.mu_rates(brake, c) else {
+        return f64::NAN;
+    };
     let (_, den) = lr.rayleigh(c, p.lambda, &p.right, &p.left);
     let num = lr.coupling_derivative(c, &du0, du1.as_deref(), p.lambda, &p.right, &p.left);
     (-num / den).re

@@ -418,8 +418,19 @@ impl LinearizedBrake {
     /// elements' derivatives with respect to μ and δ are taken by central differences of their
     /// responses along that path (exact up to round-off for the paper's element, whose
     /// stiffness is quadratic in δ).
-    pub fn mu_rates(&self, brake: &Brake, c: &Coupling) -> (Vec<f64>, Option<Vec<f64>>) {
+    pub fn mu_rates(
+        &self,
+        brake: &Brake,
+        c: &Coupling,
+    ) -> Result<(Vec<f64>, Option<Vec<f64>>), BrakeError> {
         let (n, np) = (self.size(), self.pairs());
+        if c.responses.len() != np || c.penetration.len() != np || brake.pairs.len() != np {
+            return Err(BrakeError::Dimension {
+                what: "the coupling's pair responses (mu_rates needs a coupling of this brake)",
+                expected: np,
+                got: c.responses.len(),
+            });
+        }
         let zero = c64::new(0.0, 0.0);
         let b: Vec<c64> = (0..n)
             .map(|j| {
@@ -461,7 +472,7 @@ impl LinearizedBrake {
             (Some(a), Some(b)) => Some(rate(a, b)),
             _ => None,
         };
-        (rate(&plus.u0, &minus.u0), du1)
+        Ok((rate(&plus.u0, &minus.u0), du1))
     }
 
     /// The traces `tr A` and `tr A²` of the scaled state matrix of [`crate::spectrum`]

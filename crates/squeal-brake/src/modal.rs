@@ -108,9 +108,8 @@ impl Damping {
             .collect();
         for &(j, v) in &self.extra {
             let n = d.len();
-            let slot = d.get_mut(j).ok_or(BrakeError::PairOutOfRange {
-                first: j + 1,
-                second: j + 1,
+            let slot = d.get_mut(j).ok_or(BrakeError::ModeOutOfRange {
+                mode: j + 1,
                 modes: n,
             })?;
             *slot += v;

@@ -199,12 +199,18 @@ impl Brake {
     /// pairs inside it, and a surface speed wherever an element needs the slip velocity.
     pub fn validate(&self) -> Result<(), BrakeError> {
         let n = self.size();
-        if self.m.ncols() != n || self.k.nrows() != n || self.k.ncols() != n {
-            return Err(BrakeError::Dimension {
-                what: "mass and stiffness matrices",
-                expected: n,
-                got: self.k.nrows(),
-            });
+        for (what, got) in [
+            ("mass matrix columns", self.m.ncols()),
+            ("stiffness matrix rows", self.k.nrows()),
+            ("stiffness matrix columns", self.k.ncols()),
+        ] {
+            if got != n {
+                return Err(BrakeError::Dimension {
+                    what,
+                    expected: n,
+                    got,
+                });
+            }
         }
         if self.f_piston.len() != n {
             return Err(BrakeError::Dimension {

@@ -50,7 +50,7 @@ pub enum ChbmError {
     /// Eq (48) cannot be scaled: the start's mode has no normal motion at any pair, or some
     /// pair is open at the equilibrium (the smallest static penetration is ≤ 0).
     #[error(
-        "the unstable mode does not move the contact, or the contact is open at equilibrium: eq (48) has no start"
+        "the unstable mode does not move the contact, or every pair is open at equilibrium: eq (48) has no start"
     )]
     NoContactMotion,
     /// [`ChbmOptions::amplitude`] is not a finite positive number (the value given).
@@ -499,10 +499,13 @@ fn guess(
     for p in &mb.pairs {
         let g: c64 = p.normal.iter().map(|&(i, a)| psi[i] * a).sum();
         dmax = dmax.max(2.0 * g.norm());
-        pen = pen.min(p.penetration(&x0));
+        let d = p.penetration(&x0);
+        if d > 0.0 {
+            pen = pen.min(d);
+        }
     }
     let positive = |v: f64| v > 0.0; // false for NaN too
-    if !positive(dmax) || !positive(pen) {
+    if !positive(dmax) || !positive(pen) || !pen.is_finite() {
         return Err(ChbmError::NoContactMotion);
     }
     let p = amplitude * pen / dmax;

@@ -164,7 +164,7 @@ pub enum TiError {
     /// The start cannot be scaled: the mode has no normal motion at any pair, or some pair is
     /// open at the equilibrium (the smallest static penetration is ≤ 0).
     #[error(
-        "the unstable mode does not move the contact, or the contact is open at equilibrium: no perturbation along it can start a limit cycle"
+        "the unstable mode does not move the contact, or every pair is open at equilibrium: no perturbation along it can start a limit cycle"
     )]
     NoContactMotion,
     /// [`TiOptions::perturbation`] is not a finite positive number (the value given).
@@ -208,7 +208,10 @@ fn start_state(
         if g.norm() > gmax {
             (best, gmax) = (i, g.norm());
         }
-        pen = pen.min(p.penetration(&x_n));
+        let d = p.penetration(&x_n);
+        if d > 0.0 {
+            pen = pen.min(d);
+        }
     }
     if !(gmax > 0.0 && pen > 0.0 && pen.is_finite()) {
         return Err(TiError::NoContactMotion);
