@@ -100,6 +100,23 @@ impl<L: DynamicStiffness, F: NonlinearForce> HarmonicBalance<L, F> {
         &self.force
     }
 
+    /// The linear part, mutable (to change a parameter of it, e.g. along a branch).
+    pub fn linear_mut(&mut self) -> &mut L {
+        &mut self.linear
+    }
+
+    /// The nonlinear force, mutable (to change a parameter of it, e.g. the friction
+    /// coefficient along a branch).
+    pub fn force_mut(&mut self) -> &mut F {
+        &mut self.force
+    }
+
+    /// The external force coefficients, mutable (e.g. a load scaled along a branch). The
+    /// caller keeps them finite.
+    pub fn external_force_mut(&mut self) -> &mut [f64] {
+        &mut self.f_ext
+    }
+
     /// The external force coefficients `F~_ext`.
     pub fn external_force(&self) -> &[f64] {
         &self.f_ext

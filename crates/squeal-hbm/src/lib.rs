@@ -19,6 +19,7 @@
 //!   linearization of the cycle ([`DescribingFunction`]), for any linear part that can follow
 //!   its eigenvalues ([`LinearizedEigen`]; [`DenseEigen`] for dense `M`, `C`, `K`):
 //!   [`solve_chbm`]. `examples/` has two short programs.
+//! * [`continuation`]: branches of periodic solutions in a parameter (pseudo-arclength).
 //! * [`Periodic`]: a periodic motion as Fourier coefficients (eq. 23), and [`FourierSums`],
 //!   its coefficients from equally spaced samples.
 //!
@@ -49,6 +50,7 @@
 
 pub mod aft;
 mod chbm;
+pub mod continuation;
 mod error;
 mod force;
 mod hb;
