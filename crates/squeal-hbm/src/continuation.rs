@@ -46,16 +46,19 @@ pub trait Family {
 /// Controls of [`continue_branch`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContinuationOptions {
-    /// First, smallest and largest arclength steps (scaled unknowns).
+    /// First arclength step (scaled unknowns).
     pub initial_step: f64,
+    /// Smallest step: below it the branch is lost ([`Stop::LostConvergence`]).
     pub min_step: f64,
+    /// Largest step.
     pub max_step: f64,
-    /// Newton iterations aimed at per point, and allowed.
+    /// Newton iterations aimed at per point (the step grows when fewer were needed).
     pub target_iterations: usize,
+    /// Newton iterations allowed per point before the step is halved.
     pub max_iterations: usize,
-    /// Converged when `||R|| <= tolerance` and the last Newton step is below `step_tolerance`
-    /// (scaled).
+    /// Converged when `||R|| <= tolerance` ...
     pub tolerance: f64,
+    /// ... and the last Newton step is below this (scaled unknowns).
     pub step_tolerance: f64,
     /// The parameter range; the branch ends when it leaves it.
     pub parameter_range: (f64, f64),
@@ -88,8 +91,9 @@ pub struct Point {
     pub harmonics: usize,
     /// Unit tangent (scaled unknowns), oriented along the branch.
     pub tangent: Vec<f64>,
-    /// Newton iterations and final `||R||`.
+    /// Newton iterations.
     pub iterations: usize,
+    /// Final `||R||`.
     pub residual: f64,
     /// The arclength step that reached it.
     pub step: f64,
@@ -121,7 +125,12 @@ pub enum Stop {
     MaxPoints,
     /// Newton failed at every step down to [`ContinuationOptions::min_step`]: the branch could
     /// not be followed further (e.g. a non-smooth event the harmonics cannot resolve).
-    LostConvergence { step: f64, residual: f64 },
+    LostConvergence {
+        /// The last step tried.
+        step: f64,
+        /// `||R||` at the last failed iterate.
+        residual: f64,
+    },
     /// The observer asked to stop, with its reason.
     Observer(String),
 }
@@ -155,7 +164,9 @@ pub enum Control {
 /// A followed branch.
 #[derive(Clone, Debug)]
 pub struct Branch {
+    /// The converged points, in order along the branch.
     pub points: Vec<Point>,
+    /// Why it ended.
     pub stop: Stop,
 }
 
@@ -174,8 +185,15 @@ fn norm(v: &[f64]) -> f64 {
     v.iter().map(|a| a * a).sum::<f64>().sqrt()
 }
 
-/// Newton on `R(z) = 0` plus one more equation `c · z = target` (`c` a row): returns the point,
-/// its iterations and `||R||`, or `None` (with the last `||R||`) when it does not converge.
+/// What a corrector run gave.
+enum Correction {
+    /// The point, its Newton iterations and `||R||`.
+    Converged(Vec<f64>, usize, f64),
+    /// No convergence; the last `||R||`.
+    Failed(f64),
+}
+
+/// Newton on `R(z) = 0` plus one more equation `c · z = target` (`c` a row).
 fn correct<F: Family>(
     family: &mut F,
     z0: &[f64],
@@ -183,7 +201,7 @@ fn correct<F: Family>(
     target: f64,
     w: &[f64],
     opts: &ContinuationOptions,
-) -> Result<Result<(Vec<f64>, usize, f64), f64>, HbmError> {
+) -> Result<Correction, HbmError> {
     let n = z0.len();
     let mut z = z0.to_vec();
     let mut r = vec![0.0; n - 1];
@@ -194,7 +212,7 @@ fn correct<F: Family>(
         let extra = row.iter().zip(&z).map(|(a, b)| a * b).sum::<f64>() - target;
         last = norm(&r);
         if !last.is_finite() {
-            return Ok(Err(last));
+            return Ok(Correction::Failed(last));
         }
         family.jacobian(&z, jac.as_mut().subrows_mut(0, n - 1))?;
         for (j, &c) in row.iter().enumerate() {
@@ -203,7 +221,7 @@ fn correct<F: Family>(
         let rhs = Mat::from_fn(n, 1, |i, _| if i < n - 1 { -r[i] } else { -extra });
         let dz = jac.partial_piv_lu().solve(&rhs);
         if (0..n).any(|i| !dz[(i, 0)].is_finite()) {
-            return Ok(Err(last));
+            return Ok(Correction::Failed(last));
         }
         for (i, v) in z.iter_mut().enumerate() {
             *v += dz[(i, 0)];
@@ -214,17 +232,17 @@ fn correct<F: Family>(
             .sqrt();
         if last <= opts.tolerance && step <= opts.step_tolerance {
             family.residual(&z, &mut r)?;
-            return Ok(Ok((z, it, norm(&r))));
+            return Ok(Correction::Converged(z, it, norm(&r)));
         }
         if step <= opts.step_tolerance {
             family.residual(&z, &mut r)?;
             let rn = norm(&r);
             if rn <= opts.tolerance {
-                return Ok(Ok((z, it, rn)));
+                return Ok(Correction::Converged(z, it, rn));
             }
         }
     }
-    Ok(Err(last))
+    Ok(Correction::Failed(last))
 }
 
 /// The unit tangent at `z` (null vector of `J`, in scaled unknowns), oriented along `along`.
@@ -298,7 +316,7 @@ pub fn continue_branch<F: Family>(
             let mut row = vec![0.0; n];
             row[n - 1] = 1.0;
             match correct(family, &zr, &row, zr[n - 1], &w, opts)? {
-                Ok((zc, it, res)) => {
+                Correction::Converged(zc, it, res) => {
                     let along = remap(&point.tangent, layout.n_dofs(), layout.n_harmonics(), h);
                     let tc = tangent(family, &zc, &w, &along)?;
                     point = Point {
@@ -311,7 +329,7 @@ pub fn continue_branch<F: Family>(
                     };
                     control = observer(&point);
                 }
-                Err(res) => {
+                Correction::Failed(res) => {
                     points.push(point);
                     return Ok(Branch {
                         points,
@@ -353,8 +371,8 @@ pub fn continue_branch<F: Family>(
             let row: Vec<f64> = (0..n).map(|i| t[i] * w[i]).collect();
             let target = step + row.iter().zip(&z).map(|(a, b)| a * b).sum::<f64>();
             match correct(family, &pred, &row, target, &w, opts)? {
-                Ok(done) => break done,
-                Err(res) => {
+                Correction::Converged(zc, it, res) => break (zc, it, res),
+                Correction::Failed(res) => {
                     step *= 0.5;
                     if step < opts.min_step {
                         return Ok(Branch {
