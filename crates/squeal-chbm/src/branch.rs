@@ -685,3 +685,87 @@ pub fn follow_from_point(
     branch.time = t0.elapsed();
     Ok(branch)
 }
+
+/// The cycles of a branch in μ at exactly `mu`: wherever the branch crosses `mu` between two
+/// points, the cycle interpolated between them and corrected by Newton with μ held fixed
+/// (the point of lower harmonics is used alone when the two differ). Returns each with the
+/// index of the point before it, in order along the branch; a folded branch crosses `mu`
+/// more than once (the unstable and the stable cycle of a subcritical brake between μ_fold and
+/// μ0). `parameter_rate` of a returned cycle is its tangent's μ component oriented along μ.
+pub fn cycles_at(
+    mb: &ModalBrake,
+    branch: &LimitCycleBranch,
+    mu: f64,
+    opts: &BranchOptions,
+) -> Result<Vec<(usize, BranchPoint)>, ChbmError> {
+    if branch.parameter != Parameter::Friction || !mu.is_finite() {
+        return Err(HbmError::Parameter {
+            value: mu,
+            why: "cycles at a friction value need a finite mu and a branch in friction".into(),
+        }
+        .into());
+    }
+    let Some(first) = branch.points.first() else {
+        return Ok(Vec::new());
+    };
+    let family = BrakeFamily {
+        mb,
+        parameter: Parameter::Friction,
+        samples: opts.samples,
+        load: Vec::new(),
+    };
+    let x_eq = first.nl_coeffs[..mb.nl()].to_vec();
+    let sc = scales(mb, &x_eq, family.build(first.harmonics)?.external_force());
+    let mut hb_family = HbFamily::new(
+        |h| family.build(h),
+        |hb: &mut BrakeHb, p| family.set(hb, p),
+        first.harmonics,
+        PhaseCondition::FirstSineZero {
+            dof: branch.phase_dof,
+        },
+        sc,
+        1e-7,
+    )?;
+    let wf = weights(sc.phase, first.omega, mu);
+    let copts = ContinuationOptions {
+        parameter_range: (f64::NEG_INFINITY, f64::INFINITY),
+        ..opts.continuation.clone()
+    };
+    let z_of = |p: &BranchPoint| {
+        let mut z = p.nl_coeffs.clone();
+        z.push(p.omega);
+        z.push(p.parameter);
+        z
+    };
+    let mut out = Vec::new();
+    for i in 1..branch.points.len() {
+        let (a, b) = (&branch.points[i - 1], &branch.points[i]);
+        let (da, db) = (a.parameter - mu, b.parameter - mu);
+        // A crossing; a point exactly at mu belongs to the interval that ends there.
+        if da * db > 0.0 || da == 0.0 && i > 1 {
+            continue;
+        }
+        let (guess, h) = if a.harmonics == b.harmonics {
+            let s = if db != da { da / (da - db) } else { 0.5 };
+            let (za, zb) = (z_of(a), z_of(b));
+            let z: Vec<f64> = za.iter().zip(&zb).map(|(x, y)| x + s * (y - x)).collect();
+            (z, a.harmonics)
+        } else {
+            let p = if a.harmonics < b.harmonics { a } else { b };
+            (z_of(p), p.harmonics)
+        };
+        if hb_family.layout().n_harmonics() != h {
+            hb_family.set_harmonics(h)?;
+        }
+        let w = wf(&hb_family.layout());
+        let n = guess.len();
+        let mut row = vec![0.0; n];
+        row[n - 1] = 1.0;
+        if let Some(p) =
+            continuation::correct_point(&mut hb_family, &guess, &row, mu, &w, &row, &copts)?
+        {
+            out.push((i - 1, summary(mb, &p)?));
+        }
+    }
+    Ok(out)
+}

@@ -14,7 +14,7 @@ use squeal_brake::dynamics::BrakeDynamics;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::bifurcation::{BifurcationKind, bifurcations, cycle_of, hill_along};
 use squeal_chbm::branch::{
-    BranchOptions, BranchPoint, Harmonics, LimitCycleBranch, follow_from_hopf,
+    BranchOptions, BranchPoint, Harmonics, LimitCycleBranch, cycles_at, follow_from_hopf,
 };
 use squeal_chbm::floquet::{HillOptions, MonodromyOptions, Stability, hill, monodromy};
 use squeal_hbm::HarmonicLayout;
@@ -236,18 +236,24 @@ fn hill_and_the_monodromy_matrix_agree_within_hills_error() {
 
 #[test]
 fn a_supercritical_branch_point_is_the_cycle_chbm_finds_there() {
-    // l1 < 0: the branch leaves μ0 upwards. At its first point beyond 1.005 μ0, CHBM (the
+    // l1 < 0: the branch leaves μ0 upwards. Its cycle at 1.005 μ0 (corrected from the two
+    // points around it with μ fixed) is the one CHBM (the
     // constrained Levenberg-Marquardt solve from the unstable mode, another algorithm on the
     // same 5-harmonic equations) finds the same cycle: measured 8.6e-13 in ω, 1.3e-11 in the
     // first harmonic of the normal dof.
     let m = model(KL, KNL);
     let (nf, mb, b) = branch(&m, Harmonics::Fixed(5));
     assert!(nf.l1 < 0.0 && b.points[0].parameter > nf.mu0);
-    let p = b
-        .points
-        .iter()
-        .find(|p| p.parameter > 1.005 * nf.mu0)
-        .unwrap();
+    let opts = BranchOptions {
+        harmonics: Harmonics::Fixed(5),
+        ..Default::default()
+    };
+    let at = cycles_at(&mb, &b, 1.005 * nf.mu0, &opts).unwrap();
+    // The branch grows to 1.0143 mu0 and folds back when the contact opens: it crosses 1.005
+    // mu0 before its first fold and again after it (and once more further along).
+    assert!(at.len() >= 2 && at[0].0 < b.folds[0].after_point && at[1].0 >= b.folds[0].after_point);
+    let p = &at[0].1;
+    assert_eq!(p.parameter, 1.005 * nf.mu0);
     let mbp = ModalBrake::new(&m.brake, &m.reference, p.parameter);
     let (s, ..) = squeal_chbm::solve_with_restarts(
         &mbp,
