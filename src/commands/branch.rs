@@ -78,16 +78,20 @@ pub fn options(args: &BranchArgs) -> Result<BranchOptions> {
 pub fn run(args: BranchArgs) -> Result<ExitCode> {
     let opts = options(&args)?;
     let p = pipeline(&args.scene, &args.out, &None)?;
-    Ok(if write(&p, &opts, &args.at)? {
+    Ok(if write(&p, &opts, &args.at)?.is_some() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(3)
     })
 }
 
-/// Follows the branch of `p` and writes `<out>/branch`, with the cycles at `at` × μ0; false
+/// Follows the branch of `p` and writes `<out>/branch`, with the cycles at `at` × μ0; `None`
 /// when there is no Hopf point.
-pub fn write(p: &Pipeline, opts: &BranchOptions, at: &[f64]) -> Result<bool> {
+pub fn write(
+    p: &Pipeline,
+    opts: &BranchOptions,
+    at: &[f64],
+) -> Result<Option<branch::BranchAnalysis>> {
     let m = p.model()?;
     let st = p.stability().context("stability analysis")?;
     let t = std::time::Instant::now();
@@ -97,12 +101,12 @@ pub fn write(p: &Pipeline, opts: &BranchOptions, at: &[f64]) -> Result<bool> {
     };
     let Some(a) = branch::analyse(m, st, opts, &HillOptions::default(), &mus, p.log())? else {
         println!("no Hopf point in the band of the friction sweep: no branch of limit cycles");
-        return Ok(false);
+        return Ok(None);
     };
     p.record("branch and its stability", t.elapsed().as_secs_f64());
     print!("{}", branch::summary_text(&a));
     let dir = p.out.join("branch");
     branch::write(&dir, &a)?;
     println!("results in {}", dir.display());
-    Ok(true)
+    Ok(Some(a))
 }
