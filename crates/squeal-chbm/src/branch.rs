@@ -769,3 +769,27 @@ pub fn cycles_at(
     }
     Ok(out)
 }
+
+/// The Fourier coefficients of every dof (physical, layout of eq 25 over all `n` dofs) of a
+/// cycle of a branch in friction, at its own μ on `mb`'s brake: the nonlinear force's
+/// harmonics evaluated on `samples` AFT samples, then eq (35) for the linear dofs.
+pub fn full_cycle(
+    mb: &ModalBrake,
+    point: &BranchPoint,
+    samples: Option<usize>,
+) -> Result<Vec<f64>, ChbmError> {
+    let mut mbp = mb.clone();
+    mbp.mu = point.parameter;
+    let mut hb = brake_harmonic_balance(&mbp, point.harmonics, samples)?;
+    let layout = hb.layout().clone();
+    layout.check_len("branch point coefficients", point.nl_coeffs.len())?;
+    let mut r = vec![0.0; layout.len()];
+    let eval = hb.evaluate(&point.nl_coeffs, point.omega, &mut r)?;
+    let g = eval.force.to_vec();
+    Ok(squeal_brake::harmonic::recover(
+        &mbp,
+        point.omega,
+        &g,
+        &layout,
+    ))
+}

@@ -15,6 +15,7 @@ use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::bifurcation::{BifurcationKind, bifurcations, cycle_of, hill_along};
 use squeal_chbm::branch::{
     BranchOptions, BranchPoint, Harmonics, LimitCycleBranch, cycles_at, follow_from_hopf,
+    full_cycle,
 };
 use squeal_chbm::floquet::{HillOptions, MonodromyOptions, Stability, hill, monodromy};
 use squeal_hbm::HarmonicLayout;
@@ -275,4 +276,28 @@ fn a_supercritical_branch_point_is_the_cycle_chbm_finds_there() {
         "{} vs {a}",
         s.amplitude(1, 1)
     );
+}
+
+#[test]
+fn full_cycle_recovers_the_nonlinear_dofs_of_a_branch_point() {
+    // Eq (35) applied to the harmonic balance's own force returns, on the nonlinear dofs, the
+    // coefficients the branch converged (an identity at a harmonic balance root, to its
+    // residual); on the oscillator every dof is nonlinear, so all of them are checked.
+    let m = subcritical();
+    let (_, mb, b) = branch(&m, BranchOptions::default().harmonics);
+    for idx in [5, 20] {
+        let p = &b.points[idx];
+        let full = full_cycle(&mb, p, None).unwrap();
+        let scale = p.nl_coeffs.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let nn = mb.nl();
+        for blk in 0..2 * p.harmonics + 1 {
+            for (i, &d) in mb.nl_dofs.iter().enumerate() {
+                let (r, u) = (full[blk * mb.modes() + d], p.nl_coeffs[blk * nn + i]);
+                assert!(
+                    (r - u).abs() < 1e-8 * scale,
+                    "point {idx} block {blk} dof {d}: {r} vs {u}"
+                );
+            }
+        }
+    }
 }
