@@ -781,7 +781,7 @@ pub fn full_cycle(
     let mut mbp = mb.clone();
     mbp.mu = point.parameter;
     let mut hb = brake_harmonic_balance(&mbp, point.harmonics, samples)?;
-    let layout = hb.layout().clone();
+    let layout = hb.layout();
     layout.check_len("branch point coefficients", point.nl_coeffs.len())?;
     let mut r = vec![0.0; layout.len()];
     let eval = hb.evaluate(&point.nl_coeffs, point.omega, &mut r)?;
