@@ -48,6 +48,7 @@
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::{Mat, c64};
 use rayon::prelude::*;
+use squeal_brake::dynamics::state_jacobian;
 use squeal_brake::harmonic::ModalSolver;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_hbm::{HarmonicLayout, HbmError, Part};
@@ -895,31 +896,10 @@ impl OdeSystem for Variational<'_> {
         }
     }
 
-    fn jacobian(&self, t: f64, _y: &[f64], mut jac: faer::MatMut<'_, f64>) {
-        let n = self.mb.modes();
+    fn jacobian(&self, t: f64, _y: &[f64], jac: faer::MatMut<'_, f64>) {
         let (jx, jv) = self.jacobians(t);
-        let kx = self.modal(&jx);
         let kv = jv.as_ref().map(|m| self.modal(m));
-        for i in 0..2 * n {
-            for j in 0..2 * n {
-                jac[(i, j)] = 0.0;
-            }
-        }
-        for i in 0..n {
-            jac[(i, n + i)] = 1.0;
-            for j in 0..n {
-                let mut k = kx[(i, j)];
-                let mut c = self.mb.damping.entry(i, j);
-                if i == j {
-                    k += self.mb.omega[i].powi(2);
-                }
-                if let Some(kv) = &kv {
-                    c += kv[(i, j)];
-                }
-                jac[(n + i, j)] = -k;
-                jac[(n + i, n + j)] = -c;
-            }
-        }
+        state_jacobian(self.mb, &self.modal(&jx), kv.as_ref(), jac);
     }
 }
 

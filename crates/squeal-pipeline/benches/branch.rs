@@ -8,24 +8,14 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
+use common::best;
+
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::bifurcation::hill_along;
 use squeal_chbm::branch::{BranchOptions, follow_from_hopf};
 use squeal_chbm::floquet::HillOptions;
 use squeal_pipeline::{Pipeline, model::quiet, stability};
 use std::time::Instant;
-
-fn best<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut best = f64::INFINITY;
-    let mut out = None;
-    for _ in 0..reps {
-        let t = Instant::now();
-        let r = f();
-        best = best.min(t.elapsed().as_secs_f64());
-        out = Some(r);
-    }
-    (best, out.unwrap())
-}
 
 fn arg(name: &str) -> Option<String> {
     std::env::args().find_map(|a| a.strip_prefix(&format!("{name}=")).map(String::from))
