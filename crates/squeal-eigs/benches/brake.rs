@@ -109,6 +109,11 @@ fn main() {
     );
     println!("factorize incl. checks  {:8.2}", total_factor.as_secs_f64());
     println!("nnz(L)                  {:>12}", s.nnz_l);
+    println!("factor flops            {:>12.3e}", s.flops);
+    println!(
+        "solve tasks / top share {:>8} / {:.2}",
+        s.solve_tasks, s.solve_top_fraction
+    );
     println!(
         "factor memory (MiB)     {:8.1}",
         s.factor_bytes as f64 / 1048576.0

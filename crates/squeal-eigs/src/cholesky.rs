@@ -1,6 +1,9 @@
 //! Sparse Cholesky factorization A = P^T L L^T P with a fill-reducing
 //! ordering (nested dissection by default, or AMD; see [`crate::ordering`]),
-//! wrapping faer 0.24's supernodal/simplicial sparse Cholesky.
+//! wrapping faer 0.24's supernodal/simplicial sparse Cholesky. Solves with a
+//! supernodal factor run through [`crate::trisolve`] (subtree-parallel,
+//! thread-count independent bits); a simplicial one (small problems) through
+//! faer's solve, in fixed blocks of columns.
 //!
 //! Used for K_II (constraint modes, eq. 3 of Coudeyras et al. 2009) and for
 //! K - sigma M (the shift-invert operator of the fixed-interface modes, eqs. 4-5).
@@ -8,6 +11,7 @@
 use crate::EigError;
 use crate::ordering::{FillOrdering, nested_dissection};
 use crate::sparse::{check_pair, check_symmetric, shifted, sym_matvec};
+use crate::trisolve::{self, SolvePlan};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::perm::PermRef;
@@ -64,8 +68,17 @@ pub struct FactorStats {
     pub stored_l: usize,
     /// Bytes held by the factor: values, indices and the ordering.
     pub factor_bytes: usize,
+    /// Floating-point operations of the numeric factorization, sum over the
+    /// columns j of L of c_j^2 (c_j: nonzeros of column j, diagonal included;
+    /// the usual count of multiplies and adds of a sparse Cholesky).
+    pub flops: f64,
     /// Whether faer chose its supernodal (blocked) variant.
     pub supernodal: bool,
+    /// Subtree tasks of the parallel triangular solves (0: serial).
+    pub solve_tasks: usize,
+    /// Fraction of the factor's entries outside those subtrees (solved in
+    /// order, parallel only inside large supernodes).
+    pub solve_top_fraction: f64,
     /// Ordering + symbolic analysis time.
     pub symbolic_time: Duration,
     /// Of which the fill-reducing ordering.
@@ -78,6 +91,8 @@ pub struct FactorStats {
 #[derive(Debug, Clone)]
 pub struct SparseCholesky {
     symbolic: Arc<SymbolicCholesky<usize>>,
+    /// Task split of the supernodal solves (None: simplicial factor).
+    plan: Option<Arc<SolvePlan>>,
     values: Vec<f64>,
     stats: FactorStats,
 }
@@ -98,7 +113,7 @@ impl SparseCholesky {
         let t0 = Instant::now();
         let (symbolic, ordering_time) = analyze(a.symbolic(), opts.ordering)?;
         let times = (t0.elapsed(), ordering_time);
-        Self::numeric(Arc::new(symbolic), a, times, opts)
+        Self::numeric(analysed(symbolic), a, times, opts)
     }
 
     /// Factorizes K - sigma M (the shift-invert operator of the generalized problem).
@@ -113,7 +128,7 @@ impl SparseCholesky {
         let t0 = Instant::now();
         let (symbolic, ordering_time) = analyze(a.symbolic(), opts.ordering)?;
         let times = (t0.elapsed(), ordering_time);
-        Self::numeric(Arc::new(symbolic), a.as_ref(), times, opts)
+        Self::numeric(analysed(symbolic), a.as_ref(), times, opts)
     }
 
     /// Numeric factorization of a matrix with the same pattern as the one this
@@ -130,11 +145,12 @@ impl SparseCholesky {
             });
         }
         let times = (Duration::ZERO, Duration::ZERO);
-        Self::numeric(self.symbolic.clone(), a, times, opts)
+        let analysis = (self.symbolic.clone(), self.plan.clone());
+        Self::numeric(analysis, a, times, opts)
     }
 
     fn numeric(
-        symbolic: Arc<SymbolicCholesky<usize>>,
+        (symbolic, plan): Analysis,
         a: SparseColMatRef<'_, usize, f64>,
         (symbolic_time, ordering_time): (Duration, Duration),
         opts: &CholeskyOptions,
@@ -175,7 +191,7 @@ impl SparseCholesky {
             });
         }
         let numeric_time = t0.elapsed();
-        let (nnz_l, pivots) = pivots_and_nnz(&symbolic, &values);
+        let (nnz_l, flops, pivots) = pivots_and_counts(&symbolic, &values);
         let diag = diagonal(a);
         for (j, &p) in pivots.iter().enumerate() {
             let col = to_input(j);
@@ -189,13 +205,17 @@ impl SparseCholesky {
             nnz_l,
             stored_l: len,
             factor_bytes: factor_bytes(&symbolic, len),
+            flops,
             supernodal: matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
+            solve_tasks: plan.as_ref().map_or(0, |p| p.shape().0),
+            solve_top_fraction: plan.as_ref().map_or(1.0, |p| p.shape().1),
             symbolic_time,
             ordering_time,
             numeric_time,
         };
         Ok(Self {
             symbolic,
+            plan,
             values,
             stats,
         })
@@ -216,9 +236,9 @@ impl SparseCholesky {
         self.symbolic.perm().map(|p| p.arrays().0)
     }
 
-    /// Solves A X = B in place for all columns of `rhs`. Columns are solved in
-    /// blocks of 16 in parallel; each block is solved sequentially so the
-    /// result bits do not depend on the thread count.
+    /// Solves A X = B in place for all columns of `rhs`, in parallel over
+    /// subtrees of the elimination tree and groups of columns; the result
+    /// bits do not depend on the thread count.
     pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError> {
         if rhs.nrows() != self.n() {
             return Err(EigError::DimensionMismatch {
@@ -228,6 +248,24 @@ impl SparseCholesky {
                     self.n()
                 ),
             });
+        }
+        if let (Some(plan), SymbolicCholeskyRaw::Supernodal(symbolic)) =
+            (&self.plan, self.symbolic.raw())
+        {
+            let identity: Vec<usize>;
+            let inv = match self.symbolic.perm() {
+                Some(p) => p.arrays().1,
+                None => {
+                    identity = (0..self.n()).collect();
+                    &identity
+                }
+            };
+            let factor = trisolve::Factor {
+                symbolic,
+                values: &self.values,
+            };
+            trisolve::solve(plan, factor, inv, rhs);
+            return Ok(());
         }
         let mut blocks = Vec::new();
         let mut rest = rhs;
@@ -240,7 +278,7 @@ impl SparseCholesky {
         blocks.into_par_iter().try_for_each(|b| self.solve_block(b))
     }
 
-    /// Solves one block of columns sequentially.
+    /// Solves one block of columns sequentially with faer's solve.
     fn solve_block(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError> {
         let req = self
             .symbolic
@@ -264,18 +302,9 @@ impl SparseCholesky {
         Ok(x)
     }
 
-    /// Solves one column in place (sequential: used inside the Lanczos loop).
+    /// Solves one column in place.
     pub fn solve_col_in_place(&self, rhs: &mut Col<f64>) -> Result<(), EigError> {
-        if rhs.nrows() != self.n() {
-            return Err(EigError::DimensionMismatch {
-                what: format!(
-                    "right-hand side has {} rows, factor is {}",
-                    rhs.nrows(),
-                    self.n()
-                ),
-            });
-        }
-        self.solve_block(rhs.as_mat_mut())
+        self.solve_in_place(rhs.as_mat_mut())
     }
 
     /// Eq. (3): constraint modes X = -K_II^-1 K_IB for all boundary columns at
@@ -318,6 +347,17 @@ impl SparseCholesky {
         let err = (&y - &x).norm_l2() / x.norm_l2();
         Ok(err)
     }
+}
+
+/// A symbolic factorization and, if supernodal, the task split of its solves.
+type Analysis = (Arc<SymbolicCholesky<usize>>, Option<Arc<SolvePlan>>);
+
+fn analysed(symbolic: SymbolicCholesky<usize>) -> Analysis {
+    let plan = match symbolic.raw() {
+        SymbolicCholeskyRaw::Supernodal(s) => Some(Arc::new(SolvePlan::new(s))),
+        SymbolicCholeskyRaw::Simplicial(_) => None,
+    };
+    (Arc::new(symbolic), plan)
 }
 
 /// A zeroed n x m matrix, or an error instead of an abort when the memory is not there.
@@ -407,8 +447,9 @@ fn diagonal(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
         .collect()
 }
 
-/// Diagonal pivots L_jj (permuted order) and the true nonzero count of L.
-fn pivots_and_nnz(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize, Vec<f64>) {
+/// Diagonal pivots L_jj (permuted order), the true nonzero count of L and
+/// the flop count sum_j c_j^2 of the factorization.
+fn pivots_and_counts(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize, f64, Vec<f64>) {
     match symbolic.raw() {
         SymbolicCholeskyRaw::Simplicial(s) => {
             let cp = s.col_ptr();
@@ -421,7 +462,8 @@ fn pivots_and_nnz(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize,
                         .map_or(0.0, |p| values[p])
                 })
                 .collect();
-            (s.len_val(), piv)
+            let flops = (0..n).map(|j| ((cp[j + 1] - cp[j]) as f64).powi(2)).sum();
+            (s.len_val(), flops, piv)
         }
         SymbolicCholeskyRaw::Supernodal(s) => {
             let begin = s.supernode_begin();
@@ -430,6 +472,7 @@ fn pivots_and_nnz(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize,
             let nnz_per = s.nnz_per_super();
             let mut piv = Vec::with_capacity(s.nrows());
             let mut nnz = 0usize;
+            let mut flops = 0.0;
             for sn in 0..s.n_supernodes() {
                 let ncols = end[sn] - begin[sn];
                 let nrows = ncols + nnz_per[sn];
@@ -437,9 +480,10 @@ fn pivots_and_nnz(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize,
                 let block = &values[cpv[sn]..cpv[sn + 1]];
                 for c in 0..ncols {
                     piv.push(block[c * nrows + c]);
+                    flops += ((nrows - c) as f64).powi(2);
                 }
             }
-            (nnz, piv)
+            (nnz, flops, piv)
         }
     }
 }

@@ -28,6 +28,7 @@ pub mod model_problems;
 mod ordering;
 mod solver;
 mod sparse;
+mod trisolve;
 
 #[cfg(feature = "arpack")]
 mod arpack;
