@@ -164,8 +164,13 @@ fn main() {
         st.operator_time.as_secs_f64()
     );
     println!(
-        "  Sturm check (s)       {:8.2}",
-        st.sturm_time.as_secs_f64()
+        "  Sturm check (s)       {:8.2}{}",
+        st.sturm_time.as_secs_f64(),
+        if st.sturm_beside {
+            " (beside the iteration)"
+        } else {
+            ""
+        }
     );
     println!(
         "  iterations / rounds   {:>5} / {}",

@@ -28,7 +28,7 @@
 //! left (tiny problems), the caller falls back to single-vector Lanczos.
 
 use crate::EigError;
-use crate::lanczos::{LanczosOutcome, ShiftInvert, start_vector};
+use crate::lanczos::{LanczosOutcome, ShiftInvert, Watch, start_vector};
 use crate::sparse::{dot, inner, update_rows};
 use faer::reborrow::Reborrow;
 use faer::{Accum, Mat, Side};
@@ -64,9 +64,13 @@ const DEPENDENT: f64 = 1e-12;
 
 /// Runs the block method. `Ok(None)`: the basis cannot be extended by an
 /// independent vector (the problem is too small for this basis size).
+/// `watch` is told the Ritz values after every block step (from a basis of
+/// nwant + block vectors on) until it says it has seen enough, and at the end
+/// of every cycle.
 pub(crate) fn block_lanczos(
     op: &ShiftInvert<'_>,
     p: &BlockParams,
+    watch: Watch<'_>,
 ) -> Result<Option<LanczosOutcome>, EigError> {
     let n = op.n();
     let b = p.block;
@@ -104,6 +108,7 @@ pub(crate) fn block_lanczos(
     }
     let (mut size, mut top) = (0usize, b);
     let mut iterations = 0usize;
+    let mut watched = false;
     loop {
         iterations += 1;
         while top + b <= cap {
@@ -114,12 +119,17 @@ pub(crate) fn block_lanczos(
             };
             size = top;
             top += b;
+            if !watched && size >= p.nwant + b && top + b <= cap {
+                let (theta, s) = ritz_pairs(basis.t.submatrix(0, 0, size, size))?;
+                let (_, estimates) = residual_estimates(&basis.t, &theta, &s, size, b);
+                watched = watch(&theta, &estimates);
+            }
         }
         let (theta, s) = ritz_pairs(basis.t.submatrix(0, 0, size, size))?;
-        let coupling = basis.t.submatrix(size, 0, b, size) * s.as_ref();
-        let estimates: Vec<f64> = (0..size)
-            .map(|i| coupling.col(i).norm_l2() / theta[i].abs().max(f64::MIN_POSITIVE))
-            .collect();
+        let (coupling, estimates) = residual_estimates(&basis.t, &theta, &s, size, b);
+        if !watched {
+            watched = watch(&theta, &estimates);
+        }
         let nconv = (0..p.nwant).filter(|&i| estimates[i] <= p.tol).count();
         if nconv == p.nwant {
             let mut vectors = Mat::zeros(n, p.nwant);
@@ -153,6 +163,22 @@ pub(crate) fn block_lanczos(
         size = keep;
         top = keep + b;
     }
+}
+
+/// The coupling C S of the Ritz vectors to the next block and the residual
+/// estimates ||C s_i|| / |theta_i| = ||OP y_i - theta_i y_i||_M / |theta_i|.
+fn residual_estimates(
+    t: &Mat<f64>,
+    theta: &[f64],
+    s: &Mat<f64>,
+    size: usize,
+    b: usize,
+) -> (Mat<f64>, Vec<f64>) {
+    let coupling = t.submatrix(size, 0, b, size) * s.as_ref();
+    let estimates = (0..size)
+        .map(|i| coupling.col(i).norm_l2() / theta[i].abs().max(f64::MIN_POSITIVE))
+        .collect();
+    (coupling, estimates)
 }
 
 /// Eigenpairs of the projected matrix T, largest first. T is scaled to unit

@@ -93,6 +93,8 @@ pub struct SparseCholesky {
     symbolic: Arc<SymbolicCholesky<usize>>,
     /// Task split of the supernodal solves (None: simplicial factor).
     plan: Option<Arc<SolvePlan>>,
+    /// Hash of the factored matrix's pattern (see [`pattern_hash`]).
+    pattern: u64,
     values: Vec<f64>,
     stats: FactorStats,
 }
@@ -216,6 +218,7 @@ impl SparseCholesky {
         Ok(Self {
             symbolic,
             plan,
+            pattern: pattern_hash(a.symbolic()),
             values,
             stats,
         })
@@ -234,6 +237,20 @@ impl SparseCholesky {
     /// The fill-reducing permutation (`perm[new] = old`), if any.
     pub fn permutation(&self) -> Option<&[usize]> {
         self.symbolic.perm().map(|p| p.arrays().0)
+    }
+
+    /// This factor's symbolic analysis, if it is supernodal and was made for
+    /// a matrix with exactly the pattern `pattern` (then another matrix of
+    /// that pattern, e.g. K - b M for a Sturm count, can be factored with it).
+    pub(crate) fn supernodal_analysis_of(
+        &self,
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+    ) -> Option<&SymbolicCholesky<usize>> {
+        let supernodal = matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_));
+        let same = pattern.nrows() == self.n()
+            && pattern.compute_nnz() == self.stats.nnz_a
+            && pattern_hash(pattern) == self.pattern;
+        (supernodal && same).then_some(&*self.symbolic)
     }
 
     /// Solves A X = B in place for all columns of `rhs`, in parallel over
@@ -432,6 +449,21 @@ pub(crate) fn analyze_with(
     };
     factorize_symbolic_cholesky(pattern, Side::Lower, ordering, params)
         .map_err(|e| fail(format!("{e:?}")))
+}
+
+/// A 64-bit hash (FNV-1a over the column pointers and row indices) of a
+/// sparse pattern, to recognise the pattern a symbolic analysis was made for.
+fn pattern_hash(a: SymbolicSparseColMatRef<'_, usize>) -> u64 {
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    let mut eat = |v: usize| {
+        h = (h ^ v as u64).wrapping_mul(0x0000_0100_0000_01b3);
+    };
+    eat(a.nrows());
+    for j in 0..a.ncols() {
+        eat(usize::MAX);
+        a.row_idx_of_col(j).for_each(&mut eat);
+    }
+    h
 }
 
 /// Diagonal entries of a (summing duplicates).

@@ -16,6 +16,7 @@
 
 use crate::EigError;
 use crate::cholesky::SparseCholesky;
+use crate::constraint::ConstrainedFactor;
 use crate::sparse::{inner, project, subtract_combination, sym_matmul, sym_matvec, update_rows};
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::SparseColMatRef;
@@ -33,13 +34,16 @@ pub(crate) struct Locked {
     pub mx: Mat<f64>,
 }
 
-/// The shift-invert operator: a factor of K - sigma M, M itself, and
-/// optionally locked vectors to deflate.
+/// The shift-invert operator: a factor of K - sigma M, M itself, optionally
+/// constraints C x = 0 (the operator is then P (K - sigma M)^-1 M, see
+/// [`crate::constraint`]) and locked vectors to deflate.
 pub(crate) struct ShiftInvert<'a> {
     /// Mass matrix (both triangles stored).
     pub m: SparseColMatRef<'a, usize, f64>,
     /// Cholesky factor of K - sigma M.
     pub factor: &'a SparseCholesky,
+    /// Constraints on the eigenvectors, with the same factor.
+    pub constraint: Option<&'a ConstrainedFactor<'a>>,
     /// Vectors to deflate, if any.
     pub locked: Option<Locked>,
     /// Wall time spent in the triangular solves (accumulated).
@@ -54,7 +58,9 @@ impl ShiftInvert<'_> {
 
     /// Dimension of the space the deflated operator acts on.
     pub fn dim(&self) -> usize {
-        self.n() - self.locked.as_ref().map_or(0, |l| l.x.ncols())
+        let locked = self.locked.as_ref().map_or(0, |l| l.x.ncols());
+        let constrained = self.constraint.map_or(0, |c| c.constraints().len());
+        self.n().saturating_sub(locked + constrained)
     }
 
     /// y = M x.
@@ -70,13 +76,7 @@ impl ShiftInvert<'_> {
         let t0 = Instant::now();
         self.factor.solve_col_in_place(&mut y)?;
         self.solve_time.set(self.solve_time.get() + t0.elapsed());
-        if let Some(l) = &self.locked {
-            // Twice: one pass leaves rounding-level components along X.
-            for _ in 0..2 {
-                let h = project(l.mx.as_ref(), y.as_ref());
-                subtract_combination(y.as_mut(), l.x.as_ref(), &h);
-            }
-        }
+        self.deflate(y.as_mat_mut());
         Ok(y)
     }
 
@@ -94,9 +94,12 @@ impl ShiftInvert<'_> {
         Ok(y)
     }
 
-    /// Y <- P Y = Y - X (M X)^T Y (twice: one pass leaves rounding-level
-    /// components along the locked vectors X).
+    /// Y <- P Y: into null(C) if constrained, then Y - X (M X)^T Y (twice:
+    /// one pass leaves rounding-level components along the locked vectors X).
     pub fn deflate(&self, mut y: MatMut<'_, f64>) {
+        if let Some(c) = self.constraint {
+            c.project(y.rb_mut());
+        }
         if let Some(l) = &self.locked {
             for _ in 0..2 {
                 let h = inner(l.mx.as_ref(), y.rb());
@@ -105,6 +108,10 @@ impl ShiftInvert<'_> {
         }
     }
 }
+
+/// Told the Ritz values theta (descending) and their residual estimates
+/// whenever a Lanczos method has them; returns true once it wants no more.
+pub(crate) type Watch<'w> = &'w mut dyn FnMut(&[f64], &[f64]) -> bool;
 
 /// Parameters of one Lanczos run.
 #[derive(Debug, Clone, Copy)]
@@ -237,6 +244,7 @@ fn fresh_direction(
 pub(crate) fn thick_restart_lanczos(
     op: &ShiftInvert<'_>,
     p: &LanczosParams,
+    watch: Watch<'_>,
 ) -> Result<LanczosOutcome, EigError> {
     let n = op.n();
     let m = p.ncv;
@@ -265,6 +273,7 @@ pub(crate) fn thick_restart_lanczos(
     basis.mv.col_mut(0).copy_from(&mv0);
     let mut k = 0usize;
     let mut iterations = 0usize;
+    let mut watched = false;
     loop {
         iterations += 1;
         let (size, beta) = expand(op, &mut basis, k, m, &mut seed, &mut applications)?;
@@ -273,6 +282,9 @@ pub(crate) fn thick_restart_lanczos(
             .map(|i| (beta * s[(size - 1, i)]).abs() / theta[i].abs().max(f64::MIN_POSITIVE))
             .collect();
         let wanted = p.nwant.min(size);
+        if !watched {
+            watched = watch(&theta, &estimates);
+        }
         let converged = |i: usize| estimates[i] <= p.tol;
         let nconv = (0..wanted).filter(|&i| converged(i)).count();
         if nconv == p.nwant {

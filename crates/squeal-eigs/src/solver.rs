@@ -6,11 +6,13 @@
 use crate::EigError;
 use crate::block::{BlockParams, block_lanczos};
 use crate::cholesky::{CholeskyOptions, FactorStats, SparseCholesky};
+use crate::constraint::{ConstrainedFactor, Constraints};
 use crate::inertia::count_below_unchecked;
-use crate::lanczos::{LanczosParams, Locked, ShiftInvert, thick_restart_lanczos};
+use crate::lanczos::{LanczosParams, Locked, ShiftInvert, Watch, thick_restart_lanczos};
 use crate::sparse::{check_pair, dot, norm1, sym_matmul, sym_matvec};
 use faer::sparse::SparseColMatRef;
 use faer::{Col, Mat, Par};
+use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
 /// Which eigensolver runs the shift-invert iteration.
@@ -106,8 +108,13 @@ pub struct EigStats {
     pub solve_time: Duration,
     /// Sturm bound and the count of eigenvalues below it, if checked.
     pub sturm: Option<(f64, usize)>,
-    /// Time of the Sturm check.
+    /// Time of the Sturm check (its LBL^T factorization and count), whether
+    /// it ran beside the iteration or after it.
     pub sturm_time: Duration,
+    /// Whether the Sturm check ran beside the iteration (its bound chosen
+    /// from Ritz values converged early enough), so that its time is not
+    /// part of [`EigStats::solve_time`] on a machine with a core to spare.
+    pub sturm_beside: bool,
     /// Of the iteration time, the triangular solves with the factor (the
     /// rest is orthogonalization, products with M, restarts).
     pub operator_time: Duration,
@@ -147,7 +154,7 @@ pub fn lowest_modes(
         ..Default::default()
     };
     let factor = SparseCholesky::factorize_shifted(k, m, opts.shift, &chol)?;
-    let mut modes = solve_checked(k, m, &factor, nev, opts)?;
+    let mut modes = solve_checked(k, m, &factor, None, nev, opts)?;
     modes.stats.factor = Some(factor.stats());
     modes.stats.time = t0.elapsed();
     Ok(modes)
@@ -164,11 +171,39 @@ pub fn lowest_modes_with_factor(
     nev: usize,
     opts: &EigOptions,
 ) -> Result<Modes, EigError> {
+    with_factor(k, m, factor, None, nev, opts)
+}
+
+/// The `nev` lowest eigenpairs of K phi = w^2 M phi + C^T mu with C phi = 0
+/// (see [`ConstrainedFactor`]), by shift-invert about `opts.shift` with the
+/// constrained operator of `constrained`, made from a Cholesky factor of
+/// K - opts.shift * M. The Sturm check counts the constrained eigenvalues;
+/// [`Modes::residuals`] are backward errors of the residuals with the
+/// constraint forces C^T mu removed (least squares).
+pub fn lowest_modes_constrained(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    constrained: &ConstrainedFactor<'_>,
+    nev: usize,
+    opts: &EigOptions,
+) -> Result<Modes, EigError> {
+    with_factor(k, m, constrained.factor(), Some(constrained), nev, opts)
+}
+
+/// Checks, then [`solve_checked`] with a factor given by the caller.
+fn with_factor(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    factor: &SparseCholesky,
+    constrained: Option<&ConstrainedFactor<'_>>,
+    nev: usize,
+    opts: &EigOptions,
+) -> Result<Modes, EigError> {
     let t0 = Instant::now();
     check_pair(k, m)?;
     check_options(opts)?;
     check_factor(k, m, factor, opts.shift)?;
-    let mut modes = solve_checked(k, m, factor, nev, opts)?;
+    let mut modes = solve_checked(k, m, factor, constrained, nev, opts)?;
     modes.stats.time = t0.elapsed();
     Ok(modes)
 }
@@ -225,50 +260,98 @@ fn check_factor(
     }
 }
 
-/// Runs the backend, post-processes and Sturm-checks.
+/// A Sturm count made beside the iteration: its bound, the count (or the
+/// error), and its time.
+type EarlyCount = (f64, Result<usize, EigError>, Duration);
+
+/// Runs the backend, post-processes and Sturm-checks. The Sturm count runs
+/// beside the iteration as soon as the Ritz values place its bound (see
+/// [`early_bound`]); if the converged values then leave the bound in a gap
+/// with at least `nev` values below it, the count checks them, else a count
+/// at a bound from the converged values follows the iteration.
 fn solve_checked(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
     factor: &SparseCholesky,
+    constrained: Option<&ConstrainedFactor<'_>>,
     nev: usize,
     opts: &EigOptions,
 ) -> Result<Modes, EigError> {
     let n = k.nrows();
-    if nev == 0 || nev > n {
+    let constraints = constrained.map(ConstrainedFactor::constraints);
+    let dim = n.saturating_sub(constraints.map_or(0, Constraints::len));
+    if nev == 0 || nev > dim {
         return Err(EigError::TooManyRequested {
             requested: nev,
-            available: n,
+            available: dim,
         });
     }
-    let nwant = nev.saturating_add(opts.guard).min(n);
+    let nwant = nev.saturating_add(opts.guard).min(dim);
     let ncv = match opts.ncv {
-        Some(c) => c.min(n),
-        None => default_ncv(nwant, opts).min(n),
+        Some(c) => c.min(dim),
+        None => default_ncv(nwant, opts).min(dim),
     };
-    if ncv < nwant || (ncv == nwant && ncv < n) {
+    if ncv < nwant || (ncv == nwant && ncv < dim) {
         return Err(EigError::InvalidOption {
-            what: format!("ncv {ncv} must exceed nev + guard = {nwant} (or equal n = {n})"),
+            what: format!("ncv {ncv} must exceed nev + guard = {nwant} (or equal {dim})"),
         });
     }
     let t0 = Instant::now();
     let mut op = ShiftInvert {
         m,
         factor,
+        constraint: constrained,
         locked: None,
         solve_time: Default::default(),
     };
-    let raw = run_backend(&op, nwant, ncv, opts)?;
+    let early: Mutex<Option<EarlyCount>> = Mutex::new(None);
+    let raw = rayon::in_place_scope(|scope| {
+        let mut started = !opts.sturm_check;
+        let early = &early;
+        let mut watch = |theta: &[f64], estimates: &[f64]| {
+            if started {
+                return true;
+            }
+            if let Some(bound) = early_bound(theta, estimates, nev, opts.shift) {
+                started = true;
+                scope.spawn(move |_| {
+                    let t = Instant::now();
+                    let count =
+                        count_below_unchecked(k, m, bound, opts.par, Some(factor), constraints);
+                    let done = (bound, count, t.elapsed());
+                    *early.lock().unwrap_or_else(PoisonError::into_inner) = Some(done);
+                });
+            }
+            started
+        };
+        run_backend(&op, nwant, ncv, opts, &mut watch)
+    });
+    let raw = raw?;
     let block = raw.block;
     let (mut iterations, mut applications) = (raw.iterations, raw.applications);
     let (mut values, mut vectors) = normalize(m, raw.values, raw.vectors);
     let mut sturm = None;
     let mut sturm_time = Duration::ZERO;
+    let mut sturm_beside = false;
     let mut rounds = 1;
+    let mut pending = early.into_inner().unwrap_or_else(PoisonError::into_inner);
     if opts.sturm_check {
         loop {
-            let t1 = Instant::now();
-            let checked = sturm_check_unchecked(k, m, &values, nev, opts.par, factor.permutation());
-            sturm_time += t1.elapsed();
+            let checked = match pending.take() {
+                Some((bound, count, time)) if separated(bound, &values, nev) => {
+                    sturm_time += time;
+                    sturm_beside = true;
+                    count.and_then(|c| compare_count(bound, c, &values))
+                }
+                _ => {
+                    let t1 = Instant::now();
+                    let (bound, _) = sturm_bound(&values, nev);
+                    let count =
+                        count_below_unchecked(k, m, bound, opts.par, Some(factor), constraints);
+                    sturm_time += t1.elapsed();
+                    count.and_then(|c| compare_count(bound, c, &values))
+                }
+            };
             match checked {
                 Ok(found) => {
                     sturm = Some(found);
@@ -280,7 +363,7 @@ fn solve_checked(
                     // Lock what was found and look for the missing ones
                     // (typically further copies of a multiple eigenvalue).
                     rounds += 1;
-                    let dim = n - vectors.ncols();
+                    let dim = dim - vectors.ncols();
                     let more = (expected - found).saturating_add(opts.guard).min(dim);
                     let ncv_more = (2 * more + 1).max(20).min(dim);
                     if more == 0 || (more == ncv_more && ncv_more < dim) {
@@ -294,7 +377,7 @@ fn solve_checked(
                         x: vectors.clone(),
                         mx: m * &vectors,
                     });
-                    let extra = run_backend(&op, more, ncv_more, opts)?;
+                    let extra = run_backend(&op, more, ncv_more, opts, &mut |_, _| true)?;
                     iterations += extra.iterations;
                     applications += extra.applications;
                     let (v2, x2) = normalize(m, extra.values, extra.vectors);
@@ -305,7 +388,7 @@ fn solve_checked(
         }
     }
     let solve_time = t0.elapsed();
-    let residuals = backward_errors(k, m, &values, &vectors);
+    let residuals = residuals(k, m, constraints, &values, &vectors)?;
     // Tolerance: the backward error is about tol times sqrt(cond(M)) (M-norm
     // to 2-norm); 1e4 tol leaves room for cond(M) up to 1e8 before a pair
     // that the solver called converged is rejected as not converged.
@@ -332,6 +415,7 @@ fn solve_checked(
         solve_time,
         sturm,
         sturm_time,
+        sturm_beside,
         operator_time: op.solve_time.get(),
         ..Default::default()
     };
@@ -341,6 +425,62 @@ fn solve_checked(
         residuals: residuals[..nev].to_vec(),
         stats,
     })
+}
+
+/// Largest residual estimate of a Ritz pair trusted to place the Sturm
+/// bound beside the iteration: its Ritz value is then accurate to about the
+/// square of it, far inside the gap of [`SAME_EIGENVALUE`] the bound needs.
+const EARLY_ESTIMATE: f64 = 1e-6;
+
+/// A Sturm bound from Ritz values theta (descending, of OP = (K - sigma
+/// M)^-1 M) during the iteration: the bound [`sturm_bound`] places in the
+/// eigenvalues lambda = sigma + 1 / theta, if it falls in a gap between two
+/// Ritz values and every Ritz pair up to the first above it has a residual
+/// estimate of at most [`EARLY_ESTIMATE`].
+fn early_bound(theta: &[f64], estimates: &[f64], nev: usize, shift: f64) -> Option<f64> {
+    let count = theta.iter().take_while(|&&t| t > 0.0).count();
+    let lambda: Vec<f64> = theta[..count].iter().map(|t| shift + 1.0 / t).collect();
+    if lambda.len() <= nev {
+        return None;
+    }
+    let (bound, below) = sturm_bound(&lambda, nev);
+    let accurate = estimates
+        .get(..=below)?
+        .iter()
+        .all(|&e| e <= EARLY_ESTIMATE);
+    (below < lambda.len() && accurate).then_some(bound)
+}
+
+/// Whether a Sturm bound chosen during the iteration checks the converged
+/// `values` (ascending): at least `nev` of them below it and none within
+/// [`SAME_EIGENVALUE`] of it (on the scale of [`sturm_bound`]).
+fn separated(bound: f64, values: &[f64], nev: usize) -> bool {
+    let vmax = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let below = values.iter().filter(|&&v| v < bound).count();
+    let clear = values.iter().all(|&v| {
+        let scale = v
+            .abs()
+            .max(bound.abs())
+            .max(1e-3 * vmax)
+            .max(f64::MIN_POSITIVE);
+        (v - bound).abs() > 0.5 * SAME_EIGENVALUE * scale
+    });
+    below >= nev && clear
+}
+
+/// The Sturm check's verdict: `count` eigenvalues lie below `bound`; the
+/// computed `values` must have as many there.
+fn compare_count(bound: f64, count: usize, values: &[f64]) -> Result<(f64, usize), EigError> {
+    let found = values.iter().filter(|&&v| v < bound).count();
+    if count == found {
+        Ok((bound, count))
+    } else {
+        Err(EigError::MissedEigenvalues {
+            bound,
+            expected: count,
+            found,
+        })
+    }
 }
 
 /// Default basis size: max(2 nwant + 1, 20) for single-vector Lanczos and
@@ -366,9 +506,10 @@ fn run_backend(
     nwant: usize,
     ncv: usize,
     opts: &EigOptions,
+    watch: Watch<'_>,
 ) -> Result<RawModes, EigError> {
     match opts.backend {
-        Backend::Lanczos => run_lanczos(op, nwant, ncv, opts),
+        Backend::Lanczos => run_lanczos(op, nwant, ncv, opts, watch),
         Backend::Arpack => run_arpack(op, nwant, ncv, opts),
     }
 }
@@ -402,6 +543,7 @@ fn run_lanczos(
     nwant: usize,
     ncv: usize,
     opts: &EigOptions,
+    watch: Watch<'_>,
 ) -> Result<RawModes, EigError> {
     let block = opts.block_size.min(ncv.saturating_sub(nwant));
     let mut blocked = None;
@@ -414,7 +556,7 @@ fn run_lanczos(
             max_iter: opts.max_iter,
             seed: opts.seed,
         };
-        blocked = block_lanczos(op, &params)?;
+        blocked = block_lanczos(op, &params, &mut *watch)?;
     }
     let (out, block) = match blocked {
         Some(out) => (out, block),
@@ -426,7 +568,7 @@ fn run_lanczos(
                 max_iter: opts.max_iter,
                 seed: opts.seed,
             };
-            (thick_restart_lanczos(op, &params)?, 1)
+            (thick_restart_lanczos(op, &params, watch)?, 1)
         }
     };
     Ok(RawModes {
@@ -488,6 +630,19 @@ pub fn backward_errors(
     values: &[f64],
     vectors: &Mat<f64>,
 ) -> Vec<f64> {
+    // Without constraints nothing can fail.
+    residuals(k, m, None, values, vectors).unwrap_or_default()
+}
+
+/// [`backward_errors`], with the constraint forces C^T mu taken out of each
+/// residual first (least squares) when there are constraints.
+fn residuals(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    constraints: Option<&Constraints>,
+    values: &[f64],
+    vectors: &Mat<f64>,
+) -> Result<Vec<f64>, EigError> {
     let (nk, nm) = (norm1(k), norm1(m));
     let mut out = Vec::with_capacity(values.len());
     for start in (0..values.len()).step_by(8) {
@@ -495,13 +650,18 @@ pub fn backward_errors(
         let x = vectors.subcols(start, cols);
         let kx = sym_matmul(k, x);
         let mx = sym_matmul(m, x);
+        let mut r = Mat::from_fn(x.nrows(), cols, |i, c| {
+            kx[(i, c)] - values[start + c] * mx[(i, c)]
+        });
+        if let Some(c) = constraints {
+            c.remove_forces(r.as_mut())?;
+        }
         for c in 0..cols {
             let lam = values[start + c];
-            let r = kx.col(c) - lam * mx.col(c);
-            out.push(r.norm_l2() / ((nk + lam.abs() * nm) * x.col(c).norm_l2()));
+            out.push(r.col(c).norm_l2() / ((nk + lam.abs() * nm) * x.col(c).norm_l2()));
         }
     }
-    out
+    Ok(out)
 }
 
 /// Sturm check of computed eigenvalues `values` (ascending, all of them
@@ -523,27 +683,10 @@ pub fn sturm_check(
     }
     let mut sorted = values.to_vec();
     sorted.sort_by(f64::total_cmp);
-    sturm_check_unchecked(k, m, &sorted, nev, faer::get_global_parallelism(), None)
-}
-
-fn sturm_check_unchecked(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    values: &[f64],
-    nev: usize,
-    par: Par,
-    perm: Option<&[usize]>,
-) -> Result<(f64, usize), EigError> {
-    let (bound, found) = sturm_bound(values, nev);
-    let expected = count_below_unchecked(k, m, bound, par, perm)?;
-    if expected != found {
-        return Err(EigError::MissedEigenvalues {
-            bound,
-            expected,
-            found,
-        });
-    }
-    Ok((bound, expected))
+    let (bound, _) = sturm_bound(&sorted, nev);
+    let par = faer::get_global_parallelism();
+    let count = count_below_unchecked(k, m, bound, par, None, None)?;
+    compare_count(bound, count, &sorted)
 }
 
 /// Relative separation below which two computed eigenvalues are taken as

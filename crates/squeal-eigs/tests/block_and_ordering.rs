@@ -190,3 +190,19 @@ fn sturm_count_with_nested_dissection_matches_closed_form() {
         assert_eq!(count_below(p.k.as_ref(), p.m.as_ref(), bound).unwrap(), j);
     }
 }
+
+#[test]
+fn sturm_check_beside_the_iteration_counts_what_a_check_after_it_counts() {
+    let p = box_vector([8, 7, 6], [1.0, 0.8, 0.6]);
+    let nev = 40;
+    let modes = lowest_modes(p.k.as_ref(), p.m.as_ref(), nev, &block_opts(8)).unwrap();
+    // The bound came from Ritz values during the iteration.
+    assert!(modes.stats.sturm_beside);
+    let (bound, count) = modes.stats.sturm.unwrap();
+    assert!(bound > modes.values[nev - 1] && count >= nev);
+    // Exact: the same inertia counted by the public entry point.
+    assert_eq!(
+        count_below(p.k.as_ref(), p.m.as_ref(), bound).unwrap(),
+        count
+    );
+}
