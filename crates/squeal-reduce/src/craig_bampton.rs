@@ -212,6 +212,8 @@ pub struct ReduceReport {
     pub nnz_factor: usize,
     /// Bytes held by that factor.
     pub factor_bytes: usize,
+    /// The whole of the factor's statistics (fill, flops, times, the split of its solves).
+    pub factor: squeal_eigs::FactorStats,
     pub timings: Vec<(Stage, Duration)>,
     pub eig: squeal_eigs::EigStats,
     /// Sturm check of the kept modes: the bound `ω²` and the number of eigenvalues of the
@@ -367,6 +369,7 @@ pub fn reduce_part(
         nnz_k: system.nnz_k(),
         nnz_factor: factor.stats().nnz_l,
         factor_bytes: factor.stats().factor_bytes,
+        factor: factor.stats(),
         timings,
         eig: modes.stats,
         sturm: modes.sturm,
