@@ -28,16 +28,21 @@
 //! left (tiny problems), the caller falls back to single-vector Lanczos.
 
 use crate::EigError;
-use crate::lanczos::{LanczosOutcome, ShiftInvert, Watch, start_vector};
-use crate::sparse::{dot, inner, update_rows};
+use crate::lanczos::{
+    LanczosOutcome, ShiftInvert, Watch, add_time, converged_count, not_converged, start_vector,
+};
+use crate::sparse::{combination, dot, inner, update_rows};
 use faer::reborrow::Reborrow;
 use faer::{Accum, Mat, Side};
+use std::time::Instant;
 
 /// Parameters of one block Lanczos run.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct BlockParams {
     /// Eigenpairs wanted (largest theta).
     pub nwant: usize,
+    /// Of which the first are wanted to `tol`, the others are guards.
+    pub nsharp: usize,
     /// Basis size at which a restart happens (nwant + block <= ncv).
     pub ncv: usize,
     /// Vectors per block.
@@ -107,61 +112,79 @@ pub(crate) fn block_lanczos(
         return Ok(None);
     }
     let (mut size, mut top) = (0usize, b);
-    let mut iterations = 0usize;
+    // Restart cycles, the current one included.
+    let mut iterations = 1usize;
     let mut watched = false;
     loop {
-        iterations += 1;
-        while top + b <= cap {
-            let w = op.solve_block(basis.m_last.as_ref())?;
-            applications += b;
-            let Some(()) = expand(op, &mut basis, size, top, w, &mut seed)? else {
-                return Ok(None);
-            };
-            size = top;
-            top += b;
-            if !watched && size >= p.nwant + b && top + b <= cap {
-                let (theta, s) = ritz_pairs(basis.t.submatrix(0, 0, size, size))?;
-                let (_, estimates) = residual_estimates(&basis.t, &theta, &s, size, b);
-                watched = watch(&theta, &estimates);
-            }
+        let w = op.solve_block(basis.m_last.as_ref())?;
+        applications += b;
+        let Some(()) = expand(op, &mut basis, size, top, w, &mut seed)? else {
+            return Ok(None);
+        };
+        size = top;
+        top += b;
+        let full = top + b > cap;
+        if size < p.nwant + b && !full {
+            continue;
         }
+        // Ritz pairs after every block step (converged ones end the expansion early) and
+        // at the end of a cycle.
+        let t0 = Instant::now();
         let (theta, s) = ritz_pairs(basis.t.submatrix(0, 0, size, size))?;
         let (coupling, estimates) = residual_estimates(&basis.t, &theta, &s, size, b);
+        add_time(&op.ritz_time, t0);
         if !watched {
             watched = watch(&theta, &estimates);
         }
-        let nconv = (0..p.nwant).filter(|&i| estimates[i] <= p.tol).count();
+        let nconv = converged(&estimates, p);
         if nconv == p.nwant {
-            let mut vectors = Mat::zeros(n, p.nwant);
-            update_rows(
-                vectors.as_mut(),
-                basis.v.subcols(0, size),
-                s.subcols(0, p.nwant),
-                Accum::Replace,
-                1.0,
-            );
+            let out = outcome(&basis, &theta, &s, size, p.nwant);
             return Ok(Some(LanczosOutcome {
-                theta: theta[..p.nwant].to_vec(),
-                vectors,
                 iterations,
                 applications,
+                ..out
             }));
         }
-        if iterations >= p.max_iter {
-            let residuals = estimates[..p.nwant].to_vec();
-            let worst = residuals.iter().copied().fold(0.0, f64::max);
-            return Err(EigError::NotConverged {
-                converged: nconv,
-                requested: p.nwant,
-                iterations,
-                residuals,
-                worst,
-            });
+        if !full {
+            continue;
         }
+        if iterations >= p.max_iter {
+            return Err(not_converged(
+                &estimates[..p.nwant],
+                p.nwant,
+                nconv,
+                iterations,
+            ));
+        }
+        iterations += 1;
         let keep = (p.nwant + nconv.min((size - p.nwant) / 2)).clamp(1, cap - 2 * b);
+        let t0 = Instant::now();
         restart(&mut basis, &s, &theta, &coupling, size, keep, b);
+        add_time(&op.ritz_time, t0);
         size = keep;
         top = keep + b;
+    }
+}
+
+/// Wanted Ritz pairs whose residual estimate meets the tolerance.
+fn converged(estimates: &[f64], p: &BlockParams) -> usize {
+    converged_count(estimates, p.nsharp, p.nwant, p.tol)
+}
+
+/// The `nwant` Ritz pairs y = V s of a basis of `size` vectors (the counts
+/// left at zero).
+fn outcome(
+    basis: &Basis,
+    theta: &[f64],
+    s: &Mat<f64>,
+    size: usize,
+    nwant: usize,
+) -> LanczosOutcome {
+    LanczosOutcome {
+        theta: theta[..nwant].to_vec(),
+        vectors: combination(basis.v.subcols(0, size), s.subcols(0, nwant)),
+        iterations: 0,
+        applications: 0,
     }
 }
 
@@ -372,16 +395,8 @@ fn restart(
     keep: usize,
     b: usize,
 ) {
-    let n = basis.v.nrows();
-    let mut tmp = Mat::zeros(n, keep);
-    update_rows(
-        tmp.as_mut(),
-        basis.v.subcols(0, size),
-        s.subcols(0, keep),
-        Accum::Replace,
-        1.0,
-    );
-    basis.v.subcols_mut(0, keep).copy_from(&tmp);
+    let kept = combination(basis.v.subcols(0, size), s.subcols(0, keep));
+    basis.v.subcols_mut(0, keep).copy_from(&kept);
     // The next block (M of it stays in m_last) moves down.
     let next = basis.v.subcols(size, b).to_owned();
     basis.v.subcols_mut(keep, b).copy_from(&next);

@@ -11,7 +11,7 @@ use squeal_eigs::{
 };
 
 mod common;
-use common::{orthonormality_error, rel};
+use common::{in_pool, orthonormality_error, rel};
 
 fn block_opts(block_size: usize) -> EigOptions {
     EigOptions {
@@ -150,16 +150,7 @@ fn nested_dissection_fills_less_than_amd_and_solves_the_same() {
 fn nested_dissection_and_factor_do_not_depend_on_the_thread_count() {
     let p = box_vector([12, 12, 11], [1.0, 1.0, 0.9]);
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
-            let par = if threads == 1 {
-                faer::Par::Seq
-            } else {
-                faer::Par::rayon(threads)
-            };
+        in_pool(threads, |par| {
             let opts = CholeskyOptions {
                 par,
                 ..Default::default()

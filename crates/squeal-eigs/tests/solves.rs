@@ -6,6 +6,9 @@ use faer::sparse::SparseColMatRef;
 use squeal_eigs::model_problems::box_vector;
 use squeal_eigs::{CholeskyOptions, FillOrdering, SparseCholesky};
 
+mod common;
+use common::in_pool;
+
 /// Normwise backward error max_j ||A x_j - b_j|| / (||A||_1 ||x_j|| + ||b_j||).
 fn backward_error(a: SparseColMatRef<'_, usize, f64>, x: &Mat<f64>, b: &Mat<f64>) -> f64 {
     let norm_a = (0..a.ncols())
@@ -19,14 +22,6 @@ fn backward_error(a: SparseColMatRef<'_, usize, f64>, x: &Mat<f64>, b: &Mat<f64>
 
 fn rhs(n: usize, cols: usize) -> Mat<f64> {
     Mat::from_fn(n, cols, |i, j| ((i * 31 + j * 17) % 23) as f64 - 11.0)
-}
-
-fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(f)
 }
 
 #[test]
@@ -45,7 +40,7 @@ fn supernodal_solves_are_thread_count_independent_and_backward_stable() {
         let b = rhs(n, cols);
         let x: Vec<Mat<f64>> = [1, 2, 3]
             .into_iter()
-            .map(|t| in_pool(t, || f.solve(b.as_ref()).unwrap()))
+            .map(|t| in_pool(t, |_| f.solve(b.as_ref()).unwrap()))
             .collect();
         // Exact: the split into subtrees and row chunks does not depend on the pool.
         assert!(x[0] == x[1] && x[1] == x[2], "{cols} columns differ");
