@@ -87,14 +87,65 @@ pub struct FactorStats {
     pub numeric_time: Duration,
 }
 
-/// A sparse Cholesky factor of a symmetric positive definite matrix.
+/// The symbolic side of a Cholesky factor: fill-reducing ordering,
+/// supernodes, the task split of its solves and the pattern it was made
+/// for. It outlives the factor's values ([`SparseCholesky::into_analysis`]),
+/// so that another matrix of the same pattern (a refactorization, the LBL^T
+/// of a Sturm count) can be factored without a new analysis.
 #[derive(Debug, Clone)]
-pub struct SparseCholesky {
+pub struct FactorAnalysis {
     symbolic: Arc<SymbolicCholesky<usize>>,
     /// Task split of the supernodal solves (None: simplicial factor).
     plan: Option<Arc<SolvePlan>>,
     /// Hash of the factored matrix's pattern (see [`pattern_hash`]).
     pattern: u64,
+    n: usize,
+    nnz_a: usize,
+}
+
+impl FactorAnalysis {
+    /// The fill-reducing permutation (`perm[new] = old`), if any.
+    pub fn permutation(&self) -> Option<&[usize]> {
+        self.symbolic.perm().map(|p| p.arrays().0)
+    }
+
+    /// Numeric factorization of a matrix with the analysed pattern.
+    pub fn factorize(
+        &self,
+        a: SparseColMatRef<'_, usize, f64>,
+        opts: &CholeskyOptions,
+    ) -> Result<SparseCholesky, EigError> {
+        check_symmetric(a, "A")?;
+        if a.nrows() != self.n || a.compute_nnz() != self.nnz_a {
+            return Err(EigError::DimensionMismatch {
+                what: "refactorize: pattern differs from the analysed one".into(),
+            });
+        }
+        let times = (Duration::ZERO, Duration::ZERO);
+        let analysis = (self.symbolic.clone(), self.plan.clone());
+        SparseCholesky::numeric(analysis, a, times, opts)
+    }
+
+    /// The supernodal symbolic analysis, if it is supernodal and was made
+    /// for a matrix with exactly the pattern `pattern` (then another matrix
+    /// of that pattern, e.g. K - b M for a Sturm count, can be factored with
+    /// it).
+    pub(crate) fn supernodal_analysis_of(
+        &self,
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+    ) -> Option<&SymbolicCholesky<usize>> {
+        let supernodal = matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_));
+        let same = pattern.nrows() == self.n
+            && pattern.compute_nnz() == self.nnz_a
+            && pattern_hash(pattern) == self.pattern;
+        (supernodal && same).then_some(&*self.symbolic)
+    }
+}
+
+/// A sparse Cholesky factor of a symmetric positive definite matrix.
+#[derive(Debug, Clone)]
+pub struct SparseCholesky {
+    analysis: FactorAnalysis,
     values: Vec<f64>,
     stats: FactorStats,
 }
@@ -140,15 +191,17 @@ impl SparseCholesky {
         a: SparseColMatRef<'_, usize, f64>,
         opts: &CholeskyOptions,
     ) -> Result<Self, EigError> {
-        check_symmetric(a, "A")?;
-        if a.nrows() != self.stats.n || a.compute_nnz() != self.stats.nnz_a {
-            return Err(EigError::DimensionMismatch {
-                what: "refactorize: pattern differs from the analysed one".into(),
-            });
-        }
-        let times = (Duration::ZERO, Duration::ZERO);
-        let analysis = (self.symbolic.clone(), self.plan.clone());
-        Self::numeric(analysis, a, times, opts)
+        self.analysis.factorize(a, opts)
+    }
+
+    /// The symbolic analysis.
+    pub fn analysis(&self) -> &FactorAnalysis {
+        &self.analysis
+    }
+
+    /// The symbolic analysis, the factor's values freed.
+    pub fn into_analysis(self) -> FactorAnalysis {
+        self.analysis
     }
 
     fn numeric(
@@ -215,10 +268,15 @@ impl SparseCholesky {
             ordering_time,
             numeric_time,
         };
-        Ok(Self {
+        let analysis = FactorAnalysis {
             symbolic,
             plan,
             pattern: pattern_hash(a.symbolic()),
+            n: stats.n,
+            nnz_a: stats.nnz_a,
+        };
+        Ok(Self {
+            analysis,
             values,
             stats,
         })
@@ -236,21 +294,7 @@ impl SparseCholesky {
 
     /// The fill-reducing permutation (`perm[new] = old`), if any.
     pub fn permutation(&self) -> Option<&[usize]> {
-        self.symbolic.perm().map(|p| p.arrays().0)
-    }
-
-    /// This factor's symbolic analysis, if it is supernodal and was made for
-    /// a matrix with exactly the pattern `pattern` (then another matrix of
-    /// that pattern, e.g. K - b M for a Sturm count, can be factored with it).
-    pub(crate) fn supernodal_analysis_of(
-        &self,
-        pattern: SymbolicSparseColMatRef<'_, usize>,
-    ) -> Option<&SymbolicCholesky<usize>> {
-        let supernodal = matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_));
-        let same = pattern.nrows() == self.n()
-            && pattern.compute_nnz() == self.stats.nnz_a
-            && pattern_hash(pattern) == self.pattern;
-        (supernodal && same).then_some(&*self.symbolic)
+        self.analysis.permutation()
     }
 
     /// Solves A X = B in place for all columns of `rhs`, in parallel over
@@ -266,11 +310,11 @@ impl SparseCholesky {
                 ),
             });
         }
-        if let (Some(plan), SymbolicCholeskyRaw::Supernodal(symbolic)) =
-            (&self.plan, self.symbolic.raw())
+        let a = &self.analysis;
+        if let (Some(plan), SymbolicCholeskyRaw::Supernodal(symbolic)) = (&a.plan, a.symbolic.raw())
         {
             let identity: Vec<usize>;
-            let inv = match self.symbolic.perm() {
+            let inv = match a.symbolic.perm() {
                 Some(p) => p.arrays().1,
                 None => {
                     identity = (0..self.n()).collect();
@@ -297,13 +341,12 @@ impl SparseCholesky {
 
     /// Solves one block of columns sequentially with faer's solve.
     fn solve_block(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError> {
-        let req = self
-            .symbolic
-            .solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq);
+        let symbolic = &self.analysis.symbolic;
+        let req = symbolic.solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq);
         let mut mem = MemBuffer::try_new(req).map_err(|_| EigError::Factorization {
             what: "cannot allocate solve workspace".into(),
         })?;
-        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+        LltRef::new(symbolic, &self.values).solve_in_place_with_conj(
             Conj::No,
             rhs,
             Par::Seq,

@@ -15,7 +15,7 @@
 //! positive eigenvalue if ac - s^2 < 0, else two of the sign of a + c.
 
 use crate::EigError;
-use crate::cholesky::{SparseCholesky, analyze_with};
+use crate::cholesky::{FactorAnalysis, analyze_with};
 use crate::constraint::Constraints;
 use crate::ordering::nested_dissection;
 use crate::sparse::{check_pair, check_symmetric, shifted};
@@ -81,16 +81,16 @@ pub fn count_below_constrained(
 }
 
 /// [`count_below`] without the input checks (the caller has done them),
-/// reusing what it can of `factor`, a Cholesky factor of K - sigma' M (its
-/// symbolic analysis if the pattern is the same, else its permutation; any
-/// permutation keeps the inertia; `None`: nested dissection of K - sigma M),
-/// with optional constraints.
+/// reusing what it can of `factor`, the analysis of a Cholesky factor of
+/// K - sigma' M (its supernodes if the pattern is the same, else its
+/// permutation; any permutation keeps the inertia; `None`: nested dissection
+/// of K - sigma M), with optional constraints.
 pub(crate) fn count_below_unchecked(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
     sigma: f64,
     par: Par,
-    factor: Option<&SparseCholesky>,
+    factor: Option<&FactorAnalysis>,
     constraints: Option<&Constraints>,
 ) -> Result<usize, EigError> {
     if !sigma.is_finite() {
@@ -144,7 +144,7 @@ impl<'a> Lblt<'a> {
     fn factorize(
         a: SparseColMatRef<'_, usize, f64>,
         par: Par,
-        factor: Option<&'a SparseCholesky>,
+        factor: Option<&'a FactorAnalysis>,
     ) -> Result<Self, EigError> {
         let n = a.nrows();
         let symbolic = match factor.and_then(|f| f.supernodal_analysis_of(a.symbolic())) {
@@ -154,7 +154,7 @@ impl<'a> Lblt<'a> {
                     supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
                     ..Default::default()
                 };
-                let perm = match factor.and_then(SparseCholesky::permutation) {
+                let perm = match factor.and_then(FactorAnalysis::permutation) {
                     Some(p) => p.to_vec(),
                     None => nested_dissection(a.symbolic())?,
                 };

@@ -41,13 +41,13 @@ mod trisolve;
 #[cfg(feature = "arpack")]
 mod arpack;
 
-pub use cholesky::{CholeskyOptions, FactorStats, SparseCholesky};
+pub use cholesky::{CholeskyOptions, FactorAnalysis, FactorStats, SparseCholesky};
 pub use constraint::{ConstrainedFactor, Constraints};
 pub use error::EigError;
 pub use inertia::{Inertia, count_below, count_below_constrained, inertia};
 pub use ordering::FillOrdering;
 pub use solver::{
     Backend, EigOptions, EigStats, Modes, backward_errors, lowest_modes, lowest_modes_constrained,
-    lowest_modes_with_factor, sturm_check,
+    lowest_modes_with_factor, sturm_check, sturm_check_with,
 };
 pub use sparse::{check_pair, check_symmetric, shifted};

@@ -5,7 +5,7 @@
 
 use crate::EigError;
 use crate::block::{BlockParams, block_lanczos};
-use crate::cholesky::{CholeskyOptions, FactorStats, SparseCholesky};
+use crate::cholesky::{CholeskyOptions, FactorAnalysis, FactorStats, SparseCholesky};
 use crate::constraint::{ConstrainedFactor, Constraints};
 use crate::inertia::count_below_unchecked;
 use crate::lanczos::{GUARD_TOL, LanczosParams, Locked, ShiftInvert, Watch, thick_restart_lanczos};
@@ -60,6 +60,10 @@ pub struct EigOptions {
     /// Lanczos backend converges them to a residual estimate of 1e-6 only
     /// (their eigenvalues to about 1e-12), enough to place the bound.
     pub guard: usize,
+    /// Let the Sturm check run beside the iteration once the Ritz values
+    /// place its bound. Its LBL^T factorization is then held in memory at the
+    /// same time as the Cholesky factor; without, it follows the iteration.
+    pub sturm_beside: bool,
     /// Seed of the start vector (results are deterministic for a given seed).
     pub seed: u64,
     /// Parallelism of the factorizations.
@@ -76,6 +80,7 @@ impl Default for EigOptions {
             block_size: 8,
             backend: Backend::Lanczos,
             sturm_check: true,
+            sturm_beside: true,
             guard: 3,
             seed: 1,
             par: faer::get_global_parallelism(),
@@ -140,6 +145,11 @@ pub struct Modes {
     /// (1-norms of the matrices, 2-norms of vectors; Higham & Higham 1998),
     /// meaningful for rigid-body (w^2 = 0) modes too.
     pub residuals: Vec<f64>,
+    /// The guard eigenvalues computed above the `nev` returned (see
+    /// [`EigOptions::guard`]), ascending, accurate to about 1e-12: with
+    /// `values` they place the bound of a Sturm check made later
+    /// ([`sturm_check_with`]).
+    pub guard_values: Vec<f64>,
     /// Costs.
     pub stats: EigStats,
 }
@@ -315,7 +325,7 @@ fn solve_checked(
     };
     let early: Mutex<Option<EarlyCount>> = Mutex::new(None);
     let raw = rayon::in_place_scope(|scope| {
-        let mut started = !opts.sturm_check;
+        let mut started = !(opts.sturm_check && opts.sturm_beside);
         let early = &early;
         let mut watch = |theta: &[f64], estimates: &[f64]| {
             if started {
@@ -325,8 +335,14 @@ fn solve_checked(
                 started = true;
                 scope.spawn(move |_| {
                     let t = Instant::now();
-                    let count =
-                        count_below_unchecked(k, m, bound, opts.par, Some(factor), constraints);
+                    let count = count_below_unchecked(
+                        k,
+                        m,
+                        bound,
+                        opts.par,
+                        Some(factor.analysis()),
+                        constraints,
+                    );
                     let done = (bound, count, t.elapsed());
                     *early.lock().unwrap_or_else(PoisonError::into_inner) = Some(done);
                 });
@@ -355,8 +371,14 @@ fn solve_checked(
                 _ => {
                     let t1 = Instant::now();
                     let (bound, _) = sturm_bound(&values, nev);
-                    let count =
-                        count_below_unchecked(k, m, bound, opts.par, Some(factor), constraints);
+                    let count = count_below_unchecked(
+                        k,
+                        m,
+                        bound,
+                        opts.par,
+                        Some(factor.analysis()),
+                        constraints,
+                    );
                     sturm_time += t1.elapsed();
                     count.and_then(|c| compare_count(bound, c, &values))
                 }
@@ -443,6 +465,7 @@ fn solve_checked(
         values: values[..nev].to_vec(),
         vectors: vectors.subcols(0, nev).to_owned(),
         residuals,
+        guard_values: values[nev..].to_vec(),
         stats,
     })
 }
@@ -701,17 +724,37 @@ pub fn sturm_check(
     values: &[f64],
     nev: usize,
 ) -> Result<(f64, usize), EigError> {
+    sturm_check_with(k, m, values, nev, None, None)
+}
+
+/// [`sturm_check`] reusing the analysis of a Cholesky factor of
+/// K - sigma M (see [`FactorAnalysis`]; the factor's values may be freed
+/// first, as a caller short of memory does), for the pencil constrained to
+/// C x = 0 if `constraints` are given.
+pub fn sturm_check_with(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    values: &[f64],
+    nev: usize,
+    analysis: Option<&FactorAnalysis>,
+    constraints: Option<&Constraints>,
+) -> Result<(f64, usize), EigError> {
     check_pair(k, m)?;
     if nev == 0 || nev > values.len() || values.iter().any(|v| !v.is_finite()) {
         return Err(EigError::InvalidOption {
             what: format!("sturm_check: nev {nev} of {} finite values", values.len()),
         });
     }
+    if constraints.is_some_and(|c| c.n() != k.nrows()) {
+        return Err(EigError::DimensionMismatch {
+            what: "constraints and K differ in size".into(),
+        });
+    }
     let mut sorted = values.to_vec();
     sorted.sort_by(f64::total_cmp);
     let (bound, _) = sturm_bound(&sorted, nev);
     let par = faer::get_global_parallelism();
-    let count = count_below_unchecked(k, m, bound, par, None, None)?;
+    let count = count_below_unchecked(k, m, bound, par, analysis, constraints)?;
     compare_count(bound, count, &sorted)
 }
 

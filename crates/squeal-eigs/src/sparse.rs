@@ -40,6 +40,43 @@ pub fn check_symmetric(
             scale = scale.max(v.abs());
         }
     }
+    // Tolerance: assembly in floating point may break symmetry by rounding only.
+    let tol = 1e-10 * scale;
+    let sorted = (0..n).all(|j| a.row_idx_of_col_raw(j).is_sorted_by(|x, y| x < y));
+    let first_bad = if sorted {
+        // Each off-diagonal entry against its mirror, found by binary search (no copies).
+        (0..n).into_par_iter().find_map_first(|j| {
+            let mirror = |i: usize| {
+                let rows = a.row_idx_of_col_raw(i);
+                rows.binary_search(&j).map_or(0.0, |k| a.val_of_col(i)[k])
+            };
+            a.row_idx_of_col(j)
+                .zip(a.val_of_col(j))
+                .find(|&(i, &v)| i != j && (v - mirror(i)).abs() > tol)
+                .map(|(i, _)| (i, j))
+        })
+    } else {
+        unsorted_asymmetry(a, name, tol)?
+    };
+    match first_bad {
+        Some((row, col)) => Err(EigError::NotSymmetric {
+            matrix: name,
+            row,
+            col,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The first entry (row, column) of a matrix with unsorted or repeated row
+/// indices that differs from its transposed entry by more than `tol`
+/// (columns merged after sorting, duplicates compared one by one).
+fn unsorted_asymmetry(
+    a: SparseColMatRef<'_, usize, f64>,
+    name: &'static str,
+    tol: f64,
+) -> Result<Option<(usize, usize)>, EigError> {
+    let n = a.nrows();
     let t = a
         .transpose()
         .to_col_major()
@@ -47,8 +84,6 @@ pub fn check_symmetric(
             what: format!("transpose of {name}: {e:?}"),
         })?;
     let t = t.as_ref();
-    // Tolerance: assembly in floating point may break symmetry by rounding only.
-    let tol = 1e-10 * scale;
     for j in 0..n {
         let mut col: Vec<(usize, f64)> = a
             .row_idx_of_col(j)
@@ -83,15 +118,11 @@ pub fn check_symmetric(
                 (None, None) => break,
             };
             if d.abs() > tol {
-                return Err(EigError::NotSymmetric {
-                    matrix: name,
-                    row: i,
-                    col: j,
-                });
+                return Ok(Some((i, j)));
             }
         }
     }
-    Ok(())
+    Ok(None)
 }
 
 /// Checks K and M for the generalized problem: both square, same size,

@@ -48,9 +48,10 @@
 //! top rows. The split depends on the factor only, not on the thread count,
 //! so neither do the result bits.
 //!
-//! Right-hand sides are solved in groups of 16, 8, 4, 2 or 1 columns stored
-//! row by row (one small array per row of the factor), the groups in
-//! parallel; the group widths depend only on the number of columns.
+//! Right-hand sides are solved in groups of 16 columns stored row by row (one
+//! small array per row of the factor), the last group zero-padded to 1, 2, 4,
+//! 8 or 16 columns, the groups in parallel. The columns do not mix: a column
+//! gets the same bits in a group of any width.
 //! Arithmetic is fused multiply-adds (exactly rounded, so the same bits on
 //! any instruction set), vectorized by `pulp`'s run-time choice of
 //! instruction set (AVX2 with FMA where the processor has it).
@@ -303,25 +304,25 @@ pub(crate) fn solve(plan: &SolvePlan, factor: Factor<'_>, inv: &[usize], rhs: Ma
     let mut groups = Vec::new();
     let mut rest = rhs;
     while rest.ncols() > 0 {
-        let w = [16, 8, 4, 2, 1]
-            .into_iter()
-            .find(|&w| w <= rest.ncols())
-            .unwrap_or(1);
-        let (left, right) = rest.split_at_col_mut(w);
+        let c = rest.ncols().min(16);
+        let (left, right) = rest.split_at_col_mut(c);
         groups.push(left);
         rest = right;
     }
+    // Each group is one pass over the factor: the last one is padded with zero columns to the
+    // next kernel width rather than split.
     groups.into_par_iter().for_each(|g| match g.ncols() {
-        16 => solve_group::<16>(plan, factor, inv, g),
-        8 => solve_group::<8>(plan, factor, inv, g),
-        4 => solve_group::<4>(plan, factor, inv, g),
+        9.. => solve_group::<16>(plan, factor, inv, g),
+        5.. => solve_group::<8>(plan, factor, inv, g),
+        3.. => solve_group::<4>(plan, factor, inv, g),
         2 => solve_group::<2>(plan, factor, inv, g),
         _ => solve_group::<1>(plan, factor, inv, g),
     });
 }
 
-/// One group of W columns: gather into rows of the permuted order
-/// (`inv[old] = new`), forward and backward solve, scatter back.
+/// One group of at most W columns: gather into rows of the permuted order
+/// (`inv[old] = new`, zeros beyond the group's columns), forward and
+/// backward solve, scatter back.
 fn solve_group<const W: usize>(
     plan: &SolvePlan,
     factor: Factor<'_>,
@@ -330,7 +331,7 @@ fn solve_group<const W: usize>(
 ) {
     let n = inv.len();
     let mut x = vec![[0.0; W]; n];
-    for j in 0..W {
+    for j in 0..rhs.ncols() {
         let col = rhs.rb().col(j);
         for (old, &new) in inv.iter().enumerate() {
             x[new][j] = col[old];
@@ -338,7 +339,7 @@ fn solve_group<const W: usize>(
     }
     forward(plan, factor, &mut x);
     backward(plan, factor, &mut x);
-    for j in 0..W {
+    for j in 0..rhs.ncols() {
         let mut col = rhs.rb_mut().col_mut(j);
         for (old, &new) in inv.iter().enumerate() {
             col[old] = x[new][j];

@@ -41,6 +41,7 @@ use squeal_eigs::{
 };
 use squeal_fe::{DofMap, FeError, MaterialTable, Restraint, assemble};
 use squeal_mesh::Mesh;
+use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
 /// Errors of the reduction, named in the user's terms.
@@ -266,8 +267,9 @@ pub fn reduce_part(
     let t = Instant::now();
     let (points, rows) = boundary_rows(mesh, &dofmap, spec)?;
     let split = Split::new(&rows, dofmap.num_free(), &part)?;
-    let k_vv = split.extract_interior(&system.k);
-    let m_vv = split.extract_interior(&system.m);
+    let (k_interior, m_interior) = (split.interior_of(&system.k), split.interior_of(&system.m));
+    let (k_vv, m_vv): (&SparseColMat<usize, f64>, &SparseColMat<usize, f64>) =
+        (&k_interior, &m_interior);
     let constraints = split.constraints().map_err(eigen)?;
     clock(Stage::Interface, t, &mut timings);
 
@@ -299,7 +301,15 @@ pub fn reduce_part(
 
     progress(Stage::Eigensolve);
     let t = Instant::now();
-    let modes = fixed_interface_modes(&k_vv, &m_vv, &factor, constrained.as_ref(), spec, opts)?;
+    let factor_stats = factor.stats();
+    let sturm = sturm_placement(opts, &factor_stats, spec.modes);
+    let modes =
+        fixed_interface_modes(k_vv, m_vv, &factor, constrained.as_ref(), spec, opts, sturm)?;
+    drop(constrained);
+    let modes = match modes.deferred {
+        false => modes,
+        true => check_deferred(modes, factor, k_vv, m_vv, &constraints, spec, opts)?,
+    };
     clock(Stage::Eigensolve, t, &mut timings);
 
     progress(Stage::Project);
@@ -367,9 +377,9 @@ pub fn reduce_part(
         boundary_dofs: nb,
         modes: nm,
         nnz_k: system.nnz_k(),
-        nnz_factor: factor.stats().nnz_l,
-        factor_bytes: factor.stats().factor_bytes,
-        factor: factor.stats(),
+        nnz_factor: factor_stats.nnz_l,
+        factor_bytes: factor_stats.factor_bytes,
+        factor: factor_stats,
         timings,
         eig: modes.stats,
         sturm: modes.sturm,
@@ -403,9 +413,104 @@ struct FixedModes {
     values: Vec<f64>,
     vectors: Mat<f64>,
     residuals: Vec<f64>,
+    /// The guard eigenvalues above `values` (for a Sturm check made later).
+    guard_values: Vec<f64>,
     stats: squeal_eigs::EigStats,
     /// Sturm bound `ω²` and the count of eigenvalues below it.
     sturm: Option<(f64, usize)>,
+    /// The Sturm check is still to be made ([`SturmPlacement::Deferred`]).
+    deferred: bool,
+}
+
+/// Where the Sturm check of the fixed-interface modes runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum SturmPlacement {
+    /// Beside the Lanczos iteration (a second factor in memory at the same time).
+    Beside,
+    /// After the iteration, with the Cholesky factor still held (the eigensolver's own check,
+    /// which finds missed eigenvalues by locked restarts).
+    After,
+    /// After the iteration, with the Cholesky factor's values freed first
+    /// ([`check_deferred`]): the peak memory holds one factor.
+    Deferred,
+}
+
+/// The Sturm check beside the iteration when the options allow it (`EigOptions::sturm_beside`)
+/// and a second factor fits in the memory available now (Linux: `MemAvailable` of
+/// `/proc/meminfo`; elsewhere it is taken to fit), else after it with the Cholesky factor
+/// freed. The results do not depend on the choice (only the reported Sturm bound may).
+fn sturm_placement(
+    opts: &ReduceOptions,
+    factor: &squeal_eigs::FactorStats,
+    modes: usize,
+) -> SturmPlacement {
+    if !opts.eig.sturm_beside {
+        return SturmPlacement::Deferred;
+    }
+    // The LBL^T's values and its copy of K - b M, and the Lanczos basis (about 3 x modes).
+    let need = factor.factor_bytes + 16 * factor.nnz_a + 8 * factor.n * 3 * modes;
+    let available = std::fs::read_to_string("/proc/meminfo").ok().and_then(|s| {
+        s.lines()
+            .find_map(|l| l.strip_prefix("MemAvailable:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<usize>().ok())
+            .map(|kb| kb * 1024)
+    });
+    match available {
+        // A quarter kept free for the other part and the allocator.
+        Some(bytes) if need > bytes / 4 * 3 => SturmPlacement::Deferred,
+        _ => SturmPlacement::Beside,
+    }
+}
+
+/// The deferred Sturm check: frees the factor's values, counts the eigenvalues below a bound
+/// placed among the modes and their guards with an LBLᵀ on the factor's analysis, and if some
+/// were missed (rare), factors again and solves with the eigensolver's own check.
+fn check_deferred(
+    mut modes: FixedModes,
+    factor: SparseCholesky,
+    k_vv: &SparseColMat<usize, f64>,
+    m_vv: &SparseColMat<usize, f64>,
+    constraints: &Constraints,
+    spec: &PartSpec,
+    opts: &ReduceOptions,
+) -> Result<FixedModes, ReduceError> {
+    let eigen = |source: EigError| ReduceError::Eigen {
+        part: spec.name.clone(),
+        source,
+    };
+    let analysis = factor.into_analysis();
+    let t = Instant::now();
+    let c = (!constraints.is_empty()).then_some(constraints);
+    let all: Vec<f64> = modes
+        .values
+        .iter()
+        .chain(&modes.guard_values)
+        .copied()
+        .collect();
+    let (k, m) = (k_vv.as_ref(), m_vv.as_ref());
+    match squeal_eigs::sturm_check_with(k, m, &all, modes.values.len(), Some(&analysis), c) {
+        Ok(found) => {
+            modes.sturm = Some(found);
+            modes.stats.sturm = Some(found);
+            modes.stats.sturm_time = t.elapsed();
+            modes.deferred = false;
+            Ok(modes)
+        }
+        Err(EigError::MissedEigenvalues { .. }) => {
+            let chol = squeal_eigs::CholeskyOptions {
+                par: opts.eig.par,
+                ..Default::default()
+            };
+            let factor = analysis.factorize(k, &chol).map_err(eigen)?;
+            let constrained = match c {
+                None => None,
+                Some(c) => Some(ConstrainedFactor::new(&factor, c).map_err(eigen)?),
+            };
+            let after = SturmPlacement::After;
+            fixed_interface_modes(k_vv, m_vv, &factor, constrained.as_ref(), spec, opts, after)
+        }
+        Err(e) => Err(eigen(e)),
+    }
 }
 
 /// Eqs (4)–(5): the fixed-interface modes of `K_vv φ = ω² M_vv φ` with the factor of `K_vv`,
@@ -418,6 +523,7 @@ fn fixed_interface_modes(
     constrained: Option<&ConstrainedFactor<'_>>,
     spec: &PartSpec,
     opts: &ReduceOptions,
+    sturm: SturmPlacement,
 ) -> Result<FixedModes, ReduceError> {
     let part = &spec.name;
     let eigen = |source: EigError| ReduceError::Eigen {
@@ -427,8 +533,13 @@ fn fixed_interface_modes(
     let n = k_vv.nrows();
     let mut eig_opts = EigOptions {
         shift: 0.0,
+        sturm_beside: sturm == SturmPlacement::Beside,
         ..opts.eig
     };
+    let deferred = sturm == SturmPlacement::Deferred && opts.eig.sturm_check;
+    if deferred {
+        eig_opts.sturm_check = false;
+    }
     let mut below = None;
     let nm = match opts.modes_below_hz {
         None => spec.modes,
@@ -466,8 +577,10 @@ fn fixed_interface_modes(
             values: Vec::new(),
             vectors: Mat::zeros(n, 0),
             residuals: Vec::new(),
+            guard_values: Vec::new(),
             stats: Default::default(),
             sturm: below,
+            deferred: false,
         });
     }
     let dim = n - constrained.map_or(0, |c| c.constraints().len());
@@ -495,13 +608,15 @@ fn fixed_interface_modes(
         }
         _ => modes,
     };
-    let sturm = below.or(modes.stats.sturm);
     Ok(FixedModes {
+        sturm: below.or(modes.stats.sturm),
+        // The count below the cut-off is itself the Sturm check.
+        deferred: deferred && below.is_none(),
         values: modes.values,
         vectors: modes.vectors,
         residuals: modes.residuals,
+        guard_values: modes.guard_values,
         stats: modes.stats,
-        sturm,
     })
 }
 
@@ -782,6 +897,19 @@ impl Split {
             }
         }
         Ok(out)
+    }
+
+    /// `X_II`: `x` itself when no dof is eliminated (no copy of a large matrix), else
+    /// [`Split::extract_interior`].
+    fn interior_of<'x>(
+        &self,
+        x: &'x SparseColMat<usize, f64>,
+    ) -> Cow<'x, SparseColMat<usize, f64>> {
+        if self.interior.len() == x.ncols() {
+            Cow::Borrowed(x)
+        } else {
+            Cow::Owned(self.extract_interior(x))
+        }
     }
 
     /// `X_II` as a sparse matrix (rows and columns of the interior dofs).
