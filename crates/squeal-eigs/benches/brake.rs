@@ -9,6 +9,7 @@
 //! options: --mesh=disc|pad|PATH.inp  --level=fine|medium|coarse  --nev=N (50)
 //!          --ordering=nd|amd  --block=B (8; 1 = single-vector Lanczos)  --ncv=N
 //!          --no-sturm  --no-table (skip the multi-RHS solve table)  --no-eig
+//!          --slice=S (at most S new pairs per shift; 0: one shift)
 //! threads: RAYON_NUM_THREADS=1 (faer's parallelism follows rayon's pool)
 //! ```
 //!
@@ -115,6 +116,9 @@ fn main() {
             .unwrap_or(defaults.block_size),
         ncv: arg(&args, "--ncv=").and_then(|x| x.parse().ok()),
         sturm_check: !args.iter().any(|a| a == "--no-sturm"),
+        slice: arg(&args, "--slice=")
+            .and_then(|x| x.parse().ok())
+            .unwrap_or(defaults.slice),
         ..defaults
     };
     let t = Instant::now();
@@ -148,6 +152,7 @@ fn main() {
         st.iterations, st.rounds
     );
     println!("  OP applications       {:>8}", st.operator_applications);
+    println!("  shifts                {:>8}", st.shifts);
     println!("  block / ncv           {:>5} / {}", st.block, st.ncv);
     println!(
         "  f_1 / f_{nev} (Hz)         {:.3} / {:.3}",

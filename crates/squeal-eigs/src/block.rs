@@ -43,6 +43,9 @@ pub(crate) struct BlockParams {
     pub nwant: usize,
     /// Of which the first are wanted to `tol`, the others are guards.
     pub nsharp: usize,
+    /// Want the Ritz values largest in magnitude (OP indefinite: a shift
+    /// inside the spectrum) instead of the largest.
+    pub by_magnitude: bool,
     /// Basis size at which a restart happens (nwant + block <= ncv).
     pub ncv: usize,
     /// Vectors per block.
@@ -131,6 +134,10 @@ pub(crate) fn block_lanczos(
         // at the end of a cycle.
         let t0 = Instant::now();
         let (theta, s) = ritz_pairs(basis.t.submatrix(0, 0, size, size))?;
+        let (theta, s) = match p.by_magnitude {
+            true => by_magnitude(theta, s),
+            false => (theta, s),
+        };
         let (coupling, estimates) = residual_estimates(&basis.t, &theta, &s, size, b);
         add_time(&op.ritz_time, t0);
         if !watched {
@@ -226,6 +233,15 @@ pub(crate) fn ritz_pairs(t: faer::MatRef<'_, f64>) -> Result<(Vec<f64>, Mat<f64>
     let theta: Vec<f64> = (0..size).rev().map(|i| evd.S()[i] * scale).collect();
     let s = Mat::<f64>::from_fn(size, size, |r, c| evd.U()[(r, size - 1 - c)]);
     Ok((theta, s))
+}
+
+/// Ritz pairs reordered by |theta| descending (ties keep their order).
+fn by_magnitude(theta: Vec<f64>, s: Mat<f64>) -> (Vec<f64>, Mat<f64>) {
+    let mut order: Vec<usize> = (0..theta.len()).collect();
+    order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
+    let t = order.iter().map(|&i| theta[i]).collect();
+    let s = Mat::from_fn(s.nrows(), s.ncols(), |r, c| s[(r, order[c])]);
+    (t, s)
 }
 
 /// One block step: `w` = OP V[size..top] is orthogonalized against the

@@ -63,11 +63,13 @@
 
 use crate::EigError;
 use crate::cholesky::SparseCholesky;
+use crate::lanczos::ShiftSolve;
 use crate::sparse::update_rows;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{
     LltRegularization, cholesky_in_place, cholesky_in_place_scratch,
 };
+use faer::linalg::solvers::Solve;
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
@@ -155,6 +157,127 @@ impl Constraints {
     }
 }
 
+/// X = A^-1 C^T and a factorization of S = C X for one factorization of
+/// A = K - sigma M: the projector P = I - X S^-1 C and the correction
+/// X S^-1 G. S is positive definite when A is (Cholesky), indefinite when
+/// the shift lies inside the spectrum (LU with partial pivoting).
+#[derive(Debug, Clone)]
+pub(crate) struct Projector {
+    constraints: Constraints,
+    x: Mat<f64>,
+    /// S = C X, symmetrized.
+    schur: Mat<f64>,
+    s: SchurFactor,
+}
+
+/// A factorization of the small matrix S = C A^-1 C^T.
+#[derive(Debug, Clone)]
+enum SchurFactor {
+    /// Lower Cholesky factor.
+    Cholesky(Mat<f64>),
+    /// Partial-pivoting LU (A indefinite).
+    Lu(faer::linalg::solvers::PartialPivLu<f64>),
+}
+
+impl Projector {
+    /// X = A^-1 C^T by `solve` (applied to C^T in place), then S = C X.
+    pub(crate) fn new(
+        constraints: &Constraints,
+        solve: &dyn ShiftSolve,
+        definite: bool,
+    ) -> Result<Self, EigError> {
+        if constraints.n() != solve.order() {
+            return Err(EigError::DimensionMismatch {
+                what: format!(
+                    "constraints on vectors of length {}, factor of order {}",
+                    constraints.n(),
+                    solve.order()
+                ),
+            });
+        }
+        let mut x = constraints.transpose_dense();
+        solve.solve_in_place(x.as_mut())?;
+        let s = constraints.apply(x.as_ref());
+        let p = s.nrows();
+        let schur = Mat::from_fn(p, p, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]));
+        let s = schur.clone();
+        let s = match definite {
+            true => SchurFactor::Cholesky(dense_cholesky(s)?),
+            false => {
+                let scale = s.norm_max();
+                let lu = s.partial_piv_lu();
+                let u = lu.U();
+                let small = |i: usize| u[(i, i)].abs() <= DEPENDENT_ROWS * scale;
+                let bad = (0..p).find(|&i| small(i) || u[(i, i)].is_nan());
+                if let Some(row) = bad {
+                    return Err(EigError::DependentConstraints { row });
+                }
+                SchurFactor::Lu(lu)
+            }
+        };
+        Ok(Self {
+            constraints: constraints.clone(),
+            x,
+            schur,
+            s,
+        })
+    }
+
+    /// S = C A^-1 C^T (its inertia enters the constrained Sturm count).
+    pub(crate) fn schur(&self) -> &Mat<f64> {
+        &self.schur
+    }
+
+    /// Number of constraints.
+    pub(crate) fn len(&self) -> usize {
+        self.constraints.len()
+    }
+
+    /// H <- S^-1 H.
+    fn solve_s(&self, h: Mat<f64>) -> Mat<f64> {
+        match &self.s {
+            SchurFactor::Cholesky(l) => {
+                let mut h = h;
+                spd_solve(l.as_ref(), h.as_mut());
+                h
+            }
+            SchurFactor::Lu(lu) => lu.solve(&h),
+        }
+    }
+
+    /// X S^-1 G (n x k) for G (p x k).
+    pub(crate) fn correction(&self, g: MatRef<'_, f64>) -> Result<Mat<f64>, EigError> {
+        if g.nrows() != self.constraints.len() {
+            return Err(EigError::DimensionMismatch {
+                what: format!(
+                    "{} rows for {} constraints",
+                    g.nrows(),
+                    self.constraints.len()
+                ),
+            });
+        }
+        let h = self.solve_s(g.to_owned());
+        let mut out = Mat::zeros(self.x.nrows(), g.ncols());
+        update_rows(
+            out.as_mut(),
+            self.x.as_ref(),
+            h.as_ref(),
+            Accum::Replace,
+            1.0,
+        );
+        Ok(out)
+    }
+
+    /// Y <- P Y = Y - X S^-1 C Y: into null(C).
+    pub(crate) fn project(&self, mut y: MatMut<'_, f64>) {
+        if self.constraints.is_empty() {
+            return;
+        }
+        let h = self.solve_s(self.constraints.apply(y.as_ref()));
+        update_rows(y.as_mut(), self.x.as_ref(), h.as_ref(), Accum::Add, -1.0);
+    }
+}
+
 /// A Cholesky factor of A = K - sigma M with constraints: X = A^-1 C^T and
 /// the Cholesky factor of S = C X, for the constrained shift-invert operator
 /// and the constraint modes (see the module documentation).
@@ -162,33 +285,18 @@ impl Constraints {
 pub struct ConstrainedFactor<'a> {
     factor: &'a SparseCholesky,
     constraints: &'a Constraints,
-    x: Mat<f64>,
-    s_factor: Mat<f64>,
+    projector: Projector,
 }
 
 impl<'a> ConstrainedFactor<'a> {
     /// Solves A X = C^T (p columns) and factors S = C X. Dependent (or zero)
     /// constraint rows are [`EigError::DependentConstraints`].
     pub fn new(factor: &'a SparseCholesky, constraints: &'a Constraints) -> Result<Self, EigError> {
-        if constraints.n() != factor.n() {
-            return Err(EigError::DimensionMismatch {
-                what: format!(
-                    "constraints on vectors of length {}, factor of order {}",
-                    constraints.n(),
-                    factor.n()
-                ),
-            });
-        }
-        let x = factor.solve(constraints.transpose_dense().as_ref())?;
-        let s = constraints.apply(x.as_ref());
-        let p = s.nrows();
-        let s = Mat::from_fn(p, p, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]));
-        let s_factor = dense_cholesky(s)?;
+        let projector = Projector::new(constraints, factor, true)?;
         Ok(Self {
             factor,
             constraints,
-            x,
-            s_factor,
+            projector,
         })
     }
 
@@ -202,38 +310,19 @@ impl<'a> ConstrainedFactor<'a> {
         self.constraints
     }
 
+    /// The projector of the constrained operator.
+    pub(crate) fn projector(&self) -> &Projector {
+        &self.projector
+    }
+
     /// X S^-1 G (n x k) for G (p x k). With G = I: the constraint modes.
     pub fn correction(&self, g: MatRef<'_, f64>) -> Result<Mat<f64>, EigError> {
-        if g.nrows() != self.constraints.len() {
-            return Err(EigError::DimensionMismatch {
-                what: format!(
-                    "{} rows for {} constraints",
-                    g.nrows(),
-                    self.constraints.len()
-                ),
-            });
-        }
-        let mut h = g.to_owned();
-        spd_solve(self.s_factor.as_ref(), h.as_mut());
-        let mut out = Mat::zeros(self.factor.n(), g.ncols());
-        update_rows(
-            out.as_mut(),
-            self.x.as_ref(),
-            h.as_ref(),
-            Accum::Replace,
-            1.0,
-        );
-        Ok(out)
+        self.projector.correction(g)
     }
 
     /// Y <- P Y = Y - X S^-1 C Y: into null(C).
-    pub fn project(&self, mut y: MatMut<'_, f64>) {
-        if self.constraints.is_empty() {
-            return;
-        }
-        let mut h = self.constraints.apply(y.as_ref());
-        spd_solve(self.s_factor.as_ref(), h.as_mut());
-        update_rows(y.as_mut(), self.x.as_ref(), h.as_ref(), Accum::Add, -1.0);
+    pub fn project(&self, y: MatMut<'_, f64>) {
+        self.projector.project(y)
     }
 }
 

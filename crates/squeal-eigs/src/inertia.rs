@@ -17,6 +17,7 @@
 use crate::EigError;
 use crate::cholesky::{FactorAnalysis, analyze_with};
 use crate::constraint::Constraints;
+use crate::lanczos::ShiftSolve;
 use crate::ordering::nested_dissection;
 use crate::sparse::{check_pair, check_symmetric, shifted};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -26,7 +27,7 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, IntranodeLbltRef, SymbolicCholesky, SymbolicCholeskyRaw,
 };
-use faer::{Conj, Mat, Par, Side};
+use faer::{Conj, Mat, MatMut, Par, Side};
 
 /// Counts of negative, zero and positive eigenvalues of a symmetric matrix.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -109,6 +110,17 @@ pub(crate) fn count_below_unchecked(
     };
     let y = lblt.solve(c.transpose_dense(), par)?;
     let s = c.apply(y.as_ref());
+    constrained_count(i.negative, &s, sigma)
+}
+
+/// The constrained Sturm count nu(A) - nu(S) from nu(A) and S = C A^-1 C^T
+/// (symmetrized here); a singular S (the shift is a constrained eigenvalue)
+/// is an error.
+pub(crate) fn constrained_count(
+    negative: usize,
+    s: &Mat<f64>,
+    sigma: f64,
+) -> Result<usize, EigError> {
     let p = s.nrows();
     let s = Mat::from_fn(p, p, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]));
     let ev = s
@@ -117,12 +129,26 @@ pub(crate) fn count_below_unchecked(
     if ev.iter().any(|&e| e == 0.0 || !e.is_finite()) {
         return Err(EigError::SingularShift { sigma });
     }
-    let negative = ev.iter().filter(|&&e| e < 0.0).count();
-    // nu(A_b) >= nu(S) for full-rank constraints; less means rounding broke
+    let below = ev.iter().filter(|&&e| e < 0.0).count();
+    // nu(A) >= nu(S) for full-rank constraints; less means rounding broke
     // the count near an eigenvalue: report the shift as singular.
-    i.negative
-        .checked_sub(negative)
+    negative
+        .checked_sub(below)
         .ok_or(EigError::SingularShift { sigma })
+}
+
+impl ShiftSolve for Lblt<'_> {
+    fn order(&self) -> usize {
+        self.fwd.len()
+    }
+
+    /// faer's solve, sequential (its parallel kernels need not give the same
+    /// bits for every thread count; these solves feed eigenvectors).
+    fn solve_in_place(&self, mut rhs: MatMut<'_, f64>) -> Result<(), EigError> {
+        let x = self.solve(rhs.to_owned(), Par::Seq)?;
+        rhs.copy_from(&x);
+        Ok(())
+    }
 }
 
 /// The symbolic analysis of an LBL^T: borrowed from a Cholesky factor or made.
@@ -132,7 +158,7 @@ enum Analysis<'a> {
 }
 
 /// faer's supernodal intranode LBL^T factorization of a symmetric matrix.
-struct Lblt<'a> {
+pub(crate) struct Lblt<'a> {
     symbolic: Analysis<'a>,
     values: Vec<f64>,
     subdiag: Vec<f64>,
@@ -141,7 +167,7 @@ struct Lblt<'a> {
 }
 
 impl<'a> Lblt<'a> {
-    fn factorize(
+    pub(crate) fn factorize(
         a: SparseColMatRef<'_, usize, f64>,
         par: Par,
         factor: Option<&'a FactorAnalysis>,
@@ -212,7 +238,7 @@ impl<'a> Lblt<'a> {
     }
 
     /// The inertia of B, block by block.
-    fn inertia(&self) -> Inertia {
+    pub(crate) fn inertia(&self) -> Inertia {
         let mut out = Inertia::default();
         let SymbolicCholeskyRaw::Supernodal(sn) = self.symbolic().raw() else {
             return out;

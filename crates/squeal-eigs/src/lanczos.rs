@@ -16,7 +16,7 @@
 
 use crate::EigError;
 use crate::cholesky::SparseCholesky;
-use crate::constraint::ConstrainedFactor;
+use crate::constraint::Projector;
 use crate::sparse::{
     combination, inner, project, subtract_combination, sym_matmul, sym_matvec, update_rows,
 };
@@ -36,16 +36,35 @@ pub(crate) struct Locked {
     pub mx: Mat<f64>,
 }
 
+/// Solves with a factorization of K - sigma M: a Cholesky factor (sigma
+/// below the spectrum) or an LBL^T one (sigma inside it, spectrum slicing).
+pub(crate) trait ShiftSolve {
+    /// Order of the factored matrix.
+    fn order(&self) -> usize;
+    /// B <- (K - sigma M)^-1 B.
+    fn solve_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError>;
+}
+
+impl ShiftSolve for SparseCholesky {
+    fn order(&self) -> usize {
+        self.n()
+    }
+
+    fn solve_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError> {
+        SparseCholesky::solve_in_place(self, rhs)
+    }
+}
+
 /// The shift-invert operator: a factor of K - sigma M, M itself, optionally
 /// constraints C x = 0 (the operator is then P (K - sigma M)^-1 M, see
 /// [`crate::constraint`]) and locked vectors to deflate.
 pub(crate) struct ShiftInvert<'a> {
     /// Mass matrix (both triangles stored).
     pub m: SparseColMatRef<'a, usize, f64>,
-    /// Cholesky factor of K - sigma M.
-    pub factor: &'a SparseCholesky,
-    /// Constraints on the eigenvectors, with the same factor.
-    pub constraint: Option<&'a ConstrainedFactor<'a>>,
+    /// Factor of K - sigma M.
+    pub factor: &'a dyn ShiftSolve,
+    /// Constraints on the eigenvectors, projected with the same factor.
+    pub constraint: Option<&'a Projector>,
     /// Vectors to deflate, if any.
     pub locked: Option<Locked>,
     /// Wall time spent in the triangular solves (accumulated).
@@ -65,7 +84,7 @@ impl ShiftInvert<'_> {
     /// Dimension of the space the deflated operator acts on.
     pub fn dim(&self) -> usize {
         let locked = self.locked.as_ref().map_or(0, |l| l.x.ncols());
-        let constrained = self.constraint.map_or(0, |c| c.constraints().len());
+        let constrained = self.constraint.map_or(0, Projector::len);
         self.n().saturating_sub(locked + constrained)
     }
 
@@ -82,7 +101,7 @@ impl ShiftInvert<'_> {
     pub fn solve(&self, b: ColRef<'_, f64>) -> Result<Col<f64>, EigError> {
         let mut y = b.to_owned();
         let t0 = Instant::now();
-        self.factor.solve_col_in_place(&mut y)?;
+        self.factor.solve_in_place(y.as_mat_mut())?;
         add_time(&self.solve_time, t0);
         self.deflate(y.as_mat_mut());
         Ok(y)
@@ -99,7 +118,8 @@ impl ShiftInvert<'_> {
     /// Y = P (K - sigma M)^-1 B for a block of right-hand sides (B = M X for OP X).
     pub fn solve_block(&self, b: MatRef<'_, f64>) -> Result<Mat<f64>, EigError> {
         let t0 = Instant::now();
-        let mut y = self.factor.solve(b)?;
+        let mut y = b.to_owned();
+        self.factor.solve_in_place(y.as_mut())?;
         add_time(&self.solve_time, t0);
         self.deflate(y.as_mut());
         Ok(y)

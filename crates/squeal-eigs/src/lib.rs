@@ -17,7 +17,8 @@
 //!   Lanczos (pure Rust, default; [`EigOptions::block_size`] = 1 gives the
 //!   single-vector thick-restart Lanczos) or ARPACK (feature `arpack`), with
 //!   a Sturm check that runs beside the iteration once the Ritz values place
-//!   its bound.
+//!   its bound. Above [`EigOptions::slice`] wanted pairs the spectrum is
+//!   sliced over several shifts (shifted block Lanczos with LBL^T factors).
 //! - [`Constraints`] / [`ConstrainedFactor`] / [`lowest_modes_constrained`]:
 //!   the same for eigenvectors constrained to C x = 0 (projected
 //!   shift-invert operator, constraint modes, constrained Sturm counts).
@@ -34,6 +35,7 @@ mod inertia;
 mod lanczos;
 pub mod model_problems;
 mod ordering;
+mod slicing;
 mod solver;
 mod sparse;
 mod trisolve;
