@@ -22,7 +22,9 @@ pub enum PairChoice {
 /// The damping of eqs (12)–(13): a global modal ratio on every mode plus ratios on the pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DampingSpec {
+    /// Modal damping ratio ζ on every frictionless mode: `D_jj = 2 ζ ω_j`.
     pub global_ratio: f64,
+    /// Which two modes get `pair_ratios`.
     pub pair: PairChoice,
     /// Modal damping ratios `ζ1`, `ζ2` added on Mode 1 and Mode 2: `D_jj += 2 ζ ω_j`.
     pub pair_ratios: [f64; 2],
@@ -31,11 +33,14 @@ pub struct DampingSpec {
 /// A stability analysis: the damping used, the pair, the sweep.
 #[derive(Clone, Debug)]
 pub struct Stability {
+    /// The damping of the final sweep, its extras as `D_jj` values (s⁻¹) on the pair.
     pub damping: Damping,
     /// Frictionless mode numbers (0-based) of Mode 1 (stays stable) and Mode 2 (goes
     /// unstable), when known.
     pub pair: Option<(usize, usize)>,
+    /// The frictionless reference of the final sweep, with that damping.
     pub reference: Reference,
+    /// The friction sweep with that damping, and its Hopf point.
     pub sweep: Sweep,
 }
 
@@ -85,9 +90,7 @@ pub fn stability(
         }
     };
     if has_pair_damping && pair.is_none() {
-        return Err(BrakeError::Invalid(
-            "the coalescing pair could not be picked automatically (no Hopf point in the band with the global damping alone): give it by mode numbers".into(),
-        ));
+        return Err(BrakeError::NoPairFound);
     }
     let damping = match (pair, has_pair_damping) {
         (Some((m1, m2)), true) => Damping {
@@ -108,15 +111,18 @@ pub fn stability(
     if let Some((m1, m2)) = pair {
         let n = reference.basis.omega.len();
         if m1 >= n || m2 >= n {
-            return Err(BrakeError::Invalid(format!(
-                "pair modes ({}, {}) outside the {n} modes",
-                m1 + 1,
-                m2 + 1
-            )));
+            return Err(BrakeError::PairOutOfRange {
+                first: m1 + 1,
+                second: m2 + 1,
+                modes: n,
+            });
         }
         // The extras are ratios of each mode's own frequency.
-        reference.damping[m1] += 2.0 * spec.pair_ratios[0] * reference.basis.omega[m1];
-        reference.damping[m2] += 2.0 * spec.pair_ratios[1] * reference.basis.omega[m2];
+        let w = &reference.basis.omega;
+        reference.damping = reference.damping.with_added(&[
+            (m1, 2.0 * spec.pair_ratios[0] * w[m1]),
+            (m2, 2.0 * spec.pair_ratios[1] * w[m2]),
+        ]);
     }
     let damping = Damping {
         global_ratio: spec.global_ratio,

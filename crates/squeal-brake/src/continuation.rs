@@ -1,6 +1,7 @@
-//! Exact continuation of the eigenpairs of the linearized brake (eqs 20–22) from one friction
-//! value to the next, with the low-rank form `T(λ) = λ² I + λ D + Ω² + U Vᵀ` of
-//! [`crate::lowrank`].
+//! Exact continuation of the eigenpairs of the linearized brake (eqs 20–22) from one state to
+//! the next, with the low-rank form `T(λ) = λ² I + λ D + Ω² + U(λ) Vᵀ` of
+//! [`crate::linearized`]: the one eigenvalue iteration of the crate, used by the friction
+//! sweep, the Hopf refinement and the CHBM constraint.
 //!
 //! Each eigenpair `(λ, x, y)` (right and left vectors, `T(λ) x = 0`, `yᴴ T(λ) = 0`) is carried
 //! to the new `U` by the two-sided Rayleigh functional iteration for nonlinear eigenproblems
@@ -17,15 +18,18 @@
 //! sum of all `2n` eigenvalues and of their squares equal `tr A` and `tr A²` of the state
 //! matrix, known in closed form.
 
-use crate::lowrank::{Coupling, LowRank};
+use crate::linearized::{Coupling, LinearizedBrake};
 use faer::c64;
 use rayon::prelude::*;
 
 /// One eigenvalue with its right and left vectors (modal coordinates, unit 2-norm).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Eigenpair {
+    /// The eigenvalue `λ = a + iω` (eq 22; s⁻¹ and rad/s).
     pub lambda: c64,
+    /// Right vector `x`, `T(λ) x = 0`.
     pub right: Vec<c64>,
+    /// Left vector `y`, `yᴴ T(λ) = 0`.
     pub left: Vec<c64>,
 }
 
@@ -87,7 +91,7 @@ pub fn correlation(a: &[c64], b: &[c64]) -> f64 {
 }
 
 /// Whether `(λ, x, y)` is an eigenpair of `T` to `tol` relative residual on both sides.
-fn converged(lr: &LowRank, c: &Coupling, l: c64, x: &[c64], y: &[c64], tol: f64) -> bool {
+fn converged(lr: &LinearizedBrake, c: &Coupling, l: c64, x: &[c64], y: &[c64], tol: f64) -> bool {
     let bound = tol * lr.scale(c, l);
     let rx = lr.apply(c, l, x);
     let ry = lr.apply_adjoint(c, l, y);
@@ -99,12 +103,11 @@ fn converged(lr: &LowRank, c: &Coupling, l: c64, x: &[c64], y: &[c64], tol: f64)
 /// the converged pair and the inverse-iteration steps taken, or `None` when it does not
 /// converge in `max_iterations` steps or leaves the neighbourhood of `start`.
 pub fn converge(
-    lr: &LowRank,
+    lr: &LinearizedBrake,
     c: &Coupling,
     start: &Eigenpair,
     opts: &ContinuationOptions,
 ) -> Option<(Eigenpair, usize)> {
-    let n = lr.size();
     let mut l = start.lambda;
     let mut x = start.right.clone();
     let mut y = start.left.clone();
@@ -115,8 +118,8 @@ pub fn converge(
     }
     for it in 1..=opts.max_iterations {
         let f = lr.factor(c, l);
-        let bx: Vec<c64> = (0..n).map(|j| lr.delta_prime(j, l) * x[j]).collect();
-        let by: Vec<c64> = (0..n).map(|j| lr.delta_prime(j, l).conj() * y[j]).collect();
+        let bx = lr.apply_derivative(c, l, &x);
+        let by = lr.apply_derivative_adjoint(c, l, &y);
         x = normalized(f.solve(lr, c, &bx))?;
         y = normalized(f.solve_adjoint(lr, c, &by))?;
         let (num, den) = lr.rayleigh(c, l, &x, &y);
@@ -144,7 +147,7 @@ pub fn converge(
 /// dense eigenvalue by more than `1e-8 |λ|`, the dense pair is kept with that start as its left
 /// vector (the next continuation step then refines it).
 pub fn seed(
-    lr: &LowRank,
+    lr: &LinearizedBrake,
     c: &Coupling,
     lambda: c64,
     right: Vec<c64>,
@@ -166,7 +169,7 @@ pub fn seed(
 /// the result does not depend on the thread count). `None` if any branch fails; else the pairs
 /// and the total inverse-iteration steps.
 pub fn continue_all(
-    lr: &LowRank,
+    lr: &LinearizedBrake,
     c: &Coupling,
     from: &[Eigenpair],
     opts: &ContinuationOptions,
@@ -190,13 +193,32 @@ pub fn continue_all(
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Rejection {
     /// A branch left the upper half plane (its conjugate is the one the dense solver keeps).
-    LowerHalfPlane { branch: usize },
+    LowerHalfPlane {
+        /// The branch (0-based).
+        branch: usize,
+    },
     /// A branch's vector lost its correlation with the previous point's.
-    Correlation { branch: usize, mac: f64 },
+    Correlation {
+        /// The branch (0-based).
+        branch: usize,
+        /// Its MAC with the previous vector, below
+        /// [`ContinuationOptions::min_correlation`].
+        mac: f64,
+    },
     /// Two branches hold the same eigenpair.
-    Duplicate { a: usize, b: usize },
+    Duplicate {
+        /// The lower of the two branches (0-based).
+        a: usize,
+        /// The higher of the two branches (0-based).
+        b: usize,
+    },
     /// `Σ λ` or `Σ λ²` over the `2n` eigenvalues disagrees with `tr A` or `tr A²`.
-    Trace { sum: f64, expected: f64 },
+    Trace {
+        /// The sum over the continued eigenvalues and their conjugates (s⁻¹ or s⁻²).
+        sum: f64,
+        /// The trace it should equal.
+        expected: f64,
+    },
 }
 
 /// Relative closeness of two eigenvalues below which they may be one eigenvalue found twice.
@@ -207,7 +229,7 @@ const TRACE: f64 = 1e-10;
 
 /// Checks a continued spectrum `next` against the previous one and the traces of `A`.
 pub fn validate(
-    lr: &LowRank,
+    lr: &LinearizedBrake,
     c: &Coupling,
     prev: &[Eigenpair],
     next: &[Eigenpair],
@@ -250,7 +272,7 @@ fn duplicates(pairs: &[Eigenpair]) -> Result<(), Rejection> {
 }
 
 /// `2 Σ Re λ = tr A` and `2 Σ Re λ² = tr A²` (each λ stands for itself and its conjugate).
-fn traces(lr: &LowRank, c: &Coupling, pairs: &[Eigenpair]) -> Result<(), Rejection> {
+fn traces(lr: &LinearizedBrake, c: &Coupling, pairs: &[Eigenpair]) -> Result<(), Rejection> {
     let (tr_a, tr_a2) = lr.traces(c);
     let s1: f64 = 2.0 * pairs.iter().map(|p| p.lambda.re).sum::<f64>();
     let s2: f64 = 2.0 * pairs.iter().map(|p| (p.lambda * p.lambda).re).sum::<f64>();

@@ -1,11 +1,12 @@
 //! Eq (11) as a first-order system for time integration, in the modal coordinates of
 //! [`crate::modal_brake`]: with `y = [q; v]`,
 //!
-//! `q' = v`, `v' = Φᵀ F_piston - D v - Ω² q - Φ_nᵀ G(Φ_n q)`, `G = F_nl - K_s x_n`,
+//! `q' = v`, `v' = Φᵀ F_piston - D v - Ω² q - Φ_nᵀ G(Φ_n q, Φ_n v)`, `G = F_nl - K_s x_n`,
 //!
-//! and the analytic Jacobian `[[0, I], [-(Ω² + Φ_nᵀ (K_NL - K_s) Φ_n), -D]]`, where `K_NL` is the
-//! contact and friction Jacobian of eqs (18)–(19) (zero for open pairs). The right-hand side
-//! costs `O(n n_nl)`; the Jacobian `O(n² n_nl)`.
+//! and the analytic Jacobian `[[0, I], [-(Ω² + Φ_nᵀ (K_NL - K_s) Φ_n), -(D + Φ_nᵀ C_NL Φ_n)]]`,
+//! where `K_NL`, `C_NL` are the contact elements' Jacobians of eqs (18)–(19) (zero for open
+//! pairs; `C_NL = 0` unless an element depends on the velocities). The right-hand side costs
+//! `O(n n_nl)` (`O(n²)` with a full modal damping); the Jacobian `O(n² n_nl)`.
 
 use crate::modal_brake::ModalBrake;
 use faer::linalg::solvers::Solve;
@@ -13,20 +14,24 @@ use faer::{Mat, MatMut};
 use squeal_ode::OdeSystem;
 use std::cell::RefCell;
 
-/// Scratch vectors of one right-hand side evaluation (`x_n` and `G(x_n)`).
+/// Scratch vectors of one right-hand side evaluation (`x_n`, `v_n`, `G`, `D v`).
 #[derive(Default)]
 struct Scratch {
     xn: Vec<f64>,
+    vn: Vec<f64>,
     g: Vec<f64>,
+    dv: Vec<f64>,
 }
 
 /// The brake's equations of motion for [`squeal_ode`].
 pub struct BrakeDynamics<'a> {
+    /// The brake in modal coordinates whose eq (11) this is.
     pub brake: &'a ModalBrake,
     scratch: RefCell<Scratch>,
 }
 
 impl<'a> BrakeDynamics<'a> {
+    /// The equations of motion of `brake`, state `y = [q; q']` of dimension `2 n`.
     pub fn new(brake: &'a ModalBrake) -> Self {
         Self {
             brake,
@@ -67,17 +72,23 @@ impl OdeSystem for BrakeDynamics<'_> {
         let (n, nn) = (mb.modes(), mb.nl());
         let (q, v) = y.split_at(n);
         let mut s = self.scratch.borrow_mut();
-        let Scratch { xn, g } = &mut *s;
+        let Scratch { xn, vn, g, dv } = &mut *s;
         xn.resize(nn, 0.0);
         g.clear();
         g.resize(nn, 0.0);
+        dv.resize(n, 0.0);
         mb.nonlinear_part(q, xn);
-        mb.add_reduced_force(xn, g);
+        let velocity = mb.velocity_dependent();
+        if velocity {
+            vn.resize(nn, 0.0);
+            mb.nonlinear_part(v, vn);
+        }
+        mb.add_reduced_force(xn, velocity.then_some(&vn[..]), g);
+        mb.damping.apply(v, dv);
         for j in 0..n {
             dy[j] = v[j];
             let coupling: f64 = (0..nn).map(|i| mb.phi_n[(i, j)] * g[i]).sum();
-            dy[n + j] =
-                mb.load[j] - mb.damping[j] * v[j] - mb.omega[j] * mb.omega[j] * q[j] - coupling;
+            dy[n + j] = mb.load[j] - dv[j] - mb.omega[j] * mb.omega[j] * q[j] - coupling;
         }
     }
 
@@ -86,11 +97,16 @@ impl OdeSystem for BrakeDynamics<'_> {
         let (n, nn) = (mb.modes(), mb.nl());
         let mut xn = vec![0.0; nn];
         mb.nonlinear_part(&y[..n], &mut xn);
-        let mut kg = Mat::<f64>::zeros(nn, nn);
-        mb.add_reduced_jacobian(&xn, &mut kg);
-        // Φ_nᵀ kg Φ_n in two products.
-        let kphi = &kg * &mb.phi_n;
-        let block = mb.phi_n.transpose() * &kphi;
+        let vn = mb.velocity_dependent().then(|| {
+            let mut vn = vec![0.0; nn];
+            mb.nonlinear_part(&y[n..], &mut vn);
+            vn
+        });
+        let (kg, cg) = mb.reduced_jacobians(&xn, vn.as_deref());
+        // Φ_nᵀ kg Φ_n in two products (and the same for cg).
+        let project = |m: &Mat<f64>| mb.phi_n.transpose() * (m * &mb.phi_n);
+        let block = project(&kg);
+        let damping_block = cg.as_ref().map(project);
         for c in 0..2 * n {
             for r in 0..2 * n {
                 jac[(r, c)] = 0.0;
@@ -98,9 +114,10 @@ impl OdeSystem for BrakeDynamics<'_> {
         }
         for j in 0..n {
             jac[(j, n + j)] = 1.0;
-            jac[(n + j, n + j)] = -mb.damping[j];
             for c in 0..n {
                 jac[(n + j, c)] = -block[(j, c)];
+                jac[(n + j, n + c)] =
+                    -mb.damping.entry(j, c) - damping_block.as_ref().map_or(0.0, |b| b[(j, c)]);
             }
             jac[(n + j, j)] -= mb.omega[j] * mb.omega[j];
         }

@@ -16,6 +16,7 @@ pub struct NewtonOptions {
     /// relative to the forces being balanced (the contact forces carry the load even when a
     /// preload, not the piston, closes the contact).
     pub tolerance: f64,
+    /// Newton iterations allowed before [`BrakeError::NewtonFailed`].
     pub max_iterations: usize,
     /// Halvings of the step allowed by the line search.
     pub max_halvings: usize,
@@ -34,6 +35,7 @@ impl Default for NewtonOptions {
 /// A converged static equilibrium.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Equilibrium {
+    /// Friction coefficient μ the brake slides at.
     pub mu: f64,
     /// `x0` of eq (14).
     pub x: Vec<f64>,
@@ -66,7 +68,7 @@ pub fn static_equilibrium(
     let n = brake.size();
     let force_scale = |x: &[f64]| {
         let mut f = vec![0.0; n];
-        brake.add_nonlinear_force(x, mu, &mut f);
+        brake.add_nonlinear_force(x, None, mu, &mut f);
         norm(&brake.f_piston).max(norm(&f)).max(f64::MIN_POSITIVE)
     };
     let mut x: Vec<f64> = start.map(<[f64]>::to_vec).unwrap_or_else(|| vec![0.0; n]);
@@ -86,7 +88,7 @@ pub fn static_equilibrium(
         if !closed_start && brake.penetrations(&x).iter().all(|d| *d <= 0.0) {
             return Err(BrakeError::ContactOpen);
         }
-        let jac = &brake.k + brake.nonlinear_jacobian(&x, mu, closed_start);
+        let jac = &brake.k + brake.nonlinear_jacobian(&x, mu, closed_start).0;
         let rhs = Mat::from_fn(n, 1, |i, _| -r[i]);
         let dx = jac.partial_piv_lu().solve(&rhs);
         if (0..n).any(|i| !dx[(i, 0)].is_finite()) {
@@ -137,7 +139,9 @@ pub fn static_equilibrium(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact::PenaltyCoulomb;
     use crate::model::ContactPair;
+    use std::sync::Arc;
 
     /// A pad (mass on a spring to ground? no: free in z) pressed on a disc held by a spring.
     fn pad_on_disc(force: f64) -> Brake {
@@ -151,11 +155,16 @@ mod tests {
             disc_point: 0,
             pad_point: 0,
             position: [0.0; 3],
+            normal_direction: [0.0, 0.0, 1.0],
+            sliding_direction: [1.0, 0.0, 0.0],
             normal: vec![(0, 1.0), (1, -1.0)],
             tangent: vec![(3, 1.0), (2, -1.0)],
             gap: 0.0,
-            k_linear: 1e7,
-            k_cubic: 1e17,
+            surface_speed: None,
+            law: Arc::new(PenaltyCoulomb {
+                k_linear: 1e7,
+                k_cubic: 1e17,
+            }),
         };
         Brake {
             m: Mat::identity(4, 4),

@@ -1,28 +1,40 @@
 //! The Hopf point μ0 of a sweep by Newton's method on `Re λ(μ) = τ`, one eigenpair continued
 //! exactly from μ to μ ([`crate::continuation`]), kept inside the bracket of the crossing.
 //!
+//! Where two modes coalesce (mode coupling) their eigenvalues meet at one frequency and split
+//! in real part; the identity of "the branch" across the split is then a matter of tracking
+//! between two sweep points, and following one of the two eigenvalues can jump from the one
+//! that goes unstable to the one that does not. The function whose root is sought is
+//! therefore the larger real part of the crossing branch and its partner, both continued:
+//! continuous through the coalescence, and the unstable one's above it. A bracket that closes
+//! on a jump of that function (it is not a root) is refused.
+//!
 //! The derivative is exact: with right and left vectors `x`, `y` of `T(λ; μ)`,
 //! `dλ/dμ = -yᴴ (∂T/∂μ) x / yᴴ T'(λ) x` (first-order perturbation of a simple eigenvalue),
 //! where `∂T/∂μ = (∂U/∂μ) Vᵀ` holds the friction coupling and the change of the contact
-//! stiffnesses along the equilibrium path ([`LowRank::stiffness_rates`]). Each Newton point is
+//! elements' responses along the equilibrium path ([`LinearizedBrake::mu_rates`]). Each Newton point is
 //! moved past the root by a quarter of the tolerance, so that once Newton has converged the
 //! next evaluation lands on the other side and closes the bracket.
 
 use crate::continuation::{Eigenpair, converge, seed};
 use crate::equilibrium::Equilibrium;
 use crate::error::BrakeError;
-use crate::lowrank::{Coupling, LowRank};
+use crate::linearized::{Coupling, LinearizedBrake};
 use crate::model::Brake;
 use crate::spectrum::Reference;
 use crate::sweep::{Crossing, Hopf, State, Sweep, SweepOptions, SweepPoint, Walker, partner};
 use faer::c64;
 use rayon::prelude::*;
 
-/// The tracked branch at one friction value: `f = Re λ - τ` and `df/dμ`.
+/// The tracked branches at one friction value: `f = max Re λ - τ` over them and `df/dμ`
+/// of the larger.
 struct Eval {
     eq: Equilibrium,
     c: Coupling,
-    pair: Eigenpair,
+    /// The crossing branch and its partner (when it has one).
+    pairs: Vec<Eigenpair>,
+    /// Which of `pairs` has the larger real part.
+    top: usize,
     f: f64,
     slope: f64,
 }
@@ -34,20 +46,48 @@ impl Eval {
 }
 
 /// `Re dλ/dμ` of an eigenpair at coupling `c`.
-fn slope(lr: &LowRank, c: &Coupling, p: &Eigenpair) -> f64 {
-    let dk = lr.stiffness_rates(c);
+fn slope(brake: &Brake, lr: &LinearizedBrake, c: &Coupling, p: &Eigenpair) -> f64 {
+    // The coupling is the brake's own (it cannot fail); without rates the refinement falls
+    // back on regula falsi (a NaN slope gives no Newton step).
+    let Ok((du0, du1)) = lr.mu_rates(brake, c) else {
+        return f64::NAN;
+    };
     let (_, den) = lr.rayleigh(c, p.lambda, &p.right, &p.left);
-    (-lr.mu_derivative(c, &dk, &p.right, &p.left) / den).re
+    let num = lr.coupling_derivative(c, &du0, du1.as_deref(), p.lambda, &p.right, &p.left);
+    (-num / den).re
 }
 
-fn eval(lr: &LowRank, eq: Equilibrium, c: Coupling, pair: Eigenpair, tau: f64) -> Eval {
-    let s = slope(lr, &c, &pair);
+fn eval(
+    brake: &Brake,
+    lr: &LinearizedBrake,
+    eq: Equilibrium,
+    c: Coupling,
+    pairs: Vec<Eigenpair>,
+    tau: f64,
+) -> Eval {
+    let top = (0..pairs.len())
+        .max_by(|&a, &b| {
+            pairs[a]
+                .lambda
+                .re
+                .total_cmp(&pairs[b].lambda.re)
+                .then(b.cmp(&a))
+        })
+        .unwrap_or(0);
+    let s = slope(brake, lr, &c, &pairs[top]);
     Eval {
-        f: pair.lambda.re - tau,
+        f: pairs[top].lambda.re - tau,
         slope: s,
         eq,
         c,
-        pair,
+        pairs,
+        top,
+    }
+}
+
+impl Eval {
+    fn pair(&self) -> &Eigenpair {
+        &self.pairs[self.top]
     }
 }
 
@@ -57,27 +97,38 @@ fn mode(point: &SweepPoint, j: usize) -> Vec<c64> {
     (0..m.nrows()).map(|i| m[(i, j)]).collect()
 }
 
-/// The tracked branch at sweep point `k`, polished with its left vector.
-fn at_point(w: &Walker, sweep: &Sweep, branch: usize, k: usize, tau: f64) -> Eval {
+/// The tracked branches at sweep point `k`, polished with their left vectors.
+fn at_point(w: &Walker, sweep: &Sweep, branches: &[usize], k: usize, tau: f64) -> Eval {
     let point = &sweep.points[k];
-    let j = sweep.branches[branch][k];
     let c = w.lr.coupling(w.brake, &point.equilibrium);
-    let pair = seed(
-        w.lr,
-        &c,
-        point.spectrum.values[j],
-        mode(point, j),
-        &w.opts.continuation,
-    );
-    eval(w.lr, point.equilibrium.clone(), c, pair, tau)
+    let pairs = branches
+        .iter()
+        .map(|&b| {
+            let j = sweep.branches[b][k];
+            seed(
+                w.lr,
+                &c,
+                point.spectrum.values[j],
+                mode(point, j),
+                &w.opts.continuation,
+            )
+        })
+        .collect();
+    eval(w.brake, w.lr, point.equilibrium.clone(), c, pairs, tau)
 }
 
-/// The branch at `mu`, continued from `from`; `None` if the continuation fails.
+/// The branches at `mu`, continued from `from`; `None` if the continuation fails.
 fn evaluate(w: &Walker, mu: f64, from: &Eval, tau: f64) -> Result<Option<Eval>, BrakeError> {
     let eq = w.equilibrium(mu, &from.eq)?;
     let c = w.lr.coupling(w.brake, &eq);
-    Ok(converge(w.lr, &c, &from.pair, &w.opts.continuation)
-        .map(|(pair, _)| eval(w.lr, eq, c, pair, tau)))
+    let mut pairs = Vec::with_capacity(from.pairs.len());
+    for p in &from.pairs {
+        match converge(w.lr, &c, p, &w.opts.continuation) {
+            Some((q, _)) => pairs.push(q),
+            None => return Ok(None),
+        }
+    }
+    Ok(Some(eval(w.brake, w.lr, eq, c, pairs, tau)))
 }
 
 /// The next friction value to evaluate: Newton from the latest evaluation, moved a quarter
@@ -108,7 +159,7 @@ fn next_mu(lo: &Eval, hi: &Eval, cur: &Eval, tol: f64, slow: bool) -> f64 {
 pub(crate) fn refine(
     brake: &Brake,
     reference: &Reference,
-    lr: &LowRank,
+    lr: &LinearizedBrake,
     sweep: &Sweep,
     c: &Crossing,
     opts: &SweepOptions,
@@ -121,8 +172,14 @@ pub(crate) fn refine(
         opts,
         stats: Default::default(),
     };
-    let mut lo = at_point(&w, sweep, c.branch, c.k, tau);
-    let mut hi = at_point(&w, sweep, c.branch, c.k + 1, tau);
+    let mut branches = vec![c.branch];
+    branches.extend(partner(sweep, c));
+    // Both ends continued from the lower sweep point, so that the two branches keep their
+    // identities across the bracket.
+    let mut lo = at_point(&w, sweep, &branches, c.k, tau);
+    let Some(mut hi) = evaluate(&w, c.mu_hi, &lo, tau)? else {
+        return Ok(None);
+    };
     if !(lo.f <= 0.0 && hi.f > 0.0) {
         return Ok(None);
     }
@@ -150,14 +207,25 @@ pub(crate) fn refine(
         }
         widths.push(hi.mu() - lo.mu());
     }
-    let Some((point, index)) = upper_point(&mut w, sweep, c, &hi)? else {
+    // A root, not a jump: across the final bracket f changes by about its slope times the
+    // width (a jump of the tracked eigenvalue would leave a finite gap).
+    let width = hi.mu() - lo.mu();
+    let expected = 10.0 * lo.slope.abs().max(hi.slope.abs()) * width;
+    if hi.f - lo.f > expected + 1e-9 * hi.pair().lambda.norm() {
+        return Ok(None);
+    }
+    let Some((point, index, branch)) = upper_point(&mut w, sweep, c, branches[hi.top], &hi)? else {
         return Ok(None);
     };
     Ok(Some(Hopf {
         mu0: 0.5 * (lo.mu() + hi.mu()),
-        frequency_hz: hi.pair.lambda.im / (2.0 * std::f64::consts::PI),
-        branch: c.branch,
-        partner: partner(sweep, c),
+        frequency_hz: hi.pair().lambda.im / (2.0 * std::f64::consts::PI),
+        branch,
+        partner: branches
+            .iter()
+            .copied()
+            .find(|&b| b != branch)
+            .or_else(|| partner(sweep, c).filter(|&b| b != branch)),
         bracket: (lo.mu(), hi.mu()),
         real_part_at_bracket: (lo.f, hi.f),
         evaluations,
@@ -166,22 +234,18 @@ pub(crate) fn refine(
     }))
 }
 
-/// The full spectrum at the upper end of the bracket and the branch's index in it: the sweep
-/// point itself if the bracket kept it, else every branch continued from the nearer sweep
-/// point of the crossing. `None` if the tracked branch is not found there.
+/// The full spectrum at the upper end of the bracket, every branch continued from the nearer
+/// sweep point of the crossing, with the index in it of the refinement's eigenvalue and the
+/// branch that holds it (`branch` when the identities did not swap). `None` if no branch
+/// holds it there.
 fn upper_point(
     w: &mut Walker,
     sweep: &Sweep,
     c: &Crossing,
+    branch: usize,
     hi: &Eval,
-) -> Result<Option<(SweepPoint, usize)>, BrakeError> {
+) -> Result<Option<(SweepPoint, usize, usize)>, BrakeError> {
     let k_hi = c.k + 1;
-    if hi.mu() == sweep.points[k_hi].equilibrium.mu {
-        return Ok(Some((
-            sweep.points[k_hi].clone(),
-            sweep.branches[c.branch][k_hi],
-        )));
-    }
     let k = if hi.mu() - c.mu_lo <= c.mu_hi - hi.mu() {
         c.k
     } else {
@@ -209,12 +273,16 @@ fn upper_point(
         pairs,
     };
     let mut state = w.step_to(&base, hi.eq.clone(), hi.c.clone())?;
-    let tracked = &mut state.pairs[c.branch];
-    if (tracked.lambda - hi.pair.lambda).norm() > 1e-8 * hi.pair.lambda.norm() {
+    // The branch whose eigenvalue is the refinement's (the identities may have swapped).
+    let target = hi.pair().lambda;
+    let Some(found) = (0..state.pairs.len())
+        .filter(|&b| (state.pairs[b].lambda - target).norm() <= 1e-8 * target.norm())
+        .min_by_key(|&b| (b != branch, b))
+    else {
         return Ok(None);
-    }
+    };
     // The same eigenpair as the refinement's, to the last bit.
-    *tracked = hi.pair.clone();
+    state.pairs[found] = hi.pair().clone();
     let (point, position) = crate::sweep::sweep_point(&state);
-    Ok(Some((point, position[c.branch])))
+    Ok(Some((point, position[found], found)))
 }

@@ -7,6 +7,7 @@
 //! with `D` diagonal: a global modal damping ratio ζ on every mode (`2 ζ ω_j`) plus eq (13)'s
 //! `D1`, `D2` on the two modes that coalesce.
 
+use crate::damping::ModalDamping;
 use crate::error::BrakeError;
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
@@ -38,7 +39,7 @@ pub fn modal_basis(m: &Mat<f64>, k: &Mat<f64>) -> Result<ModalBasis, BrakeError>
     let a = Mat::from_fn(n, n, |i, j| 0.5 * (a0[(i, j)] + a0[(j, i)]) / scale);
     let evd = a
         .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| BrakeError::Eigen(format!("{e:?}")))?;
+        .map_err(|_| BrakeError::EigenNoConvergence)?;
     let s = evd.S();
     let mut omega = Vec::with_capacity(n);
     for j in 0..n {
@@ -50,9 +51,7 @@ pub fn modal_basis(m: &Mat<f64>, k: &Mat<f64>) -> Result<ModalBasis, BrakeError>
     }
     let worst = max_residual(&a, evd.U(), s);
     if worst.is_nan() || worst > 1e-12 {
-        return Err(BrakeError::Eigen(format!(
-            "the frictionless modes have a relative residual of {worst:.1e} (the dense eigensolver failed)"
-        )));
+        return Err(BrakeError::EigenInaccurate { residual: worst });
     }
     // φ = L⁻ᵀ y.
     let phi = l.transpose().to_owned().partial_piv_lu().solve(evd.U());
@@ -99,28 +98,30 @@ pub struct Damping {
 }
 
 impl Damping {
-    /// The diagonal of `D` for a basis.
-    pub fn diagonal(&self, basis: &ModalBasis) -> Vec<f64> {
+    /// `D` of eq (12) for a basis (diagonal). An extra on a mode the basis does not have is
+    /// an error, not ignored.
+    pub fn modal(&self, basis: &ModalBasis) -> Result<ModalDamping, BrakeError> {
         let mut d: Vec<f64> = basis
             .omega
             .iter()
             .map(|w| 2.0 * self.global_ratio * w)
             .collect();
         for &(j, v) in &self.extra {
-            if j < d.len() {
-                d[j] += v;
-            }
+            let n = d.len();
+            let slot = d.get_mut(j).ok_or(BrakeError::ModeOutOfRange {
+                mode: j + 1,
+                modes: n,
+            })?;
+            *slot += v;
         }
-        d
+        Ok(ModalDamping::Diagonal(d))
     }
 }
 
 /// Eq (12): `C = M Φ D Φᵀ M`.
-pub fn damping_matrix(m: &Mat<f64>, basis: &ModalBasis, d: &[f64]) -> Mat<f64> {
-    let n = m.nrows();
+pub fn damping_matrix(m: &Mat<f64>, basis: &ModalBasis, d: &ModalDamping) -> Mat<f64> {
     let mphi = m * &basis.phi;
-    let scaled = Mat::from_fn(n, n, |i, j| mphi[(i, j)] * d[j]);
-    &scaled * mphi.transpose()
+    &mphi * d.to_dense() * mphi.transpose()
 }
 
 #[cfg(test)]
@@ -199,7 +200,7 @@ mod tests {
         }
         // Φᵀ C Φ = D by construction of eq (12).
         let d = [0.3, 1.7];
-        let c = damping_matrix(&m, &b, &d);
+        let c = damping_matrix(&m, &b, &ModalDamping::Diagonal(d.to_vec()));
         let back = b.phi.transpose() * &c * &b.phi;
         for i in 0..2 {
             for j in 0..2 {

@@ -2,18 +2,21 @@
 //!
 //! Eq (21)'s state matrix is built in the frictionless modal coordinates `x = Φ q` (module
 //! [`crate::modal`]), where `Φᵀ M Φ = I`, `Φᵀ K_t0 Φ = Ω²` and `Φᵀ C Φ = D`:
-//! `q'' + D q' + (Ω² + ΔK) q = 0` with `ΔK = Φᵀ (K_t(μ) - K_t0) Φ` (friction coupling and the
-//! change of the contact tangent stiffness with μ). With the scaled state `z = [Ω q; q']` the
-//! state matrix is
+//! `q'' + (D + ΔC) q' + (Ω² + ΔK) q = 0` with `ΔK = Φᵀ (K_t(μ) - K_t0) Φ` (friction coupling
+//! and the change of the contact tangent stiffness with μ) and `ΔC = Φᵀ C_NL Φ` (zero unless a
+//! contact element depends on the velocities), both from the one linearization of
+//! [`crate::linearized`]. With the scaled state `z = [Ω q; q']` the state matrix is
 //!
-//! `A = [[0, Ω], [-(Ω + ΔK Ω⁻¹), -D]]`,
+//! `A = [[0, Ω], [-(Ω + ΔK Ω⁻¹), -(D + ΔC)]]`,
 //!
 //! similar to eq (21)'s (same eigenvalues) but with entries of order ω instead of ω², which
 //! keeps the eigenvalues' absolute accuracy near `ε ω_max` rather than `ε ω_max²`: this matters
 //! for the small real parts near a Hopf point.
 
+use crate::damping::ModalDamping;
 use crate::equilibrium::Equilibrium;
 use crate::error::BrakeError;
+use crate::linearized::LinearizedBrake;
 use crate::modal::ModalBasis;
 use crate::model::Brake;
 use faer::diag::Diag;
@@ -22,18 +25,23 @@ use faer::linalg::evd::{ComputeEigenvectors, evd_real, evd_scratch};
 use faer::{Mat, Par, c64};
 
 /// The frictionless reference: equilibrium at μ = 0, its tangent stiffness, modal basis and
-/// the damping diagonal `D` of eq (12).
+/// the modal damping `D` of eq (12).
 #[derive(Clone, Debug)]
 pub struct Reference {
+    /// The static equilibrium of eq (14) at μ = 0.
     pub equilibrium: Equilibrium,
+    /// The tangent stiffness `K_t0 = K + K_NL(x0, μ = 0)` there (symmetric).
     pub kt0: Mat<f64>,
+    /// The undamped modes of `(K_t0, M)`, mass-normalized.
     pub basis: ModalBasis,
-    pub damping: Vec<f64>,
+    /// The modal damping `D` of eq (12) in that basis (s⁻¹).
+    pub damping: ModalDamping,
 }
 
 /// Eigenvalues of eq (21) with `Im λ >= 0` (one of each conjugate pair) and their modes.
 #[derive(Clone, Debug)]
 pub struct Spectrum {
+    /// Friction coefficient μ of the linearization.
     pub mu: f64,
     /// `λ = a + iω` (eq 22), ascending in `ω`.
     pub values: Vec<c64>,
@@ -63,15 +71,13 @@ impl Spectrum {
     }
 }
 
-/// `ΔK = Φᵀ (K_t(x0, μ) - K_t0) Φ` in modal coordinates.
-pub fn modal_stiffness_change(brake: &Brake, reference: &Reference, eq: &Equilibrium) -> Mat<f64> {
-    let delta = brake.tangent_stiffness(&eq.x, eq.mu) - &reference.kt0;
-    let phi = &reference.basis.phi;
-    phi.transpose() * (&delta * phi)
-}
-
-/// The scaled state matrix `[[0, Ω], [-(Ω + ΔK Ω⁻¹), -D]]`.
-pub fn state_matrix(basis: &ModalBasis, damping: &[f64], dk: &Mat<f64>) -> Mat<f64> {
+/// The scaled state matrix `[[0, Ω], [-(Ω + ΔK Ω⁻¹), -(D + ΔC)]]`.
+pub fn state_matrix(
+    basis: &ModalBasis,
+    damping: &ModalDamping,
+    dk: &Mat<f64>,
+    dc: Option<&Mat<f64>>,
+) -> Mat<f64> {
     let n = basis.omega.len();
     let w = &basis.omega;
     Mat::from_fn(2 * n, 2 * n, |i, j| match (i < n, j < n) {
@@ -90,7 +96,7 @@ pub fn state_matrix(basis: &ModalBasis, damping: &[f64], dk: &Mat<f64>) -> Mat<f
         }
         (false, false) => {
             let (r, c) = (i - n, j - n);
-            if r == c { -damping[r] } else { 0.0 }
+            -(damping.entry(r, c) + dc.map_or(0.0, |m| m[(r, c)]))
         }
     })
 }
@@ -101,21 +107,29 @@ pub fn spectrum(
     reference: &Reference,
     eq: &Equilibrium,
 ) -> Result<Spectrum, BrakeError> {
-    let dk = modal_stiffness_change(brake, reference, eq);
-    spectrum_of(&reference.basis, &reference.damping, &dk, eq.mu)
+    let lin = LinearizedBrake::new(brake, reference)?;
+    let (dk, dc) = lin.dense_change(&lin.coupling(brake, eq));
+    spectrum_of(
+        &reference.basis,
+        &reference.damping,
+        &dk,
+        dc.as_ref(),
+        eq.mu,
+    )
 }
 
 /// Eigen-decomposition of the scaled state matrix for a given modal stiffness change.
 pub fn spectrum_of(
     basis: &ModalBasis,
-    damping: &[f64],
+    damping: &ModalDamping,
     dk: &Mat<f64>,
+    dc: Option<&Mat<f64>>,
     mu: f64,
 ) -> Result<Spectrum, BrakeError> {
     let n = basis.omega.len();
-    let a = state_matrix(basis, damping, dk);
+    let a = state_matrix(basis, damping, dk, dc);
     let (s, u) = real_eigen(&a, true)?;
-    let u = u.ok_or_else(|| BrakeError::Eigen("no eigenvectors".into()))?;
+    let u = u.ok_or(BrakeError::EigenNoConvergence)?;
     let order = upper_half(&s, n);
     let mut values = Vec::with_capacity(n);
     let mut modes = Mat::<c64>::zeros(n, n);
@@ -140,11 +154,12 @@ pub fn spectrum_of(
 /// [`spectrum_of`] orders them, without the modes (faster).
 pub fn eigenvalues_of(
     basis: &ModalBasis,
-    damping: &[f64],
+    damping: &ModalDamping,
     dk: &Mat<f64>,
+    dc: Option<&Mat<f64>>,
 ) -> Result<Vec<c64>, BrakeError> {
     let n = basis.omega.len();
-    let a = state_matrix(basis, damping, dk);
+    let a = state_matrix(basis, damping, dk, dc);
     let (s, _) = real_eigen(&a, false)?;
     Ok(upper_half(&s, n).into_iter().map(|k| s[k]).collect())
 }
@@ -189,7 +204,7 @@ pub fn real_eigen(a: &Mat<f64>, vectors: bool) -> Result<(Vec<c64>, Option<Mat<c
         MemStack::new(&mut MemBuffer::new(scratch)),
         Default::default(),
     )
-    .map_err(|e| BrakeError::Eigen(format!("{e:?}")))?;
+    .map_err(|_| BrakeError::EigenNoConvergence)?;
     let values: Vec<c64> = (0..n).map(|j| c64::new(s_re[j], s_im[j])).collect();
     let modes = u_real.map(|ur| {
         let mut u = Mat::<c64>::zeros(n, n);
@@ -228,7 +243,8 @@ mod tests {
             |i, j| if i == j { 1e6 * (3 + i) as f64 } else { -2e5 },
         );
         let b = modal_basis(&m, &k).unwrap();
-        let sp = spectrum_of(&b, &[0.0; 3], &Mat::zeros(3, 3), 0.0).unwrap();
+        let d = ModalDamping::Diagonal(vec![0.0; 3]);
+        let sp = spectrum_of(&b, &d, &Mat::zeros(3, 3), None, 0.0).unwrap();
         for j in 0..3 {
             // Backward-stable eigensolver on a matrix of norm ~ω_max: errors ~ 1e-15 ω_max.
             assert!(

@@ -16,8 +16,8 @@
 
 use crate::analysis::{DampingSpec, PairChoice, Stability, basis_mode_of_branch, stability};
 use crate::error::BrakeError;
+use crate::linearized::LinearizedBrake;
 use crate::model::Brake;
-use crate::spectrum::modal_stiffness_change;
 use crate::sweep::{Crossing, Sweep, SweepOptions, default_threshold};
 use faer::{Mat, c64};
 use rayon::prelude::*;
@@ -101,28 +101,22 @@ pub fn damping_cases() -> Vec<Case> {
     .collect()
 }
 
-fn positive(x: f64, what: &str) -> Result<(), BrakeError> {
-    if x.is_finite() && x > 0.0 {
+fn positive(value: f64, what: &'static str) -> Result<(), BrakeError> {
+    if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(BrakeError::Invalid(format!(
-            "the {what} factor must be a positive number (got {x})"
-        )))
+        Err(BrakeError::NotPositive { what, value })
     }
 }
 
-/// The brake of a case: the piston force of eq (11) times `pressure`, and each pair's `k_l`,
-/// `k_nl` of eq (8) times `stiffness`.
+/// The brake of a case: the piston force of eq (11) times `pressure`, and each pair's contact
+/// forces (for eq (8), `k_l` and `k_nl`) times `stiffness`.
 pub fn scaled_brake(brake: &Brake, pressure: f64, stiffness: f64) -> Result<Brake, BrakeError> {
-    positive(pressure, "pressure")?;
-    positive(stiffness, "stiffness")?;
-    let mut b = brake.clone();
+    positive(pressure, "pressure factor")?;
+    positive(stiffness, "contact stiffness factor")?;
+    let mut b = brake.with_contact_scale(stiffness);
     for f in &mut b.f_piston {
         *f *= pressure;
-    }
-    for p in &mut b.pairs {
-        p.k_linear *= stiffness;
-        p.k_cubic *= stiffness;
     }
     Ok(b)
 }
@@ -136,9 +130,10 @@ pub fn case_damping(
 ) -> Result<DampingSpec, BrakeError> {
     for f in case.pair_factors {
         if !(f.is_finite() && f >= 0.0) {
-            return Err(BrakeError::Invalid(format!(
-                "the pair damping factors must be >= 0 (got {f})"
-            )));
+            return Err(BrakeError::Negative {
+                what: "pair damping factor",
+                value: f,
+            });
         }
     }
     Ok(DampingSpec {
@@ -156,6 +151,7 @@ pub fn case_damping(
 pub struct BranchCurve {
     /// The frictionless mode (0-based) the branch starts from.
     pub basis_mode: usize,
+    /// The sweep's friction values.
     pub mu: Vec<f64>,
     /// Eigenvalue `λ = a + iω` (eq 22) at each μ.
     pub values: Vec<c64>,
@@ -176,16 +172,19 @@ impl BranchCurve {
 /// What a case's tables and figures need from its stability analysis.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CaseOutcome {
+    /// The case.
     pub case: Case,
-    /// The refined Hopf point μ0 and the frequency of the unstable mode there (Hz).
+    /// The refined Hopf point μ0, when the sweep has one.
     pub mu0: Option<f64>,
+    /// Frequency (Hz) of the unstable mode at μ0, when there is a Hopf point.
     pub frequency_hz: Option<f64>,
     /// Frictionless modes (0-based) of Mode 1 (stays stable) and Mode 2 (goes unstable).
     pub pair: Option<(usize, usize)>,
     /// Their frictionless frequencies (Hz).
     pub pair_hz: Option<(f64, f64)>,
-    /// The branch that goes unstable (Mode 2) and its partner (Mode 1), when found.
+    /// The branch that goes unstable (Mode 2), when found.
     pub unstable: Option<BranchCurve>,
+    /// The partner branch (Mode 1), when found.
     pub partner: Option<BranchCurve>,
     /// Every upward crossing of the sweep.
     pub crossings: Vec<Crossing>,
@@ -293,13 +292,15 @@ pub fn second_order_real_part(omega: &[f64], d: &[f64], dk: &Mat<f64>, j: usize)
 /// The growth of the modes outside the coalescing pair at one friction value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GrowthRow {
+    /// Friction coefficient of the sweep point.
     pub mu: f64,
     /// Largest `Re λ / |λ|` over the in-band modes outside the pair (`-ζ` of a damped mode).
     pub max_ratio: f64,
     /// That mode's `Re λ` (s⁻¹).
     pub real_part: f64,
-    /// Frequency (Hz) and frictionless mode (0-based) of that mode.
+    /// Frequency (Hz) of that mode.
     pub frequency_hz: f64,
+    /// Frictionless mode (0-based) the most unstable branch starts from.
     pub basis_mode: usize,
     /// In-band modes outside the pair with `Re λ` above the instability threshold.
     pub unstable: usize,
@@ -317,6 +318,13 @@ pub fn other_mode_growth(
 ) -> Result<Vec<GrowthRow>, BrakeError> {
     let sw = &st.sweep;
     let r = &st.reference;
+    let d = r
+        .damping
+        .diagonal()
+        .ok_or(BrakeError::NeedsDiagonalDamping {
+            analysis: "the second-order damping paradox estimate",
+        })?;
+    let lin = LinearizedBrake::new(brake, r)?;
     let tau = opts.threshold.unwrap_or_else(|| default_threshold(r));
     let pair: Vec<usize> = st.pair.map_or(vec![], |(a, b)| vec![a, b]);
     let others: Vec<usize> = (0..sw.branches.len())
@@ -344,9 +352,9 @@ pub fn other_mode_growth(
             .iter()
             .filter(|&&b| in_band(b) && sw.value(b, k).re > tau)
             .count();
-        let dk = modal_stiffness_change(brake, r, &p.equilibrium);
+        let (dk, _) = lin.dense_change(&lin.coupling(brake, &p.equilibrium));
         let j = basis_mode_of_branch(sw, worst);
-        let predicted = second_order_real_part(&r.basis.omega, &r.damping, &dk, j);
+        let predicted = second_order_real_part(&r.basis.omega, d, &dk, j);
         rows.push(GrowthRow {
             mu: p.equilibrium.mu,
             max_ratio: ratio(worst),
@@ -418,17 +426,18 @@ pub fn circumferential_orders(
     max_order: usize,
 ) -> Result<OrderSpectrum, BrakeError> {
     if angles.len() != values.len() || angles.len() < 4 {
-        return Err(BrakeError::Invalid(format!(
-            "a circumferential analysis needs at least 4 samples, as many angles as values (got {} and {})",
-            angles.len(),
-            values.len()
-        )));
+        return Err(BrakeError::Samples {
+            what: "a circumferential analysis",
+            needed: 4,
+            positions: angles.len(),
+            values: values.len(),
+        });
     }
     if max_order >= RING_SAMPLES / 2 {
-        return Err(BrakeError::Invalid(format!(
-            "orders up to {} only (asked {max_order})",
-            RING_SAMPLES / 2 - 1
-        )));
+        return Err(BrakeError::OrderTooHigh {
+            asked: max_order,
+            max: RING_SAMPLES / 2 - 1,
+        });
     }
     let mut s: Vec<(f64, c64)> = angles
         .iter()
@@ -438,9 +447,9 @@ pub fn circumferential_orders(
     if s.iter()
         .any(|(a, v)| !(a.is_finite() && v.re.is_finite() && v.im.is_finite()))
     {
-        return Err(BrakeError::Invalid(
-            "a circumferential analysis got a non-finite angle or value".into(),
-        ));
+        return Err(BrakeError::NonFiniteSample {
+            what: "a circumferential analysis",
+        });
     }
     s.sort_by(|a, b| a.0.total_cmp(&b.0));
     let n = s.len();
@@ -515,11 +524,12 @@ pub struct Profile {
 /// to make the real part largest (`arg Σ w² / 2`), then the real part is analysed.
 pub fn pad_profile(s: &[f64], w: &[c64]) -> Result<Profile, BrakeError> {
     if s.len() != w.len() || s.len() < 3 {
-        return Err(BrakeError::Invalid(format!(
-            "a pad profile needs at least 3 samples, as many positions as values (got {} and {})",
-            s.len(),
-            w.len()
-        )));
+        return Err(BrakeError::Samples {
+            what: "a pad profile",
+            needed: 3,
+            positions: s.len(),
+            values: w.len(),
+        });
     }
     let sum_sq = w.iter().fold(c64::new(0.0, 0.0), |acc, v| acc + v * v);
     let phase = 0.5 * sum_sq.im.atan2(sum_sq.re);
@@ -585,6 +595,7 @@ pub fn energy_share(m: &Mat<f64>, x: &[c64], range: Range<usize>) -> f64 {
 /// What a mode's shape shows, for telling which modes couple.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShapeSummary {
+    /// The mode's frequency (Hz).
     pub frequency_hz: f64,
     /// Share of the kinetic energy in the disc ([`energy_share`]).
     pub disc_energy: f64,
@@ -685,6 +696,7 @@ mod tests {
         )
         .unwrap();
         let d = [0.0, 2.0 * 0.01 * 1700.0, 0.0];
+        let dm = crate::damping::ModalDamping::Diagonal(d.to_vec());
         let n = [
             [3.0e4, 2.0e5, -1.0e5],
             [-2.5e5, -1.0e4, 1.5e5],
@@ -692,7 +704,7 @@ mod tests {
         ];
         for eps in [0.01, 0.03] {
             let dk = Mat::from_fn(3, 3, |i, j| eps * n[i][j]);
-            let sp = spectrum_of(&basis, &d, &dk, eps).unwrap();
+            let sp = spectrum_of(&basis, &dm, &dk, None, eps).unwrap();
             for j in [0usize, 2] {
                 let exact = sp.values[j].re;
                 let approx = second_order_real_part(&basis.omega, &d, &dk, j);
@@ -717,13 +729,13 @@ mod tests {
             &Mat::from_fn(2, 2, |i, j| if i == j { omega[i] * omega[i] } else { 0.0 }),
         )
         .unwrap();
-        let d = [0.0, 34.0];
+        let dm = crate::damping::ModalDamping::Diagonal(vec![0.0, 34.0]);
         let eps = [1e-3, 2e-3, 5e-3, 1e-2];
         let re: Vec<f64> = eps
             .iter()
             .map(|&e| {
                 let dk = Mat::from_fn(2, 2, |i, j| e * [[0.0, 3e5], [-3e5, 0.0]][i][j]);
-                spectrum_of(&basis, &d, &dk, e).unwrap().values[0].re
+                spectrum_of(&basis, &dm, &dk, None, e).unwrap().values[0].re
             })
             .collect();
         let slope = log_slope(&eps, &re).unwrap();
@@ -803,17 +815,30 @@ mod tests {
                 disc_point: 0,
                 pad_point: 0,
                 position: [0.0; 3],
+                normal_direction: [0.0, 0.0, 1.0],
+                sliding_direction: [1.0, 0.0, 0.0],
                 normal: vec![(1, 1.0)],
                 tangent: vec![(0, 1.0)],
                 gap: 0.0,
-                k_linear: 2e6,
-                k_cubic: 4e15,
+                surface_speed: None,
+                law: std::sync::Arc::new(crate::contact::PenaltyCoulomb {
+                    k_linear: 2e6,
+                    k_cubic: 4e15,
+                }),
             }],
         };
         let s = scaled_brake(&b, 0.8, 1.3).unwrap();
         assert_eq!(s.f_piston, vec![0.0, -300.0 * 0.8]);
-        assert_eq!(s.pairs[0].k_linear, 2e6 * 1.3);
-        assert_eq!(s.pairs[0].k_cubic, 4e15 * 1.3);
+        let k = crate::contact::Kinematics {
+            penetration: 1e-5,
+            ..Default::default()
+        };
+        let (r0, r1) = (
+            b.pairs[0].law.response(0.5, &k),
+            s.pairs[0].law.response(0.5, &k),
+        );
+        assert_eq!(r1.normal, 1.3 * r0.normal);
+        assert_eq!(r1.normal_derivatives[0], 1.3 * r0.normal_derivatives[0]);
         assert_eq!(s.k, b.k);
         assert!(scaled_brake(&b, -1.0, 1.0).is_err() && scaled_brake(&b, 1.0, f64::NAN).is_err());
     }

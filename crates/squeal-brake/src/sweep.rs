@@ -21,7 +21,7 @@ use crate::continuation::{
 };
 use crate::equilibrium::{Equilibrium, NewtonOptions, static_equilibrium};
 use crate::error::BrakeError;
-use crate::lowrank::{Coupling, LowRank};
+use crate::linearized::{Coupling, LinearizedBrake};
 use crate::modal::{Damping, modal_basis};
 use crate::model::Brake;
 use crate::spectrum::{Reference, Spectrum, eigenvalues_of, spectrum, spectrum_of};
@@ -60,7 +60,9 @@ pub enum SweepMethod {
 /// Controls of a sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SweepOptions {
+    /// Where a crossing may define μ0 ([`Band::contains`] at its frequency).
     pub band: Band,
+    /// Controls of the static equilibrium at every friction value.
     pub newton: NewtonOptions,
     /// Width of the final bracket around μ0.
     pub mu_tolerance: f64,
@@ -71,6 +73,7 @@ pub struct SweepOptions {
     /// the scaled state matrix of [`crate::spectrum`]). The Hopf point is the root of
     /// `Re λ - threshold`, shifted from that of `Re λ` by `threshold / (dRe λ/dμ)`.
     pub threshold: Option<f64>,
+    /// How the spectra are computed.
     pub method: SweepMethod,
     /// Controls of [`SweepMethod::Continuation`].
     pub continuation: ContinuationOptions,
@@ -112,51 +115,68 @@ pub struct SweepStats {
 /// Equilibrium and spectrum at one μ.
 #[derive(Clone, Debug)]
 pub struct SweepPoint {
+    /// The static equilibrium of eq (14) at this μ.
     pub equilibrium: Equilibrium,
+    /// The complex eigenvalues and modes of the brake linearized there (eqs 20–22).
     pub spectrum: Spectrum,
 }
 
-/// A real part crossing zero upward between two sweep points.
+/// A real part crossing the instability threshold `τ` ([`SweepOptions::threshold`]) upward
+/// between two consecutive sweep points.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Crossing {
+    /// The branch that crosses (index into [`Sweep::branches`]).
     pub branch: usize,
-    /// Sweep points bracketing the crossing.
+    /// Sweep points bracketing the crossing: `k` below (`Re λ <= τ`), `k + 1` above.
     pub k: usize,
+    /// μ at point `k`.
     pub mu_lo: f64,
+    /// μ at point `k + 1`.
     pub mu_hi: f64,
     /// Frequency at the upper point.
     pub frequency_hz: f64,
+    /// Whether that frequency is in [`SweepOptions::band`] (only in-band crossings define
+    /// μ0).
     pub in_band: bool,
 }
 
 /// The refined Hopf point.
 #[derive(Clone, Debug)]
 pub struct Hopf {
+    /// The Hopf point μ0: the middle of `bracket`.
     pub mu0: f64,
     /// Frequency of the mode that goes unstable, at μ0 (the coalescence frequency).
     pub frequency_hz: f64,
-    /// Branch that goes unstable, and the branch it coalesces with (nearest in frequency).
+    /// Branch that goes unstable.
     pub branch: usize,
+    /// The branch followed with it through the refinement (the other one of the coalescing
+    /// pair), when the sweep has one.
     pub partner: Option<usize>,
     /// Final bracket `[μ-, μ+]` with the mode stable at μ- and unstable at μ+, and
     /// `Re λ - threshold` at its ends.
     pub bracket: (f64, f64),
+    /// `Re λ - τ` (s⁻¹) of the larger of the two followed modes at `μ-` (≤ 0) and `μ+` (> 0).
     pub real_part_at_bracket: (f64, f64),
     /// Spectrum evaluations used by the refinement.
     pub evaluations: usize,
-    /// Equilibrium and spectrum at the upper end of the bracket, and the mode's index there.
+    /// Equilibrium and spectrum at the upper end of the bracket.
     pub point: SweepPoint,
+    /// Index of the mode that goes unstable in `point.spectrum`.
     pub index: usize,
 }
 
 /// A sweep: its points, the branches, every upward crossing, and μ0.
 #[derive(Clone, Debug)]
 pub struct Sweep {
+    /// Equilibrium and spectrum at each friction value, in the order swept.
     pub points: Vec<SweepPoint>,
     /// `branches[b][k]`: index of branch `b` in `points[k].spectrum`.
     pub branches: Vec<Vec<usize>>,
+    /// Every upward crossing of the threshold, ordered by μ then frequency.
     pub crossings: Vec<Crossing>,
+    /// The refined first in-band crossing; `None` when no crossing is in band.
     pub hopf: Option<Hopf>,
+    /// What the spectra cost.
     pub stats: SweepStats,
 }
 
@@ -176,7 +196,7 @@ pub fn reference(
     let eq = static_equilibrium(brake, 0.0, None, newton)?;
     let kt0 = brake.tangent_stiffness(&eq.x, 0.0);
     let basis = modal_basis(&brake.m, &kt0)?;
-    let d = damping.diagonal(&basis);
+    let d = damping.modal(&basis)?;
     Ok(Reference {
         equilibrium: eq,
         kt0,
@@ -193,20 +213,15 @@ pub fn sweep(
     mus: &[f64],
     opts: &SweepOptions,
 ) -> Result<Sweep, BrakeError> {
-    if mus.is_empty()
-        || mus
-            .windows(2)
-            .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
-    {
-        return Err(BrakeError::Invalid(
-            "the friction values of a sweep must be ascending".into(),
-        ));
-    }
-    let low_rank = match opts.method {
-        SweepMethod::Continuation => LowRank::new(brake, reference),
-        SweepMethod::Dense => None,
-    };
-    let (points, branches, stats) = match &low_rank {
+    check_ascending(mus)?;
+    brake.validate()?;
+    let lin = LinearizedBrake::new(brake, reference)?;
+    // Continuation needs the diagonal-plus-low-rank form (diagonal damping); a full modal
+    // damping matrix is swept densely.
+    let low_rank = (opts.method == SweepMethod::Continuation
+        && reference.damping.diagonal().is_some())
+    .then_some(&lin);
+    let (points, branches, stats) = match low_rank {
         Some(lr) => continued_points(brake, reference, lr, mus, opts)?,
         None => dense_points(brake, reference, mus, opts)?,
     };
@@ -222,7 +237,7 @@ pub fn sweep(
         stats,
     };
     if let Some(first) = sweep.crossings.iter().find(|c| c.in_band).copied() {
-        let continued = match &low_rank {
+        let continued = match low_rank {
             Some(lr) => crate::hopf::refine(brake, reference, lr, &sweep, &first, opts, tau)?,
             None => None,
         };
@@ -232,6 +247,26 @@ pub fn sweep(
         };
     }
     Ok(sweep)
+}
+
+/// Checks that friction values are given, finite and strictly ascending:
+/// [`BrakeError::NoFrictionValues`] for none, [`BrakeError::FrictionNotAscending`] at the
+/// first value that is not.
+pub fn check_ascending(mus: &[f64]) -> Result<(), BrakeError> {
+    if mus.is_empty() {
+        return Err(BrakeError::NoFrictionValues);
+    }
+    for (k, &m) in mus.iter().enumerate() {
+        if !m.is_finite()
+            || (k > 0 && m.partial_cmp(&mus[k - 1]) != Some(std::cmp::Ordering::Greater))
+        {
+            return Err(BrakeError::FrictionNotAscending {
+                index: k + 1,
+                value: m,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Points of a sweep, the branches tracked through them (pair index per point) and the
@@ -276,7 +311,7 @@ fn dense_points(
 fn continued_points(
     brake: &Brake,
     reference: &Reference,
-    lr: &LowRank,
+    lr: &LinearizedBrake,
     mus: &[f64],
     opts: &SweepOptions,
 ) -> Result<SweptPoints, BrakeError> {
@@ -359,7 +394,7 @@ fn branch_spectrum(mu: f64, pairs: &[Eigenpair]) -> Spectrum {
 pub(crate) struct Walker<'a> {
     pub brake: &'a Brake,
     pub reference: &'a Reference,
-    pub lr: &'a LowRank,
+    pub lr: &'a LinearizedBrake,
     pub opts: &'a SweepOptions,
     pub stats: SweepStats,
 }
@@ -386,8 +421,14 @@ impl Walker<'_> {
         prev: Option<&[Eigenpair]>,
     ) -> Result<Vec<Eigenpair>, BrakeError> {
         self.stats.dense += 1;
-        let dk = self.lr.stiffness_change(c);
-        let sp = spectrum_of(&self.reference.basis, &self.reference.damping, &dk, c.mu)?;
+        let (dk, dc) = self.lr.dense_change(c);
+        let sp = spectrum_of(
+            &self.reference.basis,
+            &self.reference.damping,
+            &dk,
+            dc.as_ref(),
+            c.mu,
+        )?;
         let order: Vec<usize> = match prev {
             Some(p) => match_modes(&branch_spectrum(c.mu, p), &sp),
             None => (0..sp.values.len()).collect(),
@@ -461,8 +502,13 @@ impl Walker<'_> {
     /// by the dense eigenpairs matched to `prev`.
     fn check(&mut self, state: &mut State, prev: &State) -> Result<(), BrakeError> {
         self.stats.checks += 1;
-        let dk = self.lr.stiffness_change(&state.c);
-        let dense = eigenvalues_of(&self.reference.basis, &self.reference.damping, &dk)?;
+        let (dk, dc) = self.lr.dense_change(&state.c);
+        let dense = eigenvalues_of(
+            &self.reference.basis,
+            &self.reference.damping,
+            &dk,
+            dc.as_ref(),
+        )?;
         if !agrees_with(&state.pairs, &dense, self.opts.continuation.check_tolerance) {
             state.pairs = self.dense(&state.c, Some(&prev.pairs))?;
         }
@@ -484,13 +530,15 @@ fn track(points: &[SweepPoint]) -> Vec<Vec<usize>> {
     branches
 }
 
-/// Every upward crossing of a real part through zero, ordered by μ then frequency.
-/// `64 ε ω_max` of the reference's modal basis.
+/// The default instability threshold `τ = 64 ε ω_max` (s⁻¹), with `ω_max` the highest
+/// frequency (rad/s) of the reference's modal basis ([`SweepOptions::threshold`]).
 pub fn default_threshold(reference: &Reference) -> f64 {
     let w = reference.basis.omega.iter().copied().fold(0.0, f64::max);
     64.0 * f64::EPSILON * w
 }
 
+/// Every upward crossing of a real part through the threshold `tau`, ordered by μ then
+/// frequency.
 fn crossings(
     points: &[SweepPoint],
     branches: &[Vec<usize>],
@@ -538,7 +586,10 @@ fn follow(from: &Spectrum, j: usize, to: &Spectrum) -> usize {
     best.1
 }
 
-/// Refines a crossing by the Illinois variant of regula falsi on `Re λ(μ)`, keeping a bracket.
+/// Refines a crossing by the Illinois variant of regula falsi on the larger real part of the
+/// crossing branch and its partner (as [`crate::hopf`] does, for the same reason: where two
+/// modes coalesce, either may carry the instability), keeping a bracket. Both are followed by
+/// correlation from the lower end of the bracket.
 fn refine(
     brake: &Brake,
     reference: &Reference,
@@ -547,58 +598,105 @@ fn refine(
     opts: &SweepOptions,
     tau: f64,
 ) -> Result<Hopf, BrakeError> {
-    let lo_point = &sweep.points[c.k];
-    let hi_point = &sweep.points[c.k + 1];
-    let mut lo = (c.mu_lo, lo_point.clone(), sweep.branches[c.branch][c.k]);
-    let mut hi = (c.mu_hi, hi_point.clone(), sweep.branches[c.branch][c.k + 1]);
-    let re = |p: &SweepPoint, j: usize| p.spectrum.values[j].re - tau;
-    let (mut f_lo, mut f_hi) = (re(&lo.1, lo.2), re(&hi.1, hi.2));
+    let mut branches = vec![c.branch];
+    branches.extend(partner(sweep, c));
+    // One end: μ, the point, the followed modes' indices in it, the larger real part - τ and
+    // which of them has it.
+    struct End {
+        mu: f64,
+        point: SweepPoint,
+        modes: Vec<usize>,
+        f: f64,
+        top: usize,
+    }
+    let end = |mu: f64, point: SweepPoint, modes: Vec<usize>| {
+        let top = (0..modes.len())
+            .max_by(|&a, &b| {
+                let v = &point.spectrum.values;
+                v[modes[a]].re.total_cmp(&v[modes[b]].re).then(b.cmp(&a))
+            })
+            .unwrap_or(0);
+        let f = point.spectrum.values[modes[top]].re - tau;
+        End {
+            mu,
+            point,
+            modes,
+            f,
+            top,
+        }
+    };
+    let follow_all = |from: &End, to: &Spectrum| -> Vec<usize> {
+        from.modes
+            .iter()
+            .map(|&j| follow(&from.point.spectrum, j, to))
+            .collect()
+    };
+    let lo_point = sweep.points[c.k].clone();
+    let mut lo = end(
+        c.mu_lo,
+        lo_point,
+        branches.iter().map(|&b| sweep.branches[b][c.k]).collect(),
+    );
+    let hi_point = sweep.points[c.k + 1].clone();
+    let modes = follow_all(&lo, &hi_point.spectrum);
+    let mut hi = end(c.mu_hi, hi_point, modes);
+    let (mut f_lo, mut f_hi) = (lo.f, hi.f);
     let mut side = 0i8;
     let mut evaluations = 0;
-    while hi.0 - lo.0 > opts.mu_tolerance && evaluations < opts.max_refinements {
-        let mut mu = (lo.0 * f_hi - hi.0 * f_lo) / (f_hi - f_lo);
+    while hi.mu - lo.mu > opts.mu_tolerance && evaluations < opts.max_refinements {
+        let mut mu = (lo.mu * f_hi - hi.mu * f_lo) / (f_hi - f_lo);
         // Keep well inside the bracket; fall back to bisection when regula falsi stalls.
-        let width = hi.0 - lo.0;
-        if !mu.is_finite() || mu <= lo.0 + 0.01 * width || mu >= hi.0 - 0.01 * width {
-            mu = 0.5 * (lo.0 + hi.0);
+        let width = hi.mu - lo.mu;
+        if !mu.is_finite() || mu <= lo.mu + 0.01 * width || mu >= hi.mu - 0.01 * width {
+            mu = 0.5 * (lo.mu + hi.mu);
         }
-        let eq = static_equilibrium(brake, mu, Some(&lo.1.equilibrium.x), &opts.newton)?;
+        let eq = static_equilibrium(brake, mu, Some(&lo.point.equilibrium.x), &opts.newton)?;
         let sp = spectrum(brake, reference, &eq)?;
-        let j = follow(&lo.1.spectrum, lo.2, &sp);
-        let f = sp.values[j].re - tau;
+        let modes = follow_all(&lo, &sp);
+        let e = end(
+            mu,
+            SweepPoint {
+                equilibrium: eq,
+                spectrum: sp,
+            },
+            modes,
+        );
         evaluations += 1;
-        let point = SweepPoint {
-            equilibrium: eq,
-            spectrum: sp,
-        };
-        if f > 0.0 {
-            hi = (mu, point, j);
-            f_hi = f;
+        if e.f > 0.0 {
+            f_hi = e.f;
+            hi = e;
             if side == 1 {
                 f_lo *= 0.5;
             }
             side = 1;
         } else {
-            lo = (mu, point, j);
-            f_lo = f;
+            f_lo = e.f;
+            lo = e;
             if side == -1 {
                 f_hi *= 0.5;
             }
             side = -1;
         }
     }
-    let frequency_hz = hi.1.spectrum.frequency_hz(hi.2);
-    let partner = partner(sweep, c);
+    if !(lo.f <= 0.0 && hi.f > 0.0)
+        || hi.f - lo.f > 1e-6 * hi.point.spectrum.values[hi.modes[hi.top]].norm()
+    {
+        return Err(BrakeError::HopfNotResolved {
+            bracket: (lo.mu, hi.mu),
+            real_parts: (lo.f + tau, hi.f + tau),
+        });
+    }
+    let index = hi.modes[hi.top];
     Ok(Hopf {
-        mu0: 0.5 * (lo.0 + hi.0),
-        frequency_hz,
-        branch: c.branch,
-        partner,
-        bracket: (lo.0, hi.0),
-        real_part_at_bracket: (re(&lo.1, lo.2), re(&hi.1, hi.2)),
+        mu0: 0.5 * (lo.mu + hi.mu),
+        frequency_hz: hi.point.spectrum.frequency_hz(index),
+        branch: branches[hi.top],
+        partner: branches.iter().copied().find(|&b| b != branches[hi.top]),
+        bracket: (lo.mu, hi.mu),
+        real_part_at_bracket: (lo.f, hi.f),
         evaluations,
-        index: hi.2,
-        point: hi.1,
+        index,
+        point: hi.point,
     })
 }
 

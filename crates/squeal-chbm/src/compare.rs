@@ -8,10 +8,12 @@
 //! on the nonlinear (contact) dofs.
 
 use crate::cycle::{
-    CycleCoefficients, EnergyBalance, RelativeErrors, energy_balance, harmonic_power,
-    relative_errors,
+    Cycle, EnergyBalance, RelativeErrors, energy_balance, harmonic_power, relative_errors,
 };
-use crate::solve::{ChbmOptions, ChbmSolution, ChbmStart, Outcome, solve};
+use crate::solve::{
+    ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Outcome, RESTART_AMPLITUDES, solve,
+    solve_with_restarts,
+};
 use crate::start::start_at;
 use crate::timeint::{TiError, TiOptions, TiRun, integrate_to_limit_cycle};
 use squeal_brake::Brake;
@@ -25,12 +27,23 @@ use std::time::{Duration, Instant};
 /// Errors of a comparison.
 #[derive(Debug, thiserror::Error)]
 pub enum CompareError {
+    /// A time integration could not start.
     #[error("time integration: {0}")]
     Ti(#[from] TiError),
+    /// The reference integration ended without a steady cycle (why, in words).
     #[error("the reference time integration found no steady cycle: {0}")]
     NoReference(String),
-    #[error("{0}")]
-    Invalid(String),
+    /// A CHBM solve stopped with an error (not merely unconverged).
+    #[error("CHBM with {harmonics} harmonics: {source}")]
+    Chbm {
+        /// Harmonics of the solve.
+        harmonics: usize,
+        /// Its error.
+        source: ChbmError,
+    },
+    /// A cycle could not be built or measured (its layout or dofs do not fit).
+    #[error("the cycle measures: {0}")]
+    Measures(#[from] squeal_hbm::HbmError),
 }
 
 /// Options of [`compare_at`].
@@ -55,7 +68,7 @@ impl Default for CompareOptions {
         Self {
             harmonics: vec![1, 2, 3, 5, 10],
             chbm: ChbmOptions::default(),
-            amplitudes: vec![0.5, 1.0, 2.0, 0.25],
+            amplitudes: RESTART_AMPLITUDES.to_vec(),
             ti: TiOptions::default(),
             rtols: vec![1e-5, 1e-6],
             reference_rtol: 1e-7,
@@ -72,6 +85,7 @@ pub struct Measures {
     pub contact: RelativeErrors,
     /// Eq (49) per harmonic (index `j - 1`), on every dof.
     pub power: Vec<f64>,
+    /// Power balance over the cycle: friction input against modal damping.
     pub energy: EnergyBalance,
     /// Fraction of the cycle each pair is open.
     pub open_fraction: Vec<f64>,
@@ -80,34 +94,46 @@ pub struct Measures {
 /// One CHBM solve of the comparison.
 #[derive(Clone, Debug)]
 pub struct ChbmRow {
+    /// Harmonics of the solve.
     pub harmonics: usize,
     /// Initial amplitude that converged (or the last one tried).
     pub amplitude: f64,
+    /// The solve's result (its `time` is the last attempt's only).
     pub solution: ChbmSolution,
     /// The cycle, aligned on the reference.
-    pub cycle: CycleCoefficients,
+    pub cycle: Cycle,
+    /// Its measures against the reference.
     pub measures: Measures,
-    /// Wall time and LM iterations of all the attempts (restarts included).
+    /// Wall time of all the attempts (restarts included).
     pub wall: Duration,
+    /// Levenberg–Marquardt trial steps of all the attempts.
     pub iterations: usize,
 }
 
 /// One time integration of the comparison.
 #[derive(Clone, Debug)]
 pub struct TiRow {
+    /// Relative tolerance of the integration.
     pub rtol: f64,
+    /// The integration.
     pub run: TiRun,
-    /// Its steady cycle aligned on the reference, and its measures (`None` if no steady cycle).
-    pub cycle: Option<CycleCoefficients>,
+    /// Its steady cycle aligned on the reference (`None` if no steady cycle).
+    pub cycle: Option<Cycle>,
+    /// Its measures against the reference (`None` if no steady cycle).
     pub measures: Option<Measures>,
 }
 
 /// A full comparison at one friction level.
 #[derive(Clone, Debug)]
 pub struct Comparison {
+    /// Friction coefficient of the modal brake.
     pub mu: f64,
+    /// The reference integration at [`CompareOptions::reference_rtol`], measured against
+    /// itself.
     pub reference: TiRow,
+    /// The integrations at each of [`CompareOptions::rtols`], in that order.
     pub ti: Vec<TiRow>,
+    /// The CHBM solves with each of [`CompareOptions::harmonics`], in that order.
     pub chbm: Vec<ChbmRow>,
     /// Physical dof of the phase alignment.
     pub phase_dof: usize,
@@ -116,8 +142,12 @@ pub struct Comparison {
 }
 
 /// Fraction of `samples` phases of the cycle where each pair is open.
-pub fn open_fraction(mb: &ModalBrake, c: &CycleCoefficients, samples: usize) -> Vec<f64> {
-    let nl = c.restrict(&mb.nl_dofs);
+pub fn open_fraction(
+    mb: &ModalBrake,
+    c: &Cycle,
+    samples: usize,
+) -> Result<Vec<f64>, squeal_hbm::HbmError> {
+    let nl = c.restrict(&mb.nl_dofs)?;
     let samples = samples.max(1);
     let mut open = vec![0usize; mb.pairs.len()];
     let mut xn = vec![0.0; mb.nl()];
@@ -132,45 +162,18 @@ pub fn open_fraction(mb: &ModalBrake, c: &CycleCoefficients, samples: usize) -> 
             }
         }
     }
-    open.iter().map(|&o| o as f64 / samples as f64).collect()
+    Ok(open.iter().map(|&o| o as f64 / samples as f64).collect())
 }
 
-fn measures(mb: &ModalBrake, c: &CycleCoefficients, reference: &CycleCoefficients) -> Measures {
-    let all: Vec<usize> = (0..c.n_dofs).collect();
-    Measures {
+fn measures(mb: &ModalBrake, c: &Cycle, reference: &Cycle) -> Result<Measures, CompareError> {
+    let all: Vec<usize> = (0..c.n_dofs()).collect();
+    Ok(Measures {
         all: relative_errors(c, reference, &all),
         contact: relative_errors(c, reference, &mb.nl_dofs),
         power: harmonic_power(c, &all),
-        energy: energy_balance(mb, c, 1024),
-        open_fraction: open_fraction(mb, c, 1024),
-    }
-}
-
-/// CHBM from each amplitude in turn until a limit cycle converges.
-pub fn solve_with_restarts(
-    mb: &ModalBrake,
-    start: &ChbmStart,
-    opts: &ChbmOptions,
-    amplitudes: &[f64],
-) -> Result<(ChbmSolution, f64, Duration, usize), crate::ChbmError> {
-    let t0 = Instant::now();
-    let mut iterations = 0;
-    let mut last = None;
-    for &a in amplitudes {
-        let o = ChbmOptions {
-            amplitude: a,
-            ..opts.clone()
-        };
-        let s = solve(mb, start, &o)?;
-        iterations += s.iterations;
-        let done = s.outcome == Outcome::LimitCycle;
-        last = Some((s, a));
-        if done {
-            break;
-        }
-    }
-    let (s, a) = last.ok_or_else(|| crate::ChbmError::Invalid("no amplitude to try".into()))?;
-    Ok((s, a, t0.elapsed(), iterations))
+        energy: energy_balance(mb, c, 1024)?,
+        open_fraction: open_fraction(mb, c, 1024)?,
+    })
 }
 
 fn ti_row(
@@ -209,8 +212,8 @@ pub fn compare_at(
             ));
         }
     };
-    let phase_dof = ref_cycle.strongest_dof(&mb.nl_dofs);
-    reference.measures = Some(measures(mb, &ref_cycle, &ref_cycle));
+    let phase_dof = ref_cycle.strongest_dof(&mb.nl_dofs).unwrap_or(0);
+    reference.measures = Some(measures(mb, &ref_cycle, &ref_cycle)?);
     reference.cycle = Some(ref_cycle.clone());
     let all: Vec<usize> = (0..mb.modes()).collect();
     let power_reference: f64 = harmonic_power(&ref_cycle, &all).iter().sum();
@@ -220,7 +223,7 @@ pub fn compare_at(
         if let Some(s) = &row.run.steady {
             let mut c = s.cycle.clone();
             c.align_to(&ref_cycle, phase_dof);
-            row.measures = Some(measures(mb, &c, &ref_cycle));
+            row.measures = Some(measures(mb, &c, &ref_cycle)?);
             row.cycle = Some(c);
         }
         ti.push(row);
@@ -232,11 +235,15 @@ pub fn compare_at(
             ..opts.chbm.clone()
         };
         let (solution, amplitude, wall, iterations) =
-            solve_with_restarts(mb, start, &o, &opts.amplitudes)
-                .map_err(|e| CompareError::Invalid(format!("CHBM with {h} harmonics: {e}")))?;
-        let mut cycle = solution.cycle();
+            solve_with_restarts(mb, start, &o, &opts.amplitudes).map_err(|source| {
+                CompareError::Chbm {
+                    harmonics: h,
+                    source,
+                }
+            })?;
+        let mut cycle = solution.cycle()?;
         cycle.align_to(&ref_cycle, phase_dof);
-        let m = measures(mb, &cycle, &ref_cycle);
+        let m = measures(mb, &cycle, &ref_cycle)?;
         chbm.push(ChbmRow {
             harmonics: h,
             amplitude,
@@ -260,22 +267,26 @@ pub fn compare_at(
 /// What a CHBM solve of the robustness grid ended on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CellOutcome {
+    /// A limit cycle ([`Outcome::LimitCycle`]).
     LimitCycle,
     /// Harmonic balance converged, `|Re λ|` above `eps2`.
     Unconstrained,
+    /// The static solution ([`Outcome::Static`]).
     Static,
+    /// No convergence ([`Outcome::NotConverged`]).
     NotConverged,
     /// The solve stopped with an error (e.g. the eigenvalue could not be followed).
     Failed,
 }
 
 impl CellOutcome {
+    /// A short label for tables: [`Outcome::label`]'s, or `failed`.
     pub fn label(self) -> &'static str {
         match self {
-            CellOutcome::LimitCycle => "limit cycle",
-            CellOutcome::Unconstrained => "HB root, |Re lambda| > eps2",
-            CellOutcome::Static => "static solution",
-            CellOutcome::NotConverged => "not converged",
+            CellOutcome::LimitCycle => Outcome::LimitCycle.label(),
+            CellOutcome::Unconstrained => Outcome::LimitCycleUnconstrained.label(),
+            CellOutcome::Static => Outcome::Static.label(),
+            CellOutcome::NotConverged => Outcome::NotConverged.label(),
             CellOutcome::Failed => "failed",
         }
     }
@@ -284,34 +295,51 @@ impl CellOutcome {
 /// One CHBM solve of the grid.
 #[derive(Clone, Debug)]
 pub struct GridCell {
+    /// Friction level as a ratio μ/μ0.
     pub mu_ratio: f64,
+    /// Initial amplitude `p` of eq (48).
     pub amplitude: f64,
+    /// Harmonics of the solve.
     pub harmonics: usize,
+    /// What the solve ended on.
     pub outcome: CellOutcome,
+    /// Levenberg–Marquardt trial steps (0 when the solve failed).
     pub iterations: usize,
+    /// Wall time of the solve.
     pub time: Duration,
+    /// Frequency `ω / 2π` (Hz) where the solve ended, converged or not; NaN when it failed.
     pub frequency_hz: f64,
     /// Largest fraction of the cycle any pair is open (0 when not a limit cycle).
     pub open_fraction: f64,
+    /// Why the solve failed (for [`CellOutcome::Failed`]).
+    pub error: Option<String>,
 }
 
 /// One time integration of the grid.
 #[derive(Clone, Debug)]
 pub struct TiCell {
+    /// Friction level as a ratio μ/μ0.
     pub mu_ratio: f64,
+    /// The integration; `None` when there is no start at this μ or it could not start.
     pub run: Option<TiRun>,
     /// Why there is no run or no steady cycle.
     pub failure: Option<String>,
+    /// Largest fraction of the steady cycle any pair is open; NaN without a steady cycle.
     pub open_fraction: f64,
 }
 
 /// Options of [`robustness`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct GridOptions {
+    /// Friction levels as ratios μ/μ0.
     pub mu_ratios: Vec<f64>,
+    /// Initial amplitudes `p` of eq (48), each solved alone (no restarts).
     pub amplitudes: Vec<f64>,
+    /// Harmonics of the CHBM solves.
     pub harmonics: Vec<usize>,
+    /// Base CHBM options (the harmonics and amplitude are set per cell).
     pub chbm: ChbmOptions,
+    /// Options of the time integrations.
     pub ti: TiOptions,
     /// Run the time integration at each μ.
     pub with_ti: bool,
@@ -335,10 +363,15 @@ impl Default for GridOptions {
 
 /// The brake and where its analyses start, for [`robustness`].
 pub struct GridModel<'a> {
+    /// The reduced brake.
     pub brake: &'a Brake,
+    /// Its frictionless reference (modes and damping).
     pub reference: &'a Reference,
+    /// The Hopf point μ0 that [`GridOptions::mu_ratios`] multiply.
     pub mu0: f64,
+    /// The band in which the unstable mode of each start is sought.
     pub band: Band,
+    /// Controls of the static equilibria.
     pub newton: NewtonOptions,
 }
 
@@ -363,19 +396,23 @@ fn grid_cell(
         time: Duration::ZERO,
         frequency_hz: f64::NAN,
         open_fraction: 0.0,
+        error: None,
     };
-    if let Ok(s) = solve(mb, start, &o) {
-        cell.outcome = match s.outcome {
-            Outcome::LimitCycle => CellOutcome::LimitCycle,
-            Outcome::LimitCycleUnconstrained => CellOutcome::Unconstrained,
-            Outcome::Static => CellOutcome::Static,
-            Outcome::NotConverged => CellOutcome::NotConverged,
-        };
-        cell.iterations = s.iterations;
-        cell.frequency_hz = s.omega / (2.0 * PI);
-        if cell.outcome == CellOutcome::LimitCycle {
-            cell.open_fraction = s.open_fraction.iter().copied().fold(0.0, f64::max);
+    match solve(mb, start, &o) {
+        Ok(s) => {
+            cell.outcome = match s.outcome {
+                Outcome::LimitCycle => CellOutcome::LimitCycle,
+                Outcome::LimitCycleUnconstrained => CellOutcome::Unconstrained,
+                Outcome::Static => CellOutcome::Static,
+                Outcome::NotConverged => CellOutcome::NotConverged,
+            };
+            cell.iterations = s.iterations;
+            cell.frequency_hz = s.omega / (2.0 * PI);
+            if cell.outcome == CellOutcome::LimitCycle {
+                cell.open_fraction = s.open_fraction.iter().copied().fold(0.0, f64::max);
+            }
         }
+        Err(e) => cell.error = Some(e.to_string()),
     }
     cell.time = t0.elapsed();
     cell
@@ -415,6 +452,7 @@ pub fn robustness(
                             time: Duration::ZERO,
                             frequency_hz: f64::NAN,
                             open_fraction: 0.0,
+                            error: Some(e.to_string()),
                         });
                     }
                 }
@@ -445,8 +483,7 @@ pub fn robustness(
                 Ok(run) => {
                     let open = run.steady.as_ref().map_or(f64::NAN, |s| {
                         open_fraction(&mb, &s.cycle, 1024)
-                            .into_iter()
-                            .fold(0.0, f64::max)
+                            .map_or(f64::NAN, |o| o.into_iter().fold(0.0, f64::max))
                     });
                     TiCell {
                         mu_ratio: r,

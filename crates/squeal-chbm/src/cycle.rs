@@ -4,7 +4,7 @@
 //!
 //! - **Phase alignment.** Both cycles are autonomous, so their time origins are arbitrary: the
 //!   approximation is shifted in time so that the first harmonic of a reference dof has the
-//!   reference's phase ([`CycleCoefficients::align_to`]).
+//!   reference's phase ([`Cycle::align_to`]).
 //! - **Relative errors** ([`relative_errors`]): RMS over one cycle (in phase `θ = ωt`, so two
 //!   cycles of slightly different frequency are compared shape against shape) and over a set
 //!   of dofs of `x_approx(θ) - x_ref(θ)`, mean included, divided by the RMS of the reference's
@@ -19,111 +19,90 @@
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 use squeal_brake::modal_brake::ModalBrake;
+use squeal_hbm::{HarmonicLayout, HbmError, Periodic};
 use std::f64::consts::PI;
 
-/// Fourier coefficients of a periodic motion of `n` dofs, in the block layout of eq (25):
-/// value of dof `d` in block `b` at `[b * n + d]`, blocks `[0c, 1c, 1s, 2c, 2s, ...]`, so that
-/// `x_d(t) = Σ_k U_kc cos(kωt) + U_ks sin(kωt)`.
+/// A periodic motion of every dof: displacements and velocities as two [`Periodic`] series of
+/// one layout and frequency. A harmonic balance cycle has velocities by differentiation
+/// ([`Cycle::from_displacement`]); a time integration measures its own.
 #[derive(Clone, Debug, PartialEq)]
-pub struct CycleCoefficients {
-    pub harmonics: usize,
-    /// Angular frequency ω (rad/s).
-    pub omega: f64,
-    pub n_dofs: usize,
-    /// Displacements.
-    pub x: Vec<f64>,
-    /// Velocities.
-    pub v: Vec<f64>,
+pub struct Cycle {
+    /// Displacements, in the layout of eq (25) over every dof.
+    pub x: Periodic,
+    /// Velocities, in the same layout and at the same frequency.
+    pub v: Periodic,
 }
 
-impl CycleCoefficients {
-    /// From displacement coefficients; velocities by differentiating the series.
-    pub fn from_displacement(harmonics: usize, omega: f64, n_dofs: usize, x: Vec<f64>) -> Self {
-        let mut v = vec![0.0; x.len()];
-        for k in 1..=harmonics {
-            let kw = k as f64 * omega;
-            for d in 0..n_dofs {
-                let (c, s) = (x[(2 * k - 1) * n_dofs + d], x[2 * k * n_dofs + d]);
-                v[(2 * k - 1) * n_dofs + d] = kw * s;
-                v[2 * k * n_dofs + d] = -kw * c;
-            }
-        }
-        Self {
-            harmonics,
-            omega,
-            n_dofs,
-            x,
-            v,
-        }
+impl Cycle {
+    /// From displacements; velocities by differentiating the series.
+    pub fn from_displacement(x: Periodic) -> Self {
+        let v = x.derivative();
+        Self { x, v }
+    }
+
+    /// From displacement coefficients in the layout of eq (25) over `n_dofs` dofs.
+    pub fn from_coefficients(
+        harmonics: usize,
+        omega: f64,
+        n_dofs: usize,
+        x: Vec<f64>,
+    ) -> Result<Self, HbmError> {
+        let layout = HarmonicLayout::new(n_dofs, harmonics)?;
+        Ok(Self::from_displacement(Periodic::new(layout, omega, x)?))
+    }
+
+    /// Harmonics kept.
+    pub fn harmonics(&self) -> usize {
+        self.x.harmonics()
+    }
+
+    /// Number of dofs.
+    pub fn n_dofs(&self) -> usize {
+        self.x.n_dofs()
+    }
+
+    /// ω (rad/s).
+    pub fn omega(&self) -> f64 {
+        self.x.omega
     }
 
     /// Frequency in Hz.
     pub fn frequency_hz(&self) -> f64 {
-        self.omega / (2.0 * PI)
-    }
-
-    /// `(cos, sin)` coefficients of harmonic `k ≥ 1` of dof `d` (zero above `harmonics`).
-    pub fn harmonic(&self, values: &[f64], k: usize, d: usize) -> (f64, f64) {
-        if k == 0 || k > self.harmonics {
-            return (0.0, 0.0);
-        }
-        (
-            values[(2 * k - 1) * self.n_dofs + d],
-            values[2 * k * self.n_dofs + d],
-        )
+        self.x.frequency_hz()
     }
 
     /// Mean of dof `d`.
     pub fn mean(&self, d: usize) -> f64 {
-        self.x[d]
+        self.x.mean(d)
     }
 
     /// Amplitude of harmonic `k` of dof `d`'s displacement (`|mean|` for `k = 0`).
     pub fn amplitude(&self, d: usize, k: usize) -> f64 {
-        if k == 0 {
-            return self.x[d].abs();
-        }
-        let (c, s) = self.harmonic(&self.x, k, d);
-        c.hypot(s)
+        self.x.amplitude(d, k)
     }
 
     /// Shifts the time origin by `φ / ω`: `x(θ) ← x(θ + φ)`.
     pub fn shift_phase(&mut self, phi: f64) {
-        let n = self.n_dofs;
-        for k in 1..=self.harmonics {
-            let (s, c) = (k as f64 * phi).sin_cos();
-            for values in [&mut self.x, &mut self.v] {
-                for d in 0..n {
-                    let (a, b) = (values[(2 * k - 1) * n + d], values[2 * k * n + d]);
-                    // a cos(k(θ+φ)) + b sin(k(θ+φ)) = (a c + b s) cos kθ + (b c - a s) sin kθ.
-                    values[(2 * k - 1) * n + d] = a * c + b * s;
-                    values[2 * k * n + d] = b * c - a * s;
-                }
-            }
-        }
+        self.x.shift_phase(phi);
+        self.v.shift_phase(phi);
     }
 
     /// Shifts this cycle in time so that the first harmonic of dof `d` has the phase of
     /// `reference`'s; returns the shift φ (rad of the fundamental).
-    pub fn align_to(&mut self, reference: &CycleCoefficients, d: usize) -> f64 {
-        let (a, b) = self.harmonic(&self.x, 1, d);
-        let (ar, br) = reference.harmonic(&reference.x, 1, d);
+    pub fn align_to(&mut self, reference: &Cycle, d: usize) -> f64 {
         // a cos θ + b sin θ = A cos(θ - atan2(b, a)).
-        let phi = b.atan2(a) - br.atan2(ar);
+        let phi = self.x.first_phase(d) - reference.x.first_phase(d);
         self.shift_phase(phi);
         phi
     }
 
     /// Value of dof `d` at phase θ (`velocity` picks the velocity series).
     pub fn value_at(&self, d: usize, theta: f64, velocity: bool) -> f64 {
-        let values = if velocity { &self.v } else { &self.x };
-        let mut s = values[d];
-        for k in 1..=self.harmonics {
-            let (c, sn) = self.harmonic(values, k, d);
-            let (si, co) = (k as f64 * theta).sin_cos();
-            s += c * co + sn * si;
+        if velocity {
+            self.v.value_at(d, theta)
+        } else {
+            self.x.value_at(d, theta)
         }
-        s
     }
 
     /// `(x(θ_j), v(θ_j))` of dof `d` at `samples + 1` phases over one cycle (closed curve).
@@ -137,35 +116,20 @@ impl CycleCoefficients {
     }
 
     /// The dof among `among` with the largest first harmonic (the reference dof of the phase
-    /// alignment).
-    pub fn strongest_dof(&self, among: &[usize]) -> usize {
+    /// alignment); `None` when `among` is empty.
+    pub fn strongest_dof(&self, among: &[usize]) -> Option<usize> {
         among
             .iter()
             .copied()
             .max_by(|&a, &b| self.amplitude(a, 1).total_cmp(&self.amplitude(b, 1)))
-            .unwrap_or(0)
     }
 
-    /// Coefficients restricted to some dofs (same layout over those dofs).
-    pub fn restrict(&self, dofs: &[usize]) -> CycleCoefficients {
-        let (n, m) = (self.n_dofs, dofs.len());
-        let blocks = 2 * self.harmonics + 1;
-        let pick = |values: &[f64]| {
-            let mut out = vec![0.0; blocks * m];
-            for b in 0..blocks {
-                for (i, &d) in dofs.iter().enumerate() {
-                    out[b * m + i] = values[b * n + d];
-                }
-            }
-            out
-        };
-        CycleCoefficients {
-            harmonics: self.harmonics,
-            omega: self.omega,
-            n_dofs: m,
-            x: pick(&self.x),
-            v: pick(&self.v),
-        }
+    /// The cycle restricted to some dofs.
+    pub fn restrict(&self, dofs: &[usize]) -> Result<Cycle, HbmError> {
+        Ok(Cycle {
+            x: self.x.restrict(dofs)?,
+            v: self.v.restrict(dofs)?,
+        })
     }
 }
 
@@ -185,20 +149,14 @@ pub struct RelativeErrors {
 
 /// Mean square over one cycle of the difference of two series on `dofs` (Parseval), and the
 /// mean square of `b`'s oscillating part.
-fn mean_squares(
-    a: &CycleCoefficients,
-    av: &[f64],
-    b: &CycleCoefficients,
-    bv: &[f64],
-    dofs: &[usize],
-) -> (f64, f64) {
-    let h = a.harmonics.max(b.harmonics);
+fn mean_squares(a: &Periodic, b: &Periodic, dofs: &[usize]) -> (f64, f64) {
+    let h = a.harmonics().max(b.harmonics());
     let (mut diff, mut osc) = (0.0, 0.0);
     for &d in dofs {
-        diff += (av[d] - bv[d]).powi(2);
+        diff += (a.mean(d) - b.mean(d)).powi(2);
         for k in 1..=h {
-            let (ac, as_) = a.harmonic(av, k, d);
-            let (bc, bs) = b.harmonic(bv, k, d);
+            let (ac, as_) = a.harmonic(k, d);
+            let (bc, bs) = b.harmonic(k, d);
             diff += 0.5 * ((ac - bc).powi(2) + (as_ - bs).powi(2));
             osc += 0.5 * (bc * bc + bs * bs);
         }
@@ -207,27 +165,11 @@ fn mean_squares(
 }
 
 /// Errors of `approx` against `reference` over `dofs` (both already phase-aligned; see
-/// [`CycleCoefficients::align_to`]). Dofs are physical indices of both.
-pub fn relative_errors(
-    approx: &CycleCoefficients,
-    reference: &CycleCoefficients,
-    dofs: &[usize],
-) -> RelativeErrors {
+/// [`Cycle::align_to`]). Dofs are physical indices of both.
+pub fn relative_errors(approx: &Cycle, reference: &Cycle, dofs: &[usize]) -> RelativeErrors {
     let ratio = |(d, o): (f64, f64)| (d / o.max(f64::MIN_POSITIVE)).sqrt();
-    let displacement = ratio(mean_squares(
-        approx,
-        &approx.x,
-        reference,
-        &reference.x,
-        dofs,
-    ));
-    let velocity = ratio(mean_squares(
-        approx,
-        &approx.v,
-        reference,
-        &reference.v,
-        dofs,
-    ));
+    let displacement = ratio(mean_squares(&approx.x, &reference.x, dofs));
+    let velocity = ratio(mean_squares(&approx.v, &reference.v, dofs));
     let (fa, fr) = (approx.frequency_hz(), reference.frequency_hz());
     RelativeErrors {
         displacement,
@@ -238,12 +180,12 @@ pub fn relative_errors(
 }
 
 /// Eq (49): `P_j = ½ Σ_i (a_ij² + b_ij²)` over `dofs` for `j = 1..=harmonics` (index `j - 1`).
-pub fn harmonic_power(c: &CycleCoefficients, dofs: &[usize]) -> Vec<f64> {
-    (1..=c.harmonics)
+pub fn harmonic_power(c: &Cycle, dofs: &[usize]) -> Vec<f64> {
+    (1..=c.harmonics())
         .map(|k| {
             dofs.iter()
                 .map(|&d| {
-                    let (a, b) = c.harmonic(&c.x, k, d);
+                    let (a, b) = c.x.harmonic(k, d);
                     0.5 * (a * a + b * b)
                 })
                 .sum()
@@ -280,21 +222,26 @@ pub fn to_modal(mb: &ModalBrake, values: &[f64]) -> Vec<f64> {
 
 /// The power balance of a cycle of every physical dof of `mb`, with the contact forces
 /// sampled at `samples` phases (a few hundred resolve the contact's kinks to ~1e-5).
-pub fn energy_balance(mb: &ModalBrake, c: &CycleCoefficients, samples: usize) -> EnergyBalance {
+pub fn energy_balance(
+    mb: &ModalBrake,
+    c: &Cycle,
+    samples: usize,
+) -> Result<EnergyBalance, HbmError> {
     let n = mb.modes();
     let nn = mb.nl();
-    let qv = to_modal(mb, &c.v);
+    let qv = to_modal(mb, &c.v.coeffs);
+    // ⟨q'ᵀ D q'⟩ = Σ_k ½ (Re V_kᵀ D Re V_k + Im V_kᵀ D Im V_k) for any (symmetric part of) D.
     let mut dissipated = 0.0;
-    for j in 0..n {
-        let mut ms = 0.0;
-        for k in 1..=c.harmonics {
-            let (a, b) = (qv[(2 * k - 1) * n + j], qv[2 * k * n + j]);
-            ms += 0.5 * (a * a + b * b);
+    let mut dv = vec![0.0; n];
+    for k in 1..=c.harmonics() {
+        for part in [2 * k - 1, 2 * k] {
+            let vk = &qv[part * n..(part + 1) * n];
+            mb.damping.apply(vk, &mut dv);
+            dissipated += 0.5 * vk.iter().zip(&dv).map(|(a, b)| a * b).sum::<f64>();
         }
-        dissipated += mb.damping[j] * ms;
     }
-    let nl = c.restrict(&mb.nl_dofs);
-    let samples = samples.max(4 * c.harmonics + 4);
+    let nl = c.restrict(&mb.nl_dofs)?;
+    let samples = samples.max(4 * c.harmonics() + 4);
     let (mut xn, mut vn, mut g) = (vec![0.0; nn], vec![0.0; nn], vec![0.0; nn]);
     let mut input = 0.0;
     for s in 0..samples {
@@ -304,25 +251,25 @@ pub fn energy_balance(mb: &ModalBrake, c: &CycleCoefficients, samples: usize) ->
             vn[i] = nl.value_at(i, th, true);
         }
         g.fill(0.0);
-        mb.add_reduced_force(&xn, &mut g);
+        mb.add_reduced_force(&xn, Some(&vn), &mut g);
         input -= (0..nn).map(|i| g[i] * vn[i]).sum::<f64>();
     }
     input /= samples as f64;
-    EnergyBalance {
+    Ok(EnergyBalance {
         input,
         dissipated,
         relative: (input - dissipated) / dissipated.max(f64::MIN_POSITIVE),
-    }
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn two_dofs() -> CycleCoefficients {
+    fn two_dofs() -> Cycle {
         // x0 = 1 + 2 cos θ + 0.5 sin 2θ, x1 = -cos θ + 3 sin θ.
         let x = vec![1.0, 0.0, 2.0, -1.0, 0.0, 3.0, 0.0, 0.0, 0.5, 0.0];
-        CycleCoefficients::from_displacement(2, 10.0, 2, x)
+        Cycle::from_coefficients(2, 10.0, 2, x).unwrap()
     }
 
     #[test]
@@ -340,7 +287,7 @@ mod tests {
         }
         // Aligning the shifted copy back recovers the original coefficients.
         s.align_to(&c, 0);
-        for (a, b) in s.x.iter().zip(&c.x) {
+        for (a, b) in s.x.coeffs.iter().zip(&c.x.coeffs) {
             assert!((a - b).abs() < 1e-12);
         }
     }
@@ -348,10 +295,10 @@ mod tests {
     #[test]
     fn errors_by_parseval_match_sampled_rms() {
         let r = two_dofs();
-        let mut a = r.clone();
-        a.x[2] += 0.1;
-        a.x[0] -= 0.05;
-        a = CycleCoefficients::from_displacement(2, 10.0, 2, a.x);
+        let mut x = r.x.coeffs.clone();
+        x[2] += 0.1;
+        x[0] -= 0.05;
+        let a = Cycle::from_coefficients(2, 10.0, 2, x).unwrap();
         let e = relative_errors(&a, &r, &[0, 1]);
         // Sampled RMS with 64 points is exact for trigonometric polynomials of degree 2.
         let m = 64;

@@ -1,12 +1,12 @@
 //! The Constrained Harmonic Balance Method (CHBM) of Coudeyras, Sinou & Nacivet (2009),
 //! section 4, for the reduced brake of [`squeal_brake`].
 //!
-//! - [`condensed`]: harmonic balance condensed on the nonlinear dofs, eqs (30)–(35).
-//! - [`contact`]: the contact and friction forces of eqs (8)–(10) for the AFT scheme (eq 29).
-//! - [`constraint`]: the equivalent linearization (eq 45) and the eigenvalue of eqs (43)–(44)
-//!   whose real part is the constraint `f2` of eq (47), with its derivative.
-//! - [`solve`]: unknowns, initial guess from the unstable mode (eq 48), the Levenberg–Marquardt
-//!   solve of eqs (46)–(47), recovery of all dofs and diagnostics.
+//! CHBM itself is a method of [`squeal_hbm`] ([`squeal_hbm::solve_chbm`]: any linear part, any
+//! nonlinear force, the constraint `f2 = Re λ`); the brake's condensed linear part, contact
+//! force and eigenvalue tracking are in [`squeal_brake::harmonic`]. This crate adds:
+//!
+//! - [`solve`](mod@solve): the start from the unstable mode (eq 48), the harmonic ladder and restarts,
+//!   recovery of all dofs (eq 35) and diagnostics.
 //! - [`timeint`]: the reference of issue #6, BDF time integration of the full brake from the
 //!   perturbed equilibrium to the steady limit cycle.
 //! - [`start`]: the equilibrium and unstable mode at a friction level, where both start.
@@ -15,16 +15,19 @@
 //! - [`cycle`]: Fourier coefficients of a cycle of every dof, phase alignment, the relative
 //!   errors, the power per harmonic (eqs 49–50) and the energy balance of a cycle.
 
+#![warn(missing_docs)]
 // Index loops over dofs and harmonics read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+pub mod branch;
 pub mod compare;
-pub mod condensed;
-pub mod constraint;
-pub mod contact;
 pub mod cycle;
+pub mod floquet;
 pub mod solve;
 pub mod start;
 pub mod timeint;
 
-pub use solve::{ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Outcome, check_jacobian, solve};
+pub use solve::{
+    ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Outcome, RESTART_AMPLITUDES, check_jacobian,
+    solve, solve_with_restarts,
+};

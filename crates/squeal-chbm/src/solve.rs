@@ -1,66 +1,96 @@
-//! Eqs (46)–(48): the unknowns `(U~_nl, ω)`, the residual `[f1; phase; f2]`, the initial guess
-//! from the unstable mode, and the Levenberg–Marquardt solve.
+//! Eqs (46)–(48) for the brake: CHBM is [`squeal_hbm::solve_chbm`] (the constrained
+//! autonomous harmonic balance with `f2 = Re λ`, eq 47) on the brake's condensed linear part
+//! and contact force ([`squeal_brake::harmonic`]); this module starts it from the unstable mode
+//! (eq 48), climbs the harmonic ladder, recovers every dof (eq 35) and says what was found.
 //!
 //! **Residual.** `f1` (eq 46) is the condensed harmonic balance residual scaled by the static
-//! load's norm; the phase condition `U1s[d] = 0` (one pad contact dof `d` that moves in the
-//! unstable mode) removes the time-shift invariance; `f2` (eq 47) is `Re λ / ω0` of the tracked
-//! eigenvalue of the equivalent linearization, times a weight. It is signed (its square is
-//! `|Re λ|²`), which keeps the least-squares problem smooth.
+//! force level; the phase condition `U1s[d] = 0` (one pad contact dof `d` that moves in the
+//! unstable mode) removes the time-shift invariance; `f2` is `Re λ / ω0` of the eigenvalue
+//! followed through the describing-function linearization of the cycle, times a weight. At
+//! every root of the harmonic balance `f2 = 0` exactly, while at the static solution
+//! `f2 = Re λ > 0`: `[f1; phase; f2]` has an exact zero at the limit cycle only.
 //!
-//! **Why the constraint works.** At the static solution `f1 = 0` but `Re λ > 0` (it is
-//! unstable), so with `f2` the static point is not a zero of the residual. With the fundamental
-//! fit of [`crate::constraint::Fit`], `f2 = 0` holds exactly at every root of the harmonic
-//! balance, so `[f1; phase; f2]` has an exact zero at the limit cycle and Levenberg–Marquardt
-//! converges on both `eps1` and `eps2` (with the literal stiffness-only fit `f2` is only nearly
-//! zero there, and the solve ends at a least-squares compromise: reported as not converged).
-//!
-//! **Harmonic ladder.** From eq (48) the solve converges when the guess's amplitude `p` is near
-//! the limit cycle's. With [`ChbmOptions::ladder`] (default) it first solves with one harmonic,
-//! whose basin is wide, then with all harmonics from that solution.
+//! **Harmonic ladder.** From eq (48) the solve converges when the guess's amplitude `p` is
+//! near the limit cycle's. With [`ChbmOptions::ladder`] (default) it first solves with one
+//! harmonic, whose basin is wide, then with all harmonics from that solution.
 
-use crate::condensed::{CondensedStiffness, condensed_load, recover};
-use crate::constraint::{
-    Eigenproblem, EquivalentLinearization, Fit, Tracked, equivalent_linearization,
+use crate::cycle::Cycle;
+use faer::c64;
+use squeal_brake::harmonic::{
+    BrakeEigen, CondensedStiffness, ContactForce, condensed_load, recover,
 };
-use crate::contact::ContactForce;
-use faer::reborrow::ReborrowMut;
-use faer::{Mat, MatMut, c64};
 use squeal_brake::modal_brake::ModalBrake;
-use squeal_hbm::lm::{self, LeastSquaresProblem, LmError, LmIteration, LmOptions, LmStop};
-use squeal_hbm::{HarmonicBalance, HarmonicLayout, HbmError, NonlinearForce, Part};
+use squeal_hbm::lm::{LmIteration, LmOptions, LmStop};
+use squeal_hbm::{
+    Aft, HarmonicBalance, HarmonicLayout, HbmError, NonlinearForce, PhaseCondition, ReLambda,
+    RowScales, initial_guess, reference_jacobian, solve_chbm,
+};
 use std::time::{Duration, Instant};
 
 /// Errors of a CHBM solve (a solve that runs but does not converge is not an error: see
 /// [`Outcome`]).
 #[derive(Debug, thiserror::Error)]
 pub enum ChbmError {
+    /// The harmonic balance machinery of [`squeal_hbm`] refused the problem or failed in it
+    /// (layout, AFT samples, a non-positive start frequency, the eigenvalue lost, ...).
     #[error(transparent)]
     Hbm(#[from] HbmError),
-    #[error("{0}")]
-    Invalid(String),
+    /// [`ChbmOptions::harmonics`] is 0.
+    #[error("CHBM needs at least one harmonic")]
+    NoHarmonics,
+    /// [`ChbmStart::mode`] or [`ChbmStart::equilibrium`] does not hold one value per dof of
+    /// the modal brake.
+    #[error("the start's mode and equilibrium must cover the brake's {expected} dofs (got {got})")]
+    StartSize {
+        /// The modal brake's number of dofs.
+        expected: usize,
+        /// The length given.
+        got: usize,
+    },
+    /// Eq (48) cannot be scaled: the start's mode has no normal motion at any pair, or some
+    /// pair is open at the equilibrium (the smallest static penetration is ≤ 0).
+    #[error(
+        "the unstable mode does not move the contact, or every pair is open at equilibrium: eq (48) has no start"
+    )]
+    NoContactMotion,
+    /// [`ChbmOptions::amplitude`] is not a finite positive number (the value given).
+    #[error("the initial amplitude must be a positive number (got {0})")]
+    BadAmplitude(f64),
+    /// [`solve_with_restarts`] was given no amplitude.
+    #[error("no initial amplitude to try")]
+    NoAmplitudes,
+    /// The normal form has no cycle on either side of μ0 (its `Re c1` or `dRe λ/dμ` is zero).
+    #[error("the Hopf point's normal form gives no branch of limit cycles")]
+    NoBranch,
+    /// The first cycle of a branch, near the Hopf point, could not be converged.
+    #[error(
+        "the first limit cycle of the branch (next to the Hopf point) did not converge; try a larger start offset"
+    )]
+    BranchStart,
 }
 
 /// Options of [`solve`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct ChbmOptions {
+    /// Harmonics `H` of the Fourier series of eq (23) (at least 1).
     pub harmonics: usize,
     /// AFT time samples (default: [`squeal_hbm::default_samples`]).
     pub samples: Option<usize>,
     /// Initial amplitude `p` of eq (48): the largest normal motion of the contact pairs in the
     /// guess, as a fraction of the smallest static penetration.
     pub amplitude: f64,
-    /// Weight of `f2` in stage 1.
+    /// Weight of `f2`.
     pub weight: f64,
-    /// Converged when `||f1|| <= eps1 ||F_eq||` ...
+    /// Converged when `||f1|| <= eps1` times the force scale (the larger of `||F_eq||` and the
+    /// norm of the static contact forces) ...
     pub eps1: f64,
     /// ... and `|Re λ| <= eps2 ω`.
     pub eps2: f64,
+    /// Levenberg–Marquardt trial steps allowed in each solve (each rung of the ladder).
     pub max_iterations: usize,
     /// Harmonic ladder: solve with one harmonic first (from eq 48), then with all of them
     /// from that solution (the paper's "starting from previous results").
     pub ladder: bool,
-    /// The equivalent linearization of eq (45).
-    pub fit: Fit,
 }
 
 impl Default for ChbmOptions {
@@ -74,10 +104,12 @@ impl Default for ChbmOptions {
             eps2: 1e-3,
             max_iterations: 200,
             ladder: true,
-            fit: Fit::Fundamental,
         }
     }
 }
+
+/// The initial amplitudes `p` tried in turn when none is given: the one list of the crate.
+pub const RESTART_AMPLITUDES: [f64; 4] = [0.5, 1.0, 2.0, 0.25];
 
 /// Where the solve starts: the stability analysis at the same μ.
 #[derive(Clone, Debug)]
@@ -95,7 +127,8 @@ pub struct ChbmStart {
 pub enum Outcome {
     /// A limit cycle, both `f1` and `f2` within tolerance.
     LimitCycle,
-    /// `f1` converged but `|Re λ| > eps2 ω` at the root.
+    /// `f1` converged but `|Re λ| > eps2 ω` at the root (the eigenvalue followed is not the
+    /// one at `iω`).
     LimitCycleUnconstrained,
     /// The solver landed on the static (trivial) solution.
     Static,
@@ -103,16 +136,32 @@ pub enum Outcome {
     NotConverged,
 }
 
+impl Outcome {
+    /// A short label for tables and a full sentence for messages.
+    fn texts(self) -> (&'static str, &'static str) {
+        match self {
+            Outcome::LimitCycle => ("limit cycle", "limit cycle (converged on eps1 and eps2)"),
+            Outcome::LimitCycleUnconstrained => (
+                "HB root, |Re lambda| > eps2",
+                "limit cycle of the harmonic balance, but |Re lambda| above eps2",
+            ),
+            Outcome::Static => (
+                "static solution",
+                "static solution (the oscillation died out): not a limit cycle",
+            ),
+            Outcome::NotConverged => ("not converged", "not converged"),
+        }
+    }
+
+    /// A short label for tables (`limit cycle`, `static solution`, ...).
+    pub fn label(self) -> &'static str {
+        self.texts().0
+    }
+}
+
 impl std::fmt::Display for Outcome {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Outcome::LimitCycle => "limit cycle (converged on eps1 and eps2)",
-            Outcome::LimitCycleUnconstrained => {
-                "limit cycle of the harmonic balance, but |Re lambda| above eps2"
-            }
-            Outcome::Static => "static solution (the oscillation died out): not a limit cycle",
-            Outcome::NotConverged => "not converged",
-        })
+        f.write_str(self.texts().1)
     }
 }
 
@@ -121,51 +170,60 @@ impl std::fmt::Display for Outcome {
 pub struct Evaluation {
     /// Harmonics of the solve that made it (the ladder's first solve has one).
     pub harmonics: usize,
-    /// `||f1|| / ||F_eq||`.
+    /// `||f1||` over the force scale (see [`ChbmOptions::eps1`]).
     pub f1: f64,
+    /// `Re λ` (s⁻¹) of the followed eigenvalue there.
     pub re_lambda: f64,
+    /// ω (rad/s) there.
     pub omega: f64,
 }
 
 /// A CHBM result.
 #[derive(Clone, Debug)]
 pub struct ChbmSolution {
+    /// What the solve found.
     pub outcome: Outcome,
+    /// Harmonics of the solve that produced it (1 when the ladder stopped at its first rung).
     pub harmonics: usize,
+    /// AFT time samples per period.
     pub samples: usize,
+    /// Fundamental frequency ω (rad/s).
     pub omega: f64,
     /// Fourier coefficients of the nonlinear dofs (layout of eq 25).
     pub nl_coeffs: Vec<f64>,
     /// Fourier coefficients of every physical dof (eq 35), same layout over all dofs.
     pub coeffs: Vec<f64>,
+    /// Physical index of each nonlinear dof, in the order of `nl_coeffs`' blocks.
     pub nl_dofs: Vec<usize>,
-    /// `||f1|| / ||F_eq||` and `Re λ` at the solution.
+    /// `||f1||` over the force scale at the solution (see [`ChbmOptions::eps1`]).
     pub f1: f64,
+    /// `Re λ` (s⁻¹) of the followed eigenvalue at the solution.
     pub re_lambda: f64,
+    /// The followed eigenvalue of the cycle's describing-function linearization (s⁻¹, rad/s).
     pub lambda: c64,
     /// LM trial steps (all solves of the ladder).
     pub iterations: usize,
-    pub stop: Option<LmStop>,
+    /// Why the last Levenberg–Marquardt solve stopped.
+    pub stop: LmStop,
+    /// Levenberg–Marquardt iterations of all solves of the ladder.
     pub lm_history: Vec<LmIteration>,
+    /// Every residual evaluation of all solves of the ladder.
     pub evaluations: Vec<Evaluation>,
+    /// Fraction of the AFT samples where each pair is open.
     pub open_fraction: Vec<f64>,
     /// Relative change of `F~_nl` when the samples are doubled (aliasing check).
     pub aliasing: f64,
     /// Largest `|x_n - U_n|` of the recovered nonlinear dofs relative to their amplitude.
     pub recovery_error: f64,
+    /// Wall time of the whole solve, ladder included.
     pub time: Duration,
 }
 
 impl ChbmSolution {
     /// The cycle of every physical dof (velocities by differentiating eq 23).
-    pub fn cycle(&self) -> crate::cycle::CycleCoefficients {
+    pub fn cycle(&self) -> Result<Cycle, HbmError> {
         let n = self.coeffs.len() / (2 * self.harmonics + 1);
-        crate::cycle::CycleCoefficients::from_displacement(
-            self.harmonics,
-            self.omega,
-            n,
-            self.coeffs.clone(),
-        )
+        Cycle::from_coefficients(self.harmonics, self.omega, n, self.coeffs.clone())
     }
 
     /// Bytes of what CHBM stores: the Fourier coefficients of the nonlinear dofs and ω (every
@@ -181,152 +239,6 @@ impl ChbmSolution {
             return self.coeffs[d].abs();
         }
         self.coeffs[(2 * k - 1) * n + d].hypot(self.coeffs[2 * k * n + d])
-    }
-}
-
-/// The least-squares problem of eqs (46)–(47).
-struct Problem {
-    hb: HarmonicBalance<CondensedStiffness, ContactForce>,
-    eig: Eigenproblem,
-    mb: ModalBrake,
-    layout: HarmonicLayout,
-    phase: usize,
-    f_scale: f64,
-    x_scale: f64,
-    w_scale: f64,
-    weight: f64,
-    fit: Fit,
-    lambda: c64,
-    last: Option<(Vec<f64>, EquivalentLinearization, Tracked)>,
-    evaluations: Vec<Evaluation>,
-    r1: Vec<f64>,
-    /// `dr1/dω` of the Jacobian (scratch).
-    jw: Vec<f64>,
-}
-
-impl Problem {
-    fn len(&self) -> usize {
-        self.layout.len()
-    }
-
-    /// Equivalent linearization and tracked eigenvalue at the samples of the last AFT call.
-    fn constraint(&mut self, z: &[f64]) -> Result<(EquivalentLinearization, Tracked), HbmError> {
-        let omega = z[self.len()];
-        let eql = equivalent_linearization(
-            &self.mb,
-            &self.layout,
-            &self.hb.aft().samples(),
-            omega,
-            self.fit,
-        );
-        let tracked = match self.eig.track(&eql.k, &eql.c, self.lambda) {
-            Ok(t) => t,
-            Err(e) => {
-                // Fall back on the full spectrum: the eigenvalue nearest the last one.
-                let near = full_spectrum(&self.eig, &self.mb, &eql)
-                    .into_iter()
-                    .min_by(|a, b| {
-                        (a - self.lambda)
-                            .norm()
-                            .total_cmp(&(b - self.lambda).norm())
-                    })
-                    .unwrap_or(self.lambda);
-                self.eig.track(&eql.k, &eql.c, near).map_err(|_| {
-                    let _ = e;
-                    HbmError::NonFiniteInput {
-                        what: "tracked eigenvalue",
-                    }
-                })?
-            }
-        };
-        self.lambda = tracked.lambda;
-        let _ = z;
-        Ok((eql, tracked))
-    }
-}
-
-impl LeastSquaresProblem for Problem {
-    type Error = HbmError;
-
-    fn n_params(&self) -> usize {
-        self.len() + 1
-    }
-
-    fn n_residuals(&self) -> usize {
-        self.len() + 1 + usize::from(self.weight > 0.0)
-    }
-
-    fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), HbmError> {
-        let l = self.len();
-        let (u, omega) = (&z[..l], z[l]);
-        self.hb.residual(u, omega, &mut self.r1)?;
-        let mut f1 = 0.0;
-        for i in 0..l {
-            r[i] = self.r1[i] / self.f_scale;
-            f1 += r[i] * r[i];
-        }
-        r[l] = u[self.phase] / self.x_scale;
-        let (eql, tracked) = self.constraint(z)?;
-        if self.weight > 0.0 {
-            r[l + 1] = self.weight * tracked.lambda.re / self.w_scale;
-        }
-        self.evaluations.push(Evaluation {
-            harmonics: self.layout.n_harmonics(),
-            f1: f1.sqrt(),
-            re_lambda: tracked.lambda.re,
-            omega,
-        });
-        self.last = Some((z.to_vec(), eql, tracked));
-        Ok(())
-    }
-
-    fn jacobian(&mut self, z: &[f64], mut jac: MatMut<'_, f64>) -> Result<(), HbmError> {
-        let l = self.len();
-        let (u, omega) = (&z[..l], z[l]);
-        // The f1 block is written in place and scaled after.
-        self.hb.jacobian(
-            u,
-            omega,
-            jac.rb_mut().submatrix_mut(0, 0, l, l),
-            &mut self.jw,
-        )?;
-        let inv = 1.0 / self.f_scale;
-        for j in 0..l {
-            for v in jac.rb_mut().col_mut(j).subrows_mut(0, l).iter_mut() {
-                *v *= inv;
-            }
-        }
-        for i in 0..l {
-            jac[(i, l)] = self.jw[i] * inv;
-        }
-        for j in 0..=l {
-            jac[(l, j)] = 0.0;
-        }
-        jac[(l, self.phase)] = 1.0 / self.x_scale;
-        if self.weight > 0.0 {
-            // The constraint at z: LM asks for the Jacobian at the last accepted trial, whose
-            // residual call already evaluated it (the AFT samples then and now are those of z).
-            let cached = self.last.take().filter(|(zl, _, _)| zl.as_slice() == z);
-            let (eql, tracked) = match cached {
-                Some((_, eql, tracked)) => (eql, tracked),
-                None => self.constraint(z)?,
-            };
-            for j in 0..l {
-                let mut d = 0.0;
-                for p in 0..eql.k.len() {
-                    d += tracked.dlambda_dk[p].re * eql.dk[p][j]
-                        + tracked.dlambda_dc[p].re * eql.dc[p][j];
-                }
-                jac[(l + 1, j)] = self.weight * d / self.w_scale;
-            }
-            // The fit depends on ω through c = Im κ / ω only.
-            let dw: f64 = (0..eql.k.len())
-                .map(|p| tracked.dlambda_dc[p].re * eql.dc_domega[p])
-                .sum();
-            jac[(l + 1, l)] = self.weight * dw / self.w_scale;
-            self.last = Some((z.to_vec(), eql, tracked));
-        }
-        Ok(())
     }
 }
 
@@ -370,45 +282,83 @@ pub fn solve(
     Ok(s)
 }
 
-/// One CHBM solve, from eq (48) or from a solution with fewer harmonics.
-pub fn solve_from(
+/// CHBM from each amplitude in turn until a limit cycle converges; returns the solution, the
+/// amplitude it came from, the wall time and the LM iterations of all attempts.
+pub fn solve_with_restarts(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &ChbmOptions,
+    amplitudes: &[f64],
+) -> Result<(ChbmSolution, f64, Duration, usize), ChbmError> {
+    let t0 = Instant::now();
+    let mut iterations = 0;
+    let mut last = None;
+    for &a in amplitudes {
+        let o = ChbmOptions {
+            amplitude: a,
+            ..opts.clone()
+        };
+        let s = solve(mb, start, &o)?;
+        iterations += s.iterations;
+        let done = s.outcome == Outcome::LimitCycle;
+        last = Some((s, a));
+        if done {
+            break;
+        }
+    }
+    let (s, a) = last.ok_or(ChbmError::NoAmplitudes)?;
+    Ok((s, a, t0.elapsed(), iterations))
+}
+
+/// The pieces of one solve: the harmonic balance on the brake, its phase condition and scales.
+struct Setup {
+    hb: HarmonicBalance<CondensedStiffness, ContactForce>,
+    layout: HarmonicLayout,
+    phase: PhaseCondition,
+    scales: RowScales,
+    z0: Vec<f64>,
+    omega0: f64,
+}
+
+fn setup(
     mb: &ModalBrake,
     start: &ChbmStart,
     opts: &ChbmOptions,
     previous: Option<&ChbmSolution>,
-) -> Result<ChbmSolution, ChbmError> {
-    let t0 = Instant::now();
+) -> Result<Setup, ChbmError> {
     let nn = mb.nl();
     if opts.harmonics == 0 {
-        return Err(ChbmError::Invalid("at least one harmonic is needed".into()));
+        return Err(ChbmError::NoHarmonics);
     }
-    if start.mode.len() != mb.modes() || start.equilibrium.len() != mb.modes() {
-        return Err(ChbmError::Invalid(
-            "the start's mode and equilibrium must cover every dof".into(),
-        ));
+    for got in [start.mode.len(), start.equilibrium.len()] {
+        if got != mb.modes() {
+            return Err(ChbmError::StartSize {
+                expected: mb.modes(),
+                got,
+            });
+        }
     }
     let layout = HarmonicLayout::new(nn, opts.harmonics)?;
     let mut stiffness = CondensedStiffness::new(mb, opts.harmonics);
     let omega0 = start.lambda.im;
     stiffness.update(omega0);
-    let f_eq = condensed_load(mb, &mut stiffness, &layout);
+    let f_eq = condensed_load(mb, &stiffness, &layout);
     let force = ContactForce::new(mb);
     let hb = HarmonicBalance::new(layout, stiffness, force, f_eq.clone(), opts.samples)?;
-    let samples = hb.aft().n_samples();
     let (z0, omega0) = match previous {
-        None => (initial_guess(mb, start, &layout, opts.amplitude)?, omega0),
+        None => (guess(mb, start, &layout, opts.amplitude)?, omega0),
         Some(p) => {
-            // Pad the lower-order solution with zero harmonics (the layouts share their leading blocks).
+            // Pad the lower-order solution with zero harmonics (the layouts share their
+            // leading blocks).
             let mut u = vec![0.0; layout.len()];
             let m = p.nl_coeffs.len().min(u.len());
             u[..m].copy_from_slice(&p.nl_coeffs[..m]);
             (u, p.omega)
         }
     };
-    let phase = layout
-        .index(1, Part::Sin, phase_dof(mb, &z0, &layout))
-        .unwrap_or(0);
-    let f_scale = force_scale(mb, start, &f_eq);
+    let phase = PhaseCondition::FirstSineZero {
+        dof: phase_dof(mb, &z0, &layout),
+    };
     let x_scale = mb
         .pairs
         .iter()
@@ -416,25 +366,47 @@ pub fn solve_from(
         .fold(f64::INFINITY, f64::min)
         .abs()
         .max(1e-12);
-    let mut problem = Problem {
+    Ok(Setup {
+        scales: RowScales {
+            force: force_scale(mb, start, &f_eq),
+            phase: x_scale,
+        },
         hb,
-        eig: Eigenproblem::new(mb),
-        mb: mb.clone(),
         layout,
         phase,
-        f_scale,
-        x_scale,
-        w_scale: omega0.abs().max(f64::MIN_POSITIVE),
-        weight: opts.weight,
-        fit: opts.fit,
-        lambda: previous.map_or(start.lambda, |p| p.lambda),
-        last: None,
-        evaluations: Vec::new(),
-        r1: vec![0.0; layout.len()],
-        jw: vec![0.0; layout.len()],
-    };
-    let mut z = z0.clone();
-    z.push(omega0);
+        z0,
+        omega0,
+    })
+}
+
+/// One CHBM solve with `opts.harmonics` harmonics (no ladder), from eq (48), or from
+/// `previous` (a solution with fewer harmonics, padded with zero harmonics) when given.
+pub fn solve_from(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &ChbmOptions,
+    previous: Option<&ChbmSolution>,
+) -> Result<ChbmSolution, ChbmError> {
+    let t0 = Instant::now();
+    let Setup {
+        mut hb,
+        layout,
+        phase,
+        scales,
+        z0,
+        omega0,
+    } = setup(mb, start, opts, previous)?;
+    let samples = hb.aft().n_samples();
+    let (k0, c0) = static_reference(mb, start, hb.force());
+    let lambda = previous.map_or(start.lambda, |p| p.lambda);
+    let constraint = ReLambda::new(
+        BrakeEigen::new(mb, None),
+        k0,
+        c0,
+        lambda,
+        opts.weight,
+        omega0.abs().max(f64::MIN_POSITIVE),
+    )?;
     let lm_opts = LmOptions {
         abs_tol: opts.eps1,
         rel_tol: 0.0,
@@ -442,40 +414,48 @@ pub fn solve_from(
         accept_stationary: true,
         ..LmOptions::default()
     };
-    let (z1, stop, iterations, lm_history) = run(&mut problem, &z, &lm_opts);
-    z = z1;
-    // Final evaluation at z (residual, samples, constraint).
+    let (result, _) = solve_chbm(&mut hb, phase, constraint, scales, &z0, omega0, &lm_opts)?;
     let l = layout.len();
-    let mut r = vec![0.0; problem.n_residuals()];
-    problem.residual(&z, &mut r)?;
-    let f1 = (0..l).map(|i| r[i] * r[i]).sum::<f64>().sqrt();
-    let (_, eql, tracked) = problem
-        .last
-        .clone()
-        .ok_or_else(|| ChbmError::Invalid("no evaluation".into()))?;
-    let omega = z[l];
-    let u = z[..l].to_vec();
-    // Aliasing: the same force coefficients with twice the samples.
-    let aliasing = aliasing_check(mb, &layout, &u, omega, samples)?;
-    let g = problem.hb_force_coefficients(&u, omega)?;
-    let coeffs = recover(mb, opts.harmonics, omega, &g, &layout);
+    let z = &result.z;
+    let (u, omega) = (z[..l].to_vec(), z[l]);
+    let f1 = result
+        .history
+        .last()
+        .map_or(f64::INFINITY, |h| h.harmonic_balance);
+    // The force's coefficients and samples at the solution, from one explicit evaluation.
+    let mut r = vec![0.0; l];
+    let eval = hb.evaluate(&u, omega, &mut r)?;
+    let g = eval.force.to_vec();
+    let open_fraction = open_fraction(mb, eval.samples.x, eval.samples.n_samples);
+    let aliasing = aliasing_check(hb.force(), &layout, &u, omega, samples)?;
+    let coeffs = recover(mb, omega, &g, &layout);
     let recovery_error = recovery_error(&layout, &u, &coeffs, &mb.nl_dofs, mb.modes());
-    let amp: f64 = (0..nn)
-        .map(|i| layout.amplitude(&u, 1, i).unwrap_or(0.0))
-        .fold(0.0, f64::max);
-    let amp0: f64 = (0..nn)
-        .map(|i| layout.amplitude(&z0, 1, i).unwrap_or(0.0))
-        .fold(0.0, f64::max);
-    let converged_f1 = f1 <= opts.eps1;
-    let outcome = if amp <= 1e-6 * amp0 {
+    let first = |v: &[f64]| {
+        (0..mb.nl())
+            .map(|i| layout.amplitude(v, 1, i).unwrap_or(0.0))
+            .fold(0.0, f64::max)
+    };
+    let lambda = result.lambda;
+    let outcome = if first(&u) <= 1e-6 * first(&z0) {
         Outcome::Static
-    } else if !converged_f1 {
+    } else if f1 > opts.eps1 {
         Outcome::NotConverged
-    } else if tracked.lambda.re.abs() <= opts.eps2 * omega.abs() {
+    } else if lambda.re.abs() <= opts.eps2 * omega.abs() {
         Outcome::LimitCycle
     } else {
         Outcome::LimitCycleUnconstrained
     };
+    let evaluations = result
+        .history
+        .iter()
+        .zip(&result.lambdas)
+        .map(|(h, l)| Evaluation {
+            harmonics: opts.harmonics,
+            f1: h.harmonic_balance,
+            re_lambda: l.re,
+            omega: h.omega,
+        })
+        .collect();
     Ok(ChbmSolution {
         outcome,
         harmonics: opts.harmonics,
@@ -485,111 +465,67 @@ pub fn solve_from(
         coeffs,
         nl_dofs: mb.nl_dofs.clone(),
         f1,
-        re_lambda: tracked.lambda.re,
-        lambda: tracked.lambda,
-        iterations,
-        stop,
-        lm_history,
-        evaluations: problem.evaluations,
-        open_fraction: eql.open_fraction,
+        re_lambda: lambda.re,
+        lambda,
+        iterations: result.report.iterations,
+        stop: result.report.stop,
+        lm_history: result.report.history,
+        evaluations,
+        open_fraction,
         aliasing,
         recovery_error,
         time: t0.elapsed(),
     })
 }
 
-/// Eigenvalues (upper half plane) of `J` for a given equivalent linearization, by a dense
-/// eigen-decomposition of the state matrix: the check and fallback of the tracking.
-pub fn full_spectrum(
-    eig: &Eigenproblem,
+/// The reference linearization `J₀` of the constraint: the contact force's Jacobians at the
+/// static equilibrium of the start, on the nonlinear dofs (sizes checked by [`setup`]).
+fn static_reference<F: NonlinearForce>(
     mb: &ModalBrake,
-    eql: &EquivalentLinearization,
-) -> Vec<c64> {
-    let n = mb.modes();
-    let (dk, dc) = eig.modal_change(&eql.k, &eql.c);
-    let a = Mat::<f64>::from_fn(2 * n, 2 * n, |i, j| match (i < n, j < n) {
-        (true, true) => 0.0,
-        (true, false) => f64::from(u8::from(i == j - n)),
-        (false, true) => -(if i - n == j { mb.omega[j].powi(2) } else { 0.0 } + dk[(i - n, j)]),
-        (false, false) => -(if i == j { mb.damping[i - n] } else { 0.0 } + dc[(i - n, j - n)]),
-    });
-    match a.eigen() {
-        Ok(e) => (0..2 * n)
-            .map(|i| e.S()[i])
-            .filter(|v| v.im > 0.0)
-            .collect(),
-        Err(_) => Vec::new(),
-    }
-}
-
-impl Problem {
-    /// `F~_nl - K_s U` (the force seen by the condensed problem) at `(u, ω)`.
-    fn hb_force_coefficients(&mut self, u: &[f64], omega: f64) -> Result<Vec<f64>, HbmError> {
-        let mut g = vec![0.0; self.len()];
-        let force = ContactForce::new(&self.mb);
-        self.hb.aft_mut().forces(&force, u, omega, &mut g)?;
-        Ok(g)
-    }
-}
-
-/// Runs LM; a non-converged run returns its last iterate (the caller classifies it).
-fn run(
-    problem: &mut Problem,
-    z: &[f64],
-    opts: &LmOptions,
-) -> (Vec<f64>, Option<LmStop>, usize, Vec<LmIteration>) {
-    match lm::solve(problem, z, opts) {
-        Ok(rep) => (rep.x, Some(rep.stop), rep.iterations, rep.history),
-        Err(LmError::NotConverged { report }) => (
-            report.x,
-            Some(report.stop),
-            report.iterations,
-            report.history,
-        ),
-        Err(_) => (z.to_vec(), None, 0, Vec::new()),
-    }
+    start: &ChbmStart,
+    force: &F,
+) -> (faer::Mat<f64>, faer::Mat<f64>) {
+    let x: Vec<f64> = mb.nl_dofs.iter().map(|&d| start.equilibrium[d]).collect();
+    reference_jacobian(force, &x)
 }
 
 /// Eq (48): `Y0 = p (Ψ e^{λt} + Ψ̄ e^{λ̄t})` over one period, as Fourier coefficients of the
-/// nonlinear dofs around the static equilibrium: `U0 = x0`, `U1c = 2p Re Ψ`, `U1s = -2p Im Ψ`.
-fn initial_guess(
+/// nonlinear dofs around the static equilibrium, with `p` the fraction `amplitude` of the
+/// smallest static penetration over the largest normal motion of a pair in the mode.
+fn guess(
     mb: &ModalBrake,
     start: &ChbmStart,
     layout: &HarmonicLayout,
     amplitude: f64,
 ) -> Result<Vec<f64>, ChbmError> {
-    let nn = mb.nl();
+    if !(amplitude.is_finite() && amplitude > 0.0) {
+        return Err(ChbmError::BadAmplitude(amplitude));
+    }
     let psi: Vec<c64> = mb.nl_dofs.iter().map(|&d| start.mode[d]).collect();
     let x0: Vec<f64> = mb.nl_dofs.iter().map(|&d| start.equilibrium[d]).collect();
     let (mut dmax, mut pen) = (0.0f64, f64::INFINITY);
     for p in &mb.pairs {
         let g: c64 = p.normal.iter().map(|&(i, a)| psi[i] * a).sum();
         dmax = dmax.max(2.0 * g.norm());
-        pen = pen.min(p.penetration(&x0));
-    }
-    let positive = |v: f64| v > 0.0; // false for NaN too
-    if !positive(dmax) || !positive(pen) {
-        return Err(ChbmError::Invalid(
-            "the unstable mode does not move the contact, or the contact is open at equilibrium"
-                .into(),
-        ));
-    }
-    let p = amplitude * pen / dmax;
-    let mut u = vec![0.0; layout.len()];
-    for i in 0..nn {
-        u[i] = x0[i];
-        if let (Some(c), Some(s)) = (layout.index(1, Part::Cos, i), layout.index(1, Part::Sin, i)) {
-            u[c] = 2.0 * p * psi[i].re;
-            u[s] = -2.0 * p * psi[i].im;
+        let d = p.penetration(&x0);
+        if d > 0.0 {
+            pen = pen.min(d);
         }
     }
+    let positive = |v: f64| v > 0.0; // false for NaN too
+    if !positive(dmax) || !positive(pen) || !pen.is_finite() {
+        return Err(ChbmError::NoContactMotion);
+    }
+    let p = amplitude * pen / dmax;
+    // The phase dof of the mode itself (the guess's largest normal first harmonic).
+    let mut u = initial_guess(layout, &x0, &psi, p, 0)?;
     let d = phase_dof(mb, &u, layout);
     layout.align_phase(&mut u, d)?;
     Ok(u)
 }
 
 /// The normal dof of a pair with the largest first harmonic.
-fn phase_dof(mb: &ModalBrake, u: &[f64], layout: &HarmonicLayout) -> usize {
+pub(crate) fn phase_dof(mb: &ModalBrake, u: &[f64], layout: &HarmonicLayout) -> usize {
     let mut best = (0.0, 0);
     for p in &mb.pairs {
         for &(i, _) in &p.normal {
@@ -602,19 +538,32 @@ fn phase_dof(mb: &ModalBrake, u: &[f64], layout: &HarmonicLayout) -> usize {
     best.1
 }
 
-fn aliasing_check(
-    mb: &ModalBrake,
+/// Fraction of the time samples `x` (sample-major, nonlinear dofs) where each pair is open.
+fn open_fraction(mb: &ModalBrake, x: &[f64], samples: usize) -> Vec<f64> {
+    let nn = mb.nl();
+    mb.pairs
+        .iter()
+        .map(|p| {
+            (0..samples)
+                .filter(|&j| p.penetration(&x[j * nn..(j + 1) * nn]) <= 0.0)
+                .count() as f64
+                / samples.max(1) as f64
+        })
+        .collect()
+}
+
+fn aliasing_check<F: NonlinearForce>(
+    force: &F,
     layout: &HarmonicLayout,
     u: &[f64],
     omega: f64,
     samples: usize,
 ) -> Result<f64, ChbmError> {
-    let force = ContactForce::new(mb);
-    let mut a = squeal_hbm::Aft::new(*layout, samples)?;
-    let mut b = squeal_hbm::Aft::new(*layout, 2 * samples)?;
+    let mut a = Aft::new(*layout, samples)?;
+    let mut b = Aft::new(*layout, 2 * samples)?;
     let (mut fa, mut fb) = (vec![0.0; layout.len()], vec![0.0; layout.len()]);
-    a.forces(&force, u, omega, &mut fa)?;
-    b.forces(&force, u, omega, &mut fb)?;
+    a.forces(force, u, omega, &mut fa)?;
+    b.forces(force, u, omega, &mut fb)?;
     let n = layout.n_dofs();
     // Compare the oscillating part (the static force dominates block 0).
     let num: f64 = (n..fa.len())
@@ -638,8 +587,7 @@ fn recovery_error(
 ) -> f64 {
     let nn = layout.n_dofs();
     let mut worst: f64 = 0.0;
-    let scale = (0..u.len())
-        .filter(|i| *i >= nn)
+    let scale = (nn..u.len())
         .map(|i| u[i].abs())
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
@@ -651,59 +599,44 @@ fn recovery_error(
     worst
 }
 
-/// Largest relative difference between the analytic Jacobian of the stage-1 residual
-/// `[f1; phase; f2]` and central finite differences, at the initial guess (eq 48): for tests
-/// and diagnostics. Returns `(worst over the f1 rows, worst over the f2 row)`.
 /// The force scale of `f1`'s tolerance: the larger of the condensed static load and the
 /// static contact forces. A brake held only by a preloading gap (no piston force) has a zero
 /// load but not zero contact forces.
 fn force_scale(mb: &ModalBrake, start: &ChbmStart, f_eq: &[f64]) -> f64 {
-    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
     let x: Vec<f64> = mb.nl_dofs.iter().map(|&d| start.equilibrium[d]).collect();
+    force_scale_at(mb, &x, f_eq)
+}
+
+/// [`force_scale`] at the nonlinear dofs' static displacements `x`.
+pub(crate) fn force_scale_at(mb: &ModalBrake, x: &[f64], f_eq: &[f64]) -> f64 {
+    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
     let mut f = vec![0.0; x.len()];
-    ContactForce::new(mb).eval(&x, &vec![0.0; x.len()], &mut f, None);
+    ContactForce::new(mb).eval(x, &vec![0.0; x.len()], &mut f, None);
     norm(f_eq).max(norm(&f)).max(f64::MIN_POSITIVE)
 }
 
+/// Largest relative difference between the analytic Jacobian of the residual `[f1; phase; f2]`
+/// and central finite differences, at the initial guess (eq 48): for tests and diagnostics.
+/// Returns `(worst over the f1 rows, worst over the f2 row)`.
 pub fn check_jacobian(
     mb: &ModalBrake,
     start: &ChbmStart,
     opts: &ChbmOptions,
 ) -> Result<(f64, f64), ChbmError> {
-    let nn = mb.nl();
-    let layout = HarmonicLayout::new(nn, opts.harmonics)?;
-    let mut stiffness = CondensedStiffness::new(mb, opts.harmonics);
-    let omega0 = start.lambda.im;
-    stiffness.update(omega0);
-    let f_eq = condensed_load(mb, &mut stiffness, &layout);
-    let hb = HarmonicBalance::new(
-        layout,
-        stiffness,
-        ContactForce::new(mb),
-        f_eq.clone(),
-        opts.samples,
-    )?;
-    let z0 = initial_guess(mb, start, &layout, opts.amplitude)?;
-    let phase = layout
-        .index(1, Part::Sin, phase_dof(mb, &z0, &layout))
-        .unwrap_or(0);
-    let mut problem = Problem {
-        hb,
-        eig: Eigenproblem::new(mb),
-        mb: mb.clone(),
+    use faer::Mat;
+    use squeal_hbm::AutonomousProblem;
+    use squeal_hbm::lm::LeastSquaresProblem;
+    let Setup {
+        mut hb,
         layout,
         phase,
-        f_scale: force_scale(mb, start, &f_eq),
-        x_scale: 1e-6,
-        w_scale: omega0,
-        weight: 1.0,
-        fit: opts.fit,
-        lambda: start.lambda,
-        last: None,
-        evaluations: Vec::new(),
-        r1: vec![0.0; layout.len()],
-        jw: vec![0.0; layout.len()],
-    };
+        scales,
+        z0,
+        omega0,
+    } = setup(mb, start, opts, None)?;
+    let (k0, c0) = static_reference(mb, start, hb.force());
+    let constraint = ReLambda::new(BrakeEigen::new(mb, None), k0, c0, start.lambda, 1.0, omega0)?;
+    let mut problem = AutonomousProblem::constrained(&mut hb, phase, constraint, scales)?;
     let mut z = z0;
     z.push(omega0);
     let (m, n) = (problem.n_residuals(), problem.n_params());

@@ -10,10 +10,15 @@ use squeal_brake::sweep::Band;
 /// Why there is no start at this μ.
 #[derive(Debug, thiserror::Error)]
 pub enum StartError {
+    /// The static equilibrium or the complex eigenvalues at μ could not be computed.
     #[error(transparent)]
     Brake(#[from] squeal_brake::BrakeError),
+    /// No in-band mode has a positive real part at μ.
     #[error("the brake is stable at mu = {mu} in the band: no limit cycle to compute")]
-    Stable { mu: f64 },
+    Stable {
+        /// The friction coefficient asked.
+        mu: f64,
+    },
 }
 
 /// Equilibrium at `mu` (Newton from `guess` if given) and the in-band mode of largest positive

@@ -28,10 +28,11 @@
 //! goes on, block after block, until that drift is below [`TiOptions::drift_tol`]. Only the
 //! running block's sums and one record per cycle are kept, never the history.
 
-use crate::cycle::{CycleCoefficients, relative_errors};
+use crate::cycle::{Cycle, relative_errors};
 use faer::c64;
 use squeal_brake::dynamics::BrakeDynamics;
 use squeal_brake::modal_brake::ModalBrake;
+use squeal_hbm::{FourierSums, HarmonicLayout, HbmError, Periodic};
 use squeal_ode::{
     Atol, Bdf, BdfOptions, BdfStats, CycleRecord, OdeError, OscillationMonitor, SteadyOptions,
 };
@@ -41,6 +42,7 @@ use std::time::{Duration, Instant};
 /// Options of [`integrate_to_limit_cycle`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct TiOptions {
+    /// Relative tolerance of the BDF error test.
     pub rtol: f64,
     /// `atol_q = atol_factor · rtol · Q` (module docs).
     pub atol_factor: f64,
@@ -51,13 +53,15 @@ pub struct TiOptions {
     pub perturbation: f64,
     /// Relative spread of periods and amplitudes over `steady_cycles` cycles.
     pub steady_rtol: f64,
+    /// Consecutive cycles whose periods and amplitudes must agree for a first detection.
     pub steady_cycles: usize,
     /// Cycles of each Fourier average taken once steady; two consecutive averages are compared.
     pub confirm_cycles: usize,
     /// Largest accepted relative change between two consecutive averages.
     pub drift_tol: f64,
-    /// Harmonics kept of the last cycle, and samples per cycle of its Fourier sums.
+    /// Harmonics kept in the Fourier averages of the cycle.
     pub harmonics: usize,
+    /// Samples per period of the Fourier averages (more than `2 harmonics`).
     pub samples_per_cycle: usize,
     /// Give up after this many periods of the unstable mode.
     pub max_cycles: f64,
@@ -87,12 +91,15 @@ impl Default for TiOptions {
 /// The steady cycle found.
 #[derive(Clone, Debug)]
 pub struct TiSteady {
-    /// Fourier coefficients of every physical dof over the last cycle (velocities from the
-    /// integrated velocities, not by differentiation).
-    pub cycle: CycleCoefficients,
+    /// Fourier coefficients of every physical dof averaged over the last
+    /// [`TiOptions::confirm_cycles`] periods (velocities from the integrated velocities, not
+    /// by differentiation).
+    pub cycle: Cycle,
+    /// Its period (s).
     pub period: f64,
     /// Cycles completed when accepted, and the time then.
     pub cycles: usize,
+    /// Time (s) when accepted.
     pub t: f64,
     /// Relative change of the cycle over the last `confirm_cycles` cycles.
     pub drift: f64,
@@ -104,13 +111,17 @@ pub struct TiSteady {
 /// counters and one record per cycle.
 #[derive(Clone, Debug)]
 pub struct TiRun {
+    /// The steady cycle, `None` when not reached.
     pub steady: Option<TiSteady>,
+    /// Why not: the integrator's error, or [`OdeError::NotSteady`] at the limits.
     pub failure: Option<OdeError>,
+    /// The integrator's counters (steps, rejections, ...).
     pub stats: BdfStats,
+    /// Wall time of the run.
     pub wall: Duration,
     /// Every completed cycle of the observable (start, period, extrema).
     pub history: Vec<CycleRecord>,
-    /// Time reached.
+    /// Time reached (s).
     pub t_end: f64,
     /// State dimension (for the storage a full history would take).
     pub dim: usize,
@@ -134,10 +145,34 @@ impl TiRun {
 /// Why the integration could not start.
 #[derive(Debug, thiserror::Error)]
 pub enum TiError {
+    /// The integrator or the steady-state monitor could not be set up (invalid options, a
+    /// non-finite start, ...).
     #[error(transparent)]
     Ode(#[from] OdeError),
-    #[error("{0}")]
-    Invalid(String),
+    /// The Fourier averages rejected the options (samples per cycle not above twice the
+    /// harmonics, ...).
+    #[error(transparent)]
+    Hbm(#[from] HbmError),
+    /// The mode or the equilibrium does not hold one value per dof of the modal brake.
+    #[error("the mode and the equilibrium must cover the brake's {expected} dofs (got {got})")]
+    Dimension {
+        /// The modal brake's number of dofs.
+        expected: usize,
+        /// The shorter of the two lengths given.
+        got: usize,
+    },
+    /// The start cannot be scaled: the mode has no normal motion at any pair, or some pair is
+    /// open at the equilibrium (the smallest static penetration is ≤ 0).
+    #[error(
+        "the unstable mode does not move the contact, or every pair is open at equilibrium: no perturbation along it can start a limit cycle"
+    )]
+    NoContactMotion,
+    /// [`TiOptions::perturbation`] is not a finite positive number (the value given).
+    #[error("the initial perturbation must be a positive number (got {0})")]
+    BadPerturbation(f64),
+    /// The modal matrix `Φ` is singular: the physical start has no modal coordinates.
+    #[error("the modal matrix is singular")]
+    SingularModes,
 }
 
 /// Initial state and the scales of the module docs.
@@ -160,9 +195,10 @@ fn start_state(
 ) -> Result<Start, TiError> {
     let n = mb.modes();
     if mode.len() != n || equilibrium.len() != n {
-        return Err(TiError::Invalid(
-            "the mode and the equilibrium must cover every dof".into(),
-        ));
+        return Err(TiError::Dimension {
+            expected: n,
+            got: mode.len().min(equilibrium.len()),
+        });
     }
     let psi_n: Vec<c64> = mb.nl_dofs.iter().map(|&d| mode[d]).collect();
     let x_n: Vec<f64> = mb.nl_dofs.iter().map(|&d| equilibrium[d]).collect();
@@ -172,16 +208,16 @@ fn start_state(
         if g.norm() > gmax {
             (best, gmax) = (i, g.norm());
         }
-        pen = pen.min(p.penetration(&x_n));
+        let d = p.penetration(&x_n);
+        if d > 0.0 {
+            pen = pen.min(d);
+        }
     }
     if !(gmax > 0.0 && pen > 0.0 && pen.is_finite()) {
-        return Err(TiError::Invalid(
-            "the unstable mode does not move the contact, or the contact is open at equilibrium"
-                .into(),
-        ));
+        return Err(TiError::NoContactMotion);
     }
     if !(perturbation.is_finite() && perturbation > 0.0) {
-        return Err(TiError::Invalid("the perturbation must be > 0".into()));
+        return Err(TiError::BadPerturbation(perturbation));
     }
     let unit = pen / gmax;
     let epsilon = perturbation * unit;
@@ -189,13 +225,11 @@ fn start_state(
         .map(|i| equilibrium[i] + epsilon * mode[i].re)
         .collect();
     let v: Vec<f64> = (0..n).map(|i| epsilon * (lambda * mode[i]).re).collect();
-    let y0 = BrakeDynamics::state_from_physical(mb, &x, &v)
-        .ok_or_else(|| TiError::Invalid("the modal matrix is singular".into()))?;
+    let y0 = BrakeDynamics::state_from_physical(mb, &x, &v).ok_or(TiError::SingularModes)?;
     // Q: the mode's largest modal coordinate for a contact motion of one penetration.
     let re: Vec<f64> = mode.iter().map(|z| z.re).collect();
     let im: Vec<f64> = mode.iter().map(|z| z.im).collect();
-    let qm = BrakeDynamics::state_from_physical(mb, &re, &im)
-        .ok_or_else(|| TiError::Invalid("the modal matrix is singular".into()))?;
+    let qm = BrakeDynamics::state_from_physical(mb, &re, &im).ok_or(TiError::SingularModes)?;
     let q_scale = unit * (0..n).map(|j| qm[j].hypot(qm[n + j])).fold(0.0, f64::max);
     let pair = &mb.pairs[best];
     let observable = (0..n)
@@ -210,115 +244,59 @@ fn start_state(
     })
 }
 
-/// Fourier sums of every state over `cycles` periods sampled at `t0 + j T / N`
-/// (`j < cycles · N`): the DFT over several periods averages out the integrator's cycle-to-cycle
-/// noise, which a single cycle between two detected crossings would keep.
-struct CycleSums {
-    harmonics: usize,
-    per_cycle: usize,
-    total: usize,
-    t0: f64,
-    period: f64,
-    next: usize,
-    cos: Vec<f64>,
-    sin: Vec<f64>,
-    /// Per state `[a0, a1, b1, ...]`.
-    sums: Vec<f64>,
+/// Takes every sample of `sums` due by the end of `bdf`'s last step (its dense output).
+fn take<S: squeal_ode::OdeSystem>(
+    sums: &mut FourierSums,
+    bdf: &Bdf<S>,
+    y: &mut [f64],
+) -> Result<(), OdeError> {
+    while let Some(t) = sums.next_time() {
+        if t > bdf.t() {
+            break;
+        }
+        bdf.interpolate(t.max(bdf.t_prev()), y)?;
+        sums.add(y);
+    }
+    Ok(())
 }
 
-impl CycleSums {
-    fn new(
-        dim: usize,
-        harmonics: usize,
-        per_cycle: usize,
-        cycles: usize,
-        t0: f64,
-        period: f64,
-    ) -> Self {
-        let angle = |j: usize| 2.0 * PI * j as f64 / per_cycle as f64;
-        Self {
-            harmonics,
-            per_cycle,
-            total: per_cycle * cycles.max(1),
-            t0,
-            period,
-            next: 0,
-            cos: (0..per_cycle).map(|j| angle(j).cos()).collect(),
-            sin: (0..per_cycle).map(|j| angle(j).sin()).collect(),
-            sums: vec![0.0; dim * (2 * harmonics + 1)],
-        }
-    }
-
-    fn next_time(&self) -> Option<f64> {
-        (self.next < self.total)
-            .then(|| self.t0 + self.next as f64 * self.period / self.per_cycle as f64)
-    }
-
-    fn add(&mut self, y: &[f64]) {
-        let w = 2 * self.harmonics + 1;
-        let j = self.next % self.per_cycle;
-        for (i, &yi) in y.iter().enumerate() {
-            let s = &mut self.sums[i * w..(i + 1) * w];
-            s[0] += yi;
-            for k in 1..=self.harmonics {
-                let idx = (k * j) % self.per_cycle;
-                s[2 * k - 1] += yi * self.cos[idx];
-                s[2 * k] += yi * self.sin[idx];
-            }
-        }
-        self.next += 1;
-    }
-
-    /// Takes every sample due by the end of `bdf`'s last step.
-    fn take<S: squeal_ode::OdeSystem>(
-        &mut self,
-        bdf: &Bdf<S>,
-        y: &mut [f64],
-    ) -> Result<(), OdeError> {
-        while let Some(t) = self.next_time() {
-            if t > bdf.t() {
-                break;
-            }
-            bdf.interpolate(t.max(bdf.t_prev()), y)?;
-            self.add(y);
-        }
-        Ok(())
-    }
-
-    fn done(&self) -> bool {
-        self.next >= self.total
-    }
-
-    /// Physical displacement and velocity coefficients (`x = Φ q`, `x' = Φ v`).
-    fn physical(&self, mb: &ModalBrake) -> CycleCoefficients {
-        let n = mb.modes();
-        let h = self.harmonics;
-        let w = 2 * h + 1;
-        let total = self.total as f64;
-        let coeff = |i: usize, b: usize| {
-            let s = self.sums[i * w + b];
-            if b == 0 { s / total } else { 2.0 * s / total }
-        };
-        let mut x = vec![0.0; w * n];
-        let mut v = vec![0.0; w * n];
+/// Physical displacement and velocity coefficients (`x = Φ q`, `x' = Φ v`) of the modal
+/// state's averaged Fourier coefficients.
+fn physical(mb: &ModalBrake, sums: &FourierSums) -> Result<Cycle, HbmError> {
+    let state = sums.periodic();
+    let n = mb.modes();
+    let layout = HarmonicLayout::new(n, state.harmonics())?;
+    let (mut x, mut v) = (vec![0.0; layout.len()], vec![0.0; layout.len()]);
+    for b in 0..layout.n_blocks() {
         for j in 0..n {
-            for b in 0..w {
-                let (cq, cv) = (coeff(j, b), coeff(n + j, b));
-                for d in 0..n {
-                    let p = mb.phi[(d, j)];
-                    x[b * n + d] += p * cq;
-                    v[b * n + d] += p * cv;
-                }
+            let (cq, cv) = (state.coeffs[b * 2 * n + j], state.coeffs[b * 2 * n + n + j]);
+            for d in 0..n {
+                let p = mb.phi[(d, j)];
+                x[b * n + d] += p * cq;
+                v[b * n + d] += p * cv;
             }
         }
-        CycleCoefficients {
-            harmonics: h,
-            omega: 2.0 * PI / self.period,
-            n_dofs: n,
-            x,
-            v,
-        }
     }
+    Ok(Cycle {
+        x: Periodic::new(layout, state.omega, x)?,
+        v: Periodic::new(layout, state.omega, v)?,
+    })
+}
+
+/// The sums of one block of [`TiOptions::confirm_cycles`] periods from `t0`.
+fn new_sums(dim: usize, opts: &TiOptions, t0: f64, period: f64) -> Result<FourierSums, OdeError> {
+    FourierSums::new(
+        dim,
+        opts.harmonics,
+        opts.samples_per_cycle,
+        opts.confirm_cycles,
+        t0,
+        period,
+    )
+    .map_err(|_| OdeError::InvalidOption {
+        name: "samples_per_cycle",
+        reason: "must exceed twice the harmonics".into(),
+    })
 }
 
 /// Mean period of the monitor's window (its spread is below the steady tolerance).
@@ -327,10 +305,10 @@ fn mean_period(window: &[CycleRecord]) -> f64 {
 }
 
 /// Phase-aligned relative change between two detections (on every dof).
-fn drift(a: &CycleCoefficients, b: &CycleCoefficients, dof: usize) -> f64 {
+fn drift(a: &Cycle, b: &Cycle, dof: usize) -> f64 {
     let mut b = b.clone();
     b.align_to(a, dof);
-    let all: Vec<usize> = (0..a.n_dofs).collect();
+    let all: Vec<usize> = (0..a.n_dofs()).collect();
     let e = relative_errors(&b, a, &all);
     e.displacement
         .max(e.velocity)
@@ -348,6 +326,15 @@ pub fn integrate_to_limit_cycle(
     opts: &TiOptions,
 ) -> Result<TiRun, TiError> {
     let t0 = Instant::now();
+    // The Fourier averages' options, checked before any work.
+    FourierSums::new(
+        2 * mb.modes(),
+        opts.harmonics,
+        opts.samples_per_cycle,
+        1,
+        0.0,
+        1.0,
+    )?;
     let s = start_state(mb, lambda, mode, equilibrium, opts.perturbation)?;
     let n = mb.modes();
     let atol_q = opts.atol_factor * opts.rtol * s.q_scale;
@@ -385,8 +372,8 @@ pub fn integrate_to_limit_cycle(
     let mut history = Vec::new();
     let mut failure = None;
     let mut steady = None;
-    let mut sums: Option<CycleSums> = None;
-    let mut previous: Option<CycleCoefficients> = None;
+    let mut sums: Option<FourierSums> = None;
+    let mut previous: Option<Cycle> = None;
     let mut detections = 0;
     let mut drifts = Vec::new();
     let mut y = vec![0.0; 2 * n];
@@ -403,29 +390,26 @@ pub fn integrate_to_limit_cycle(
             }
             if sums.is_none() && found.is_some() {
                 let window: Vec<CycleRecord> = monitor.window().iter().copied().collect();
-                sums = Some(CycleSums::new(
-                    2 * n,
-                    opts.harmonics,
-                    opts.samples_per_cycle,
-                    opts.confirm_cycles,
-                    bdf.t(),
-                    mean_period(&window),
-                ));
+                sums = Some(new_sums(2 * n, opts, bdf.t(), mean_period(&window))?);
             }
             let Some(acc) = sums.as_mut() else { continue };
-            acc.take(&bdf, &mut y)?;
-            if !acc.done() {
+            take(acc, &bdf, &mut y)?;
+            if !acc.complete() {
                 continue;
             }
             detections += 1;
-            let cycle = acc.physical(mb);
-            let next_t0 = acc.t0 + acc.total as f64 * acc.period / acc.per_cycle as f64;
+            let cycle = physical(mb, acc).map_err(|_| OdeError::InvalidOption {
+                name: "harmonics",
+                reason: "too many harmonics for the brake's dofs".into(),
+            })?;
+            let next_t0 = acc.end_time();
             if let Some(prev) = &previous {
-                let d = drift(prev, &cycle, prev.strongest_dof(&mb.nl_dofs));
+                let dof = prev.strongest_dof(&mb.nl_dofs).unwrap_or(0);
+                let d = drift(prev, &cycle, dof);
                 drifts.push((bdf.t(), d));
                 if d <= opts.drift_tol {
                     steady = Some(TiSteady {
-                        period: 2.0 * PI / cycle.omega,
+                        period: 2.0 * PI / cycle.omega(),
                         cycle,
                         cycles: monitor.cycles_completed(),
                         t: bdf.t(),
@@ -438,24 +422,11 @@ pub fn integrate_to_limit_cycle(
             previous = Some(cycle);
             // The next average starts where this one ended, with the latest mean period.
             let window: Vec<CycleRecord> = monitor.window().iter().copied().collect();
-            let mut next = CycleSums::new(
-                2 * n,
-                opts.harmonics,
-                opts.samples_per_cycle,
-                opts.confirm_cycles,
-                next_t0,
-                mean_period(&window),
-            );
-            next.take(&bdf, &mut y)?;
+            let mut next = new_sums(2 * n, opts, next_t0, mean_period(&window))?;
+            take(&mut next, &bdf, &mut y)?;
             sums = Some(next);
         }
-        let last = monitor.window().back().copied();
-        Err(OdeError::NotSteady {
-            t: bdf.t(),
-            cycles: monitor.cycles_completed(),
-            last_period: last.map_or(f64::NAN, |r| r.period),
-            last_amplitude: last.map_or(f64::NAN, |r| r.amplitude()),
-        })
+        Err(monitor.not_steady(bdf.t()))
     })();
     if let Err(e) = result {
         failure = Some(e);

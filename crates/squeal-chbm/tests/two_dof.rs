@@ -1,55 +1,31 @@
-//! Independent checks of CHBM and of the time-integration reference on a 2-dof mode-coupling
-//! friction model built as a `squeal_brake::Brake` with one contact pair (issue #6, item 9):
-//!
-//! `M = m I`, `C = c I`, linear `K = [[k11, k12], [k12, k22]]`, a pair whose normal is dof 1
-//! (eq 8's `F = k_l δ + k_nl δ³`, δ = x1 + gap) and whose friction acts along `-e0`
-//! (coupling `-μ k_t` in `K[0][1]`). The cubic term hardens the contact as the vibration grows;
-//! with the stiffnesses chosen here a stiffer contact raises the flutter threshold, so the
-//! Hopf point is supercritical and, near it, the limit cycle's amplitude squared grows
-//! linearly with `μ - μ0` (normal form of the Hopf bifurcation).
+//! Independent checks of CHBM and of the time-integration reference on the 2-dof
+//! mode-coupling friction oscillator of `examples/friction_oscillator.rs` (issue #6, item 9;
+//! the example itself runs here): a pair whose normal is dof 1 (eq 8's
+//! `F = k_l δ + k_nl δ³`, δ = x1 + gap) and whose friction acts along `-e0` (coupling
+//! `-μ k_t` in `K[0][1]`). The cubic term hardens the contact as the vibration grows; with
+//! the stiffnesses chosen a stiffer contact raises the flutter threshold, so the Hopf point
+//! is supercritical and, near it, the limit cycle's amplitude squared grows linearly with
+//! `μ - μ0` (normal form of the Hopf bifurcation).
 
-use faer::Mat;
+#[path = "../examples/friction_oscillator.rs"]
+mod example;
+
+use example::{KL, KNL, band, brake, frictionless};
 use faer::c64;
+use squeal_brake::Brake;
 use squeal_brake::equilibrium::{NewtonOptions, static_equilibrium};
-use squeal_brake::modal::Damping;
+use squeal_brake::harmonic::{BrakeEigen, ContactForce};
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_brake::spectrum::{Reference, spectrum};
-use squeal_brake::sweep::{Band, reference};
-use squeal_brake::{Brake, ContactPair};
-use squeal_chbm::compare::solve_with_restarts;
-use squeal_chbm::constraint::{Eigenproblem, Fit, equivalent_linearization};
-use squeal_chbm::contact::ContactForce;
 use squeal_chbm::cycle::relative_errors;
 use squeal_chbm::start::start_at;
 use squeal_chbm::timeint::{TiOptions, integrate_to_limit_cycle};
-use squeal_chbm::{ChbmOptions, ChbmStart, Outcome, check_jacobian};
-use squeal_hbm::{Aft, HarmonicLayout, Part};
-
-const M: f64 = 1.0;
-const C: f64 = 20.0;
-const K11: f64 = 1.0e6;
-const K12: f64 = 1.0e5;
-const K22: f64 = 1.0e6;
-const GAP: f64 = 2.0e-4;
-
-fn brake(k_linear: f64, k_cubic: f64) -> Brake {
-    let pair = ContactPair {
-        disc_point: 0,
-        pad_point: 0,
-        position: [0.0; 3],
-        normal: vec![(1, 1.0)],
-        tangent: vec![(0, -1.0)],
-        gap: GAP,
-        k_linear,
-        k_cubic,
-    };
-    Brake {
-        m: Mat::from_fn(2, 2, |i, j| if i == j { M } else { 0.0 }),
-        k: Mat::from_fn(2, 2, |i, j| [[K11, K12], [K12, K22]][i][j]),
-        f_piston: vec![0.0, 0.0],
-        pairs: vec![pair],
-    }
-}
+use squeal_chbm::{
+    ChbmOptions, ChbmStart, Outcome, RESTART_AMPLITUDES, check_jacobian, solve_with_restarts,
+};
+use squeal_hbm::{
+    Aft, DescribingFunction, HarmonicLayout, LinearizedEigen, Part, reference_jacobian,
+};
 
 struct Model {
     brake: Brake,
@@ -58,11 +34,7 @@ struct Model {
 
 fn model(k_linear: f64, k_cubic: f64) -> Model {
     let b = brake(k_linear, k_cubic);
-    let damping = Damping {
-        global_ratio: 0.0,
-        extra: vec![(0, C / M), (1, C / M)],
-    };
-    let reference = reference(&b, &damping, &NewtonOptions::default()).unwrap();
+    let reference = frictionless(&b);
     Model {
         brake: b,
         reference,
@@ -94,19 +66,6 @@ fn hopf(m: &Model) -> f64 {
     0.5 * (lo + hi)
 }
 
-const KL: f64 = 3.0e5;
-const KNL: f64 = 7.5e11;
-
-/// Initial amplitudes of eq (48) tried in turn (fractions of the static penetration).
-const AMPLITUDES: [f64; 4] = [0.1, 0.3, 0.03, 1.0];
-
-fn band() -> Band {
-    Band {
-        valid_max_hz: f64::INFINITY,
-        user: None,
-    }
-}
-
 fn start(m: &Model, mu: f64) -> ChbmStart {
     start_at(
         &m.brake,
@@ -119,6 +78,17 @@ fn start(m: &Model, mu: f64) -> ChbmStart {
     .unwrap()
 }
 
+#[test]
+fn the_example_runs_and_agrees_with_the_bisected_hopf_point() {
+    // The example's μ0 (sweep + Newton refinement) against bisection on the dense spectrum:
+    // both resolve μ0 to ~1e-9 relative.
+    let m = model(KL, KNL);
+    let mu0 = example::hopf(&m.brake, &m.reference);
+    assert!((mu0 / hopf(&m) - 1.0).abs() < 1e-7, "{mu0} vs {}", hopf(&m));
+    let s = example::limit_cycle(&m.brake, &m.reference, 1.001 * mu0, 3).unwrap();
+    assert_eq!(s.outcome, Outcome::LimitCycle);
+}
+
 /// First-harmonic amplitude of the normal dof, CHBM with `h` harmonics.
 fn chbm_amplitude(m: &Model, mu: f64, h: usize) -> (f64, f64) {
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
@@ -129,7 +99,7 @@ fn chbm_amplitude(m: &Model, mu: f64, h: usize) -> (f64, f64) {
             harmonics: h,
             ..ChbmOptions::default()
         },
-        &AMPLITUDES,
+        &RESTART_AMPLITUDES,
     )
     .unwrap();
     assert_eq!(s.outcome, Outcome::LimitCycle, "CHBM at mu = {mu}");
@@ -231,11 +201,11 @@ fn chbm_matches_time_integration_on_the_two_dof_model() {
             harmonics: 5,
             ..ChbmOptions::default()
         },
-        &AMPLITUDES,
+        &RESTART_AMPLITUDES,
     )
     .unwrap();
     assert_eq!(s.outcome, Outcome::LimitCycle);
-    let mut c = s.cycle();
+    let mut c = s.cycle().unwrap();
     c.align_to(&reference.cycle, 1);
     let e = relative_errors(&c, &reference.cycle, &[0, 1]);
     eprintln!("{e:?}");
@@ -255,6 +225,8 @@ fn equivalent_linearization_is_the_tangent_one_at_zero_amplitude() {
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
     let layout = HarmonicLayout::new(mb.nl(), 3).unwrap();
     let force = ContactForce::new(&mb);
+    let x0: Vec<f64> = mb.nl_dofs.iter().map(|&d| st.equilibrium[d]).collect();
+    let (k0, c0) = reference_jacobian(&force, &x0);
     for amplitude in [0.0, 1e-9] {
         // The equilibrium as a cycle, with (for the second case) a tiny first harmonic.
         let mut u = vec![0.0; layout.len()];
@@ -267,23 +239,20 @@ fn equivalent_linearization_is_the_tangent_one_at_zero_amplitude() {
         let mut aft = Aft::new(layout, 32).unwrap();
         let mut f = vec![0.0; layout.len()];
         aft.forces(&force, &u, st.lambda.im, &mut f).unwrap();
-        for fit in [Fit::Fundamental, Fit::Samples] {
-            let eql = equivalent_linearization(&mb, &layout, &aft.samples(), st.lambda.im, fit);
-            let t = Eigenproblem::new(&mb)
-                .track(&eql.k, &eql.c, st.lambda * c64::new(1.0, 1e-4))
-                .unwrap();
-            // The stability analysis' eigenvalue comes from a dense eigensolver on the
-            // physical tangent stiffness; the tracked one from Newton on the secular equation
-            // with the fitted stiffness. At zero amplitude the fit is the tangent stiffness
-            // exactly; at 1e-9 m the cubic term changes it by 3 k_nl A²/4 ~ 1e-13 relative.
-            assert!(
-                (t.lambda - st.lambda).norm() < 1e-9 * st.lambda.norm(),
-                "{fit:?} at amplitude {amplitude}: {} vs {}",
-                t.lambda,
-                st.lambda
-            );
-            assert!(eql.c[0].abs() < 1e-9 * eql.k[0] / st.lambda.im);
-        }
+        let df = DescribingFunction::new(&layout, &u, st.lambda.im, &f, &k0, &c0);
+        let t = BrakeEigen::new(&mb, None)
+            .track(&df.update(&k0, &c0), st.lambda * c64::new(1.0, 1e-4))
+            .unwrap();
+        // The stability analysis' eigenvalue comes from a dense eigensolver on the tangent
+        // linearization; the tracked one from the describing function. At zero amplitude
+        // the describing function is the tangent linearization exactly; at 1e-9 m the cubic
+        // term changes it by 3 k_nl A²/4 ~ 1e-13 relative.
+        assert!(
+            (t.lambda - st.lambda).norm() < 1e-9 * st.lambda.norm(),
+            "amplitude {amplitude}: {} vs {}",
+            t.lambda,
+            st.lambda
+        );
     }
 }
 
@@ -313,4 +282,189 @@ fn analytic_jacobian_matches_finite_differences() {
             "H = {h}: f1 rows {w1:e}, f2 row {w2:e}"
         );
     }
+}
+
+#[test]
+fn a_full_modal_damping_matrix_agrees_between_chbm_and_time_integration() {
+    // Physical damping C = [[20, 8], [8, 30]] is not proportional: D = Φᵀ C Φ is a full
+    // matrix, so the condensed stiffness, the eigenvalue tracking and the time integration
+    // all take their dense paths. CHBM against BDF at rtol 1e-10 at 1.001 μ0.
+    let mut m = model(KL, KNL);
+    let c = faer::Mat::from_fn(2, 2, |i, j| [[20.0, 8.0], [8.0, 30.0]][i][j]);
+    let phi = &m.reference.basis.phi;
+    let d = phi.transpose() * &c * phi;
+    assert!(d[(0, 1)].abs() > 1.0, "{d:?}");
+    m.reference.damping = squeal_brake::ModalDamping::Full(d);
+    let mu = 1.001 * hopf(&m);
+    let reference = ti(&m, mu);
+    let mb = ModalBrake::new(&m.brake, &m.reference, mu);
+    let (s, ..) = solve_with_restarts(
+        &mb,
+        &start(&m, mu),
+        &ChbmOptions {
+            harmonics: 5,
+            ..ChbmOptions::default()
+        },
+        &RESTART_AMPLITUDES,
+    )
+    .unwrap();
+    assert_eq!(s.outcome, Outcome::LimitCycle);
+    let mut c = s.cycle().unwrap();
+    c.align_to(&reference.cycle, 1);
+    let e = relative_errors(&c, &reference.cycle, &[0, 1]);
+    // As for the diagonal damping above (8e-6 measured there): the dense paths compute the
+    // same quantities.
+    assert!(e.displacement < 1e-4, "{e:?}");
+    assert!(e.frequency_relative.abs() < 1e-7, "{e:?}");
+}
+
+/// The Hopf normal form of the oscillator with contact stiffnesses `(kl, knl)`.
+fn normal_form_of(m: &Model) -> squeal_brake::criticality::NormalForm {
+    let mu0 = hopf(m);
+    let eq = static_equilibrium(&m.brake, mu0, None, &NewtonOptions::default()).unwrap();
+    let sp = spectrum(&m.brake, &m.reference, &eq).unwrap();
+    let guess = sp
+        .values
+        .iter()
+        .copied()
+        .max_by(|a, b| a.re.total_cmp(&b.re))
+        .unwrap();
+    squeal_brake::criticality::normal_form(
+        &m.brake,
+        &m.reference,
+        mu0,
+        guess,
+        &NewtonOptions::default(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn the_lyapunov_coefficient_predicts_the_supercritical_branch() {
+    // Supercritical (l1 < 0): the normal form's first harmonic of the normal dof against
+    // CHBM's at 0.05 % above μ0. The asymptote is exact to first order in ε = μ/μ0 - 1; the
+    // CHBM ratio A²/ε drifts by 0.2 % from ε = 5e-4 to 2e-3 (the O(ε) term), so at 5e-4 the two
+    // must agree to well under 1 %.
+    let m = model(KL, KNL);
+    let nf = normal_form_of(&m);
+    assert_eq!(
+        nf.criticality(),
+        squeal_brake::criticality::Criticality::Supercritical
+    );
+    let mu = 1.0005 * nf.mu0;
+    let x = nf.first_harmonic(mu).expect("a cycle above mu0");
+    let phi = &m.reference.basis.phi;
+    let predicted = (0..2).map(|j| x[j] * phi[(1, j)]).sum::<c64>().norm();
+    let s = example::limit_cycle(&m.brake, &m.reference, mu, 5).unwrap();
+    let measured = s.amplitude(1, 1);
+    let reference = ti(&m, mu);
+    let integrated = reference.cycle.amplitude(1, 1);
+    eprintln!(
+        "first harmonic of x1: normal form {predicted:e}, CHBM {measured:e}, BDF {integrated:e}"
+    );
+    assert!(
+        (predicted / measured - 1.0).abs() < 1e-2,
+        "{predicted} vs {measured}"
+    );
+    assert!(
+        (predicted / integrated - 1.0).abs() < 1e-2,
+        "{predicted} vs {integrated}"
+    );
+    let f = nf.omega_at(mu);
+    assert!((f / s.omega - 1.0).abs() < 1e-5, "omega {f} vs {}", s.omega);
+}
+
+/// The subcritical variant: K = [[1e6, 2e5], [2e5, 8e5]] (l1 = +8.4, μ0 = 0.665).
+fn subcritical() -> Model {
+    let mut b = brake(KL, KNL);
+    b.k = faer::Mat::from_fn(2, 2, |i, j| [[1.0e6, 2.0e5], [2.0e5, 0.8e6]][i][j]);
+    let reference = frictionless(&b);
+    Model {
+        brake: b,
+        reference,
+    }
+}
+
+/// Integrates the oscillator at `mu` from its equilibrium plus `Re(X e^{iωt})` at t = 0 (the
+/// normal form's first harmonic `X`, physical, times `factor`) for `periods` periods, and
+/// returns the ratio of the closure's oscillation amplitude over the last five periods to
+/// that over the first five.
+fn envelope_ratio(
+    m: &Model,
+    nf: &squeal_brake::criticality::NormalForm,
+    mu: f64,
+    x: &[c64],
+    factor: f64,
+    periods: f64,
+) -> f64 {
+    use squeal_brake::dynamics::BrakeDynamics;
+    use squeal_ode::{Atol, Bdf, BdfOptions};
+    let eq = static_equilibrium(&m.brake, mu, None, &NewtonOptions::default()).unwrap();
+    let mb = ModalBrake::new(&m.brake, &m.reference, mu);
+    let w = nf.omega_at(mu);
+    let x0: Vec<f64> = (0..2).map(|i| eq.x[i] + factor * x[i].re).collect();
+    let v0: Vec<f64> = (0..2)
+        .map(|i| factor * (c64::new(0.0, w) * x[i]).re)
+        .collect();
+    let y0 = BrakeDynamics::state_from_physical(&mb, &x0, &v0).unwrap();
+    let sys = BrakeDynamics::new(&mb);
+    let period = 2.0 * std::f64::consts::PI / w;
+    let opts = BdfOptions {
+        rtol: 1e-10,
+        atol: Atol::Scalar(1e-16),
+        max_order: 5,
+        ..BdfOptions::default()
+    };
+    let mut bdf = Bdf::new(&sys, 0.0, &y0, periods * period, &opts).unwrap();
+    let closure = |y: &[f64]| {
+        let x = mb.physical(&y[..2]);
+        x[1] - eq.x[1]
+    };
+    let (mut first, mut last) = (0.0f64, 0.0f64);
+    let mut y = vec![0.0; 4];
+    let mut t = 0.0;
+    while !bdf.is_finished() {
+        bdf.step().unwrap();
+        while t <= bdf.t() {
+            bdf.interpolate(t, &mut y).unwrap();
+            let a = closure(&y).abs();
+            if t < 5.0 * period {
+                first = first.max(a);
+            }
+            if t > (periods - 5.0) * period {
+                last = last.max(a);
+            }
+            t += period / 64.0;
+        }
+    }
+    last / first
+}
+
+#[test]
+fn the_lyapunov_coefficient_says_subcritical_and_time_integration_agrees() {
+    // l1 > 0: the branch leaves μ0 to lower friction, where it is the threshold between
+    // decay and growth (an unstable cycle). At μ = 0.998 μ0 the equilibrium is stable; started
+    // at 0.7 of the normal form's cycle the motion decays, at 1.4 it grows. (The normal form's
+    // amplitude is right to O(ε) = 0.2 %, far inside that margin.)
+    let m = subcritical();
+    let nf = normal_form_of(&m);
+    assert_eq!(
+        nf.criticality(),
+        squeal_brake::criticality::Criticality::Subcritical
+    );
+    assert!(
+        nf.radius_squared(1.001 * nf.mu0).is_none(),
+        "no cycle above mu0"
+    );
+    let mu = 0.998 * nf.mu0;
+    let xm = nf.first_harmonic(mu).expect("a cycle below mu0");
+    let phi = &m.reference.basis.phi;
+    let x: Vec<c64> = (0..2)
+        .map(|i| (0..2).map(|j| xm[j] * phi[(i, j)]).sum())
+        .collect();
+    let decays = envelope_ratio(&m, &nf, mu, &x, 0.7, 300.0);
+    let grows = envelope_ratio(&m, &nf, mu, &x, 1.4, 300.0);
+    eprintln!("envelope ratio after 300 periods: 0.7 x cycle {decays:.3}, 1.4 x cycle {grows:.3}");
+    assert!(decays < 0.9, "{decays}");
+    assert!(grows > 1.1, "{grows}");
 }

@@ -8,9 +8,15 @@
 //! parallel, adding the contributions of the node's elements in ascending element order. Every
 //! entry is therefore the same sum in the same order whatever the thread count, and `K`, `M`
 //! are symmetric bit for bit. Memory is proportional to the number of nonzeros.
+//!
+//! Each element's stiffness rule depends on its own coordinates only
+//! ([`AssemblyOptions::stiffness_rule_for`]): the 4-point rule for straight-sided elements
+//! (the same bits as before curved elements had their own rule), the 24-point rule for curved
+//! ones (see [`crate::element`] for why and how accurate). The choice does not depend on the
+//! thread count either.
 
 use crate::dofmap::DofMap;
-use crate::element::{element_mass_scalar, element_stiffness, element_volume};
+use crate::element::{ElementCoords, element_mass_scalar, element_stiffness, element_volume};
 use crate::error::FeError;
 use crate::material::MaterialTable;
 use crate::quadrature::Quadrature;
@@ -18,20 +24,55 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
 use squeal_mesh::Mesh;
 
-/// Quadrature rules used by [`assemble_with`].
+/// Quadrature rules used by [`assemble_with`], and which elements count as curved.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AssemblyOptions {
-    /// Default: [`Quadrature::four_point`], exact for straight-sided elements.
+    /// Stiffness rule of straight-sided elements. Default: [`Quadrature::four_point`], exact
+    /// for them.
     pub stiffness_rule: Quadrature,
+    /// Stiffness rule of curved elements, whose integrand is rational (see
+    /// [`crate::element`]). Default: [`Quadrature::twenty_four_point`] (degree 6).
+    pub curved_stiffness_rule: Quadrature,
+    /// An element is curved when a midside node lies farther than this from its edge's
+    /// midpoint, relative to the edge's length ([`squeal_mesh::tet10::midside_offset`]).
+    /// Default: [`STRAIGHT_TOLERANCE`]. `f64::INFINITY` integrates every element with
+    /// `stiffness_rule`.
+    pub straight_tolerance: f64,
     /// Default: [`Quadrature::fourteen_point`], exact for straight-sided elements.
     pub mass_rule: Quadrature,
 }
+
+/// Default [`AssemblyOptions::straight_tolerance`]: 1e-8.
+///
+/// The 4-point rule's relative stiffness error on an element whose midside nodes are off by
+/// `δ` (relative to the edge) is first order, `0.31 δ` on an element of the coarse disc
+/// (`tests/curved.rs`), so an element taken as straight at this tolerance is integrated to
+/// about 3e-9, below the 24-point rule's error on the curved elements of the bundled meshes. Coordinates written with 16–17
+/// significant digits put the midside nodes of straight elements 1e-17 to 1e-13 off (the
+/// bundled meshes); a file written with 6 digits puts them up to ~1e-5 off, and its elements
+/// are integrated as curved, which costs time, not accuracy.
+pub const STRAIGHT_TOLERANCE: f64 = 1e-8;
 
 impl Default for AssemblyOptions {
     fn default() -> Self {
         Self {
             stiffness_rule: Quadrature::four_point(),
+            curved_stiffness_rule: Quadrature::twenty_four_point(),
+            straight_tolerance: STRAIGHT_TOLERANCE,
             mass_rule: Quadrature::fourteen_point(),
+        }
+    }
+}
+
+impl AssemblyOptions {
+    /// The stiffness rule of the element with coordinates `x`: the curved rule when its
+    /// midside offset exceeds the tolerance (or is not a number).
+    pub fn stiffness_rule_for(&self, x: &ElementCoords) -> &Quadrature {
+        let offset = squeal_mesh::tet10::midside_offset(x);
+        if offset <= self.straight_tolerance {
+            &self.stiffness_rule
+        } else {
+            &self.curved_stiffness_rule
         }
     }
 }
@@ -207,11 +248,9 @@ fn element_matrices(
 ) -> Result<(), FeError> {
     let x = mesh.element_coords(e);
     let entry = &materials.entries[materials.element_entry[e] as usize];
-    let wrap = |source| FeError::Element {
-        element: mesh.element_ids[e],
-        source,
-    };
-    *ke = element_stiffness(&x, &entry.elasticity, &options.stiffness_rule).map_err(wrap)?;
+    let wrap = FeError::in_element(mesh.element_ids[e]);
+    let rule = options.stiffness_rule_for(&x);
+    *ke = element_stiffness(&x, &entry.elasticity, rule).map_err(wrap)?;
     *me = element_mass_scalar(&x, entry.material.density(), &options.mass_rule).map_err(wrap)?;
     Ok(())
 }
@@ -488,10 +527,8 @@ impl ScatterContext<'_> {
 pub fn mesh_volume(mesh: &Mesh, rule: &Quadrature) -> Result<f64, FeError> {
     let mut v = 0.0;
     for e in 0..mesh.num_elements() {
-        v += element_volume(&mesh.element_coords(e), rule).map_err(|source| FeError::Element {
-            element: mesh.element_ids[e],
-            source,
-        })?;
+        v += element_volume(&mesh.element_coords(e), rule)
+            .map_err(FeError::in_element(mesh.element_ids[e]))?;
     }
     Ok(v)
 }
@@ -508,11 +545,8 @@ pub fn total_mass(
         let rho = materials.entries[materials.element_entry[e] as usize]
             .material
             .density();
-        let v =
-            element_volume(&mesh.element_coords(e), rule).map_err(|source| FeError::Element {
-                element: mesh.element_ids[e],
-                source,
-            })?;
+        let v = element_volume(&mesh.element_coords(e), rule)
+            .map_err(FeError::in_element(mesh.element_ids[e]))?;
         m += rho * v;
     }
     Ok(m)

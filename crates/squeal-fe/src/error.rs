@@ -29,6 +29,10 @@ pub enum ElementError {
 
 /// An error of the finite-element stage. Elements and nodes are named by their ids in the
 /// mesh file.
+///
+/// Each message is complete in `Display`: a variant that wraps a [`MaterialError`] or an
+/// [`ElementError`] prints it after its own context and does not also return it as
+/// `source()`, so an error chain printed with `{:#}` (anyhow) shows every piece once.
 #[derive(Debug, thiserror::Error)]
 pub enum FeError {
     #[error(
@@ -46,11 +50,10 @@ pub enum FeError {
         material: String,
         missing: &'static str,
     },
-    #[error("material '{material}': {source}")]
+    #[error("material '{material}': {error}")]
     InvalidMaterial {
         material: String,
-        #[source]
-        source: MaterialError,
+        error: MaterialError,
     },
     #[error("no element set named '{0}'")]
     UnknownElementSet(String),
@@ -76,14 +79,17 @@ pub enum FeError {
     },
     #[error("the dof map was built for {map} nodes, the mesh has {mesh}")]
     DofMapMismatch { map: usize, mesh: usize },
-    #[error("element {element}: {source}")]
-    Element {
-        element: u64,
-        #[source]
-        source: ElementError,
-    },
+    #[error("element {element}: {error}")]
+    Element { element: u64, error: ElementError },
     #[error("quadrature with {0} Gauss points per axis is not supported (1..=32)")]
     QuadratureOrder(usize),
     #[error(transparent)]
     Io(#[from] squeal_io::IoError),
+}
+
+impl FeError {
+    /// Wraps an [`ElementError`] of the element with file id `element`.
+    pub(crate) fn in_element(element: u64) -> impl Fn(ElementError) -> Self + Copy {
+        move |error| FeError::Element { element, error }
+    }
 }

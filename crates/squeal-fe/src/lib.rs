@@ -1,8 +1,9 @@
 //! Linear-elastic finite elements for squeal: 10-node tetrahedra, stiffness and consistent
 //! mass, sparse parallel assembly.
 //!
-//! - [`quadrature`]: rules on the reference tetrahedron (degree 2 for stiffness, degree 5 for
-//!   mass, collapsed Gauss of any degree).
+//! - [`quadrature`]: rules on the reference tetrahedron (degree 2 for the stiffness of
+//!   straight-sided elements, degree 6 for curved ones, degree 5 for mass, collapsed Gauss of
+//!   any degree).
 //! - [`material`]: isotropic, transversely isotropic and orthotropic elasticity (Abaqus
 //!   conventions), and the material of each element from the mesh's sections and overrides.
 //! - [`element`]: element stiffness, mass, volume and strain of the isoparametric tet10.
@@ -33,7 +34,8 @@ pub mod material;
 pub mod quadrature;
 
 pub use assembly::{
-    AssemblyOptions, Summary, System, assemble, assemble_with, mesh_volume, total_mass,
+    AssemblyOptions, STRAIGHT_TOLERANCE, Summary, System, assemble, assemble_with, mesh_volume,
+    total_mass,
 };
 pub use dofmap::{DofMap, DofStatus, NodeSelection, Restraint};
 pub use element::{

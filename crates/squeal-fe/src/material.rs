@@ -302,9 +302,9 @@ impl MaterialEntry {
     pub fn new(name: &str, material: ElasticMaterial) -> Result<Self, FeError> {
         let elasticity = material
             .elasticity()
-            .map_err(|source| FeError::InvalidMaterial {
+            .map_err(|error| FeError::InvalidMaterial {
                 material: name.to_string(),
-                source,
+                error,
             })?;
         Ok(Self {
             name: name.to_string(),

@@ -4,12 +4,13 @@
 mod common;
 use common::{Sparse, curve_midside, steel};
 use squeal_fe::{
-    DofMap, ElasticMaterial, MaterialTable, Quadrature, Restraint, System, assemble, element_mass,
-    element_stiffness,
+    AssemblyOptions, DofMap, ElasticMaterial, MaterialTable, Quadrature, Restraint, System,
+    assemble, element_mass, element_stiffness,
 };
 use squeal_mesh::generate::box_tet10;
 
-/// Naive reference: dense matrices, each element scattered through the dof map.
+/// Naive reference: dense matrices, each element scattered through the dof map, with the
+/// element's stiffness rule (4-point if straight, 24-point if curved: `tests/curved.rs`).
 fn dense_reference(
     mesh: &squeal_mesh::Mesh,
     materials: &MaterialTable,
@@ -17,10 +18,12 @@ fn dense_reference(
 ) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
     let n = dofs.num_free();
     let (mut k, mut m) = (vec![vec![0.0; n]; n], vec![vec![0.0; n]; n]);
+    let options = AssemblyOptions::default();
     for e in 0..mesh.num_elements() {
         let x = mesh.element_coords(e);
         let mat = materials.of_element(e).unwrap();
-        let ke = element_stiffness(&x, &mat.elasticity, &Quadrature::four_point()).unwrap();
+        let rule = options.stiffness_rule_for(&x);
+        let ke = element_stiffness(&x, &mat.elasticity, rule).unwrap();
         let me = element_mass(&x, mat.material.density(), &Quadrature::fourteen_point()).unwrap();
         let map: Vec<Option<usize>> = (0..30)
             .map(|i| dofs.free_dof(mesh.elements[e][i / 3], i % 3))
@@ -190,9 +193,14 @@ fn bad_inputs_are_errors() {
     el.swap(4, 6);
     el.swap(8, 9);
     match assemble(&inverted, &materials, &dofs) {
-        Err(squeal_fe::FeError::Element { element, .. }) => assert_eq!(element, 4),
+        Err(e @ squeal_fe::FeError::Element { element: 4, .. }) => {
+            // The message is printed once, also in an error chain (`{:#}`, as the CLI prints).
+            let chain = format!("{:#}", anyhow::Error::from(e));
+            assert_eq!(chain.matches("Jacobian determinant").count(), 1, "{chain}");
+            assert!(chain.starts_with("element 4: "), "{chain}");
+        }
         other => panic!(
-            "expected an element error, got {:?}",
+            "expected an element error of element 4, got {:?}",
             other.map(|s| s.num_dofs())
         ),
     }

@@ -282,7 +282,12 @@ fn sections_and_overrides_assign_materials() {
     // An invalid override is named by its set.
     let bad = ElasticMaterial::isotropic(1e9, 0.5, 1.0);
     match MaterialTable::from_mesh(&mesh, &[("RIGHT".into(), bad)]) {
-        Err(FeError::InvalidMaterial { material, .. }) => assert_eq!(material, "RIGHT"),
+        Err(e @ FeError::InvalidMaterial { .. }) => {
+            // Printed once, also in an error chain (`{:#}`, as the CLI prints).
+            let chain = format!("{:#}", anyhow::Error::from(e));
+            assert_eq!(chain.matches("not positive definite").count(), 1, "{chain}");
+            assert!(chain.starts_with("material 'RIGHT': "), "{chain}");
+        }
         other => panic!("expected InvalidMaterial, got {other:?}"),
     }
 }

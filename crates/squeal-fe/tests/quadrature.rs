@@ -75,3 +75,17 @@ fn collapsed_gauss_rules_reach_degree_2n_minus_3() {
     assert!(Quadrature::collapsed_gauss(0).is_err());
     assert!(Quadrature::collapsed_gauss(33).is_err());
 }
+
+#[test]
+fn twenty_four_point_rule_is_exactly_degree_6() {
+    let rule = Quadrature::twenty_four_point();
+    assert_eq!(rule.len(), 24);
+    assert!(rule.weights.iter().all(|&w| w > 0.0));
+    // 24 distinct points.
+    for (i, p) in rule.points.iter().enumerate() {
+        for q in &rule.points[..i] {
+            assert!(p != q, "point {p:?} repeated");
+        }
+    }
+    check(&rule, "24-point");
+}

@@ -108,12 +108,42 @@ pub enum HbmError {
     /// Invalid solver options.
     #[error("invalid solver option: {0}")]
     BadOption(&'static str),
+    /// A row scale that is not a positive number.
+    #[error("the {what} of the residual rows must be a positive number (got {value})")]
+    BadScale {
+        /// Which scale.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// The eigenvalue the CHBM constraint follows could not be followed.
+    #[error(
+        "the eigenvalue of the equivalent linearization could not be followed from {from:.6e}: {why}"
+    )]
+    EigenvalueLost {
+        /// The last eigenvalue that was known.
+        from: faer::c64,
+        /// What failed.
+        why: String,
+    },
     /// The Levenberg-Marquardt solver stopped without meeting the residual tolerance.
     /// The report holds the last iterate and the full history.
     #[error("harmonic balance did not converge ({stop}); last residual norm {residual_norm:e}", stop = .report.stop, residual_norm = .report.residual_norm)]
     NotConverged {
         /// The solver report (last iterate, history, stop reason).
         report: Box<LmReport>,
+    },
+    /// The tangent of a branch is not defined: the bordered Jacobian is singular (a branch
+    /// point, or a family whose equations do not depend on the parameter).
+    #[error("the branch's tangent is not defined (singular bordered Jacobian)")]
+    SingularTangent,
+    /// A family's parameter could not be put into its equations.
+    #[error("the continuation parameter could not be set to {value}: {why}")]
+    Parameter {
+        /// The parameter value asked.
+        value: f64,
+        /// What failed.
+        why: String,
     },
     /// The residual was NaN or infinite at the initial guess.
     #[error("residual is not finite at the initial guess")]

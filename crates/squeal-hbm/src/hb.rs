@@ -2,11 +2,11 @@
 //! for forced systems (known `omega`) and autonomous systems (unknown `omega` plus a phase
 //! condition).
 
-use faer::MatMut;
-use faer::reborrow::ReborrowMut;
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::{MatMut, MatRef};
 
 use crate::HbmError;
-use crate::aft::Aft;
+use crate::aft::{Aft, TimeSamples};
 use crate::force::{NonlinearForce, validate_pattern};
 use crate::layout::{HarmonicLayout, Part};
 use crate::linear::DynamicStiffness;
@@ -100,6 +100,23 @@ impl<L: DynamicStiffness, F: NonlinearForce> HarmonicBalance<L, F> {
         &self.force
     }
 
+    /// The linear part, mutable (to change a parameter of it, e.g. along a branch).
+    pub fn linear_mut(&mut self) -> &mut L {
+        &mut self.linear
+    }
+
+    /// The nonlinear force, mutable (to change a parameter of it, e.g. the friction
+    /// coefficient along a branch).
+    pub fn force_mut(&mut self) -> &mut F {
+        &mut self.force
+    }
+
+    /// The external force coefficients, mutable (e.g. a load scaled along a branch). The
+    /// caller keeps them finite.
+    pub fn external_force_mut(&mut self) -> &mut [f64] {
+        &mut self.f_ext
+    }
+
     /// The external force coefficients `F~_ext`.
     pub fn external_force(&self) -> &[f64] {
         &self.f_ext
@@ -112,13 +129,28 @@ impl<L: DynamicStiffness, F: NonlinearForce> HarmonicBalance<L, F> {
 
     /// Eq. (26): `r = Lambda(omega) u + F~_nl(u, omega) - F~_ext`.
     pub fn residual(&mut self, u: &[f64], omega: f64, r: &mut [f64]) -> Result<(), HbmError> {
+        self.evaluate(u, omega, r).map(|_| ())
+    }
+
+    /// [`Self::residual`], returning what this very evaluation computed on the way: the
+    /// nonlinear force's coefficients `F~_nl` and its time samples. A constraint on the cycle
+    /// (CHBM's, eq. 47) reads them from here, never from a previous call.
+    pub fn evaluate(
+        &mut self,
+        u: &[f64],
+        omega: f64,
+        r: &mut [f64],
+    ) -> Result<Evaluation<'_>, HbmError> {
         self.layout.check_len("residual", r.len())?;
         self.aft.forces(&self.force, u, omega, &mut self.f_nl)?;
         for ((ri, &f), &e) in r.iter_mut().zip(&self.f_nl).zip(&self.f_ext) {
             *ri = f - e;
         }
         self.linear.add_apply(&self.layout, omega, u, r);
-        Ok(())
+        Ok(Evaluation {
+            force: &self.f_nl,
+            samples: self.aft.samples(),
+        })
     }
 
     /// Jacobian of eq. (26): `jac_u = Lambda(omega) + dF~_nl/dU~` (square, layout length,
@@ -130,16 +162,113 @@ impl<L: DynamicStiffness, F: NonlinearForce> HarmonicBalance<L, F> {
         mut jac_u: MatMut<'_, f64>,
         jac_omega: &mut [f64],
     ) -> Result<(), HbmError> {
-        self.aft.forces_and_jacobian(
-            &self.force,
-            u,
-            omega,
-            &mut self.work,
-            jac_u.rb_mut(),
-            jac_omega,
-        )?;
+        self.force_jacobian(u, omega, jac_u.rb_mut(), jac_omega)?;
+        self.add_linear_jacobian(u, omega, jac_u, jac_omega);
+        Ok(())
+    }
+
+    /// The nonlinear part of [`Self::jacobian`] alone: `jac_u = dF~_nl/dU~`,
+    /// `jac_omega = dF~_nl/domega` (both overwritten); returns the force's coefficients and
+    /// samples of the same evaluation.
+    pub fn force_jacobian(
+        &mut self,
+        u: &[f64],
+        omega: f64,
+        jac_u: MatMut<'_, f64>,
+        jac_omega: &mut [f64],
+    ) -> Result<Evaluation<'_>, HbmError> {
+        self.aft
+            .forces_and_jacobian(&self.force, u, omega, &mut self.work, jac_u, jac_omega)?;
+        Ok(Evaluation {
+            force: &self.work,
+            samples: self.aft.samples(),
+        })
+    }
+
+    /// Adds the linear part `Lambda(omega)` to `jac_u` and `(dLambda/domega) u` to
+    /// `jac_omega`.
+    pub fn add_linear_jacobian(
+        &mut self,
+        u: &[f64],
+        omega: f64,
+        jac_u: MatMut<'_, f64>,
+        jac_omega: &mut [f64],
+    ) {
         self.linear
             .add_jacobian(&self.layout, omega, u, jac_u, jac_omega);
+    }
+}
+
+/// What one residual evaluation computed besides the residual (borrowed from the harmonic
+/// balance until its next evaluation).
+#[derive(Clone, Copy, Debug)]
+pub struct Evaluation<'a> {
+    /// `F~_nl(U~, omega)` (layout of eq. 25).
+    pub force: &'a [f64],
+    /// The AFT time samples of this evaluation.
+    pub samples: TimeSamples<'a>,
+}
+
+/// What a cycle constraint sees of one evaluation: the unknowns and the nonlinear force's
+/// coefficients computed from them.
+#[derive(Clone, Copy, Debug)]
+pub struct CycleEval<'a> {
+    pub layout: HarmonicLayout,
+    /// `U~`.
+    pub u: &'a [f64],
+    pub omega: f64,
+    /// `F~_nl(U~, omega)`.
+    pub force: &'a [f64],
+    /// The AFT time samples of the evaluation.
+    pub samples: TimeSamples<'a>,
+}
+
+/// The nonlinear force's derivatives at a [`CycleEval`]: `dF~_nl/dU~` (layout length
+/// square) and `dF~_nl/domega`.
+#[derive(Clone, Copy, Debug)]
+pub struct ForceDerivatives<'a> {
+    pub du: MatRef<'a, f64>,
+    pub domega: &'a [f64],
+}
+
+/// Extra equations on a periodic solution, appended to the harmonic balance residual of an
+/// [`AutonomousProblem`]: CHBM's `f2` of eq. (47) is one ([`crate::ReLambda`]).
+pub trait CycleConstraint {
+    /// Number of rows added.
+    fn rows(&self) -> usize;
+
+    /// The rows' values at `eval`.
+    fn residual(&mut self, eval: &CycleEval<'_>, out: &mut [f64]) -> Result<(), HbmError>;
+
+    /// The rows' derivatives (`rows x (layout length + 1)`, columns `[U~, omega]`, every entry
+    /// set) at `eval`, where the force's derivatives are `d`.
+    fn jacobian(
+        &mut self,
+        eval: &CycleEval<'_>,
+        d: &ForceDerivatives<'_>,
+        out: MatMut<'_, f64>,
+    ) -> Result<(), HbmError>;
+}
+
+/// No extra equation: plain autonomous harmonic balance.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Unconstrained;
+
+impl CycleConstraint for Unconstrained {
+    fn rows(&self) -> usize {
+        0
+    }
+
+    fn residual(&mut self, _: &CycleEval<'_>, _: &mut [f64]) -> Result<(), HbmError> {
+        Ok(())
+    }
+
+    fn jacobian(
+        &mut self,
+        _: &CycleEval<'_>,
+        _: &ForceDerivatives<'_>,
+        _: MatMut<'_, f64>,
+    ) -> Result<(), HbmError> {
         Ok(())
     }
 }
@@ -209,31 +338,109 @@ impl HbSolution {
     }
 }
 
-/// Autonomous harmonic balance as a square least-squares problem in `z = [U~, omega]`:
-/// residual `[eq. (26); U1s[dof]]` (`n (2H+1) + 1` rows).
-pub struct AutonomousProblem<'a, L, F> {
-    hb: &'a mut HarmonicBalance<L, F>,
-    phase_index: usize,
-    jac_omega: Vec<f64>,
+/// How the rows of an [`AutonomousProblem`] are scaled: the harmonic balance rows are
+/// divided by `force` (a force level, e.g. the static load's norm) and the phase row by
+/// `phase` (a displacement level), so that both are of order one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RowScales {
+    pub force: f64,
+    pub phase: f64,
 }
 
-impl<'a, L: DynamicStiffness, F: NonlinearForce> AutonomousProblem<'a, L, F> {
+impl Default for RowScales {
+    fn default() -> Self {
+        Self {
+            force: 1.0,
+            phase: 1.0,
+        }
+    }
+}
+
+/// Autonomous harmonic balance as a least-squares problem in `z = [U~, omega]`: residual
+/// `[eq. (26) / force; U1s[dof] / phase; constraint rows]` (`n (2H+1) + 1 + rows` rows).
+/// With [`Unconstrained`] it is square; CHBM adds `f2` of eq. (47) ([`crate::ReLambda`]).
+pub struct AutonomousProblem<'a, L, F, C = Unconstrained> {
+    hb: &'a mut HarmonicBalance<L, F>,
+    phase_index: usize,
+    scales: RowScales,
+    constraint: C,
+    jac_omega: Vec<f64>,
+    history: Vec<RowNorms>,
+}
+
+/// One residual evaluation of an [`AutonomousProblem`], for convergence histories (the
+/// paper's Figures 6–7).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RowNorms {
+    /// `||eq. (26)|| / force scale`.
+    pub harmonic_balance: f64,
+    /// The frequency of the evaluated point.
+    pub omega: f64,
+    /// The constraint rows' norm.
+    pub constraint: f64,
+}
+
+impl<'a, L: DynamicStiffness, F: NonlinearForce> AutonomousProblem<'a, L, F, Unconstrained> {
     /// Wraps `hb` with a phase condition; fails if the external force is periodic.
     pub fn new(hb: &'a mut HarmonicBalance<L, F>, phase: PhaseCondition) -> Result<Self, HbmError> {
+        Self::constrained(hb, phase, Unconstrained, RowScales::default())
+    }
+}
+
+impl<'a, L: DynamicStiffness, F: NonlinearForce, C: CycleConstraint>
+    AutonomousProblem<'a, L, F, C>
+{
+    /// Wraps `hb` with a phase condition, row scales and a constraint.
+    pub fn constrained(
+        hb: &'a mut HarmonicBalance<L, F>,
+        phase: PhaseCondition,
+        constraint: C,
+        scales: RowScales,
+    ) -> Result<Self, HbmError> {
         if !hb.is_static_load() {
             return Err(HbmError::PeriodicForcingWithUnknownFrequency);
+        }
+        for (what, v) in [("force scale", scales.force), ("phase scale", scales.phase)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(HbmError::BadScale { what, value: v });
+            }
         }
         let phase_index = phase.index(&hb.layout)?;
         let len = hb.layout.len();
         Ok(Self {
             hb,
             phase_index,
+            scales,
+            constraint,
             jac_omega: vec![0.0; len],
+            history: Vec::new(),
         })
+    }
+
+    /// Every residual evaluation so far.
+    pub fn history(&self) -> &[RowNorms] {
+        &self.history
+    }
+
+    /// The constraint (e.g. for its diagnostics after a solve).
+    pub fn constraint(&self) -> &C {
+        &self.constraint
+    }
+
+    /// The constraint and the evaluation history, giving up the problem.
+    pub fn into_parts(self) -> (C, Vec<RowNorms>) {
+        (self.constraint, self.history)
+    }
+
+    /// The harmonic balance.
+    pub fn harmonic_balance(&mut self) -> &mut HarmonicBalance<L, F> {
+        self.hb
     }
 }
 
-impl<L: DynamicStiffness, F: NonlinearForce> LeastSquaresProblem for AutonomousProblem<'_, L, F> {
+impl<L: DynamicStiffness, F: NonlinearForce, C: CycleConstraint> LeastSquaresProblem
+    for AutonomousProblem<'_, L, F, C>
+{
     type Error = HbmError;
 
     fn n_params(&self) -> usize {
@@ -241,38 +448,97 @@ impl<L: DynamicStiffness, F: NonlinearForce> LeastSquaresProblem for AutonomousP
     }
 
     fn n_residuals(&self) -> usize {
-        self.hb.layout.len() + 1
+        self.hb.layout.len() + 1 + self.constraint.rows()
     }
 
     fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), HbmError> {
         let len = self.hb.layout.len();
         check_len("unknowns [U~, omega]", len + 1, z.len())?;
-        check_len("residual", len + 1, r.len())?;
+        check_len("residual", self.n_residuals(), r.len())?;
         let (u, omega) = (&z[..len], z[len]);
-        nan_on_nonfinite(self.hb.residual(u, omega, &mut r[..len]), r)?;
-        r[len] = u[self.phase_index];
+        let layout = self.hb.layout;
+        let (rows, rest) = r.split_at_mut(len);
+        let eval = match self.hb.evaluate(u, omega, rows) {
+            Ok(e) => e,
+            Err(HbmError::NonFiniteForce { .. }) => {
+                // A bad trial point, not a failure: LM rejects the step and raises the damping.
+                r.fill(f64::NAN);
+                return Ok(());
+            }
+            Err(e) => return Err(e),
+        };
+        let cycle = CycleEval {
+            layout,
+            u,
+            omega,
+            force: eval.force,
+            samples: eval.samples,
+        };
+        rest[0] = u[self.phase_index] / self.scales.phase;
+        self.constraint.residual(&cycle, &mut rest[1..])?;
+        let inv = 1.0 / self.scales.force;
+        for v in rows.iter_mut() {
+            *v *= inv;
+        }
+        let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        self.history.push(RowNorms {
+            harmonic_balance: norm(rows),
+            omega,
+            constraint: norm(&rest[1..]),
+        });
         Ok(())
     }
 
     fn jacobian(&mut self, z: &[f64], mut jac: MatMut<'_, f64>) -> Result<(), HbmError> {
         let len = self.hb.layout.len();
         check_len("unknowns [U~, omega]", len + 1, z.len())?;
-        check_len("Jacobian rows", len + 1, jac.nrows())?;
+        check_len("Jacobian rows", self.n_residuals(), jac.nrows())?;
         check_len("Jacobian columns", len + 1, jac.ncols())?;
         let (u, omega) = (&z[..len], z[len]);
-        self.hb.jacobian(
+        let rows = self.constraint.rows();
+        {
+            let (mut top, bottom) = jac.rb_mut().split_at_row_mut(len);
+            let layout = self.hb.layout;
+            let eval = self.hb.force_jacobian(
+                u,
+                omega,
+                top.rb_mut().subcols_mut(0, len),
+                &mut self.jac_omega,
+            )?;
+            if rows > 0 {
+                // The constraint reads the force and its derivatives of this very point.
+                let cycle = CycleEval {
+                    layout,
+                    u,
+                    omega,
+                    force: eval.force,
+                    samples: eval.samples,
+                };
+                let d = ForceDerivatives {
+                    du: top.rb().subcols(0, len),
+                    domega: &self.jac_omega,
+                };
+                self.constraint
+                    .jacobian(&cycle, &d, bottom.subrows_mut(1, rows))?;
+            }
+        }
+        self.hb.add_linear_jacobian(
             u,
             omega,
             jac.rb_mut().submatrix_mut(0, 0, len, len),
             &mut self.jac_omega,
-        )?;
-        for (i, &v) in self.jac_omega.iter().enumerate() {
-            jac[(i, len)] = v;
+        );
+        let inv = 1.0 / self.scales.force;
+        for i in 0..len {
+            jac[(i, len)] = self.jac_omega[i];
         }
         for j in 0..=len {
+            for v in jac.rb_mut().col_mut(j).subrows_mut(0, len).iter_mut() {
+                *v *= inv;
+            }
             jac[(len, j)] = 0.0;
         }
-        jac[(len, self.phase_index)] = 1.0;
+        jac[(len, self.phase_index)] = 1.0 / self.scales.phase;
         Ok(())
     }
 }
@@ -343,7 +609,7 @@ fn nan_on_nonfinite(result: Result<(), HbmError>, r: &mut [f64]) -> Result<(), H
     }
 }
 
-fn from_lm(e: LmError<HbmError>) -> HbmError {
+pub(crate) fn from_lm(e: LmError<HbmError>) -> HbmError {
     match e {
         LmError::BadOption(s) | LmError::BadSize(s) => HbmError::BadOption(s),
         LmError::NonFiniteStart => HbmError::NonFiniteStart,

@@ -14,6 +14,14 @@
 //! * [`lm`]: Levenberg-Marquardt with Moré scaling, typed stop reasons and the iteration
 //!   history.
 //! * [`solve_autonomous`] (unknown `omega`, [`PhaseCondition`]) and [`solve_forced`].
+//! * [`AutonomousProblem`] with a [`CycleConstraint`]: the Constrained Harmonic Balance
+//!   Method (section 4) is one, [`ReLambda`] (`f2 = Re λ`, eq. 47) on the describing-function
+//!   linearization of the cycle ([`DescribingFunction`]), for any linear part that can follow
+//!   its eigenvalues ([`LinearizedEigen`]; [`DenseEigen`] for dense `M`, `C`, `K`):
+//!   [`solve_chbm`]. `examples/` has two short programs.
+//! * [`continuation`]: branches of periodic solutions in a parameter (pseudo-arclength).
+//! * [`Periodic`]: a periodic motion as Fourier coefficients (eq. 23), and [`FourierSums`],
+//!   its coefficients from equally spaced samples.
 //!
 //! A limit cycle of van der Pol's oscillator `x'' - (1 - x^2) x' + x = 0`:
 //! ```
@@ -41,20 +49,29 @@
 //! ```
 
 pub mod aft;
+mod chbm;
+pub mod continuation;
 mod error;
 mod force;
 mod hb;
 mod layout;
 mod linear;
 pub mod lm;
+mod periodic;
 
 pub use aft::{Aft, TimeSamples, default_samples, min_samples_exact};
+pub use chbm::{
+    ChbmResult, DenseEigen, DescribingFunction, EigenTrack, LinearUpdate, LinearizedEigen,
+    ReLambda, initial_guess, reference_jacobian, solve_chbm,
+};
 pub use error::HbmError;
 pub use force::{FnForce, LocalJacobian, NonlinearForce};
 pub use hb::{
-    AutonomousProblem, ForcedProblem, HarmonicBalance, HbSolution, PhaseCondition,
+    AutonomousProblem, CycleConstraint, CycleEval, Evaluation, ForceDerivatives, ForcedProblem,
+    HarmonicBalance, HbSolution, PhaseCondition, RowNorms, RowScales, Unconstrained,
     solve_autonomous, solve_forced,
 };
 pub use layout::{HarmonicLayout, MAX_COEFFICIENTS, Part};
 pub use linear::{DynamicStiffness, MckStiffness};
 pub use lm::{LeastSquaresProblem, LmError, LmIteration, LmOptions, LmReport, LmStop};
+pub use periodic::{FourierSums, Periodic};

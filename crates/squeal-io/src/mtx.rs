@@ -96,9 +96,9 @@ pub struct Triplets {
 
 /// Reads a `coordinate real` or `array real` MatrixMarket file.
 pub fn read(path: &Path) -> Result<Triplets, IoError> {
-    let text = std::fs::read_to_string(path).map_err(|source| IoError::Read {
+    let text = std::fs::read_to_string(path).map_err(|error| IoError::Read {
         path: path.to_path_buf(),
-        source,
+        error,
     })?;
     let perr = |line: usize, message: String| IoError::Parse {
         path: path.to_path_buf(),

@@ -23,6 +23,7 @@ pub struct MeshBuilder {
 }
 
 impl MeshBuilder {
+    /// An empty builder.
     pub fn new() -> Self {
         Self::default()
     }
@@ -65,12 +66,14 @@ impl MeshBuilder {
         self.element_index.contains_key(&id) || self.skipped_elements.contains(&id)
     }
 
-    /// Node ids of an element set defined so far, or `None`.
+    /// Members (file element ids, as added, unsorted and possibly repeated) of an element set
+    /// defined so far, or `None`. The name is matched exactly (case-sensitive).
     pub fn element_set_ids(&self, name: &str) -> Option<&[u64]> {
         self.element_sets.get(name).map(Vec::as_slice)
     }
 
-    /// Node ids of a node set defined so far, or `None`.
+    /// Members (file node ids, as added, unsorted and possibly repeated) of a node set defined
+    /// so far, or `None`. The name is matched exactly (case-sensitive).
     pub fn node_set_ids(&self, name: &str) -> Option<&[u64]> {
         self.node_sets.get(name).map(Vec::as_slice)
     }

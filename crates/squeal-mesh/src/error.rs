@@ -25,21 +25,38 @@ impl fmt::Display for Location {
 }
 
 /// A reader's error: the file, the place, and what was expected.
+///
+/// Each message is complete in `Display`; no variant has a `source()`, so an error chain
+/// printed with `{:#}` (anyhow) shows every piece once.
 #[derive(Debug, thiserror::Error)]
 pub enum MeshError {
-    #[error("{}: {source}", file.display())]
+    /// The file given to a reader could not be read from disk (a missing or unreadable
+    /// `*INCLUDE` is [`MeshError::Invalid`] instead, at the including line).
+    #[error("cannot read {}: {error}", file.display())]
     Io {
+        /// The file that could not be read.
         file: PathBuf,
-        source: std::io::Error,
+        /// The operating system's error.
+        error: std::io::Error,
     },
+    /// The file's content is not a mesh the reader accepts: truncated or malformed records,
+    /// bad numbers, duplicate ids, unsupported versions or parameters, ...
     #[error("{}{location}: {message}", file.display())]
     Invalid {
+        /// The file at fault (for `.inp`, the included file when the fault is in one).
         file: PathBuf,
+        /// Where in that file.
         location: Location,
+        /// What was expected and what was found.
         message: String,
     },
+    /// [`crate::read`] was given a file whose extension is neither `.inp` nor `.msh`
+    /// (ASCII case-insensitive).
     #[error("{}: unknown mesh format (expected a .inp or .msh file)", file.display())]
-    UnknownFormat { file: PathBuf },
+    UnknownFormat {
+        /// The file that was given.
+        file: PathBuf,
+    },
 }
 
 impl MeshError {
@@ -60,8 +77,11 @@ impl MeshError {
 /// Something a reader skipped or doubted, without failing.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Warning {
+    /// The file it concerns (for `.inp`, the included file when it is in one).
     pub file: PathBuf,
+    /// Where in that file.
     pub location: Location,
+    /// What was skipped or doubted, and why.
     pub message: String,
 }
 

@@ -8,7 +8,11 @@ use crate::builder::MeshBuilder;
 use crate::model::Mesh;
 use crate::tet10::{EDGES, det3};
 
-/// Node sets `XMIN, XMAX, YMIN, YMAX, ZMIN, ZMAX` (the six faces) and element set `ALL`.
+/// A tet10 mesh of the box `[0, lengths[0]] × [0, lengths[1]] × [0, lengths[2]]` with
+/// `cells[d]` hexahedral cells along axis `d` (0 counts as 1), each split into six
+/// tetrahedra (module documentation). Node ids are 1-based positions on the grid of
+/// half-cells (not consecutive), element ids `1..=6 nx ny nz`. Node sets
+/// `XMIN, XMAX, YMIN, YMAX, ZMIN, ZMAX` (the six faces) and element set `ALL`.
 pub fn box_tet10(lengths: [f64; 3], cells: [usize; 3]) -> Mesh {
     box_tet10_origin([0.0; 3], lengths, cells)
 }

@@ -9,7 +9,8 @@
 //!
 //! - `*HEADING` (its text lines skipped).
 //! - `*NODE` (`NSET=`, `SYSTEM=R|C`): `id, x, y[, z]`, blank or missing coordinates are 0
-//!   (CalculiX writes 2-coordinate nodes).
+//!   (CalculiX's own test files give nodes in the plane z = 0 with two coordinates, so a short
+//!   node line inside a file cannot be refused; at the end of a file, see below).
 //! - `*ELEMENT, TYPE=C3D10` and its variants (`C3D10M`, `C3D10H`, `C3D10HS`, `C3D10I`, ...:
 //!   same geometry and node order, which is squeal's canonical order), `ELSET=`; a record is
 //!   the id and 10 node ids and continues on the next line while a line ends with a comma.
@@ -54,6 +55,20 @@
 //! - a part that is never instanced is not in the mesh (a warning says so).
 //!
 //! Files without `*INSTANCE` keep the file's labels unchanged.
+//!
+//! # Truncated files
+//!
+//! A file cut off mid-line (an interrupted copy, a full disk) would otherwise read: a node
+//! line cut after its y takes z = 0, a node id or set member cut from `10` becomes `1`, a
+//! keyword line cut inside a set name names another set. Every tool that writes `.inp` ends
+//! its last line with a line break, so a file (or included file) whose last line has content
+//! other than a `**` comment and no line break is an error at that line, before anything is
+//! read. A file cut exactly at a line end cannot be told from a shorter complete file; if the
+//! cut falls before the first C3D10 element, [`read`] fails (a mesh file without tet10, see
+//! [`crate`]); if it falls later, the elements after it are missing and usually so are their
+//! materials and sections, which the finite-element stage reports as elements without a
+//! material, or nodes the elements name are missing ([`crate::Mesh::dangling`], an error of
+//! [`crate::quality`]).
 //!
 //! # Errors
 //!
@@ -104,17 +119,19 @@ impl IncludeResolver for NoIncludes {
     }
 }
 
-/// Reads an Abaqus / CalculiX `.inp` file and the files it includes.
+/// Reads an Abaqus / CalculiX `.inp` file and the files it includes: a mesh file, so a file
+/// without C3D10 elements is an error (see [`crate`]).
 pub fn read(path: &Path) -> Result<ReadMesh, MeshError> {
-    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+    let bytes = std::fs::read(path).map_err(|error| MeshError::Io {
         file: path.to_path_buf(),
-        source,
+        error,
     })?;
-    parse(&bytes, path, &FileSystem)
+    crate::require_tet10(parse(&bytes, path, &FileSystem)?)
 }
 
 /// Parses `.inp` text held in memory. `path` names the text in messages and is the folder
-/// includes are relative to; `resolver` supplies included files.
+/// includes are relative to; `resolver` supplies included files. A text without C3D10
+/// elements gives its mesh with a warning.
 pub fn parse(
     text: &[u8],
     path: &Path,

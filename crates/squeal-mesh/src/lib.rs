@@ -4,11 +4,23 @@
 //!   canonical node ordering ([`tet10::EDGES`]), named node and element sets, materials.
 //! - [`inp`] and [`msh`]: readers for Abaqus/CalculiX `.inp` and Gmsh `.msh` (2.2 and 4.1,
 //!   ASCII and binary); [`read`] picks one by the file's extension.
+//!
+//! # A file without 10-node tetrahedra
+//! Abaqus and Gmsh themselves open a file of nodes only, or of other element types (Gmsh
+//! shows it, Abaqus/CAE imports it). squeal reads a mesh to analyse it, and a mesh without
+//! tet10 elements has no stiffness and no mass: every later number would be zero or
+//! meaningless. So reading a mesh *file* ([`read`], [`inp::read`], [`msh::read`]) without a
+//! single tet10 is an error, which lists the element types that were skipped (a first-order
+//! mesh, shells) and says that a file cut off before its elements reads like this. Parsing
+//! text held in memory ([`inp::parse`], [`msh::parse`], for fragments and tests) gives the
+//! mesh with a warning instead.
 //! - [`quality`]: inverted or badly curved elements, missing nodes, duplicate coordinates,
 //!   unused nodes, empty sets.
 //! - [`vtu`]: VTK XML unstructured grids (quadratic tetra, cell type 24) with point and cell
 //!   fields, and `.pvd` collections for time series, for ParaView.
 //! - [`generate`]: structured tet10 meshes of boxes, for tests and convergence studies.
+
+#![warn(missing_docs)]
 
 pub mod builder;
 pub mod error;
@@ -30,8 +42,40 @@ use std::path::Path;
 /// non-tetrahedral elements, ...).
 #[derive(Clone, Debug)]
 pub struct ReadMesh {
+    /// The mesh, with the file's ids resolved to dense indices and the elements in canonical
+    /// node order.
     pub mesh: Mesh,
+    /// What the reader skipped or doubted without failing, each with its file and place.
     pub warnings: Vec<Warning>,
+}
+
+/// The warning of a parse that found no tet10 element, and the start of [`read`]'s error.
+pub(crate) const NO_TET10: &str = "no 10-node tetrahedron (Abaqus C3D10, Gmsh type 11) in the file";
+
+/// A mesh file must hold tet10 elements (see the module documentation): the error names the
+/// file and repeats the warnings about skipped element types.
+pub(crate) fn require_tet10(read: ReadMesh) -> Result<ReadMesh, MeshError> {
+    if read.mesh.num_elements() > 0 {
+        return Ok(read);
+    }
+    let Some(empty) = read.warnings.iter().find(|w| w.message == NO_TET10) else {
+        return Ok(read);
+    };
+    let skipped: String = read
+        .warnings
+        .iter()
+        .filter(|w| w.message.starts_with("skipped ") && w.message.contains(" of type "))
+        .map(|w| format!("; {}", w.message))
+        .collect();
+    Err(MeshError::invalid(
+        empty.file.clone(),
+        Location::File,
+        format!(
+            "{NO_TET10}, which has {} nodes{skipped}. squeal analyses tet10 meshes only; \
+             a file cut off before its elements also reads like this: check that it is complete",
+            read.mesh.num_nodes()
+        ),
+    ))
 }
 
 /// Reads a mesh file, choosing the reader by extension: `.inp` (Abaqus/CalculiX) or `.msh`

@@ -35,12 +35,20 @@ pub struct Mesh {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Elastic {
     /// Young's modulus (Pa) and Poisson's ratio.
-    Isotropic { young: f64, poisson: f64 },
+    Isotropic {
+        /// Young's modulus E (Pa).
+        young: f64,
+        /// Poisson's ratio ν (dimensionless).
+        poisson: f64,
+    },
     /// Abaqus `TYPE=ENGINEERING CONSTANTS` in the global axes: E1, E2, E3, nu12, nu13, nu23,
     /// G12, G13, G23.
     EngineeringConstants {
+        /// Young's moduli `[E1, E2, E3]` along the global axes (Pa).
         e: [f64; 3],
+        /// Poisson's ratios `[ν12, ν13, ν23]` (dimensionless).
         nu: [f64; 3],
+        /// Shear moduli `[G12, G13, G23]` (Pa).
         g: [f64; 3],
     },
 }
@@ -48,14 +56,20 @@ pub enum Elastic {
 /// A material: elastic constants and density (kg/m^3), each present if the file gives it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Material {
+    /// The elastic constants (`*ELASTIC`), `None` if the file gives none.
     pub elastic: Option<Elastic>,
+    /// The mass density (kg/m^3) from `*DENSITY`, `None` if the file gives none.
     pub density: Option<f64>,
 }
 
 /// An element set made of a material.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Section {
+    /// Name of the element set (a key of [`Mesh::element_sets`], matched ASCII
+    /// case-insensitively by [`Mesh::element_set`]).
     pub element_set: String,
+    /// Name of the material (a key of [`Mesh::materials`], which may lack it: the file named a
+    /// material it never defined).
     pub material: String,
 }
 
@@ -63,18 +77,35 @@ pub struct Section {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Dangling {
     /// An element names a node that was never defined; the element is dropped.
-    ElementNode { element: u64, node: u64 },
+    ElementNode {
+        /// File id of the dropped element.
+        element: u64,
+        /// File id of the node it names.
+        node: u64,
+    },
     /// A node set names a node that was never defined; the member is dropped.
-    NodeSetMember { set: String, node: u64 },
+    NodeSetMember {
+        /// Name of the node set.
+        set: String,
+        /// File id of the missing node.
+        node: u64,
+    },
     /// An element set names an element that was never defined; the member is dropped.
-    ElementSetMember { set: String, element: u64 },
+    ElementSetMember {
+        /// Name of the element set.
+        set: String,
+        /// File id of the missing element.
+        element: u64,
+    },
 }
 
 impl Mesh {
+    /// Number of nodes (used by an element or not).
     pub fn num_nodes(&self) -> usize {
         self.nodes.len()
     }
 
+    /// Number of tet10 elements kept (those naming a missing node are not counted).
     pub fn num_elements(&self) -> usize {
         self.elements.len()
     }
@@ -118,7 +149,7 @@ impl Mesh {
         out
     }
 
-    /// Nodes used by at least one element.
+    /// For each node index, whether at least one element uses it.
     pub fn used_nodes(&self) -> Vec<bool> {
         let mut used = vec![false; self.nodes.len()];
         for el in &self.elements {
@@ -143,7 +174,8 @@ impl Mesh {
         Some((lo, hi))
     }
 
-    /// Element coordinates in canonical order.
+    /// Coordinates of element `e`'s ten nodes in canonical order; panics if `e` is not below
+    /// [`Mesh::num_elements`].
     pub fn element_coords(&self, e: usize) -> [[f64; 3]; 10] {
         let c = &self.elements[e];
         std::array::from_fn(|i| self.nodes[c[i] as usize])

@@ -43,9 +43,12 @@
 //! before its `$Nodes` or `$Elements` section), missing `$End...` lines, bad numbers, element
 //! lines with the wrong number of nodes for their type, unknown element types, declared counts
 //! larger than the rest of the file can hold (nothing is allocated from a count before that
-//! check), and MSH versions other than 2.x and 4.1. Node tags that elements or sets
-//! reference but `$Nodes` never defines are not errors here: the [`MeshBuilder`] lists them in
-//! [`crate::Mesh::dangling`].
+//! check), and MSH versions other than 2.x and 4.1. Every section is counted or closed, so a
+//! file cut anywhere before its final line break is an error (the test
+//! `truncations_never_panic` cuts eight files at ~400 places each). A file without 10-node
+//! tetrahedra is an error of [`read`] and a warning of [`parse`] (see [`crate`]). Node tags
+//! that elements or sets reference but `$Nodes` never defines are not errors here: the
+//! [`MeshBuilder`] lists them in [`crate::Mesh::dangling`].
 
 mod cursor;
 pub mod types;
@@ -59,16 +62,18 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 use types::{ElementType, TET10};
 
-/// Reads a Gmsh `.msh` file (MSH 2.2 or 4.1, ASCII or binary).
+/// Reads a Gmsh `.msh` file (MSH 2.2 or 4.1, ASCII or binary): a mesh file, so a file without
+/// 10-node tetrahedra is an error (see [`crate`]).
 pub fn read(path: &Path) -> Result<ReadMesh, MeshError> {
-    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+    let bytes = std::fs::read(path).map_err(|error| MeshError::Io {
         file: path.to_path_buf(),
-        source,
+        error,
     })?;
-    parse(&bytes, path)
+    crate::require_tet10(parse(&bytes, path)?)
 }
 
-/// Parses the bytes of a `.msh` file; `path` only names the file in errors and warnings.
+/// Parses the bytes of a `.msh` file; `path` only names the file in errors and warnings. A file
+/// without 10-node tetrahedra gives its mesh with a warning.
 pub fn parse(bytes: &[u8], path: &Path) -> Result<ReadMesh, MeshError> {
     let mut cursor = Cursor::new(bytes, path);
     let version = read_format(&mut cursor)?;
@@ -513,10 +518,7 @@ impl<'a> Reader<'a> {
             );
         }
         if self.builder.num_elements() == 0 {
-            self.warn(
-                Location::File,
-                "no 10-node tetrahedra (Gmsh type 11) in the file",
-            );
+            self.warn(Location::File, crate::NO_TET10);
         }
         ReadMesh {
             mesh: self.builder.finish(),

@@ -20,27 +20,46 @@ use crate::tet10;
 /// How serious a finding is: errors make the mesh unusable for analysis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Severity {
+    /// The mesh cannot be analysed as it is (inverted elements, elements left out for a
+    /// missing node). Sorts before [`Severity::Warning`].
     Error,
+    /// Worth a look, but the mesh can be analysed.
     Warning,
 }
 
 /// What a finding is about.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FindingKind {
+    /// Elements whose Jacobian determinant is ≤ 0 (or NaN) at a node or sample point (an
+    /// error; ids: the elements).
     InvertedElement,
+    /// Elements that name a node the file never defined and were left out of the mesh (an
+    /// error; ids: the elements).
     MissingNode,
+    /// Elements whose min/max Jacobian determinant ratio is below
+    /// [`QualityOptions::min_jacobian_ratio`] (a warning; ids: the elements).
     CurvedElement,
+    /// Pairs of nodes at the same coordinates within [`QualityOptions::duplicate_tolerance`]
+    /// (a warning; ids: the two node ids of each pair, one pair after the other).
     DuplicateNodes,
+    /// Nodes that no element uses (a warning; ids: the nodes).
     UnusedNodes,
+    /// A named node or element set without members (a warning, one per set; no ids, the
+    /// message names the set).
     EmptySet,
+    /// Members of one set naming ids the file never defined (a warning, one per set; ids: the
+    /// missing ids).
     DanglingSetMember,
 }
 
 /// One finding: a message and the file ids (element or node ids) it concerns.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Finding {
+    /// Whether it makes the mesh unusable.
     pub severity: Severity,
+    /// Which check found it.
     pub kind: FindingKind,
+    /// One line for the user: how many, what is wrong, and an example where useful.
     pub message: String,
     /// Element ids for element findings, node ids for node findings (pairs for duplicates).
     pub ids: Vec<u64>,
@@ -52,7 +71,8 @@ pub struct QualityOptions {
     /// Elements whose min/max Jacobian determinant ratio falls below this are reported as
     /// badly curved. 0.2 flags midside nodes moved by roughly a quarter of the edge length.
     pub min_jacobian_ratio: f64,
-    /// Two nodes closer than this times the bounding-box diagonal count as duplicates.
+    /// Two nodes whose coordinates all differ by at most this times the bounding-box diagonal
+    /// count as duplicates.
     pub duplicate_tolerance: f64,
 }
 
@@ -68,26 +88,31 @@ impl Default for QualityOptions {
 /// All findings, plus summary figures of the mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct QualityReport {
+    /// Every finding, errors first.
     pub findings: Vec<Finding>,
-    /// Sum of element volumes.
+    /// Sum of element volumes (the mesh's length unit cubed; inverted elements count
+    /// negatively).
     pub volume: f64,
     /// Smallest min/max Jacobian determinant ratio over all elements (1 for straight-sided).
     pub worst_jacobian_ratio: f64,
 }
 
 impl QualityReport {
+    /// The findings of [`Severity::Error`].
     pub fn errors(&self) -> impl Iterator<Item = &Finding> {
         self.findings
             .iter()
             .filter(|f| f.severity == Severity::Error)
     }
 
+    /// The findings of [`Severity::Warning`].
     pub fn warnings(&self) -> impl Iterator<Item = &Finding> {
         self.findings
             .iter()
             .filter(|f| f.severity == Severity::Warning)
     }
 
+    /// Whether any finding is an error (the mesh is then unusable for analysis).
     pub fn has_errors(&self) -> bool {
         self.errors().next().is_some()
     }

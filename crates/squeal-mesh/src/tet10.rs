@@ -102,9 +102,9 @@ pub fn det3(m: &[[f64; 3]; 3]) -> f64 {
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
 }
 
-/// Volume of an element (exact for straight-sided elements; for curved ones, the degree-2
-/// rule on a Jacobian determinant of degree 3 is an approximation: [`crate::quality`] reports
-/// the curvature).
+/// Volume of an element from its nodes' coordinates in canonical order: the integral of the
+/// Jacobian determinant by Keast's 5-point degree-3 rule, exact for straight-sided and curved
+/// elements alike (the determinant is a cubic). Negative for an inverted element.
 pub fn volume(x: &[[f64; 3]; 10]) -> f64 {
     // Keast degree-3 rule (5 points, one negative weight) is exact for det J of a
     // straight-sided element (constant) and of degree 3 in general.
@@ -122,6 +122,21 @@ pub fn volume(x: &[[f64; 3]; 10]) -> f64 {
         .map(|(p, w)| w * det3(&jacobian(x, *p)))
         .sum::<f64>()
         / 6.0
+}
+
+/// How far the element is from straight-sided: the largest distance of a midside node from
+/// the midpoint of its edge, relative to that edge's length (0 for a straight-sided element,
+/// whose map from the reference element is affine; infinite for an edge of zero length).
+pub fn midside_offset(x: &[[f64; 3]; 10]) -> f64 {
+    let mut worst = 0.0_f64;
+    for (k, &[a, b]) in EDGES.iter().enumerate() {
+        let sq = |f: &dyn Fn(usize) -> f64| (0..3).map(|d| f(d).powi(2)).sum::<f64>();
+        let off = sq(&|d| x[4 + k][d] - 0.5 * (x[a][d] + x[b][d]));
+        let len = sq(&|d| x[b][d] - x[a][d]);
+        let r = (off / len).sqrt();
+        worst = worst.max(if r.is_nan() { f64::INFINITY } else { r });
+    }
+    worst
 }
 
 #[cfg(test)]
@@ -162,6 +177,22 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn midside_offset_is_relative_to_the_edge() {
+        assert_eq!(midside_offset(&NODES_REF), 0.0);
+        // Midside node 9 of edge (2, 3), length √2, moved by 0.1 across it.
+        let mut x = NODES_REF;
+        x[9][0] += 0.1;
+        assert!((midside_offset(&x) - 0.1 / 2f64.sqrt()).abs() < 1e-15);
+        // Scaled by 1000: the same.
+        let big = x.map(|p| p.map(|v| 1000.0 * v));
+        assert!((midside_offset(&big) - 0.1 / 2f64.sqrt()).abs() < 1e-15);
+        // A collapsed edge.
+        let mut flat = NODES_REF;
+        flat[1] = flat[0];
+        assert_eq!(midside_offset(&flat), f64::INFINITY);
     }
 
     #[test]

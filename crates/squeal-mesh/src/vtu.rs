@@ -20,6 +20,7 @@ pub const VTK_QUADRATIC_TETRA: u8 = 24;
 /// A field on the nodes (`components` values per node, node-major) or on the elements.
 #[derive(Clone, Copy, Debug)]
 pub struct Field<'a> {
+    /// Name of the data array, as ParaView lists it (XML-escaped on writing).
     pub name: &'a str,
     /// 1 for scalars, 3 for vectors (ParaView's "Warp By Vector" takes a 3-component field).
     pub components: usize,
@@ -30,14 +31,22 @@ pub struct Field<'a> {
 /// Errors of the VTU writer.
 #[derive(Debug, thiserror::Error)]
 pub enum VtuError {
+    /// A field's `values` do not hold `components` values per node (point fields) or per
+    /// element (cell fields); nothing was written.
     #[error("field '{name}' has {len} values; expected {expected} ({count} x {components})")]
     FieldLength {
+        /// The field's name.
         name: String,
+        /// Number of values given.
         len: usize,
+        /// Number of values expected, `count * components`.
         expected: usize,
+        /// Number of nodes or elements of the mesh.
         count: usize,
+        /// The field's components per node or element.
         components: usize,
     },
+    /// Writing the file failed (the previous file at the path, if any, is untouched).
     #[error(transparent)]
     Io(#[from] IoError),
 }

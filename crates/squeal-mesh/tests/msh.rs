@@ -490,6 +490,14 @@ fn broken_files_fail_with_located_errors() {
             Location::Line(18),
             "expected the z coordinate, found `nan`",
         ),
+        // Hand-written (not by make_broken.py): a first-order mesh, one 4-node tetrahedron.
+        (
+            "no_tet10.msh",
+            Location::File,
+            "no 10-node tetrahedron (Abaqus C3D10, Gmsh type 11) in the file, which has 4 nodes; \
+             skipped 1 elements of type 4 (Tetrahedron 4): squeal reads only 10-node tetrahedra \
+             (type 11); mesh with Mesh.ElementOrder = 2",
+        ),
         (
             "node_total_mismatch.msh",
             Location::Line(14),
@@ -612,6 +620,10 @@ fn truncations_never_panic() {
         "msh/one_tet_v22.msh",
         "msh/box_v41_binary.msh",
         "msh/box_v22_binary_be.msh",
+        "msh/box_v22_ascii.msh",
+        "msh/box_v41_ascii.msh",
+        "msh/box_v41_parametric_binary.msh",
+        "outside/scikit-fem-quadratic_sphere_tet.msh",
     ] {
         let bytes = std::fs::read(data(file)).unwrap();
         let step = (bytes.len() / 400).max(1);

@@ -70,6 +70,6 @@ pub use error::OdeError;
 pub use options::{Atol, BdfOptions, BdfStats, FixedStep, MAX_ORDER};
 pub use solve::{Solution, solve};
 pub use steady::{
-    CycleRecord, Fourier, MAX_HARMONICS, MAX_SAMPLES_PER_CYCLE, OscillationMonitor, SteadyOptions,
+    CycleRecord, MAX_HARMONICS, MAX_SAMPLES_PER_CYCLE, OscillationMonitor, SteadyOptions,
     SteadyState, run_to_steady_state,
 };

@@ -13,10 +13,10 @@
 //! sums is stored.
 
 use std::collections::VecDeque;
-use std::f64::consts::PI;
 
 use crate::bdf::{Bdf, OdeSystem};
 use crate::error::OdeError;
+use squeal_hbm::{FourierSums, Periodic};
 
 /// Largest number of samples per cycle accepted.
 pub const MAX_SAMPLES_PER_CYCLE: usize = 1 << 16;
@@ -131,60 +131,6 @@ impl CycleRecord {
     }
 }
 
-/// Fourier coefficients of every state over one cycle:
-/// `y_i(t_start + tau) ~ a0_i + sum_{m=1..H} (a_im cos(m w tau) + b_im sin(m w tau))`,
-/// `w = 2 pi / period`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Fourier {
-    /// Highest harmonic H.
-    pub harmonics: usize,
-    /// Period used for the sampling (that of the previous cycle).
-    pub period: f64,
-    /// Start of the cycle (time origin of the phases).
-    pub t_start: f64,
-    /// Per state, `[a0, a1, b1, a2, b2, ..., aH, bH]` (2H+1 values).
-    coeffs: Vec<f64>,
-}
-
-impl Fourier {
-    fn width(&self) -> usize {
-        2 * self.harmonics + 1
-    }
-    /// Number of states.
-    pub fn dim(&self) -> usize {
-        self.coeffs.len() / self.width()
-    }
-    /// `[a0, a1, b1, ..., aH, bH]` of state `i`.
-    pub fn component(&self, i: usize) -> &[f64] {
-        let w = self.width();
-        &self.coeffs[i * w..(i + 1) * w]
-    }
-    /// Mean `a0` of state `i`.
-    pub fn mean(&self, i: usize) -> f64 {
-        self.component(i)[0]
-    }
-    /// Cosine coefficient `a_im` (m >= 1).
-    pub fn cos(&self, i: usize, m: usize) -> f64 {
-        self.component(i)[2 * m - 1]
-    }
-    /// Sine coefficient `b_im` (m >= 1).
-    pub fn sin(&self, i: usize, m: usize) -> f64 {
-        self.component(i)[2 * m]
-    }
-    /// The truncated series of state `i` at absolute time `t`.
-    pub fn eval(&self, i: usize, t: f64) -> f64 {
-        let c = self.component(i);
-        let w = 2.0 * PI / self.period;
-        let tau = t - self.t_start;
-        let mut s = c[0];
-        for m in 1..=self.harmonics {
-            let arg = m as f64 * w * tau;
-            s += c[2 * m - 1] * arg.cos() + c[2 * m] * arg.sin();
-        }
-        s
-    }
-}
-
 /// Result of [`run_to_steady_state`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct SteadyState {
@@ -198,8 +144,9 @@ pub struct SteadyState {
     pub cycles: usize,
     /// The last `cycles` cycle records, oldest first.
     pub window: Vec<CycleRecord>,
-    /// Fourier coefficients of all states over the last cycle.
-    pub fourier: Fourier,
+    /// Fourier coefficients of all states over the last cycle, with time origin
+    /// `t_start` (eq. 23 of the CHBM paper: `y_i(t_start + τ)` at phase `θ = ω τ`).
+    pub fourier: Periodic,
 }
 
 /// A sample of the observable.
@@ -207,86 +154,6 @@ pub struct SteadyState {
 struct Sample {
     t: f64,
     g: f64,
-}
-
-/// Per-cycle Fourier accumulation at `t_start + j period / N`.
-struct FourierSums {
-    harmonics: usize,
-    n_samples: usize,
-    cos_table: Vec<f64>,
-    sin_table: Vec<f64>,
-    sums: Vec<f64>,
-    t_start: f64,
-    period: f64,
-    next: usize,
-    active: bool,
-}
-
-impl FourierSums {
-    fn new(dim: usize, harmonics: usize, n_samples: usize) -> Self {
-        let angle = |j: usize| 2.0 * PI * j as f64 / n_samples as f64;
-        Self {
-            harmonics,
-            n_samples,
-            cos_table: (0..n_samples).map(|j| angle(j).cos()).collect(),
-            sin_table: (0..n_samples).map(|j| angle(j).sin()).collect(),
-            sums: vec![0.0; dim * (2 * harmonics + 1)],
-            t_start: 0.0,
-            period: 0.0,
-            next: 0,
-            active: false,
-        }
-    }
-
-    fn restart(&mut self, t_start: f64, period: Option<f64>) {
-        self.sums.fill(0.0);
-        self.next = 0;
-        self.t_start = t_start;
-        self.period = period.unwrap_or(0.0);
-        self.active = period.is_some();
-    }
-
-    fn next_time(&self) -> Option<f64> {
-        (self.active && self.next < self.n_samples)
-            .then(|| self.t_start + self.next as f64 * self.period / self.n_samples as f64)
-    }
-
-    /// Discrete Fourier sums of sample `next` (trapezoidal rule on the cycle).
-    fn add(&mut self, y: &[f64]) {
-        let w = 2 * self.harmonics + 1;
-        let j = self.next;
-        for (i, &yi) in y.iter().enumerate() {
-            let s = &mut self.sums[i * w..(i + 1) * w];
-            s[0] += yi;
-            for m in 1..=self.harmonics {
-                let idx = (m * j) % self.n_samples;
-                s[2 * m - 1] += yi * self.cos_table[idx];
-                s[2 * m] += yi * self.sin_table[idx];
-            }
-        }
-        self.next += 1;
-    }
-
-    fn complete(&self) -> bool {
-        self.active && self.next == self.n_samples
-    }
-
-    fn coefficients(&self) -> Fourier {
-        let w = 2 * self.harmonics + 1;
-        let n = self.n_samples as f64;
-        let coeffs = self
-            .sums
-            .iter()
-            .enumerate()
-            .map(|(k, s)| if k % w == 0 { s / n } else { 2.0 * s / n })
-            .collect();
-        Fourier {
-            harmonics: self.harmonics,
-            period: self.period,
-            t_start: self.t_start,
-            coeffs,
-        }
-    }
 }
 
 /// The running cycle: start and extrema so far.
@@ -309,7 +176,9 @@ pub struct OscillationMonitor<G> {
     open: Option<OpenCycle>,
     window: VecDeque<CycleRecord>,
     completed: usize,
-    fourier: FourierSums,
+    /// The running cycle's Fourier sums (none until a period is known).
+    fourier: Option<FourierSums>,
+    dim: usize,
 }
 
 impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
@@ -330,7 +199,8 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
             open: None,
             window: VecDeque::with_capacity(opts.cycles),
             completed: 0,
-            fourier: FourierSums::new(dim, opts.harmonics, opts.samples_per_cycle),
+            fourier: None,
+            dim,
         })
     }
 
@@ -342,6 +212,17 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
     /// Number of complete cycles seen.
     pub fn cycles_completed(&self) -> usize {
         self.completed
+    }
+
+    /// The error of an oscillation still not steady at time `t`, with the last cycle seen.
+    pub fn not_steady(&self, t: f64) -> OdeError {
+        let last = self.window.back().copied();
+        OdeError::NotSteady {
+            t,
+            cycles: self.completed,
+            last_period: last.map_or(f64::NAN, |r| r.period),
+            last_amplitude: last.map_or(f64::NAN, |r| r.amplitude()),
+        }
     }
 
     /// Observable at `t` on the current step's interpolant.
@@ -505,7 +386,12 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
                     t_start: record.t_start,
                     cycles: self.completed,
                     window: self.window.iter().copied().collect(),
-                    fourier: self.fourier.coefficients(),
+                    fourier: self.fourier.as_ref().map(FourierSums::periodic).ok_or(
+                        OdeError::InvalidOption {
+                            name: "samples_per_cycle",
+                            reason: "no Fourier sums for the closed cycle".into(),
+                        },
+                    )?,
                 });
             }
         }
@@ -515,14 +401,32 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
             max: start,
             min: start,
         });
-        self.fourier.restart(tc, period);
+        self.fourier = match period {
+            Some(p) => Some(
+                FourierSums::new(
+                    self.dim,
+                    self.opts.harmonics,
+                    self.opts.samples_per_cycle,
+                    1,
+                    tc,
+                    p,
+                )
+                .map_err(|e| OdeError::InvalidOption {
+                    name: "harmonics",
+                    reason: e.to_string(),
+                })?,
+            ),
+            None => None,
+        };
         Ok(steady)
     }
 
     /// Window full, spreads within `rtol`, amplitude large enough, and the
     /// Fourier sums of the cycle just closed are complete.
     fn is_steady(&self) -> bool {
-        if self.window.len() < self.opts.cycles || !self.fourier.complete() {
+        if self.window.len() < self.opts.cycles
+            || !self.fourier.as_ref().is_some_and(FourierSums::complete)
+        {
             return false;
         }
         let spread_ok = |v: &dyn Fn(&CycleRecord) -> f64| {
@@ -597,7 +501,7 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
         t_limit: f64,
         inclusive: bool,
     ) -> Result<(), OdeError> {
-        while let Some(ts) = self.fourier.next_time() {
+        while let Some(ts) = self.fourier.as_ref().and_then(FourierSums::next_time) {
             let due = if inclusive {
                 ts <= t_limit
             } else {
@@ -613,7 +517,9 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
                     t: ts,
                 });
             }
-            self.fourier.add(&self.y);
+            if let Some(f) = self.fourier.as_mut() {
+                f.add(&self.y);
+            }
         }
         Ok(())
     }
@@ -634,11 +540,5 @@ pub fn run_to_steady_state<S: OdeSystem, G: FnMut(&[f64]) -> f64>(
             return Ok(steady);
         }
     }
-    let last = monitor.window().back().copied();
-    Err(OdeError::NotSteady {
-        t: bdf.t(),
-        cycles: monitor.cycles_completed(),
-        last_period: last.map_or(f64::NAN, |r| r.period),
-        last_amplitude: last.map_or(f64::NAN, |r| r.amplitude()),
-    })
+    Err(monitor.not_steady(bdf.t()))
 }

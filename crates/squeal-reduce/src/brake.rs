@@ -29,8 +29,11 @@ use std::path::{Path, PathBuf};
 use std::sync::{Mutex, PoisonError, mpsc};
 use std::time::{Duration, Instant};
 
-/// The version written into every `.rom` file; a file made by another version is stale.
-pub const TOOL_VERSION: &str = concat!("squeal ", env!("CARGO_PKG_VERSION"));
+/// The version written into every `.rom` file; a file made by another version is stale. The
+/// suffix is the revision of the numbers a reduction produces: bump it with every change that
+/// moves the reduced matrices (fe2: curved tet10 elements integrated with the 24-point rule), so
+/// that a cache made by older code is reduced again instead of silently reused.
+pub const TOOL_VERSION: &str = concat!("squeal ", env!("CARGO_PKG_VERSION"), "+fe2");
 
 /// Default multiple of the highest frequency of interest below which modes are kept in
 /// [`ModeChoice::Auto`] (see `docs/reduction.md` for how the choice moves the frequencies).
@@ -411,8 +414,11 @@ pub fn reduce_brake_loaded(
     }
     let disc_points = contact_positions(&disc.mesh, &inputs.disc, inputs)?;
     let pad_points = contact_positions(&pad.mesh, &inputs.pad, inputs)?;
-    let (pairs, tolerance) =
-        pair_contact_points(&disc_points, &pad_points, inputs.pairing_tolerance)?;
+    let (pairs, tolerance) = pair_contact_points(
+        &disc_points,
+        &pad_points,
+        PairingTolerance::Relative(inputs.pairing_tolerance),
+    )?;
     let opts = inputs.reduce_options();
     let (tx, rx) = mpsc::channel::<(&'static str, Stage)>();
     let slots: [Mutex<Option<Reduced>>; 2] = Default::default();
@@ -602,27 +608,43 @@ pub fn contact_positions(
     })
 }
 
+/// How close a disc contact point and a pad contact point must be to pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PairingTolerance {
+    /// A distance in the mesh's length unit.
+    Absolute(f64),
+    /// A fraction of the smallest distance between two of the disc's contact points (the
+    /// patch size; any distance when the disc has a single point).
+    Relative(f64),
+}
+
 /// Pairs each disc contact point with the nearest pad contact point not yet taken, which must
-/// lie within `relative_tolerance` times the smallest distance between two disc points (any
-/// distance if the disc has a single point). Returns the pairs and the tolerance in metres.
+/// lie within `tolerance`. Returns the pairs and the tolerance as a distance. This is the one
+/// pairing of the workspace: the reduction checks with it that the parts face each other, and
+/// the brake model pairs its points with it.
 pub fn pair_contact_points(
     disc: &[[f64; 3]],
     pad: &[[f64; 3]],
-    relative_tolerance: f64,
+    tolerance: PairingTolerance,
 ) -> Result<(Vec<ContactPair>, f64), ReduceError> {
-    if disc.len() != pad.len() {
+    if disc.len() != pad.len() || disc.is_empty() {
         return Err(ReduceError::ContactCountMismatch {
             disc: disc.len(),
             pad: pad.len(),
         });
     }
-    let mut spacing = f64::INFINITY;
-    for (i, a) in disc.iter().enumerate() {
-        for b in &disc[i + 1..] {
-            spacing = spacing.min(distance(*a, *b));
+    let tolerance = match tolerance {
+        PairingTolerance::Absolute(d) => d,
+        PairingTolerance::Relative(f) => {
+            let mut spacing = f64::INFINITY;
+            for (i, a) in disc.iter().enumerate() {
+                for b in &disc[i + 1..] {
+                    spacing = spacing.min(distance(*a, *b));
+                }
+            }
+            f * spacing
         }
-    }
-    let tolerance = relative_tolerance * spacing;
+    };
     let mut taken = vec![false; pad.len()];
     let mut pairs = Vec::with_capacity(disc.len());
     for (i, &x) in disc.iter().enumerate() {

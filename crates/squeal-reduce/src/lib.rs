@@ -8,3 +8,5 @@ pub mod check;
 pub mod craig_bampton;
 pub mod interface;
 pub mod rom;
+
+pub use craig_bampton::ReduceError;

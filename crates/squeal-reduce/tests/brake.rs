@@ -5,7 +5,9 @@ mod common;
 
 use common::{coarse, coarse_brake, coarse_inputs, mesh_path};
 use squeal_fe::MaterialTable;
-use squeal_reduce::brake::{Freshness, ModeChoice, TOOL_VERSION, freshness, pair_contact_points};
+use squeal_reduce::brake::{
+    Freshness, ModeChoice, PairingTolerance, TOOL_VERSION, freshness, pair_contact_points,
+};
 use squeal_reduce::craig_bampton::{PartSpec, ReduceOptions, reduce_part};
 use squeal_reduce::rom::{DofLabel, InterfaceKind, PointRole, ReducedModel, read_header};
 use std::path::PathBuf;
@@ -53,7 +55,12 @@ fn bundled_brake_has_158_dofs_in_the_papers_layout() {
                 .map(|q| q.position)
                 .collect()
         };
-        let (pairs, tol) = pair_contact_points(&positions(disc), &positions(pad), 0.05).unwrap();
+        let (pairs, tol) = pair_contact_points(
+            &positions(disc),
+            &positions(pad),
+            PairingTolerance::Relative(0.05),
+        )
+        .unwrap();
         for (k, p) in pairs.iter().enumerate() {
             assert_eq!((p.disc_point, p.pad_point), (k, k));
             // Node interface: the same node coordinates bit for bit; patches: centroids

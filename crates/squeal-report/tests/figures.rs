@@ -607,7 +607,7 @@ fn random_awkward_figures_never_panic() {
             legend: rng.pick(&legends),
             ..Panel::default()
         };
-        if rng.next() % 4 == 0 {
+        if rng.next().is_multiple_of(4) {
             panel.x_range = Some((rng.pick(&awkward), rng.pick(&awkward)));
         }
         for s in 0..(rng.next() % 4) {
@@ -622,7 +622,7 @@ fn random_awkward_figures_never_panic() {
                 ..Series::default()
             });
         }
-        if rng.next() % 3 == 0 {
+        if rng.next().is_multiple_of(3) {
             panel.annotations.push(Annotation::Label {
                 at: (rng.pick(&awkward), rng.pick(&awkward)),
                 text: "p".into(),

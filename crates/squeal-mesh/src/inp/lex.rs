@@ -216,6 +216,23 @@ impl Iterator for Lines<'_> {
     }
 }
 
+/// The 1-based number of the last line of `text` if the text ends inside it: the line has
+/// content other than a `**` comment and no line break follows it. Every tool that writes
+/// `.inp` files ends its last line, so such a line is the sign of a file cut off mid-line
+/// (a copy or a download interrupted, a full disk).
+fn unterminated_last_line(text: &str) -> Option<u32> {
+    let (before, last) = match text.rfind('\n') {
+        Some(i) => (&text[..=i], &text[i + 1..]),
+        None => ("", text),
+    };
+    let last = last.trim_matches(is_blank);
+    if last.is_empty() || last.starts_with("**") {
+        return None;
+    }
+    let breaks = before.bytes().filter(|&b| b == b'\n').count();
+    Some(u32::try_from(breaks + 1).unwrap_or(u32::MAX))
+}
+
 struct Lexer<'r> {
     resolver: &'r dyn IncludeResolver,
     out: Lexed,
@@ -227,6 +244,14 @@ struct Lexer<'r> {
 impl Lexer<'_> {
     fn source(&mut self, src: u32) -> Result<(), MeshError> {
         let text = Rc::clone(&self.out.sources[src as usize].text);
+        if let Some(line) = unterminated_last_line(&text) {
+            return Err(self.out.error(
+                Loc { src, line },
+                "the file ends inside this line (no line break after it): it looks cut off, \
+                 and a cut-off number or record cannot be told from a complete one. \
+                 If the file is complete, end its last line with a line break",
+            ));
+        }
         let mut lines = Lines {
             text: &text,
             pos: 0,
@@ -468,6 +493,17 @@ mod tests {
         assert!(parse_keyword("*NSET, NSET=\"open", AT).is_err());
         assert!(parse_keyword("*NSET, NSET=\"a\"b", AT).is_err());
         assert!(parse_keyword("*NSET, =a", AT).is_err());
+    }
+
+    #[test]
+    fn a_last_line_without_line_break_is_found() {
+        assert_eq!(unterminated_last_line("*NODE\n1, 0., 0., 0.\n"), None);
+        assert_eq!(unterminated_last_line("*NODE\n1, 0., 0.\n  \t"), None);
+        assert_eq!(unterminated_last_line("*NODE\n** a comment"), None);
+        assert_eq!(unterminated_last_line(""), None);
+        assert_eq!(unterminated_last_line("*NODE\n1, 0., 0."), Some(2));
+        assert_eq!(unterminated_last_line("*NODE\r\n\r\n1, 0."), Some(3));
+        assert_eq!(unterminated_last_line("*NO"), Some(1));
     }
 
     #[test]

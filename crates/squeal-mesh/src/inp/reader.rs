@@ -782,25 +782,24 @@ impl<'a> Reader<'a> {
             out.extend(set.ids.iter().map(|&v| v + offset));
             return Ok(());
         }
-        if src == Target::Global {
-            if let Some((inst, rest)) = name.split_once('.') {
-                if let Some(i) = self.find_instance(inst) {
-                    let off = Self::offset(i);
-                    if let Some(id) = label(rest) {
-                        self.check_instance_label(id, loc)?;
-                        out.insert(id + off);
-                        return Ok(());
-                    }
-                    if let Some(set) = self.instances[i].store.sets(kind).get(rest) {
-                        out.extend(set.ids.iter().map(|&v| v + off));
-                        return Ok(());
-                    }
-                    return Err(self.err(
-                        loc,
-                        format!("instance {inst} has no {noun} set '{rest}' (before this line)"),
-                    ));
-                }
+        if src == Target::Global
+            && let Some((inst, rest)) = name.split_once('.')
+            && let Some(i) = self.find_instance(inst)
+        {
+            let off = Self::offset(i);
+            if let Some(id) = label(rest) {
+                self.check_instance_label(id, loc)?;
+                out.insert(id + off);
+                return Ok(());
             }
+            if let Some(set) = self.instances[i].store.sets(kind).get(rest) {
+                out.extend(set.ids.iter().map(|&v| v + off));
+                return Ok(());
+            }
+            return Err(self.err(
+                loc,
+                format!("instance {inst} has no {noun} set '{rest}' (before this line)"),
+            ));
         }
         Err(self.err(
             loc,
@@ -1219,6 +1218,14 @@ impl<'a> Reader<'a> {
             self.warnings[r.index].message = format!("{} ({times}){}", r.stem, r.tail);
         }
         self.warnings.extend(late);
+        if b.num_elements() == 0 {
+            let root = &self.lx.sources[0].path;
+            self.warnings.push(Warning {
+                file: root.clone(),
+                location: Location::File,
+                message: crate::NO_TET10.to_string(),
+            });
+        }
         Ok(ReadMesh {
             mesh: b.finish(),
             warnings: self.warnings,

@@ -2,12 +2,39 @@
 //! piston load, damping, analyses). Paths are relative to the scene file.
 //!
 //! Unknown keys are errors (a misspelt key must not be silently ignored); values that parse but
-//! make no physical sense are errors naming the key and its line.
+//! make no physical sense are errors naming the file, the key and its line ([`SceneError`]).
+//! Derived values that need a little arithmetic live here too: the least-squares fit of the
+//! pad's compression curve to eq (8)'s `p = κ_l δ + κ_nl δ³` ([`fit_cubic`]) and friction
+//! ranges ([`parse_range`]).
 
-use anyhow::{Context, Result, anyhow, bail};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
+
+/// What is wrong with a scene file, with the file and, where a value is at fault, its key and
+/// line.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("reading scene {}: {source}", path.display())]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{}: {message}", path.display())]
+    Syntax { path: PathBuf, message: String },
+    /// A value at fault: `file:line: key: message` (no line for a default value).
+    #[error("{location}: {key}: {message}")]
+    Value {
+        location: String,
+        key: String,
+        message: String,
+    },
+    /// A section that needs one of several keys.
+    #[error("{}: {message}", path.display())]
+    Section { path: PathBuf, message: String },
+}
+
+type Result<T> = std::result::Result<T, SceneError>;
 
 /// The scene as written.
 #[derive(Debug, Deserialize)]
@@ -185,10 +212,20 @@ pub struct Scene {
 impl Scene {
     /// Reads and validates a scene file.
     pub fn read(path: &Path) -> Result<Scene> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("reading scene {}", path.display()))?;
-        let file: SceneFile = toml::from_str(&text)
-            .map_err(|e| anyhow!("{}: {}", path.display(), e.to_string().trim_end()))?;
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::parse(path, text)
+    }
+
+    /// A scene from its text, as if read from `path` (paths in it are relative to `path`'s
+    /// folder; errors name `path`).
+    pub fn parse(path: &Path, text: String) -> Result<Scene> {
+        let file: SceneFile = toml::from_str(&text).map_err(|e| SceneError::Syntax {
+            path: path.to_path_buf(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
         let scene = Scene {
             path: path.to_path_buf(),
             text,
@@ -221,16 +258,30 @@ impl Scene {
         key: &str,
         value: &Spanned<T>,
         message: impl std::fmt::Display,
-    ) -> anyhow::Error {
+    ) -> SceneError {
         let span = value.span();
-        if span.is_empty() && span.start == 0 {
-            return anyhow!("{}: {key}: {message}", self.path.display());
+        let location = if span.is_empty() && span.start == 0 {
+            self.path.display().to_string()
+        } else {
+            let line = self.text[..span.start.min(self.text.len())]
+                .matches('\n')
+                .count()
+                + 1;
+            format!("{}:{line}", self.path.display())
+        };
+        SceneError::Value {
+            location,
+            key: key.to_string(),
+            message: message.to_string(),
         }
-        let line = self.text[..span.start.min(self.text.len())]
-            .matches('\n')
-            .count()
-            + 1;
-        anyhow!("{}:{line}: {key}: {message}", self.path.display())
+    }
+
+    /// An error about a whole section.
+    pub fn section_error(&self, message: impl std::fmt::Display) -> SceneError {
+        SceneError::Section {
+            path: self.path.clone(),
+            message: message.to_string(),
+        }
     }
 
     fn positive(&self, key: &str, v: &Spanned<f64>) -> Result<()> {
@@ -295,10 +346,11 @@ impl Scene {
                 self.positive("contact.k_linear_per_area", kl)?;
                 self.non_negative("contact.k_cubic_per_area", kn)?;
             }
-            _ => bail!(
-                "{}: [contact] needs either compression_curve or both k_linear_per_area and k_cubic_per_area",
-                self.path.display()
-            ),
+            _ => {
+                return Err(self.section_error(
+                    "[contact] needs either compression_curve or both k_linear_per_area and k_cubic_per_area",
+                ));
+            }
         }
         if let Some(mu) = &f.friction.mu {
             self.non_negative("friction.mu", mu)?;
@@ -349,10 +401,11 @@ impl Scene {
         if let (Some(kl), Some(kn)) = (&c.k_linear_per_area, &c.k_cubic_per_area) {
             return Ok((kl.get_ref() * scale, kn.get_ref() * scale, None));
         }
-        let curve = c
-            .compression_curve
-            .as_ref()
-            .ok_or_else(|| anyhow!("no contact stiffness"))?;
+        let curve = c.compression_curve.as_ref().ok_or_else(|| {
+            self.section_error(
+                "[contact] needs either compression_curve or both k_linear_per_area and k_cubic_per_area",
+            )
+        })?;
         let (p, d) = (curve.pressure_mpa.get_ref(), curve.closure_um.get_ref());
         if p.len() != d.len() || p.len() < 2 {
             return Err(self.error_at(

@@ -4,30 +4,29 @@
 //! `cargo bench -p squeal-chbm --bench chbm` (options after `--`: `reps=N` (5), `H=1,3,5,10`,
 //! `ratios=1.01,1.1`, `restarts` to also time the CLI's amplitude restarts for H = 1,2,3,5,10).
 //!
-//! The brake is the one of `crates/squeal-brake/tests/sweep_support` (coarse meshes, patch
-//! contact, 3 kN, 1 % modal damping) with the bundled scene's pair damping (0.1 % on the two
-//! coalescing modes, picked automatically), as `squeal chbm` sets it up; the start at μ is
-//! [`squeal_chbm::start::start_at`] with the unstable mode of largest growth in the band.
+//! The brake is the bundled scene on the coarse meshes built by the production builder
+//! (`tests/common`: patch contact, 3 kN, 1 % modal damping) with the scene's pair damping
+//! (0.1 % on the two coalescing modes, picked automatically), as `squeal chbm` sets it up; the
+//! start at μ is [`squeal_chbm::start::start_at`] with the unstable mode of largest growth in
+//! the band.
 
-#[path = "../../squeal-brake/tests/sweep_support/mod.rs"]
-mod sweep_support;
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::{Accum, Par};
-use squeal_brake::analysis::{DampingSpec, PairChoice, stability};
+use squeal_brake::analysis::stability;
+use squeal_brake::harmonic::{BrakeEigen, CondensedStiffness, ContactForce};
 use squeal_brake::modal_brake::ModalBrake;
-use squeal_chbm::condensed::CondensedStiffness;
-use squeal_chbm::constraint::{Eigenproblem, Fit, equivalent_linearization};
-use squeal_chbm::contact::ContactForce;
 use squeal_chbm::start::start_at;
-use squeal_chbm::{ChbmOptions, ChbmSolution, ChbmStart, Outcome, solve};
-use squeal_hbm::{Aft, HarmonicLayout};
+use squeal_chbm::{ChbmOptions, ChbmSolution, ChbmStart, Outcome, RESTART_AMPLITUDES, solve};
+use squeal_hbm::{Aft, DescribingFunction, HarmonicLayout, LinearizedEigen, reference_jacobian};
 use std::time::Instant;
 
-/// The CLI's initial amplitudes (src/commands/chbm.rs).
-const AMPLITUDES: [f64; 4] = [0.5, 1.0, 2.0, 0.25];
+/// The CLI's initial amplitudes.
+const AMPLITUDES: [f64; 4] = RESTART_AMPLITUDES;
 
 fn best<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     let mut best = f64::INFINITY;
@@ -52,10 +51,9 @@ fn short(o: Outcome) -> &'static str {
 
 /// Per-call costs (best of `reps`, µs) of the pieces of one LM iteration at the solution:
 /// AFT forces and Jacobian, the condensed stiffness `Λ_eq(ω)` and `dΛ_eq/dω` for a new ω
-/// (eq 32), the
-/// equivalent linearization (eq 45), the eigenvalue tracking (eqs 43–44), and LM's normal
-/// equations and Cholesky factorization.
-fn breakdown(mb: &ModalBrake, s: &ChbmSolution, reps: usize) -> [f64; 5] {
+/// (eq 32), the describing-function linearization of the cycle, the eigenvalue tracking, and
+/// LM's normal equations and Cholesky factorization.
+fn breakdown(mb: &ModalBrake, start: &ChbmStart, s: &ChbmSolution, reps: usize) -> [f64; 5] {
     let h = s.harmonics;
     let layout = HarmonicLayout::new(mb.nl(), h).unwrap();
     let force = ContactForce::new(mb);
@@ -75,12 +73,14 @@ fn breakdown(mb: &ModalBrake, s: &ChbmSolution, reps: usize) -> [f64; 5] {
         st.update(s.omega * (1.0 + 1e-9 * k as f64));
     });
     aft.forces(&force, &s.nl_coeffs, s.omega, &mut f).unwrap();
-    let samples = aft.samples();
-    let (t_eql, eql) = best(reps, || {
-        equivalent_linearization(mb, &layout, &samples, s.omega, Fit::Fundamental)
+    let x0: Vec<f64> = mb.nl_dofs.iter().map(|&d| start.equilibrium[d]).collect();
+    let (k0, c0) = reference_jacobian(&force, &x0);
+    let (t_eql, df) = best(reps, || {
+        DescribingFunction::new(&layout, &s.nl_coeffs, s.omega, &f, &k0, &c0)
     });
-    let eig = Eigenproblem::new(mb);
-    let (t_track, _) = best(reps, || eig.track(&eql.k, &eql.c, s.lambda).unwrap());
+    let mut eig = BrakeEigen::new(mb, None);
+    eig.track(&df.update(&k0, &c0), s.lambda).unwrap();
+    let (t_track, _) = best(reps, || eig.track(&df.update(&k0, &c0), s.lambda).unwrap());
     // LM's linear algebra per iteration (lm.rs): `JᵀJ` of the `(l + 2) × (l + 1)` Jacobian
     // (lower triangle) and one Cholesky factorization of the damped matrix, same sizes.
     let (m, n) = (l + 2, l + 1);
@@ -148,14 +148,10 @@ fn main() {
     let history = args.iter().any(|a| a == "history");
 
     let t = Instant::now();
-    let c = sweep_support::coarse();
-    let opts = sweep_support::options(c);
-    let spec = DampingSpec {
-        global_ratio: 0.01,
-        pair: PairChoice::Auto,
-        pair_ratios: [0.001, 0.001],
-    };
-    let st = stability(&c.brake, &spec, &sweep_support::mus(0.0, 1.0, 201), &opts).unwrap();
+    let c = common::coarse();
+    let opts = common::options(c);
+    let brake = &c.model.brake;
+    let st = stability(brake, &c.model.damping, &common::mus(0.0, 1.0, 201), &opts).unwrap();
     let mu0 = st.sweep.hopf.as_ref().expect("no Hopf point").mu0;
     eprintln!(
         "coarse brake and stability in {:.1?}: mu0 = {mu0:.6}",
@@ -165,8 +161,8 @@ fn main() {
     for &ratio in &ratios {
         let mu = ratio * mu0;
         let start: ChbmStart =
-            start_at(&c.brake, &st.reference, mu, &opts.band, &opts.newton, None).unwrap();
-        let mb = ModalBrake::new(&c.brake, &st.reference, mu);
+            start_at(brake, &st.reference, mu, &opts.band, &opts.newton, None).unwrap();
+        let mb = ModalBrake::new(brake, &st.reference, mu);
         println!(
             "\n{ratio} mu0 (mu = {mu:.6}): {} dofs, {} nonlinear; unstable lambda = {:.3}",
             mb.modes(),
@@ -184,7 +180,7 @@ fn main() {
             "|f1|",
             "AFT+J",
             "Lam_eq",
-            "eqlin",
+            "descr.",
             "track",
             "JtJ+LL"
         );
@@ -200,7 +196,7 @@ fn main() {
                     ..ChbmOptions::default()
                 };
                 let (t, s) = best(reps, || solve(&mb, &start, &o).unwrap());
-                let b = breakdown(&mb, &s, reps);
+                let b = breakdown(&mb, &start, &s, reps);
                 if history {
                     for (e, v) in s.lm_history.iter().zip(&s.evaluations[1..]) {
                         eprintln!(

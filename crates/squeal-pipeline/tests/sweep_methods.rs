@@ -3,21 +3,21 @@
 //! dense eigen-decomposition's eigenvalues, branch by branch, the same crossings and the same
 //! Hopf point.
 
-mod sweep_support;
+mod common;
 
 use squeal_brake::sweep::{SweepMethod, SweepOptions, sweep};
 
 #[test]
 fn continuation_agrees_with_dense_eigen_decompositions() {
-    let c = sweep_support::coarse();
-    let mus = sweep_support::mus(0.0, 1.0, 101);
-    let cont = sweep_support::options(c);
+    let c = common::coarse();
+    let mus = common::mus(0.0, 1.0, 101);
+    let cont = common::options(c);
     let dense = SweepOptions {
         method: SweepMethod::Dense,
         ..cont
     };
-    let sc = sweep(&c.brake, &c.reference, &mus, &cont).unwrap();
-    let sd = sweep(&c.brake, &c.reference, &mus, &dense).unwrap();
+    let sc = sweep(&c.model.brake, &c.reference, &mus, &cont).unwrap();
+    let sd = sweep(&c.model.brake, &c.reference, &mus, &dense).unwrap();
     assert_eq!(sc.branches.len(), sd.branches.len());
     // Continuation converges each eigenpair to a residual at round-off relative to ||T(λ)||,
     // as backward stable as the dense solver: measured 3.4e-14 relative on this brake (the

@@ -1,7 +1,7 @@
 //! Prints a table of where a friction sweep's time goes on the coarse bundled brake.
 
-#[path = "../tests/sweep_support/mod.rs"]
-mod sweep_support;
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 use squeal_brake::sweep::{SweepMethod, SweepOptions, sweep};
 use std::time::Instant;
@@ -20,11 +20,11 @@ fn best<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
 
 fn main() {
     let t = Instant::now();
-    let c = sweep_support::coarse();
+    let c = common::coarse();
     eprintln!("coarse brake built in {:.1?}", t.elapsed());
-    let (b, r) = (&c.brake, &c.reference);
-    let mus = sweep_support::mus(0.0, 1.0, 201);
-    let cont = sweep_support::options(c);
+    let (b, r) = (&c.model.brake, &c.reference);
+    let mus = common::mus(0.0, 1.0, 201);
+    let cont = common::options(c);
     let dense = SweepOptions {
         method: SweepMethod::Dense,
         ..cont

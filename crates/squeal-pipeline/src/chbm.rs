@@ -1,0 +1,348 @@
+//! The paper's sections 4–5 for a scene: the brake's limit cycle by CHBM from the unstable
+//! mode at μ, with the tables, figures and the ParaView series `squeal chbm` writes.
+
+use crate::error::{PipelineError, Result, json_text};
+use crate::model::{Log, Model};
+use crate::shapes::{Meshes, PartFields, write_brake_vtu};
+use squeal_brake::analysis::Stability;
+use squeal_brake::modal_brake::ModalBrake;
+use squeal_chbm::start::start_at;
+use squeal_chbm::{ChbmOptions, ChbmSolution, ChbmStart, Outcome};
+use squeal_report::{Figure, Panel, Scale, Series, Table, write_svg_and_png};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Where CHBM starts at μ: the equilibrium and the in-band unstable mode of largest growth
+/// (on the stability analysis' frictionless reference), and the brake in modal coordinates.
+pub fn start(
+    m: &Model,
+    st: &Stability,
+    mu: f64,
+    guess: Option<&[f64]>,
+) -> Result<(ChbmStart, ModalBrake)> {
+    let start = start_at(
+        &m.brake,
+        &st.reference,
+        mu,
+        &m.sweep.band,
+        &m.sweep.newton,
+        guess,
+    )?;
+    Ok((start, ModalBrake::new(&m.brake, &st.reference, mu)))
+}
+
+/// CHBM from each initial amplitude in turn until a limit cycle converges (`log` is told of
+/// each attempt that does not); the last attempt when none does.
+pub fn solve_with_restarts(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &ChbmOptions,
+    amplitudes: &[f64],
+    log: Log,
+) -> Result<(ChbmSolution, f64)> {
+    let mut last = None;
+    for &a in amplitudes {
+        let o = ChbmOptions {
+            amplitude: a,
+            ..opts.clone()
+        };
+        let sol = squeal_chbm::solve(mb, start, &o)?;
+        if sol.outcome == Outcome::LimitCycle {
+            return Ok((sol, a));
+        }
+        log(&format!("from initial amplitude p = {a}: {}", sol.outcome));
+        last = Some((sol, a));
+    }
+    last.ok_or_else(|| PipelineError::input("initial amplitudes", "none given"))
+}
+
+/// Physical dof of a point's direction in the brake (disc or pad).
+pub fn point_dof(m: &Model, part: &str, role_contact_index: usize, direction: u8) -> Option<usize> {
+    let rp = m.rom.part(part)?;
+    let offset = if part == "disc" {
+        m.layout.disc.start
+    } else {
+        m.layout.pad.start
+    };
+    let point = rp
+        .info
+        .points
+        .iter()
+        .enumerate()
+        .filter(|(_, pt)| pt.role == squeal_reduce::rom::PointRole::Contact)
+        .nth(role_contact_index)?
+        .0;
+    rp.info
+        .dofs
+        .iter()
+        .position(|l| *l == squeal_reduce::rom::DofLabel::Point { point, direction })
+        .map(|d| offset + d)
+}
+
+/// A solution as the lines `squeal chbm` prints: outcome, frequency, residuals, checks,
+/// contact state and the amplitudes of three contact dofs.
+pub fn solution_text(m: &Model, start: &ChbmStart, s: &ChbmSolution) -> String {
+    let mut out = String::new();
+    let f = s.omega / (2.0 * std::f64::consts::PI);
+    let _ = writeln!(
+        out,
+        "CHBM, {} harmonics, {} time samples: {}",
+        s.harmonics, s.samples, s.outcome
+    );
+    let _ = writeln!(
+        out,
+        "  frequency {:.4} Hz ({:+.4} Hz from the unstable mode's {:.4} Hz)",
+        f,
+        f - start.lambda.im / (2.0 * std::f64::consts::PI),
+        start.lambda.im / (2.0 * std::f64::consts::PI)
+    );
+    let _ = writeln!(
+        out,
+        "  residuals: ||f1||/||F_eq|| = {:.2e}, Re lambda = {:.2e} 1/s (|Re|/omega = {:.1e}); {} LM iterations ({}) in {:.1} ms",
+        s.f1,
+        s.re_lambda,
+        s.re_lambda.abs() / s.omega,
+        s.iterations,
+        s.stop,
+        s.time.as_secs_f64() * 1e3
+    );
+    let _ = writeln!(
+        out,
+        "  checks: aliasing (2x samples) {:.1e}, recovery of the nonlinear dofs {:.1e}",
+        s.aliasing, s.recovery_error
+    );
+    let open: Vec<String> = s
+        .open_fraction
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| **f > 0.0)
+        .map(|(i, f)| format!("pair {} open {:.0}% of the cycle", i + 1, f * 100.0))
+        .collect();
+    let _ = writeln!(
+        out,
+        "  contact: {}",
+        if open.is_empty() {
+            "closed over the whole cycle".into()
+        } else {
+            open.join(", ")
+        }
+    );
+    let mut t = Table::new(["dof", "mean (um)", "H1 (um)", "H2 (um)", "H3 (um)"]);
+    for (name, part, dir) in [
+        ("pad contact 5, normal", "pad", 2u8),
+        ("disc contact 5, normal", "disc", 2),
+        ("pad contact 5, sliding", "pad", 0),
+    ] {
+        if let Some(d) = point_dof(m, part, 4, dir) {
+            let mut row = vec![name.to_string()];
+            for k in 0..=3.min(s.harmonics) {
+                row.push(format!(
+                    "{:+.4}",
+                    if k == 0 {
+                        s.coeffs[d]
+                    } else {
+                        s.amplitude(d, k)
+                    } * 1e6
+                ));
+            }
+            t.push_row(row);
+        }
+    }
+    out.push_str(&t.to_text());
+    out
+}
+
+/// `coefficients.csv`, `history.csv`, `chbm.json` and the figures (limit cycles, convergence).
+pub fn write_solution(dir: &Path, m: &Model, mu: f64, s: &ChbmSolution) -> Result<()> {
+    let n = m.brake.size();
+    let mut coeffs = Table::new(["dof", "harmonic", "cos", "sin"]);
+    for d in 0..n {
+        coeffs.push_row([
+            d.to_string(),
+            "0".into(),
+            format!("{:e}", s.coeffs[d]),
+            "0".into(),
+        ]);
+        for k in 1..=s.harmonics {
+            coeffs.push_row([
+                d.to_string(),
+                k.to_string(),
+                format!("{:e}", s.coeffs[(2 * k - 1) * n + d]),
+                format!("{:e}", s.coeffs[2 * k * n + d]),
+            ]);
+        }
+    }
+    coeffs.write_csv(&dir.join("coefficients.csv"))?;
+    let mut hist = Table::new([
+        "evaluation",
+        "harmonics",
+        "f1_relative",
+        "re_lambda",
+        "omega",
+    ]);
+    for (i, e) in s.evaluations.iter().enumerate() {
+        hist.push_row([
+            i.to_string(),
+            e.harmonics.to_string(),
+            format!("{:e}", e.f1),
+            format!("{:e}", e.re_lambda),
+            format!("{}", e.omega),
+        ]);
+    }
+    hist.write_csv(&dir.join("history.csv"))?;
+    let json = serde_json::json!({
+        "outcome": s.outcome.to_string(),
+        "converged": matches!(s.outcome, Outcome::LimitCycle),
+        "mu": mu,
+        "harmonics": s.harmonics,
+        "samples": s.samples,
+        "frequency_hz": s.omega / (2.0 * std::f64::consts::PI),
+        "omega": s.omega,
+        "f1_relative": s.f1,
+        "re_lambda": s.re_lambda,
+        "iterations": s.iterations,
+        "time_ms": s.time.as_secs_f64() * 1e3,
+        "open_fraction": s.open_fraction,
+        "aliasing": s.aliasing,
+        "layout": "coefficients[b * n + dof], blocks b = [0c, 1c, 1s, 2c, 2s, ...] (eq 25); x(t) = sum_k Ukc cos(k w t) + Uks sin(k w t)",
+        "dofs": n,
+        "coefficients": s.coeffs,
+    });
+    squeal_io::atomic_write_bytes(
+        &dir.join("chbm.json"),
+        json_text(&json, "the CHBM solution")?.as_bytes(),
+    )?;
+    // Figures: limit cycles, histories, power per harmonic.
+    let mut panels = Vec::new();
+    for (title, part) in [
+        ("(a) pad contact point 5, normal", "pad"),
+        ("(b) disc contact point 5, normal", "disc"),
+    ] {
+        if let Some(d) = point_dof(m, part, 4, 2) {
+            panels.push(Panel {
+                title: title.into(),
+                x_label: "displacement (m)".into(),
+                y_label: "velocity (m/s)".into(),
+                series: vec![Series::line(
+                    format!("CHBM {} harmonics", s.harmonics),
+                    cycle_points(s, d, 256),
+                )],
+                ..Panel::default()
+            });
+        }
+    }
+    write_svg_and_png(
+        &Figure {
+            title: "Limit cycles (paper Figure 4)".into(),
+            panels,
+            ..Figure::default()
+        },
+        &dir.join("limit_cycles"),
+    )?;
+    let res: Vec<(f64, f64)> = s
+        .evaluations
+        .iter()
+        .enumerate()
+        .map(|(i, e)| (i as f64, e.f1))
+        .collect();
+    let rel: Vec<(f64, f64)> = s
+        .evaluations
+        .iter()
+        .enumerate()
+        .map(|(i, e)| (i as f64, e.re_lambda))
+        .collect();
+    let fig = Figure {
+        title: "Convergence (paper Figures 6-7)".into(),
+        panels: vec![
+            Panel {
+                title: "(a) real part of the tracked eigenvalue".into(),
+                x_label: "residual evaluation".into(),
+                y_label: "Re(lambda) (1/s)".into(),
+                series: vec![Series::line_markers("Re lambda", rel)],
+                ..Panel::default()
+            },
+            Panel {
+                title: "(b) harmonic balance residual".into(),
+                x_label: "residual evaluation".into(),
+                y_label: "||f1|| / ||F_eq||".into(),
+                y_scale: Scale::Log,
+                series: vec![Series::line_markers("f1", res)],
+                ..Panel::default()
+            },
+        ],
+        ..Figure::default()
+    };
+    write_svg_and_png(&fig, &dir.join("convergence"))?;
+    Ok(())
+}
+
+/// `(x(t), x'(t))` of dof `d` over one period.
+pub fn cycle_points(s: &ChbmSolution, d: usize, samples: usize) -> Vec<(f64, f64)> {
+    let n = s.coeffs.len() / (2 * s.harmonics + 1);
+    (0..=samples)
+        .map(|j| {
+            let th = 2.0 * std::f64::consts::PI * j as f64 / samples as f64;
+            let mut x = s.coeffs[d];
+            let mut v = 0.0;
+            for k in 1..=s.harmonics {
+                let (c, sn) = (s.coeffs[(2 * k - 1) * n + d], s.coeffs[2 * k * n + d]);
+                let kf = k as f64;
+                x += c * (kf * th).cos() + sn * (kf * th).sin();
+                v += s.omega * kf * (-c * (kf * th).sin() + sn * (kf * th).cos());
+            }
+            (x, v)
+        })
+        .collect()
+}
+
+/// Writes `frames` snapshots of the limit cycle on both meshes and a `.pvd` collection;
+/// returns the `.pvd` path.
+pub fn write_cycle_vtu(
+    dir: &Path,
+    m: &Model,
+    s: &ChbmSolution,
+    frames: usize,
+    log: Log,
+) -> Result<PathBuf> {
+    let meshes = Meshes::read(m, log)?;
+    let parts = meshes.parts(m)?;
+    let n = m.brake.size();
+    let period = 2.0 * std::f64::consts::PI / s.omega;
+    let mut entries = Vec::new();
+    let frames_dir = dir.join("cycle");
+    for f in 0..frames {
+        let th = 2.0 * std::f64::consts::PI * f as f64 / frames as f64;
+        let x: Vec<f64> = (0..n)
+            .map(|d| {
+                let mut v = s.coeffs[d];
+                for k in 1..=s.harmonics {
+                    let kf = k as f64;
+                    v += s.coeffs[(2 * k - 1) * n + d] * (kf * th).cos()
+                        + s.coeffs[2 * k * n + d] * (kf * th).sin();
+                }
+                v
+            })
+            .collect();
+        let mean: Vec<f64> = (0..n).map(|d| s.coeffs[d]).collect();
+        let dynamic: Vec<f64> = x.iter().zip(&mean).map(|(a, b)| a - b).collect();
+        let stem = format!("cycle_{f:03}");
+        let fields = [
+            PartFields {
+                name: "displacement",
+                brake: x,
+            },
+            PartFields {
+                name: "oscillation",
+                brake: dynamic,
+            },
+        ];
+        write_brake_vtu(&frames_dir, &stem, &parts, &fields)?;
+        entries.push((
+            period * f as f64 / frames as f64,
+            format!("cycle/{stem}.vtm"),
+        ));
+    }
+    let pvd = dir.join("cycle.pvd");
+    squeal_mesh::vtu::write_pvd(&pvd, &entries)?;
+    Ok(pvd)
+}

@@ -1,0 +1,440 @@
+//! The paper's section 3 for a scene: static equilibrium, complex eigenvalues against friction
+//! (Figure 2), the Hopf point μ0 and the unstable mode shape; the tables, figures and shapes
+//! `squeal stability` writes.
+
+use crate::error::{Result, json_text};
+use crate::model::{Log, Model};
+use crate::shapes::{Meshes, PartFields, normalize_mode, write_brake_vtu};
+use squeal_brake::analysis::Stability;
+use squeal_brake::criticality::{Criticality, NormalForm, pair_closure};
+use squeal_report::format::fmt_sig;
+use squeal_report::{Annotation, Dash, Figure, Panel, Rgb, Series, Table, write_svg_and_png};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The stability analysis of the model over `mus`: the damping of eqs (12)–(13) with the
+/// coalescing pair picked as the scene asks, the sweep and the Hopf point.
+pub fn analyse(m: &Model, mus: &[f64]) -> Result<Stability> {
+    Ok(squeal_brake::analysis::stability(
+        &m.brake, &m.damping, mus, &m.sweep,
+    )?)
+}
+
+/// The Hopf normal form at μ0 (criticality and the branch's asymptote), when there is a Hopf
+/// point.
+pub fn normal_form(m: &Model, st: &Stability) -> Result<Option<NormalForm>> {
+    let Some(h) = &st.sweep.hopf else {
+        return Ok(None);
+    };
+    let guess = h.point.spectrum.values[h.index];
+    Ok(Some(squeal_brake::criticality::normal_form(
+        &m.brake,
+        &st.reference,
+        h.mu0,
+        guess,
+        &m.sweep.newton,
+    )?))
+}
+
+/// The largest first-harmonic closure over the pairs of the normal form's cycle at `mu` (m),
+/// with the pair (0-based).
+pub fn loudest_closure(
+    m: &Model,
+    st: &Stability,
+    nf: &NormalForm,
+    mu: f64,
+) -> Option<(usize, f64)> {
+    let x = nf.first_harmonic(mu)?;
+    m.brake
+        .pairs
+        .iter()
+        .enumerate()
+        .map(|(p, pair)| (p, pair_closure(pair, &st.reference.basis.phi, &x).norm()))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+/// The normal form's lines: the verdict, `l1`, and the branch's asymptote.
+pub fn criticality_text(m: &Model, st: &Stability, nf: &NormalForm) -> String {
+    let mut out = String::new();
+    let (s1, w1) = (nf.dlambda_dmu.re, nf.dlambda_dmu.im);
+    let _ = writeln!(
+        out,
+        "Hopf point is {}: first Lyapunov coefficient l1 = {:.4e} (Re c1 = {:.4e} 1/s), dRe(lambda)/dmu = {:.4e} 1/s",
+        nf.criticality(),
+        nf.l1,
+        nf.c1.re,
+        s1
+    );
+    let _ = w1;
+    // The asymptote: closure amplitude of the loudest pair per square root of |μ/μ0 - 1|.
+    let eps = 1e-3;
+    let side = if nf.radius_squared(nf.mu0 * (1.0 + eps)).is_some() {
+        1.0
+    } else {
+        -1.0
+    };
+    let mu = nf.mu0 * (1.0 + side * eps);
+    if let Some((p, a)) = loudest_closure(m, st, nf, mu) {
+        let _ = writeln!(
+            out,
+            "  small-amplitude branch: limit cycles for mu {} mu0, pair {} closure amplitude {:.3} um x sqrt(|mu/mu0 - 1| / 1e-3), frequency {:+.3} Hz per 0.1 % of mu",
+            if side > 0.0 { "above" } else { "below" },
+            p + 1,
+            a * 1e6,
+            (nf.omega_at(nf.mu0 * 1.001) - nf.omega0) / std::f64::consts::TAU
+        );
+    }
+    if nf.criticality() == Criticality::Subcritical {
+        let _ = writeln!(
+            out,
+            "  (subcritical: below mu0 the equilibrium is stable but a large enough disturbance can start squeal; `squeal branch` follows the cycles)"
+        );
+    }
+    out
+}
+
+/// The contact pairs as formed: points, distance, area and element parameters.
+pub fn pairs_text(s: &Model) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "contact pairs (disc point, pad point, distance, area, k_l, k_nl):"
+    );
+    for p in &s.pairs {
+        let params: Vec<String> = p
+            .law
+            .parameters()
+            .iter()
+            .map(|(_, v, unit)| format!("{v:.4e} {unit}"))
+            .collect();
+        let _ = writeln!(
+            out,
+            "  {:>2} {:>2}  {:.1e} m  {} m^2  {}",
+            p.disc_point + 1,
+            p.pad_point + 1,
+            p.distance,
+            p.area.map_or("-".into(), |a| format!("{a:.4e}")),
+            params.join("  ")
+        );
+    }
+    let _ = writeln!(
+        out,
+        "piston force {:.1} N on {} piston dofs",
+        s.params.piston_force,
+        s.brake.f_piston.iter().filter(|f| **f != 0.0).count()
+    );
+    out
+}
+
+/// Kinetic-energy share of the disc in a mode `x` (reduced brake coordinates).
+pub fn disc_share(s: &Model, x: &[faer::c64]) -> f64 {
+    let m = &s.brake.m;
+    let energy = |r: std::ops::Range<usize>| -> f64 {
+        let mut e = 0.0;
+        for i in r.clone() {
+            for j in r.clone() {
+                e += (x[i].conj() * x[j]).re * m[(i, j)];
+            }
+        }
+        e
+    };
+    let (d, p) = (energy(s.layout.disc.clone()), energy(s.layout.pad.clone()));
+    d / (d + p).max(f64::MIN_POSITIVE)
+}
+
+/// What the sweep found, as the lines `squeal stability` prints.
+pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
+    let mut out = String::new();
+    let sw = &st.sweep;
+    let eq0 = &st.reference.equilibrium;
+    let _ = writeln!(
+        out,
+        "equilibrium at mu = 0: {} Newton iterations, relative residual {:.1e}, {} of {} pairs closed, penetrations {:.1}..{:.1} um",
+        eq0.iterations,
+        eq0.residual,
+        eq0.closed_pairs(),
+        eq0.penetrations.len(),
+        eq0.penetrations
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min)
+            * 1e6,
+        eq0.penetrations
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max)
+            * 1e6
+    );
+    let _ = writeln!(
+        out,
+        "sweep: {} friction values {}..{} in {:.2} s; valid band up to {:.0} Hz{}",
+        sw.points.len(),
+        sw.points[0].equilibrium.mu,
+        sw.points[sw.points.len() - 1].equilibrium.mu,
+        seconds,
+        s.sweep.band.valid_max_hz,
+        s.sweep.band.user.map_or(String::new(), |(a, b)| format!(
+            ", user band {a:.0}..{b:.0} Hz"
+        ))
+    );
+    let outside: Vec<_> = sw.crossings.iter().filter(|c| !c.in_band).collect();
+    for c in &sw.crossings {
+        let _ = writeln!(
+            out,
+            "  crossing: branch {} unstable from mu in [{:.4}, {:.4}] at {:.0} Hz{}",
+            c.branch,
+            c.mu_lo,
+            c.mu_hi,
+            c.frequency_hz,
+            if c.in_band {
+                ""
+            } else {
+                "  (outside the band: not physical for this model)"
+            }
+        );
+    }
+    match &sw.hopf {
+        Some(h) => {
+            let x = h.point.spectrum.shape(&st.reference.basis, h.index);
+            let _ = writeln!(
+                out,
+                "Hopf point mu0 = {:.8} (bracket [{:.10}, {:.10}], {} refinements) at {:.2} Hz; disc share of the unstable mode's kinetic energy {:.0}%",
+                h.mu0,
+                h.bracket.0,
+                h.bracket.1,
+                h.evaluations,
+                h.frequency_hz,
+                100.0 * disc_share(s, &x)
+            );
+            if let Some((m1, m2)) = st.pair {
+                let f = |m: usize| st.reference.basis.omega[m] / (2.0 * std::f64::consts::PI);
+                let _ = writeln!(
+                    out,
+                    "coalescing pair (frictionless modes): Mode 1 = #{} at {:.1} Hz (stays stable), Mode 2 = #{} at {:.1} Hz (goes unstable)",
+                    m1 + 1,
+                    f(m1),
+                    m2 + 1,
+                    f(m2)
+                );
+            }
+        }
+        None => {
+            let _ = writeln!(out, "no Hopf point in the band over this friction range");
+        }
+    }
+    if !outside.is_empty() {
+        let _ = writeln!(
+            out,
+            "{} crossing(s) outside the band are reported above but do not define mu0",
+            outside.len()
+        );
+    }
+    out
+}
+
+/// Branches shown in the figures: the pair first, then in-band branches within ±25% of the
+/// Hopf frequency (or all in-band branches that ever go unstable when there is no Hopf point).
+pub fn shown_branches(st: &Stability, band_max: f64) -> Vec<usize> {
+    let sw = &st.sweep;
+    let mut out = Vec::new();
+    if let Some(h) = &sw.hopf {
+        out.push(h.branch);
+        if let Some(p) = h.partner {
+            out.push(p);
+        }
+        for b in 0..sw.branches.len() {
+            let f = sw.points[0].spectrum.frequency_hz(sw.branches[b][0]);
+            if !out.contains(&b) && (f / h.frequency_hz - 1.0).abs() < 0.25 && f < band_max {
+                out.push(b);
+            }
+        }
+    } else {
+        for c in &sw.crossings {
+            if !out.contains(&c.branch) {
+                out.push(c.branch);
+            }
+        }
+    }
+    out
+}
+
+/// `branches.csv`, `stability.csv` and `summary.json`.
+pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
+    let sw = &st.sweep;
+    let mut all = Table::new([
+        "mu",
+        "branch",
+        "real_part_per_s",
+        "frequency_hz",
+        "in_band",
+        "unstable",
+    ]);
+    for (k, p) in sw.points.iter().enumerate() {
+        for b in 0..sw.branches.len() {
+            let l = sw.value(b, k);
+            let f = p.spectrum.frequency_hz(sw.branches[b][k]);
+            all.push_row([
+                format!("{}", p.equilibrium.mu),
+                b.to_string(),
+                format!("{:e}", l.re),
+                format!("{f}"),
+                (s.sweep.band.contains(f) as u8).to_string(),
+                ((l.re > 0.0) as u8).to_string(),
+            ]);
+        }
+    }
+    all.write_csv(&dir.join("branches.csv"))?;
+    let shown = shown_branches(st, s.sweep.band.valid_max_hz);
+    let mut header = vec!["mu".to_string()];
+    for b in &shown {
+        header.push(format!("re_b{b}"));
+        header.push(format!("f_hz_b{b}"));
+    }
+    header.push("unstable_in_band".into());
+    header.push("unstable_outside_band".into());
+    let mut t = Table::new(header);
+    for (k, p) in sw.points.iter().enumerate() {
+        let mut row = vec![format!("{}", p.equilibrium.mu)];
+        for &b in &shown {
+            row.push(format!("{:e}", sw.value(b, k).re));
+            row.push(format!("{}", p.spectrum.frequency_hz(sw.branches[b][k])));
+        }
+        let (mut inb, mut outb) = (0, 0);
+        for j in 0..p.spectrum.values.len() {
+            if p.spectrum.values[j].re > 0.0 {
+                if s.sweep.band.contains(p.spectrum.frequency_hz(j)) {
+                    inb += 1;
+                } else {
+                    outb += 1;
+                }
+            }
+        }
+        row.push(inb.to_string());
+        row.push(outb.to_string());
+        t.push_row(row);
+    }
+    t.write_csv(&dir.join("stability.csv"))?;
+    let summary = serde_json::json!({
+        "mu0": sw.hopf.as_ref().map(|h| h.mu0),
+        "frequency_hz": sw.hopf.as_ref().map(|h| h.frequency_hz),
+        "bracket": sw.hopf.as_ref().map(|h| [h.bracket.0, h.bracket.1]),
+        "refinements": sw.hopf.as_ref().map(|h| h.evaluations),
+        "pair_modes_1based": st.pair.map(|(a, b)| [a + 1, b + 1]),
+        "crossings": sw.crossings.iter().map(|c| serde_json::json!({
+            "branch": c.branch, "mu_lo": c.mu_lo, "mu_hi": c.mu_hi, "frequency_hz": c.frequency_hz, "in_band": c.in_band
+        })).collect::<Vec<_>>(),
+        "valid_band_max_hz": s.sweep.band.valid_max_hz,
+        "user_band_hz": s.sweep.band.user.map(|(a, b)| [a, b]),
+        "equilibrium_mu0": {
+            "iterations": st.reference.equilibrium.iterations,
+            "relative_residual": st.reference.equilibrium.residual,
+            "penetrations_m": st.reference.equilibrium.penetrations,
+        },
+        "rom": s.rom_path.display().to_string(),
+    });
+    squeal_io::atomic_write_bytes(
+        &dir.join("summary.json"),
+        json_text(&summary, "the stability summary")?.as_bytes(),
+    )?;
+    Ok(())
+}
+
+/// The stability figure (paper Figure 2) as SVG and PNG.
+pub fn write_figures(dir: &Path, st: &Stability, s: &Model) -> Result<()> {
+    let sw = &st.sweep;
+    let shown = shown_branches(st, s.sweep.band.valid_max_hz);
+    let mut re = Panel {
+        title: "(a) real parts".into(),
+        x_label: "friction coefficient mu".into(),
+        y_label: "Re(lambda) (1/s)".into(),
+        // The same series as panel (b), whose legend sits outside: none here to hide a curve.
+        legend: squeal_report::LegendPosition::None,
+        ..Panel::default()
+    };
+    let mut fr = Panel {
+        title: "(b) frequencies".into(),
+        x_label: "friction coefficient mu".into(),
+        y_label: "frequency (Hz)".into(),
+        legend: squeal_report::LegendPosition::Outside,
+        ..Panel::default()
+    };
+    for (i, &b) in shown.iter().enumerate() {
+        let name = match (i, sw.hopf.is_some()) {
+            (0, true) => "unstable mode (Mode 2)".to_string(),
+            (1, true) => "coalescing partner (Mode 1)".to_string(),
+            _ => format!("branch {b}"),
+        };
+        let re_pts: Vec<(f64, f64)> = (0..sw.points.len())
+            .map(|k| (sw.points[k].equilibrium.mu, sw.value(b, k).re))
+            .collect();
+        let f_pts: Vec<(f64, f64)> = (0..sw.points.len())
+            .map(|k| {
+                (
+                    sw.points[k].equilibrium.mu,
+                    sw.points[k].spectrum.frequency_hz(sw.branches[b][k]),
+                )
+            })
+            .collect();
+        let (mut a, mut c) = (
+            Series::line(name.clone(), re_pts),
+            Series::line(name, f_pts),
+        );
+        if i >= 2 {
+            a = a.with_color(Rgb::GREY).with_dash(Dash::Dotted);
+            c = c.with_color(Rgb::GREY).with_dash(Dash::Dotted);
+        }
+        re.series.push(a);
+        fr.series.push(c);
+    }
+    re.annotations.push(Annotation::HLine {
+        y: 0.0,
+        label: String::new(),
+        dash: Dash::Dashed,
+    });
+    if let Some(h) = &sw.hopf {
+        let label = format!("mu0 = {}", fmt_sig(h.mu0, 4));
+        re.annotations.push(Annotation::VLine {
+            x: h.mu0,
+            label: label.clone(),
+            dash: Dash::Dashed,
+        });
+        fr.annotations.push(Annotation::VLine {
+            x: h.mu0,
+            label,
+            dash: Dash::Dashed,
+        });
+    }
+    let fig = Figure {
+        title: "Stability against friction (paper Figure 2)".into(),
+        panels: vec![re, fr],
+        ..Figure::default()
+    };
+    write_svg_and_png(&fig, &dir.join("stability"))?;
+    Ok(())
+}
+
+/// The equilibria and the unstable mode on both meshes (`shapes.vtm` for ParaView); returns
+/// the `.vtm` path.
+pub fn write_shapes(dir: &Path, s: &Model, st: &Stability, log: Log) -> Result<PathBuf> {
+    let meshes = Meshes::read(s, log)?;
+    let mut fields = vec![PartFields {
+        name: "equilibrium_mu0",
+        brake: st.reference.equilibrium.x.clone(),
+    }];
+    if let Some(h) = &st.sweep.hopf {
+        let x = normalize_mode(&h.point.spectrum.shape(&st.reference.basis, h.index));
+        fields.push(PartFields {
+            name: "equilibrium_hopf",
+            brake: h.point.equilibrium.x.clone(),
+        });
+        fields.push(PartFields {
+            name: "unstable_mode_real",
+            brake: x.iter().map(|v| v.re).collect(),
+        });
+        fields.push(PartFields {
+            name: "unstable_mode_imag",
+            brake: x.iter().map(|v| v.im).collect(),
+        });
+    }
+    write_brake_vtu(dir, "shapes", &meshes.parts(s)?, &fields)
+}

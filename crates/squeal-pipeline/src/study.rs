@@ -1,0 +1,1288 @@
+//! The parametric stability studies of the paper's sections 6.2–6.4 (piston pressure, contact
+//! stiffness, modal damping: Tables 4–6, Figures 9–11 (a, b)), the damping-induced
+//! destabilization at vanishing friction, the mesh-convergence study, and the identification
+//! of the modes that couple at μ0.
+//!
+//! Everything goes to `<out>/study/`: a CSV (and Markdown) table per study, the branches of
+//! every case as CSV, and the overlaid figures as SVG and PNG.
+
+use crate::error::{Context, PipelineError, Result, json_text};
+use crate::model::{Log, Model, build, read_mesh, reduced_model, valid_max_hz};
+use crate::shapes::expand_complex;
+use faer::c64;
+use rayon::prelude::*;
+use squeal_brake::Brake;
+use squeal_brake::analysis::{DampingSpec, PairChoice, Stability, basis_mode_of_branch, stability};
+use squeal_brake::assemble::{Stiffness, assemble};
+use squeal_brake::studies::{
+    BranchCurve, Case, CaseOutcome, GrowthRow, ShapeSummary, circumferential_orders, coupling,
+    damping_cases, energy_share, log_slope, other_mode_growth, outcome, pad_profile,
+    pressure_cases, run_cases, small_friction_grid, stiffness_cases,
+};
+use squeal_brake::sweep::SweepOptions;
+use squeal_mesh::Mesh;
+use squeal_reduce::interface::Axis;
+use squeal_reduce::rom::{ReducedModel, ReducedPart};
+use squeal_report::format::{fmt_sci, fmt_sig};
+use squeal_report::{
+    Annotation, Dash, Figure, Layout, Panel, Scale, Series, Table, palette_color, write_svg_and_png,
+};
+use squeal_scene::Scene;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use toml::Spanned;
+
+/// Which study to run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// Piston pressure 0.8, 1, 1.2 of nominal (paper Table 4, Figure 9)
+    Pressure,
+    /// Both contact stiffnesses 0.7, 1, 1.3 of nominal (Table 5, Figure 10)
+    Stiffness,
+    /// Pair damping D1/D2 of Table 6 (Figure 11)
+    Damping,
+    /// Damping on the pair alone vs with the global part, at vanishing friction
+    Paradox,
+    /// mu0 on the coarse, medium and fine meshes, patch and node contact (slow)
+    Mesh,
+    /// pressure, stiffness, damping and paradox (not mesh)
+    All,
+}
+
+impl Kind {
+    /// Every study with its name and a line of help (the command line's choices).
+    pub const CHOICES: [(Kind, &'static str, &'static str); 6] = [
+        (
+            Kind::Pressure,
+            "pressure",
+            "piston pressure 0.8, 1, 1.2 of nominal (paper Table 4, Figure 9)",
+        ),
+        (
+            Kind::Stiffness,
+            "stiffness",
+            "both contact stiffnesses 0.7, 1, 1.3 of nominal (Table 5, Figure 10)",
+        ),
+        (
+            Kind::Damping,
+            "damping",
+            "pair damping D1/D2 of Table 6 (Figure 11)",
+        ),
+        (
+            Kind::Paradox,
+            "paradox",
+            "damping on the pair alone vs with the global part, at vanishing friction",
+        ),
+        (
+            Kind::Mesh,
+            "mesh",
+            "mu0 on the coarse, medium and fine meshes, patch and node contact (slow)",
+        ),
+        (
+            Kind::All,
+            "all",
+            "pressure, stiffness, damping and paradox (not mesh)",
+        ),
+    ];
+}
+
+/// Runs the study `kind` of a scene over the friction values `mus` into `dir` (the mesh study
+/// over the mesh `levels`).
+pub fn run(
+    scene: &Scene,
+    out: &Path,
+    kind: Kind,
+    mus: &[f64],
+    levels: &[String],
+    log: Log,
+) -> Result<()> {
+    let dir = out.join("study");
+    if kind == Kind::Mesh {
+        return mesh_study(scene, &dir, mus, levels, log);
+    }
+    let s = build(scene, out, log)?;
+    let t = Instant::now();
+    let st = stability(&s.brake, &s.damping, mus, &s.sweep)?;
+    let nominal = outcome(&Case::default(), &st);
+    let (Some(mu0), Some(f0), Some(pair)) = (nominal.mu0, nominal.frequency_hz, nominal.pair)
+    else {
+        return Err(PipelineError::NoHopfPoint {
+            from: mus[0],
+            to: mus[mus.len() - 1],
+            what: "the studies are normalized by the nominal Hopf point and",
+        });
+    };
+    log(&format!(
+        "nominal: mu0 = {mu0:.6} at {f0:.1} Hz ({:.1} s); Mode 1 = frictionless mode #{}, Mode 2 = #{}",
+        t.elapsed().as_secs_f64(),
+        pair.0 + 1,
+        pair.1 + 1
+    ));
+    coupled_modes(&s, &st, &dir, log)?;
+    drop(st);
+    let kinds: Vec<Kind> = match kind {
+        Kind::All => vec![
+            Kind::Pressure,
+            Kind::Stiffness,
+            Kind::Damping,
+            Kind::Paradox,
+        ],
+        k => vec![k],
+    };
+    for kind in kinds {
+        let t = Instant::now();
+        if kind == Kind::Paradox {
+            paradox(&s, pair, mus, &dir, log)?;
+        } else {
+            parametric(kind, scene, &s, &nominal, mus, &dir, log)?;
+        }
+        log(&format!(
+            "{} study: {:.1} s",
+            name(kind),
+            t.elapsed().as_secs_f64()
+        ));
+    }
+    if kind == Kind::All {
+        log("(the mesh study runs only with --kind mesh: it reduces six models)");
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pressure, stiffness, damping (Tables 4-6, Figures 9-11 (a, b))
+
+fn name(kind: Kind) -> &'static str {
+    Kind::CHOICES
+        .iter()
+        .find(|c| c.0 == kind)
+        .map_or("study", |c| c.1)
+}
+
+/// Runs one parametric study: the nominal outcome is case 1 of every table.
+fn parametric(
+    kind: Kind,
+    scene: &Scene,
+    s: &Model,
+    nominal: &CaseOutcome,
+    mus: &[f64],
+    dir: &Path,
+    log: Log,
+) -> Result<()> {
+    let (cases, pair) = match kind {
+        Kind::Pressure => (pressure_cases(), None),
+        Kind::Stiffness => (stiffness_cases(), None),
+        _ => {
+            if s.damping.pair_ratios.iter().all(|r| *r == 0.0) {
+                let key = &scene.file.damping.pair_ratios;
+                let msg = "the damping study scales the pair ratios: give damping.pair_ratios > 0 (e.g. [0.001, 0.001])";
+                return Err(match key {
+                    Some(k) => scene.error_at("damping.pair_ratios", k, msg),
+                    None => scene.section_error(msg),
+                }
+                .into());
+            }
+            // Table 6 damps the same two modes in every case: the nominal's pair.
+            (damping_cases(), nominal.pair)
+        }
+    };
+    let todo: Vec<Case> = cases.iter().filter(|c| c.number != 1).cloned().collect();
+    log(&format!(
+        "{} study: {} cases in parallel ...",
+        name(kind),
+        todo.len()
+    ));
+    let results = run_cases(&s.brake, &s.damping, &todo, pair, mus, &s.sweep);
+    let mut outcomes = Vec::with_capacity(cases.len());
+    for case in &cases {
+        if case.number == 1 {
+            outcomes.push(CaseOutcome {
+                case: case.clone(),
+                ..nominal.clone()
+            });
+            continue;
+        }
+        let k = todo.iter().position(|c| c == case).unwrap_or(0);
+        match &results[k] {
+            Ok(o) => outcomes.push(o.clone()),
+            Err(e) => {
+                return Err(PipelineError::Context {
+                    context: format!(
+                        "{} study, case {} ({})",
+                        name(kind),
+                        case.number,
+                        case.label
+                    ),
+                    source: Box::new(PipelineError::input("stability", e)),
+                });
+            }
+        }
+    }
+    let table = case_table(kind, s, &outcomes, nominal);
+    log(&format!("\n{}", study_title(kind)));
+    log(&table.to_text());
+    create_dir(dir)?;
+    let stem = name(kind);
+    table.write_csv(&dir.join(format!("{stem}.csv")))?;
+    squeal_io::atomic_write_bytes(
+        &dir.join(format!("{stem}.md")),
+        table.to_markdown().as_bytes(),
+    )?;
+    branch_table(&outcomes, nominal).write_csv(&dir.join(format!("{stem}_branches.csv")))?;
+    case_figure(kind, &outcomes, nominal, &dir.join(stem), log)?;
+    Ok(())
+}
+
+fn study_title(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Pressure => {
+            "Piston pressure (paper Table 4): Hopf point and frequency at the crossing"
+        }
+        Kind::Stiffness => "Contact stiffness k_l, k_nl (paper Table 5)",
+        _ => {
+            "Pair damping D1 (Mode 1), D2 (Mode 2) in units of the scene's pair ratios (paper Table 6)"
+        }
+    }
+}
+
+fn opt(x: Option<f64>, digits: usize) -> String {
+    x.map_or("-".into(), |v| fmt_sig(v, digits))
+}
+
+/// The Table 4/5/6 analogue.
+fn case_table(kind: Kind, s: &Model, outcomes: &[CaseOutcome], nominal: &CaseOutcome) -> Table {
+    let mut header: Vec<&str> = vec!["case"];
+    match kind {
+        Kind::Pressure => header.extend(["value", "piston_force_n"]),
+        Kind::Stiffness => header.extend(["value", "k_l_sum_n_per_m"]),
+        _ => header.extend(["d1", "d2", "d1_over_d2", "zeta1", "zeta2"]),
+    }
+    header.extend([
+        "mu0",
+        "mu0_over_nominal",
+        "frequency_hz",
+        "frequency_shift_hz",
+        "mode1",
+        "mode1_hz",
+        "mode2",
+        "mode2_hz",
+    ]);
+    let mut t = Table::new(header);
+    let force = s.params.piston_force;
+    // The total contact stiffness at first touch (for eq (8), the sum of the k_l).
+    let kl: f64 = s
+        .brake
+        .pairs
+        .iter()
+        .map(|p| {
+            let touch = squeal_brake::Kinematics {
+                penetration: f64::MIN_POSITIVE,
+                ..Default::default()
+            };
+            p.law.response(0.0, &touch).normal_derivatives[0]
+        })
+        .sum();
+    let (mu_n, f_n) = (nominal.mu0, nominal.frequency_hz);
+    for o in outcomes {
+        let c = &o.case;
+        let mut row = vec![c.number.to_string()];
+        match kind {
+            Kind::Pressure => row.extend([c.label.clone(), fmt_sig(force * c.pressure, 4)]),
+            Kind::Stiffness => row.extend([c.label.clone(), fmt_sci(kl * c.stiffness, 4)]),
+            _ => row.extend([
+                fmt_sig(c.pair_factors[0], 2),
+                fmt_sig(c.pair_factors[1], 2),
+                fmt_sig(c.pair_factors[0] / c.pair_factors[1], 2),
+                fmt_sig(s.damping.pair_ratios[0] * c.pair_factors[0], 2),
+                fmt_sig(s.damping.pair_ratios[1] * c.pair_factors[1], 2),
+            ]),
+        }
+        row.extend([
+            opt(o.mu0, 6),
+            opt(o.mu0.zip(mu_n).map(|(a, b)| a / b), 4),
+            opt(o.frequency_hz, 6),
+            opt(o.frequency_hz.zip(f_n).map(|(a, b)| a - b), 3),
+            o.pair.map_or("-".into(), |p| format!("#{}", p.0 + 1)),
+            opt(o.pair_hz.map(|p| p.0), 5),
+            o.pair.map_or("-".into(), |p| format!("#{}", p.1 + 1)),
+            opt(o.pair_hz.map(|p| p.1), 5),
+        ]);
+        t.push_row(row);
+    }
+    t.align_numbers_right()
+}
+
+/// Every case's Mode 2 and Mode 1 branches against μ.
+fn branch_table(outcomes: &[CaseOutcome], nominal: &CaseOutcome) -> Table {
+    let mu_n = nominal.mu0.unwrap_or(1.0);
+    let mut t = Table::new([
+        "case",
+        "mu",
+        "mu_over_mu0_nominal",
+        "re_mode2_per_s",
+        "f_mode2_hz",
+        "re_mode1_per_s",
+        "f_mode1_hz",
+    ]);
+    for o in outcomes {
+        let Some(u) = &o.unstable else { continue };
+        for k in 0..u.mu.len() {
+            let p = o.partner.as_ref().map(|p| p.values[k]);
+            t.push_row([
+                o.case.number.to_string(),
+                format!("{}", u.mu[k]),
+                format!("{}", u.mu[k] / mu_n),
+                format!("{:e}", u.values[k].re),
+                format!("{}", u.values[k].im / (2.0 * std::f64::consts::PI)),
+                p.map_or(String::new(), |v| format!("{:e}", v.re)),
+                p.map_or(String::new(), |v| {
+                    format!("{}", v.im / (2.0 * std::f64::consts::PI))
+                }),
+            ]);
+        }
+    }
+    t
+}
+
+/// The x window of the figures: around μ/μ0 = 1, wide enough for every case's Hopf point.
+fn window(outcomes: &[CaseOutcome], mu_n: f64) -> (f64, f64) {
+    let r: Vec<f64> = outcomes
+        .iter()
+        .filter_map(|o| o.mu0)
+        .map(|m| m / mu_n)
+        .collect();
+    let lo = r.iter().copied().fold(0.7f64, |a, b| a.min(b - 0.15));
+    let hi = r.iter().copied().fold(1.3f64, |a, b| a.max(b + 0.15));
+    (lo.max(0.0), hi)
+}
+
+fn curve_points(
+    c: &BranchCurve,
+    mu_n: f64,
+    win: (f64, f64),
+    f: impl Fn(c64) -> f64,
+) -> Vec<(f64, f64)> {
+    c.mu.iter()
+        .zip(&c.values)
+        .map(|(m, v)| (m / mu_n, f(*v)))
+        .filter(|(x, _)| *x >= win.0 && *x <= win.1)
+        .collect()
+}
+
+/// Two panels (Re λ, f against μ/μ0) for a set of cases: Mode 2 solid, Mode 1 dashed, one
+/// colour per case, the Hopf points as markers.
+fn case_panels(
+    outcomes: &[&CaseOutcome],
+    colors: &[usize],
+    mu_n: f64,
+    letters: (&str, &str),
+    what: &str,
+) -> (Panel, Panel) {
+    let win = window(
+        &outcomes.iter().map(|o| (*o).clone()).collect::<Vec<_>>(),
+        mu_n,
+    );
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let mut re = Panel {
+        title: format!(
+            "({}) real parts{what}: Mode 2 solid, Mode 1 dashed",
+            letters.0
+        ),
+        x_label: "mu / mu0 (nominal)".into(),
+        y_label: "Re(lambda) (1/s)".into(),
+        ..Panel::default()
+    };
+    let mut fr = Panel {
+        title: format!("({}) frequencies{what}", letters.1),
+        x_label: "mu / mu0 (nominal)".into(),
+        y_label: "frequency (Hz)".into(),
+        ..Panel::default()
+    };
+    for (o, &ci) in outcomes.iter().zip(colors) {
+        let color = palette_color(ci);
+        let label = format!("{}: {}", o.case.number, o.case.label);
+        if let Some(u) = &o.unstable {
+            re.series.push(
+                Series::line(label.clone(), curve_points(u, mu_n, win, |v| v.re)).with_color(color),
+            );
+            fr.series.push(
+                Series::line(label, curve_points(u, mu_n, win, |v| v.im / two_pi))
+                    .with_color(color),
+            );
+        }
+        if let Some(p) = &o.partner {
+            re.series.push(
+                Series::line("", curve_points(p, mu_n, win, |v| v.re))
+                    .with_color(color)
+                    .with_dash(Dash::Dashed),
+            );
+            fr.series.push(
+                Series::line("", curve_points(p, mu_n, win, |v| v.im / two_pi))
+                    .with_color(color)
+                    .with_dash(Dash::Dashed),
+            );
+        }
+        if let (Some(m), Some(f)) = (o.mu0, o.frequency_hz) {
+            re.series
+                .push(Series::markers("", vec![(m / mu_n, 0.0)]).with_color(color));
+            fr.series
+                .push(Series::markers("", vec![(m / mu_n, f)]).with_color(color));
+        }
+    }
+    re.annotations.push(Annotation::HLine {
+        y: 0.0,
+        label: String::new(),
+        dash: Dash::Dotted,
+    });
+    (re, fr)
+}
+
+fn case_figure(
+    kind: Kind,
+    outcomes: &[CaseOutcome],
+    nominal: &CaseOutcome,
+    stem: &Path,
+    log: Log,
+) -> Result<()> {
+    let mu_n = nominal.mu0.unwrap_or(1.0);
+    let all: Vec<&CaseOutcome> = outcomes.iter().collect();
+    let colors: Vec<usize> = (0..all.len()).collect();
+    let fig = match kind {
+        Kind::Damping => {
+            // Figure 11: (a, b) equally damped cases 1-3, (c, d) case 1 and the unequal ones.
+            let pick = |nums: &[usize]| -> (Vec<&CaseOutcome>, Vec<usize>) {
+                all.iter()
+                    .enumerate()
+                    .filter(|(_, o)| nums.contains(&o.case.number))
+                    .map(|(i, o)| (*o, i))
+                    .unzip()
+            };
+            let (eq, ceq) = pick(&[1, 2, 3]);
+            let (ne, cne) = pick(&[1, 4, 5, 6, 7]);
+            let (a, b) = case_panels(&eq, &ceq, mu_n, ("a", "b"), ", equal damping");
+            let (c, d) = case_panels(&ne, &cne, mu_n, ("c", "d"), ", unequal damping");
+            Figure {
+                title: "Pair damping D1/D2 (paper Figure 11)".into(),
+                panels: vec![a, b, c, d],
+                layout: Layout::Grid { columns: 2 },
+                ..Figure::default()
+            }
+        }
+        _ => {
+            let (a, b) = case_panels(&all, &colors, mu_n, ("a", "b"), "");
+            let title = if kind == Kind::Pressure {
+                "Piston pressure (paper Figure 9 (a, b))"
+            } else {
+                "Contact stiffness (paper Figure 10 (a, b))"
+            };
+            Figure {
+                title: title.into(),
+                panels: vec![a, b],
+                ..Figure::default()
+            }
+        }
+    };
+    for n in write_svg_and_png(&fig, stem)? {
+        log(&format!("note: {n}"));
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------
+// Damping-induced destabilization at vanishing friction
+
+/// The friction values of the paradox study: the small-friction grid, then the sweep's values
+/// above it (to see the pair's own crossing).
+fn paradox_grid(mus: &[f64]) -> Vec<f64> {
+    let mut g = small_friction_grid();
+    let top = g[g.len() - 1];
+    g.extend(mus.iter().copied().filter(|m| *m > top * (1.0 + 1e-12)));
+    g
+}
+
+struct ParadoxCase {
+    label: &'static str,
+    spec: DampingSpec,
+    rows: Vec<GrowthRow>,
+    /// First in-band crossing: μ0, frequency, frictionless mode (0-based), whether it is the
+    /// pair's.
+    hopf: Option<(f64, f64, usize, bool)>,
+}
+
+fn paradox(s: &Model, pair: (usize, usize), mus: &[f64], dir: &Path, log: Log) -> Result<()> {
+    let grid = paradox_grid(mus);
+    let nominal = DampingSpec {
+        pair: PairChoice::Modes(pair.0, pair.1),
+        ..s.damping
+    };
+    let specs = [
+        ("global + pair (scene)", nominal),
+        (
+            "pair only (no global part)",
+            DampingSpec {
+                global_ratio: 0.0,
+                ..nominal
+            },
+        ),
+        (
+            "undamped",
+            DampingSpec {
+                global_ratio: 0.0,
+                pair_ratios: [0.0, 0.0],
+                ..nominal
+            },
+        ),
+    ];
+    log(&format!(
+        "paradox study: {} damping cases over {} friction values ...",
+        specs.len(),
+        grid.len()
+    ));
+    let cases: Vec<ParadoxCase> = specs
+        .par_iter()
+        .map(|(label, spec)| -> Result<ParadoxCase> {
+            let st = stability(&s.brake, spec, &grid, &s.sweep)
+                .with_context(|| format!("paradox study, {label}"))?;
+            let rows = other_mode_growth(&s.brake, &st, &s.sweep)?;
+            let hopf = st.sweep.hopf.as_ref().map(|h| {
+                let m = basis_mode_of_branch(&st.sweep, h.branch);
+                (h.mu0, h.frequency_hz, m, m == pair.0 || m == pair.1)
+            });
+            Ok(ParadoxCase {
+                label,
+                spec: *spec,
+                rows,
+                hopf,
+            })
+        })
+        .collect::<Result<_>>()?;
+    let small = small_friction_grid();
+    let top = small[small.len() - 1] * (1.0 + 1e-12);
+    let mut t = Table::new([
+        "case",
+        "mu",
+        "max_re_over_abs_other_modes",
+        "second_order_prediction",
+        "re_per_s",
+        "at_hz",
+        "frictionless_mode",
+        "unstable_other_modes_in_band",
+    ]);
+    for c in &cases {
+        for r in c.rows.iter().filter(|r| r.mu <= top) {
+            t.push_row([
+                c.label.to_string(),
+                fmt_sig(r.mu, 2),
+                fmt_sci(r.max_ratio, 3),
+                fmt_sci(r.predicted_ratio, 3),
+                fmt_sci(r.real_part, 3),
+                fmt_sig(r.frequency_hz, 5),
+                format!("#{}", r.basis_mode + 1),
+                r.unstable.to_string(),
+            ]);
+        }
+    }
+    let t = t.align_numbers_right();
+    let mut summary = Table::new([
+        "case",
+        "global_ratio",
+        "pair_ratios",
+        "first_in_band_crossing_mu0",
+        "at_hz",
+        "frictionless_mode",
+        "is_the_pair",
+        "slope_log_re_vs_log_mu",
+    ]);
+    for c in &cases {
+        summary.push_row([
+            c.label.to_string(),
+            fmt_sig(c.spec.global_ratio, 2),
+            format!(
+                "{}/{}",
+                fmt_sig(c.spec.pair_ratios[0], 2),
+                fmt_sig(c.spec.pair_ratios[1], 2)
+            ),
+            c.hopf.map_or("none".into(), |h| fmt_sig(h.0, 6)),
+            c.hopf.map_or("-".into(), |h| fmt_sig(h.1, 5)),
+            c.hopf.map_or("-".into(), |h| format!("#{}", h.2 + 1)),
+            c.hopf
+                .map_or("-".into(), |h| if h.3 { "yes" } else { "no" }.into()),
+            growth_slope(&c.rows).map_or("-".into(), |v| fmt_sig(v, 3)),
+        ]);
+    }
+    let summary = summary.align_numbers_right();
+    log(
+        "\nDamping on the coalescing pair (eq 13) with and without the global part: growth of the OTHER in-band modes at small friction (Re/|lambda| = -zeta when damped; > 0 is unstable)",
+    );
+    log(&t.to_text());
+    log("first in-band crossing of each case (the mu0 a stability analysis would report):");
+    log(&summary.to_text());
+    create_dir(dir)?;
+    t.write_csv(&dir.join("paradox.csv"))?;
+    summary.write_csv(&dir.join("paradox_summary.csv"))?;
+    squeal_io::atomic_write_bytes(
+        &dir.join("paradox.md"),
+        format!("{}\n{}", t.to_markdown(), summary.to_markdown()).as_bytes(),
+    )?;
+    paradox_figure(&cases, top, &dir.join("paradox"))
+}
+
+/// Slope of ln(max Re/|λ|) against ln μ for μ in 1e-3..1e-2 (2 for second-order growth).
+fn growth_slope(rows: &[GrowthRow]) -> Option<f64> {
+    let r: Vec<&GrowthRow> = rows
+        .iter()
+        .filter(|r| r.mu >= 1e-3 * (1.0 - 1e-12) && r.mu <= 1e-2 * (1.0 + 1e-12))
+        .collect();
+    // Only a growth well above round-off (the undamped case's ~1e-16) has a slope.
+    if r.iter().any(|r| r.max_ratio <= 1e-12) {
+        return None;
+    }
+    let x: Vec<f64> = r.iter().map(|r| r.mu).collect();
+    let y: Vec<f64> = r.iter().map(|r| r.max_ratio).collect();
+    log_slope(&x, &y)
+}
+
+fn paradox_figure(cases: &[ParadoxCase], top: f64, stem: &Path) -> Result<()> {
+    let mut p = Panel {
+        title: "largest Re/|lambda| of the other in-band modes".into(),
+        x_label: "friction coefficient mu".into(),
+        y_label: "Re(lambda)/|lambda| (positive: unstable)".into(),
+        x_scale: Scale::Log,
+        y_scale: Scale::Log,
+        ..Panel::default()
+    };
+    for (i, c) in cases.iter().enumerate() {
+        let rows: Vec<&GrowthRow> = c
+            .rows
+            .iter()
+            .filter(|r| r.mu > 0.0 && r.mu <= top)
+            .collect();
+        if rows.iter().all(|r| r.max_ratio <= 0.0) {
+            continue;
+        }
+        let color = palette_color(i);
+        p.series.push(
+            Series::line_markers(c.label, rows.iter().map(|r| (r.mu, r.max_ratio)).collect())
+                .with_color(color),
+        );
+        p.series.push(
+            Series::line(
+                format!("{}: second-order prediction", c.label),
+                rows.iter().map(|r| (r.mu, r.predicted_ratio)).collect(),
+            )
+            .with_color(color)
+            .with_dash(Dash::Dashed),
+        );
+    }
+    let fig = Figure::single(
+        "Damping on the pair only: the other modes grow like mu^2 (with the global part: Re/|lambda| = -zeta)",
+        p,
+    );
+    // Non-positive values (the damped cases) cannot be drawn on a log axis: expected.
+    write_svg_and_png(&fig, stem)?;
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------
+// Coupled modes at mu0
+
+/// The geometry the shape measures need: the braking-face circle of the disc and the pad's
+/// line along its length, with each node's angle about the disc axis.
+struct Rings {
+    axis: Axis,
+    /// (node index, angle) on the disc's braking face at mid radius.
+    disc: Vec<(usize, f64)>,
+    /// (node index, arc length) on the pad's friction face at mid radius.
+    pad: Vec<(usize, f64)>,
+}
+
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if n > 0.0 {
+        v.map(|x| x / n)
+    } else {
+        [0.0, 0.0, 1.0]
+    }
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Cylindrical coordinates (axial, radius, angle) about the axis; the angle is measured from
+/// the global x axis projected on the disc plane (from +x towards +y for the z axis).
+fn cylindrical(axis: &Axis, p: [f64; 3]) -> (f64, f64, f64) {
+    let e = unit(axis.direction);
+    let x = [1.0, 0.0, 0.0];
+    let ref_dir = if dot(x, e).abs() > 0.9 {
+        [0.0, 1.0, 0.0]
+    } else {
+        x
+    };
+    let e1 = unit([
+        ref_dir[0] - dot(ref_dir, e) * e[0],
+        ref_dir[1] - dot(ref_dir, e) * e[1],
+        ref_dir[2] - dot(ref_dir, e) * e[2],
+    ]);
+    let e2 = [
+        e[1] * e1[2] - e[2] * e1[1],
+        e[2] * e1[0] - e[0] * e1[2],
+        e[0] * e1[1] - e[1] * e1[0],
+    ];
+    let d = [
+        p[0] - axis.origin[0],
+        p[1] - axis.origin[1],
+        p[2] - axis.origin[2],
+    ];
+    let (a, u, v) = (dot(d, e), dot(d, e1), dot(d, e2));
+    (a, u.hypot(v), v.atan2(u))
+}
+
+/// Nodes of `mesh` on the plane `axial` (to 1e-6 of the radius) within the narrowest radial
+/// band around `r_mid` (1, 2, 4, 8, 15% of it) dense enough in angle, else the widest band:
+/// on a full circle (`closed`) the largest angular gap must be under 7.5° (orders up to 12
+/// resolved); on an arc (the pad) there must be 12 nodes at least and no gap over an eighth
+/// of the arc. Angles come back increasing (an arc is unwrapped where it has its largest gap).
+fn ring_nodes(
+    mesh: &Mesh,
+    axis: &Axis,
+    axial: f64,
+    r_mid: f64,
+    candidates: &[usize],
+    closed: bool,
+) -> Vec<(usize, f64)> {
+    let on_plane: Vec<(usize, f64, f64)> = candidates
+        .iter()
+        .map(|&i| (i, cylindrical(axis, mesh.nodes[i])))
+        .filter(|(_, c)| (c.0 - axial).abs() <= 1e-6 * r_mid)
+        .map(|(i, c)| (i, c.1, c.2))
+        .collect();
+    let mut best = Vec::new();
+    for frac in [0.01, 0.02, 0.04, 0.08, 0.15] {
+        let mut ring: Vec<(usize, f64)> = on_plane
+            .iter()
+            .filter(|(_, r, _)| (r - r_mid).abs() <= frac * r_mid)
+            .map(|(i, _, t)| (*i, *t))
+            .collect();
+        ring.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+        let dense = if closed {
+            max_gap(&ring) < 7.5f64.to_radians()
+        } else {
+            ring = unwrap_arc(ring);
+            let span = ring.last().map_or(0.0, |l| l.1) - ring.first().map_or(0.0, |f| f.1);
+            ring.len() >= 12 && arc_gap(&ring) <= span / 8.0
+        };
+        best = ring;
+        if dense {
+            break;
+        }
+    }
+    best
+}
+
+/// Largest gap between consecutive angles, around the full circle.
+fn max_gap(ring: &[(usize, f64)]) -> f64 {
+    if ring.len() < 2 {
+        return std::f64::consts::TAU;
+    }
+    let mut g: f64 = ring[0].1 + std::f64::consts::TAU - ring[ring.len() - 1].1;
+    for w in ring.windows(2) {
+        g = g.max(w[1].1 - w[0].1);
+    }
+    g
+}
+
+/// Largest gap between consecutive angles of an arc (no wrap-around).
+fn arc_gap(ring: &[(usize, f64)]) -> f64 {
+    ring.windows(2).map(|w| w[1].1 - w[0].1).fold(0.0, f64::max)
+}
+
+/// An arc sorted by angle in (-π, π], restarted after its largest gap so that the angles
+/// increase along it (an arc across ±π stays in one piece).
+fn unwrap_arc(ring: Vec<(usize, f64)>) -> Vec<(usize, f64)> {
+    let n = ring.len();
+    if n < 2 {
+        return ring;
+    }
+    let tau = std::f64::consts::TAU;
+    let gap = |i: usize| {
+        if i + 1 < n {
+            ring[i + 1].1 - ring[i].1
+        } else {
+            ring[0].1 + tau - ring[n - 1].1
+        }
+    };
+    let widest = (0..n)
+        .max_by(|&a, &b| gap(a).total_cmp(&gap(b)))
+        .unwrap_or(n - 1);
+    let start = (widest + 1) % n;
+    (0..n)
+        .map(|k| {
+            let (i, t) = ring[(start + k) % n];
+            (i, if start + k >= n { t + tau } else { t })
+        })
+        .collect()
+}
+
+fn face_set<'a>(part: &ReducedPart, mesh: &'a Mesh) -> Result<&'a [u32]> {
+    let name = part
+        .info
+        .build
+        .as_ref()
+        .map_or("CONTACT_FACE", |b| b.contact_face_set.as_str());
+    mesh.node_set(name).ok_or_else(|| {
+        PipelineError::input(
+            "mode shapes",
+            format!("the {} mesh has no node set {name}", part.info.name),
+        )
+    })
+}
+
+fn rings(rom: &ReducedModel, disc: &Mesh, pad: &Mesh) -> Result<Rings> {
+    let dp = rom
+        .part("disc")
+        .ok_or(PipelineError::NoPart { part: "disc" })?;
+    let pp = rom
+        .part("pad")
+        .ok_or(PipelineError::NoPart { part: "pad" })?;
+    let axis = dp
+        .info
+        .build
+        .as_ref()
+        .map_or_else(Axis::default, |b| b.axis);
+    let face = face_set(dp, disc)?;
+    if face.is_empty() {
+        return Err(PipelineError::input(
+            "mode shapes",
+            "the disc's contact face set is empty",
+        ));
+    }
+    let cyl: Vec<(f64, f64, f64)> = face
+        .iter()
+        .map(|&i| cylindrical(&axis, disc.nodes[i as usize]))
+        .collect();
+    let axial = cyl.iter().map(|c| c.0).sum::<f64>() / cyl.len() as f64;
+    let r_lo = cyl.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
+    let r_hi = cyl.iter().map(|c| c.1).fold(0.0, f64::max);
+    let r_mid = 0.5 * (r_lo + r_hi);
+    let all: Vec<usize> = (0..disc.num_nodes()).collect();
+    let disc_ring = ring_nodes(disc, &axis, axial, r_mid, &all, true);
+    let pad_face: Vec<usize> = face_set(pp, pad)?.iter().map(|&i| i as usize).collect();
+    let pad_axial = pad_face
+        .first()
+        .map(|&i| cylindrical(&axis, pad.nodes[i]).0)
+        .unwrap_or(axial);
+    let pad_ring: Vec<(usize, f64)> = ring_nodes(pad, &axis, pad_axial, r_mid, &pad_face, false)
+        .into_iter()
+        .map(|(i, t)| (i, t * r_mid))
+        .collect();
+    if disc_ring.len() < 8 || pad_ring.len() < 3 {
+        return Err(PipelineError::input(
+            "mode shapes",
+            format!(
+                "too few nodes on the braking-face circle at r = {r_mid:.4} m ({} on the disc, {} on the pad)",
+                disc_ring.len(),
+                pad_ring.len()
+            ),
+        ));
+    }
+    Ok(Rings {
+        axis,
+        disc: disc_ring,
+        pad: pad_ring,
+    })
+}
+
+/// The shape measures of a brake mode `x` (reduced coordinates, disc then pad).
+fn summarize(
+    s: &Model,
+    meshes: (&Mesh, &Mesh),
+    r: &Rings,
+    x: &[c64],
+    f_hz: f64,
+) -> Result<ShapeSummary> {
+    let dp = s
+        .rom
+        .part("disc")
+        .ok_or(PipelineError::NoPart { part: "disc" })?;
+    let pp = s
+        .rom
+        .part("pad")
+        .ok_or(PipelineError::NoPart { part: "pad" })?;
+    let e = unit(r.axis.direction);
+    let ud = expand_complex(dp, meshes.0, &s.disc_mesh, &x[s.layout.disc.clone()])?;
+    let up = expand_complex(pp, meshes.1, &s.pad_mesh, &x[s.layout.pad.clone()])?;
+    let axial = |u: &[c64], i: usize| u[3 * i] * e[0] + u[3 * i + 1] * e[1] + u[3 * i + 2] * e[2];
+    let w: Vec<c64> = r.disc.iter().map(|&(i, _)| axial(&ud, i)).collect();
+    let angles: Vec<f64> = r.disc.iter().map(|&(_, t)| t).collect();
+    let orders = circumferential_orders(&angles, &w, 12)?;
+    let total: f64 = r
+        .disc
+        .iter()
+        .map(|&(i, _)| (0..3).map(|d| ud[3 * i + d].norm_sqr()).sum::<f64>())
+        .sum();
+    let out: f64 = w.iter().map(|v| v.norm_sqr()).sum();
+    let wp: Vec<c64> = r.pad.iter().map(|&(i, _)| axial(&up, i)).collect();
+    let sp: Vec<f64> = r.pad.iter().map(|&(_, s)| s).collect();
+    Ok(ShapeSummary {
+        frequency_hz: f_hz,
+        disc_energy: energy_share(&s.brake.m, x, s.layout.disc.clone()),
+        orders,
+        out_of_plane: if total > 0.0 { out / total } else { 0.0 },
+        pad: pad_profile(&sp, &wp)?,
+    })
+}
+
+/// Prints and writes which modes couple at μ0: the two frictionless modes of the pair and the
+/// unstable mode at μ0, expanded on the meshes.
+fn coupled_modes(s: &Model, st: &Stability, dir: &Path, log: Log) -> Result<()> {
+    let (Some(h), Some((m1, m2))) = (&st.sweep.hopf, st.pair) else {
+        return Ok(());
+    };
+    let disc = read_mesh(&s.disc_mesh, log)?;
+    let pad = read_mesh(&s.pad_mesh, log)?;
+    let r = rings(&s.rom, &disc, &pad)?;
+    let basis = &st.reference.basis;
+    let real = |m: usize| -> Vec<c64> {
+        (0..basis.phi.nrows())
+            .map(|i| c64::new(basis.phi[(i, m)], 0.0))
+            .collect()
+    };
+    let hz = |m: usize| basis.omega[m] / (2.0 * std::f64::consts::PI);
+    let mode1 = summarize(s, (&disc, &pad), &r, &real(m1), hz(m1))?;
+    let mode2 = summarize(s, (&disc, &pad), &r, &real(m2), hz(m2))?;
+    let unstable = summarize(
+        s,
+        (&disc, &pad),
+        &r,
+        &h.point.spectrum.shape(basis, h.index),
+        h.frequency_hz,
+    )?;
+    let verdict = coupling(&mode1, &mode2);
+    let text = format!(
+        "Coupled modes at mu0 = {:.6} (shapes expanded on the meshes; disc: out-of-plane motion on the braking face's mid-radius circle, {} nodes, largest gap {:.1} deg; pad: {} friction-face nodes along its length):\n  Mode 1 (frictionless #{}, stays stable): {}\n  Mode 2 (frictionless #{}, goes unstable): {}\n  unstable mode at mu0: {}\n  => {}\n",
+        h.mu0,
+        r.disc.len(),
+        max_gap(&r.disc).to_degrees(),
+        r.pad.len(),
+        m1 + 1,
+        mode1.describe(),
+        m2 + 1,
+        mode2.describe(),
+        unstable.describe(),
+        verdict
+    );
+    log(&format!("\n{text}"));
+    create_dir(dir)?;
+    squeal_io::atomic_write_bytes(&dir.join("coupled_modes.txt"), text.as_bytes())?;
+    let json = |name: &str, m: Option<usize>, v: &ShapeSummary| {
+        serde_json::json!({
+            "mode": name,
+            "frictionless_mode_1based": m.map(|m| m + 1),
+            "frequency_hz": v.frequency_hz,
+            "nodal_diameters": v.nodal_diameters(),
+            "order_shares": v.orders.shares,
+            "out_of_plane_share": v.out_of_plane,
+            "disc_kinetic_energy_share": v.disc_energy,
+            "pad": v.pad_kind(),
+            "pad_straight_line_share": v.pad.rigid_share,
+            "pad_sign_changes": v.pad.sign_changes,
+        })
+    };
+    let all = serde_json::json!({
+        "mu0": h.mu0,
+        "verdict": verdict,
+        "modes": [json("Mode 1", Some(m1), &mode1), json("Mode 2", Some(m2), &mode2), json("unstable at mu0", None, &unstable)],
+    });
+    squeal_io::atomic_write_bytes(
+        &dir.join("coupled_modes.json"),
+        json_text(&all, "the coupled modes")?.as_bytes(),
+    )?;
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------
+// Mesh convergence
+
+/// `dir/disc_medium.inp` with level `coarse` -> `dir/disc_coarse.inp`.
+fn level_path(p: &Path, level: &str) -> Result<PathBuf> {
+    let stem = p
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let Some((base, _)) = stem.rsplit_once('_') else {
+        return Err(PipelineError::input(
+            "mesh study",
+            format!(
+                "{}: the mesh study needs mesh files named <name>_<level> (e.g. disc_medium.inp)",
+                p.display()
+            ),
+        ));
+    };
+    let ext = p
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    Ok(p.with_file_name(format!("{base}_{level}{ext}")))
+}
+
+struct MeshModel {
+    level: String,
+    interface: &'static str,
+    nodes: usize,
+    brake: Brake,
+    sweep: SweepOptions,
+}
+
+/// The scene with other meshes, interface and a cached .rom in the study folder.
+fn variant(scene: &Scene, level: &str, interface: &str, dir: &Path) -> Result<Scene> {
+    let mut v = Scene::read(&scene.path)?;
+    let abs = |p: PathBuf| std::path::absolute(&p).unwrap_or(p);
+    v.file.model.disc = abs(level_path(&scene.resolve(&scene.file.model.disc), level)?);
+    v.file.model.pad = abs(level_path(&scene.resolve(&scene.file.model.pad), level)?);
+    v.file.model.interface = Spanned::new(0..0, interface.to_string());
+    v.file.model.rom = Some(abs(dir.join(format!("brake_{level}_{interface}.rom"))));
+    Ok(v)
+}
+
+fn total_nodes(rom: &ReducedModel) -> usize {
+    rom.parts.iter().map(|p| p.info.mesh.nodes).sum()
+}
+
+/// The node-contact brake of a level: each pair's stiffness per area times the area of the
+/// patch whose centre its node is (from the patch brake of the same meshes), so both contacts
+/// carry the same total stiffness.
+fn node_brake(rom: &ReducedModel, patch: &Model) -> Result<Brake> {
+    let params = squeal_brake::assemble::BrakeParams {
+        stiffness: match patch.params.stiffness {
+            Stiffness::PerArea { linear, cubic, .. } => Stiffness::PerArea {
+                linear,
+                cubic,
+                point_area: Some(1.0),
+            },
+            other => other,
+        },
+        ..patch.params.clone()
+    };
+    let (mut brake, _, _) =
+        assemble(rom, &params).with_context(|| "assembling the node-contact brake".into())?;
+    for p in &mut brake.pairs {
+        let near = patch
+            .brake
+            .pairs
+            .iter()
+            .min_by(|a, b| dist(a.position, p.position).total_cmp(&dist(b.position, p.position)))
+            .ok_or_else(|| {
+                PipelineError::input("mesh study", "the patch brake has no contact pairs")
+            })?;
+        let d = dist(near.position, p.position);
+        if d > 0.25 * min_spacing(&patch.brake) {
+            return Err(PipelineError::input(
+                "mesh study",
+                format!(
+                    "node contact point at ({:.4}, {:.4}, {:.4}) is {d:.2e} m from the nearest patch centre: the node and patch interfaces do not match",
+                    p.position[0], p.position[1], p.position[2]
+                ),
+            ));
+        }
+        p.law = near.law.clone();
+    }
+    Ok(brake)
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn min_spacing(b: &Brake) -> f64 {
+    let mut m = f64::INFINITY;
+    for (i, p) in b.pairs.iter().enumerate() {
+        for q in &b.pairs[i + 1..] {
+            m = m.min(dist(p.position, q.position));
+        }
+    }
+    m
+}
+
+fn mesh_study(scene: &Scene, dir: &Path, mus: &[f64], levels: &[String], log: Log) -> Result<()> {
+    if levels.is_empty() {
+        return Err(PipelineError::input(
+            "--levels",
+            "give at least one mesh level",
+        ));
+    }
+    let mdir = dir.join("mesh");
+    create_dir(&mdir)?;
+    let mut models = Vec::new();
+    let mut damping = None;
+    for level in levels {
+        // Reductions one after the other (each is parallel inside and needs the memory).
+        let pv = variant(scene, level, "patch", &mdir)?;
+        let ps = build(&pv, &mdir, log).with_context(|| format!("{level} meshes, patch"))?;
+        let nv = variant(scene, level, "node", &mdir)?;
+        let (nrom, _) =
+            reduced_model(&nv, &mdir, log).with_context(|| format!("{level} meshes, node"))?;
+        let nb = node_brake(&nrom, &ps)?;
+        damping.get_or_insert(ps.damping);
+        models.push(MeshModel {
+            level: level.clone(),
+            interface: "node",
+            nodes: total_nodes(&nrom),
+            brake: nb,
+            sweep: SweepOptions {
+                band: squeal_brake::sweep::Band {
+                    valid_max_hz: valid_max_hz(&nrom),
+                    ..ps.sweep.band
+                },
+                ..ps.sweep
+            },
+        });
+        models.push(MeshModel {
+            level: level.clone(),
+            interface: "patch",
+            nodes: total_nodes(&ps.rom),
+            brake: ps.brake,
+            sweep: ps.sweep,
+        });
+    }
+    let damping = damping.ok_or_else(|| PipelineError::input("--levels", "no mesh level"))?;
+    log(&format!(
+        "mesh study: {} stability analyses in parallel ...",
+        models.len()
+    ));
+    let results: Vec<Result<CaseOutcome>> = models
+        .par_iter()
+        .map(|m| {
+            let st = stability(&m.brake, &damping, mus, &m.sweep)
+                .with_context(|| format!("{} meshes, {} contact", m.level, m.interface))?;
+            Ok(outcome(&Case::default(), &st))
+        })
+        .collect();
+    let mut t = Table::new([
+        "level",
+        "interface",
+        "nodes",
+        "mu0",
+        "frequency_hz",
+        "mode1",
+        "mode1_hz",
+        "mode2",
+        "mode2_hz",
+        "mu0_change_from_previous_level",
+        "frequency_change_from_previous_level",
+    ]);
+    // (interface, (dofs, mu0) points, (dofs, frequency) points)
+    #[allow(clippy::type_complexity)]
+    let mut points: Vec<(&'static str, Vec<(f64, f64)>, Vec<(f64, f64)>)> =
+        vec![("patch", vec![], vec![]), ("node", vec![], vec![])];
+    let mut failures = Vec::new();
+    for iface in ["patch", "node"] {
+        let mut prev: Option<(f64, f64)> = None;
+        for (m, r) in models.iter().zip(&results) {
+            if m.interface != iface {
+                continue;
+            }
+            let o = match r {
+                Ok(o) => o,
+                Err(e) => {
+                    // A model without a Hopf point in the band is a result (node contact on
+                    // fine meshes), not a failure of the study: the row says so. Any other
+                    // error is a failure, and the row says that.
+                    let none = no_hopf_point(e);
+                    failures.push(if none {
+                        format!(
+                            "{} meshes, {iface}: no Hopf point in the band ({e})",
+                            m.level
+                        )
+                    } else {
+                        format!("{} meshes, {iface}: the analysis failed: {e}", m.level)
+                    });
+                    let mut row = vec![m.level.clone(), iface.to_string(), m.nodes.to_string()];
+                    row.push(if none { "none" } else { "failed" }.into());
+                    row.extend(std::iter::repeat_n("-".to_string(), 7));
+                    t.push_row(row);
+                    prev = None;
+                    continue;
+                }
+            };
+            let change = |now: Option<f64>, before: Option<f64>| {
+                now.zip(before).map_or("-".into(), |(a, b)| {
+                    format!("{:+.2}%", 100.0 * (a / b - 1.0))
+                })
+            };
+            t.push_row([
+                m.level.clone(),
+                iface.to_string(),
+                m.nodes.to_string(),
+                opt(o.mu0, 6),
+                opt(o.frequency_hz, 6),
+                o.pair.map_or("-".into(), |p| format!("#{}", p.0 + 1)),
+                opt(o.pair_hz.map(|p| p.0), 5),
+                o.pair.map_or("-".into(), |p| format!("#{}", p.1 + 1)),
+                opt(o.pair_hz.map(|p| p.1), 5),
+                change(o.mu0, prev.map(|p| p.0)),
+                change(o.frequency_hz, prev.map(|p| p.1)),
+            ]);
+            if let (Some(mu0), Some(f)) = (o.mu0, o.frequency_hz) {
+                prev = Some((mu0, f));
+                let k = usize::from(iface == "node");
+                points[k].1.push((m.nodes as f64, mu0));
+                points[k].2.push((m.nodes as f64, f));
+            } else {
+                prev = None;
+            }
+        }
+    }
+    let t = t.align_numbers_right();
+    log("\nMesh convergence of the Hopf point (patch and node contact):");
+    log(&t.to_text());
+    for f in &failures {
+        log(f);
+    }
+    t.write_csv(&dir.join("mesh.csv"))?;
+    squeal_io::atomic_write_bytes(&dir.join("mesh.md"), t.to_markdown().as_bytes())?;
+    let panel = |title: &str, y: &str, k: usize| Panel {
+        title: title.into(),
+        x_label: "nodes (disc + pad)".into(),
+        y_label: y.into(),
+        x_scale: Scale::Log,
+        series: points
+            .iter()
+            .map(|p| {
+                Series::line_markers(
+                    format!("{} contact", p.0),
+                    if k == 0 { p.1.clone() } else { p.2.clone() },
+                )
+            })
+            .collect(),
+        ..Panel::default()
+    };
+    let fig = Figure {
+        title: "Mesh convergence of the Hopf point".into(),
+        panels: vec![
+            panel("(a) mu0", "mu0", 0),
+            panel("(b) frequency at mu0", "frequency (Hz)", 1),
+        ],
+        ..Figure::default()
+    };
+    write_svg_and_png(&fig, &dir.join("mesh"))?;
+    Ok(())
+}
+
+/// Creates a folder (and its parents), naming it in the error.
+fn create_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|source| PipelineError::File {
+        what: "creating the folder",
+        path: dir.to_path_buf(),
+        source,
+    })
+}
+
+/// Whether an analysis stopped because the brake has no Hopf point in the band (a result),
+/// rather than because something failed.
+fn no_hopf_point(e: &PipelineError) -> bool {
+    match e {
+        PipelineError::Context { source, .. } => no_hopf_point(source),
+        PipelineError::Brake(squeal_brake::BrakeError::NoPairFound)
+        | PipelineError::NoHopfPoint { .. } => true,
+        _ => false,
+    }
+}

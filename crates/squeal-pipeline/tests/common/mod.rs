@@ -1,0 +1,79 @@
+//! The bundled scene (`meshes/brake.toml`) on another mesh level, built by the production
+//! builder ([`squeal_pipeline::model::build`]): the coarse brake of the sweep tests and the
+//! benchmarks (158 dofs: patch contact, 50 fixed-interface modes per part, the compression
+//! curve's `k_l = 1.25e10 Pa/m`, `k_nl = 2.0e19 Pa/m³`, 3 kN of piston force).
+
+#![allow(dead_code)]
+
+use squeal_brake::equilibrium::NewtonOptions;
+use squeal_brake::modal::Damping;
+use squeal_brake::spectrum::Reference;
+use squeal_brake::sweep::{SweepOptions, reference};
+use squeal_pipeline::model::{Model, build, quiet};
+use squeal_scene::Scene;
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
+/// The repository's `meshes` folder.
+pub fn meshes() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes")
+}
+
+/// `meshes/brake.toml` with its disc and pad at `level`, read as if it were
+/// `meshes/brake_<level>.toml` (paths stay relative to `meshes`).
+pub fn bundled_scene(level: &str) -> Scene {
+    let path = meshes().join("brake.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut replaced = 0;
+    let text: String = text
+        .lines()
+        .map(|l| {
+            for part in ["disc", "pad"] {
+                if l.starts_with(&format!("{part} = ")) {
+                    replaced += 1;
+                    return format!("{part} = \"{part}_{level}.inp\"\n");
+                }
+            }
+            format!("{l}\n")
+        })
+        .collect();
+    // A test must not silently run the scene's own (medium) meshes.
+    assert_eq!(replaced, 2, "meshes/brake.toml lost its disc/pad lines");
+    Scene::parse(&meshes().join(format!("brake_{level}.toml")), text).unwrap()
+}
+
+/// The coarse brake and its frictionless reference with the scene's global damping only.
+pub struct Coarse {
+    pub model: Model,
+    pub reference: Reference,
+}
+
+fn make() -> Coarse {
+    let scene = bundled_scene("coarse");
+    let out = std::env::temp_dir().join(format!("squeal-pipeline-coarse-{}", std::process::id()));
+    let model = build(&scene, &out, &quiet).unwrap();
+    let damping = Damping {
+        global_ratio: model.damping.global_ratio,
+        extra: vec![],
+    };
+    let reference = reference(&model.brake, &damping, &NewtonOptions::default()).unwrap();
+    Coarse { model, reference }
+}
+
+/// The coarse brake, built on first use (a few seconds).
+pub fn coarse() -> &'static Coarse {
+    static BRAKE: OnceLock<Coarse> = OnceLock::new();
+    BRAKE.get_or_init(make)
+}
+
+/// Sweep options of the bundled scene on the coarse brake.
+pub fn options(c: &Coarse) -> SweepOptions {
+    c.model.sweep
+}
+
+/// `count` friction values evenly spaced on `[lo, hi]`.
+pub fn mus(lo: f64, hi: f64, count: usize) -> Vec<f64> {
+    (0..count)
+        .map(|k| lo + (hi - lo) * k as f64 / (count - 1) as f64)
+        .collect()
+}

@@ -1,0 +1,158 @@
+//! Headline results of the bundled coarse brake, pinned before the core restructuring (issue 9)
+//! so that it provably changes no number: the Hopf point μ0 and its frequency, the second
+//! crossing, and the CHBM limit cycle at 1.01 μ0 with 3 and 10 harmonics.
+//!
+//! The values were first pinned with the code of commit f709a63 (before the restructuring) by
+//! exactly these commands, and the restructured code reproduced them within these tolerances.
+//! They were pinned again once, when curved tet10 elements got an exact stiffness rule
+//! (issue 12: the old 4-point rule is exact only for straight elements), which moved the
+//! model itself: μ0 0.4617136858 → 0.4618226613 (+2.36e-4), its frequency 4061.1585 →
+//! 4061.4806 Hz, the second crossing 0.7744594185 → 0.7743371648 at 2951.02 → 2951.58 Hz,
+//! CHBM at 1.01 μ0 4006.4751 → 4006.7783 Hz (3 harmonics) and 4006.5917 → 4006.8951 Hz (10).
+//! Each tolerance says what it allows for: these are round-off and solver-tolerance bounds, not
+//! modelling allowances.
+
+mod common;
+
+use common::{bundled_scene, squeal, temp_dir};
+use std::path::Path;
+
+/// μ0 and its frequency: `squeal stability` refines μ0 to a bracket of 1e-8 (5.0e-9 measured).
+const MU0: f64 = 0.461_822_661_259_084_17;
+const MU0_HZ: f64 = 4_061.480_623_728_935_4;
+/// The second crossing (branch of the 2951 Hz mode), refined as the first crossing of a sweep
+/// over [0.770, 0.775] with the coalescing pair given as modes 14 and 13 (which "auto" picks).
+const MU1: f64 = 0.774_337_164_8;
+const MU1_HZ: f64 = 2_951.58;
+/// CHBM at 1.01 μ0: frequency and the largest first-harmonic amplitude over the 158 reduced
+/// dofs (m), with 3 and with 10 harmonics.
+const CHBM_MU: f64 = 0.466_440_887_871_675_04;
+const CHBM: [(usize, f64, f64); 2] = [
+    (3, 4_006.778_289_407_489, 2.127_116_234_139_730_4e-5),
+    (10, 4_006.895_130_657_160_7, 2.124_555_317_780_356_3e-5),
+];
+
+fn json(path: &Path) -> serde_json::Value {
+    let text =
+        std::fs::read_to_string(path).unwrap_or_else(|e| panic!("reading {}: {e}", path.display()));
+    serde_json::from_str(&text).unwrap()
+}
+
+fn number(v: &serde_json::Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} missing in {v}"))
+}
+
+fn run_ok(args: &[&str]) -> String {
+    let out = squeal(args);
+    assert!(
+        out.status.success(),
+        "squeal {args:?} failed:\n{}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+#[test]
+fn coarse_brake_headline_numbers_are_unchanged() {
+    let dir = temp_dir("regression", "coarse");
+    let scene = dir.join("brake.toml");
+    let text = bundled_scene("coarse");
+    std::fs::write(&scene, &text).unwrap();
+    let out = dir.join("out");
+    let (scene_s, out_s) = (scene.to_str().unwrap(), out.to_str().unwrap());
+
+    run_ok(&["stability", scene_s, "--out", out_s, "--no-vtu"]);
+    let summary = json(&out.join("stability/summary.json"));
+    let (mu0, f0) = (number(&summary, "mu0"), number(&summary, "frequency_hz"));
+    // μ0 is the midpoint of a bracket narrower than 1e-8: any reordering of the arithmetic
+    // moves it by far less than the bracket.
+    assert!((mu0 - MU0).abs() < 1e-8, "mu0 = {mu0}, pinned {MU0}");
+    // The frequency varies by ~60 Hz per unit μ near μ0 (4061.16 Hz at μ0, 4061.75 Hz at
+    // 0.465): a 1e-8 change of μ0 moves it by ~1e-6 Hz. 1e-8 relative (4e-5 Hz) allows that.
+    assert!(
+        (f0 / MU0_HZ - 1.0).abs() < 1e-8,
+        "f0 = {f0}, pinned {MU0_HZ}"
+    );
+
+    // The second crossing, refined by the same root finder.
+    let pair_scene = dir.join("brake_pair.toml");
+    std::fs::write(
+        &pair_scene,
+        text.replace("pair = \"auto\"", "pair = [14, 13]"),
+    )
+    .unwrap();
+    let out2 = dir.join("out_second");
+    std::fs::create_dir_all(&out2).unwrap();
+    std::fs::copy(out.join("brake.rom"), out2.join("brake.rom")).unwrap();
+    run_ok(&[
+        "stability",
+        pair_scene.to_str().unwrap(),
+        "--mu",
+        "0.77:0.775:11",
+        "--out",
+        out2.to_str().unwrap(),
+        "--no-vtu",
+    ]);
+    let second = json(&out2.join("stability/summary.json"));
+    let (mu1, f1) = (number(&second, "mu0"), number(&second, "frequency_hz"));
+    // Bracket 5.5e-9 wide; the pinned value has 10 digits.
+    assert!(
+        (mu1 - MU1).abs() < 1e-8,
+        "second crossing mu = {mu1}, pinned {MU1}"
+    );
+    // Pinned to the 6 digits printed (2951.58 Hz): 5e-3 Hz.
+    assert!(
+        (f1 - MU1_HZ).abs() < 5e-3,
+        "second crossing f = {f1}, pinned {MU1_HZ}"
+    );
+
+    for (h, f_pin, a_pin) in CHBM {
+        let out_h = dir.join(format!("out_h{h}"));
+        std::fs::create_dir_all(&out_h).unwrap();
+        std::fs::copy(out.join("brake.rom"), out_h.join("brake.rom")).unwrap();
+        run_ok(&[
+            "chbm",
+            scene_s,
+            "--mu-ratio",
+            "1.01",
+            "--harmonics",
+            &h.to_string(),
+            "--out",
+            out_h.to_str().unwrap(),
+            "--no-vtu",
+        ]);
+        let c = json(&out_h.join("chbm/chbm.json"));
+        let mu = number(&c, "mu");
+        assert!(
+            (mu - CHBM_MU).abs() < 1e-8,
+            "CHBM mu = {mu}, pinned {CHBM_MU}"
+        );
+        let f = number(&c, "frequency_hz");
+        // CHBM stops at ||f1|| <= 1e-9 ||F_eq|| (measured 4e-11): the cycle is a root of the
+        // harmonic balance to that accuracy, which bounds its frequency to ~1e-9 relative.
+        // 1e-7 relative (0.4 mHz) leaves room for a different iteration path to the same root.
+        assert!(
+            (f / f_pin - 1.0).abs() < 1e-7,
+            "H = {h}: f = {f}, pinned {f_pin}"
+        );
+        let n = number(&c, "dofs") as usize;
+        let coeffs: Vec<f64> = c["coefficients"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        let a = (0..n)
+            .map(|j| coeffs[n + j].hypot(coeffs[2 * n + j]))
+            .fold(0.0, f64::max);
+        // Same argument for the amplitude: 1e-6 relative.
+        assert!(
+            (a / a_pin - 1.0).abs() < 1e-6,
+            "H = {h}: amplitude {a}, pinned {a_pin}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
