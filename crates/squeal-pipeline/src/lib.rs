@@ -58,8 +58,12 @@ pub struct Pipeline<'a> {
 impl<'a> Pipeline<'a> {
     /// The pipeline of `scene` writing into `out`, sweeping the scene's friction values;
     /// `log` is told what happens.
+    ///
+    /// The outputs are checked first: `out` must be a folder that can be written, and the
+    /// reduced model's file must end in `.rom` and be neither the scene nor a mesh.
     pub fn new(scene: Scene, out: PathBuf, log: Log<'a>) -> Result<Self> {
         let mus = scene.mu_values()?;
+        model::check_outputs(&scene, &out)?;
         Ok(Self {
             scene,
             out,

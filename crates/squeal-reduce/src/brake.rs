@@ -403,11 +403,21 @@ pub fn reduce_brake_loaded(
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     let t0 = Instant::now();
     inputs.validate()?;
+    // Errors in a part name its mesh file.
+    let in_mesh = |input: &PartInput| {
+        let path = input.mesh.clone();
+        move |e: ReduceError| ReduceError::InMesh {
+            path,
+            error: Box::new(e),
+        }
+    };
     for (loaded, (name, input)) in [&disc, &pad].into_iter().zip(inputs.parts()) {
-        check_sets(&loaded.mesh, name, input, inputs)?;
+        check_sets(&loaded.mesh, name, input, inputs).map_err(in_mesh(input))?;
     }
-    let disc_points = contact_positions(&disc.mesh, &inputs.disc, inputs)?;
-    let pad_points = contact_positions(&pad.mesh, &inputs.pad, inputs)?;
+    let disc_points =
+        contact_positions(&disc.mesh, &inputs.disc, inputs).map_err(in_mesh(&inputs.disc))?;
+    let pad_points =
+        contact_positions(&pad.mesh, &inputs.pad, inputs).map_err(in_mesh(&inputs.pad))?;
     let (pairs, tolerance) = pair_contact_points(
         &disc_points,
         &pad_points,
@@ -417,11 +427,13 @@ pub fn reduce_brake_loaded(
     let mut parts = Vec::with_capacity(2);
     let mut reports = Vec::with_capacity(2);
     for (loaded, (name, input)) in [disc, pad].into_iter().zip(inputs.parts()) {
-        let materials = MaterialTable::from_mesh(&loaded.mesh, &input.material_overrides)?;
+        let materials = MaterialTable::from_mesh(&loaded.mesh, &input.material_overrides)
+            .map_err(|e| in_mesh(input)(e.into()))?;
         let spec = inputs.spec(name, input, loaded.info.clone());
         let (mut part, reduce) = reduce_part(&loaded.mesh, &materials, &spec, &opts, &mut |s| {
             progress(name, s)
-        })?;
+        })
+        .map_err(in_mesh(input))?;
         part.info.build = Some(inputs.record(input));
         parts.push(part);
         reports.push(PartReport {
