@@ -75,7 +75,7 @@ pub fn write(
         squeal_chbm::ChbmStart,
         squeal_brake::modal_brake::ModalBrake,
     )>,
-) -> Result<serde_json::Value> {
+) -> Result<squeal_pipeline::compare::CompareSummary> {
     let mu0 = p.mu0()?;
     let dir = p.out.join("compare");
     let t = std::time::Instant::now();

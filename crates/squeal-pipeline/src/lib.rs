@@ -16,7 +16,8 @@
 //!
 //! - [`model`]: the scene's reduced model (cached in a `.rom`) and brake.
 //! - [`stability`], [`chbm`], [`compare`], [`study`]: the analyses and their outputs.
-//! - [`shapes`]: reduced vectors expanded onto the meshes (VTU).
+//! - [`shapes`]: reduced vectors expanded onto the meshes (VTU); [`pictures`]: the same as
+//!   images for the report.
 //! - [`report`]: the report of a run.
 
 // Index loops over dofs read like the formulas they implement.
@@ -26,6 +27,7 @@ pub mod chbm;
 pub mod compare;
 mod error;
 pub mod model;
+pub mod pictures;
 pub mod report;
 pub mod shapes;
 pub mod stability;
