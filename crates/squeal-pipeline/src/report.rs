@@ -776,8 +776,9 @@ fn chbm_section(
     }
     Ok(Some(Section {
         heading: "Limit cycle (CHBM, sections 4-5)".into(),
-        text: "The self-excited vibration the brake settles into just above μ0, by the \
-               Constrained Harmonic Balance Method. Amplitudes are half the peak-to-peak relative \
+        text: "The periodic self-excited vibration just above μ0, by the Constrained Harmonic \
+               Balance Method (whether the brake settles into it is what the comparison with time \
+               integration checks; its stability is not computed here). Amplitudes are half the peak-to-peak relative \
                motion of the pad and disc points of each pair (normal: closure; tangential: \
                sliding velocity). Files: [chbm/coefficients.csv](chbm/coefficients.csv) (Fourier \
                coefficients of every dof), [chbm/chbm.json](chbm/chbm.json)."
