@@ -119,10 +119,10 @@ fn the_report_shows_both_instabilities_of_the_coarse_brake() {
 /// The whole job with the comparison at one friction level (1.1 μ0) and one tolerance besides
 /// the reference: Table 1 and 2 and the overlays in the report, and the time integration that
 /// did not reach a steady cycle (BDF at rtol 1e-5 on the coarse brake) said as such. About
-/// 4 minutes (the reference integration alone takes 2.5 on a shared machine): run with
-/// `cargo test --release --test report -- --ignored`.
+/// 2 minutes on an idle machine, 4 on a loaded one (the reference integration is most of it):
+/// run with `cargo test --release --test report -- --ignored`.
 #[test]
-#[ignore = "about 4 minutes: the reference time integration"]
+#[ignore = "about 2 to 4 minutes: the reference time integration"]
 fn the_report_has_the_comparison_tables_and_failures() {
     let dir = temp_dir("report", "compare");
     let scene = dir.join("brake.toml");
@@ -142,10 +142,10 @@ fn the_report_has_the_comparison_tables_and_failures() {
     assert_no_debug_formatting(&html, "index.html");
     assert!(html.contains("4061 Hz from μ ≈ 0.462; 2952 Hz from μ ≈ 0.772"));
     assert!(
-        html.contains("At 1.100 μ0 (μ = 0.508005): errors against the reference time integration (the paper's Table 1)"),
+        html.contains("At 1.100 μ0 (μ = 0.508005): errors against the reference time integration (the paper&#39;s Table 1)"),
         "{html}"
     );
-    assert!(html.contains("At 1.100 μ0: cost and storage (the paper's Table 2)"));
+    assert!(html.contains("At 1.100 μ0: cost and storage (the paper&#39;s Table 2)"));
     assert!(html.contains("src=\"compare/mu_1.100/limit_cycles.svg\""));
     for h in [
         "CHBM 1H",
