@@ -12,11 +12,20 @@ mod commands;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+/// The exit codes, as `squeal --help` lists them.
+const EXIT_CODES: &str = "Exit codes:
+  0  success
+  1  an error (the message names the file, and the line where there is one)
+  2  a usage error: an unknown option or a missing argument (the message shows the usage)
+  3  chbm, run: no limit cycle converged (the outputs are written and say why)
+  4  mesh info: a mesh has errors (inverted elements, ...), listed in the output";
+
 #[derive(Parser)]
 #[command(
     name = "squeal",
     version,
-    about = "Disc-brake squeal: meshes -> Craig-Bampton brake -> stability -> CHBM limit cycles"
+    about = "Disc-brake squeal: meshes -> Craig-Bampton brake -> stability -> CHBM limit cycles",
+    after_help = EXIT_CODES
 )]
 struct Cli {
     /// Worker threads (default: all cores). Results are bit-identical for any count.
@@ -76,8 +85,48 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(err) => {
-            eprintln!("error: {err:#}");
+            eprintln!("error: {}", message(&err));
             ExitCode::FAILURE
         }
+    }
+}
+
+/// The error and its causes joined by ": ", each piece once: a cause whose text its parent's
+/// message already contains (an error that shows its source in its own message) is skipped.
+fn message(err: &anyhow::Error) -> String {
+    let mut out = String::new();
+    for cause in err.chain() {
+        let text = cause.to_string();
+        if out.contains(&text) {
+            continue;
+        }
+        if !out.is_empty() {
+            out.push_str(": ");
+        }
+        out.push_str(&text);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Debug, thiserror::Error)]
+    #[error("reading x.toml: {source}")]
+    struct Repeats {
+        source: std::io::Error,
+    }
+
+    /// An error that shows its source in its own message (and `source()` returns it) prints
+    /// the reason once; context added by the command stays.
+    #[test]
+    fn each_piece_of_an_error_chain_is_printed_once() {
+        let os = std::io::Error::from(std::io::ErrorKind::NotFound);
+        let reason = os.to_string();
+        let err = anyhow::Error::from(Repeats { source: os }).context("the scene");
+        let shown = message(&err);
+        assert_eq!(shown.matches(&reason).count(), 1, "{shown}");
+        assert!(shown.starts_with("the scene: reading x.toml: "), "{shown}");
     }
 }

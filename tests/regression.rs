@@ -91,7 +91,7 @@ fn coarse_brake_headline_numbers_are_unchanged() {
         "stability",
         pair_scene.to_str().unwrap(),
         "--mu",
-        "0.77:0.775:11",
+        "0.77..0.775/11",
         "--out",
         out2.to_str().unwrap(),
         "--no-vtu",

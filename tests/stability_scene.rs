@@ -120,10 +120,10 @@ fn a_misspelt_interface_is_reported_with_its_key_and_line() {
 
 #[test]
 fn a_bad_friction_range_is_reported_with_its_key_and_line() {
-    for bad in ["\"1:0:5\"", "\"0:1\"", "[0.1, 0.05]"] {
+    for bad in ["\"1..0/5\"", "\"0:1:201\"", "\"0..1\"", "[0.1, 0.05]"] {
         let text = replace_line(
             &bundled_scene("coarse"),
-            "mu = \"0:1:",
+            "mu = \"0..1/",
             &format!("mu = {bad}"),
         );
         let (err, line) = scene_error("mu", &text, &format!("mu = {bad}"));
@@ -152,7 +152,7 @@ fn the_bundled_brake_squeals_in_band_on_the_coarse_meshes() {
         "stability",
         scene.to_str().unwrap(),
         "--mu",
-        "0:1:41",
+        "0..1/41",
         "--out",
         out_dir.to_str().unwrap(),
         "--no-vtu",

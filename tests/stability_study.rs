@@ -70,7 +70,7 @@ fn pair_damping_alone_destabilizes_the_other_modes_as_perturbation_theory_predic
         // Coarse: the nominal sweep only has to find the pair (mu0 = 0.46 on these meshes);
         // the paradox study adds its own small-friction grid.
         "--mu",
-        "0:0.5:11",
+        "0..0.5/11",
         "--out",
         out.to_str().unwrap(),
     ]);
@@ -135,7 +135,7 @@ fn the_mesh_study_reproduces_the_stability_command_on_the_same_meshes() {
         "--levels",
         "coarse",
         "--mu",
-        "0:0.5:11",
+        "0..0.5/11",
         "--out",
         s,
     ]);
@@ -143,7 +143,7 @@ fn the_mesh_study_reproduces_the_stability_command_on_the_same_meshes() {
         "stability",
         scene.to_str().unwrap(),
         "--mu",
-        "0:0.5:11",
+        "0..0.5/11",
         "--out",
         s,
         "--no-vtu",

@@ -53,8 +53,31 @@ pub fn options(harmonics: usize, samples: Option<usize>, plain: bool) -> Result<
     })
 }
 
+/// Checks the friction arguments before any work.
+pub fn check_friction(mu: Option<f64>, mu_ratio: Option<f64>) -> Result<()> {
+    if let Some(m) = mu
+        && !(m.is_finite() && m >= 0.0)
+    {
+        bail!("--mu {m}: the friction coefficient must be a number >= 0");
+    }
+    if let Some(r) = mu_ratio
+        && !(r.is_finite() && r > 1.0)
+    {
+        bail!(
+            "--mu-ratio {r}: must be above 1 (CHBM starts from the mode that is unstable above the Hopf point mu0)"
+        );
+    }
+    Ok(())
+}
+
 pub fn run(args: ChbmArgs) -> Result<ExitCode> {
     let opts = options(args.harmonics, args.samples, args.plain)?;
+    check_friction(args.mu, args.mu_ratio)?;
+    if let Some(a) = args.amplitude
+        && !(a.is_finite() && a > 0.0)
+    {
+        bail!("--amplitude {a}: must be a positive number");
+    }
     let p = pipeline(&args.scene, &args.out, &None)?;
     let amplitudes: Vec<f64> = args
         .amplitude

@@ -15,17 +15,18 @@ use std::process::ExitCode;
 pub struct CompareArgs {
     /// Scene file (TOML), e.g. meshes/brake.toml
     pub scene: PathBuf,
-    /// Friction levels as multiples of the Hopf point mu0 (comma-separated)
-    #[arg(long, value_delimiter = ',', default_values_t = CompareSettings::default().mu_ratios)]
+    /// Friction levels as multiples of the Hopf point mu0, a comma-separated list without
+    /// spaces, e.g. 1.01,1.05,1.1
+    #[arg(long, value_delimiter = ',', default_value = "1.01,1.1")]
     pub mu_ratio: Vec<f64>,
-    /// Harmonics of the CHBM solves (comma-separated)
-    #[arg(long, value_delimiter = ',', default_values_t = CompareSettings::default().harmonics)]
+    /// Harmonics of the CHBM solves, a comma-separated list, e.g. 1,3,5
+    #[arg(long, value_delimiter = ',', default_value = "1,2,3,5,10")]
     pub harmonics: Vec<usize>,
-    /// Tolerances of the time integrations on the speed-accuracy chart (comma-separated)
-    #[arg(long, value_delimiter = ',', default_values_t = CompareSettings::default().rtols)]
+    /// Tolerances of the time integrations on the speed-accuracy chart, a comma-separated list
+    #[arg(long, value_delimiter = ',', default_value = "1e-5,1e-6")]
     pub rtol: Vec<f64>,
     /// Tolerance of the reference time integration
-    #[arg(long, default_value_t = CompareSettings::default().reference_rtol)]
+    #[arg(long, default_value = "1e-7")]
     pub reference_rtol: f64,
     /// Initial perturbation of the time integration along the unstable mode, as a fraction of
     /// the smallest static penetration
@@ -74,7 +75,7 @@ pub fn write(
         squeal_chbm::ChbmStart,
         squeal_brake::modal_brake::ModalBrake,
     )>,
-) -> Result<serde_json::Value> {
+) -> Result<squeal_pipeline::compare::CompareSummary> {
     let mu0 = p.mu0()?;
     let dir = p.out.join("compare");
     let t = std::time::Instant::now();
@@ -90,4 +91,26 @@ pub fn write(
     p.record("comparison", t.elapsed().as_secs_f64());
     println!("\nresults in {}", dir.display());
     Ok(summary)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: CompareArgs,
+    }
+
+    /// The defaults shown by `--help` (written as text, so the list syntax reads as typed) are
+    /// the library's defaults.
+    #[test]
+    fn help_defaults_are_the_library_defaults() {
+        let cli = Cli::try_parse_from(["compare", "scene.toml"]).unwrap();
+        assert_eq!(cli.args.settings(), CompareSettings::default());
+        let cli = Cli::try_parse_from(["compare", "s.toml", "--mu-ratio", "1.02,1.2"]).unwrap();
+        assert_eq!(cli.args.mu_ratio, vec![1.02, 1.2]);
+    }
 }

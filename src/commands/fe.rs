@@ -60,7 +60,11 @@ impl MaterialArgs {
                 let [e, nu, rho] = v[..] else {
                     bail!("--material '{s}': expected three values E,nu,rho")
                 };
-                Ok((set.to_string(), ElasticMaterial::isotropic(e, nu, rho)))
+                let m = ElasticMaterial::isotropic(e, nu, rho);
+                // The same checks as the reduction's: E > 0, -1 < nu < 0.5, rho > 0.
+                m.elasticity()
+                    .with_context(|| format!("--material '{s}'"))?;
+                Ok((set.trim().to_string(), m))
             })
             .collect()
     }
@@ -95,6 +99,7 @@ pub fn run(cmd: FeCommand) -> Result<ExitCode> {
             args.format
         );
     }
+    squeal_io::require_folder(&args.out)?;
     let mesh = read_mesh(&args.mesh)?.mesh;
     let materials =
         MaterialTable::from_mesh(&mesh, &args.materials.overrides()?).with_context(|| {

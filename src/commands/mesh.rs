@@ -1,6 +1,6 @@
 //! `squeal mesh info` and `squeal mesh convert`.
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::Subcommand;
 use squeal_mesh::quality::{self, QualityOptions, Severity};
 use squeal_mesh::{Elastic, Mesh, ReadMesh};
@@ -38,20 +38,55 @@ pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
             materials,
         } => {
             let overrides = materials.overrides()?;
+            // Everything is read and checked before anything is printed: a bad file or a
+            // --material that fits none of the meshes is an error, not a footnote.
+            let mut read = Vec::with_capacity(files.len());
+            for f in &files {
+                let t = Instant::now();
+                let mesh = read_mesh(f)?;
+                read.push((f, mesh, t.elapsed()));
+            }
+            for (set, _) in &overrides {
+                if !read
+                    .iter()
+                    .any(|(_, r, _)| r.mesh.element_set(set).is_some())
+                {
+                    let known: Vec<&str> = read
+                        .iter()
+                        .flat_map(|(_, r, _)| r.mesh.element_sets.keys().map(String::as_str))
+                        .collect();
+                    bail!(
+                        "--material {set}=...: no element set {set} in {} (element sets: {})",
+                        files
+                            .iter()
+                            .map(|f| f.display().to_string())
+                            .collect::<Vec<_>>()
+                            .join(", "),
+                        if known.is_empty() {
+                            "none".to_string()
+                        } else {
+                            known.join(", ")
+                        }
+                    );
+                }
+            }
             let mut any_error = false;
-            for (k, f) in files.iter().enumerate() {
+            for (k, (f, mesh, elapsed)) in read.iter().enumerate() {
                 if k > 0 {
                     println!();
                 }
-                any_error |= info(f, all_ids, &overrides)?;
+                any_error |= info(f, mesh, *elapsed, all_ids, &overrides)?;
             }
+            // 4, not 2: clap exits 2 on a usage error.
             Ok(if any_error {
-                ExitCode::from(2)
+                ExitCode::from(4)
             } else {
                 ExitCode::SUCCESS
             })
         }
         MeshCommand::Convert { input, output } => {
+            squeal_io::require_extension(&output, "vtu", "VTK XML unstructured grids (.vtu)")?;
+            squeal_io::refuse_inputs(&output, &[(&input, "input mesh")])?;
             let read = read_mesh(&input)?;
             squeal_mesh::vtu::write_vtu(&output, &read.mesh, &[], &[])
                 .with_context(|| format!("writing {}", output.display()))?;
@@ -79,12 +114,11 @@ pub fn read_mesh(path: &Path) -> Result<ReadMesh> {
 /// Prints one mesh's summary; returns whether the quality checks found errors.
 fn info(
     path: &Path,
+    read: &ReadMesh,
+    elapsed: std::time::Duration,
     all_ids: bool,
     overrides: &[(String, squeal_fe::ElasticMaterial)],
 ) -> Result<bool> {
-    let t = Instant::now();
-    let read = read_mesh(path)?;
-    let elapsed = t.elapsed();
     let m = &read.mesh;
     println!("{}", path.display());
     println!(
@@ -101,7 +135,7 @@ fn info(
         );
     }
     print_sets(m);
-    print_materials(m);
+    print_materials(m, overrides);
     let report = quality::check(m, &QualityOptions::default());
     println!("  volume    {:.9e} m^3", report.volume);
     println!(
@@ -109,7 +143,7 @@ fn info(
         report.worst_jacobian_ratio
     );
     if !report.has_errors() {
-        print_fe(m, overrides);
+        print_fe(m, overrides)?;
     }
     if report.findings.is_empty() {
         println!("  quality   no findings");
@@ -127,17 +161,27 @@ fn info(
     Ok(report.has_errors())
 }
 
-/// Degrees of freedom, nonzeros of K and M (free part, no restraints) and the mass.
-fn print_fe(m: &Mesh, overrides: &[(String, squeal_fe::ElasticMaterial)]) {
+/// Degrees of freedom, nonzeros of K and M (free part, no restraints) and the mass. A
+/// material given with `--material` that is invalid (E <= 0, nu outside (-1, 0.5), ...) is an
+/// error, as in `squeal reduce`.
+fn print_fe(m: &Mesh, overrides: &[(String, squeal_fe::ElasticMaterial)]) -> Result<()> {
     use squeal_fe::{DofMap, ElasticMaterial, MaterialTable, Summary, assemble};
-    let (materials, known) = match MaterialTable::from_mesh(m, overrides) {
+    let mine: Vec<(String, ElasticMaterial)> = overrides
+        .iter()
+        .filter(|(set, _)| m.element_set(set).is_some())
+        .cloned()
+        .collect();
+    let (materials, known) = match MaterialTable::from_mesh(m, &mine) {
         Ok(t) => (t, true),
+        Err(e) if !mine.is_empty() => {
+            return Err(anyhow::anyhow!("--material: {e}"));
+        }
         // The sparsity pattern does not depend on the material: count it with a placeholder.
         Err(_) => match MaterialTable::uniform(m, ElasticMaterial::isotropic(1.0, 0.3, 1.0)) {
             Ok(t) => (t, false),
             Err(e) => {
                 println!("  fe        not assembled: {e}");
-                return;
+                return Ok(());
             }
         },
     };
@@ -167,6 +211,7 @@ fn print_fe(m: &Mesh, overrides: &[(String, squeal_fe::ElasticMaterial)]) {
         }
         Err(e) => println!("  fe        not assembled: {e:#}"),
     }
+    Ok(())
 }
 
 fn print_sets(m: &Mesh) {
@@ -195,12 +240,24 @@ fn print_sets(m: &Mesh) {
     }
 }
 
-fn print_materials(m: &Mesh) {
+fn print_materials(m: &Mesh, overrides: &[(String, squeal_fe::ElasticMaterial)]) {
+    let given: Vec<&(String, squeal_fe::ElasticMaterial)> = overrides
+        .iter()
+        .filter(|(set, _)| m.element_set(set).is_some())
+        .collect();
+    if !given.is_empty() {
+        println!("  materials given with --material (they replace the file's on their sets)");
+        for (set, mat) in given {
+            println!("    {set:<24} {}", describe(mat));
+        }
+    }
     if m.materials.is_empty() {
-        println!("  materials none in the file (give them on the command line or in a scene)");
+        if overrides.is_empty() {
+            println!("  materials none in the file (give them on the command line or in a scene)");
+        }
         return;
     }
-    println!("  materials");
+    println!("  materials in the file");
     for (name, mat) in &m.materials {
         let elastic = match mat.elastic {
             Some(Elastic::Isotropic { young, poisson }) => {
@@ -217,6 +274,18 @@ fn print_materials(m: &Mesh) {
             .map(|r| format!(", rho = {r} kg/m^3"))
             .unwrap_or_else(|| ", no density".into());
         println!("    {name:<24} {elastic}{rho}");
+    }
+}
+
+/// `E = .. Pa, nu = .., rho = .. kg/m^3` of a material given on the command line.
+fn describe(m: &squeal_fe::ElasticMaterial) -> String {
+    match *m {
+        squeal_fe::ElasticMaterial::Isotropic {
+            young,
+            poisson,
+            density,
+        } => format!("E = {young:.4e} Pa, nu = {poisson}, rho = {density} kg/m^3"),
+        _ => "anisotropic".to_string(),
     }
 }
 

@@ -79,7 +79,15 @@ pub fn run(args: ReduceArgs) -> Result<ExitCode> {
     // count; the large sparse factorizations get rayon's pool explicitly (BrakeInputs::par)
     // and do not. So the .rom is the same bits for any --threads.
     faer::set_global_parallelism(faer::Par::Seq);
+    squeal_io::require_extension(&args.output, "rom", "the reduced model (.rom)")?;
+    squeal_io::refuse_inputs(
+        &args.output,
+        &[(&args.disc, "disc mesh"), (&args.pad, "pad mesh")],
+    )?;
     let inputs = inputs(&args)?;
+    if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
+        squeal_io::check_writable(dir)?;
+    }
     let mut bars = StageBars::default();
     let (model, report) = reduce_brake(&inputs, &mut |part, stage| bars.start(part, stage))
         .context("reducing the brake")?;

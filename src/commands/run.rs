@@ -23,14 +23,26 @@ pub struct RunArgs {
     /// Skip the comparison with time integration (the slowest stage)
     #[arg(long)]
     pub no_compare: bool,
+    /// Friction levels of the comparison, as multiples of mu0 (a comma-separated list)
+    #[arg(long, value_delimiter = ',', default_value = "1.01,1.1")]
+    pub compare_mu_ratio: Vec<f64>,
+    /// Tolerances of the comparison's time integrations besides the reference (a
+    /// comma-separated list)
+    #[arg(long, value_delimiter = ',', default_value = "1e-5,1e-6")]
+    pub compare_rtol: Vec<f64>,
 }
 
 pub fn run(args: RunArgs) -> Result<ExitCode> {
     let t0 = Instant::now();
+    let settings = CompareSettings {
+        mu_ratios: args.compare_mu_ratio.clone(),
+        rtols: args.compare_rtol.clone(),
+        ..CompareSettings::default()
+    };
+    settings.validate()?;
     let p = stability::pipeline(&args.scene, &args.out, &None)?;
     let c = &p.scene.file.chbm;
     let opts = chbm::options(*c.harmonics.get_ref(), None, false)?;
-    let settings = CompareSettings::default();
 
     println!("== 1. reduced model");
     p.model()?;
@@ -52,6 +64,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         summary = Some(compare::write(&p, &settings, None)?);
     }
 
+    println!("\n== 5. report");
     let timings = p.timings();
     let results = RunResults {
         scene: &p.scene,
@@ -61,7 +74,8 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         compare: summary.as_ref(),
         timings: &timings,
     };
-    let notes = build(&results)
+    let notes = build(&results, &p.out, p.log())
+        .context("the report's pictures")?
         .write(&p.out)
         .context("writing the report")?;
     for n in notes {

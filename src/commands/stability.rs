@@ -14,7 +14,8 @@ use std::time::Instant;
 pub struct StabilityArgs {
     /// Scene file (TOML), e.g. meshes/brake.toml
     pub scene: PathBuf,
-    /// Friction values "start:end:count" (default: the scene's [stability] mu, else 0:1:201)
+    /// Friction values "start..end/count": count values from start to end, e.g. 0..1/201
+    /// (default: the scene's [stability] mu, else 0..1/201)
     #[arg(long)]
     pub mu: Option<String>,
     /// Output folder (default: out/<scene name>)

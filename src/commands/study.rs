@@ -31,7 +31,8 @@ pub struct StudyArgs {
     /// Output folder (default: out/<scene name>); results go to <out>/study
     #[arg(long, short)]
     pub out: Option<PathBuf>,
-    /// Friction values "start:end:count" (default: the scene's [stability] mu, else 0:1:201)
+    /// Friction values "start..end/count": count values from start to end, e.g. 0..1/201
+    /// (default: the scene's [stability] mu, else 0..1/201)
     #[arg(long)]
     pub mu: Option<String>,
     /// Mesh levels of --kind mesh: the scene's mesh files must end in _<level> (e.g.
@@ -43,6 +44,7 @@ pub struct StudyArgs {
 pub fn run(args: StudyArgs) -> Result<ExitCode> {
     let scene = Scene::read(&args.scene)?;
     let out = args.out.clone().unwrap_or_else(|| default_out(&args.scene));
+    squeal_pipeline::model::check_outputs(&scene, &out)?;
     let mus = match &args.mu {
         Some(r) => parse_range(r).map_err(anyhow::Error::msg).context("--mu")?,
         None => scene.mu_values()?,

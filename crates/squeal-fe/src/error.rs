@@ -21,7 +21,7 @@ pub enum MaterialError {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ElementError {
     #[error(
-        "Jacobian determinant {det:e} is not positive at quadrature point {point} \
+        "Jacobian determinant {det:.3e} is not positive at quadrature point {point} \
          (inverted element, or midside nodes curved too far)"
     )]
     NonPositiveJacobian { point: usize, det: f64 },

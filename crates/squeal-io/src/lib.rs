@@ -9,7 +9,10 @@
 //! MATLAB (`mmread`), SciPy (`scipy.io.mmread`) and Julia read.
 
 pub mod csv;
+pub mod guard;
 pub mod mtx;
+
+pub use guard::{OutputError, check_writable, refuse_inputs, require_extension, require_folder};
 
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};

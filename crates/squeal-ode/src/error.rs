@@ -26,7 +26,7 @@ pub enum OdeError {
     },
     /// The initial state, the right-hand side or the Jacobian produced NaN or
     /// infinity, and reducing the step size did not cure it.
-    #[error("non-finite {what} at t = {t}")]
+    #[error("non-finite {what} at t = {t:.6e} s")]
     NonFinite {
         /// `"initial state"`, `"right-hand side"` or `"Jacobian"`.
         what: &'static str,
@@ -35,7 +35,7 @@ pub enum OdeError {
     },
     /// The local error test kept failing down to the smallest step size the
     /// floating-point time can represent (10 ulp of t) or `min_step`.
-    #[error("step size {h:e} too small at t = {t} (error test failures)")]
+    #[error("step size {h:.3e} s too small at t = {t:.6e} s (error test failures)")]
     StepSizeTooSmall {
         /// Time of the last accepted step.
         t: f64,
@@ -45,7 +45,7 @@ pub enum OdeError {
     /// The Newton iteration failed to converge, even with a fresh Jacobian,
     /// down to the smallest step size (or at the fixed step size of a
     /// fixed-step run).
-    #[error("Newton iteration failed to converge at t = {t} with step size {h:e}")]
+    #[error("Newton iteration failed to converge at t = {t:.6e} s with step size {h:.3e} s")]
     NewtonFailure {
         /// Time of the last accepted step.
         t: f64,
@@ -53,7 +53,7 @@ pub enum OdeError {
         h: f64,
     },
     /// `max_steps` accepted steps were taken before reaching the end.
-    #[error("too many steps: {max_steps} accepted steps reached at t = {t}")]
+    #[error("too many steps: {max_steps} accepted steps reached at t = {t:.6e} s")]
     TooManySteps {
         /// Time reached.
         t: f64,
@@ -79,8 +79,8 @@ pub enum OdeError {
     /// The steady-state detector reached the end time without finding a
     /// steady oscillation.
     #[error(
-        "no steady oscillation by t = {t}: {cycles} cycles seen, last period {last_period:e}, \
-         last peak-to-peak amplitude {last_amplitude:e}"
+        "no steady oscillation by t = {t:.4} s: {cycles} cycles seen, last period {last_period:.4e} s, \
+         last peak-to-peak amplitude {last_amplitude:.3e}"
     )]
     NotSteady {
         /// Time reached.

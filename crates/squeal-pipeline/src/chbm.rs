@@ -8,7 +8,7 @@ use squeal_brake::analysis::Stability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::start::start_at;
 use squeal_chbm::{ChbmOptions, ChbmSolution, ChbmStart, Outcome};
-use squeal_report::{Figure, Panel, Scale, Series, Table, write_svg_and_png};
+use squeal_report::{Annotation, Dash, Figure, Panel, Scale, Series, Table, write_svg_and_png};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -233,7 +233,7 @@ pub fn write_solution(dir: &Path, m: &Model, mu: f64, s: &ChbmSolution) -> Resul
     }
     write_svg_and_png(
         &Figure {
-            title: "Limit cycles (paper Figure 4)".into(),
+            title: "Limit cycles (the paper's Figure 4)".into(),
             panels,
             ..Figure::default()
         },
@@ -251,22 +251,37 @@ pub fn write_solution(dir: &Path, m: &Model, mu: f64, s: &ChbmSolution) -> Resul
         .enumerate()
         .map(|(i, e)| (i as f64, e.re_lambda))
         .collect();
+    // Where the ladder switches from one harmonic to all of them: a marked line on both
+    // panels (the residual jumps there).
+    let switches: Vec<Annotation> = s
+        .evaluations
+        .windows(2)
+        .enumerate()
+        .filter(|(_, w)| w[0].harmonics != w[1].harmonics)
+        .map(|(i, w)| Annotation::VLine {
+            x: i as f64 + 0.5,
+            label: format!("{} → {} harmonics", w[0].harmonics, w[1].harmonics),
+            dash: Dash::Dashed,
+        })
+        .collect();
     let fig = Figure {
-        title: "Convergence (paper Figures 6-7)".into(),
+        title: "Convergence (the paper's Figures 6-7)".into(),
         panels: vec![
             Panel {
                 title: "(a) real part of the tracked eigenvalue".into(),
                 x_label: "residual evaluation".into(),
-                y_label: "Re(lambda) (1/s)".into(),
-                series: vec![Series::line_markers("Re lambda", rel)],
+                y_label: "Re λ (1/s)".into(),
+                series: vec![Series::line_markers("Re λ", rel)],
+                annotations: switches.clone(),
                 ..Panel::default()
             },
             Panel {
                 title: "(b) harmonic balance residual".into(),
                 x_label: "residual evaluation".into(),
-                y_label: "||f1|| / ||F_eq||".into(),
+                y_label: "‖f1‖ / ‖F_eq‖".into(),
                 y_scale: Scale::Log,
                 series: vec![Series::line_markers("f1", res)],
+                annotations: switches,
                 ..Panel::default()
             },
         ],

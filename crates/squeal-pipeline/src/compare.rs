@@ -92,6 +92,35 @@ impl CompareSettings {
     }
 }
 
+/// One friction level of a comparison, for the report.
+#[derive(Clone, Debug)]
+pub struct CompareLevel {
+    /// μ / μ0.
+    pub ratio: f64,
+    /// μ.
+    pub mu: f64,
+    /// Folder of this level's files, relative to the comparison folder (`mu_1.010`).
+    pub folder: String,
+    /// The paper's Table 1 for this brake: errors against the reference.
+    pub table1: Table,
+    /// The paper's Table 2: cost and storage.
+    pub table2: Table,
+    /// What did not converge, in full (the tables give it in short).
+    pub failures: Vec<String>,
+    /// The files written into `folder`.
+    pub files: Vec<String>,
+}
+
+/// What a comparison computed: each level's tables and failures, and the JSON summary
+/// written as `summary.json`.
+#[derive(Clone, Debug)]
+pub struct CompareSummary {
+    pub levels: Vec<CompareLevel>,
+    /// How the errors are defined.
+    pub error_definition: &'static str,
+    pub json: serde_json::Value,
+}
+
 /// The comparisons at every friction level of `settings` (and the robustness map), written to
 /// `dir`; returns the summary (also written as `dir/summary.json`). `first` is the start and
 /// modal brake at the first level when the caller has them already.
@@ -103,7 +132,7 @@ pub fn run(
     settings: &CompareSettings,
     dir: &Path,
     log: Log,
-) -> Result<serde_json::Value> {
+) -> Result<CompareSummary> {
     settings.validate()?;
     let opts = CompareOptions {
         harmonics: settings.harmonics.clone(),
@@ -117,6 +146,7 @@ pub fn run(
         ..CompareOptions::default()
     };
     let mut summary = Vec::new();
+    let mut levels = Vec::new();
     let mut first = first;
     let mut guess: Option<Vec<f64>> = None;
     for &ratio in &settings.mu_ratios {
@@ -134,9 +164,18 @@ pub fn run(
             settings.harmonics.len()
         ));
         let c = compare_at(&mb, &start, &opts)?;
-        let sub = dir.join(format!("mu_{ratio:.3}"));
-        let files = write_comparison(&sub, m, &c, ratio, log)?;
+        let folder = format!("mu_{ratio:.3}");
+        let files = write_comparison(&dir.join(&folder), m, &c, ratio, log)?;
         summary.push(comparison_json(&c, ratio, &files));
+        levels.push(CompareLevel {
+            ratio,
+            mu: c.mu,
+            folder,
+            table1: table1(&c),
+            table2: table2(&c),
+            failures: failures(&c),
+            files,
+        });
     }
     let mut grid_json = serde_json::Value::Null;
     if settings.grid {
@@ -152,7 +191,48 @@ pub fn run(
         &dir.join("summary.json"),
         json_text(&json, "the comparison summary")?.as_bytes(),
     )?;
-    Ok(json)
+    Ok(CompareSummary {
+        levels,
+        error_definition: ERROR_DEFINITION,
+        json,
+    })
+}
+
+/// Every method that gave no limit cycle, with the full reason.
+fn failures(c: &Comparison) -> Vec<String> {
+    let mut out = Vec::new();
+    for r in &c.chbm {
+        if r.solution.outcome != squeal_chbm::Outcome::LimitCycle {
+            out.push(format!(
+                "CHBM with {} harmonics: {}",
+                r.harmonics, r.solution.outcome
+            ));
+        }
+    }
+    for r in std::iter::once(&c.reference).chain(&c.ti) {
+        if r.run.steady.is_none() {
+            out.push(format!(
+                "BDF time integration at rtol {:e}{}: {}",
+                r.rtol,
+                if std::ptr::eq(r, &c.reference) {
+                    " (the reference)"
+                } else {
+                    ""
+                },
+                r.run
+                    .failure
+                    .as_ref()
+                    .map_or("no steady cycle".to_string(), |f| f.to_string())
+            ));
+        }
+    }
+    out
+}
+
+/// A failure's first clause (up to its first ": "), for a table cell; the full text is in the
+/// failures list.
+fn short(reason: &str) -> &str {
+    reason.split(": ").next().unwrap_or(reason)
 }
 
 const ERROR_DEFINITION: &str = "cycles aligned in time on the first harmonic of the reference's most moving contact dof; relative error = RMS over one cycle (in phase) and over the dofs of x_method - x_reference (mean included) / RMS of the reference's oscillation (mean removed); velocity likewise; 'all' = every physical dof, 'contact' = the dofs the contact forces act on; reference = BDF at the reference tolerance";
@@ -273,7 +353,7 @@ fn ti_cost_row(r: &TiRow, is_reference: bool) -> Vec<String> {
         ),
         match (&r.run.steady, &r.run.failure) {
             (Some(s), _) => format!("steady (drift {})", fmt_sci(s.drift, 1)),
-            (None, Some(f)) => format!("failed: {f}"),
+            (None, Some(f)) => format!("failed: {}", short(&f.to_string())),
             (None, None) => "no steady cycle".into(),
         },
         st.steps.to_string(),
@@ -318,7 +398,7 @@ fn measures_csv(c: &Comparison) -> Table {
             "chbm".into(),
             r.harmonics.to_string(),
             "".into(),
-            format!("{:?}", r.solution.outcome),
+            r.solution.outcome.label().to_string(),
             format!("{}", r.cycle.frequency_hz()),
             format!("{:e}", m.all.frequency_hz),
             format!("{:e}", m.all.frequency_relative),
@@ -345,9 +425,9 @@ fn measures_csv(c: &Comparison) -> Table {
             "".into(),
             format!("{:e}", r.rtol),
             if r.run.steady.is_some() {
-                "Steady".into()
+                "steady".into()
             } else {
-                "NoSteadyCycle".into()
+                "no steady cycle".into()
             },
             num(freq),
             num(m.map(|m| m.all.frequency_hz)),

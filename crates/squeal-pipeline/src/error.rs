@@ -7,17 +7,17 @@ use std::path::PathBuf;
 pub enum PipelineError {
     #[error(transparent)]
     Scene(#[from] squeal_scene::SceneError),
-    #[error("reading {}: {source}", path.display())]
+    #[error("reading {}: {error}", path.display())]
     Mesh {
         path: PathBuf,
-        source: squeal_mesh::MeshError,
+        error: squeal_mesh::MeshError,
     },
     #[error("reducing the brake: {0}")]
     Reduce(#[from] squeal_reduce::ReduceError),
-    #[error("the reduced model {}: {source}", path.display())]
+    #[error("the reduced model {}: {error}", path.display())]
     Rom {
         path: PathBuf,
-        source: squeal_reduce::rom::RomError,
+        error: squeal_reduce::rom::RomError,
     },
     #[error(transparent)]
     Brake(#[from] squeal_brake::BrakeError),
@@ -33,20 +33,22 @@ pub enum PipelineError {
     Hbm(#[from] squeal_hbm::HbmError),
     #[error(transparent)]
     Io(#[from] squeal_io::IoError),
-    #[error("{what} {}: {source}", path.display())]
+    #[error(transparent)]
+    Output(#[from] squeal_io::OutputError),
+    #[error("{what} {}: {error}", path.display())]
     File {
         what: &'static str,
         path: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
     },
     #[error(transparent)]
     Vtu(#[from] squeal_mesh::vtu::VtuError),
     #[error(transparent)]
     Report(#[from] squeal_report::ReportError),
-    #[error("writing {what}: {source}")]
+    #[error("writing {what}: {error}")]
     Json {
         what: &'static str,
-        source: serde_json::Error,
+        error: serde_json::Error,
     },
     #[error(
         "the brake has no Hopf point in the band over mu = {from}..{to}: {what} needs one (widen the friction range or the scene's [stability] band)"
@@ -73,11 +75,12 @@ pub enum PipelineError {
     },
     #[error("{what}: {message}")]
     Input { what: &'static str, message: String },
-    /// An error with what was being done when it happened.
-    #[error("{context}: {source}")]
+    /// An error with what was being done when it happened (the inner error is a field, not a
+    /// `source()`: its text is in this message already, and a `{:#}` chain would repeat it).
+    #[error("{context}: {error}")]
     Context {
         context: String,
-        source: Box<PipelineError>,
+        error: Box<PipelineError>,
     },
 }
 
@@ -90,7 +93,7 @@ impl<T, E: Into<PipelineError>> Context<T> for std::result::Result<T, E> {
     fn with_context(self, context: impl FnOnce() -> String) -> Result<T> {
         self.map_err(|e| PipelineError::Context {
             context: context(),
-            source: Box::new(e.into()),
+            error: Box::new(e.into()),
         })
     }
 }
@@ -110,5 +113,5 @@ pub type Result<T> = std::result::Result<T, PipelineError>;
 
 /// `serde_json` pretty text, with the error named.
 pub fn json_text(value: &serde_json::Value, what: &'static str) -> Result<String> {
-    serde_json::to_string_pretty(value).map_err(|source| PipelineError::Json { what, source })
+    serde_json::to_string_pretty(value).map_err(|error| PipelineError::Json { what, error })
 }

@@ -17,7 +17,8 @@
 //! - [`model`]: the scene's reduced model (cached in a `.rom`) and brake.
 //! - [`stability`], [`branch`], [`chbm`], [`compare`], [`study`]: the analyses and their
 //!   outputs.
-//! - [`shapes`]: reduced vectors expanded onto the meshes (VTU).
+//! - [`shapes`]: reduced vectors expanded onto the meshes (VTU); [`pictures`]: the same as
+//!   images for the report.
 //! - [`report`]: the report of a run.
 
 // Index loops over dofs read like the formulas they implement.
@@ -28,6 +29,7 @@ pub mod chbm;
 pub mod compare;
 mod error;
 pub mod model;
+pub mod pictures;
 pub mod report;
 pub mod shapes;
 pub mod stability;
@@ -60,8 +62,12 @@ pub struct Pipeline<'a> {
 impl<'a> Pipeline<'a> {
     /// The pipeline of `scene` writing into `out`, sweeping the scene's friction values;
     /// `log` is told what happens.
+    ///
+    /// The outputs are checked first: `out` must be a folder that can be written, and the
+    /// reduced model's file must end in `.rom` and be neither the scene nor a mesh.
     pub fn new(scene: Scene, out: PathBuf, log: Log<'a>) -> Result<Self> {
         let mus = scene.mu_values()?;
+        model::check_outputs(&scene, &out)?;
         Ok(Self {
             scene,
             out,

@@ -65,23 +65,48 @@ pub fn rom_path(scene: &Scene, out: &Path) -> PathBuf {
     }
 }
 
+/// Checks the outputs of a scene before any work: `out` is a folder that can be written (made
+/// if missing), and the reduced model's file ends in `.rom` and is neither the scene nor one
+/// of its meshes.
+pub fn check_outputs(scene: &Scene, out: &Path) -> Result<()> {
+    squeal_io::require_folder(out)?;
+    let rom = rom_path(scene, out);
+    squeal_io::require_extension(&rom, "rom", "the reduced model (.rom)")?;
+    let m = &scene.file.model;
+    let (disc, pad) = (scene.resolve(&m.disc), scene.resolve(&m.pad));
+    squeal_io::refuse_inputs(
+        &rom,
+        &[
+            (&scene.path, "scene file"),
+            (&disc, "disc mesh"),
+            (&pad, "pad mesh"),
+        ],
+    )?;
+    squeal_io::check_writable(out)?;
+    if let Some(dir) = rom.parent().filter(|d| !d.as_os_str().is_empty()) {
+        squeal_io::check_writable(dir)?;
+    }
+    Ok(())
+}
+
 /// Loads the scene's reduced model, or reduces the meshes (and stores the result) when it is
 /// missing or stale (other meshes, by SHA-256, other options, another tool version).
 pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedModel, PathBuf)> {
     let rom_path = rom_path(scene, out);
     let inputs = brake_inputs(scene);
     match freshness(&rom_path, &inputs)? {
-        Freshness::Fresh => {
-            log(&format!(
-                "reduced model: {} (up to date)",
-                rom_path.display()
-            ));
-            let rom = ReducedModel::read(&rom_path).map_err(|source| PipelineError::Rom {
-                path: rom_path.clone(),
-                source,
-            })?;
-            return Ok((rom, rom_path));
-        }
+        Freshness::Fresh => match ReducedModel::read(&rom_path) {
+            Ok(rom) => {
+                log(&format!(
+                    "reduced model: {} (up to date)",
+                    rom_path.display()
+                ));
+                return Ok((rom, rom_path));
+            }
+            // A header that matches over arrays that do not read: rebuilt, not an error the
+            // user must clear by deleting the file.
+            Err(e) => log(&format!("reduced model: {e}; reducing again")),
+        },
         Freshness::Stale(reasons) => log(&format!(
             "reduced model: {} is stale ({}); reducing again",
             rom_path.display(),
@@ -103,9 +128,9 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
         rom.size(),
         t.elapsed().as_secs_f64()
     ));
-    rom.write(&rom_path).map_err(|source| PipelineError::Rom {
+    rom.write(&rom_path).map_err(|error| PipelineError::Rom {
         path: rom_path.clone(),
-        source,
+        error,
     })?;
     Ok((rom, rom_path))
 }
@@ -207,9 +232,9 @@ pub fn default_out(scene: &Path) -> PathBuf {
 
 /// A mesh read, its reader's warnings passed to `log`.
 pub fn read_mesh(path: &Path, log: Log) -> Result<Mesh> {
-    let read = squeal_mesh::read(path).map_err(|source| PipelineError::Mesh {
+    let read = squeal_mesh::read(path).map_err(|error| PipelineError::Mesh {
         path: path.to_path_buf(),
-        source,
+        error,
     })?;
     for w in &read.warnings {
         log(&format!("warning: {w}"));

@@ -1,13 +1,26 @@
 //! The report of `squeal run`: `index.html` and `index.md` in the output folder, from the
-//! results computed in this run (never read back from files).
+//! results computed in this run (never read back from files), with the pictures it needs in
+//! `report/`.
+//!
+//! The first screen holds the numbers an NVH engineer asks for first (the Hopf point, every
+//! unstable mode in the band, the limit cycle at the contacts, the inputs) and the unstable
+//! mode's picture; then the mode shapes, the stability figures, the limit cycle and its
+//! animation, the comparison with time integration and a link to every file of the run.
 
-use crate::model::Model;
+use crate::compare::CompareSummary;
+use crate::error::Result;
+use crate::model::{Log, Model};
+use crate::pictures::{ModePicture, write_cycle_animation, write_mode_picture};
+use crate::shapes::Meshes;
 use squeal_brake::analysis::Stability;
-use squeal_chbm::ChbmSolution;
+use squeal_chbm::{ChbmSolution, Outcome};
+use squeal_reduce::rom::DofLabel;
 use squeal_report::format::fmt_sig;
-use squeal_report::{Report, Section, Table};
+use squeal_report::{
+    Annotation, Dash, Figure, Panel, Report, Section, Series, Table, write_svg_and_png,
+};
 use squeal_scene::Scene;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// What `squeal run` computed, for its report.
 pub struct RunResults<'a> {
@@ -16,142 +29,1049 @@ pub struct RunResults<'a> {
     pub stability: &'a Stability,
     /// The friction and the CHBM solution, when a limit cycle was computed.
     pub chbm: Option<(f64, &'a ChbmSolution)>,
-    /// The comparison's summary, when it ran.
-    pub compare: Option<&'a serde_json::Value>,
+    /// The comparison with time integration, when it ran.
+    pub compare: Option<&'a CompareSummary>,
     /// Wall time of each stage (s).
     pub timings: &'a [(String, f64)],
 }
 
-/// The report of a run.
-pub fn build(r: &RunResults<'_>) -> Report {
+/// Folder of the report's own pictures, inside the output folder.
+pub const PICTURES: &str = "report";
+
+/// The report of a run in `out` (the output folder): writes its pictures into
+/// `out/report/` and returns the report, whose [`Report::write`] then writes `index.html`
+/// and `index.md` into `out`.
+pub fn build(r: &RunResults<'_>, out: &Path, log: Log) -> Result<Report> {
+    let pics = out.join(PICTURES);
+    std::fs::create_dir_all(&pics).map_err(|error| crate::PipelineError::File {
+        what: "creating the folder",
+        path: pics.clone(),
+        error,
+    })?;
     let scene = r.scene;
     let title = scene
         .file
         .title
         .clone()
         .unwrap_or_else(|| "squeal report".into());
-    let mut sections = Vec::new();
-    let mut model = Table::new(["item", "value"]);
-    model.push_row(["scene".to_string(), scene.path.display().to_string()]);
-    model.push_row([
-        "disc mesh".to_string(),
-        r.model.disc_mesh.display().to_string(),
-    ]);
-    model.push_row([
-        "pad mesh".to_string(),
-        r.model.pad_mesh.display().to_string(),
-    ]);
-    model.push_row([
-        "interface".to_string(),
-        scene.file.model.interface.get_ref().clone(),
-    ]);
-    model.push_row(["reduced dofs".to_string(), r.model.brake.size().to_string()]);
-    model.push_row([
-        "reduced model".to_string(),
-        r.model.rom_path.display().to_string(),
-    ]);
-    sections.push(Section {
-        heading: "Model".into(),
-        text: String::new(),
-        figures: vec![],
-        tables: vec![(model, "The reduced brake".into())],
-    });
+    // The pictures need the meshes and the bases; without them the report says so.
+    let meshes = match Meshes::read(r.model, log) {
+        Ok(m) if r.model.rom.parts.iter().all(|p| p.basis.is_some()) => Some(m),
+        Ok(_) => None,
+        Err(e) => {
+            log(&format!("report: no mode pictures ({e})"));
+            None
+        }
+    };
+    let modes = mode_pictures(r, meshes.as_ref(), &pics, log);
+    let mut sections = vec![summary_section(r, &modes)];
+    sections.push(modes_section(r, &modes));
+    sections.push(stability_section(r, &pics)?);
+    if let Some(s) = chbm_section(r, meshes.as_ref(), &pics, log)? {
+        sections.push(s);
+    }
+    sections.push(compare_section(r.compare));
+    sections.push(files_section(out));
+    sections.push(timings_section(r));
+    Ok(Report {
+        title,
+        intro: format!(
+            "Made by `squeal run` from the scene `{}`, following Coudeyras, Sinou & Nacivet (2009), \
+             *The Constrained Harmonic Balance Method*. The same report as Markdown: [index.md](index.md).",
+            scene.path.display()
+        ),
+        sections,
+    })
+}
 
-    let sw = &r.stability.sweep;
-    let mut t = Table::new(["quantity", "value"]);
+/// A mode that goes unstable in the band.
+struct Unstable {
+    label: String,
+    branch: usize,
+    /// Where it starts: μ0 for the Hopf mode, the bracket of the crossing otherwise.
+    onset: String,
+    onset_mu: f64,
+    frequency_hz: f64,
+    /// The mode at the first sweep point past its onset (brake coordinates).
+    shape: Vec<faer::c64>,
+}
+
+fn unstable_modes(st: &Stability) -> Vec<Unstable> {
+    let sw = &st.sweep;
+    let mut out = Vec::new();
+    if let Some(h) = &sw.hopf {
+        out.push(Unstable {
+            label: "Hopf mode".into(),
+            branch: h.branch,
+            onset: format!("μ0 = {}", fmt_sig(h.mu0, 6)),
+            onset_mu: h.mu0,
+            frequency_hz: h.frequency_hz,
+            shape: h.point.spectrum.shape(&st.reference.basis, h.index),
+        });
+    }
+    for c in &crate::stability::other_instabilities(st) {
+        let k = c.k + 1;
+        out.push(Unstable {
+            label: match out.len() + 1 {
+                1 => "first instability".to_string(),
+                2 => "second instability".to_string(),
+                3 => "third instability".to_string(),
+                n => format!("instability {n}"),
+            },
+            branch: c.branch,
+            onset: format!("μ in [{}, {}]", fmt_sig(c.mu_lo, 4), fmt_sig(c.mu_hi, 4)),
+            onset_mu: 0.5 * (c.mu_lo + c.mu_hi),
+            frequency_hz: c.frequency_hz,
+            shape: sw.points[k]
+                .spectrum
+                .shape(&st.reference.basis, sw.branches[c.branch][k]),
+        });
+    }
+    out
+}
+
+/// Each unstable mode's picture (when the meshes could be read).
+fn mode_pictures(
+    r: &RunResults<'_>,
+    meshes: Option<&Meshes>,
+    pics: &Path,
+    log: Log,
+) -> Vec<(Unstable, Option<ModePicture>)> {
+    unstable_modes(r.stability)
+        .into_iter()
+        .enumerate()
+        .map(|(i, u)| {
+            let pic = meshes.and_then(|m| {
+                match write_mode_picture(pics, &format!("mode_{}", i + 1), r.model, m, &u.shape) {
+                    Ok(p) => Some(p),
+                    Err(e) => {
+                        log(&format!(
+                            "report: the picture of the {} failed: {e}",
+                            u.label
+                        ));
+                        None
+                    }
+                }
+            });
+            (u, pic)
+        })
+        .collect()
+}
+
+/// Growth rate and damping ratio of branch `b` at the last sweep point.
+fn growth_at_end(st: &Stability, b: usize) -> (f64, f64, f64) {
+    let sw = &st.sweep;
+    let k = sw.points.len() - 1;
+    let l = sw.value(b, k);
+    (
+        sw.points[k].equilibrium.mu,
+        l.re,
+        -l.re / l.norm().max(f64::MIN_POSITIVE),
+    )
+}
+
+/// The dof of a part's point in a direction, in brake numbering.
+fn dof_of_point(m: &Model, part: &str, point: usize, direction: u8) -> Option<usize> {
+    let rp = m.rom.part(part)?;
+    let offset = if part == "disc" {
+        m.layout.disc.start
+    } else {
+        m.layout.pad.start
+    };
+    rp.info
+        .dofs
+        .iter()
+        .position(|l| *l == DofLabel::Point { point, direction })
+        .map(|d| offset + d)
+}
+
+fn main_axis(v: [f64; 3]) -> u8 {
+    let a = v.map(f64::abs);
+    if a[0] >= a[1] && a[0] >= a[2] {
+        0
+    } else if a[1] >= a[2] {
+        1
+    } else {
+        2
+    }
+}
+
+/// Per contact pair over the cycle: half the peak-to-peak relative normal displacement (m),
+/// of the relative sliding velocity (m/s), and the open fraction.
+fn pair_motion(m: &Model, s: &ChbmSolution) -> Vec<(usize, f64, f64, f64)> {
+    let (nd, sd) = (main_axis(m.params.normal), main_axis(m.params.sliding));
+    let half_range = |v: &[f64]| {
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(*x), b.max(*x))
+            });
+        0.5 * (hi - lo)
+    };
+    m.pairs
+        .iter()
+        .enumerate()
+        .filter_map(|(p, pair)| {
+            let rel = |dir: u8, velocity: bool| -> Option<Vec<f64>> {
+                let dd = dof_of_point(m, "disc", pair.disc_point, dir)?;
+                let dp = dof_of_point(m, "pad", pair.pad_point, dir)?;
+                let a = crate::chbm::cycle_points(s, dd, 256);
+                let b = crate::chbm::cycle_points(s, dp, 256);
+                Some(
+                    a.iter()
+                        .zip(&b)
+                        .map(|(x, y)| if velocity { y.1 - x.1 } else { y.0 - x.0 })
+                        .collect(),
+                )
+            };
+            let closure = half_range(&rel(nd, false)?);
+            let sliding = half_range(&rel(sd, true)?);
+            let open = s.open_fraction.get(p).copied().unwrap_or(f64::NAN);
+            Some((p, closure, sliding, open))
+        })
+        .collect()
+}
+
+fn pct(x: f64) -> String {
+    format!("{:.0} %", 100.0 * x)
+}
+
+/// The first screen: key numbers, the unstable modes, the inputs and the Hopf mode's picture.
+fn summary_section(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]) -> Section {
+    let st = r.stability;
+    let m = r.model;
+    let sw = &st.sweep;
+    let mut key = Table::new(["", "value"]);
     match &sw.hopf {
         Some(h) => {
-            t.push_row(["Hopf point mu0".to_string(), fmt_sig(h.mu0, 6)]);
-            t.push_row([
-                "frequency at mu0 (Hz)".to_string(),
-                fmt_sig(h.frequency_hz, 6),
+            key.push_row([
+                "Hopf point μ0 (onset of squeal)".to_string(),
+                format!("{} at {:.1} Hz", fmt_sig(h.mu0, 5), h.frequency_hz),
             ]);
-        }
-        None => t.push_row(["Hopf point mu0".to_string(), "none in the band".to_string()]),
-    }
-    t.push_row([
-        "valid band up to (Hz)".to_string(),
-        fmt_sig(r.model.sweep.band.valid_max_hz, 5),
-    ]);
-    t.push_row([
-        "coalescing modes (frictionless numbers)".to_string(),
-        r.stability
-            .pair
-            .map_or("-".into(), |(a, b)| format!("{}, {}", a + 1, b + 1)),
-    ]);
-    sections.push(Section {
-        heading: "Stability (section 3)".into(),
-        text: "Real parts and frequencies of the coupling modes against friction; the Hopf point mu0 is the first \
-               crossing of a real part through zero inside the band the model can speak for. The unstable mode \
-               shape and the equilibria are in stability/shapes.vtm (ParaView)."
-            .into(),
-        figures: vec![(
-            PathBuf::from("stability/stability"),
-            "Figure 2: real parts and frequencies against mu".into(),
-        )],
-        tables: vec![(t, "Hopf point".into())],
-    });
-
-    if let Some((mu, s)) = r.chbm {
-        let mut t = Table::new(["quantity", "value"]);
-        let f = s.omega / (2.0 * std::f64::consts::PI);
-        for (label, value) in [
-            ("friction mu", fmt_sig(mu, 6)),
-            ("harmonics", s.harmonics.to_string()),
-            ("frequency (Hz)", fmt_sig(f, 8)),
-            ("||f1|| / ||F_eq||", fmt_sig(s.f1, 3)),
-            ("Re lambda (1/s)", fmt_sig(s.re_lambda, 3)),
-            ("LM iterations", s.iterations.to_string()),
-            ("time (ms)", fmt_sig(s.time.as_secs_f64() * 1e3, 3)),
-            ("outcome", s.outcome.to_string()),
-        ] {
-            t.push_row([label.to_string(), value]);
-        }
-        sections.push(Section {
-            heading: "Limit cycle (CHBM, sections 4-5)".into(),
-            text: "The animated cycle on both meshes is chbm/cycle.pvd (ParaView: open, then Warp By Vector on 'oscillation').".into(),
-            figures: vec![
-                (PathBuf::from("chbm/limit_cycles"), "Figure 4: limit cycles at a pad and a disc contact point".into()),
-                (PathBuf::from("chbm/convergence"), "Figures 6-7: convergence of Re(lambda) and of the residual".into()),
-            ],
-            tables: vec![(t, "CHBM solution".into())],
-        });
-    }
-
-    if let Some(c) = r.compare {
-        let mut figures = Vec::new();
-        if let Some(list) = c.get("comparisons").and_then(|v| v.as_array()) {
-            for entry in list {
-                let Some(ratio) = entry.get("mu_ratio").and_then(|v| v.as_f64()) else {
-                    continue;
-                };
-                figures.push((
-                    PathBuf::from(format!("compare/mu_{ratio:.3}/limit_cycles")),
-                    format!("CHBM over the time integration at {ratio} mu0"),
-                ));
+            if let Some((a, b)) = st.pair {
+                let f = |j: usize| st.reference.basis.omega[j] / std::f64::consts::TAU;
+                key.push_row([
+                    "coalescing modes (frictionless)".to_string(),
+                    format!(
+                        "#{} at {:.0} Hz (stays stable) and #{} at {:.0} Hz (goes unstable)",
+                        a + 1,
+                        f(a),
+                        b + 1,
+                        f(b)
+                    ),
+                ]);
+            }
+            if let Ok(Some(nf)) = crate::stability::normal_form(m, st) {
+                key.push_row([
+                    "Hopf bifurcation".to_string(),
+                    format!(
+                        "{} (first Lyapunov coefficient {:+.3e}){}",
+                        nf.criticality(),
+                        nf.l1,
+                        if nf.criticality() == squeal_brake::criticality::Criticality::Subcritical
+                        {
+                            ": limit cycles exist below μ0, a large enough disturbance starts squeal there"
+                        } else {
+                            ""
+                        }
+                    ),
+                ]);
             }
         }
-        sections.push(Section {
-            heading: "CHBM against time integration".into(),
-            text: "Tables 1-2 of the paper for this brake are in compare/mu_*/table1.csv and table2.csv.".into(),
-            figures,
-            tables: vec![],
-        });
+        None => key.push_row([
+            "Hopf point μ0".to_string(),
+            format!(
+                "none in the band over μ = {}..{}",
+                fmt_sig(sw.points[0].equilibrium.mu, 3),
+                fmt_sig(sw.points[sw.points.len() - 1].equilibrium.mu, 3)
+            ),
+        ]),
+    }
+    key.push_row([
+        "unstable modes in the band".to_string(),
+        if modes.is_empty() {
+            "none".to_string()
+        } else {
+            modes
+                .iter()
+                .map(|(u, _)| {
+                    format!(
+                        "{:.0} Hz from μ ≈ {}",
+                        u.frequency_hz,
+                        fmt_sig(u.onset_mu, 3)
+                    )
+                })
+                .collect::<Vec<_>>()
+                .join("; ")
+        },
+    ]);
+    if let Some((mu, s)) = r.chbm {
+        let f = s.omega / std::f64::consts::TAU;
+        let hopf_f = sw.hopf.as_ref().map(|h| h.frequency_hz);
+        key.push_row([
+            "limit cycle (CHBM)".to_string(),
+            format!(
+                "at μ = {}{}: {}, {:.1} Hz{}",
+                fmt_sig(mu, 5),
+                sw.hopf.as_ref().map_or(String::new(), |h| format!(
+                    " ({} μ0)",
+                    fmt_sig(mu / h.mu0, 4)
+                )),
+                s.outcome.label(),
+                f,
+                hopf_f.map_or(String::new(), |h| format!(
+                    " ({:+.1} Hz from the Hopf frequency)",
+                    f - h
+                ))
+            ),
+        ]);
+        let motion = pair_motion(m, s);
+        if let Some(&(p, c, _, _)) = motion.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+            key.push_row([
+                "largest closure amplitude at a contact".to_string(),
+                format!("{:.2} µm (pair {})", c * 1e6, p + 1),
+            ]);
+        }
+        if let Some(&(p, _, v, _)) = motion.iter().max_by(|a, b| a.2.total_cmp(&b.2)) {
+            key.push_row([
+                "largest sliding-velocity amplitude at a contact".to_string(),
+                format!("{:.1} mm/s (pair {})", v * 1e3, p + 1),
+            ]);
+        }
+        let open: Vec<String> = motion
+            .iter()
+            .filter(|x| x.3 > 0.0)
+            .map(|x| format!("pair {}: {}", x.0 + 1, pct(x.3)))
+            .collect();
+        key.push_row([
+            "contact open over the cycle".to_string(),
+            if open.is_empty() {
+                "never: every pair stays closed".into()
+            } else {
+                format!("{} (the other pairs stay closed)", open.join(", "))
+            },
+        ]);
     }
 
+    let mut unstable = Table::new([
+        "mode",
+        "unstable from",
+        "frequency at onset (Hz)",
+        "growth rate Re λ at μ = max (1/s)",
+        "damping ratio ζ there (%)",
+        "nodal diameters",
+    ]);
+    for (u, pic) in modes {
+        let (mu_end, re, zeta) = growth_at_end(st, u.branch);
+        unstable.push_row([
+            u.label.clone(),
+            u.onset.clone(),
+            format!("{:.1}", u.frequency_hz),
+            format!("{} (μ = {})", fmt_sig(re, 3), fmt_sig(mu_end, 3)),
+            fmt_sig(100.0 * zeta, 3),
+            pic.as_ref()
+                .and_then(|p| p.nodal.as_ref())
+                .map_or("-".into(), |n| n.dominant.to_string()),
+        ]);
+    }
+
+    let mut inputs = Table::new(["input", "value"]);
+    for part in &m.rom.parts {
+        inputs.push_row([
+            format!("{} mesh", part.info.name),
+            format!(
+                "{} ({} nodes, {} tet10 elements)",
+                part.info.mesh.path, part.info.mesh.nodes, part.info.mesh.elements
+            ),
+        ]);
+        for mat in &part.info.materials {
+            inputs.push_row([
+                format!("{} material {}", part.info.name, mat.name),
+                describe_material(&mat.material),
+            ]);
+        }
+    }
+    let f = &r.scene.file;
+    inputs.push_row([
+        "clamp force".to_string(),
+        format!(
+            "{:.0} N ({} bar on {} m² of piston)",
+            m.params.piston_force,
+            fmt_sig(*f.piston.line_pressure_bar.get_ref(), 4),
+            fmt_sig(*f.piston.area.get_ref(), 4)
+        ),
+    ]);
+    if let Ok((kl, knl, fit)) = r.scene.stiffness() {
+        inputs.push_row([
+            "contact stiffness per area (eq 8)".to_string(),
+            format!(
+                "k_l = {:.3e} Pa/m, k_nl = {:.3e} Pa/m³{}",
+                kl,
+                knl,
+                if fit.is_some() {
+                    " (fitted to the pad's compression curve)"
+                } else {
+                    ""
+                }
+            ),
+        ]);
+    }
+    inputs.push_row([
+        "contact".to_string(),
+        format!(
+            "{} pairs, {} interface; friction along the sliding direction",
+            m.pairs.len(),
+            f.model.interface.get_ref()
+        ),
+    ]);
+    inputs.push_row([
+        "damping (eqs 12-13)".to_string(),
+        format!(
+            "ζ = {} % on every mode{}",
+            fmt_sig(100.0 * m.damping.global_ratio, 3),
+            match st.pair {
+                Some((a, b)) => format!(
+                    ", plus ζ1 = {} % on #{} and ζ2 = {} % on #{}",
+                    fmt_sig(100.0 * m.damping.pair_ratios[0], 3),
+                    a + 1,
+                    fmt_sig(100.0 * m.damping.pair_ratios[1], 3),
+                    b + 1
+                ),
+                None => String::new(),
+            }
+        ),
+    ]);
+    inputs.push_row([
+        "reduced brake".to_string(),
+        format!(
+            "{} dofs (Craig–Bampton, {} fixed-interface modes per part), valid up to {:.0} Hz",
+            m.brake.size(),
+            f.model.modes.get_ref(),
+            m.sweep.band.valid_max_hz
+        ),
+    ]);
+
+    let mut figures = Vec::new();
+    if let Some((u, Some(p))) = modes.first() {
+        figures.push((
+            PathBuf::from(PICTURES).join(&p.file),
+            format!(
+                "The {} at {:.0} Hz: three-quarter view, the disc from above (pad hidden), the brake from the side; colour: displacement magnitude over its largest (viridis, dark = 0, yellow = 1), shape exaggerated",
+                u.label, u.frequency_hz
+            ),
+        ));
+    }
+    Section {
+        heading: "Key numbers".into(),
+        text: String::new(),
+        figures,
+        tables: vec![
+            (key.align_numbers_right(), "What this brake does".into()),
+            (
+                unstable.align_numbers_right(),
+                "Every mode that goes unstable in the band (ζ < 0: the vibration grows)".into(),
+            ),
+            (inputs, "Inputs".into()),
+        ],
+        after: String::new(),
+    }
+}
+
+fn describe_material(m: &squeal_fe::ElasticMaterial) -> String {
+    use squeal_fe::ElasticMaterial as E;
+    match *m {
+        E::Isotropic {
+            young,
+            poisson,
+            density,
+        } => format!(
+            "E = {} GPa, ν = {}, ρ = {} kg/m³",
+            fmt_sig(young / 1e9, 4),
+            fmt_sig(poisson, 3),
+            fmt_sig(density, 4)
+        ),
+        E::TransverselyIsotropic {
+            young_plane,
+            young_axial,
+            density,
+            ..
+        } => format!(
+            "transversely isotropic, E_plane = {} GPa, E_axial = {} GPa, ρ = {} kg/m³",
+            fmt_sig(young_plane / 1e9, 4),
+            fmt_sig(young_axial / 1e9, 4),
+            fmt_sig(density, 4)
+        ),
+        E::Orthotropic { e, density, .. } => format!(
+            "orthotropic, E = {}, {}, {} GPa, ρ = {} kg/m³",
+            fmt_sig(e[0] / 1e9, 3),
+            fmt_sig(e[1] / 1e9, 3),
+            fmt_sig(e[2] / 1e9, 3),
+            fmt_sig(density, 4)
+        ),
+    }
+}
+
+fn modes_section(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]) -> Section {
+    let mut figures = Vec::new();
+    let mut t = Table::new(["mode", "frequency (Hz)", "nodal diameters of the disc"]);
+    for (u, pic) in modes.iter().skip(1) {
+        if let Some(p) = pic {
+            figures.push((
+                PathBuf::from(PICTURES).join(&p.file),
+                format!(
+                    "The {} at {:.0} Hz (same views and colours as Figure 1)",
+                    u.label, u.frequency_hz
+                ),
+            ));
+        }
+    }
+    for (u, pic) in modes {
+        t.push_row([
+            u.label.clone(),
+            format!("{:.1}", u.frequency_hz),
+            pic.as_ref()
+                .and_then(|p| p.nodal.as_ref())
+                .map_or("-".into(), |n| n.describe()),
+        ]);
+    }
+    let text = if modes.iter().any(|(_, p)| p.is_some()) {
+        "Each unstable mode as the real part of its complex shape, with the phase that makes its \
+         largest component real. The mode shapes for ParaView (real and imaginary parts, on both \
+         meshes) are in [stability/shapes.vtm](stability/shapes.vtm). Nodal diameters: the \
+         out-of-plane motion of the disc's outer annulus, analysed over the angle."
+            .to_string()
+    } else if modes.is_empty() {
+        "No mode goes unstable in the band.".to_string()
+    } else {
+        "The mode pictures need the meshes and the bases of the reduced model; they could not \
+         be made for this run (see the messages of `squeal run`)."
+            .to_string()
+    };
+    let _ = r;
+    Section {
+        heading: "Mode shapes".into(),
+        text,
+        figures,
+        tables: vec![(
+            t,
+            "Nodal-diameter classification of the unstable modes".into(),
+        )],
+        after: String::new(),
+    }
+}
+
+/// The eigenvalue map: damping ratio against frequency of the in-band eigenvalues at μ = 0,
+/// just past μ0 and at the largest μ swept.
+fn eigenvalue_map(r: &RunResults<'_>, pics: &Path) -> Result<PathBuf> {
+    let sw = &r.stability.sweep;
+    let band = r.model.sweep.band;
+    let last = sw.points.len() - 1;
+    let mut ks = vec![0];
+    if let Some(h) = &sw.hopf
+        && let Some(k) = sw.points.iter().position(|p| p.equilibrium.mu >= h.mu0)
+        && k != 0
+        && k != last
+    {
+        ks.push(k);
+    }
+    ks.push(last);
+    let mut series = Vec::new();
+    for k in ks {
+        let p = &sw.points[k];
+        let pts: Vec<(f64, f64)> = p
+            .spectrum
+            .values
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| band.contains(p.spectrum.frequency_hz(*j)))
+            .map(|(j, l)| {
+                (
+                    p.spectrum.frequency_hz(j),
+                    -100.0 * l.re / l.norm().max(f64::MIN_POSITIVE),
+                )
+            })
+            .collect();
+        series.push(Series::markers(
+            format!("μ = {}", fmt_sig(p.equilibrium.mu, 4)),
+            pts,
+        ));
+    }
+    let fig = Figure::single(
+        "Eigenvalues of the brake in the band",
+        Panel {
+            title: "damping ratio against frequency (below zero: unstable)".into(),
+            x_label: "frequency (Hz)".into(),
+            y_label: "damping ratio ζ = -Re λ / |λ| (%)".into(),
+            series,
+            annotations: vec![Annotation::HLine {
+                y: 0.0,
+                label: "ζ = 0".into(),
+                dash: Dash::Dashed,
+            }],
+            legend: squeal_report::LegendPosition::Outside,
+            ..Panel::default()
+        },
+    );
+    let stem = pics.join("eigenvalues");
+    write_svg_and_png(&fig, &stem)?;
+    Ok(PathBuf::from(PICTURES).join("eigenvalues"))
+}
+
+fn stability_section(r: &RunResults<'_>, pics: &Path) -> Result<Section> {
+    let sw = &r.stability.sweep;
+    let tau = crate::stability::threshold(r.model, r.stability);
+    let mut t = Table::new(["quantity", "value"]);
+    if let Some(h) = &sw.hopf {
+        t.push_row([
+            "Hopf point μ0".to_string(),
+            format!(
+                "{} (bracket {} to {})",
+                fmt_sig(h.mu0, 8),
+                fmt_sig(h.bracket.0, 10),
+                fmt_sig(h.bracket.1, 10)
+            ),
+        ]);
+        t.push_row([
+            "frequency at μ0 (Hz)".to_string(),
+            fmt_sig(h.frequency_hz, 6),
+        ]);
+    }
+    t.push_row([
+        "friction values swept".to_string(),
+        format!(
+            "{} from {} to {}",
+            sw.points.len(),
+            fmt_sig(sw.points[0].equilibrium.mu, 3),
+            fmt_sig(sw.points[sw.points.len() - 1].equilibrium.mu, 3)
+        ),
+    ]);
+    t.push_row([
+        "band (Hz)".to_string(),
+        match r.model.sweep.band.user {
+            Some((a, b)) => format!(
+                "{a:.0} to {b:.0} (the scene's), within the model's valid band up to {:.0} \
+                 (the highest kept fixed-interface frequency)",
+                r.model.sweep.band.valid_max_hz
+            ),
+            None => format!(
+                "up to {:.0} (the model's valid band: the highest kept fixed-interface frequency)",
+                r.model.sweep.band.valid_max_hz
+            ),
+        },
+    ]);
+    t.push_row([
+        "instability threshold".to_string(),
+        format!(
+            "Re λ > {:.2e} 1/s (64 ε ω_max: the eigensolver's round-off relative to the largest |λ|)",
+            tau
+        ),
+    ]);
+    for c in &sw.crossings {
+        t.push_row([
+            format!("crossing at {:.0} Hz", c.frequency_hz),
+            format!(
+                "μ in [{}, {}]{}",
+                fmt_sig(c.mu_lo, 4),
+                fmt_sig(c.mu_hi, 4),
+                if c.in_band {
+                    ""
+                } else {
+                    " (outside the band: not physical for this model)"
+                }
+            ),
+        ]);
+    }
+    let map = eigenvalue_map(r, pics)?;
+    Ok(Section {
+        heading: "Stability against friction (section 3)".into(),
+        text: "Real parts and frequencies of the modes against the friction coefficient μ: every \
+               mode that goes unstable in the band is drawn, in colour, with its frequency in the \
+               legend; grey dotted lines are stable modes near the Hopf frequency. μ0 is the first \
+               crossing of a real part through zero inside the band the reduced model speaks for. \
+               Tables: [stability/stability.csv](stability/stability.csv) (the figure's curves and \
+               the number of unstable modes at each μ), \
+               [stability/branches.csv](stability/branches.csv) (every branch), \
+               [stability/summary.json](stability/summary.json)."
+            .into(),
+        figures: vec![
+            (
+                PathBuf::from("stability/stability"),
+                "Real parts (a) and frequencies (b) against μ (the paper's Figure 2)".into(),
+            ),
+            (
+                map,
+                "Damping ratio against frequency of every eigenvalue in the band at three friction values: the unstable modes are the points below ζ = 0".into(),
+            ),
+        ],
+        tables: vec![(t, "The sweep and its crossings".into())],
+        after: String::new(),
+    })
+}
+
+fn chbm_section(
+    r: &RunResults<'_>,
+    meshes: Option<&Meshes>,
+    pics: &Path,
+    log: Log,
+) -> Result<Option<Section>> {
+    let Some((mu, s)) = r.chbm else {
+        return Ok(None);
+    };
+    let m = r.model;
+    let mut figures = Vec::new();
+    let mut after = String::new();
+    let has_cycle = matches!(
+        s.outcome,
+        Outcome::LimitCycle | Outcome::LimitCycleUnconstrained
+    );
+    if has_cycle && let Some(meshes) = meshes {
+        match write_cycle_animation(pics, "cycle", m, meshes, s, 20) {
+            Ok((file, scale)) => figures.push((
+                PathBuf::from(PICTURES).join(file),
+                format!(
+                    "The limit cycle, animated (one period in 20 frames, displacements about the mean exaggerated {scale:.0} times; colour: oscillation magnitude over its largest). The same cycle for ParaView: [chbm/cycle.pvd](chbm/cycle.pvd)"
+                ),
+            )),
+            Err(e) => log(&format!("report: the animation failed: {e}")),
+        }
+    }
+    figures.push((
+        PathBuf::from("chbm/limit_cycles"),
+        "Phase portraits of a pad and a disc contact point, normal direction (the paper's Figure 4)".into(),
+    ));
+    figures.push((
+        PathBuf::from("chbm/convergence"),
+        "Convergence of Re λ (a) and of the harmonic-balance residual (b); the dashed line marks the switch from one harmonic to all (the paper's Figures 6-7)".into(),
+    ));
+    let mut t = Table::new(["quantity", "value"]);
+    let f = s.omega / std::f64::consts::TAU;
+    for (label, value) in [
+        ("friction μ", fmt_sig(mu, 6)),
+        ("harmonics", s.harmonics.to_string()),
+        ("frequency (Hz)", fmt_sig(f, 8)),
+        ("‖f1‖ / ‖F_eq‖", fmt_sig(s.f1, 3)),
+        ("Re λ (1/s)", fmt_sig(s.re_lambda, 3)),
+        ("Levenberg–Marquardt iterations", s.iterations.to_string()),
+        ("time (ms)", fmt_sig(s.time.as_secs_f64() * 1e3, 3)),
+        ("outcome", s.outcome.to_string()),
+    ] {
+        t.push_row([label.to_string(), value]);
+    }
+    let mut pairs = Table::new([
+        "pair",
+        "closure amplitude (µm)",
+        "sliding-velocity amplitude (mm/s)",
+        "open over the cycle (%)",
+    ]);
+    for (p, c, v, open) in pair_motion(m, s) {
+        pairs.push_row([
+            (p + 1).to_string(),
+            format!("{:.3}", c * 1e6),
+            format!("{:.2}", v * 1e3),
+            format!("{:.1}", 100.0 * open),
+        ]);
+    }
+    if !has_cycle {
+        after = format!("CHBM did not converge to a limit cycle: {}.", s.outcome);
+    }
+    Ok(Some(Section {
+        heading: "Limit cycle (CHBM, sections 4-5)".into(),
+        text: "The periodic self-excited vibration just above μ0, by the Constrained Harmonic \
+               Balance Method (whether the brake settles into it is what the comparison with time \
+               integration checks; its stability is not computed here). Amplitudes are half the peak-to-peak relative \
+               motion of the pad and disc points of each pair (normal: closure; tangential: \
+               sliding velocity). Files: [chbm/coefficients.csv](chbm/coefficients.csv) (Fourier \
+               coefficients of every dof), [chbm/chbm.json](chbm/chbm.json)."
+            .into(),
+        figures,
+        tables: vec![
+            (
+                pairs.align_numbers_right(),
+                "The limit cycle at each contact pair".into(),
+            ),
+            (t, "CHBM solution".into()),
+        ],
+        after,
+    }))
+}
+
+fn compare_section(compare: Option<&CompareSummary>) -> Section {
+    let Some(c) = compare else {
+        return Section {
+            heading: "CHBM against time integration".into(),
+            text: "Not run (`squeal run --no-compare`): `squeal compare` makes it.".into(),
+            ..Section::default()
+        };
+    };
+    let mut figures = Vec::new();
+    let mut tables = Vec::new();
+    let mut after = String::new();
+    for l in &c.levels {
+        let dir = PathBuf::from("compare").join(&l.folder);
+        figures.push((
+            dir.join("limit_cycles"),
+            format!(
+                "At {} μ0: CHBM's limit cycles over the reference time integration (the paper's Figure 4)",
+                fmt_sig(l.ratio, 4)
+            ),
+        ));
+        figures.push((
+            dir.join("speed_accuracy"),
+            format!("At {} μ0: wall time against error", fmt_sig(l.ratio, 4)),
+        ));
+        tables.push((
+            l.table1.clone(),
+            format!(
+                "At {} μ0 (μ = {}): errors against the reference time integration (the paper's Table 1)",
+                fmt_sig(l.ratio, 4),
+                fmt_sig(l.mu, 6)
+            ),
+        ));
+        tables.push((
+            l.table2.clone(),
+            format!(
+                "At {} μ0: cost and storage (the paper's Table 2)",
+                fmt_sig(l.ratio, 4)
+            ),
+        ));
+        if !l.failures.is_empty() {
+            after.push_str(&format!(
+                "What did not converge at {} μ0:\n\n",
+                fmt_sig(l.ratio, 4)
+            ));
+            for f in &l.failures {
+                after.push_str(&format!("- {f}\n"));
+            }
+            after.push('\n');
+        }
+        let links: Vec<String> = l
+            .files
+            .iter()
+            .map(|f| format!("[{f}]({})", dir.join(f).display()))
+            .collect();
+        after.push_str(&format!(
+            "Files at {} μ0: {}.\n\n",
+            fmt_sig(l.ratio, 4),
+            links.join(", ")
+        ));
+    }
+    Section {
+        heading: "CHBM against time integration".into(),
+        text: format!(
+            "CHBM checked against variable-step BDF time integration of the whole brake from the \
+             unstable equilibrium to its steady cycle. Errors: {}.",
+            c.error_definition
+        ),
+        figures,
+        tables,
+        after,
+    }
+}
+
+/// Every file of the output folder, as links grouped by folder (the report's own files
+/// excepted: they are this page, its Markdown twin and the tables' CSV files linked from their
+/// captions).
+fn files_section(out: &Path) -> Section {
+    let mut files = Vec::new();
+    list_files(out, Path::new(""), &mut files);
+    // By folder, then name: a sub-folder's files must not split its parent's list.
+    files.sort_by_key(|f| {
+        let p = Path::new(f);
+        (
+            p.parent().map(Path::to_path_buf),
+            p.file_name().map(|n| n.to_os_string()),
+        )
+    });
+    let mut by_folder: Vec<(String, Vec<String>)> = Vec::new();
+    for f in files {
+        let folder = Path::new(&f)
+            .parent()
+            .map(|p| p.display().to_string())
+            .unwrap_or_default();
+        match by_folder.last_mut() {
+            Some((d, v)) if *d == folder => v.push(f),
+            _ => by_folder.push((folder, vec![f])),
+        }
+    }
+    let mut text = String::new();
+    for (folder, files) in by_folder {
+        let links: Vec<String> = files
+            .iter()
+            .map(|f| {
+                let name = Path::new(f)
+                    .file_name()
+                    .map(|n| n.to_string_lossy().into_owned())
+                    .unwrap_or_default();
+                format!("[{name}]({})", url_path(f))
+            })
+            .collect();
+        let label = if folder.is_empty() {
+            "this folder".to_string()
+        } else {
+            format!("`{folder}/`")
+        };
+        text.push_str(&format!("- {label}: {}\n", links.join(", ")));
+    }
+    Section {
+        heading: "Files".into(),
+        text: format!(
+            "Every file of this run, relative to this page (CSV opens in a spreadsheet, SVG and \
+             PNG in a browser, `.vtm`, `.vtu` and `.pvd` in ParaView, `.rom` with \
+             `tools/rom/read_rom.py`):\n\n{text}"
+        ),
+        ..Section::default()
+    }
+}
+
+/// A relative path with `/` separators and unsafe bytes percent-encoded.
+fn url_path(p: &str) -> String {
+    let mut out = String::new();
+    for b in p.replace('\\', "/").bytes() {
+        if b.is_ascii_alphanumeric() || b"-_.~/".contains(&b) {
+            out.push(b as char);
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
+fn list_files(root: &Path, rel: &Path, out: &mut Vec<String>) {
+    let Ok(entries) = std::fs::read_dir(root.join(rel)) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        if name.starts_with('.') {
+            continue;
+        }
+        let path = rel.join(&name);
+        match e.file_type() {
+            Ok(t) if t.is_dir() => list_files(root, &path, out),
+            Ok(t) if t.is_file() => {
+                let own = rel.as_os_str().is_empty()
+                    && (name == "index.html"
+                        || name == "index.md"
+                        || (name.starts_with("table-") && name.ends_with(".csv")));
+                if !own {
+                    out.push(path.display().to_string());
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+fn timings_section(r: &RunResults<'_>) -> Section {
     let mut t = Table::new(["stage", "wall time (s)"]);
     for (s, x) in r.timings {
         t.push_row([s.to_string(), format!("{x:.2}")]);
     }
-    sections.push(Section {
+    Section {
         heading: "Timings".into(),
-        text: String::new(),
-        figures: vec![],
-        tables: vec![(t, "Wall time per stage".into())],
-    });
-    Report {
-        title,
-        intro: "Made by `squeal run`: Coudeyras, Sinou & Nacivet (2009), The Constrained Harmonic Balance Method, for this scene.".into(),
-        sections,
+        tables: vec![(t.align_numbers_right(), "Wall time per stage".into())],
+        ..Section::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The files section links every file under the folder, its sub-folders included, and
+    /// leaves out the report's own files and hidden ones.
+    #[test]
+    fn the_files_section_links_every_file() {
+        let dir = std::env::temp_dir().join(format!("squeal-files-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        for f in [
+            "a.csv",
+            "chbm/cycle/x 1.vtu",
+            "index.html",
+            "table-1.csv",
+            ".hidden",
+        ] {
+            let p = dir.join(f);
+            std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+            std::fs::write(&p, b"").unwrap();
+        }
+        let s = files_section(&dir);
+        assert!(s.text.contains("[a.csv](a.csv)"), "{}", s.text);
+        assert!(
+            s.text.contains("[x 1.vtu](chbm/cycle/x%201.vtu)"),
+            "{}",
+            s.text
+        );
+        for absent in ["index.html", "table-1.csv", ".hidden"] {
+            assert!(!s.text.contains(absent), "{absent}: {}", s.text);
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The comparison section holds each level's Table 1 and 2 with the level in the caption,
+    /// the overlays, every failure in full and the level's files as links; without a
+    /// comparison it says it was not run.
+    #[test]
+    fn the_comparison_section_shows_tables_overlays_and_failures() {
+        let mut t1 = Table::new(["", "CHBM 3H"]);
+        t1.push_row(["displacement error, all dofs (%)", "1.32"]);
+        let mut t2 = Table::new(["method", "outcome"]);
+        t2.push_row(["BDF 1e-5", "failed: no steady oscillation by t = 1.2296 s"]);
+        let c = CompareSummary {
+            levels: vec![crate::compare::CompareLevel {
+                ratio: 1.1,
+                mu: 0.508005,
+                folder: "mu_1.100".into(),
+                table1: t1.clone(),
+                table2: t2.clone(),
+                failures: vec![
+                    "BDF time integration at rtol 1e-5: no steady oscillation by t = 1.2296 s: \
+                     4848 cycles seen"
+                        .into(),
+                ],
+                files: vec!["table1.csv".into(), "limit_cycles.svg".into()],
+            }],
+            error_definition: "RMS of the difference",
+            json: serde_json::Value::Null,
+        };
+        let s = compare_section(Some(&c));
+        assert_eq!(s.heading, "CHBM against time integration");
+        assert!(
+            s.text.contains("Errors: RMS of the difference."),
+            "{}",
+            s.text
+        );
+        assert_eq!(
+            s.figures[0].0,
+            PathBuf::from("compare/mu_1.100/limit_cycles")
+        );
+        assert!(
+            s.figures[0]
+                .1
+                .contains("over the reference time integration")
+        );
+        assert_eq!(s.tables.len(), 2);
+        assert_eq!(s.tables[0].0, t1);
+        assert!(
+            s.tables[0].1.contains("At 1.100 μ0 (μ = 0.508005)")
+                && s.tables[0].1.contains("the paper's Table 1"),
+            "{}",
+            s.tables[0].1
+        );
+        assert!(s.tables[1].1.contains("the paper's Table 2"));
+        assert!(
+            s.after.contains("What did not converge at 1.100 μ0:\n\n- BDF time integration at rtol 1e-5: no steady oscillation by t = 1.2296 s: 4848 cycles seen\n"),
+            "{}",
+            s.after
+        );
+        assert!(
+            s.after
+                .contains("[table1.csv](compare/mu_1.100/table1.csv), [limit_cycles.svg](compare/mu_1.100/limit_cycles.svg)"),
+            "{}",
+            s.after
+        );
+        let none = compare_section(None);
+        assert!(none.text.starts_with("Not run (`squeal run --no-compare`)"));
+        assert!(none.tables.is_empty() && none.figures.is_empty());
     }
 }

@@ -232,8 +232,20 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
     out
 }
 
-/// Branches shown in the figures: the pair first, then in-band branches within ±25% of the
-/// Hopf frequency (or all in-band branches that ever go unstable when there is no Hopf point).
+/// The instability threshold of the sweep (s⁻¹): a mode counts as unstable when
+/// `Re λ > τ`. With no threshold in the options it is `64 ε ω_max`
+/// ([`squeal_brake::sweep::default_threshold`]), relative to the largest `|λ|` of the
+/// spectrum: the eigensolver's round-off on an undamped mode is about `ε ω_max`, so real parts
+/// of `1e-41` to `1e-16` s⁻¹ with zero damping are not instabilities.
+pub fn threshold(m: &Model, st: &Stability) -> f64 {
+    m.sweep
+        .threshold
+        .unwrap_or_else(|| squeal_brake::sweep::default_threshold(&st.reference))
+}
+
+/// Branches shown in the figures: the Hopf pair first, then every other in-band branch that
+/// goes unstable over the sweep (the second instability too), then in-band branches within
+/// ±25% of the Hopf frequency (or, with no Hopf point, every branch that crosses).
 pub fn shown_branches(st: &Stability, band_max: f64) -> Vec<usize> {
     let sw = &st.sweep;
     let mut out = Vec::new();
@@ -242,18 +254,39 @@ pub fn shown_branches(st: &Stability, band_max: f64) -> Vec<usize> {
         if let Some(p) = h.partner {
             out.push(p);
         }
+    }
+    for c in sw
+        .crossings
+        .iter()
+        .filter(|c| c.in_band || sw.hopf.is_none())
+    {
+        if !out.contains(&c.branch) {
+            out.push(c.branch);
+        }
+    }
+    if let Some(h) = &sw.hopf {
         for b in 0..sw.branches.len() {
             let f = sw.points[0].spectrum.frequency_hz(sw.branches[b][0]);
             if !out.contains(&b) && (f / h.frequency_hz - 1.0).abs() < 0.25 && f < band_max {
                 out.push(b);
             }
         }
-    } else {
-        for c in &sw.crossings {
-            if !out.contains(&c.branch) {
-                out.push(c.branch);
-            }
+    }
+    out
+}
+
+/// The in-band crossings other than the Hopf point's, one per branch (its first).
+pub fn other_instabilities(st: &Stability) -> Vec<squeal_brake::sweep::Crossing> {
+    let sw = &st.sweep;
+    let hopf_branch = sw.hopf.as_ref().map(|h| h.branch);
+    let mut seen = Vec::new();
+    let mut out = Vec::new();
+    for c in sw.crossings.iter().filter(|c| c.in_band) {
+        if Some(c.branch) == hopf_branch || seen.contains(&c.branch) {
+            continue;
         }
+        seen.push(c.branch);
+        out.push(*c);
     }
     out
 }
@@ -261,6 +294,7 @@ pub fn shown_branches(st: &Stability, band_max: f64) -> Vec<usize> {
 /// `branches.csv`, `stability.csv` and `summary.json`.
 pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
     let sw = &st.sweep;
+    let tau = threshold(s, st);
     let mut all = Table::new([
         "mu",
         "branch",
@@ -279,7 +313,7 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
                 format!("{:e}", l.re),
                 format!("{f}"),
                 (s.sweep.band.contains(f) as u8).to_string(),
-                ((l.re > 0.0) as u8).to_string(),
+                ((l.re > tau) as u8).to_string(),
             ]);
         }
     }
@@ -301,7 +335,7 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
         }
         let (mut inb, mut outb) = (0, 0);
         for j in 0..p.spectrum.values.len() {
-            if p.spectrum.values[j].re > 0.0 {
+            if p.spectrum.values[j].re > tau {
                 if s.sweep.band.contains(p.spectrum.frequency_hz(j)) {
                     inb += 1;
                 } else {
@@ -324,6 +358,8 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
             "branch": c.branch, "mu_lo": c.mu_lo, "mu_hi": c.mu_hi, "frequency_hz": c.frequency_hz, "in_band": c.in_band
         })).collect::<Vec<_>>(),
         "valid_band_max_hz": s.sweep.band.valid_max_hz,
+        "instability_threshold_per_s": tau,
+        "instability_threshold": "a mode is unstable when Re(lambda) > this threshold, 64 eps omega_max: the eigensolver's round-off relative to the largest |lambda| of the spectrum",
         "user_band_hz": s.sweep.band.user.map(|(a, b)| [a, b]),
         "equilibrium_mu0": {
             "iterations": st.reference.equilibrium.iterations,
@@ -345,24 +381,42 @@ pub fn write_figures(dir: &Path, st: &Stability, s: &Model) -> Result<()> {
     let shown = shown_branches(st, s.sweep.band.valid_max_hz);
     let mut re = Panel {
         title: "(a) real parts".into(),
-        x_label: "friction coefficient mu".into(),
-        y_label: "Re(lambda) (1/s)".into(),
+        x_label: "friction coefficient μ".into(),
+        y_label: "Re λ (1/s)".into(),
         // The same series as panel (b), whose legend sits outside: none here to hide a curve.
         legend: squeal_report::LegendPosition::None,
         ..Panel::default()
     };
     let mut fr = Panel {
         title: "(b) frequencies".into(),
-        x_label: "friction coefficient mu".into(),
+        x_label: "friction coefficient μ".into(),
         y_label: "frequency (Hz)".into(),
         legend: squeal_report::LegendPosition::Outside,
         ..Panel::default()
     };
+    let others = other_instabilities(st);
+    let mut k_other = 0;
     for (i, &b) in shown.iter().enumerate() {
-        let name = match (i, sw.hopf.is_some()) {
-            (0, true) => "unstable mode (Mode 2)".to_string(),
-            (1, true) => "coalescing partner (Mode 1)".to_string(),
-            _ => format!("branch {b}"),
+        let f0 = sw.points[0].spectrum.frequency_hz(sw.branches[b][0]);
+        let crossing = others.iter().find(|c| c.branch == b);
+        let hopf_pair = sw.hopf.is_some()
+            && i < 2
+            && !(i == 1 && sw.hopf.as_ref().and_then(|h| h.partner).is_none());
+        let name = match (i, sw.hopf.as_ref(), crossing) {
+            (0, Some(h), _) => format!(
+                "Mode 2, unstable from μ0 = {}, {:.0} Hz",
+                fmt_sig(h.mu0, 4),
+                h.frequency_hz
+            ),
+            (1, Some(_), _) if hopf_pair => {
+                format!("Mode 1, coalescing partner ({f0:.0} Hz at μ = 0)")
+            }
+            (_, _, Some(c)) => format!(
+                "unstable from μ ≈ {}, {:.0} Hz",
+                fmt_sig(0.5 * (c.mu_lo + c.mu_hi), 3),
+                c.frequency_hz
+            ),
+            _ => format!("stable mode, {f0:.0} Hz at μ = 0"),
         };
         let re_pts: Vec<(f64, f64)> = (0..sw.points.len())
             .map(|k| (sw.points[k].equilibrium.mu, sw.value(b, k).re))
@@ -379,7 +433,13 @@ pub fn write_figures(dir: &Path, st: &Stability, s: &Model) -> Result<()> {
             Series::line(name.clone(), re_pts),
             Series::line(name, f_pts),
         );
-        if i >= 2 {
+        if crossing.is_some() {
+            // Every further instability in a colour of its own, dashed.
+            let colour = squeal_report::palette_color(3 + k_other);
+            k_other += 1;
+            a = a.with_color(colour).with_dash(Dash::DashDot);
+            c = c.with_color(colour).with_dash(Dash::DashDot);
+        } else if i >= 2 || !hopf_pair && i > 0 {
             a = a.with_color(Rgb::GREY).with_dash(Dash::Dotted);
             c = c.with_color(Rgb::GREY).with_dash(Dash::Dotted);
         }
@@ -392,7 +452,7 @@ pub fn write_figures(dir: &Path, st: &Stability, s: &Model) -> Result<()> {
         dash: Dash::Dashed,
     });
     if let Some(h) = &sw.hopf {
-        let label = format!("mu0 = {}", fmt_sig(h.mu0, 4));
+        let label = format!("μ0 = {}", fmt_sig(h.mu0, 4));
         re.annotations.push(Annotation::VLine {
             x: h.mu0,
             label: label.clone(),
@@ -405,7 +465,7 @@ pub fn write_figures(dir: &Path, st: &Stability, s: &Model) -> Result<()> {
         });
     }
     let fig = Figure {
-        title: "Stability against friction (paper Figure 2)".into(),
+        title: "Stability against friction (the paper's Figure 2)".into(),
         panels: vec![re, fr],
         ..Figure::default()
     };

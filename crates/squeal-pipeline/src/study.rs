@@ -211,7 +211,7 @@ fn parametric(
                         case.number,
                         case.label
                     ),
-                    source: Box::new(PipelineError::input("stability", e)),
+                    error: Box::new(PipelineError::input("stability", e)),
                 });
             }
         }
@@ -1110,6 +1110,25 @@ fn mesh_study(scene: &Scene, dir: &Path, mus: &[f64], levels: &[String], log: Lo
         ));
     }
     let mdir = dir.join("mesh");
+    // Every level's meshes are found before the first (slow) reduction starts.
+    let mut missing = Vec::new();
+    for level in levels {
+        let v = variant(scene, level, "patch", &mdir)?;
+        for p in [&v.file.model.disc, &v.file.model.pad] {
+            if !p.is_file() {
+                missing.push(p.display().to_string());
+            }
+        }
+    }
+    if !missing.is_empty() {
+        return Err(PipelineError::input(
+            "--kind mesh",
+            format!(
+                "mesh files not found: {} (the scene's meshes must end in _<level>; --levels chooses the levels)",
+                missing.join(", ")
+            ),
+        ));
+    }
     create_dir(&mdir)?;
     let mut models = Vec::new();
     let mut damping = None;
@@ -1269,10 +1288,10 @@ fn mesh_study(scene: &Scene, dir: &Path, mus: &[f64], levels: &[String], log: Lo
 
 /// Creates a folder (and its parents), naming it in the error.
 pub(crate) fn create_dir(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|source| PipelineError::File {
+    std::fs::create_dir_all(dir).map_err(|error| PipelineError::File {
         what: "creating the folder",
         path: dir.to_path_buf(),
-        source,
+        error,
     })
 }
 
@@ -1280,7 +1299,7 @@ pub(crate) fn create_dir(dir: &Path) -> Result<()> {
 /// rather than because something failed.
 fn no_hopf_point(e: &PipelineError) -> bool {
     match e {
-        PipelineError::Context { source, .. } => no_hopf_point(source),
+        PipelineError::Context { error, .. } => no_hopf_point(error),
         PipelineError::Brake(squeal_brake::BrakeError::NoPairFound)
         | PipelineError::NoHopfPoint { .. } => true,
         _ => false,

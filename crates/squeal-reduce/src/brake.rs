@@ -409,11 +409,21 @@ pub fn reduce_brake_loaded(
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     let t0 = Instant::now();
     inputs.validate()?;
+    // Errors in a part name its mesh file.
+    let in_mesh = |input: &PartInput| {
+        let path = input.mesh.clone();
+        move |e: ReduceError| ReduceError::InMesh {
+            path,
+            error: Box::new(e),
+        }
+    };
     for (loaded, (name, input)) in [&disc, &pad].into_iter().zip(inputs.parts()) {
-        check_sets(&loaded.mesh, name, input, inputs)?;
+        check_sets(&loaded.mesh, name, input, inputs).map_err(in_mesh(input))?;
     }
-    let disc_points = contact_positions(&disc.mesh, &inputs.disc, inputs)?;
-    let pad_points = contact_positions(&pad.mesh, &inputs.pad, inputs)?;
+    let disc_points =
+        contact_positions(&disc.mesh, &inputs.disc, inputs).map_err(in_mesh(&inputs.disc))?;
+    let pad_points =
+        contact_positions(&pad.mesh, &inputs.pad, inputs).map_err(in_mesh(&inputs.pad))?;
     let (pairs, tolerance) = pair_contact_points(
         &disc_points,
         &pad_points,
@@ -442,12 +452,14 @@ pub fn reduce_brake_loaded(
     });
     let mut parts = Vec::with_capacity(2);
     let mut reports = Vec::with_capacity(2);
-    for slot in slots {
+    for (slot, (_, input)) in slots.into_iter().zip(inputs.parts()) {
         let reduced = slot.into_inner().unwrap_or_else(PoisonError::into_inner);
-        let (part, report) = reduced.ok_or_else(|| ReduceError::Invalid {
-            part: "brake".into(),
-            what: "a part's reduction ended without a result".into(),
-        })??;
+        let (part, report) = reduced
+            .ok_or_else(|| ReduceError::Invalid {
+                part: "brake".into(),
+                what: "a part's reduction ended without a result".into(),
+            })?
+            .map_err(in_mesh(input))?;
         parts.push(part);
         reports.push(report);
     }

@@ -47,6 +47,13 @@ use std::time::{Duration, Instant};
 /// Errors of the reduction, named in the user's terms.
 #[derive(Debug, thiserror::Error)]
 pub enum ReduceError {
+    /// An error in one part, with its mesh file named (the inner error is a field, not a
+    /// `source()`, so an error chain prints it once).
+    #[error("{}: {error}", path.display())]
+    InMesh {
+        path: std::path::PathBuf,
+        error: Box<ReduceError>,
+    },
     #[error(transparent)]
     Mesh(#[from] squeal_mesh::MeshError),
     #[error(transparent)]
@@ -106,6 +113,16 @@ pub enum ReduceError {
     },
     #[error("{part}: {what}")]
     Invalid { part: String, what: String },
+}
+
+impl ReduceError {
+    /// The error itself, without the mesh file [`ReduceError::InMesh`] names.
+    pub fn inner(&self) -> &ReduceError {
+        match self {
+            ReduceError::InMesh { error, .. } => error.inner(),
+            other => other,
+        }
+    }
 }
 
 const AXES: [char; 3] = ['x', 'y', 'z'];

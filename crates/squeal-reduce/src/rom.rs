@@ -35,10 +35,12 @@ const MAX_HEADER_BYTES: u64 = 64 << 20;
 /// Errors reading or writing a reduced-model file.
 #[derive(Debug, thiserror::Error)]
 pub enum RomError {
-    #[error("{}: {source}", path.display())]
+    /// The reason is in the message and is not also a `source()` (an error chain printed with
+    /// `{:#}` would otherwise show it twice).
+    #[error("{}: {error}", path.display())]
     Io {
         path: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
     },
     #[error(transparent)]
     Write(#[from] squeal_io::IoError),
@@ -281,9 +283,9 @@ impl ReducedModel {
 
     /// Reads a model written by [`ReducedModel::write`].
     pub fn read(path: &Path) -> Result<Self, RomError> {
-        let bytes = std::fs::read(path).map_err(|source| RomError::Io {
+        let bytes = std::fs::read(path).map_err(|error| RomError::Io {
             path: path.to_path_buf(),
-            source,
+            error,
         })?;
         Self::from_bytes(&bytes, path)
     }
@@ -343,15 +345,16 @@ impl ReducedModel {
 /// Reads only the JSON header of a reduced-model file (not its arrays).
 pub fn read_header(path: &Path) -> Result<RomHeader, RomError> {
     use std::io::Read;
-    let io = |source| RomError::Io {
+    let io = |error| RomError::Io {
         path: path.to_path_buf(),
-        source,
+        error,
     };
     let bad = |message: String| RomError::Format {
         path: path.to_path_buf(),
         message,
     };
     let mut file = std::fs::File::open(path).map_err(io)?;
+    let size = file.metadata().map_err(io)?.len();
     let mut len = [0u8; 8];
     file.read_exact(&mut len)
         .map_err(|e| bad(format!("no header length: {e}")))?;
@@ -371,6 +374,21 @@ pub fn read_header(path: &Path) -> Result<RomHeader, RomError> {
     }
     let outer: serde_json::Value =
         serde_json::from_slice(&json).map_err(|e| bad(format!("header: {e}")))?;
+    // The arrays' byte ranges must all lie in the file: a file cut short (a copy or download
+    // that stopped) has a complete header and is caught here, not when its arrays are read.
+    let data_end = outer
+        .as_object()
+        .into_iter()
+        .flatten()
+        .filter_map(|(_, t)| t.get("data_offsets")?.as_array()?.get(1)?.as_u64())
+        .max()
+        .unwrap_or(0);
+    let expected = 8 + n + data_end;
+    if size < expected {
+        return Err(bad(format!(
+            "the file is cut short: {size} bytes, its header describes {expected}"
+        )));
+    }
     let inner = outer
         .get("__metadata__")
         .and_then(|m| m.get("squeal"))
@@ -468,9 +486,9 @@ fn read_vec(st: &SafeTensors, name: &str, dtype: Dtype, len: usize) -> Result<Ve
 /// SHA-256 of a file, as lowercase hex.
 pub fn sha256_file(path: &Path) -> Result<String, RomError> {
     use sha2::{Digest, Sha256};
-    let bytes = std::fs::read(path).map_err(|source| RomError::Io {
+    let bytes = std::fs::read(path).map_err(|error| RomError::Io {
         path: path.to_path_buf(),
-        source,
+        error,
     })?;
     let digest = Sha256::digest(&bytes);
     Ok(digest.iter().map(|b| format!("{b:02x}")).collect())
@@ -561,5 +579,33 @@ mod tests {
         }
         let r = ReducedModel::from_bytes(b"not a model at all", Path::new("junk.rom"));
         assert!(matches!(r, Err(RomError::Format { .. })));
+    }
+
+    /// A file cut inside its arrays has a whole header; `read_header` (what the freshness
+    /// check reads) must still see that it is cut, or a cached model is called up to date and
+    /// then fails to load. Every cut from the end of the header on is caught; the whole file
+    /// passes.
+    #[test]
+    fn read_header_sees_a_file_cut_inside_its_arrays() {
+        let bytes = sample().to_bytes().unwrap();
+        let n = u64::from_le_bytes(bytes[..8].try_into().unwrap()) as usize;
+        let dir = std::env::temp_dir().join(format!("squeal-rom-cut-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("cut.rom");
+        std::fs::write(&path, &bytes).unwrap();
+        assert!(read_header(&path).is_ok());
+        for cut in [8 + n, 8 + n + 1, bytes.len() - 1] {
+            std::fs::write(&path, &bytes[..cut]).unwrap();
+            let e = read_header(&path).unwrap_err();
+            assert!(
+                matches!(e, RomError::Format { .. }) && e.to_string().contains("cut short"),
+                "cut at {cut}: {e}"
+            );
+        }
+        // The OS reason of a missing file appears once in the message (no source() repeat).
+        let missing = dir.join("missing.rom");
+        let e = ReducedModel::read(&missing).unwrap_err();
+        assert!(std::error::Error::source(&e).is_none(), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

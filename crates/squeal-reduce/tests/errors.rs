@@ -22,8 +22,32 @@ fn reduce_edited(
     edit(&mut disc, &mut pad);
     match reduce_brake_loaded(inputs, disc, pad, &mut |_, _| {}) {
         Ok(_) => panic!("the reduction should have failed"),
+        Err(ReduceError::InMesh { path, error }) => {
+            // An error of one part names its mesh file.
+            assert!(path.ends_with("disc_coarse.inp") || path.ends_with("pad_coarse.inp"));
+            *error
+        }
         Err(e) => e,
     }
+}
+
+/// Issue 12: "node set PISTON is missing from the mesh" did not say which mesh. The message
+/// now starts with the file.
+#[test]
+fn a_missing_node_set_names_the_mesh_file() {
+    let patch = coarse_inputs(InterfaceKind::Patch);
+    let (disc, mut pad) = (coarse("disc"), coarse("pad"));
+    pad.mesh.node_sets.remove("PISTON");
+    let e = reduce_brake_loaded(&patch, disc, pad, &mut |_, _| {}).unwrap_err();
+    let shown = e.to_string();
+    assert!(
+        shown.contains("pad_coarse.inp: node set PISTON is missing"),
+        "{shown}"
+    );
+    assert!(matches!(
+        e.inner(),
+        ReduceError::Interface(InterfaceError::MissingSet(s)) if s == "PISTON"
+    ));
 }
 
 #[test]

@@ -47,6 +47,7 @@
 //!         text: "Modes against friction.".into(),
 //!         figures: vec![("fig2".into(), "Real parts".into())],
 //!         tables: vec![(modes.align_numbers_right(), "Unstable modes".into())],
+//!         ..Section::default()
 //!     }],
 //! };
 //! report.write(dir)?; // index.md, index.html, table-1.csv
@@ -57,6 +58,7 @@ mod font;
 pub mod format;
 mod geom;
 pub mod model;
+pub mod raster;
 mod render;
 pub mod report;
 pub mod table;
@@ -66,7 +68,7 @@ pub use model::{
     Annotation, Category, CategoryGrid, Dash, Figure, Layout, LegendPosition, MARKERS, Marker,
     PALETTE, Panel, Rgb, Scale, Series, SeriesKind, palette_color,
 };
-pub use report::{Report, Section};
+pub use report::{Report, Section, markdown_to_html};
 pub use table::{Align, Table};
 
 use plotters::prelude::*;
@@ -141,7 +143,7 @@ pub fn render_png(fig: &Figure) -> Result<(Vec<u8>, Notes), ReportError> {
 }
 
 /// Averages each 2 x 2 block of an RGB image of `2w x 2h` pixels (rounding to nearest).
-fn downsample_2x2(big: &[u8], w: usize, h: usize) -> Vec<u8> {
+pub(crate) fn downsample_2x2(big: &[u8], w: usize, h: usize) -> Vec<u8> {
     let mut out = vec![0u8; w * h * 3];
     let stride = 2 * w * 3;
     for y in 0..h {
@@ -160,7 +162,7 @@ fn downsample_2x2(big: &[u8], w: usize, h: usize) -> Vec<u8> {
 }
 
 /// PNG bytes of an RGB buffer, tagged with 96 dpi x `scale` so office programs size it as the SVG.
-fn encode_png(rgb: &[u8], w: u32, h: u32, scale: f64) -> Result<Vec<u8>, ReportError> {
+pub(crate) fn encode_png(rgb: &[u8], w: u32, h: u32, scale: f64) -> Result<Vec<u8>, ReportError> {
     let err = |e: png::EncodingError| ReportError::Png(e.to_string());
     let mut out = Vec::new();
     let mut enc = png::Encoder::new(&mut out, w, h);

@@ -2,7 +2,7 @@
 //! tables; the HTML is balanced and self-contained; each table also goes to a CSV file.
 
 use squeal_report::{
-    Figure, Panel, Report, ReportError, Section, Series, Table, write_svg_and_png,
+    Figure, Panel, Report, ReportError, Section, Series, Table, markdown_to_html, write_svg_and_png,
 };
 use std::path::PathBuf;
 
@@ -64,6 +64,7 @@ fn sample_report(figures: Vec<(PathBuf, String)>) -> Report {
                 text: "Modes against friction.".into(),
                 figures,
                 tables: vec![(modes_table(), "Unstable modes".into())],
+                after: String::new(),
             },
             Section {
                 heading: "Limit cycles".into(),
@@ -92,11 +93,11 @@ fn report_folder_indexes_figures_and_tables() {
     assert!(md.starts_with("# Squeal <study> & co\n"), "{md}");
     assert!(md.contains("![Figure 1](figs/fig%202.svg)"), "{md}");
     assert!(
-        md.contains("*Figure 1: Real parts* ([PNG](figs/fig%202.png))"),
+        md.contains("**Figure 1.** Real parts ([PNG](figs/fig%202.png))"),
         "{md}"
     );
     assert!(
-        md.contains("First paragraph continues here.\n\nSecond paragraph."),
+        md.contains("First paragraph\ncontinues here.\n\nSecond paragraph."),
         "{md}"
     );
     assert!(md.contains("| 2 <pad & disc> | 3110 |"), "{md}");
@@ -170,4 +171,18 @@ fn stems_with_dots_find_their_svg() {
     let md = std::fs::read_to_string(dir.join("index.md")).unwrap();
     assert!(md.contains("![Figure 1](mu0.25.svg)"), "{md}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The Markdown of section texts is rendered in the HTML: paragraphs, `- ` lists, code, bold,
+/// emphasis and links; everything else is escaped, and a lone asterisk stays an asterisk.
+#[test]
+fn markdown_is_rendered_in_the_html() {
+    let html = markdown_to_html(
+        "A `x<1` and **bold**, *em*, 2 * 3\nand [the CSV](a%20b.csv).\n\n- one <b>\n- two",
+    );
+    assert_eq!(
+        html,
+        "<p>A <code>x&lt;1</code> and <strong>bold</strong>, <em>em</em>, 2 * 3 and \
+         <a href=\"a%20b.csv\">the CSV</a>.</p>\n<ul>\n<li>one &lt;b&gt;</li>\n<li>two</li>\n</ul>\n"
+    );
 }

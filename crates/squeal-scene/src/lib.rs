@@ -15,10 +15,12 @@ use toml::Spanned;
 /// line.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    #[error("reading scene {}: {source}", path.display())]
+    /// The file cannot be read (the reason is in the message, and not also a `source()`, so
+    /// an error chain shows it once).
+    #[error("reading scene {}: {error}", path.display())]
     Read {
         path: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
     },
     #[error("{}: {message}", path.display())]
     Syntax { path: PathBuf, message: String },
@@ -195,7 +197,7 @@ fn default_pair() -> Spanned<toml::Value> {
 #[derive(Debug, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct StabilitySection {
-    /// `"start:end:count"` or a list of values.
+    /// `"start..end/count"` or a list of values.
     pub mu: Option<Spanned<toml::Value>>,
     /// The band μ0 must lie in (Hz), besides the model's valid band.
     pub band_hz: Option<Spanned<[f64; 2]>>,
@@ -212,9 +214,9 @@ pub struct Scene {
 impl Scene {
     /// Reads and validates a scene file.
     pub fn read(path: &Path) -> Result<Scene> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Read {
             path: path.to_path_buf(),
-            source,
+            error,
         })?;
         Self::parse(path, text)
     }
@@ -461,7 +463,7 @@ impl Scene {
     /// Friction values of the sweep.
     pub fn mu_values(&self) -> Result<Vec<f64>> {
         match &self.file.stability.mu {
-            None => Ok(parse_range("0:1:201").unwrap_or_default()),
+            None => Ok(parse_range("0..1/201").unwrap_or_default()),
             Some(v) => match v.get_ref() {
                 toml::Value::String(s) => {
                     parse_range(s).map_err(|e| self.error_at("stability.mu", v, e))
@@ -476,7 +478,11 @@ impl Scene {
                     }
                     Ok(m)
                 }
-                _ => Err(self.error_at("stability.mu", v, "must be \"start:end:count\" or a list")),
+                _ => Err(self.error_at(
+                    "stability.mu",
+                    v,
+                    "must be \"start..end/count\" (e.g. \"0..1/201\") or a list",
+                )),
             },
         }
     }
@@ -527,18 +533,32 @@ pub fn fit_cubic(d: &[f64], p: &[f64]) -> Option<Fit> {
     })
 }
 
-/// `"start:end:count"` → `count` evenly spaced values (MATLAB's linspace).
+/// `"start..end/count"` → `count` evenly spaced values from `start` to `end`, both included
+/// (MATLAB's `linspace(start, end, count)`), e.g. `0..1/201`.
+///
+/// The colon form `a:b:c` is refused with a message: it reads as `start:end:count` here but as
+/// `start:step:end` in MATLAB, so `0:0.5:100` would silently sweep 0–0.5.
 pub fn parse_range(s: &str) -> std::result::Result<Vec<f64>, String> {
-    let parts: Vec<&str> = s.split(':').collect();
-    let bad = || format!("'{s}' is not start:end:count (e.g. 0:1:201)");
-    if parts.len() != 3 {
-        return Err(bad());
+    let example = "e.g. 0..1/201 for 201 values from 0 to 1";
+    if s.contains(':') {
+        return Err(format!(
+            "'{s}': the colon form is ambiguous (start:end:count, or MATLAB's start:step:end); write start..end/count, {example}"
+        ));
     }
-    let a: f64 = parts[0].trim().parse().map_err(|_| bad())?;
-    let b: f64 = parts[1].trim().parse().map_err(|_| bad())?;
-    let n: usize = parts[2].trim().parse().map_err(|_| bad())?;
-    if !(a.is_finite() && b.is_finite() && b > a && (2..=100_000).contains(&n)) {
-        return Err(format!("'{s}': need start < end and 2 <= count <= 100000"));
+    let bad = || format!("'{s}' is not start..end/count ({example})");
+    let (span, count) = s.split_once('/').ok_or_else(bad)?;
+    let (a, b) = span.split_once("..").ok_or_else(bad)?;
+    let a: f64 = a.trim().parse().map_err(|_| bad())?;
+    let b: f64 = b.trim().parse().map_err(|_| bad())?;
+    let n: usize = count.trim().parse().map_err(|_| bad())?;
+    if !(a.is_finite() && b.is_finite()) {
+        return Err(format!("'{s}': start and end must be finite numbers"));
+    }
+    if b <= a {
+        return Err(format!("'{s}': start must be below end"));
+    }
+    if !(2..=100_000).contains(&n) {
+        return Err(format!("'{s}': count must be between 2 and 100000"));
     }
     Ok((0..n)
         .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
@@ -565,13 +585,24 @@ mod tests {
     #[test]
     fn ranges_parse_like_linspace() {
         assert_eq!(
-            parse_range("0:1:5").unwrap(),
+            parse_range("0..1/5").unwrap(),
             vec![0.0, 0.25, 0.5, 0.75, 1.0]
         );
-        assert!(
-            parse_range("1:0:5").is_err()
-                && parse_range("0:1").is_err()
-                && parse_range("a:1:3").is_err()
-        );
+        assert_eq!(parse_range(" 0.2 .. 0.3 / 2").unwrap(), vec![0.2, 0.3]);
+        for bad in [
+            "1..0/5", "0..1", "a..1/3", "0..1/1", "0..nan/3", "0..1/2.5", "0.5/3", "",
+        ] {
+            assert!(parse_range(bad).is_err(), "{bad}");
+        }
+    }
+
+    /// `0:0.5:100` swept 0-0.5 in 100 steps where MATLAB reads 0 to 100 in steps of 0.5: the
+    /// colon form is refused, and the message shows the form that is read.
+    #[test]
+    fn the_ambiguous_colon_form_is_refused() {
+        for old in ["0:0.5:100", "0:1:201", "0:1"] {
+            let e = parse_range(old).unwrap_err();
+            assert!(e.contains("ambiguous") && e.contains("0..1/201"), "{e}");
+        }
     }
 }

@@ -1,0 +1,240 @@
+//! Issue 12 ("never lose a user's file, say what failed where"): what the command line refuses
+//! before any work, and what its messages say. Each case failed before the fix: the commands
+//! exited 0 and wrote over their input, or ran the reduction before rejecting an argument.
+
+mod common;
+
+use common::{bundled_scene, root, squeal, temp_dir};
+use std::path::Path;
+use std::process::Output;
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A copy of a bundled mesh in `dir`.
+fn copy_mesh(dir: &Path, name: &str) -> std::path::PathBuf {
+    let to = dir.join(name);
+    std::fs::copy(root().join("meshes").join(name), &to).unwrap();
+    to
+}
+
+#[test]
+fn no_command_writes_over_its_input_or_into_a_misnamed_file() {
+    let dir = temp_dir("trust", "inputs");
+    let pad = copy_mesh(&dir, "pad_coarse.inp");
+    let disc = copy_mesh(&dir, "disc_coarse.inp");
+    let original = std::fs::read(&pad).unwrap();
+    let (pad_s, disc_s) = (pad.to_str().unwrap(), disc.to_str().unwrap());
+    let vtk = dir.join("y.vtk");
+    let txt = dir.join("file.txt");
+    for (args, says) in [
+        // The mesh itself as the output of a conversion.
+        (vec!["mesh", "convert", pad_s, pad_s], "must end in .vtu"),
+        // VTU XML into a .vtk file (legacy VTK readers fail on it).
+        (
+            vec!["mesh", "convert", pad_s, vtk.to_str().unwrap()],
+            "must end in .vtu",
+        ),
+        // The pad mesh as the reduced model.
+        (
+            vec!["reduce", disc_s, pad_s, "-o", pad_s],
+            "must end in .rom",
+        ),
+        // A file name as the folder of fe export.
+        (
+            vec!["fe", "export", pad_s, "-o", txt.to_str().unwrap()],
+            "is a folder",
+        ),
+    ] {
+        let o = squeal(&args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
+    }
+    assert_eq!(
+        std::fs::read(&pad).unwrap(),
+        original,
+        "the pad mesh changed"
+    );
+    assert!(!vtk.exists() && !txt.exists());
+
+    // A .rom that is a hard link to the mesh has the right extension but is the mesh.
+    let link = dir.join("pad.rom");
+    std::fs::hard_link(&pad, &link).unwrap();
+    let o = squeal(&["reduce", disc_s, pad_s, "-o", link.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("pad mesh this command reads"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        std::fs::read(&pad).unwrap(),
+        original,
+        "the pad mesh changed"
+    );
+
+    // A scene whose reduced model would replace its disc mesh.
+    let scene = dir.join("scene.toml");
+    let text = bundled_scene("coarse").replace(
+        "modes = 50",
+        &format!("modes = 50\nrom = {:?}", disc.display().to_string()),
+    );
+    std::fs::write(&scene, text).unwrap();
+    let o = squeal(&[
+        "stability",
+        scene.to_str().unwrap(),
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("must end in .rom"), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Bad arguments are rejected in well under the time of a reduction (about 1.5 s on the
+/// coarse meshes, and nothing is written into the output folder).
+#[test]
+fn bad_arguments_fail_before_any_work() {
+    let dir = temp_dir("trust", "arguments");
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
+    let s = scene.to_str().unwrap();
+    let out = dir.join("out");
+    let o_s = out.to_str().unwrap();
+    let blocked = dir.join("blocked");
+    std::fs::write(&blocked, b"a file where a folder is needed").unwrap();
+    let unwritable = blocked.join("out");
+    for (args, says) in [
+        (
+            vec!["chbm", s, "--mu-ratio", "0.9", "-o", o_s],
+            "--mu-ratio 0.9",
+        ),
+        (vec!["chbm", s, "--mu", "nan", "-o", o_s], "--mu NaN"),
+        (
+            vec!["stability", s, "--mu", "1..0/201", "-o", o_s],
+            "start must be below end",
+        ),
+        (
+            vec!["stability", s, "--mu", "0:0.5:100", "-o", o_s],
+            "ambiguous",
+        ),
+        (
+            vec!["stability", s, "-o", unwritable.to_str().unwrap()],
+            "blocked",
+        ),
+        (
+            vec![
+                "study",
+                s,
+                "--kind",
+                "mesh",
+                "--levels",
+                "coarse,huge",
+                "-o",
+                o_s,
+            ],
+            "disc_huge.inp",
+        ),
+    ] {
+        let t = std::time::Instant::now();
+        let o = squeal(&args);
+        let secs = t.elapsed().as_secs_f64();
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
+        // A reduction of the coarse brake alone takes over a second; a check takes
+        // milliseconds. 1 s leaves room for a loaded machine.
+        assert!(secs < 1.0, "{args:?} took {secs:.2} s");
+        assert!(
+            !out.join("brake.rom").exists(),
+            "{args:?} reduced the brake first"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Errors name the file once: the OS reason of a missing scene appears once, and a mesh
+/// error in the reduction names the mesh.
+#[test]
+fn errors_name_the_file_and_print_each_reason_once() {
+    let dir = temp_dir("trust", "messages");
+    let o = squeal(&["stability", dir.join("missing.toml").to_str().unwrap()]);
+    let e = stderr(&o);
+    let os = std::io::Error::from(std::io::ErrorKind::NotFound).to_string();
+    assert!(e.contains("missing.toml"), "{e}");
+    assert_eq!(e.matches("(os error 2)").count(), 1, "{e} ({os})");
+
+    let pad = copy_mesh(&dir, "pad_coarse.inp");
+    let disc = copy_mesh(&dir, "disc_coarse.inp");
+    let text = std::fs::read_to_string(&pad)
+        .unwrap()
+        .replace("*NSET, NSET=PISTON", "*NSET, NSET=PISTONS");
+    std::fs::write(&pad, text).unwrap();
+    let o = squeal(&[
+        "reduce",
+        disc.to_str().unwrap(),
+        pad.to_str().unwrap(),
+        "-o",
+        dir.join("b.rom").to_str().unwrap(),
+    ]);
+    let e = stderr(&o);
+    assert!(
+        e.contains("pad_coarse.inp: node set PISTON is missing"),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `mesh info --material` checks what `reduce` checks, and says which materials it used.
+#[test]
+fn mesh_info_checks_material_overrides() {
+    let pad = root().join("meshes/pad_coarse.inp");
+    let p = pad.to_str().unwrap();
+    for (material, says) in [
+        ("LINNING=2e9,0.25,2500", "no element set LINNING"),
+        ("LINING=-2e9,0.25,2500", "not positive definite"),
+        ("LINING=2e9,0.6,2500", "not positive definite"),
+    ] {
+        let o = squeal(&["mesh", "info", p, "--material", material]);
+        assert_eq!(o.status.code(), Some(1), "{material}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{material}: {}", stderr(&o));
+    }
+    let msh = root().join("meshes/pad_coarse.msh");
+    let o = squeal(&[
+        "mesh",
+        "info",
+        msh.to_str().unwrap(),
+        "--material",
+        "LINING=2e9,0.25,2500",
+        "--material",
+        "BACKPLATE=210e9,0.3,7850",
+    ]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!text.contains("none in the file"), "{text}");
+    assert!(text.contains("given with --material"), "{text}");
+    // The bundled pad's mass with these materials: 0.120 kg lining + 0.188 kg backplate.
+    assert!(text.contains("mass      3.0837"), "{text}");
+}
+
+/// Exit codes are documented and distinct: 2 is a usage error only, 4 a mesh with errors.
+#[test]
+fn exit_codes_are_distinct_and_documented() {
+    let o = squeal(&["--help"]);
+    let help = String::from_utf8_lossy(&o.stdout);
+    for line in ["2  a usage error", "3  chbm, run", "4  mesh info"] {
+        assert!(help.contains(line), "{help}");
+    }
+    assert_eq!(squeal(&["mesh", "info"]).status.code(), Some(2));
+    let dir = temp_dir("trust", "exit");
+    let pad = copy_mesh(&dir, "pad_coarse.inp");
+    // Element 198 with two corners swapped: inverted.
+    let text = std::fs::read_to_string(&pad).unwrap().replace(
+        "198, 157, 465, 437, 639, 984, 985, 986, 654, 988, 987",
+        "198, 465, 157, 437, 639, 984, 986, 985, 988, 654, 987",
+    );
+    std::fs::write(&pad, text).unwrap();
+    let o = squeal(&["mesh", "info", pad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}
