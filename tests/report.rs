@@ -60,6 +60,21 @@ fn the_report_shows_both_instabilities_of_the_coarse_brake() {
     assert_no_debug_formatting(&html, "index.html");
     assert_no_debug_formatting(&md, "index.md");
 
+    // The squeal range from the branch (the regression test pins the fold at 0.460646090).
+    assert!(
+        html.contains("after a large enough disturbance from μ = 0.46065 (0.99745 μ0, the fold)"),
+        "no squeal range in the key numbers:\n{html}"
+    );
+    assert!(html.contains("Branch of limit cycles and their stability"));
+    assert!(
+        html.contains("src=\"branch/branch.svg\""),
+        "no bifurcation diagram"
+    );
+    assert!(
+        html.contains("stability change: Neimark–Sacker"),
+        "no Neimark-Sacker row"
+    );
+
     // The first screen: μ0 with its frequency, then every unstable mode in the band.
     assert!(
         html.contains("<td>Hopf point μ0 (onset of squeal)</td><td>0.46182 at 4061.5 Hz</td>"),

@@ -51,7 +51,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     stability::write(&p, true)?;
 
     println!("\n== 3. branch of limit cycles and their stability");
-    let _branch = branch::write(&p, &squeal_chbm::branch::BranchOptions::default(), &[])?;
+    let branch = branch::write(&p, &squeal_chbm::branch::BranchOptions::default(), &[])?;
 
     println!("\n== 4. limit cycle (CHBM)");
     let mu_ratio = *c.mu_ratio.get_ref();
@@ -64,12 +64,13 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         summary = Some(compare::write(&p, &settings, None)?);
     }
 
-    println!("\n== 5. report");
+    println!("\n== 6. report");
     let timings = p.timings();
     let results = RunResults {
         scene: &p.scene,
         model: p.model()?,
         stability: p.stability()?,
+        branch: branch.as_ref(),
         chbm: Some((mu, &sol)),
         compare: summary.as_ref(),
         timings: &timings,

@@ -27,6 +27,8 @@ pub struct RunResults<'a> {
     pub scene: &'a Scene,
     pub model: &'a Model,
     pub stability: &'a Stability,
+    /// The branch of limit cycles with their stability, when it was followed.
+    pub branch: Option<&'a crate::branch::BranchAnalysis>,
     /// The friction and the CHBM solution, when a limit cycle was computed.
     pub chbm: Option<(f64, &'a ChbmSolution)>,
     /// The comparison with time integration, when it ran.
@@ -67,6 +69,7 @@ pub fn build(r: &RunResults<'_>, out: &Path, log: Log) -> Result<Report> {
     let mut sections = vec![summary_section(r, &modes)];
     sections.push(modes_section(r, &modes));
     sections.push(stability_section(r, &pics)?);
+    sections.push(branch_section(r.branch));
     if let Some(s) = chbm_section(r, meshes.as_ref(), &pics, log)? {
         sections.push(s);
     }
@@ -286,6 +289,26 @@ fn summary_section(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]
                 fmt_sig(sw.points[sw.points.len() - 1].equilibrium.mu, 3)
             ),
         ]),
+    }
+    if let Some(b) = r.branch {
+        let range = b.squeal_range();
+        key.push_row([
+            "squeal possible (branch of limit cycles)".to_string(),
+            match range.with_disturbance_from {
+                Some(m) if m < b.mu0() => format!(
+                    "by itself from μ0 = {}; after a large enough disturbance from μ = {} ({} μ0{})",
+                    fmt_sig(b.mu0(), 5),
+                    fmt_sig(m, 5),
+                    fmt_sig(m / b.mu0(), 5),
+                    if range.at_fold { ", the fold" } else { "" }
+                ),
+                Some(_) => format!("by itself from μ0 = {}", fmt_sig(b.mu0(), 5)),
+                None => format!(
+                    "by itself from μ0 = {}; no stable limit cycle on the computed branch",
+                    fmt_sig(b.mu0(), 5)
+                ),
+            },
+        ]);
     }
     key.push_row([
         "unstable modes in the band".to_string(),
@@ -793,6 +816,128 @@ fn chbm_section(
         ],
         after,
     }))
+}
+
+fn branch_section(branch: Option<&crate::branch::BranchAnalysis>) -> Section {
+    let Some(a) = branch else {
+        return Section {
+            heading: "Branch of limit cycles".into(),
+            text:
+                "The branch of limit cycles was not followed in this run (`squeal branch` does it)."
+                    .into(),
+            ..Section::default()
+        };
+    };
+    let b = &a.branch;
+    let mu0 = a.mu0();
+    let mut events = Table::new(["event", "μ", "μ/μ0", "details"]);
+    for f in &b.folds {
+        events.push_row([
+            "fold".to_string(),
+            fmt_sig(f.parameter, 6),
+            fmt_sig(f.parameter / mu0, 6),
+            format!(
+                "{:.1} Hz, pair closure {} µm peak to peak{}",
+                f.omega / std::f64::consts::TAU,
+                fmt_sig(f.closure * 1e6, 3),
+                if f.refined {
+                    ""
+                } else {
+                    "; between two points (a contact opens there)"
+                }
+            ),
+        ]);
+    }
+    for bi in &a.bifurcations {
+        let kind = match bi.kind {
+            squeal_chbm::bifurcation::BifurcationKind::Fold => "stability change: fold".to_string(),
+            squeal_chbm::bifurcation::BifurcationKind::PeriodDoubling => {
+                "stability change: period doubling".to_string()
+            }
+            squeal_chbm::bifurcation::BifurcationKind::NeimarkSacker => format!(
+                "stability change: Neimark–Sacker, second frequency {:.0} Hz",
+                bi.torus_frequency_hz()
+            ),
+        };
+        events.push_row([
+            kind,
+            fmt_sig(bi.parameter, 6),
+            fmt_sig(bi.parameter / mu0, 6),
+            format!(
+                "unstable Floquet exponents {} → {}",
+                bi.unstable.0, bi.unstable.1
+            ),
+        ]);
+    }
+    let pair = a.loudest_pair();
+    let mut pts = Table::new([
+        "μ/μ0",
+        "frequency (Hz)",
+        "harmonics",
+        &format!("pair {} closure p2p (µm)", pair + 1),
+        "largest open fraction (%)",
+        "largest |multiplier|",
+        "stability",
+    ]);
+    let n = b.points.len();
+    let stride = n.div_ceil(12).max(1);
+    for (i, p) in b.points.iter().enumerate() {
+        if i % stride != 0 && i + 1 != n {
+            continue;
+        }
+        let (rho, verdict) = match &a.floquet[i] {
+            Ok(f) => (
+                format!("{:.5}", f.largest_multiplier()),
+                f.stability().to_string(),
+            ),
+            Err(e) => ("–".into(), format!("not computed ({e})")),
+        };
+        pts.push_row([
+            format!("{:.5}", p.parameter / mu0),
+            format!("{:.1}", p.frequency_hz()),
+            p.harmonics.to_string(),
+            fmt_sig(p.pairs[pair].peak_to_peak() * 1e6, 4),
+            format!("{:.0}", 100.0 * p.largest_open_fraction()),
+            rho,
+            verdict,
+        ]);
+    }
+    Section {
+        heading: "Branch of limit cycles and their stability".into(),
+        text: format!(
+            "Every periodic vibration born at the Hopf point, followed in μ through its folds by \
+             pseudo-arclength continuation of the harmonic balance (harmonics adapted along the \
+             branch), each with its Floquet multipliers by Hill's method: a cycle is stable when \
+             every multiplier lies inside the unit circle. {} cycles in {:.1} s, multipliers in \
+             {:.1} s; the branch ended because {}. Files: [branch/branch.csv](branch/branch.csv), \
+             [branch/branch.json](branch/branch.json).",
+            n,
+            b.time.as_secs_f64(),
+            a.floquet_time.as_secs_f64(),
+            b.stop
+        ),
+        figures: vec![(
+            PathBuf::from("branch/branch"),
+            "Bifurcation diagram: the loudest pair's peak-to-peak closure (a, and near μ0 in b), \
+             the frequency (c) and the largest open fraction (d) against μ; stable cycles solid, \
+             unstable dashed"
+                .into(),
+        )],
+        tables: vec![
+            (
+                events,
+                "Folds and stability changes along the branch".into(),
+            ),
+            (
+                pts.align_numbers_right(),
+                "Cycles along the branch (a selection; every one is in branch.csv)".into(),
+            ),
+        ],
+        after: "Hill's method's own error is the trivial exponent's distance from zero (column \
+                hill_error_per_s of branch.csv); a cycle whose leading exponent is within it is \
+                reported as marginal."
+            .into(),
+    }
 }
 
 fn compare_section(compare: Option<&CompareSummary>) -> Section {
