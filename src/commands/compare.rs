@@ -24,7 +24,8 @@ pub struct CompareArgs {
     /// Tolerances of the time integrations on the speed-accuracy chart (comma-separated)
     #[arg(long, value_delimiter = ',', default_values_t = CompareSettings::default().rtols)]
     pub rtol: Vec<f64>,
-    /// Tolerance of the reference time integration
+    /// Tolerance of the reference time integration (continued from the steady cycle of a rtol
+    /// 1e-6 run; a run at 10 times this tolerance estimates its own error)
     #[arg(long, default_value_t = CompareSettings::default().reference_rtol)]
     pub reference_rtol: f64,
     /// Initial perturbation of the time integration along the unstable mode, as a fraction of
