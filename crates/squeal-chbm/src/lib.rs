@@ -22,8 +22,11 @@
 // Index loops over dofs and harmonics read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+pub mod bifurcation;
+pub mod branch;
 pub mod compare;
 pub mod cycle;
+pub mod floquet;
 pub mod physics;
 pub mod solve;
 pub mod start;

@@ -26,8 +26,11 @@ use squeal_mesh::Mesh;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-/// The version written into every `.rom` file; a file made by another version is stale.
-pub const TOOL_VERSION: &str = concat!("squeal ", env!("CARGO_PKG_VERSION"));
+/// The version written into every `.rom` file; a file made by another version is stale. The
+/// suffix is the revision of the numbers a reduction produces: bump it with every change that
+/// moves the reduced matrices (fe2: curved tet10 elements integrated with the 24-point rule), so
+/// that a cache made by older code is reduced again instead of silently reused.
+pub const TOOL_VERSION: &str = concat!("squeal ", env!("CARGO_PKG_VERSION"), "+fe2");
 
 /// Default multiple of the highest frequency of interest below which modes are kept in
 /// [`ModeChoice::Auto`] (see `docs/reduction.md` for how the choice moves the frequencies).
