@@ -164,11 +164,18 @@ pub struct ReferenceEstimate {
     /// The run from the perturbed equilibrium to the steady cycle at
     /// [`CompareOptions::seed_rtol`] (its history shows the growth of the oscillation).
     pub seed: TiRow,
-    /// The run at `check_factor · reference_rtol` continued from the seed's end; its measures
-    /// are its raw difference from the reference (`None` when it found no steady cycle).
+    /// The run at `check_factor · reference_rtol` continued from the seed's end (the seed when
+    /// that one is the reference, see [`ReferenceEstimate::unsteady`]); its measures are its raw
+    /// difference from the reference (`None` when it found no steady cycle).
     pub check: TiRow,
-    /// `1 / (check_factor^(2/3) - 1)`: the raw difference times this is the estimate.
+    /// `1 / ((rtol_check / rtol_reference)^(2/3) - 1)`: the raw difference times this is the
+    /// estimate.
     pub scale: f64,
+    /// The run at [`CompareOptions::reference_rtol`] when it found no steady cycle within
+    /// [`CompareOptions::reference_max_cycles`]: the reference is then the check run, checked
+    /// against the seed (or the seed itself, without an estimate, when the check found none
+    /// either).
+    pub unsteady: Option<TiRow>,
     /// Estimated error of the reference on every physical dof (`None` without a steady check).
     pub all: Option<RelativeErrors>,
     /// Estimated error of the reference on the contact dofs.
@@ -176,14 +183,31 @@ pub struct ReferenceEstimate {
 }
 
 impl ReferenceEstimate {
-    /// Wall time of the three runs the reference took (seed, check, reference).
-    pub fn wall(&self, reference: &TiRow) -> Duration {
-        self.seed.run.wall + self.check.run.wall + reference.run.wall
+    /// The distinct runs the reference took: seed, check, reference and the unsteady run at
+    /// the asked tolerance (each once, by tolerance).
+    fn runs<'a>(&'a self, reference: &'a TiRow) -> Vec<&'a TiRow> {
+        let mut out: Vec<&TiRow> = Vec::new();
+        let candidates = [Some(&self.seed), Some(&self.check), Some(reference)];
+        for r in candidates
+            .into_iter()
+            .chain([self.unsteady.as_ref()])
+            .flatten()
+        {
+            if out.iter().all(|o| o.rtol != r.rtol) {
+                out.push(r);
+            }
+        }
+        out
     }
 
-    /// Accepted steps of the three runs.
+    /// Wall time of all the runs the reference took.
+    pub fn wall(&self, reference: &TiRow) -> Duration {
+        self.runs(reference).iter().map(|r| r.run.wall).sum()
+    }
+
+    /// Accepted steps of all the runs the reference took.
     pub fn steps(&self, reference: &TiRow) -> usize {
-        self.seed.run.stats.steps + self.check.run.stats.steps + reference.run.stats.steps
+        self.runs(reference).iter().map(|r| r.run.stats.steps).sum()
     }
 }
 
@@ -317,32 +341,53 @@ pub fn compare_at(
         seed.run.continuation()
     };
     let ref_run = integrate_from(mb, &from, &continued(opts, opts.reference_rtol))?;
-    let ref_cycle = steady_cycle(&ref_run)?;
-    let mut reference = TiRow {
-        rtol: opts.reference_rtol,
-        run: ref_run,
+    let row = |rtol: f64, run: TiRun| TiRow {
+        rtol,
+        run,
         cycle: None,
         measures: None,
     };
+    // The reference is the tightest run with a steady cycle, checked against the next looser
+    // one; a tight run that found none is kept to be reported.
+    let (mut reference, check, unsteady) = if ref_run.steady.is_some() {
+        (
+            row(opts.reference_rtol, ref_run),
+            row(check_rtol, check_run),
+            None,
+        )
+    } else if check_run.steady.is_some() {
+        (
+            row(check_rtol, check_run),
+            seed.clone(),
+            Some(row(opts.reference_rtol, ref_run)),
+        )
+    } else {
+        (
+            seed.clone(),
+            row(check_rtol, check_run),
+            Some(row(opts.reference_rtol, ref_run)),
+        )
+    };
+    let ref_cycle = steady_cycle(&reference.run)?;
     let phase_dof = ref_cycle.strongest_dof(&mb.nl_dofs).unwrap_or(0);
     reference.measures = Some(measures(mb, &ref_cycle, &ref_cycle, opts.disc.as_ref())?);
     reference.cycle = Some(ref_cycle.clone());
     let all: Vec<usize> = (0..mb.modes()).collect();
     let power_reference: f64 = harmonic_power(&ref_cycle, &all).iter().sum();
-    let mut check = TiRow {
-        rtol: check_rtol,
-        run: check_run,
-        cycle: None,
-        measures: None,
-    };
+    let mut check = check;
+    if check.rtol == reference.rtol {
+        // Both the check and the reference are the seed: nothing to estimate from.
+        check.run.steady = None;
+    }
     if let Some(s) = &check.run.steady {
         let mut c = s.cycle.clone();
         c.align_to(&ref_cycle, phase_dof);
         check.measures = Some(measures(mb, &c, &ref_cycle, opts.disc.as_ref())?);
         check.cycle = Some(c);
     }
-    let scale = 1.0 / (opts.check_factor.powf(2.0 / 3.0) - 1.0);
+    let scale = 1.0 / ((check.rtol / reference.rtol).powf(2.0 / 3.0) - 1.0);
     let estimate = ReferenceEstimate {
+        unsteady,
         all: check.measures.as_ref().map(|m| scaled(&m.all, scale)),
         contact: check.measures.as_ref().map(|m| scaled(&m.contact, scale)),
         seed,

@@ -432,3 +432,35 @@ fn the_reference_estimates_its_own_error() {
         }
     }
 }
+
+#[test]
+fn a_reference_that_does_not_settle_falls_back_to_the_tightest_steady_run() {
+    // Ten periods are too few for two 20-cycle averages: neither the check nor the asked
+    // reference settles, so the seed is the reference, without an estimate, and the asked run
+    // is kept to be reported (exact outcomes, no tolerance).
+    use squeal_chbm::compare::{CompareOptions, compare_at};
+    let m = model(KL, KNL);
+    let mu = 1.01 * hopf(&m);
+    let mb = ModalBrake::new(&m.brake, &m.reference, mu);
+    let opts = CompareOptions {
+        harmonics: vec![3],
+        ti: TiOptions {
+            perturbation: 0.05,
+            harmonics: 5,
+            samples_per_cycle: 64,
+            steady_rtol: 1e-3,
+            max_cycles: 20_000.0,
+            ..TiOptions::default()
+        },
+        rtols: vec![],
+        reference_rtol: 1e-8,
+        seed_rtol: 1e-5,
+        reference_max_cycles: 10.0,
+        ..CompareOptions::default()
+    };
+    let c = compare_at(&mb, &start(&m, mu), &opts).unwrap();
+    assert_eq!(c.reference.rtol, 1e-5);
+    assert!(c.estimate.all.is_none());
+    let u = c.estimate.unsteady.as_ref().unwrap();
+    assert!(u.rtol == 1e-8 && u.run.steady.is_none());
+}

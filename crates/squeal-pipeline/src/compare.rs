@@ -134,6 +134,7 @@ pub fn run(
         },
         rtols: settings.rtols.clone(),
         reference_rtol: settings.reference_rtol,
+        reference_drift_tol: REFERENCE_DRIFT_TOL,
         disc: m.disc,
         ..CompareOptions::default()
     };
@@ -318,9 +319,17 @@ fn table2(c: &Comparison) -> Table {
             fmt_sci(r.measures.energy.relative, 2),
         ]);
     }
-    t.push_row(ti_cost_row(&c.estimate.seed, " (reference: seed)"));
-    t.push_row(ti_cost_row(&c.estimate.check, " (reference: check)"));
+    let e = &c.estimate;
+    if e.seed.rtol != c.reference.rtol {
+        t.push_row(ti_cost_row(&e.seed, " (reference: seed)"));
+    }
+    if e.check.rtol != e.seed.rtol && e.check.rtol != c.reference.rtol {
+        t.push_row(ti_cost_row(&e.check, " (reference: check)"));
+    }
     t.push_row(ti_cost_row(&c.reference, " (reference)"));
+    if let Some(u) = &e.unsteady {
+        t.push_row(ti_cost_row(u, " (asked reference)"));
+    }
     for r in &c.ti {
         t.push_row(ti_cost_row(r, ""));
     }
@@ -402,11 +411,16 @@ fn measures_csv(c: &Comparison) -> Table {
     }
     let e = &c.estimate;
     let rows = [
-        ("bdf_seed", &e.seed),
-        ("bdf_check", &e.check),
-        ("bdf_reference", &c.reference),
+        ("bdf_seed", Some(&e.seed)),
+        ("bdf_check", Some(&e.check)),
+        ("bdf_reference", Some(&c.reference)),
+        ("bdf_asked_reference_unsteady", e.unsteady.as_ref()),
     ];
-    for (method, r) in rows.into_iter().chain(c.ti.iter().map(|r| ("bdf", r))) {
+    let rows = rows
+        .into_iter()
+        .filter_map(|(m, r)| r.map(|r| (m, r)))
+        .chain(c.ti.iter().map(|r| ("bdf", r)));
+    for (method, r) in rows {
         let (freq, m) = (
             r.cycle.as_ref().map(|c| c.frequency_hz()),
             r.measures.as_ref(),
@@ -481,10 +495,12 @@ fn sliding_warning(c: &Comparison) -> Option<String> {
     })
 }
 
+const REFERENCE_DRIFT_TOL: f64 = 1e-7;
+
 /// One paragraph on the reference: its own estimated error and what it cost.
 fn reference_note(c: &Comparison) -> String {
     let e = &c.estimate;
-    let head = format!(
+    let mut head = format!(
         "Reference: BDF rtol {:e}, continued from the steady cycle of rtol {:e} (through rtol {:e}); {} steps, {} s in all.",
         c.reference.rtol,
         e.seed.rtol,
@@ -492,6 +508,22 @@ fn reference_note(c: &Comparison) -> String {
         e.steps(&c.reference),
         fmt_sig(e.wall(&c.reference).as_secs_f64(), 3)
     );
+    if let Some(u) = &e.unsteady {
+        let last = u
+            .run
+            .drifts
+            .last()
+            .map_or("none".into(), |d| fmt_sci(d.1, 1));
+        head = format!(
+            "WARNING: the run at the asked reference tolerance {:e} found no steady cycle ({}; last drift between 20-cycle averages {last}, asked {}); the reference is the tightest steady run.\n{head}",
+            u.rtol,
+            u.run
+                .failure
+                .as_ref()
+                .map_or("no reason given".into(), |f| f.to_string()),
+            fmt_sci(REFERENCE_DRIFT_TOL, 1),
+        );
+    }
     match (&e.all, &e.contact) {
         (Some(a), Some(k)) => {
             let worst = c
@@ -831,6 +863,7 @@ fn reference_json(c: &Comparison) -> serde_json::Value {
         "seed_rtol": e.seed.rtol,
         "check_rtol": e.check.rtol,
         "richardson_scale": e.scale,
+        "asked_rtol_unsteady": e.unsteady.as_ref().map(|u| u.rtol),
         "estimated_error_all": errors_json(&e.all),
         "estimated_error_contact": errors_json(&e.contact),
         "steps": e.steps(&c.reference),
