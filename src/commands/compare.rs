@@ -25,8 +25,9 @@ pub struct CompareArgs {
     /// Tolerances of the time integrations on the speed-accuracy chart, a comma-separated list
     #[arg(long, value_delimiter = ',', default_value = "1e-5,1e-6")]
     pub rtol: Vec<f64>,
-    /// Tolerance of the reference time integration
-    #[arg(long, default_value = "1e-7")]
+    /// Tolerance of the reference time integration (continued from the steady cycle of a rtol
+    /// 1e-6 run; a run at 10 times this tolerance estimates its own error)
+    #[arg(long, default_value = "1e-10")]
     pub reference_rtol: f64,
     /// Initial perturbation of the time integration along the unstable mode, as a fraction of
     /// the smallest static penetration

@@ -30,6 +30,7 @@
 //! dofs of the squared amplitudes of harmonics `1..=H`), two more harmonics are added and the
 //! point is corrected again before the branch goes on.
 
+use crate::cycle::Cycle;
 use crate::solve::{ChbmError, force_scale_at, phase_dof};
 use faer::c64;
 use squeal_brake::criticality::NormalForm;
@@ -142,7 +143,8 @@ pub struct PairCycle {
     pub min: f64,
     /// Largest `δ` (m).
     pub max: f64,
-    /// Fraction of the period with `δ <= 0`, on [`PAIR_SAMPLES`] samples.
+    /// Fraction of the period with `δ <= 0`, from the roots of the continuous series
+    /// ([`crate::physics::open_fractions`]).
     pub open_fraction: f64,
 }
 
@@ -153,8 +155,8 @@ impl PairCycle {
     }
 }
 
-/// Samples per period on which [`PairCycle`] is measured (the series is evaluated exactly at
-/// each).
+/// Samples per period on which [`PairCycle`]'s mean and extremes are measured (the series is
+/// evaluated exactly at each; the open fraction is from the roots instead).
 pub const PAIR_SAMPLES: usize = 1024;
 
 /// One point of a branch.
@@ -360,6 +362,16 @@ pub fn pair_cycles(mb: &ModalBrake, layout: &HarmonicLayout, u: &[f64]) -> Vec<P
             if d <= 0.0 {
                 c.open_fraction += 1.0 / PAIR_SAMPLES as f64;
             }
+        }
+    }
+    // The open fractions from the roots of the continuous penetration; the counted ones stay
+    // only if the series cannot be built (a layout mismatch, as above).
+    let nl: Vec<usize> = (0..nn).collect();
+    let roots = Cycle::from_coefficients(layout.n_harmonics(), 1.0, nn, u.to_vec())
+        .and_then(|c| crate::physics::open_fractions_of(&mb.pairs, &nl, &c));
+    if let Ok(f) = roots {
+        for (c, f) in out.iter_mut().zip(f) {
+            c.open_fraction = f;
         }
     }
     out

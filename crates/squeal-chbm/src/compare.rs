@@ -10,12 +10,13 @@
 use crate::cycle::{
     Cycle, EnergyBalance, RelativeErrors, energy_balance, harmonic_power, relative_errors,
 };
+use crate::physics::{DiscSpeed, SlidingMargin, sliding_margin};
 use crate::solve::{
     ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Outcome, RESTART_AMPLITUDES, solve,
     solve_with_restarts,
 };
 use crate::start::start_at;
-use crate::timeint::{TiError, TiOptions, TiRun, integrate_to_limit_cycle};
+use crate::timeint::{TiError, TiOptions, TiRun, integrate_from, integrate_to_limit_cycle};
 use squeal_brake::Brake;
 use squeal_brake::equilibrium::NewtonOptions;
 use squeal_brake::modal_brake::ModalBrake;
@@ -59,8 +60,26 @@ pub struct CompareOptions {
     pub ti: TiOptions,
     /// Tolerances of the time integrations placed on the speed–accuracy chart.
     pub rtols: Vec<f64>,
-    /// Tolerance of the reference integration every error is measured against.
+    /// Tolerance of the reference integration every error is measured against. The reference
+    /// is not integrated from the equilibrium at this tolerance: a run at
+    /// [`CompareOptions::seed_rtol`] reaches the steady cycle, a run at
+    /// `check_factor · reference_rtol` continues from its end, and the reference continues from
+    /// the end of that one ([`ReferenceEstimate`]).
     pub reference_rtol: f64,
+    /// Tolerance of the run from the perturbed equilibrium to the steady cycle, where the
+    /// tighter runs of the reference start.
+    pub seed_rtol: f64,
+    /// The check run's tolerance is `check_factor · reference_rtol`; their difference estimates
+    /// the reference's own error ([`ReferenceEstimate`]).
+    pub check_factor: f64,
+    /// Largest relative change between two consecutive Fourier averages of the check and
+    /// reference runs ([`TiOptions::drift_tol`]); it must stay above their noise (about
+    /// `50 rtol`, from the periods measured on single cycles).
+    pub reference_drift_tol: f64,
+    /// Periods after which a check or reference run that has not settled gives up.
+    pub reference_max_cycles: f64,
+    /// The disc's rotation, for the sliding margin of every cycle (none: not checked).
+    pub disc: Option<DiscSpeed>,
 }
 
 impl Default for CompareOptions {
@@ -71,7 +90,12 @@ impl Default for CompareOptions {
             amplitudes: RESTART_AMPLITUDES.to_vec(),
             ti: TiOptions::default(),
             rtols: vec![1e-5, 1e-6],
-            reference_rtol: 1e-7,
+            reference_rtol: 1e-10,
+            seed_rtol: 1e-6,
+            check_factor: 10.0,
+            reference_drift_tol: 1e-7,
+            reference_max_cycles: 600.0,
+            disc: None,
         }
     }
 }
@@ -89,6 +113,9 @@ pub struct Measures {
     pub energy: EnergyBalance,
     /// Fraction of the cycle each pair is open.
     pub open_fraction: Vec<f64>,
+    /// The disc's surface speed over the pads' tangential vibration
+    /// ([`crate::physics::sliding_margin`]; `None` without [`CompareOptions::disc`]).
+    pub sliding: Option<SlidingMargin>,
 }
 
 /// One CHBM solve of the comparison.
@@ -123,14 +150,86 @@ pub struct TiRow {
     pub measures: Option<Measures>,
 }
 
+/// How the reference was reached and how far it is estimated to be from the exact cycle of
+/// the reduced model.
+///
+/// The global error of the order-2 BDF on a limit cycle is mostly a phase (frequency) error
+/// growing like `rtol^(2/3)` (local error `∝ h³ = rtol`, global `∝ h²`): measured on the
+/// coarse brake at 1.01 μ0, the frequency errors at rtol 1e-6 and 1e-7 against a 20-harmonic
+/// CHBM are in the ratio 4.66 = 10^0.67. With the check run at `f · rtol`, the reference's
+/// own error is then `|c_check - c_ref| / (f^(2/3) - 1)` (Richardson), which is what
+/// [`ReferenceEstimate::all`] and [`ReferenceEstimate::contact`] hold.
+#[derive(Clone, Debug)]
+pub struct ReferenceEstimate {
+    /// The run from the perturbed equilibrium to the steady cycle at
+    /// [`CompareOptions::seed_rtol`] (its history shows the growth of the oscillation).
+    pub seed: TiRow,
+    /// The run at `check_factor · reference_rtol` continued from the seed's end (the seed when
+    /// that one is the reference, see [`ReferenceEstimate::unsteady`]); its measures are its raw
+    /// difference from the reference (`None` when it found no steady cycle).
+    pub check: TiRow,
+    /// `1 / ((rtol_check / rtol_reference)^(2/3) - 1)`: the raw difference times this is the
+    /// estimate.
+    pub scale: f64,
+    /// The run at [`CompareOptions::reference_rtol`] when it found no steady cycle within
+    /// [`CompareOptions::reference_max_cycles`]: the reference is then the check run, checked
+    /// against the seed (or the seed itself, without an estimate, when the check found none
+    /// either).
+    pub unsteady: Option<TiRow>,
+    /// Estimated error of the reference on every physical dof (`None` without a steady check).
+    pub all: Option<RelativeErrors>,
+    /// Estimated error of the reference on the contact dofs.
+    pub contact: Option<RelativeErrors>,
+}
+
+impl ReferenceEstimate {
+    /// The distinct runs the reference took: seed, check, reference and the unsteady run at
+    /// the asked tolerance (each once, by tolerance).
+    fn runs<'a>(&'a self, reference: &'a TiRow) -> Vec<&'a TiRow> {
+        let mut out: Vec<&TiRow> = Vec::new();
+        let candidates = [Some(&self.seed), Some(&self.check), Some(reference)];
+        for r in candidates
+            .into_iter()
+            .chain([self.unsteady.as_ref()])
+            .flatten()
+        {
+            if out.iter().all(|o| o.rtol != r.rtol) {
+                out.push(r);
+            }
+        }
+        out
+    }
+
+    /// Wall time of all the runs the reference took.
+    pub fn wall(&self, reference: &TiRow) -> Duration {
+        self.runs(reference).iter().map(|r| r.run.wall).sum()
+    }
+
+    /// Accepted steps of all the runs the reference took.
+    pub fn steps(&self, reference: &TiRow) -> usize {
+        self.runs(reference).iter().map(|r| r.run.stats.steps).sum()
+    }
+}
+
+fn scaled(e: &RelativeErrors, s: f64) -> RelativeErrors {
+    RelativeErrors {
+        displacement: e.displacement * s,
+        velocity: e.velocity * s,
+        frequency_hz: e.frequency_hz * s,
+        frequency_relative: e.frequency_relative * s,
+    }
+}
+
 /// A full comparison at one friction level.
 #[derive(Clone, Debug)]
 pub struct Comparison {
     /// Friction coefficient of the modal brake.
     pub mu: f64,
-    /// The reference integration at [`CompareOptions::reference_rtol`], measured against
-    /// itself.
+    /// The reference integration at [`CompareOptions::reference_rtol`] (continued from the
+    /// check run's end), measured against itself.
     pub reference: TiRow,
+    /// The runs before the reference and its estimated own error.
+    pub estimate: ReferenceEstimate,
     /// The integrations at each of [`CompareOptions::rtols`], in that order.
     pub ti: Vec<TiRow>,
     /// The CHBM solves with each of [`CompareOptions::harmonics`], in that order.
@@ -141,7 +240,8 @@ pub struct Comparison {
     pub power_reference: f64,
 }
 
-/// Fraction of `samples` phases of the cycle where each pair is open.
+/// Fraction of `samples` phases of the cycle where each pair is open, by counting (the
+/// measures use the roots of [`crate::physics::open_fractions`] instead; this is its check).
 pub fn open_fraction(
     mb: &ModalBrake,
     c: &Cycle,
@@ -165,14 +265,20 @@ pub fn open_fraction(
     Ok(open.iter().map(|&o| o as f64 / samples as f64).collect())
 }
 
-fn measures(mb: &ModalBrake, c: &Cycle, reference: &Cycle) -> Result<Measures, CompareError> {
+fn measures(
+    mb: &ModalBrake,
+    c: &Cycle,
+    reference: &Cycle,
+    disc: Option<&DiscSpeed>,
+) -> Result<Measures, CompareError> {
     let all: Vec<usize> = (0..c.n_dofs()).collect();
     Ok(Measures {
+        sliding: disc.map(|d| sliding_margin(mb, c, d)).transpose()?,
         all: relative_errors(c, reference, &all),
         contact: relative_errors(c, reference, &mb.nl_dofs),
         power: harmonic_power(c, &all),
         energy: energy_balance(mb, c, 1024)?,
-        open_fraction: open_fraction(mb, c, 1024)?,
+        open_fraction: crate::physics::open_fractions(mb, c)?,
     })
 }
 
@@ -195,35 +301,116 @@ fn ti_row(
     })
 }
 
+fn steady_cycle(run: &TiRun) -> Result<Cycle, CompareError> {
+    match (&run.steady, &run.failure) {
+        (Some(s), _) => Ok(s.cycle.clone()),
+        (None, f) => Err(CompareError::NoReference(
+            f.as_ref()
+                .map_or("no reason given".into(), |e| e.to_string()),
+        )),
+    }
+}
+
+/// The options of a run continued on a steady cycle at `rtol`.
+fn continued(opts: &CompareOptions, rtol: f64) -> TiOptions {
+    TiOptions {
+        rtol,
+        drift_tol: opts.reference_drift_tol,
+        max_cycles: opts.reference_max_cycles,
+        ..opts.ti.clone()
+    }
+}
+
 /// CHBM with each number of harmonics and the time integrations at each tolerance, all
-/// measured against the reference integration, at the friction of `mb`.
+/// measured against the reference integration, at the friction of `mb`. The reference is
+/// reached in three runs ([`ReferenceEstimate`]): the seed from the perturbed equilibrium at
+/// [`CompareOptions::seed_rtol`], the check at `check_factor · reference_rtol` from the seed's
+/// end, the reference at [`CompareOptions::reference_rtol`] from the check's end.
 pub fn compare_at(
     mb: &ModalBrake,
     start: &ChbmStart,
     opts: &CompareOptions,
 ) -> Result<Comparison, CompareError> {
-    let mut reference = ti_row(mb, start, &opts.ti, opts.reference_rtol)?;
-    let ref_cycle = match (&reference.run.steady, &reference.run.failure) {
-        (Some(s), _) => s.cycle.clone(),
-        (None, f) => {
-            return Err(CompareError::NoReference(
-                f.as_ref()
-                    .map_or("no reason given".into(), |e| e.to_string()),
-            ));
-        }
+    let seed = ti_row(mb, start, &opts.ti, opts.seed_rtol)?;
+    steady_cycle(&seed.run)?;
+    let check_rtol = opts.check_factor * opts.reference_rtol;
+    let check_run = integrate_from(mb, &seed.run.continuation(), &continued(opts, check_rtol))?;
+    let from = if check_run.steady.is_some() {
+        check_run.continuation()
+    } else {
+        seed.run.continuation()
     };
+    let ref_run = integrate_from(mb, &from, &continued(opts, opts.reference_rtol))?;
+    let row = |rtol: f64, run: TiRun| TiRow {
+        rtol,
+        run,
+        cycle: None,
+        measures: None,
+    };
+    // The reference is the tightest run with a steady cycle, checked against the next looser
+    // one; a tight run that found none is kept to be reported.
+    let (mut reference, check, unsteady) = if ref_run.steady.is_some() {
+        (
+            row(opts.reference_rtol, ref_run),
+            row(check_rtol, check_run),
+            None,
+        )
+    } else if check_run.steady.is_some() {
+        (
+            row(check_rtol, check_run),
+            seed.clone(),
+            Some(row(opts.reference_rtol, ref_run)),
+        )
+    } else {
+        (
+            seed.clone(),
+            row(check_rtol, check_run),
+            Some(row(opts.reference_rtol, ref_run)),
+        )
+    };
+    let ref_cycle = steady_cycle(&reference.run)?;
     let phase_dof = ref_cycle.strongest_dof(&mb.nl_dofs).unwrap_or(0);
-    reference.measures = Some(measures(mb, &ref_cycle, &ref_cycle)?);
+    reference.measures = Some(measures(mb, &ref_cycle, &ref_cycle, opts.disc.as_ref())?);
     reference.cycle = Some(ref_cycle.clone());
     let all: Vec<usize> = (0..mb.modes()).collect();
     let power_reference: f64 = harmonic_power(&ref_cycle, &all).iter().sum();
+    let mut check = check;
+    if check.rtol == reference.rtol {
+        // Both the check and the reference are the seed: nothing to estimate from.
+        check.run.steady = None;
+    }
+    if let Some(s) = &check.run.steady {
+        let mut c = s.cycle.clone();
+        c.align_to(&ref_cycle, phase_dof);
+        check.measures = Some(measures(mb, &c, &ref_cycle, opts.disc.as_ref())?);
+        check.cycle = Some(c);
+    }
+    let scale = 1.0 / ((check.rtol / reference.rtol).powf(2.0 / 3.0) - 1.0);
+    let estimate = ReferenceEstimate {
+        unsteady,
+        all: check.measures.as_ref().map(|m| scaled(&m.all, scale)),
+        contact: check.measures.as_ref().map(|m| scaled(&m.contact, scale)),
+        seed,
+        check,
+        scale,
+    };
     let mut ti = Vec::new();
     for &rtol in &opts.rtols {
-        let mut row = ti_row(mb, start, &opts.ti, rtol)?;
+        // The seed is the same run as one from the equilibrium at its tolerance.
+        let mut row = if rtol == opts.seed_rtol {
+            TiRow {
+                rtol,
+                run: estimate.seed.run.clone(),
+                cycle: None,
+                measures: None,
+            }
+        } else {
+            ti_row(mb, start, &opts.ti, rtol)?
+        };
         if let Some(s) = &row.run.steady {
             let mut c = s.cycle.clone();
             c.align_to(&ref_cycle, phase_dof);
-            row.measures = Some(measures(mb, &c, &ref_cycle)?);
+            row.measures = Some(measures(mb, &c, &ref_cycle, opts.disc.as_ref())?);
             row.cycle = Some(c);
         }
         ti.push(row);
@@ -243,7 +430,7 @@ pub fn compare_at(
             })?;
         let mut cycle = solution.cycle()?;
         cycle.align_to(&ref_cycle, phase_dof);
-        let m = measures(mb, &cycle, &ref_cycle)?;
+        let m = measures(mb, &cycle, &ref_cycle, opts.disc.as_ref())?;
         chbm.push(ChbmRow {
             harmonics: h,
             amplitude,
@@ -257,6 +444,7 @@ pub fn compare_at(
     Ok(Comparison {
         mu: mb.mu,
         reference,
+        estimate,
         ti,
         chbm,
         phase_dof,
@@ -482,7 +670,7 @@ pub fn robustness(
             ) {
                 Ok(run) => {
                     let open = run.steady.as_ref().map_or(f64::NAN, |s| {
-                        open_fraction(&mb, &s.cycle, 1024)
+                        crate::physics::open_fractions(&mb, &s.cycle)
                             .map_or(f64::NAN, |o| o.into_iter().fold(0.0, f64::max))
                     });
                     TiCell {

@@ -14,6 +14,9 @@
 //!   the robustness grid over friction and initial amplitude.
 //! - [`cycle`]: Fourier coefficients of a cycle of every dof, phase alignment, the relative
 //!   errors, the power per harmonic (eqs 49–50) and the energy balance of a cycle.
+//! - [`physics`]: the checks a cycle of the model takes for granted: open fractions from the
+//!   roots of the continuous penetration, and the sliding margin of the disc's surface speed
+//!   over the pads' tangential vibration.
 
 #![warn(missing_docs)]
 // Index loops over dofs and harmonics read like the formulas they implement.
@@ -24,6 +27,7 @@ pub mod branch;
 pub mod compare;
 pub mod cycle;
 pub mod floquet;
+pub mod physics;
 pub mod solve;
 pub mod start;
 pub mod timeint;

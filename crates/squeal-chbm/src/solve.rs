@@ -209,7 +209,8 @@ pub struct ChbmSolution {
     pub lm_history: Vec<LmIteration>,
     /// Every residual evaluation of all solves of the ladder.
     pub evaluations: Vec<Evaluation>,
-    /// Fraction of the AFT samples where each pair is open.
+    /// Fraction of the period each pair is open, from the roots of the continuous penetration
+    /// of the solution's series ([`crate::physics::open_fractions`]), not from the AFT samples.
     pub open_fraction: Vec<f64>,
     /// Relative change of `F~_nl` when the samples are doubled (aliasing check).
     pub aliasing: f64,
@@ -426,7 +427,9 @@ pub fn solve_from(
     let mut r = vec![0.0; l];
     let eval = hb.evaluate(&u, omega, &mut r)?;
     let g = eval.force.to_vec();
-    let open_fraction = open_fraction(mb, eval.samples.x, eval.samples.n_samples);
+    let nl_cycle = Cycle::from_coefficients(opts.harmonics, omega, mb.nl(), u.clone())?;
+    let nl_index: Vec<usize> = (0..mb.nl()).collect();
+    let open_fraction = crate::physics::open_fractions_of(&mb.pairs, &nl_index, &nl_cycle)?;
     let aliasing = aliasing_check(hb.force(), &layout, &u, omega, samples)?;
     let coeffs = recover(mb, omega, &g, &layout);
     let recovery_error = recovery_error(&layout, &u, &coeffs, &mb.nl_dofs, mb.modes());
@@ -536,20 +539,6 @@ pub(crate) fn phase_dof(mb: &ModalBrake, u: &[f64], layout: &HarmonicLayout) -> 
         }
     }
     best.1
-}
-
-/// Fraction of the time samples `x` (sample-major, nonlinear dofs) where each pair is open.
-fn open_fraction(mb: &ModalBrake, x: &[f64], samples: usize) -> Vec<f64> {
-    let nn = mb.nl();
-    mb.pairs
-        .iter()
-        .map(|p| {
-            (0..samples)
-                .filter(|&j| p.penetration(&x[j * nn..(j + 1) * nn]) <= 0.0)
-                .count() as f64
-                / samples.max(1) as f64
-        })
-        .collect()
 }
 
 fn aliasing_check<F: NonlinearForce>(

@@ -129,9 +129,18 @@ pub struct TiRun {
     pub epsilon: f64,
     /// `(time, drift)` of every comparison of two consecutive Fourier averages.
     pub drifts: Vec<(f64, f64)>,
+    /// The state where the run ended, with the scales of its start (see
+    /// [`TiRun::continuation`]).
+    end: TiStart,
 }
 
 impl TiRun {
+    /// A start at the state where this run ended, with the same tolerance and monitor scales
+    /// (for [`integrate_from`]): a tighter integration then begins on this run's cycle.
+    pub fn continuation(&self) -> TiStart {
+        self.end.clone()
+    }
+
     /// Bytes a stored history of every accepted step would take (`steps × dim` doubles plus
     /// the times), as the paper's Table 2 counts for the temporal integration.
     pub fn history_bytes(&self) -> usize {
@@ -175,73 +184,95 @@ pub enum TiError {
     SingularModes,
 }
 
-/// Initial state and the scales of the module docs.
-struct Start {
-    y0: Vec<f64>,
-    /// Row `w` with `w · v = δ'` of the most moving pair (modal velocities).
+/// Where an integration starts: a modal state `[q; q']` and the scales of its tolerances and
+/// of its steady-state monitor (module docs). [`TiStart::from_mode`] builds the perturbed
+/// equilibrium; [`TiRun::continuation`] the state where a run ended, with the same scales, so
+/// that a tighter run can go on from a looser one's steady cycle instead of from the
+/// equilibrium.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TiStart {
+    /// Initial modal state `[q; q']` (length twice the modes).
+    pub y0: Vec<f64>,
+    /// Row `w` with `w · q' = δ'` of the most moving pair (the monitor's observable).
     observable: Vec<f64>,
-    /// Modal displacement scale `Q`.
+    /// Modal displacement scale `Q` of the absolute tolerances.
     q_scale: f64,
+    /// Initial amplitude factor ε of the unstable mode.
     epsilon: f64,
+    /// `|Im λ|` of the unstable mode (rad/s): velocity tolerances and the time limit.
     omega0: f64,
+    /// `|δ'|` of the first start: cycles below a millionth of it never count as steady.
+    rate_scale: f64,
 }
 
-fn start_state(
-    mb: &ModalBrake,
-    lambda: c64,
-    mode: &[c64],
-    equilibrium: &[f64],
-    perturbation: f64,
-) -> Result<Start, TiError> {
-    let n = mb.modes();
-    if mode.len() != n || equilibrium.len() != n {
-        return Err(TiError::Dimension {
-            expected: n,
-            got: mode.len().min(equilibrium.len()),
-        });
-    }
-    let psi_n: Vec<c64> = mb.nl_dofs.iter().map(|&d| mode[d]).collect();
-    let x_n: Vec<f64> = mb.nl_dofs.iter().map(|&d| equilibrium[d]).collect();
-    let (mut best, mut gmax, mut pen) = (0, 0.0f64, f64::INFINITY);
-    for (i, p) in mb.pairs.iter().enumerate() {
-        let g: c64 = p.normal.iter().map(|&(k, a)| psi_n[k] * a).sum();
-        if g.norm() > gmax {
-            (best, gmax) = (i, g.norm());
+impl TiStart {
+    /// `x = x_eq + ε Re ψ`, `x' = ε Re(λ ψ)` (module docs), with ε such that the pair moving
+    /// most has a normal amplitude of `perturbation` times the smallest static penetration.
+    pub fn from_mode(
+        mb: &ModalBrake,
+        lambda: c64,
+        mode: &[c64],
+        equilibrium: &[f64],
+        perturbation: f64,
+    ) -> Result<Self, TiError> {
+        let n = mb.modes();
+        if mode.len() != n || equilibrium.len() != n {
+            return Err(TiError::Dimension {
+                expected: n,
+                got: mode.len().min(equilibrium.len()),
+            });
         }
-        let d = p.penetration(&x_n);
-        if d > 0.0 {
-            pen = pen.min(d);
+        let psi_n: Vec<c64> = mb.nl_dofs.iter().map(|&d| mode[d]).collect();
+        let x_n: Vec<f64> = mb.nl_dofs.iter().map(|&d| equilibrium[d]).collect();
+        let (mut best, mut gmax, mut pen) = (0, 0.0f64, f64::INFINITY);
+        for (i, p) in mb.pairs.iter().enumerate() {
+            let g: c64 = p.normal.iter().map(|&(k, a)| psi_n[k] * a).sum();
+            if g.norm() > gmax {
+                (best, gmax) = (i, g.norm());
+            }
+            let d = p.penetration(&x_n);
+            if d > 0.0 {
+                pen = pen.min(d);
+            }
         }
+        if !(gmax > 0.0 && pen > 0.0 && pen.is_finite()) {
+            return Err(TiError::NoContactMotion);
+        }
+        if !(perturbation.is_finite() && perturbation > 0.0) {
+            return Err(TiError::BadPerturbation(perturbation));
+        }
+        let unit = pen / gmax;
+        let epsilon = perturbation * unit;
+        let x: Vec<f64> = (0..n)
+            .map(|i| equilibrium[i] + epsilon * mode[i].re)
+            .collect();
+        let v: Vec<f64> = (0..n).map(|i| epsilon * (lambda * mode[i]).re).collect();
+        let y0 = BrakeDynamics::state_from_physical(mb, &x, &v).ok_or(TiError::SingularModes)?;
+        // Q: the mode's largest modal coordinate for a contact motion of one penetration.
+        let re: Vec<f64> = mode.iter().map(|z| z.re).collect();
+        let im: Vec<f64> = mode.iter().map(|z| z.im).collect();
+        let qm = BrakeDynamics::state_from_physical(mb, &re, &im).ok_or(TiError::SingularModes)?;
+        let q_scale = unit * (0..n).map(|j| qm[j].hypot(qm[n + j])).fold(0.0, f64::max);
+        let pair = &mb.pairs[best];
+        let observable: Vec<f64> = (0..n)
+            .map(|j| pair.normal.iter().map(|&(i, g)| g * mb.phi_n[(i, j)]).sum())
+            .collect();
+        let rate_scale = (0..n).map(|j| observable[j] * y0[n + j]).sum::<f64>().abs();
+        Ok(Self {
+            y0,
+            observable,
+            q_scale,
+            epsilon,
+            omega0: lambda.im.abs(),
+            rate_scale,
+        })
     }
-    if !(gmax > 0.0 && pen > 0.0 && pen.is_finite()) {
-        return Err(TiError::NoContactMotion);
+
+    /// Initial amplitude factor ε of the unstable mode (of the first start, for a
+    /// continuation).
+    pub fn epsilon(&self) -> f64 {
+        self.epsilon
     }
-    if !(perturbation.is_finite() && perturbation > 0.0) {
-        return Err(TiError::BadPerturbation(perturbation));
-    }
-    let unit = pen / gmax;
-    let epsilon = perturbation * unit;
-    let x: Vec<f64> = (0..n)
-        .map(|i| equilibrium[i] + epsilon * mode[i].re)
-        .collect();
-    let v: Vec<f64> = (0..n).map(|i| epsilon * (lambda * mode[i]).re).collect();
-    let y0 = BrakeDynamics::state_from_physical(mb, &x, &v).ok_or(TiError::SingularModes)?;
-    // Q: the mode's largest modal coordinate for a contact motion of one penetration.
-    let re: Vec<f64> = mode.iter().map(|z| z.re).collect();
-    let im: Vec<f64> = mode.iter().map(|z| z.im).collect();
-    let qm = BrakeDynamics::state_from_physical(mb, &re, &im).ok_or(TiError::SingularModes)?;
-    let q_scale = unit * (0..n).map(|j| qm[j].hypot(qm[n + j])).fold(0.0, f64::max);
-    let pair = &mb.pairs[best];
-    let observable = (0..n)
-        .map(|j| pair.normal.iter().map(|&(i, g)| g * mb.phi_n[(i, j)]).sum())
-        .collect();
-    Ok(Start {
-        y0,
-        observable,
-        q_scale,
-        epsilon,
-        omega0: lambda.im.abs(),
-    })
 }
 
 /// Takes every sample of `sums` due by the end of `bdf`'s last step (its dense output).
@@ -325,7 +356,6 @@ pub fn integrate_to_limit_cycle(
     equilibrium: &[f64],
     opts: &TiOptions,
 ) -> Result<TiRun, TiError> {
-    let t0 = Instant::now();
     // The Fourier averages' options, checked before any work.
     FourierSums::new(
         2 * mb.modes(),
@@ -335,8 +365,23 @@ pub fn integrate_to_limit_cycle(
         0.0,
         1.0,
     )?;
-    let s = start_state(mb, lambda, mode, equilibrium, opts.perturbation)?;
+    let s = TiStart::from_mode(mb, lambda, mode, equilibrium, opts.perturbation)?;
+    integrate_from(mb, &s, opts)
+}
+
+/// Integrates the brake from `start` until the steady limit cycle, as
+/// [`integrate_to_limit_cycle`] does from the perturbed equilibrium ([`TiOptions::perturbation`]
+/// is not used: the start is given).
+pub fn integrate_from(mb: &ModalBrake, s: &TiStart, opts: &TiOptions) -> Result<TiRun, TiError> {
+    let t0 = Instant::now();
     let n = mb.modes();
+    if s.y0.len() != 2 * n || s.observable.len() != n {
+        return Err(TiError::Dimension {
+            expected: n,
+            got: s.observable.len().min(s.y0.len() / 2),
+        });
+    }
+    FourierSums::new(2 * n, opts.harmonics, opts.samples_per_cycle, 1, 0.0, 1.0)?;
     let atol_q = opts.atol_factor * opts.rtol * s.q_scale;
     let atol: Vec<f64> = (0..2 * n)
         .map(|i| if i < n { atol_q } else { atol_q * s.omega0 })
@@ -355,10 +400,7 @@ pub fn integrate_to_limit_cycle(
     let w = s.observable.clone();
     let observable = move |y: &[f64]| (0..n).map(|j| w[j] * y[n + j]).sum::<f64>();
     // A cycle must be at least a millionth of the initial rate amplitude to count.
-    let rate0: f64 = (0..n)
-        .map(|j| s.observable[j] * s.y0[n + j])
-        .sum::<f64>()
-        .abs();
+    let rate0 = s.rate_scale;
     let steady_opts = SteadyOptions {
         level: 0.0,
         rtol: opts.steady_rtol,
@@ -441,5 +483,9 @@ pub fn integrate_to_limit_cycle(
         dim: 2 * n,
         epsilon: s.epsilon,
         drifts,
+        end: TiStart {
+            y0: bdf.y().to_vec(),
+            ..s.clone()
+        },
     })
 }

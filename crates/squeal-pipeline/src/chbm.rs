@@ -6,6 +6,7 @@ use crate::model::{Log, Model};
 use crate::shapes::{Meshes, PartFields, write_brake_vtu};
 use squeal_brake::analysis::Stability;
 use squeal_brake::modal_brake::ModalBrake;
+use squeal_chbm::physics::{SlidingMargin, sliding_margin_of};
 use squeal_chbm::start::start_at;
 use squeal_chbm::{ChbmOptions, ChbmSolution, ChbmStart, Outcome};
 use squeal_report::{Annotation, Dash, Figure, Panel, Scale, Series, Table, write_svg_and_png};
@@ -127,6 +128,7 @@ pub fn solution_text(m: &Model, start: &ChbmStart, s: &ChbmSolution) -> String {
             open.join(", ")
         }
     );
+    let _ = writeln!(out, "  sliding: {}", sliding_text(&sliding(m, s)));
     let mut t = Table::new(["dof", "mean (um)", "H1 (um)", "H2 (um)", "H3 (um)"]);
     for (name, part, dir) in [
         ("pad contact 5, normal", "pad", 2u8),
@@ -150,6 +152,42 @@ pub fn solution_text(m: &Model, start: &ChbmStart, s: &ChbmSolution) -> String {
     }
     out.push_str(&t.to_text());
     out
+}
+
+/// The sliding margin of a solution when the scene gives the disc's speed: `Ok(None)` without
+/// one, `Err` (in words) when the cycle cannot be measured.
+pub fn sliding(m: &Model, s: &ChbmSolution) -> std::result::Result<Option<SlidingMargin>, String> {
+    let Some(disc) = &m.disc else {
+        return Ok(None);
+    };
+    let c = s.cycle().map_err(|e| e.to_string())?;
+    let all: Vec<usize> = (0..c.n_dofs()).collect();
+    sliding_margin_of(
+        &m.brake.pairs,
+        &all,
+        &c,
+        &disc.surface_speeds(&m.brake.pairs),
+    )
+    .map(Some)
+    .map_err(|e| e.to_string())
+}
+
+/// One line on the sliding margin, with a warning below 1.
+pub fn sliding_text(m: &std::result::Result<Option<SlidingMargin>, String>) -> String {
+    match m {
+        Ok(None) => "not checked (the scene gives no [disc] speed)".into(),
+        Err(e) => format!("not checked: {e}"),
+        Ok(Some(m)) => format!(
+            "disc surface speed / largest tangential vibration velocity = {:.3} at pair {} (smallest over the pairs){}",
+            m.min,
+            m.pair + 1,
+            if m.sliding() {
+                ""
+            } else {
+                "\n  WARNING: below 1 the pad sticks to the disc for part of the cycle: stick-slip is outside the model (permanent sliding), this cycle is not physical"
+            }
+        ),
+    }
 }
 
 /// `coefficients.csv`, `history.csv`, `chbm.json` and the figures (limit cycles, convergence).
@@ -203,6 +241,12 @@ pub fn write_solution(dir: &Path, m: &Model, mu: f64, s: &ChbmSolution) -> Resul
         "iterations": s.iterations,
         "time_ms": s.time.as_secs_f64() * 1e3,
         "open_fraction": s.open_fraction,
+        "sliding_margin": sliding(m, s).ok().flatten().map(|g| serde_json::json!({
+            "min": g.min,
+            "pair": g.pair + 1,
+            "margins": g.margins,
+            "max_tangential_velocity": g.max_tangential_velocity,
+        })),
         "aliasing": s.aliasing,
         "layout": "coefficients[b * n + dof], blocks b = [0c, 1c, 1s, 2c, 2s, ...] (eq 25); x(t) = sum_k Ukc cos(k w t) + Uks sin(k w t)",
         "dofs": n,

@@ -17,6 +17,7 @@ use squeal_chbm::compare::{
     CellOutcome, CompareOptions, Comparison, GridCell, GridModel, GridOptions, TiCell, TiRow,
     compare_at, robustness,
 };
+use squeal_chbm::cycle::RelativeErrors;
 use squeal_chbm::timeint::TiOptions;
 use squeal_chbm::{ChbmOptions, ChbmStart};
 use squeal_report::format::{fmt_sci, fmt_sig};
@@ -78,6 +79,12 @@ impl CompareSettings {
                 "must be between 1e-12 and 1e-2",
             ));
         }
+        if self.reference_rtol > 1e-3 {
+            return Err(PipelineError::input(
+                "--reference-rtol",
+                "must be at most 1e-3 (its error is estimated by a run at 10 times it)",
+            ));
+        }
         if !(self.perturbation.is_finite() && self.perturbation > 0.0 && self.perturbation <= 10.0)
         {
             return Err(PipelineError::input("--perturbation", "must be in (0, 10]"));
@@ -134,15 +141,30 @@ pub fn run(
     log: Log,
 ) -> Result<CompareSummary> {
     settings.validate()?;
+    // The integrations' Fourier averages keep at least as many harmonics as CHBM's largest
+    // (at least 20), so that the reference does not truncate what it judges.
+    let ti_harmonics = settings
+        .harmonics
+        .iter()
+        .copied()
+        .max()
+        .unwrap_or(1)
+        .max(20);
     let opts = CompareOptions {
         harmonics: settings.harmonics.clone(),
         ti: TiOptions {
             perturbation: settings.perturbation,
             max_order: settings.max_order,
+            harmonics: ti_harmonics,
+            samples_per_cycle: TiOptions::default()
+                .samples_per_cycle
+                .max(4 * ti_harmonics + 8),
             ..TiOptions::default()
         },
         rtols: settings.rtols.clone(),
         reference_rtol: settings.reference_rtol,
+        reference_drift_tol: REFERENCE_DRIFT_TOL,
+        disc: m.disc,
         ..CompareOptions::default()
     };
     let mut summary = Vec::new();
@@ -157,9 +179,11 @@ pub fn run(
         };
         guess = Some(start.equilibrium.clone());
         log(&format!(
-            "\n== mu = {:.6} ({ratio} mu0): reference BDF at rtol {:e}, then {} more tolerances and {} CHBM solves",
+            "\n== mu = {:.6} ({ratio} mu0): reference BDF at rtol {:e} (continued on the steady cycle of a rtol {:e} run; a rtol {:e} run estimates its error), then {} more tolerances and {} CHBM solves",
             mb.mu,
             settings.reference_rtol,
+            opts.seed_rtol,
+            opts.check_factor * settings.reference_rtol,
             settings.rtols.len(),
             settings.harmonics.len()
         ));
@@ -235,7 +259,7 @@ fn short(reason: &str) -> &str {
     reason.split(": ").next().unwrap_or(reason)
 }
 
-const ERROR_DEFINITION: &str = "cycles aligned in time on the first harmonic of the reference's most moving contact dof; relative error = RMS over one cycle (in phase) and over the dofs of x_method - x_reference (mean included) / RMS of the reference's oscillation (mean removed); velocity likewise; 'all' = every physical dof, 'contact' = the dofs the contact forces act on; reference = BDF at the reference tolerance";
+const ERROR_DEFINITION: &str = "cycles aligned in time on the first harmonic of the reference's most moving contact dof; relative error = RMS over one cycle (in phase) and over the dofs of x_method - x_reference (mean included) / RMS of the reference's oscillation (mean removed); velocity likewise; 'all' = every physical dof, 'contact' = the dofs the contact forces act on; reference = BDF at the reference tolerance, continued from the steady cycle of a looser run; its estimated own error = (difference from a run at check_factor x its tolerance) / (check_factor^(2/3) - 1), the BDF2 phase error growing like rtol^(2/3)";
 
 fn pct(x: f64) -> String {
     fmt_sig(100.0 * x, 3)
@@ -246,7 +270,29 @@ fn table1(c: &Comparison) -> Table {
     let mut header = vec!["".to_string()];
     header.extend(c.chbm.iter().map(|r| format!("CHBM {}H", r.harmonics)));
     header.extend(c.ti.iter().map(|r| format!("BDF {:e}", r.rtol)));
+    header.push(format!("BDF {:e}: est. own error", c.reference.rtol));
     let mut t = Table::new(header);
+    let est = |f: &dyn Fn(&RelativeErrors) -> String, contact: bool| {
+        let e = if contact {
+            &c.estimate.contact
+        } else {
+            &c.estimate.all
+        };
+        e.as_ref().map_or("-".into(), f)
+    };
+    let own = [
+        est(&|e| pct(e.displacement), false),
+        est(&|e| pct(e.velocity), false),
+        est(&|e| pct(e.displacement), true),
+        est(&|e| pct(e.velocity), true),
+        est(&|e| format!("±{}", fmt_sig(e.frequency_hz.abs(), 3)), false),
+        est(&|e| format!("±{}", pct(e.frequency_relative.abs())), false),
+        c.reference
+            .measures
+            .as_ref()
+            .map_or("-".into(), |m| pct(max(&m.open_fraction))),
+        c.reference.measures.as_ref().map_or("-".into(), margin),
+    ];
     let chbm = |f: &dyn Fn(&squeal_chbm::compare::ChbmRow) -> String| {
         c.chbm.iter().map(f).collect::<Vec<_>>()
     };
@@ -255,7 +301,7 @@ fn table1(c: &Comparison) -> Table {
             .map(|r| r.measures.as_ref().map_or("-".into(), f))
             .collect::<Vec<_>>()
     };
-    let rows: [(&str, Vec<String>, Vec<String>); 7] = [
+    let rows: [(&str, Vec<String>, Vec<String>); 8] = [
         (
             "displacement error, all dofs (%)",
             chbm(&|r| pct(r.measures.all.displacement)),
@@ -291,14 +337,31 @@ fn table1(c: &Comparison) -> Table {
             chbm(&|r| pct(max(&r.measures.open_fraction))),
             ti(&|m| pct(max(&m.open_fraction))),
         ),
+        (
+            "sliding margin: disc speed / peak tangential velocity",
+            chbm(&|r| margin(&r.measures)),
+            ti(&margin),
+        ),
     ];
-    for (name, a, b) in rows {
+    for ((name, a, b), o) in rows.into_iter().zip(own) {
         let mut row = vec![name.to_string()];
         row.extend(a);
         row.extend(b);
+        row.push(o);
         t.push_row(row);
     }
     t.align_numbers_right()
+}
+
+/// The smallest sliding margin of a cycle, `-` without a disc speed, `!` below 1.
+fn margin(m: &squeal_chbm::compare::Measures) -> String {
+    m.sliding.as_ref().map_or("-".into(), |g| {
+        format!(
+            "{}{}",
+            fmt_sig(g.min, 3),
+            if g.sliding() { "" } else { " !" }
+        )
+    })
 }
 
 fn max(v: &[f64]) -> f64 {
@@ -336,21 +399,27 @@ fn table2(c: &Comparison) -> Table {
             fmt_sci(r.measures.energy.relative, 2),
         ]);
     }
-    for r in std::iter::once(&c.reference).chain(&c.ti) {
-        t.push_row(ti_cost_row(r, r.rtol == c.reference.rtol));
+    let e = &c.estimate;
+    if e.seed.rtol != c.reference.rtol {
+        t.push_row(ti_cost_row(&e.seed, " (reference: seed)"));
+    }
+    if e.check.rtol != e.seed.rtol && e.check.rtol != c.reference.rtol {
+        t.push_row(ti_cost_row(&e.check, " (reference: check)"));
+    }
+    t.push_row(ti_cost_row(&c.reference, " (reference)"));
+    if let Some(u) = &e.unsteady {
+        t.push_row(ti_cost_row(u, " (asked reference)"));
+    }
+    for r in &c.ti {
+        t.push_row(ti_cost_row(r, ""));
     }
     t.align_numbers_right()
 }
 
-fn ti_cost_row(r: &TiRow, is_reference: bool) -> Vec<String> {
+fn ti_cost_row(r: &TiRow, role: &str) -> Vec<String> {
     let st = &r.run.stats;
     vec![
-        format!(
-            "BDF{} {:e}{}",
-            "",
-            r.rtol,
-            if is_reference { " (reference)" } else { "" }
-        ),
+        format!("BDF {:e}{role}", r.rtol),
         match (&r.run.steady, &r.run.failure) {
             (Some(s), _) => format!("steady (drift {})", fmt_sci(s.drift, 1)),
             (None, Some(f)) => format!("failed: {}", short(&f.to_string())),
@@ -373,6 +442,10 @@ fn ti_cost_row(r: &TiRow, is_reference: bool) -> Vec<String> {
 
 /// Long-form CSV of every method's measures.
 fn measures_csv(c: &Comparison) -> Table {
+    let slide = |m: Option<&squeal_chbm::compare::Measures>| {
+        m.and_then(|m| m.sliding.as_ref())
+            .map_or(String::new(), |g| format!("{:e}", g.min))
+    };
     let mut t = Table::new([
         "method",
         "harmonics",
@@ -391,6 +464,7 @@ fn measures_csv(c: &Comparison) -> Table {
         "energy_balance_rel",
         "max_open_fraction",
         "initial_amplitude_p",
+        "sliding_margin",
     ]);
     for r in &c.chbm {
         let m = &r.measures;
@@ -412,16 +486,28 @@ fn measures_csv(c: &Comparison) -> Table {
             format!("{:e}", m.energy.relative),
             format!("{}", max(&m.open_fraction)),
             format!("{}", r.amplitude),
+            slide(Some(m)),
         ]);
     }
-    for r in std::iter::once(&c.reference).chain(&c.ti) {
+    let e = &c.estimate;
+    let rows = [
+        ("bdf_seed", Some(&e.seed)),
+        ("bdf_check", Some(&e.check)),
+        ("bdf_reference", Some(&c.reference)),
+        ("bdf_asked_reference_unsteady", e.unsteady.as_ref()),
+    ];
+    let rows = rows
+        .into_iter()
+        .filter_map(|(m, r)| r.map(|r| (m, r)))
+        .chain(c.ti.iter().map(|r| ("bdf", r)));
+    for (method, r) in rows {
         let (freq, m) = (
             r.cycle.as_ref().map(|c| c.frequency_hz()),
             r.measures.as_ref(),
         );
         let num = |f: Option<f64>| f.map_or(String::new(), |v| format!("{v:e}"));
         t.push_row([
-            "bdf".into(),
+            method.into(),
             "".into(),
             format!("{:e}", r.rtol),
             if r.run.steady.is_some() {
@@ -442,9 +528,115 @@ fn measures_csv(c: &Comparison) -> Table {
             num(m.map(|m| m.energy.relative)),
             num(m.map(|m| max(&m.open_fraction))),
             format!("{}", r.run.epsilon),
+            slide(m),
         ]);
     }
+    if let (Some(a), Some(k)) = (&e.all, &e.contact) {
+        let mut row = vec![
+            "bdf_reference_estimated_error".to_string(),
+            "".into(),
+            format!("{:e}", c.reference.rtol),
+            "Estimate".into(),
+            "".into(),
+            format!("{:e}", a.frequency_hz),
+            format!("{:e}", a.frequency_relative),
+            format!("{:e}", a.displacement),
+            format!("{:e}", a.velocity),
+            format!("{:e}", k.displacement),
+            format!("{:e}", k.velocity),
+            e.steps(&c.reference).to_string(),
+            format!("{:e}", e.wall(&c.reference).as_secs_f64()),
+        ];
+        row.extend(std::iter::repeat_n(String::new(), 5));
+        t.push_row(row);
+    }
     t
+}
+
+/// A warning naming the cycles whose sliding margin is below 1.
+fn sliding_warning(c: &Comparison) -> Option<String> {
+    let mut bad = Vec::new();
+    for r in &c.chbm {
+        if r.measures.sliding.as_ref().is_some_and(|g| !g.sliding()) {
+            bad.push(format!("CHBM {}H", r.harmonics));
+        }
+    }
+    for r in std::iter::once(&c.reference).chain(&c.ti) {
+        let m = r.measures.as_ref().and_then(|m| m.sliding.as_ref());
+        if m.is_some_and(|g| !g.sliding()) {
+            bad.push(format!("BDF {:e}", r.rtol));
+        }
+    }
+    (!bad.is_empty()).then(|| {
+        format!(
+            "WARNING: sliding margin below 1 for {}: the pad's tangential vibration outruns the disc surface, so the pad sticks for part of the cycle; stick-slip is outside the model (permanent sliding).",
+            bad.join(", ")
+        )
+    })
+}
+
+const REFERENCE_DRIFT_TOL: f64 = 1e-7;
+
+/// One paragraph on the reference: its own estimated error and what it cost.
+fn reference_note(c: &Comparison) -> String {
+    let e = &c.estimate;
+    let mut head = format!(
+        "Reference: BDF rtol {:e}, continued from the steady cycle of rtol {:e} (through rtol {:e}); {} steps, {} s in all.",
+        c.reference.rtol,
+        e.seed.rtol,
+        e.check.rtol,
+        e.steps(&c.reference),
+        fmt_sig(e.wall(&c.reference).as_secs_f64(), 3)
+    );
+    if let Some(u) = &e.unsteady {
+        let last = u
+            .run
+            .drifts
+            .last()
+            .map_or("none".into(), |d| fmt_sci(d.1, 1));
+        head = format!(
+            "WARNING: the run at the asked reference tolerance {:e} found no steady cycle ({}; last drift between 20-cycle averages {last}, asked {}); the reference is the tightest steady run.\n{head}",
+            u.rtol,
+            u.run
+                .failure
+                .as_ref()
+                .map_or("no reason given".into(), |f| f.to_string()),
+            fmt_sci(REFERENCE_DRIFT_TOL, 1),
+        );
+    }
+    match (&e.all, &e.contact) {
+        (Some(a), Some(k)) => {
+            let worst = c
+                .chbm
+                .iter()
+                .filter(|r| r.measures.all.displacement < 3.0 * a.displacement)
+                .map(|r| format!("{}H", r.harmonics))
+                .collect::<Vec<_>>();
+            format!(
+                "{head}\nIts estimated own error (difference from rtol {:e} x {}): displacement {} %, velocity {} % (all dofs), {} %, {} % (contact dofs), frequency {} Hz ({} %).{}",
+                e.check.rtol,
+                fmt_sig(e.scale, 3),
+                pct(a.displacement),
+                pct(a.velocity),
+                pct(k.displacement),
+                pct(k.velocity),
+                fmt_sig(a.frequency_hz.abs(), 3),
+                pct(a.frequency_relative.abs()),
+                if worst.is_empty() {
+                    String::new()
+                } else {
+                    format!(
+                        "\nWARNING: the displacement errors of CHBM {} are within 3x the reference's own error: they measure the reference too.",
+                        worst.join(", ")
+                    )
+                }
+            )
+        }
+        _ => format!(
+            "{head}\nIts own error is not estimated: the check run at rtol {:e} found no steady cycle.",
+            e.check.rtol
+        ),
+    }
 }
 
 /// Writes tables and figures of one comparison; returns the files written (relative names).
@@ -462,6 +654,10 @@ fn write_comparison(
         c.reference.rtol,
         t1.to_text()
     ));
+    log(&reference_note(c));
+    if let Some(w) = sliding_warning(c) {
+        log(&w);
+    }
     log(&format!("\nTable 2 analogue:\n{}", t2.to_text()));
     t1.write_csv(&dir.join("table1.csv"))?;
     t2.write_csv(&dir.join("table2.csv"))?;
@@ -652,7 +848,8 @@ fn speed_accuracy(c: &Comparison, ratio: f64) -> Figure {
 /// cycle.
 fn growth(c: &Comparison, ratio: f64) -> Figure {
     let pts: Vec<(f64, f64)> = c
-        .reference
+        .estimate
+        .seed
         .run
         .history
         .iter()
@@ -664,7 +861,7 @@ fn growth(c: &Comparison, ratio: f64) -> Figure {
             title: "peak-to-peak penetration rate of the most moving pair, per cycle".into(),
             x_label: "time (s)".into(),
             y_label: "peak-to-peak (m/s)".into(),
-            series: vec![Series::line(format!("BDF {:e}", c.reference.rtol), pts)],
+            series: vec![Series::line(format!("BDF {:e}", c.estimate.seed.rtol), pts)],
             ..Panel::default()
         },
     )
@@ -689,10 +886,12 @@ fn comparison_json(c: &Comparison, ratio: f64, files: &[String]) -> serde_json::
                 "storage_bytes": r.solution.storage_bytes(),
                 "energy_balance": r.measures.energy.relative,
                 "open_fraction": r.measures.open_fraction,
+                "sliding_margin": r.measures.sliding.as_ref().map(|g| g.min),
             })
         })
         .collect();
-    let ti: Vec<_> = std::iter::once(&c.reference)
+    let ti: Vec<_> = [&c.estimate.seed, &c.estimate.check, &c.reference]
+        .into_iter()
         .chain(&c.ti)
         .map(|r| {
             serde_json::json!({
@@ -710,6 +909,7 @@ fn comparison_json(c: &Comparison, ratio: f64, files: &[String]) -> serde_json::
                 "drift": r.run.steady.as_ref().map(|s| s.drift),
                 "history_bytes": r.run.history_bytes(),
                 "energy_balance": r.measures.as_ref().map(|m| m.energy.relative),
+                "sliding_margin": r.measures.as_ref().and_then(|m| m.sliding.as_ref()).map(|g| g.min),
             })
         })
         .collect();
@@ -720,6 +920,34 @@ fn comparison_json(c: &Comparison, ratio: f64, files: &[String]) -> serde_json::
         "files": files,
         "chbm": chbm,
         "time_integration": ti,
+        "reference": reference_json(c),
+    })
+}
+
+fn errors_json(e: &Option<RelativeErrors>) -> serde_json::Value {
+    e.as_ref().map_or(serde_json::Value::Null, |e| {
+        serde_json::json!({
+            "err_disp": e.displacement,
+            "err_vel": e.velocity,
+            "dfreq_hz": e.frequency_hz,
+            "dfreq_rel": e.frequency_relative,
+        })
+    })
+}
+
+/// The reference's tolerances, cost and estimated own error.
+fn reference_json(c: &Comparison) -> serde_json::Value {
+    let e = &c.estimate;
+    serde_json::json!({
+        "rtol": c.reference.rtol,
+        "seed_rtol": e.seed.rtol,
+        "check_rtol": e.check.rtol,
+        "richardson_scale": e.scale,
+        "asked_rtol_unsteady": e.unsteady.as_ref().map(|u| u.rtol),
+        "estimated_error_all": errors_json(&e.all),
+        "estimated_error_contact": errors_json(&e.contact),
+        "steps": e.steps(&c.reference),
+        "wall_s": e.wall(&c.reference).as_secs_f64(),
     })
 }
 

@@ -12,6 +12,7 @@ use squeal_brake::Brake;
 use squeal_brake::analysis::{DampingSpec, PairChoice};
 use squeal_brake::assemble::{BrakeParams, Layout, Pairing, Stiffness, assemble};
 use squeal_brake::sweep::{Band, SweepOptions};
+use squeal_chbm::physics::DiscSpeed;
 use squeal_mesh::Mesh;
 use squeal_reduce::brake::{
     BrakeInputs, Freshness, ModeChoice, PairingTolerance, freshness, reduce_brake,
@@ -34,6 +35,8 @@ pub struct Model {
     /// Meshes of the parts, as files.
     pub disc_mesh: PathBuf,
     pub pad_mesh: PathBuf,
+    /// The disc's rotation from the scene's `[disc]`, for the sliding check of every cycle.
+    pub disc: Option<DiscSpeed>,
 }
 
 /// What the pipeline tells its caller while it works (the CLI prints it).
@@ -154,6 +157,19 @@ pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
     })
 }
 
+/// The disc's rotation the scene gives (`[disc]`), `None` without one.
+pub fn disc_speed(scene: &Scene) -> Result<Option<DiscSpeed>> {
+    let Some(w) = scene.disc_angular_speed()? else {
+        return Ok(None);
+    };
+    let (origin, axis) = scene.disc_axis()?;
+    Ok(Some(DiscSpeed {
+        angular_speed: w,
+        origin,
+        axis,
+    }))
+}
+
 /// The damping of eqs (12)–(13) the scene asks for.
 pub fn damping_spec(scene: &Scene) -> Result<DampingSpec> {
     let f = &scene.file;
@@ -212,6 +228,7 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
         params,
         disc_mesh: scene.resolve(&m.disc),
         pad_mesh: scene.resolve(&m.pad),
+        disc: disc_speed(scene)?,
     })
 }
 

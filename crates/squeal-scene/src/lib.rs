@@ -53,6 +53,26 @@ pub struct SceneFile {
     pub stability: StabilitySection,
     #[serde(default)]
     pub chbm: ChbmSection,
+    /// `[disc]`: the disc's rotation speed, for the sliding check of every limit cycle.
+    #[serde(default)]
+    pub disc: DiscSection,
+}
+
+/// `[disc]`: how fast the disc turns, as `rpm` or as `vehicle_speed_kmh` with the wheel's
+/// `rolling_radius`; optional (without it the sliding margin of a cycle is not reported). The
+/// disc turns about the axis through `axis_origin` along `contact.normal`; a pair's surface
+/// speed is the angular speed times its distance from that axis.
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct DiscSection {
+    /// Disc speed (revolutions per minute).
+    pub rpm: Option<Spanned<f64>>,
+    /// Vehicle speed (km/h); needs `rolling_radius`.
+    pub vehicle_speed_kmh: Option<Spanned<f64>>,
+    /// The wheel's effective rolling radius (m): the disc turns at `v / r`.
+    pub rolling_radius: Option<Spanned<f64>>,
+    /// A point of the disc's axis (m); the origin by default.
+    pub axis_origin: Option<Spanned<[f64; 3]>>,
 }
 
 /// `[chbm]`: the limit cycle `squeal run` computes.
@@ -393,7 +413,42 @@ impl Scene {
                 "must be between 1 and 50",
             ));
         }
+        self.disc_angular_speed()?;
         Ok(())
+    }
+
+    /// The disc's angular speed (rad/s) from `[disc]`, `None` when the section gives none.
+    pub fn disc_angular_speed(&self) -> Result<Option<f64>> {
+        let d = &self.file.disc;
+        match (&d.rpm, &d.vehicle_speed_kmh, &d.rolling_radius) {
+            (None, None, None) => Ok(None),
+            (Some(r), None, None) => {
+                self.positive("disc.rpm", r)?;
+                Ok(Some(r.get_ref() * 2.0 * std::f64::consts::PI / 60.0))
+            }
+            (None, Some(v), Some(r)) => {
+                self.positive("disc.vehicle_speed_kmh", v)?;
+                self.positive("disc.rolling_radius", r)?;
+                Ok(Some(v.get_ref() / 3.6 / r.get_ref()))
+            }
+            _ => Err(self.section_error(
+                "[disc] takes either rpm, or vehicle_speed_kmh with rolling_radius",
+            )),
+        }
+    }
+
+    /// The disc's axis: a point (`disc.axis_origin`, the origin by default) and the unit
+    /// direction `contact.normal`.
+    pub fn disc_axis(&self) -> Result<([f64; 3], [f64; 3])> {
+        let n = self.direction("contact.normal", &self.file.contact.normal)?;
+        Ok((
+            self.file
+                .disc
+                .axis_origin
+                .as_ref()
+                .map_or([0.0; 3], |o| *o.get_ref()),
+            n,
+        ))
     }
 
     /// Contact stiffness per unit area `(κ_l, κ_nl)`, scaled, and the fit report if fitted.
@@ -580,6 +635,26 @@ mod tests {
             "{f:?}"
         );
         assert!(f.relative_rms < 1e-12);
+    }
+
+    #[test]
+    fn the_disc_speed_comes_from_rpm_or_from_the_vehicle_speed() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/brake.toml");
+        let base = std::fs::read_to_string(&path).unwrap();
+        let with = |extra: &str| Scene::parse(&path, format!("{base}\n{extra}"));
+        assert_eq!(with("").unwrap().disc_angular_speed().unwrap(), None);
+        // 60 rpm is one turn a second: 2π rad/s, to round-off.
+        let w = with("[disc]\nrpm = 60.0")
+            .unwrap()
+            .disc_angular_speed()
+            .unwrap();
+        assert!((w.unwrap() - 2.0 * std::f64::consts::PI).abs() < 1e-12);
+        // 36 km/h = 10 m/s on a 0.25 m wheel: 40 rad/s, to round-off.
+        let s = with("[disc]\nvehicle_speed_kmh = 36.0\nrolling_radius = 0.25").unwrap();
+        assert!((s.disc_angular_speed().unwrap().unwrap() - 40.0).abs() < 1e-12);
+        assert!(with("[disc]\nrpm = -1.0").is_err());
+        assert!(with("[disc]\nvehicle_speed_kmh = 36.0").is_err());
+        assert!(with("[disc]\nrpm = 60.0\nrolling_radius = 0.25").is_err());
     }
 
     #[test]
