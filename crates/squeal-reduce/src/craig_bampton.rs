@@ -16,10 +16,10 @@
 //! - eqs (6)–(7): `K̂ = Bᵀ K B`, `M̂ = Bᵀ M B` with the full-space basis
 //!   `B = [T Ψ_v + G, T Φ_v]`; `K̂` is block diagonal (`K̂_CN = 0` to round-off).
 
-use crate::interface::{Axis, InterfaceError, contact_nodes, patches};
+use crate::interface::{Axis, InterfaceError, contact_nodes, patches, tributary_areas};
 use crate::rom::{
-    Basis, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo, PartInfo, PointRole,
-    ReducedPart, RestraintInfo,
+    Basis, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo, PartInfo, PartRole,
+    PointRole, ReducedPart, RestraintInfo,
 };
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Accum, Mat, MatRef, Par};
@@ -100,6 +100,8 @@ const AXES: [char; 3] = ['x', 'y', 'z'];
 #[derive(Clone, Debug, PartialEq)]
 pub struct PartSpec {
     pub name: String,
+    /// Disc or pad.
+    pub role: PartRole,
     pub mesh: MeshInfo,
     pub restraints: Vec<Restraint>,
     pub interface: InterfaceKind,
@@ -320,6 +322,7 @@ pub fn reduce_part(
     let fixed_interface_hz: Vec<f64> = modes.values.iter().map(|&w2| hz(w2)).collect();
     let info = PartInfo {
         name: part.clone(),
+        role_field: Some(spec.role),
         mesh: spec.mesh.clone(),
         interface: spec.interface,
         materials: material_infos(materials),
@@ -516,14 +519,24 @@ fn boundary_rows(
     };
     match spec.interface {
         InterfaceKind::Node => {
-            for node in contact_nodes(mesh, &spec.contact_set, &spec.axis)? {
+            let nodes = contact_nodes(mesh, &spec.contact_set, &spec.axis)?;
+            // Each node stands for its tributary share of the contact face, when the part has
+            // one: the area its contact stiffness per unit area is multiplied by.
+            let cells = match mesh.node_set(&spec.contact_face_set) {
+                Some(_) => Some(tributary_areas(mesh, &spec.contact_face_set, &nodes)?),
+                None => None,
+            };
+            for (k, node) in nodes.into_iter().enumerate() {
                 let p = points.len();
+                let cell = cells.as_ref().map(|c| c[k]);
                 points.push(InterfacePoint {
                     role: PointRole::Contact,
                     node_id: Some(mesh.node_ids[node as usize]),
                     patch: None,
                     position: mesh.nodes[node as usize],
-                    area: None,
+                    area: cell.map(|c| c.0),
+                    normal: cell.map(|c| c.1),
+                    surface: None,
                 });
                 for d in 0..3 {
                     let dof = dofmap
@@ -553,6 +566,8 @@ fn boundary_rows(
                     patch: Some(patch.number),
                     position: patch.centroid,
                     area: Some(patch.area),
+                    normal: Some(patch.normal),
+                    surface: None,
                 });
                 for d in 0..3 {
                     // A restrained face node would pin the patch's mean motion: refuse it,
@@ -589,6 +604,8 @@ fn boundary_rows(
                 patch: None,
                 position: mesh.nodes[node as usize],
                 area: None,
+                normal: None,
+                surface: None,
             });
             let dof = dofmap
                 .free_dof(node, d)
