@@ -40,6 +40,9 @@ enum Command {
     Stability(commands::stability::StabilityArgs),
     /// Limit cycle by the Constrained Harmonic Balance Method
     Chbm(commands::chbm::ChbmArgs),
+    /// The branch of limit cycles from the Hopf point, with their stability: where and how
+    /// loud the brake squeals
+    Branch(commands::branch::BranchArgs),
     /// Parametric stability studies: piston pressure, contact stiffness, modal damping
     Study(commands::study::StudyArgs),
     /// CHBM against time integration: accuracy, speed, robustness
@@ -65,6 +68,7 @@ fn main() -> ExitCode {
         Command::Reduce(args) => commands::reduce::run(args),
         Command::Stability(args) => commands::stability::run(args),
         Command::Chbm(args) => commands::chbm::run(args),
+        Command::Branch(args) => commands::branch::run(args),
         Command::Study(args) => commands::study::run(args),
         Command::Compare(args) => commands::compare::run(args),
         Command::Run(args) => commands::run::run(args),

@@ -156,3 +156,67 @@ fn coarse_brake_headline_numbers_are_unchanged() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn coarse_brake_branch_folds_below_mu0_and_meets_chbm_at_1_01_mu0() {
+    // `squeal branch` on the coarse brake with 10 harmonics up to 1.05 mu0 (issue 10).
+    // Measured when written (2026-11-23): l1 = +0.51082 (subcritical), fold at
+    // mu = 0.460646090293 (0.99745 mu0, contact closed, refined to a tangent component of
+    // 1e-8: the adaptive 5-harmonic branch gives the same fold to 2e-13), and the cycle at
+    // 1.01 mu0 at 4006.895130577 Hz, 2e-11 from CHBM's 10-harmonic cycle pinned above: the same
+    // equations solved by another algorithm (continuation Newton against CHBM's constrained
+    // Levenberg-Marquardt), so 1e-9 bounds their solver tolerances.
+    let dir = temp_dir("regression", "branch");
+    let scene = dir.join("brake.toml");
+    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
+    let out = dir.join("out");
+    let (scene_s, out_s) = (scene.to_str().unwrap(), out.to_str().unwrap());
+    let text = run_ok(&[
+        "branch",
+        scene_s,
+        "--out",
+        out_s,
+        "--harmonics",
+        "10",
+        "--max-ratio",
+        "1.05",
+        "--at",
+        "1.01,0.998",
+    ]);
+    assert!(text.contains("subcritical"), "{text}");
+    let b = json(&out.join("branch/branch.json"));
+    let l1 = number(&b["hopf"], "first_lyapunov_coefficient");
+    // l1 comes from second and third derivatives by central differences: 1e-4 relative.
+    assert!((l1 / 0.510_816_6 - 1.0).abs() < 1e-4, "l1 = {l1}");
+    let folds = b["folds"].as_array().unwrap();
+    assert_eq!(folds.len(), 1, "{folds:?}");
+    let fold = number(&folds[0], "mu");
+    assert!(folds[0]["refined"].as_bool().unwrap());
+    assert!(
+        (fold / 0.460_646_090_29 - 1.0).abs() < 1e-8,
+        "fold at {fold}"
+    );
+    assert_eq!(
+        number(&b["squeal_range"], "with_disturbance_from_mu"),
+        fold,
+        "squeal after a disturbance from the fold"
+    );
+    let at = b["cycles_at"].as_array().unwrap();
+    // 1.01 mu0 is crossed once (the stable part), 0.998 mu0 twice (unstable, then stable).
+    assert_eq!(at.len(), 3, "{at:?}");
+    let f = number(&at[0], "frequency_hz");
+    assert!(
+        (f / CHBM[1].1 - 1.0).abs() < 1e-9,
+        "{f} vs CHBM {}",
+        CHBM[1].1
+    );
+    let verdicts: Vec<&str> = at
+        .iter()
+        .map(|c| c["stability"].as_str().unwrap())
+        .collect();
+    assert_eq!(verdicts, ["stable", "unstable", "stable"]);
+    for name in ["branch.csv", "branch.svg", "branch.png"] {
+        assert!(out.join("branch").join(name).is_file(), "{name} missing");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

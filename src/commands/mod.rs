@@ -1,3 +1,4 @@
+pub mod branch;
 pub mod chbm;
 pub mod compare;
 pub mod fe;

@@ -1,9 +1,9 @@
-//! `squeal run`: the whole pipeline on a scene — reduction, stability, CHBM limit cycle and its
-//! comparison with time integration — and a report folder whose `index.html` / `index.md` shows
+//! `squeal run`: the whole pipeline on a scene — reduction, stability, the branch of limit
+//! cycles with their stability, CHBM limit cycle and its comparison with time integration — and a report folder whose `index.html` / `index.md` shows
 //! every figure and table. One [`squeal_pipeline::Pipeline`] carries the stages: the reduced
 //! model, the brake and the friction sweep are computed once and shared by all of them.
 
-use crate::commands::{chbm, compare, stability};
+use crate::commands::{branch, chbm, compare, stability};
 use anyhow::{Context, Result};
 use clap::Args;
 use squeal_chbm::{Outcome, RESTART_AMPLITUDES};
@@ -38,14 +38,17 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     println!("\n== 2. stability");
     stability::write(&p, true)?;
 
-    println!("\n== 3. limit cycle (CHBM)");
+    println!("\n== 3. branch of limit cycles and their stability");
+    let _branch = branch::write(&p, &squeal_chbm::branch::BranchOptions::default(), &[])?;
+
+    println!("\n== 4. limit cycle (CHBM)");
     let mu_ratio = *c.mu_ratio.get_ref();
     let sol = chbm::solve(&p, None, Some(mu_ratio), &opts, &RESTART_AMPLITUDES, true)?;
     let mu = mu_ratio * p.mu0()?;
 
     let mut summary = None;
     if !args.no_compare {
-        println!("\n== 4. CHBM against time integration");
+        println!("\n== 5. CHBM against time integration");
         summary = Some(compare::write(&p, &settings, None)?);
     }
 

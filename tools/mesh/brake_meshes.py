@@ -8,8 +8,10 @@ sections). The geometry, the sets and the materials are described in ``meshes/RE
 
 Usage (from the repository root)::
 
-    python3 tools/mesh/brake_meshes.py                  # all levels into meshes/
+    python3 tools/mesh/brake_meshes.py                  # the bundled levels into meshes/
     python3 tools/mesh/brake_meshes.py --levels coarse  # one level
+    python3 tools/mesh/brake_meshes.py --levels huge --parts disc --out-dir /tmp/squeal-huge
+                                                        # ~1M-dof disc of the scaling study
     python3 tools/mesh/check_meshes.py                  # verify what was written
 
 The output is deterministic: Gmsh runs on one thread with its serial Delaunay mesher, and
@@ -78,7 +80,22 @@ LEVELS = {
         two_layers=True,
         netgen=True,
     ),
+    # The scaling study's disc of about a million dofs (about 7x the fine disc's nodes); not
+    # bundled: write it outside the repository, e.g.
+    # python3 tools/mesh/brake_meshes.py --levels huge --parts disc --out-dir /tmp/squeal-huge
+    "huge": Level(
+        "huge",
+        disc_size=0.0031,
+        contact_size=0.0017,
+        pad_size=0.0017,
+        transition=0.02,
+        two_layers=True,
+        netgen=True,
+    ),
 }
+
+# Levels written by default (the bundled meshes).
+BUNDLED = ["coarse", "medium", "fine"]
 
 
 def set_common_options(level: Level, max_size: float) -> None:
@@ -353,7 +370,7 @@ def main(argv: list[str] | None = None) -> int:
     here = os.path.dirname(os.path.abspath(__file__))
     default_out = os.path.normpath(os.path.join(here, "..", "..", "meshes"))
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--levels", nargs="+", choices=list(LEVELS), default=list(LEVELS))
+    ap.add_argument("--levels", nargs="+", choices=list(LEVELS), default=BUNDLED)
     ap.add_argument("--parts", nargs="+", choices=["disc", "pad"], default=["disc", "pad"])
     ap.add_argument("--out-dir", default=default_out)
     args = ap.parse_args(argv)

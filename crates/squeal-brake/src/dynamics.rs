@@ -92,7 +92,7 @@ impl OdeSystem for BrakeDynamics<'_> {
         }
     }
 
-    fn jacobian(&self, _t: f64, y: &[f64], mut jac: MatMut<'_, f64>) {
+    fn jacobian(&self, _t: f64, y: &[f64], jac: MatMut<'_, f64>) {
         let mb = self.brake;
         let (n, nn) = (mb.modes(), mb.nl());
         let mut xn = vec![0.0; nn];
@@ -107,19 +107,27 @@ impl OdeSystem for BrakeDynamics<'_> {
         let project = |m: &Mat<f64>| mb.phi_n.transpose() * (m * &mb.phi_n);
         let block = project(&kg);
         let damping_block = cg.as_ref().map(project);
-        for c in 0..2 * n {
-            for r in 0..2 * n {
-                jac[(r, c)] = 0.0;
-            }
+        state_jacobian(mb, &block, damping_block.as_ref(), jac);
+    }
+}
+
+/// The first-order Jacobian `[[0, I], [−Ω² − K, −D − C]]` of the modal brake's state
+/// `[q; q']`, with the contact's modal stiffness block `k = Φ_nᵀ J_x Φ_n` and, for a
+/// velocity-dependent element, its damping block `c = Φ_nᵀ J_v Φ_n` (`n × n` each).
+pub fn state_jacobian(
+    mb: &ModalBrake,
+    k: &Mat<f64>,
+    c: Option<&Mat<f64>>,
+    mut jac: MatMut<'_, f64>,
+) {
+    let n = mb.modes();
+    jac.fill(0.0);
+    for j in 0..n {
+        jac[(j, n + j)] = 1.0;
+        for i in 0..n {
+            jac[(n + j, i)] = -k[(j, i)];
+            jac[(n + j, n + i)] = -mb.damping.entry(j, i) - c.map_or(0.0, |b| b[(j, i)]);
         }
-        for j in 0..n {
-            jac[(j, n + j)] = 1.0;
-            for c in 0..n {
-                jac[(n + j, c)] = -block[(j, c)];
-                jac[(n + j, n + c)] =
-                    -mb.damping.entry(j, c) - damping_block.as_ref().map_or(0.0, |b| b[(j, c)]);
-            }
-            jac[(n + j, j)] -= mb.omega[j] * mb.omega[j];
-        }
+        jac[(n + j, j)] -= mb.omega[j] * mb.omega[j];
     }
 }

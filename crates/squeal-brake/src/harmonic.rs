@@ -97,6 +97,12 @@ impl ContactForce {
     pub fn modal_brake(&self) -> &ModalBrake {
         &self.mb
     }
+
+    /// Sets the friction coefficient μ of the force (a continuation parameter: the springs
+    /// `K_s` and the pattern do not depend on it).
+    pub fn set_mu(&mut self, mu: f64) {
+        self.mb.mu = mu;
+    }
 }
 
 impl NonlinearForce for ContactForce {
@@ -135,13 +141,16 @@ impl NonlinearForce for ContactForce {
 
 /// `Δ(λ)⁻¹ b` for the modal dynamic stiffness `Δ(λ) = λ² I + λ D + Ω²`: elementwise for a
 /// diagonal `D`, by an LU factorization otherwise.
-enum ModalSolver {
+pub enum ModalSolver {
+    /// `1 / Δ_jj(λ)` per mode.
     Diagonal(Vec<c64>),
+    /// The LU factors of `Δ(λ)`.
     Full(PartialPivLu<c64>),
 }
 
 impl ModalSolver {
-    fn new(omega: &[f64], damping: &ModalDamping, l: c64) -> Self {
+    /// The solver at `l` for the natural frequencies `omega` (rad/s) and the damping.
+    pub fn new(omega: &[f64], damping: &ModalDamping, l: c64) -> Self {
         let n = omega.len();
         match damping.diagonal() {
             Some(d) => ModalSolver::Diagonal(
@@ -163,14 +172,15 @@ impl ModalSolver {
     }
 
     /// `Δ⁻¹ B` for the columns of `b` (`n × m`).
-    fn solve(&self, b: MatRef<'_, c64>) -> Mat<c64> {
+    pub fn solve(&self, b: MatRef<'_, c64>) -> Mat<c64> {
         match self {
             ModalSolver::Diagonal(r) => Mat::from_fn(b.nrows(), b.ncols(), |i, j| r[i] * b[(i, j)]),
             ModalSolver::Full(lu) => lu.solve(b),
         }
     }
 
-    fn solve_vec(&self, b: &[c64]) -> Vec<c64> {
+    /// `Δ⁻¹ b` for one vector.
+    pub fn solve_vec(&self, b: &[c64]) -> Vec<c64> {
         let m = self.solve(Mat::from_fn(b.len(), 1, |i, _| b[i]).as_ref());
         (0..b.len()).map(|i| m[(i, 0)]).collect()
     }

@@ -19,8 +19,11 @@
 // Index loops over dofs and harmonics read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+pub mod bifurcation;
+pub mod branch;
 pub mod compare;
 pub mod cycle;
+pub mod floquet;
 pub mod solve;
 pub mod start;
 pub mod timeint;

@@ -59,6 +59,14 @@ pub enum ChbmError {
     /// [`solve_with_restarts`] was given no amplitude.
     #[error("no initial amplitude to try")]
     NoAmplitudes,
+    /// The normal form has no cycle on either side of μ0 (its `Re c1` or `dRe λ/dμ` is zero).
+    #[error("the Hopf point's normal form gives no branch of limit cycles")]
+    NoBranch,
+    /// The first cycle of a branch, near the Hopf point, could not be converged.
+    #[error(
+        "the first limit cycle of the branch (next to the Hopf point) did not converge; try a larger start offset"
+    )]
+    BranchStart,
 }
 
 /// Options of [`solve`].
@@ -517,7 +525,7 @@ fn guess(
 }
 
 /// The normal dof of a pair with the largest first harmonic.
-fn phase_dof(mb: &ModalBrake, u: &[f64], layout: &HarmonicLayout) -> usize {
+pub(crate) fn phase_dof(mb: &ModalBrake, u: &[f64], layout: &HarmonicLayout) -> usize {
     let mut best = (0.0, 0);
     for p in &mb.pairs {
         for &(i, _) in &p.normal {
@@ -595,10 +603,15 @@ fn recovery_error(
 /// static contact forces. A brake held only by a preloading gap (no piston force) has a zero
 /// load but not zero contact forces.
 fn force_scale(mb: &ModalBrake, start: &ChbmStart, f_eq: &[f64]) -> f64 {
-    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
     let x: Vec<f64> = mb.nl_dofs.iter().map(|&d| start.equilibrium[d]).collect();
+    force_scale_at(mb, &x, f_eq)
+}
+
+/// [`force_scale`] at the nonlinear dofs' static displacements `x`.
+pub(crate) fn force_scale_at(mb: &ModalBrake, x: &[f64], f_eq: &[f64]) -> f64 {
+    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
     let mut f = vec![0.0; x.len()];
-    ContactForce::new(mb).eval(&x, &vec![0.0; x.len()], &mut f, None);
+    ContactForce::new(mb).eval(x, &vec![0.0; x.len()], &mut f, None);
     norm(f_eq).max(norm(&f)).max(f64::MIN_POSITIVE)
 }
 

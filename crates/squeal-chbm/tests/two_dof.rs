@@ -7,76 +7,20 @@
 //! is supercritical and, near it, the limit cycle's amplitude squared grows linearly with
 //! `μ - μ0` (normal form of the Hopf bifurcation).
 
-#[path = "../examples/friction_oscillator.rs"]
-mod example;
+mod common;
 
-use example::{KL, KNL, band, brake, frictionless};
+use common::example::{self as example, KL, KNL};
+use common::{Model, growth, hopf, model, normal_form_of, start, subcritical};
 use faer::c64;
-use squeal_brake::Brake;
 use squeal_brake::equilibrium::{NewtonOptions, static_equilibrium};
 use squeal_brake::harmonic::{BrakeEigen, ContactForce};
 use squeal_brake::modal_brake::ModalBrake;
-use squeal_brake::spectrum::{Reference, spectrum};
 use squeal_chbm::cycle::relative_errors;
-use squeal_chbm::start::start_at;
 use squeal_chbm::timeint::{TiOptions, integrate_to_limit_cycle};
-use squeal_chbm::{
-    ChbmOptions, ChbmStart, Outcome, RESTART_AMPLITUDES, check_jacobian, solve_with_restarts,
-};
+use squeal_chbm::{ChbmOptions, Outcome, RESTART_AMPLITUDES, check_jacobian, solve_with_restarts};
 use squeal_hbm::{
     Aft, DescribingFunction, HarmonicLayout, LinearizedEigen, Part, reference_jacobian,
 };
-
-struct Model {
-    brake: Brake,
-    reference: Reference,
-}
-
-fn model(k_linear: f64, k_cubic: f64) -> Model {
-    let b = brake(k_linear, k_cubic);
-    let reference = frictionless(&b);
-    Model {
-        brake: b,
-        reference,
-    }
-}
-
-/// Largest real part of the linearization at the equilibrium at μ.
-fn growth(m: &Model, mu: f64) -> f64 {
-    let eq = static_equilibrium(&m.brake, mu, None, &NewtonOptions::default()).unwrap();
-    let sp = spectrum(&m.brake, &m.reference, &eq).unwrap();
-    sp.values
-        .iter()
-        .map(|v| v.re)
-        .fold(f64::NEG_INFINITY, f64::max)
-}
-
-/// μ0 by bisection on the largest real part (independent of the sweep code).
-fn hopf(m: &Model) -> f64 {
-    let (mut lo, mut hi) = (0.0, 5.0);
-    assert!(growth(m, lo) < 0.0 && growth(m, hi) > 0.0);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if growth(m, mid) > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
-fn start(m: &Model, mu: f64) -> ChbmStart {
-    start_at(
-        &m.brake,
-        &m.reference,
-        mu,
-        &band(),
-        &NewtonOptions::default(),
-        None,
-    )
-    .unwrap()
-}
 
 #[test]
 fn the_example_runs_and_agrees_with_the_bisected_hopf_point() {
@@ -318,27 +262,6 @@ fn a_full_modal_damping_matrix_agrees_between_chbm_and_time_integration() {
     assert!(e.frequency_relative.abs() < 1e-7, "{e:?}");
 }
 
-/// The Hopf normal form of the oscillator with contact stiffnesses `(kl, knl)`.
-fn normal_form_of(m: &Model) -> squeal_brake::criticality::NormalForm {
-    let mu0 = hopf(m);
-    let eq = static_equilibrium(&m.brake, mu0, None, &NewtonOptions::default()).unwrap();
-    let sp = spectrum(&m.brake, &m.reference, &eq).unwrap();
-    let guess = sp
-        .values
-        .iter()
-        .copied()
-        .max_by(|a, b| a.re.total_cmp(&b.re))
-        .unwrap();
-    squeal_brake::criticality::normal_form(
-        &m.brake,
-        &m.reference,
-        mu0,
-        guess,
-        &NewtonOptions::default(),
-    )
-    .unwrap()
-}
-
 #[test]
 fn the_lyapunov_coefficient_predicts_the_supercritical_branch() {
     // Supercritical (l1 < 0): the normal form's first harmonic of the normal dof against
@@ -372,17 +295,6 @@ fn the_lyapunov_coefficient_predicts_the_supercritical_branch() {
     );
     let f = nf.omega_at(mu);
     assert!((f / s.omega - 1.0).abs() < 1e-5, "omega {f} vs {}", s.omega);
-}
-
-/// The subcritical variant: K = [[1e6, 2e5], [2e5, 8e5]] (l1 = +8.4, μ0 = 0.665).
-fn subcritical() -> Model {
-    let mut b = brake(KL, KNL);
-    b.k = faer::Mat::from_fn(2, 2, |i, j| [[1.0e6, 2.0e5], [2.0e5, 0.8e6]][i][j]);
-    let reference = frictionless(&b);
-    Model {
-        brake: b,
-        reference,
-    }
 }
 
 /// Integrates the oscillator at `mu` from its equilibrium plus `Re(X e^{iωt})` at t = 0 (the

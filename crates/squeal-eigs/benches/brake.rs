@@ -9,6 +9,7 @@
 //! options: --mesh=disc|pad|PATH.inp  --level=fine|medium|coarse  --nev=N (50)
 //!          --ordering=nd|amd  --block=B (8; 1 = single-vector Lanczos)  --ncv=N
 //!          --no-sturm  --no-table (skip the multi-RHS solve table)  --no-eig
+//!          --slice=S (at most S new pairs per shift; 0: one shift)
 //! threads: RAYON_NUM_THREADS=1 (faer's parallelism follows rayon's pool)
 //! ```
 //!
@@ -27,16 +28,7 @@ use squeal_fe::{DofMap, MaterialTable, Restraint, assemble};
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// Peak resident memory of this process in MiB (VmHWM of /proc/self/status).
-fn peak_mib() -> f64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    status
-        .lines()
-        .find(|l| l.starts_with("VmHWM:"))
-        .and_then(|l| l.split_whitespace().nth(1))
-        .and_then(|kb| kb.parse::<f64>().ok())
-        .map_or(f64::NAN, |kb| kb / 1024.0)
-}
+mod common;
 
 fn arg<'a>(args: &'a [String], key: &str) -> Option<&'a str> {
     args.iter().find_map(|a| a.strip_prefix(key))
@@ -94,25 +86,7 @@ fn main() {
     let t = Instant::now();
     let f = SparseCholesky::factorize_with(sys.k.as_ref(), &copts).expect("factorization");
     let total_factor = t.elapsed();
-    let s = f.stats();
-    println!(
-        "ordering (s)            {:8.2}",
-        s.ordering_time.as_secs_f64()
-    );
-    println!(
-        "ordering + symbolic (s) {:8.2}",
-        s.symbolic_time.as_secs_f64()
-    );
-    println!(
-        "numeric Cholesky (s)    {:8.2}",
-        s.numeric_time.as_secs_f64()
-    );
-    println!("factorize incl. checks  {:8.2}", total_factor.as_secs_f64());
-    println!("nnz(L)                  {:>12}", s.nnz_l);
-    println!(
-        "factor memory (MiB)     {:8.1}",
-        s.factor_bytes as f64 / 1048576.0
-    );
+    common::print_factor(&f.stats(), total_factor);
     let table: &[usize] = if args.iter().any(|a| a == "--no-table") {
         &[]
     } else {
@@ -132,7 +106,7 @@ fn main() {
         println!("  {cols:>3} columns           {per:8.2}");
     }
     if args.iter().any(|a| a == "--no-eig") {
-        println!("peak memory VmHWM (MiB) {:8.1}", peak_mib());
+        println!("peak memory VmHWM (MiB) {:8.1}", common::peak_mib());
         return;
     }
     let defaults = EigOptions::default();
@@ -142,6 +116,9 @@ fn main() {
             .unwrap_or(defaults.block_size),
         ncv: arg(&args, "--ncv=").and_then(|x| x.parse().ok()),
         sturm_check: !args.iter().any(|a| a == "--no-sturm"),
+        slice: arg(&args, "--slice=")
+            .and_then(|x| x.parse().ok())
+            .unwrap_or(defaults.slice),
         ..defaults
     };
     let t = Instant::now();
@@ -150,23 +127,32 @@ fn main() {
     let total = t.elapsed();
     let st = modes.stats;
     println!("eigensolve total (s)    {:8.2}", total.as_secs_f64());
-    println!(
-        "  iteration (s)         {:8.2}",
-        (st.solve_time - st.sturm_time).as_secs_f64()
-    );
+    let iteration = match st.sturm_beside {
+        true => st.solve_time,
+        false => st.solve_time.saturating_sub(st.sturm_time),
+    };
+    println!("  iteration (s)         {:8.2}", iteration.as_secs_f64());
     println!(
         "    of which solves (s) {:8.2}",
         st.operator_time.as_secs_f64()
     );
+    println!("    M products (s)      {:8.2}", st.mass_time.as_secs_f64());
+    println!("    Ritz, restarts (s)  {:8.2}", st.ritz_time.as_secs_f64());
     println!(
-        "  Sturm check (s)       {:8.2}",
-        st.sturm_time.as_secs_f64()
+        "  Sturm check (s)       {:8.2}{}",
+        st.sturm_time.as_secs_f64(),
+        if st.sturm_beside {
+            " (beside the iteration)"
+        } else {
+            ""
+        }
     );
     println!(
         "  iterations / rounds   {:>5} / {}",
         st.iterations, st.rounds
     );
     println!("  OP applications       {:>8}", st.operator_applications);
+    println!("  shifts                {:>8}", st.shifts);
     println!("  block / ncv           {:>5} / {}", st.block, st.ncv);
     println!(
         "  f_1 / f_{nev} (Hz)         {:.3} / {:.3}",
@@ -177,5 +163,5 @@ fn main() {
         "  worst backward error  {:.2e}",
         modes.residuals.iter().copied().fold(0.0, f64::max)
     );
-    println!("peak memory VmHWM (MiB) {:8.1}", peak_mib());
+    println!("peak memory VmHWM (MiB) {:8.1}", common::peak_mib());
 }

@@ -13,16 +13,7 @@ use squeal_eigs::model_problems::box_vector;
 use squeal_eigs::{Backend, CholeskyOptions, EigOptions, SparseCholesky, lowest_modes_with_factor};
 use std::time::Instant;
 
-/// Peak resident memory of this process in MiB (VmHWM of /proc/self/status).
-fn peak_mib() -> f64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    status
-        .lines()
-        .find(|l| l.starts_with("VmHWM:"))
-        .and_then(|l| l.split_whitespace().nth(1))
-        .and_then(|kb| kb.parse::<f64>().ok())
-        .map_or(f64::NAN, |kb| kb / 1024.0)
-}
+mod common;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -58,22 +49,7 @@ fn main() {
     let f = SparseCholesky::factorize_with(p.k.as_ref(), &CholeskyOptions::default())
         .expect("factorization");
     let total_factor = t.elapsed();
-    let s = f.stats();
-    println!(
-        "ordering + symbolic (s) {:8.2}",
-        s.symbolic_time.as_secs_f64()
-    );
-    println!(
-        "numeric Cholesky (s)    {:8.2}",
-        s.numeric_time.as_secs_f64()
-    );
-    println!("factorize incl. checks  {:8.2}", total_factor.as_secs_f64());
-    println!("nnz(L)                  {:>12}", s.nnz_l);
-    println!(
-        "factor memory (MiB)     {:8.1}",
-        s.factor_bytes as f64 / 1048576.0
-    );
-    println!("supernodal              {:>8}", s.supernodal);
+    common::print_factor(&f.stats(), total_factor);
     let t = Instant::now();
     let x = f
         .solve(faer::Mat::<f64>::ones(n, 64).as_ref())
@@ -122,5 +98,5 @@ fn main() {
         "  worst backward error  {:.2e}",
         modes.residuals.iter().copied().fold(0.0, f64::max)
     );
-    println!("peak memory VmHWM (MiB) {:8.1}", peak_mib());
+    println!("peak memory VmHWM (MiB) {:8.1}", common::peak_mib());
 }

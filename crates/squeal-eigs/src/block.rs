@@ -28,16 +28,24 @@
 //! left (tiny problems), the caller falls back to single-vector Lanczos.
 
 use crate::EigError;
-use crate::lanczos::{LanczosOutcome, ShiftInvert, start_vector};
-use crate::sparse::{dot, inner, update_rows};
+use crate::lanczos::{
+    LanczosOutcome, ShiftInvert, Watch, add_time, converged_count, not_converged, start_vector,
+};
+use crate::sparse::{combination, dot, inner, update_rows};
 use faer::reborrow::Reborrow;
 use faer::{Accum, Mat, Side};
+use std::time::Instant;
 
 /// Parameters of one block Lanczos run.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct BlockParams {
     /// Eigenpairs wanted (largest theta).
     pub nwant: usize,
+    /// Of which the first are wanted to `tol`, the others are guards.
+    pub nsharp: usize,
+    /// Want the Ritz values largest in magnitude (OP indefinite: a shift
+    /// inside the spectrum) instead of the largest.
+    pub by_magnitude: bool,
     /// Basis size at which a restart happens (nwant + block <= ncv).
     pub ncv: usize,
     /// Vectors per block.
@@ -64,9 +72,13 @@ const DEPENDENT: f64 = 1e-12;
 
 /// Runs the block method. `Ok(None)`: the basis cannot be extended by an
 /// independent vector (the problem is too small for this basis size).
+/// `watch` is told the Ritz values after every block step (from a basis of
+/// nwant + block vectors on) until it says it has seen enough, and at the end
+/// of every cycle.
 pub(crate) fn block_lanczos(
     op: &ShiftInvert<'_>,
     p: &BlockParams,
+    watch: Watch<'_>,
 ) -> Result<Option<LanczosOutcome>, EigError> {
     let n = op.n();
     let b = p.block;
@@ -103,56 +115,100 @@ pub(crate) fn block_lanczos(
         return Ok(None);
     }
     let (mut size, mut top) = (0usize, b);
-    let mut iterations = 0usize;
+    // Restart cycles, the current one included.
+    let mut iterations = 1usize;
+    let mut watched = false;
     loop {
-        iterations += 1;
-        while top + b <= cap {
-            let w = op.solve_block(basis.m_last.as_ref())?;
-            applications += b;
-            let Some(()) = expand(op, &mut basis, size, top, w, &mut seed)? else {
-                return Ok(None);
-            };
-            size = top;
-            top += b;
+        let w = op.solve_block(basis.m_last.as_ref())?;
+        applications += b;
+        let Some(()) = expand(op, &mut basis, size, top, w, &mut seed)? else {
+            return Ok(None);
+        };
+        size = top;
+        top += b;
+        let full = top + b > cap;
+        if size < p.nwant + b && !full {
+            continue;
         }
+        // Ritz pairs after every block step (converged ones end the expansion early) and
+        // at the end of a cycle.
+        let t0 = Instant::now();
         let (theta, s) = ritz_pairs(basis.t.submatrix(0, 0, size, size))?;
-        let coupling = basis.t.submatrix(size, 0, b, size) * s.as_ref();
-        let estimates: Vec<f64> = (0..size)
-            .map(|i| coupling.col(i).norm_l2() / theta[i].abs().max(f64::MIN_POSITIVE))
-            .collect();
-        let nconv = (0..p.nwant).filter(|&i| estimates[i] <= p.tol).count();
+        let (theta, s) = match p.by_magnitude {
+            true => by_magnitude(theta, s),
+            false => (theta, s),
+        };
+        let (coupling, estimates) = residual_estimates(&basis.t, &theta, &s, size, b);
+        add_time(&op.ritz_time, t0);
+        if !watched {
+            watched = watch(&theta, &estimates);
+        }
+        let nconv = converged(&estimates, p);
         if nconv == p.nwant {
-            let mut vectors = Mat::zeros(n, p.nwant);
-            update_rows(
-                vectors.as_mut(),
-                basis.v.subcols(0, size),
-                s.subcols(0, p.nwant),
-                Accum::Replace,
-                1.0,
-            );
+            let out = outcome(&basis, &theta, &s, size, p.nwant);
             return Ok(Some(LanczosOutcome {
-                theta: theta[..p.nwant].to_vec(),
-                vectors,
                 iterations,
                 applications,
+                ..out
             }));
         }
-        if iterations >= p.max_iter {
-            let residuals = estimates[..p.nwant].to_vec();
-            let worst = residuals.iter().copied().fold(0.0, f64::max);
-            return Err(EigError::NotConverged {
-                converged: nconv,
-                requested: p.nwant,
-                iterations,
-                residuals,
-                worst,
-            });
+        if !full {
+            continue;
         }
+        if iterations >= p.max_iter {
+            return Err(not_converged(
+                &estimates[..p.nwant],
+                p.nwant,
+                nconv,
+                iterations,
+            ));
+        }
+        iterations += 1;
         let keep = (p.nwant + nconv.min((size - p.nwant) / 2)).clamp(1, cap - 2 * b);
+        let t0 = Instant::now();
         restart(&mut basis, &s, &theta, &coupling, size, keep, b);
+        add_time(&op.ritz_time, t0);
         size = keep;
         top = keep + b;
     }
+}
+
+/// Wanted Ritz pairs whose residual estimate meets the tolerance.
+fn converged(estimates: &[f64], p: &BlockParams) -> usize {
+    converged_count(estimates, p.nsharp, p.nwant, p.tol)
+}
+
+/// The `nwant` Ritz pairs y = V s of a basis of `size` vectors (the counts
+/// left at zero).
+fn outcome(
+    basis: &Basis,
+    theta: &[f64],
+    s: &Mat<f64>,
+    size: usize,
+    nwant: usize,
+) -> LanczosOutcome {
+    LanczosOutcome {
+        theta: theta[..nwant].to_vec(),
+        vectors: combination(basis.v.subcols(0, size), s.subcols(0, nwant)),
+        iterations: 0,
+        applications: 0,
+    }
+}
+
+/// The coupling C S of the Ritz vectors to the next block and the residual
+/// estimates ||C s_i|| / |theta_i| = ||OP y_i - theta_i y_i||_M / |theta_i|.
+fn residual_estimates(
+    t: &Mat<f64>,
+    theta: &[f64],
+    s: &Mat<f64>,
+    size: usize,
+    b: usize,
+) -> (Mat<f64>, Vec<f64>) {
+    let coupling = t.submatrix(size, 0, b, size) * s.as_ref();
+    let estimates = (0..size)
+        .map(|i| coupling.col(i).norm_l2() / theta[i].abs().max(f64::MIN_POSITIVE))
+        .collect();
+    (coupling, estimates)
 }
 
 /// Eigenpairs of the projected matrix T, largest first. T is scaled to unit
@@ -177,6 +233,15 @@ pub(crate) fn ritz_pairs(t: faer::MatRef<'_, f64>) -> Result<(Vec<f64>, Mat<f64>
     let theta: Vec<f64> = (0..size).rev().map(|i| evd.S()[i] * scale).collect();
     let s = Mat::<f64>::from_fn(size, size, |r, c| evd.U()[(r, size - 1 - c)]);
     Ok((theta, s))
+}
+
+/// Ritz pairs reordered by |theta| descending (ties keep their order).
+fn by_magnitude(theta: Vec<f64>, s: Mat<f64>) -> (Vec<f64>, Mat<f64>) {
+    let mut order: Vec<usize> = (0..theta.len()).collect();
+    order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
+    let t = order.iter().map(|&i| theta[i]).collect();
+    let s = Mat::from_fn(s.nrows(), s.ncols(), |r, c| s[(r, order[c])]);
+    (t, s)
 }
 
 /// One block step: `w` = OP V[size..top] is orthogonalized against the
@@ -346,16 +411,8 @@ fn restart(
     keep: usize,
     b: usize,
 ) {
-    let n = basis.v.nrows();
-    let mut tmp = Mat::zeros(n, keep);
-    update_rows(
-        tmp.as_mut(),
-        basis.v.subcols(0, size),
-        s.subcols(0, keep),
-        Accum::Replace,
-        1.0,
-    );
-    basis.v.subcols_mut(0, keep).copy_from(&tmp);
+    let kept = combination(basis.v.subcols(0, size), s.subcols(0, keep));
+    basis.v.subcols_mut(0, keep).copy_from(&kept);
     // The next block (M of it stays in m_last) moves down.
     let next = basis.v.subcols(size, b).to_owned();
     basis.v.subcols_mut(keep, b).copy_from(&next);

@@ -1,6 +1,9 @@
 //! Sparse Cholesky factorization A = P^T L L^T P with a fill-reducing
 //! ordering (nested dissection by default, or AMD; see [`crate::ordering`]),
-//! wrapping faer 0.24's supernodal/simplicial sparse Cholesky.
+//! wrapping faer 0.24's supernodal/simplicial sparse Cholesky. Solves with a
+//! supernodal factor run through [`crate::trisolve`] (subtree-parallel,
+//! thread-count independent bits); a simplicial one (small problems) through
+//! faer's solve, in fixed blocks of columns.
 //!
 //! Used for K_II (constraint modes, eq. 3 of Coudeyras et al. 2009) and for
 //! K - sigma M (the shift-invert operator of the fixed-interface modes, eqs. 4-5).
@@ -8,6 +11,7 @@
 use crate::EigError;
 use crate::ordering::{FillOrdering, nested_dissection};
 use crate::sparse::{check_pair, check_symmetric, shifted, sym_matvec};
+use crate::trisolve::{self, SolvePlan};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::perm::PermRef;
@@ -64,8 +68,17 @@ pub struct FactorStats {
     pub stored_l: usize,
     /// Bytes held by the factor: values, indices and the ordering.
     pub factor_bytes: usize,
+    /// Floating-point operations of the numeric factorization, sum over the
+    /// columns j of L of c_j^2 (c_j: nonzeros of column j, diagonal included;
+    /// the usual count of multiplies and adds of a sparse Cholesky).
+    pub flops: f64,
     /// Whether faer chose its supernodal (blocked) variant.
     pub supernodal: bool,
+    /// Subtree tasks of the parallel triangular solves (0: serial).
+    pub solve_tasks: usize,
+    /// Fraction of the factor's entries outside those subtrees (solved in
+    /// order, parallel only inside large supernodes).
+    pub solve_top_fraction: f64,
     /// Ordering + symbolic analysis time.
     pub symbolic_time: Duration,
     /// Of which the fill-reducing ordering.
@@ -74,10 +87,65 @@ pub struct FactorStats {
     pub numeric_time: Duration,
 }
 
+/// The symbolic side of a Cholesky factor: fill-reducing ordering,
+/// supernodes, the task split of its solves and the pattern it was made
+/// for. It outlives the factor's values ([`SparseCholesky::into_analysis`]),
+/// so that another matrix of the same pattern (a refactorization, the LBL^T
+/// of a Sturm count) can be factored without a new analysis.
+#[derive(Debug, Clone)]
+pub struct FactorAnalysis {
+    symbolic: Arc<SymbolicCholesky<usize>>,
+    /// Task split of the supernodal solves (None: simplicial factor).
+    plan: Option<Arc<SolvePlan>>,
+    /// Hash of the factored matrix's pattern (see [`pattern_hash`]).
+    pattern: u64,
+    n: usize,
+    nnz_a: usize,
+}
+
+impl FactorAnalysis {
+    /// The fill-reducing permutation (`perm[new] = old`), if any.
+    pub fn permutation(&self) -> Option<&[usize]> {
+        self.symbolic.perm().map(|p| p.arrays().0)
+    }
+
+    /// Numeric factorization of a matrix with the analysed pattern.
+    pub fn factorize(
+        &self,
+        a: SparseColMatRef<'_, usize, f64>,
+        opts: &CholeskyOptions,
+    ) -> Result<SparseCholesky, EigError> {
+        check_symmetric(a, "A")?;
+        if a.nrows() != self.n || a.compute_nnz() != self.nnz_a {
+            return Err(EigError::DimensionMismatch {
+                what: "refactorize: pattern differs from the analysed one".into(),
+            });
+        }
+        let times = (Duration::ZERO, Duration::ZERO);
+        let analysis = (self.symbolic.clone(), self.plan.clone());
+        SparseCholesky::numeric(analysis, a, times, opts)
+    }
+
+    /// The supernodal symbolic analysis, if it is supernodal and was made
+    /// for a matrix with exactly the pattern `pattern` (then another matrix
+    /// of that pattern, e.g. K - b M for a Sturm count, can be factored with
+    /// it).
+    pub(crate) fn supernodal_analysis_of(
+        &self,
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+    ) -> Option<&SymbolicCholesky<usize>> {
+        let supernodal = matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_));
+        let same = pattern.nrows() == self.n
+            && pattern.compute_nnz() == self.nnz_a
+            && pattern_hash(pattern) == self.pattern;
+        (supernodal && same).then_some(&*self.symbolic)
+    }
+}
+
 /// A sparse Cholesky factor of a symmetric positive definite matrix.
 #[derive(Debug, Clone)]
 pub struct SparseCholesky {
-    symbolic: Arc<SymbolicCholesky<usize>>,
+    analysis: FactorAnalysis,
     values: Vec<f64>,
     stats: FactorStats,
 }
@@ -98,7 +166,7 @@ impl SparseCholesky {
         let t0 = Instant::now();
         let (symbolic, ordering_time) = analyze(a.symbolic(), opts.ordering)?;
         let times = (t0.elapsed(), ordering_time);
-        Self::numeric(Arc::new(symbolic), a, times, opts)
+        Self::numeric(analysed(symbolic), a, times, opts)
     }
 
     /// Factorizes K - sigma M (the shift-invert operator of the generalized problem).
@@ -113,7 +181,7 @@ impl SparseCholesky {
         let t0 = Instant::now();
         let (symbolic, ordering_time) = analyze(a.symbolic(), opts.ordering)?;
         let times = (t0.elapsed(), ordering_time);
-        Self::numeric(Arc::new(symbolic), a.as_ref(), times, opts)
+        Self::numeric(analysed(symbolic), a.as_ref(), times, opts)
     }
 
     /// Numeric factorization of a matrix with the same pattern as the one this
@@ -123,18 +191,21 @@ impl SparseCholesky {
         a: SparseColMatRef<'_, usize, f64>,
         opts: &CholeskyOptions,
     ) -> Result<Self, EigError> {
-        check_symmetric(a, "A")?;
-        if a.nrows() != self.stats.n || a.compute_nnz() != self.stats.nnz_a {
-            return Err(EigError::DimensionMismatch {
-                what: "refactorize: pattern differs from the analysed one".into(),
-            });
-        }
-        let times = (Duration::ZERO, Duration::ZERO);
-        Self::numeric(self.symbolic.clone(), a, times, opts)
+        self.analysis.factorize(a, opts)
+    }
+
+    /// The symbolic analysis.
+    pub fn analysis(&self) -> &FactorAnalysis {
+        &self.analysis
+    }
+
+    /// The symbolic analysis, the factor's values freed.
+    pub fn into_analysis(self) -> FactorAnalysis {
+        self.analysis
     }
 
     fn numeric(
-        symbolic: Arc<SymbolicCholesky<usize>>,
+        (symbolic, plan): Analysis,
         a: SparseColMatRef<'_, usize, f64>,
         (symbolic_time, ordering_time): (Duration, Duration),
         opts: &CholeskyOptions,
@@ -175,7 +246,7 @@ impl SparseCholesky {
             });
         }
         let numeric_time = t0.elapsed();
-        let (nnz_l, pivots) = pivots_and_nnz(&symbolic, &values);
+        let (nnz_l, flops, pivots) = pivots_and_counts(&symbolic, &values);
         let diag = diagonal(a);
         for (j, &p) in pivots.iter().enumerate() {
             let col = to_input(j);
@@ -189,13 +260,23 @@ impl SparseCholesky {
             nnz_l,
             stored_l: len,
             factor_bytes: factor_bytes(&symbolic, len),
+            flops,
             supernodal: matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
+            solve_tasks: plan.as_ref().map_or(0, |p| p.shape().0),
+            solve_top_fraction: plan.as_ref().map_or(1.0, |p| p.shape().1),
             symbolic_time,
             ordering_time,
             numeric_time,
         };
-        Ok(Self {
+        let analysis = FactorAnalysis {
             symbolic,
+            plan,
+            pattern: pattern_hash(a.symbolic()),
+            n: stats.n,
+            nnz_a: stats.nnz_a,
+        };
+        Ok(Self {
+            analysis,
             values,
             stats,
         })
@@ -213,12 +294,12 @@ impl SparseCholesky {
 
     /// The fill-reducing permutation (`perm[new] = old`), if any.
     pub fn permutation(&self) -> Option<&[usize]> {
-        self.symbolic.perm().map(|p| p.arrays().0)
+        self.analysis.permutation()
     }
 
-    /// Solves A X = B in place for all columns of `rhs`. Columns are solved in
-    /// blocks of 16 in parallel; each block is solved sequentially so the
-    /// result bits do not depend on the thread count.
+    /// Solves A X = B in place for all columns of `rhs`, in parallel over
+    /// subtrees of the elimination tree and groups of columns; the result
+    /// bits do not depend on the thread count.
     pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError> {
         if rhs.nrows() != self.n() {
             return Err(EigError::DimensionMismatch {
@@ -228,6 +309,24 @@ impl SparseCholesky {
                     self.n()
                 ),
             });
+        }
+        let a = &self.analysis;
+        if let (Some(plan), SymbolicCholeskyRaw::Supernodal(symbolic)) = (&a.plan, a.symbolic.raw())
+        {
+            let identity: Vec<usize>;
+            let inv = match a.symbolic.perm() {
+                Some(p) => p.arrays().1,
+                None => {
+                    identity = (0..self.n()).collect();
+                    &identity
+                }
+            };
+            let factor = trisolve::Factor {
+                symbolic,
+                values: &self.values,
+            };
+            trisolve::solve(plan, factor, inv, rhs);
+            return Ok(());
         }
         let mut blocks = Vec::new();
         let mut rest = rhs;
@@ -240,15 +339,14 @@ impl SparseCholesky {
         blocks.into_par_iter().try_for_each(|b| self.solve_block(b))
     }
 
-    /// Solves one block of columns sequentially.
+    /// Solves one block of columns sequentially with faer's solve.
     fn solve_block(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError> {
-        let req = self
-            .symbolic
-            .solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq);
+        let symbolic = &self.analysis.symbolic;
+        let req = symbolic.solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq);
         let mut mem = MemBuffer::try_new(req).map_err(|_| EigError::Factorization {
             what: "cannot allocate solve workspace".into(),
         })?;
-        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+        LltRef::new(symbolic, &self.values).solve_in_place_with_conj(
             Conj::No,
             rhs,
             Par::Seq,
@@ -264,18 +362,9 @@ impl SparseCholesky {
         Ok(x)
     }
 
-    /// Solves one column in place (sequential: used inside the Lanczos loop).
+    /// Solves one column in place.
     pub fn solve_col_in_place(&self, rhs: &mut Col<f64>) -> Result<(), EigError> {
-        if rhs.nrows() != self.n() {
-            return Err(EigError::DimensionMismatch {
-                what: format!(
-                    "right-hand side has {} rows, factor is {}",
-                    rhs.nrows(),
-                    self.n()
-                ),
-            });
-        }
-        self.solve_block(rhs.as_mat_mut())
+        self.solve_in_place(rhs.as_mat_mut())
     }
 
     /// Eq. (3): constraint modes X = -K_II^-1 K_IB for all boundary columns at
@@ -318,6 +407,17 @@ impl SparseCholesky {
         let err = (&y - &x).norm_l2() / x.norm_l2();
         Ok(err)
     }
+}
+
+/// A symbolic factorization and, if supernodal, the task split of its solves.
+type Analysis = (Arc<SymbolicCholesky<usize>>, Option<Arc<SolvePlan>>);
+
+fn analysed(symbolic: SymbolicCholesky<usize>) -> Analysis {
+    let plan = match symbolic.raw() {
+        SymbolicCholeskyRaw::Supernodal(s) => Some(Arc::new(SolvePlan::new(s))),
+        SymbolicCholeskyRaw::Simplicial(_) => None,
+    };
+    (Arc::new(symbolic), plan)
 }
 
 /// A zeroed n x m matrix, or an error instead of an abort when the memory is not there.
@@ -394,6 +494,21 @@ pub(crate) fn analyze_with(
         .map_err(|e| fail(format!("{e:?}")))
 }
 
+/// A 64-bit hash (FNV-1a over the column pointers and row indices) of a
+/// sparse pattern, to recognise the pattern a symbolic analysis was made for.
+fn pattern_hash(a: SymbolicSparseColMatRef<'_, usize>) -> u64 {
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    let mut eat = |v: usize| {
+        h = (h ^ v as u64).wrapping_mul(0x0000_0100_0000_01b3);
+    };
+    eat(a.nrows());
+    for j in 0..a.ncols() {
+        eat(usize::MAX);
+        a.row_idx_of_col(j).for_each(&mut eat);
+    }
+    h
+}
+
 /// Diagonal entries of a (summing duplicates).
 fn diagonal(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
     (0..a.ncols())
@@ -407,8 +522,9 @@ fn diagonal(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
         .collect()
 }
 
-/// Diagonal pivots L_jj (permuted order) and the true nonzero count of L.
-fn pivots_and_nnz(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize, Vec<f64>) {
+/// Diagonal pivots L_jj (permuted order), the true nonzero count of L and
+/// the flop count sum_j c_j^2 of the factorization.
+fn pivots_and_counts(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize, f64, Vec<f64>) {
     match symbolic.raw() {
         SymbolicCholeskyRaw::Simplicial(s) => {
             let cp = s.col_ptr();
@@ -421,7 +537,8 @@ fn pivots_and_nnz(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize,
                         .map_or(0.0, |p| values[p])
                 })
                 .collect();
-            (s.len_val(), piv)
+            let flops = (0..n).map(|j| ((cp[j + 1] - cp[j]) as f64).powi(2)).sum();
+            (s.len_val(), flops, piv)
         }
         SymbolicCholeskyRaw::Supernodal(s) => {
             let begin = s.supernode_begin();
@@ -430,6 +547,7 @@ fn pivots_and_nnz(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize,
             let nnz_per = s.nnz_per_super();
             let mut piv = Vec::with_capacity(s.nrows());
             let mut nnz = 0usize;
+            let mut flops = 0.0;
             for sn in 0..s.n_supernodes() {
                 let ncols = end[sn] - begin[sn];
                 let nrows = ncols + nnz_per[sn];
@@ -437,9 +555,10 @@ fn pivots_and_nnz(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> (usize,
                 let block = &values[cpv[sn]..cpv[sn + 1]];
                 for c in 0..ncols {
                     piv.push(block[c * nrows + c]);
+                    flops += ((nrows - c) as f64).powi(2);
                 }
             }
-            (nnz, piv)
+            (nnz, flops, piv)
         }
     }
 }

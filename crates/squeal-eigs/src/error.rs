@@ -108,6 +108,15 @@ pub enum EigError {
         /// Eigenvalues below `bound` the solver found.
         found: usize,
     },
+    /// The constraint rows are linearly dependent (or one is zero): C A^-1 C^T
+    /// is singular.
+    #[error(
+        "constraint rows are linearly dependent (row {row} adds nothing to the rows before it)"
+    )]
+    DependentConstraints {
+        /// First row found dependent on the ones before it.
+        row: usize,
+    },
     /// The dense eigensolver of the projected problem failed.
     #[error("dense projected eigenproblem failed to converge")]
     DenseEigen,

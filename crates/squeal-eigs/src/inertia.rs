@@ -15,14 +15,19 @@
 //! positive eigenvalue if ac - s^2 < 0, else two of the sign of a + c.
 
 use crate::EigError;
-use crate::cholesky::analyze_with;
+use crate::cholesky::{FactorAnalysis, analyze_with};
+use crate::constraint::Constraints;
+use crate::lanczos::ShiftSolve;
 use crate::ordering::nested_dissection;
 use crate::sparse::{check_pair, check_symmetric, shifted};
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::perm::PermRef;
 use faer::sparse::SparseColMatRef;
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::cholesky::{CholeskySymbolicParams, SymbolicCholeskyRaw};
-use faer::{Par, Side};
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, IntranodeLbltRef, SymbolicCholesky, SymbolicCholeskyRaw,
+};
+use faer::{Conj, Mat, MatMut, Par, Side};
 
 /// Counts of negative, zero and positive eigenvalues of a symmetric matrix.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -39,7 +44,7 @@ pub struct Inertia {
 /// supernodal intranode LBL^T factorization.
 pub fn inertia(a: SparseColMatRef<'_, usize, f64>) -> Result<Inertia, EigError> {
     check_symmetric(a, "A")?;
-    inertia_unchecked(a, faer::get_global_parallelism(), None)
+    Ok(Lblt::factorize(a, faer::get_global_parallelism(), None)?.inertia())
 }
 
 /// Sturm count: the number of eigenvalues of K phi = lambda M phi strictly
@@ -51,19 +56,43 @@ pub fn count_below(
     sigma: f64,
 ) -> Result<usize, EigError> {
     check_pair(k, m)?;
-    count_below_unchecked(k, m, sigma, faer::get_global_parallelism(), None)
+    count_below_unchecked(k, m, sigma, faer::get_global_parallelism(), None, None)
+}
+
+/// [`count_below`] for the pencil constrained to C x = 0: the number of
+/// eigenvalues of K phi = lambda M phi + C^T mu, C phi = 0 below `sigma`.
+pub fn count_below_constrained(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    constraints: &Constraints,
+    sigma: f64,
+) -> Result<usize, EigError> {
+    check_pair(k, m)?;
+    if constraints.n() != k.nrows() {
+        return Err(EigError::DimensionMismatch {
+            what: format!(
+                "constraints on vectors of length {}, K is {}",
+                constraints.n(),
+                k.nrows()
+            ),
+        });
+    }
+    let par = faer::get_global_parallelism();
+    count_below_unchecked(k, m, sigma, par, None, Some(constraints))
 }
 
 /// [`count_below`] without the input checks (the caller has done them),
-/// with a fill-reducing permutation (`perm[new] = old`) to reuse, e.g. the
-/// one of a Cholesky factor of K - sigma' M (any permutation keeps the
-/// inertia; `None`: nested dissection of K - sigma M).
+/// reusing what it can of `factor`, the analysis of a Cholesky factor of
+/// K - sigma' M (its supernodes if the pattern is the same, else its
+/// permutation; any permutation keeps the inertia; `None`: nested dissection
+/// of K - sigma M), with optional constraints.
 pub(crate) fn count_below_unchecked(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
     sigma: f64,
     par: Par,
-    perm: Option<&[usize]>,
+    factor: Option<&FactorAnalysis>,
+    constraints: Option<&Constraints>,
 ) -> Result<usize, EigError> {
     if !sigma.is_finite() {
         return Err(EigError::InvalidOption {
@@ -71,86 +100,191 @@ pub(crate) fn count_below_unchecked(
         });
     }
     let a = shifted(k, m, sigma)?;
-    let i = inertia_unchecked(a.as_ref(), par, perm)?;
+    let lblt = Lblt::factorize(a.as_ref(), par, factor)?;
+    let i = lblt.inertia();
     if i.zero > 0 {
         return Err(EigError::SingularShift { sigma });
     }
-    Ok(i.negative)
+    let Some(c) = constraints.filter(|c| !c.is_empty()) else {
+        return Ok(i.negative);
+    };
+    let y = lblt.solve(c.transpose_dense(), par)?;
+    let s = c.apply(y.as_ref());
+    constrained_count(i.negative, &s, sigma)
 }
 
-fn inertia_unchecked(
-    a: SparseColMatRef<'_, usize, f64>,
-    par: Par,
-    perm: Option<&[usize]>,
-) -> Result<Inertia, EigError> {
-    let n = a.nrows();
-    let params = CholeskySymbolicParams {
-        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-        ..Default::default()
-    };
-    let own;
-    let perm = match perm {
-        Some(p) => p,
-        None => {
-            own = nested_dissection(a.symbolic())?;
-            &own
-        }
-    };
-    let symbolic = analyze_with(a.symbolic(), Some(perm), params)?;
-    let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
-        return Err(EigError::Factorization {
-            what: "expected a supernodal symbolic factorization".into(),
-        });
-    };
-    let len = symbolic.len_val();
-    let alloc_err = |what: &str| EigError::Factorization {
-        what: format!("cannot allocate {what}"),
-    };
-    let mut values = Vec::new();
-    values
-        .try_reserve_exact(len)
-        .map_err(|_| alloc_err("LBL^T values"))?;
-    values.resize(len, 0.0);
-    let mut subdiag = vec![0.0; n];
-    let mut fwd = vec![0usize; n];
-    let mut inv = vec![0usize; n];
-    let req = symbolic.factorize_numeric_intranode_lblt_scratch::<f64>(par, Default::default());
-    let mut mem = MemBuffer::try_new(req).map_err(|_| alloc_err("LBL^T workspace"))?;
-    symbolic.factorize_numeric_intranode_lblt::<f64>(
-        &mut values,
-        &mut subdiag,
-        &mut fwd,
-        &mut inv,
-        a,
-        Side::Lower,
-        par,
-        MemStack::new(&mut mem),
-        Default::default(),
-    );
-    let begin = sn.supernode_begin();
-    let end = sn.supernode_end();
-    let cpv = sn.col_ptr_for_val();
-    let nnz_per = sn.nnz_per_super();
-    let mut out = Inertia::default();
-    for s in 0..sn.n_supernodes() {
-        let start = begin[s];
-        let ncols = end[s] - start;
-        let nrows = ncols + nnz_per[s];
-        let block = &values[cpv[s]..cpv[s + 1]];
-        let d = |c: usize| block[c * nrows + c];
-        let mut c = 0;
-        while c < ncols {
-            let off = subdiag[start + c];
-            if off == 0.0 || c + 1 == ncols {
-                add_1x1(&mut out, d(c));
-                c += 1;
-            } else {
-                add_2x2(&mut out, d(c), off, d(c + 1));
-                c += 2;
+/// The constrained Sturm count nu(A) - nu(S) from nu(A) and S = C A^-1 C^T
+/// (symmetrized here); a singular S (the shift is a constrained eigenvalue)
+/// is an error.
+pub(crate) fn constrained_count(
+    negative: usize,
+    s: &Mat<f64>,
+    sigma: f64,
+) -> Result<usize, EigError> {
+    let p = s.nrows();
+    let s = Mat::from_fn(p, p, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]));
+    let ev = s
+        .self_adjoint_eigenvalues(Side::Lower)
+        .map_err(|_| EigError::DenseEigen)?;
+    if ev.iter().any(|&e| e == 0.0 || !e.is_finite()) {
+        return Err(EigError::SingularShift { sigma });
+    }
+    let below = ev.iter().filter(|&&e| e < 0.0).count();
+    // nu(A) >= nu(S) for full-rank constraints; less means rounding broke
+    // the count near an eigenvalue: report the shift as singular.
+    negative
+        .checked_sub(below)
+        .ok_or(EigError::SingularShift { sigma })
+}
+
+impl ShiftSolve for Lblt<'_> {
+    fn order(&self) -> usize {
+        self.fwd.len()
+    }
+
+    /// faer's solve, sequential (its parallel kernels need not give the same
+    /// bits for every thread count; these solves feed eigenvectors).
+    fn solve_in_place(&self, mut rhs: MatMut<'_, f64>) -> Result<(), EigError> {
+        let x = self.solve(rhs.to_owned(), Par::Seq)?;
+        rhs.copy_from(&x);
+        Ok(())
+    }
+}
+
+/// The symbolic analysis of an LBL^T: borrowed from a Cholesky factor or made.
+enum Analysis<'a> {
+    Borrowed(&'a SymbolicCholesky<usize>),
+    Owned(Box<SymbolicCholesky<usize>>),
+}
+
+/// faer's supernodal intranode LBL^T factorization of a symmetric matrix.
+pub(crate) struct Lblt<'a> {
+    symbolic: Analysis<'a>,
+    values: Vec<f64>,
+    subdiag: Vec<f64>,
+    fwd: Vec<usize>,
+    inv: Vec<usize>,
+}
+
+impl<'a> Lblt<'a> {
+    pub(crate) fn factorize(
+        a: SparseColMatRef<'_, usize, f64>,
+        par: Par,
+        factor: Option<&'a FactorAnalysis>,
+    ) -> Result<Self, EigError> {
+        let n = a.nrows();
+        let symbolic = match factor.and_then(|f| f.supernodal_analysis_of(a.symbolic())) {
+            Some(s) => Analysis::Borrowed(s),
+            None => {
+                let params = CholeskySymbolicParams {
+                    supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                    ..Default::default()
+                };
+                let perm = match factor.and_then(FactorAnalysis::permutation) {
+                    Some(p) => p.to_vec(),
+                    None => nested_dissection(a.symbolic())?,
+                };
+                Analysis::Owned(Box::new(analyze_with(a.symbolic(), Some(&perm), params)?))
             }
+        };
+        let sym = match &symbolic {
+            Analysis::Borrowed(s) => *s,
+            Analysis::Owned(s) => s,
+        };
+        if !matches!(sym.raw(), SymbolicCholeskyRaw::Supernodal(_)) {
+            return Err(EigError::Factorization {
+                what: "expected a supernodal symbolic factorization".into(),
+            });
+        }
+        let len = sym.len_val();
+        let alloc_err = |what: &str| EigError::Factorization {
+            what: format!("cannot allocate {what}"),
+        };
+        let mut values = Vec::new();
+        values
+            .try_reserve_exact(len)
+            .map_err(|_| alloc_err("LBL^T values"))?;
+        values.resize(len, 0.0);
+        let mut subdiag = vec![0.0; n];
+        let mut fwd = vec![0usize; n];
+        let mut inv = vec![0usize; n];
+        let req = sym.factorize_numeric_intranode_lblt_scratch::<f64>(par, Default::default());
+        let mut mem = MemBuffer::try_new(req).map_err(|_| alloc_err("LBL^T workspace"))?;
+        sym.factorize_numeric_intranode_lblt::<f64>(
+            &mut values,
+            &mut subdiag,
+            &mut fwd,
+            &mut inv,
+            a,
+            Side::Lower,
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
+        Ok(Self {
+            symbolic,
+            values,
+            subdiag,
+            fwd,
+            inv,
+        })
+    }
+
+    fn symbolic(&self) -> &SymbolicCholesky<usize> {
+        match &self.symbolic {
+            Analysis::Borrowed(s) => s,
+            Analysis::Owned(s) => s,
         }
     }
-    Ok(out)
+
+    /// The inertia of B, block by block.
+    pub(crate) fn inertia(&self) -> Inertia {
+        let mut out = Inertia::default();
+        let SymbolicCholeskyRaw::Supernodal(sn) = self.symbolic().raw() else {
+            return out;
+        };
+        let begin = sn.supernode_begin();
+        let end = sn.supernode_end();
+        let cpv = sn.col_ptr_for_val();
+        let nnz_per = sn.nnz_per_super();
+        for s in 0..sn.n_supernodes() {
+            let start = begin[s];
+            let ncols = end[s] - start;
+            let nrows = ncols + nnz_per[s];
+            let block = &self.values[cpv[s]..cpv[s + 1]];
+            let d = |c: usize| block[c * nrows + c];
+            let mut c = 0;
+            while c < ncols {
+                let off = self.subdiag[start + c];
+                if off == 0.0 || c + 1 == ncols {
+                    add_1x1(&mut out, d(c));
+                    c += 1;
+                } else {
+                    add_2x2(&mut out, d(c), off, d(c + 1));
+                    c += 2;
+                }
+            }
+        }
+        out
+    }
+
+    /// A^-1 B.
+    fn solve(&self, mut b: Mat<f64>, par: Par) -> Result<Mat<f64>, EigError> {
+        let n = self.fwd.len();
+        let sym = self.symbolic();
+        let req = sym.solve_in_place_scratch::<f64>(b.ncols(), par);
+        let mut mem = MemBuffer::try_new(req).map_err(|_| EigError::Factorization {
+            what: "cannot allocate an LBL^T solve workspace".into(),
+        })?;
+        let perm = PermRef::new_checked(&self.fwd, &self.inv, n);
+        IntranodeLbltRef::new(sym, &self.values, &self.subdiag, perm).solve_in_place_with_conj(
+            Conj::No,
+            b.as_mut(),
+            par,
+            MemStack::new(&mut mem),
+        );
+        Ok(b)
+    }
 }
 
 fn add_1x1(out: &mut Inertia, d: f64) {

@@ -16,7 +16,10 @@
 
 use crate::EigError;
 use crate::cholesky::SparseCholesky;
-use crate::sparse::{inner, project, subtract_combination, sym_matmul, sym_matvec, update_rows};
+use crate::constraint::Projector;
+use crate::sparse::{
+    combination, inner, project, subtract_combination, sym_matmul, sym_matvec, update_rows,
+};
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::SparseColMatRef;
 use faer::{Accum, Col, ColRef, Mat, MatMut, MatRef};
@@ -33,17 +36,43 @@ pub(crate) struct Locked {
     pub mx: Mat<f64>,
 }
 
-/// The shift-invert operator: a factor of K - sigma M, M itself, and
-/// optionally locked vectors to deflate.
+/// Solves with a factorization of K - sigma M: a Cholesky factor (sigma
+/// below the spectrum) or an LBL^T one (sigma inside it, spectrum slicing).
+pub(crate) trait ShiftSolve {
+    /// Order of the factored matrix.
+    fn order(&self) -> usize;
+    /// B <- (K - sigma M)^-1 B.
+    fn solve_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError>;
+}
+
+impl ShiftSolve for SparseCholesky {
+    fn order(&self) -> usize {
+        self.n()
+    }
+
+    fn solve_in_place(&self, rhs: MatMut<'_, f64>) -> Result<(), EigError> {
+        SparseCholesky::solve_in_place(self, rhs)
+    }
+}
+
+/// The shift-invert operator: a factor of K - sigma M, M itself, optionally
+/// constraints C x = 0 (the operator is then P (K - sigma M)^-1 M, see
+/// [`crate::constraint`]) and locked vectors to deflate.
 pub(crate) struct ShiftInvert<'a> {
     /// Mass matrix (both triangles stored).
     pub m: SparseColMatRef<'a, usize, f64>,
-    /// Cholesky factor of K - sigma M.
-    pub factor: &'a SparseCholesky,
+    /// Factor of K - sigma M.
+    pub factor: &'a dyn ShiftSolve,
+    /// Constraints on the eigenvectors, projected with the same factor.
+    pub constraint: Option<&'a Projector>,
     /// Vectors to deflate, if any.
     pub locked: Option<Locked>,
     /// Wall time spent in the triangular solves (accumulated).
     pub solve_time: Cell<Duration>,
+    /// Wall time spent in products with M (accumulated).
+    pub mass_time: Cell<Duration>,
+    /// Wall time spent on Ritz pairs of the projected matrix and restarts.
+    pub ritz_time: Cell<Duration>,
 }
 
 impl ShiftInvert<'_> {
@@ -54,13 +83,17 @@ impl ShiftInvert<'_> {
 
     /// Dimension of the space the deflated operator acts on.
     pub fn dim(&self) -> usize {
-        self.n() - self.locked.as_ref().map_or(0, |l| l.x.ncols())
+        let locked = self.locked.as_ref().map_or(0, |l| l.x.ncols());
+        let constrained = self.constraint.map_or(0, Projector::len);
+        self.n().saturating_sub(locked + constrained)
     }
 
     /// y = M x.
     pub fn mass(&self, x: ColRef<'_, f64>) -> Col<f64> {
+        let t0 = Instant::now();
         let mut y = Col::zeros(self.n());
         sym_matvec(self.m, x, y.as_mut());
+        add_time(&self.mass_time, t0);
         y
     }
 
@@ -68,35 +101,36 @@ impl ShiftInvert<'_> {
     pub fn solve(&self, b: ColRef<'_, f64>) -> Result<Col<f64>, EigError> {
         let mut y = b.to_owned();
         let t0 = Instant::now();
-        self.factor.solve_col_in_place(&mut y)?;
-        self.solve_time.set(self.solve_time.get() + t0.elapsed());
-        if let Some(l) = &self.locked {
-            // Twice: one pass leaves rounding-level components along X.
-            for _ in 0..2 {
-                let h = project(l.mx.as_ref(), y.as_ref());
-                subtract_combination(y.as_mut(), l.x.as_ref(), &h);
-            }
-        }
+        self.factor.solve_in_place(y.as_mat_mut())?;
+        add_time(&self.solve_time, t0);
+        self.deflate(y.as_mat_mut());
         Ok(y)
     }
 
     /// Y = M X for a block of columns.
     pub fn mass_block(&self, x: MatRef<'_, f64>) -> Mat<f64> {
-        sym_matmul(self.m, x)
+        let t0 = Instant::now();
+        let y = sym_matmul(self.m, x);
+        add_time(&self.mass_time, t0);
+        y
     }
 
     /// Y = P (K - sigma M)^-1 B for a block of right-hand sides (B = M X for OP X).
     pub fn solve_block(&self, b: MatRef<'_, f64>) -> Result<Mat<f64>, EigError> {
         let t0 = Instant::now();
-        let mut y = self.factor.solve(b)?;
-        self.solve_time.set(self.solve_time.get() + t0.elapsed());
+        let mut y = b.to_owned();
+        self.factor.solve_in_place(y.as_mut())?;
+        add_time(&self.solve_time, t0);
         self.deflate(y.as_mut());
         Ok(y)
     }
 
-    /// Y <- P Y = Y - X (M X)^T Y (twice: one pass leaves rounding-level
-    /// components along the locked vectors X).
+    /// Y <- P Y: into null(C) if constrained, then Y - X (M X)^T Y (twice:
+    /// one pass leaves rounding-level components along the locked vectors X).
     pub fn deflate(&self, mut y: MatMut<'_, f64>) {
+        if let Some(c) = self.constraint {
+            c.project(y.rb_mut());
+        }
         if let Some(l) = &self.locked {
             for _ in 0..2 {
                 let h = inner(l.mx.as_ref(), y.rb());
@@ -106,11 +140,56 @@ impl ShiftInvert<'_> {
     }
 }
 
+/// Told the Ritz values theta (descending) and their residual estimates
+/// whenever a Lanczos method has them; returns true once it wants no more.
+pub(crate) type Watch<'w> = &'w mut dyn FnMut(&[f64], &[f64]) -> bool;
+
+/// Residual estimate to which the guard pairs (wanted beyond the first
+/// `nsharp`, only to place the Sturm bound in a gap) are converged: their
+/// Ritz values are then accurate to about its square.
+pub(crate) const GUARD_TOL: f64 = 1e-6;
+
+/// Wanted Ritz pairs (the first `nwant`) whose residual estimate meets the
+/// tolerance: `tol` for the first `nsharp`, [`GUARD_TOL`] (or `tol` if
+/// looser) for the guards.
+pub(crate) fn converged_count(estimates: &[f64], nsharp: usize, nwant: usize, tol: f64) -> usize {
+    let guard = tol.max(GUARD_TOL);
+    (0..nwant.min(estimates.len()))
+        .filter(|&i| estimates[i] <= if i < nsharp { tol } else { guard })
+        .count()
+}
+
+/// The error of a run that stopped with `converged` of `requested` pairs
+/// converged, with the wanted pairs' residual estimates.
+pub(crate) fn not_converged(
+    estimates: &[f64],
+    requested: usize,
+    converged: usize,
+    iterations: usize,
+) -> EigError {
+    let residuals = estimates.to_vec();
+    let worst = residuals.iter().copied().fold(0.0, f64::max);
+    EigError::NotConverged {
+        converged,
+        requested,
+        iterations,
+        residuals,
+        worst,
+    }
+}
+
+/// Adds the time since `t0` to a clock.
+pub(crate) fn add_time(clock: &Cell<Duration>, t0: Instant) {
+    clock.set(clock.get() + t0.elapsed());
+}
+
 /// Parameters of one Lanczos run.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct LanczosParams {
     /// Eigenpairs wanted (largest theta).
     pub nwant: usize,
+    /// Of which the first are wanted to `tol`, the others are guards.
+    pub nsharp: usize,
     /// Basis size before a restart (ncv), nwant < ncv <= n, or ncv = n.
     pub ncv: usize,
     /// Relative tolerance on ||OP y - theta y||_M / |theta|.
@@ -237,6 +316,7 @@ fn fresh_direction(
 pub(crate) fn thick_restart_lanczos(
     op: &ShiftInvert<'_>,
     p: &LanczosParams,
+    watch: Watch<'_>,
 ) -> Result<LanczosOutcome, EigError> {
     let n = op.n();
     let m = p.ncv;
@@ -265,6 +345,7 @@ pub(crate) fn thick_restart_lanczos(
     basis.mv.col_mut(0).copy_from(&mv0);
     let mut k = 0usize;
     let mut iterations = 0usize;
+    let mut watched = false;
     loop {
         iterations += 1;
         let (size, beta) = expand(op, &mut basis, k, m, &mut seed, &mut applications)?;
@@ -273,34 +354,25 @@ pub(crate) fn thick_restart_lanczos(
             .map(|i| (beta * s[(size - 1, i)]).abs() / theta[i].abs().max(f64::MIN_POSITIVE))
             .collect();
         let wanted = p.nwant.min(size);
-        let converged = |i: usize| estimates[i] <= p.tol;
-        let nconv = (0..wanted).filter(|&i| converged(i)).count();
+        if !watched {
+            watched = watch(&theta, &estimates);
+        }
+        let nconv = converged_count(&estimates, p.nsharp, wanted, p.tol);
         if nconv == p.nwant {
-            let mut vectors = Mat::zeros(n, p.nwant);
-            update_rows(
-                vectors.as_mut(),
-                basis.v.subcols(0, size),
-                s.subcols(0, p.nwant),
-                Accum::Replace,
-                1.0,
-            );
             return Ok(LanczosOutcome {
                 theta: theta[..p.nwant].to_vec(),
-                vectors,
+                vectors: combination(basis.v.subcols(0, size), s.subcols(0, p.nwant)),
                 iterations,
                 applications,
             });
         }
         if iterations >= p.max_iter || size < m {
-            let residuals = estimates[..wanted].to_vec();
-            let worst = residuals.iter().copied().fold(0.0, f64::max);
-            return Err(EigError::NotConverged {
-                converged: nconv,
-                requested: p.nwant,
+            return Err(not_converged(
+                &estimates[..wanted],
+                p.nwant,
+                nconv,
                 iterations,
-                residuals,
-                worst,
-            });
+            ));
         }
         k = restart(&mut basis, &s, &theta, beta, p.nwant, nconv, m);
     }
@@ -368,28 +440,13 @@ fn restart(
     m: usize,
 ) -> usize {
     let keep = (nwant + nconv.min((m - nwant) / 2)).clamp(1, m - 1);
-    let n = basis.v.nrows();
-    let mut tmp = Mat::zeros(n, keep);
-    update_rows(
-        tmp.as_mut(),
-        basis.v.subcols(0, m),
-        s.subcols(0, keep),
-        Accum::Replace,
-        1.0,
-    );
-    basis.v.subcols_mut(0, keep).copy_from(&tmp);
-    update_rows(
-        tmp.as_mut(),
-        basis.mv.subcols(0, m),
-        s.subcols(0, keep),
-        Accum::Replace,
-        1.0,
-    );
-    basis.mv.subcols_mut(0, keep).copy_from(&tmp);
-    let (left, right) = basis.v.as_mut().split_at_col_mut(m);
-    left.col_mut(keep).copy_from(right.col(0));
-    let (left, right) = basis.mv.as_mut().split_at_col_mut(m);
-    left.col_mut(keep).copy_from(right.col(0));
+    for x in [&mut basis.v, &mut basis.mv] {
+        let kept = combination(x.subcols(0, m), s.subcols(0, keep));
+        x.subcols_mut(0, keep).copy_from(&kept);
+        // The residual vector moves to position keep.
+        let (left, right) = x.as_mut().split_at_col_mut(m);
+        left.col_mut(keep).copy_from(right.col(0));
+    }
     basis.t.fill(0.0);
     for i in 0..keep {
         basis.t[(i, i)] = theta[i];

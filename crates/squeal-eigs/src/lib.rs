@@ -11,33 +11,45 @@
 //!   ([`FillOrdering`]: nested dissection of the node graph by default, or
 //!   AMD), multi-RHS solves, [`SparseCholesky::constraint_modes`] for
 //!   T_C = -K_II^-1 K_IB (eq. 3).
+//!   Its solves are our own supernodal triangular solves, parallel over
+//!   subtrees of the elimination tree with thread-count independent bits.
 //! - [`lowest_modes`] / [`lowest_modes_with_factor`]: shift-invert block
 //!   Lanczos (pure Rust, default; [`EigOptions::block_size`] = 1 gives the
 //!   single-vector thick-restart Lanczos) or ARPACK (feature `arpack`), with
-//!   a Sturm check.
-//! - [`count_below`] / [`inertia`]: Sturm counts from a sparse LBL^T (same
-//!   orderings; inside [`lowest_modes`] the factor's ordering is reused).
+//!   a Sturm check that runs beside the iteration once the Ritz values place
+//!   its bound. Above [`EigOptions::slice`] wanted pairs the spectrum is
+//!   sliced over several shifts (shifted block Lanczos with LBL^T factors).
+//! - [`Constraints`] / [`ConstrainedFactor`] / [`lowest_modes_constrained`]:
+//!   the same for eigenvectors constrained to C x = 0 (projected
+//!   shift-invert operator, constraint modes, constrained Sturm counts).
+//! - [`count_below`] / [`count_below_constrained`] / [`inertia`]: Sturm
+//!   counts from a sparse LBL^T (inside the eigensolver on the factor's
+//!   symbolic analysis or ordering).
 //! - [`model_problems`]: matrices with known spectra for tests and benchmarks.
 
 mod block;
 mod cholesky;
+mod constraint;
 mod error;
 mod inertia;
 mod lanczos;
 pub mod model_problems;
 mod ordering;
+mod slicing;
 mod solver;
 mod sparse;
+mod trisolve;
 
 #[cfg(feature = "arpack")]
 mod arpack;
 
-pub use cholesky::{CholeskyOptions, FactorStats, SparseCholesky};
+pub use cholesky::{CholeskyOptions, FactorAnalysis, FactorStats, SparseCholesky};
+pub use constraint::{ConstrainedFactor, Constraints};
 pub use error::EigError;
-pub use inertia::{Inertia, count_below, inertia};
+pub use inertia::{Inertia, count_below, count_below_constrained, inertia};
 pub use ordering::FillOrdering;
 pub use solver::{
-    Backend, EigOptions, EigStats, Modes, backward_errors, lowest_modes, lowest_modes_with_factor,
-    sturm_check,
+    Backend, EigOptions, EigStats, Modes, backward_errors, lowest_modes, lowest_modes_constrained,
+    lowest_modes_with_factor, sturm_check, sturm_check_with,
 };
 pub use sparse::{check_pair, check_symmetric, shifted};

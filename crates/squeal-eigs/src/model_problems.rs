@@ -90,8 +90,8 @@ pub fn box_scalar_eigenvalues(dims: [usize; 3], lengths: [f64; 3]) -> Vec<f64> {
 }
 
 /// 3 dofs per node on a trilinear box: component c has stiffness
-/// sum_d alpha[c][d] (Kd (x) others' M), plus the coupling C (x) M with
-/// C = [[2,1,0],[1,2,1],[0,1,2]] (positive definite), as in a 3D solid.
+/// `sum_d alpha[c][d] (Kd (x) others' M)`, plus the coupling `C (x) M` with
+/// `C = [[2,1,0],[1,2,1],[0,1,2]]` (positive definite), as in a 3D solid.
 /// 81 nonzeros per row in the interior, like a hexahedral elasticity matrix.
 pub fn box_vector(dims: [usize; 3], lengths: [f64; 3]) -> Pencil {
     let alpha = [[1.0, 0.8, 0.6], [0.7, 1.0, 0.9], [0.5, 0.6, 1.0]];

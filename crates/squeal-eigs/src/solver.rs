@@ -5,12 +5,14 @@
 
 use crate::EigError;
 use crate::block::{BlockParams, block_lanczos};
-use crate::cholesky::{CholeskyOptions, FactorStats, SparseCholesky};
+use crate::cholesky::{CholeskyOptions, FactorAnalysis, FactorStats, SparseCholesky};
+use crate::constraint::{ConstrainedFactor, Constraints};
 use crate::inertia::count_below_unchecked;
-use crate::lanczos::{LanczosParams, Locked, ShiftInvert, thick_restart_lanczos};
+use crate::lanczos::{GUARD_TOL, LanczosParams, Locked, ShiftInvert, Watch, thick_restart_lanczos};
 use crate::sparse::{check_pair, dot, norm1, sym_matmul, sym_matvec};
 use faer::sparse::SparseColMatRef;
 use faer::{Col, Mat, Par};
+use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
 /// Which eigensolver runs the shift-invert iteration.
@@ -54,8 +56,23 @@ pub struct EigOptions {
     pub sturm_check: bool,
     /// Extra eigenpairs computed above the `nev` wanted, so that the Sturm
     /// bound can be put in a gap of the spectrum even when the nev-th
-    /// eigenvalue is part of a multiplet (up to `guard + 1` copies).
+    /// eigenvalue is part of a multiplet (up to `guard + 1` copies). The
+    /// Lanczos backend converges them to a residual estimate of 1e-6 only
+    /// (their eigenvalues to about 1e-12), enough to place the bound.
     pub guard: usize,
+    /// Spectrum slicing: with more than this many pairs wanted (nev plus
+    /// guards), the Lanczos backend finds them over several shifts, at most
+    /// this many new pairs per shift (shifted block Lanczos of Grimes, Lewis
+    /// & Simon, with LBL^T factors at the later shifts and their inertia as
+    /// the Sturm counts); 0: one shift. One shift's basis of 3 nev vectors
+    /// costs n nev^2 to orthogonalize and 24 n nev bytes; on the fine disc
+    /// one shift was still faster at nev = 200 (560 solves against 704 over
+    /// two shifts), hence the default of 300.
+    pub slice: usize,
+    /// Let the Sturm check run beside the iteration once the Ritz values
+    /// place its bound. Its LBL^T factorization is then held in memory at the
+    /// same time as the Cholesky factor; without, it follows the iteration.
+    pub sturm_beside: bool,
     /// Seed of the start vector (results are deterministic for a given seed).
     pub seed: u64,
     /// Parallelism of the factorizations.
@@ -72,6 +89,8 @@ impl Default for EigOptions {
             block_size: 8,
             backend: Backend::Lanczos,
             sturm_check: true,
+            sturm_beside: true,
+            slice: 300,
             guard: 3,
             seed: 1,
             par: faer::get_global_parallelism(),
@@ -106,11 +125,23 @@ pub struct EigStats {
     pub solve_time: Duration,
     /// Sturm bound and the count of eigenvalues below it, if checked.
     pub sturm: Option<(f64, usize)>,
-    /// Time of the Sturm check.
+    /// Shifts used (1 unless the spectrum was sliced).
+    pub shifts: usize,
+    /// Time of the Sturm check (its LBL^T factorization and count), whether
+    /// it ran beside the iteration or after it.
     pub sturm_time: Duration,
+    /// Whether the Sturm check ran beside the iteration (its bound chosen
+    /// from Ritz values converged early enough), so that its time is not
+    /// part of [`EigStats::solve_time`] on a machine with a core to spare.
+    pub sturm_beside: bool,
     /// Of the iteration time, the triangular solves with the factor (the
     /// rest is orthogonalization, products with M, restarts).
     pub operator_time: Duration,
+    /// Of the iteration time, the products with M.
+    pub mass_time: Duration,
+    /// Of the iteration time, the Ritz pairs of the projected matrix and the
+    /// restarts (block Lanczos).
+    pub ritz_time: Duration,
     /// Total wall time of the call.
     pub time: Duration,
 }
@@ -126,6 +157,11 @@ pub struct Modes {
     /// (1-norms of the matrices, 2-norms of vectors; Higham & Higham 1998),
     /// meaningful for rigid-body (w^2 = 0) modes too.
     pub residuals: Vec<f64>,
+    /// The guard eigenvalues computed above the `nev` returned (see
+    /// [`EigOptions::guard`]), ascending, accurate to about 1e-12: with
+    /// `values` they place the bound of a Sturm check made later
+    /// ([`sturm_check_with`]).
+    pub guard_values: Vec<f64>,
     /// Costs.
     pub stats: EigStats,
 }
@@ -147,7 +183,7 @@ pub fn lowest_modes(
         ..Default::default()
     };
     let factor = SparseCholesky::factorize_shifted(k, m, opts.shift, &chol)?;
-    let mut modes = solve_checked(k, m, &factor, nev, opts)?;
+    let mut modes = solve_checked(k, m, &factor, None, nev, opts)?;
     modes.stats.factor = Some(factor.stats());
     modes.stats.time = t0.elapsed();
     Ok(modes)
@@ -164,11 +200,39 @@ pub fn lowest_modes_with_factor(
     nev: usize,
     opts: &EigOptions,
 ) -> Result<Modes, EigError> {
+    with_factor(k, m, factor, None, nev, opts)
+}
+
+/// The `nev` lowest eigenpairs of K phi = w^2 M phi + C^T mu with C phi = 0
+/// (see [`ConstrainedFactor`]), by shift-invert about `opts.shift` with the
+/// constrained operator of `constrained`, made from a Cholesky factor of
+/// K - opts.shift * M. The Sturm check counts the constrained eigenvalues;
+/// [`Modes::residuals`] are backward errors of the residuals with the
+/// constraint forces C^T mu removed (least squares).
+pub fn lowest_modes_constrained(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    constrained: &ConstrainedFactor<'_>,
+    nev: usize,
+    opts: &EigOptions,
+) -> Result<Modes, EigError> {
+    with_factor(k, m, constrained.factor(), Some(constrained), nev, opts)
+}
+
+/// Checks, then [`solve_checked`] with a factor given by the caller.
+fn with_factor(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    factor: &SparseCholesky,
+    constrained: Option<&ConstrainedFactor<'_>>,
+    nev: usize,
+    opts: &EigOptions,
+) -> Result<Modes, EigError> {
     let t0 = Instant::now();
     check_pair(k, m)?;
     check_options(opts)?;
     check_factor(k, m, factor, opts.shift)?;
-    let mut modes = solve_checked(k, m, factor, nev, opts)?;
+    let mut modes = solve_checked(k, m, factor, constrained, nev, opts)?;
     modes.stats.time = t0.elapsed();
     Ok(modes)
 }
@@ -189,7 +253,7 @@ fn check_options(opts: &EigOptions) -> Result<(), EigError> {
 
 /// Normwise backward error of one solve with the factor, for a fixed vector:
 /// about 1e-16 for the right factor, large for another matrix.
-fn check_factor(
+pub(crate) fn check_factor(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
     factor: &SparseCholesky,
@@ -225,50 +289,119 @@ fn check_factor(
     }
 }
 
-/// Runs the backend, post-processes and Sturm-checks.
+/// A Sturm count made beside the iteration: its bound, the count (or the
+/// error), and its time.
+type EarlyCount = (f64, Result<usize, EigError>, Duration);
+
+/// Runs the backend, post-processes and Sturm-checks. The Sturm count runs
+/// beside the iteration as soon as the Ritz values place its bound (see
+/// [`early_bound`]); if the converged values then leave the bound in a gap
+/// with at least `nev` values below it, the count checks them, else a count
+/// at a bound from the converged values follows the iteration.
 fn solve_checked(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
     factor: &SparseCholesky,
+    constrained: Option<&ConstrainedFactor<'_>>,
     nev: usize,
     opts: &EigOptions,
 ) -> Result<Modes, EigError> {
     let n = k.nrows();
-    if nev == 0 || nev > n {
+    let constraints = constrained.map(ConstrainedFactor::constraints);
+    let dim = n.saturating_sub(constraints.map_or(0, Constraints::len));
+    if nev == 0 || nev > dim {
         return Err(EigError::TooManyRequested {
             requested: nev,
-            available: n,
+            available: dim,
         });
     }
-    let nwant = nev.saturating_add(opts.guard).min(n);
+    let nwant = nev.saturating_add(opts.guard).min(dim);
+    if opts.backend == Backend::Lanczos
+        && opts.slice > 0
+        && nwant > opts.slice
+        && opts.ncv.is_none()
+    {
+        return crate::slicing::solve_sliced(k, m, factor, constrained, nev, opts);
+    }
     let ncv = match opts.ncv {
-        Some(c) => c.min(n),
-        None => default_ncv(nwant, opts).min(n),
+        Some(c) => c.min(dim),
+        None => default_ncv(nwant, opts).min(dim),
     };
-    if ncv < nwant || (ncv == nwant && ncv < n) {
+    if ncv < nwant || (ncv == nwant && ncv < dim) {
         return Err(EigError::InvalidOption {
-            what: format!("ncv {ncv} must exceed nev + guard = {nwant} (or equal n = {n})"),
+            what: format!("ncv {ncv} must exceed nev + guard = {nwant} (or equal {dim})"),
         });
     }
     let t0 = Instant::now();
     let mut op = ShiftInvert {
         m,
         factor,
+        constraint: constrained.map(ConstrainedFactor::projector),
         locked: None,
         solve_time: Default::default(),
+        mass_time: Default::default(),
+        ritz_time: Default::default(),
     };
-    let raw = run_backend(&op, nwant, ncv, opts)?;
+    let early: Mutex<Option<EarlyCount>> = Mutex::new(None);
+    let raw = rayon::in_place_scope(|scope| {
+        let mut started = !(opts.sturm_check && opts.sturm_beside);
+        let early = &early;
+        let mut watch = |theta: &[f64], estimates: &[f64]| {
+            if started {
+                return true;
+            }
+            if let Some(bound) = early_bound(theta, estimates, nev, opts.shift) {
+                started = true;
+                scope.spawn(move |_| {
+                    let t = Instant::now();
+                    let count = count_below_unchecked(
+                        k,
+                        m,
+                        bound,
+                        opts.par,
+                        Some(factor.analysis()),
+                        constraints,
+                    );
+                    let done = (bound, count, t.elapsed());
+                    *early.lock().unwrap_or_else(PoisonError::into_inner) = Some(done);
+                });
+            }
+            started
+        };
+        run_backend(&op, (nev, nwant), ncv, opts, &mut watch)
+    });
+    let raw = raw?;
     let block = raw.block;
     let (mut iterations, mut applications) = (raw.iterations, raw.applications);
     let (mut values, mut vectors) = normalize(m, raw.values, raw.vectors);
     let mut sturm = None;
     let mut sturm_time = Duration::ZERO;
+    let mut sturm_beside = false;
     let mut rounds = 1;
+    let mut pending = early.into_inner().unwrap_or_else(PoisonError::into_inner);
     if opts.sturm_check {
         loop {
-            let t1 = Instant::now();
-            let checked = sturm_check_unchecked(k, m, &values, nev, opts.par, factor.permutation());
-            sturm_time += t1.elapsed();
+            let checked = match pending.take() {
+                Some((bound, count, time)) if separated(bound, &values, nev) => {
+                    sturm_time += time;
+                    sturm_beside = true;
+                    count.and_then(|c| compare_count(bound, c, &values))
+                }
+                _ => {
+                    let t1 = Instant::now();
+                    let (bound, _) = sturm_bound(&values, nev);
+                    let count = count_below_unchecked(
+                        k,
+                        m,
+                        bound,
+                        opts.par,
+                        Some(factor.analysis()),
+                        constraints,
+                    );
+                    sturm_time += t1.elapsed();
+                    count.and_then(|c| compare_count(bound, c, &values))
+                }
+            };
             match checked {
                 Ok(found) => {
                     sturm = Some(found);
@@ -280,7 +413,7 @@ fn solve_checked(
                     // Lock what was found and look for the missing ones
                     // (typically further copies of a multiple eigenvalue).
                     rounds += 1;
-                    let dim = n - vectors.ncols();
+                    let dim = dim - vectors.ncols();
                     let more = (expected - found).saturating_add(opts.guard).min(dim);
                     let ncv_more = (2 * more + 1).max(20).min(dim);
                     if more == 0 || (more == ncv_more && ncv_more < dim) {
@@ -294,7 +427,8 @@ fn solve_checked(
                         x: vectors.clone(),
                         mx: m * &vectors,
                     });
-                    let extra = run_backend(&op, more, ncv_more, opts)?;
+                    let sharp = (expected - found).min(more);
+                    let extra = run_backend(&op, (sharp, more), ncv_more, opts, &mut |_, _| true)?;
                     iterations += extra.iterations;
                     applications += extra.applications;
                     let (v2, x2) = normalize(m, extra.values, extra.vectors);
@@ -305,7 +439,15 @@ fn solve_checked(
         }
     }
     let solve_time = t0.elapsed();
-    let residuals = backward_errors(k, m, &values, &vectors);
+    // The guards beyond nev only place the Sturm bound: their residuals are
+    // neither returned nor held to the tolerance.
+    let residuals = residuals(
+        k,
+        m,
+        constraints,
+        &values[..nev],
+        &vectors.subcols(0, nev).to_owned(),
+    )?;
     // Tolerance: the backward error is about tol times sqrt(cond(M)) (M-norm
     // to 2-norm); 1e4 tol leaves room for cond(M) up to 1e8 before a pair
     // that the solver called converged is rejected as not converged.
@@ -315,7 +457,7 @@ fn solve_checked(
         let converged = residuals.iter().filter(|r| **r <= limit).count();
         return Err(EigError::NotConverged {
             converged,
-            requested: values.len(),
+            requested: nev,
             iterations,
             residuals,
             worst,
@@ -330,24 +472,86 @@ fn solve_checked(
         computed: values.len(),
         rounds,
         solve_time,
+        shifts: 1,
         sturm,
         sturm_time,
+        sturm_beside,
         operator_time: op.solve_time.get(),
+        mass_time: op.mass_time.get(),
+        ritz_time: op.ritz_time.get(),
         ..Default::default()
     };
     Ok(Modes {
         values: values[..nev].to_vec(),
         vectors: vectors.subcols(0, nev).to_owned(),
-        residuals: residuals[..nev].to_vec(),
+        residuals,
+        guard_values: values[nev..].to_vec(),
         stats,
     })
+}
+
+/// Largest residual estimate of a Ritz pair trusted to place the Sturm
+/// bound beside the iteration: its Ritz value is then accurate to about the
+/// square of it, far inside the gap of [`SAME_EIGENVALUE`] the bound needs
+/// (the guards' tolerance).
+const EARLY_ESTIMATE: f64 = GUARD_TOL;
+
+/// A Sturm bound from Ritz values theta (descending, of OP = (K - sigma
+/// M)^-1 M) during the iteration: the bound [`sturm_bound`] places in the
+/// eigenvalues lambda = sigma + 1 / theta, if it falls in a gap between two
+/// Ritz values and every Ritz pair up to the first above it has a residual
+/// estimate of at most [`EARLY_ESTIMATE`].
+fn early_bound(theta: &[f64], estimates: &[f64], nev: usize, shift: f64) -> Option<f64> {
+    let count = theta.iter().take_while(|&&t| t > 0.0).count();
+    let lambda: Vec<f64> = theta[..count].iter().map(|t| shift + 1.0 / t).collect();
+    if lambda.len() <= nev {
+        return None;
+    }
+    let (bound, below) = sturm_bound(&lambda, nev);
+    let accurate = estimates
+        .get(..=below)?
+        .iter()
+        .all(|&e| e <= EARLY_ESTIMATE);
+    (below < lambda.len() && accurate).then_some(bound)
+}
+
+/// Whether a Sturm bound chosen during the iteration checks the converged
+/// `values` (ascending): at least `nev` of them below it and none within
+/// [`SAME_EIGENVALUE`] of it (on the scale of [`sturm_bound`]).
+fn separated(bound: f64, values: &[f64], nev: usize) -> bool {
+    let vmax = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let below = values.iter().filter(|&&v| v < bound).count();
+    let clear = values.iter().all(|&v| {
+        let scale = v
+            .abs()
+            .max(bound.abs())
+            .max(1e-3 * vmax)
+            .max(f64::MIN_POSITIVE);
+        (v - bound).abs() > 0.5 * SAME_EIGENVALUE * scale
+    });
+    below >= nev && clear
+}
+
+/// The Sturm check's verdict: `count` eigenvalues lie below `bound`; the
+/// computed `values` must have as many there.
+fn compare_count(bound: f64, count: usize, values: &[f64]) -> Result<(f64, usize), EigError> {
+    let found = values.iter().filter(|&&v| v < bound).count();
+    if count == found {
+        Ok((bound, count))
+    } else {
+        Err(EigError::MissedEigenvalues {
+            bound,
+            expected: count,
+            found,
+        })
+    }
 }
 
 /// Default basis size: max(2 nwant + 1, 20) for single-vector Lanczos and
 /// ARPACK; max(3 nwant, nwant + 4 block, 20) for the block method, whose
 /// polynomial degree per restart is ncv / block (a basis of 2 nwant makes
 /// it restart too often on the brake meshes).
-fn default_ncv(nwant: usize, opts: &EigOptions) -> usize {
+pub(crate) fn default_ncv(nwant: usize, opts: &EigOptions) -> usize {
     let single = (2 * nwant + 1).max(20);
     if opts.backend == Backend::Lanczos && opts.block_size > 1 {
         (3 * nwant)
@@ -361,20 +565,29 @@ fn default_ncv(nwant: usize, opts: &EigOptions) -> usize {
 /// Solver rounds at most: the first plus locked restarts after Sturm misses.
 const MAX_ROUNDS: usize = 4;
 
+/// Runs the chosen backend for `nwant` eigenpairs, the first `nsharp` of them
+/// to the tolerance and the rest as guards (see [`GUARD_TOL`]; ARPACK takes
+/// all to the tolerance).
 fn run_backend(
     op: &ShiftInvert<'_>,
-    nwant: usize,
+    (nsharp, nwant): (usize, usize),
     ncv: usize,
     opts: &EigOptions,
+    watch: Watch<'_>,
 ) -> Result<RawModes, EigError> {
     match opts.backend {
-        Backend::Lanczos => run_lanczos(op, nwant, ncv, opts),
+        Backend::Lanczos => run_lanczos(op, (nsharp, nwant), ncv, opts, watch),
         Backend::Arpack => run_arpack(op, nwant, ncv, opts),
     }
 }
 
 /// Joins two sets of eigenpairs, sorted ascending (stable).
-fn merge(v1: Vec<f64>, x1: Mat<f64>, v2: Vec<f64>, x2: Mat<f64>) -> (Vec<f64>, Mat<f64>) {
+pub(crate) fn merge(
+    v1: Vec<f64>,
+    x1: Mat<f64>,
+    v2: Vec<f64>,
+    x2: Mat<f64>,
+) -> (Vec<f64>, Mat<f64>) {
     let values: Vec<f64> = v1.iter().chain(&v2).copied().collect();
     let mut order: Vec<usize> = (0..values.len()).collect();
     order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
@@ -399,34 +612,38 @@ pub(crate) struct RawModes {
 
 fn run_lanczos(
     op: &ShiftInvert<'_>,
-    nwant: usize,
+    (nsharp, nwant): (usize, usize),
     ncv: usize,
     opts: &EigOptions,
+    watch: Watch<'_>,
 ) -> Result<RawModes, EigError> {
     let block = opts.block_size.min(ncv.saturating_sub(nwant));
     let mut blocked = None;
     if block > 1 {
         let params = BlockParams {
             nwant,
+            nsharp,
+            by_magnitude: false,
             ncv,
             block,
             tol: opts.tol,
             max_iter: opts.max_iter,
             seed: opts.seed,
         };
-        blocked = block_lanczos(op, &params)?;
+        blocked = block_lanczos(op, &params, &mut *watch)?;
     }
     let (out, block) = match blocked {
         Some(out) => (out, block),
         None => {
             let params = LanczosParams {
                 nwant,
+                nsharp,
                 ncv,
                 tol: opts.tol,
                 max_iter: opts.max_iter,
                 seed: opts.seed,
             };
-            (thick_restart_lanczos(op, &params)?, 1)
+            (thick_restart_lanczos(op, &params, watch)?, 1)
         }
     };
     Ok(RawModes {
@@ -460,7 +677,7 @@ fn run_arpack(
 
 /// Sorts ascending (ties keep the backend's order) and scales every vector to
 /// unit M-norm.
-fn normalize(
+pub(crate) fn normalize(
     m: SparseColMatRef<'_, usize, f64>,
     values: Vec<f64>,
     vectors: Mat<f64>,
@@ -488,6 +705,19 @@ pub fn backward_errors(
     values: &[f64],
     vectors: &Mat<f64>,
 ) -> Vec<f64> {
+    // Without constraints nothing can fail.
+    residuals(k, m, None, values, vectors).unwrap_or_default()
+}
+
+/// [`backward_errors`], with the constraint forces C^T mu taken out of each
+/// residual first (least squares) when there are constraints.
+pub(crate) fn residuals(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    constraints: Option<&Constraints>,
+    values: &[f64],
+    vectors: &Mat<f64>,
+) -> Result<Vec<f64>, EigError> {
     let (nk, nm) = (norm1(k), norm1(m));
     let mut out = Vec::with_capacity(values.len());
     for start in (0..values.len()).step_by(8) {
@@ -495,13 +725,18 @@ pub fn backward_errors(
         let x = vectors.subcols(start, cols);
         let kx = sym_matmul(k, x);
         let mx = sym_matmul(m, x);
+        let mut r = Mat::from_fn(x.nrows(), cols, |i, c| {
+            kx[(i, c)] - values[start + c] * mx[(i, c)]
+        });
+        if let Some(c) = constraints {
+            c.remove_forces(r.as_mut())?;
+        }
         for c in 0..cols {
             let lam = values[start + c];
-            let r = kx.col(c) - lam * mx.col(c);
-            out.push(r.norm_l2() / ((nk + lam.abs() * nm) * x.col(c).norm_l2()));
+            out.push(r.col(c).norm_l2() / ((nk + lam.abs() * nm) * x.col(c).norm_l2()));
         }
     }
-    out
+    Ok(out)
 }
 
 /// Sturm check of computed eigenvalues `values` (ascending, all of them
@@ -515,35 +750,38 @@ pub fn sturm_check(
     values: &[f64],
     nev: usize,
 ) -> Result<(f64, usize), EigError> {
+    sturm_check_with(k, m, values, nev, None, None)
+}
+
+/// [`sturm_check`] reusing the analysis of a Cholesky factor of
+/// K - sigma M (see [`FactorAnalysis`]; the factor's values may be freed
+/// first, as a caller short of memory does), for the pencil constrained to
+/// C x = 0 if `constraints` are given.
+pub fn sturm_check_with(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    values: &[f64],
+    nev: usize,
+    analysis: Option<&FactorAnalysis>,
+    constraints: Option<&Constraints>,
+) -> Result<(f64, usize), EigError> {
     check_pair(k, m)?;
     if nev == 0 || nev > values.len() || values.iter().any(|v| !v.is_finite()) {
         return Err(EigError::InvalidOption {
             what: format!("sturm_check: nev {nev} of {} finite values", values.len()),
         });
     }
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    sturm_check_unchecked(k, m, &sorted, nev, faer::get_global_parallelism(), None)
-}
-
-fn sturm_check_unchecked(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    values: &[f64],
-    nev: usize,
-    par: Par,
-    perm: Option<&[usize]>,
-) -> Result<(f64, usize), EigError> {
-    let (bound, found) = sturm_bound(values, nev);
-    let expected = count_below_unchecked(k, m, bound, par, perm)?;
-    if expected != found {
-        return Err(EigError::MissedEigenvalues {
-            bound,
-            expected,
-            found,
+    if constraints.is_some_and(|c| c.n() != k.nrows()) {
+        return Err(EigError::DimensionMismatch {
+            what: "constraints and K differ in size".into(),
         });
     }
-    Ok((bound, expected))
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let (bound, _) = sturm_bound(&sorted, nev);
+    let par = faer::get_global_parallelism();
+    let count = count_below_unchecked(k, m, bound, par, analysis, constraints)?;
+    compare_count(bound, count, &sorted)
 }
 
 /// Relative separation below which two computed eigenvalues are taken as
@@ -557,7 +795,7 @@ const SAME_EIGENVALUE: f64 = 1e-6;
 /// Eigenvalues below 1e-3 of the largest computed one are compared on that
 /// absolute scale, so that rounding-level rigid-body values (w^2 ~ 0) are
 /// taken as one multiple zero.
-fn sturm_bound(values: &[f64], nev: usize) -> (f64, usize) {
+pub(crate) fn sturm_bound(values: &[f64], nev: usize) -> (f64, usize) {
     let vmax = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     for j in nev..values.len() {
         let (a, b) = (values[j - 1], values[j]);

@@ -40,6 +40,43 @@ pub fn check_symmetric(
             scale = scale.max(v.abs());
         }
     }
+    // Tolerance: assembly in floating point may break symmetry by rounding only.
+    let tol = 1e-10 * scale;
+    let sorted = (0..n).all(|j| a.row_idx_of_col_raw(j).is_sorted_by(|x, y| x < y));
+    let first_bad = if sorted {
+        // Each off-diagonal entry against its mirror, found by binary search (no copies).
+        (0..n).into_par_iter().find_map_first(|j| {
+            let mirror = |i: usize| {
+                let rows = a.row_idx_of_col_raw(i);
+                rows.binary_search(&j).map_or(0.0, |k| a.val_of_col(i)[k])
+            };
+            a.row_idx_of_col(j)
+                .zip(a.val_of_col(j))
+                .find(|&(i, &v)| i != j && (v - mirror(i)).abs() > tol)
+                .map(|(i, _)| (i, j))
+        })
+    } else {
+        unsorted_asymmetry(a, name, tol)?
+    };
+    match first_bad {
+        Some((row, col)) => Err(EigError::NotSymmetric {
+            matrix: name,
+            row,
+            col,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The first entry (row, column) of a matrix with unsorted or repeated row
+/// indices that differs from its transposed entry by more than `tol`
+/// (columns merged after sorting, duplicates compared one by one).
+fn unsorted_asymmetry(
+    a: SparseColMatRef<'_, usize, f64>,
+    name: &'static str,
+    tol: f64,
+) -> Result<Option<(usize, usize)>, EigError> {
+    let n = a.nrows();
     let t = a
         .transpose()
         .to_col_major()
@@ -47,8 +84,6 @@ pub fn check_symmetric(
             what: format!("transpose of {name}: {e:?}"),
         })?;
     let t = t.as_ref();
-    // Tolerance: assembly in floating point may break symmetry by rounding only.
-    let tol = 1e-10 * scale;
     for j in 0..n {
         let mut col: Vec<(usize, f64)> = a
             .row_idx_of_col(j)
@@ -83,15 +118,11 @@ pub fn check_symmetric(
                 (None, None) => break,
             };
             if d.abs() > tol {
-                return Err(EigError::NotSymmetric {
-                    matrix: name,
-                    row: i,
-                    col: j,
-                });
+                return Ok(Some((i, j)));
             }
         }
     }
-    Ok(())
+    Ok(None)
 }
 
 /// Checks K and M for the generalized problem: both square, same size,
@@ -103,15 +134,7 @@ pub fn check_pair(
     check_symmetric(k, "K")?;
     check_symmetric(m, "M")?;
     if k.nrows() != m.nrows() {
-        return Err(EigError::DimensionMismatch {
-            what: format!(
-                "K is {}x{} but M is {}x{}",
-                k.nrows(),
-                k.ncols(),
-                m.nrows(),
-                m.ncols()
-            ),
-        });
+        return Err(pair_mismatch(k, m));
     }
     for j in 0..m.ncols() {
         let d: f64 = m
@@ -127,6 +150,22 @@ pub fn check_pair(
     Ok(())
 }
 
+/// The error for K and M of different shapes.
+fn pair_mismatch(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+) -> EigError {
+    EigError::DimensionMismatch {
+        what: format!(
+            "K is {}x{} but M is {}x{}",
+            k.nrows(),
+            k.ncols(),
+            m.nrows(),
+            m.ncols()
+        ),
+    }
+}
+
 /// A = K - sigma M on the union of both patterns (rows sorted, duplicates summed).
 pub fn shifted(
     k: SparseColMatRef<'_, usize, f64>,
@@ -134,15 +173,7 @@ pub fn shifted(
     sigma: f64,
 ) -> Result<SparseColMat<usize, f64>, EigError> {
     if k.nrows() != m.nrows() || k.ncols() != m.ncols() {
-        return Err(EigError::DimensionMismatch {
-            what: format!(
-                "K is {}x{} but M is {}x{}",
-                k.nrows(),
-                k.ncols(),
-                m.nrows(),
-                m.ncols()
-            ),
-        });
+        return Err(pair_mismatch(k, m));
     }
     let n = k.ncols();
     let mut col_ptr = Vec::with_capacity(n + 1);
@@ -222,35 +253,10 @@ pub fn norm1(a: SparseColMatRef<'_, usize, f64>) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// out = V^T w (V is n x p), reduced in fixed chunks of rows.
+/// out = V^T w (V is n x p), reduced in fixed chunks of rows (see [`inner`]).
 pub fn project(v: MatRef<'_, f64>, w: ColRef<'_, f64>) -> Vec<f64> {
-    let n = v.nrows();
-    let p = v.ncols();
-    let nchunks = n.div_ceil(CHUNK);
-    let partials: Vec<Mat<f64>> = (0..nchunks)
-        .into_par_iter()
-        .map(|c| {
-            let r0 = c * CHUNK;
-            let len = CHUNK.min(n - r0);
-            let mut out = Mat::<f64>::zeros(p, 1);
-            matmul(
-                out.as_mut(),
-                Accum::Replace,
-                v.subrows(r0, len).transpose(),
-                w.subrows(r0, len).as_mat(),
-                1.0,
-                Par::Seq,
-            );
-            out
-        })
-        .collect();
-    let mut out = vec![0.0; p];
-    for part in &partials {
-        for (o, i) in out.iter_mut().zip(0..p) {
-            *o += part[(i, 0)];
-        }
-    }
-    out
+    let out = inner(v, w.as_mat());
+    (0..v.ncols()).map(|i| out[(i, 0)]).collect()
 }
 
 /// w <- w - V h, row chunks in parallel (each row is independent).
@@ -281,6 +287,13 @@ pub fn update_rows(
         let len = piece.nrows();
         matmul(piece, accum, v.subrows(r0, len), s, alpha, Par::Seq);
     });
+}
+
+/// V S as a new n x k matrix (row chunks in parallel, see [`update_rows`]).
+pub fn combination(v: MatRef<'_, f64>, s: MatRef<'_, f64>) -> Mat<f64> {
+    let mut out = Mat::zeros(v.nrows(), s.ncols());
+    update_rows(out.as_mut(), v, s, Accum::Replace, 1.0);
+    out
 }
 
 /// Euclidean dot product, reduced in fixed chunks.

@@ -11,7 +11,7 @@ use squeal_eigs::{
 };
 
 mod common;
-use common::{orthonormality_error, rel};
+use common::{in_pool, orthonormality_error, rel};
 
 #[test]
 fn fixed_fixed_bar_matches_closed_form() {
@@ -284,16 +284,7 @@ fn multi_rhs_solve_matches_single_solves() {
 fn results_do_not_depend_on_the_thread_count() {
     let p = box_vector([6, 5, 5], [1.0, 0.8, 0.6]);
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
-            let par = if threads == 1 {
-                faer::Par::Seq
-            } else {
-                faer::Par::rayon(threads)
-            };
+        in_pool(threads, |par| {
             let opts = EigOptions {
                 par,
                 ..Default::default()

@@ -11,7 +11,7 @@ use squeal_eigs::{
 };
 
 mod common;
-use common::{orthonormality_error, rel};
+use common::{in_pool, orthonormality_error, rel};
 
 fn block_opts(block_size: usize) -> EigOptions {
     EigOptions {
@@ -150,16 +150,7 @@ fn nested_dissection_fills_less_than_amd_and_solves_the_same() {
 fn nested_dissection_and_factor_do_not_depend_on_the_thread_count() {
     let p = box_vector([12, 12, 11], [1.0, 1.0, 0.9]);
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
-            let par = if threads == 1 {
-                faer::Par::Seq
-            } else {
-                faer::Par::rayon(threads)
-            };
+        in_pool(threads, |par| {
             let opts = CholeskyOptions {
                 par,
                 ..Default::default()
@@ -189,4 +180,20 @@ fn sturm_count_with_nested_dissection_matches_closed_form() {
         // Exact: Sylvester's law of inertia; the bounds sit in spectral gaps.
         assert_eq!(count_below(p.k.as_ref(), p.m.as_ref(), bound).unwrap(), j);
     }
+}
+
+#[test]
+fn sturm_check_beside_the_iteration_counts_what_a_check_after_it_counts() {
+    let p = box_vector([8, 7, 6], [1.0, 0.8, 0.6]);
+    let nev = 40;
+    let modes = lowest_modes(p.k.as_ref(), p.m.as_ref(), nev, &block_opts(8)).unwrap();
+    // The bound came from Ritz values during the iteration.
+    assert!(modes.stats.sturm_beside);
+    let (bound, count) = modes.stats.sturm.unwrap();
+    assert!(bound > modes.values[nev - 1] && count >= nev);
+    // Exact: the same inertia counted by the public entry point.
+    assert_eq!(
+        count_below(p.k.as_ref(), p.m.as_ref(), bound).unwrap(),
+        count
+    );
 }

@@ -155,7 +155,7 @@ pub enum Control {
     /// Go on.
     Continue,
     /// Go on with another number of harmonics: the point is corrected again at the new
-    /// layout before the branch goes on.
+    /// layout (in the hyperplane normal to its tangent) before the branch goes on.
     Harmonics(usize),
     /// End the branch, for this reason.
     Stop(String),
@@ -245,6 +245,36 @@ fn correct<F: Family>(
     Ok(Correction::Failed(last))
 }
 
+/// Newton on the family's equations plus `row · z = value` (e.g. a fixed amplitude, or a
+/// fixed parameter) from `z0`: the converged point, or `None` when Newton fails within
+/// [`ContinuationOptions::max_iterations`]. `w` weights the unknowns as in
+/// [`continue_branch`] (for the step tolerance). The returned point's tangent is oriented along
+/// `along`.
+pub fn correct_point<F: Family>(
+    family: &mut F,
+    z0: &[f64],
+    row: &[f64],
+    value: f64,
+    w: &[f64],
+    along: &[f64],
+    opts: &ContinuationOptions,
+) -> Result<Option<Point>, HbmError> {
+    match correct(family, z0, row, value, w, opts)? {
+        Correction::Converged(z, iterations, residual) => {
+            let tangent = tangent(family, &z, w, along)?;
+            Ok(Some(Point {
+                z,
+                harmonics: family.layout().n_harmonics(),
+                tangent,
+                iterations,
+                residual,
+                step: 0.0,
+            }))
+        }
+        Correction::Failed(_) => Ok(None),
+    }
+}
+
 /// The unit tangent at `z` (null vector of `J`, in scaled unknowns), oriented along `along`.
 fn tangent<F: Family>(
     family: &mut F,
@@ -267,10 +297,7 @@ fn tangent<F: Family>(
     let mut t: Vec<f64> = (0..n).map(|i| t[(i, 0)]).collect();
     let s = norm(&t);
     if !(s.is_finite() && s > 0.0) {
-        return Err(HbmError::EigenvalueLost {
-            from: faer::c64::new(0.0, 0.0),
-            why: "the branch's tangent is not defined (singular bordered Jacobian)".into(),
-        });
+        return Err(HbmError::SingularTangent);
     }
     for v in &mut t {
         *v /= s;
@@ -288,21 +315,35 @@ pub fn continue_branch<F: Family>(
     direction: &[f64],
     weights: impl Fn(&HarmonicLayout) -> Vec<f64>,
     opts: &ContinuationOptions,
-    mut observer: impl FnMut(&Point) -> Control,
+    observer: impl FnMut(&Point) -> Control,
 ) -> Result<Branch, HbmError> {
-    let mut w = weights(&family.layout());
-    let mut z = z0.to_vec();
-    let mut t = tangent(family, &z, &w, direction)?;
-    let mut points = Vec::new();
-    let mut step = opts.initial_step;
-    let mut point = Point {
-        z: z.clone(),
+    let w = weights(&family.layout());
+    let t = tangent(family, z0, &w, direction)?;
+    let start = Point {
+        z: z0.to_vec(),
         harmonics: family.layout().n_harmonics(),
-        tangent: t.clone(),
+        tangent: t,
         iterations: 0,
         residual: 0.0,
         step: 0.0,
     };
+    continue_from(family, start, weights, opts, observer)
+}
+
+/// [`continue_branch`] from a point that carries its tangent (e.g. from [`correct_point`]).
+pub fn continue_from<F: Family>(
+    family: &mut F,
+    start: Point,
+    weights: impl Fn(&HarmonicLayout) -> Vec<f64>,
+    opts: &ContinuationOptions,
+    mut observer: impl FnMut(&Point) -> Control,
+) -> Result<Branch, HbmError> {
+    let mut w = weights(&family.layout());
+    let mut z = start.z.clone();
+    let mut t = start.tangent.clone();
+    let mut points = Vec::new();
+    let mut step = opts.initial_step;
+    let mut point = start;
     loop {
         // The observer may change the harmonics: the point is corrected again at fixed
         // parameter, then the branch goes on from it.
@@ -312,12 +353,13 @@ pub fn continue_branch<F: Family>(
             let zr = remap(&point.z, layout.n_dofs(), layout.n_harmonics(), h);
             family.set_harmonics(h)?;
             w = weights(&family.layout());
-            let n = zr.len();
-            let mut row = vec![0.0; n];
-            row[n - 1] = 1.0;
-            match correct(family, &zr, &row, zr[n - 1], &w, opts)? {
+            // Corrected in the hyperplane normal to the tangent through the point: well posed
+            // at a fold, where a fixed parameter is not.
+            let along = remap(&point.tangent, layout.n_dofs(), layout.n_harmonics(), h);
+            let row: Vec<f64> = along.iter().zip(&w).map(|(t, w)| t * w).collect();
+            let value = row.iter().zip(&zr).map(|(a, b)| a * b).sum::<f64>();
+            match correct(family, &zr, &row, value, &w, opts)? {
                 Correction::Converged(zc, it, res) => {
-                    let along = remap(&point.tangent, layout.n_dofs(), layout.n_harmonics(), h);
                     let tc = tangent(family, &zc, &w, &along)?;
                     point = Point {
                         z: zc,

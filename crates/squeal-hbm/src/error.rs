@@ -133,6 +133,18 @@ pub enum HbmError {
         /// The solver report (last iterate, history, stop reason).
         report: Box<LmReport>,
     },
+    /// The tangent of a branch is not defined: the bordered Jacobian is singular (a branch
+    /// point, or a family whose equations do not depend on the parameter).
+    #[error("the branch's tangent is not defined (singular bordered Jacobian)")]
+    SingularTangent,
+    /// A family's parameter could not be put into its equations.
+    #[error("the continuation parameter could not be set to {value}: {why}")]
+    Parameter {
+        /// The parameter value asked.
+        value: f64,
+        /// What failed.
+        why: String,
+    },
     /// The residual was NaN or infinite at the initial guess.
     #[error("residual is not finite at the initial guess")]
     NonFiniteStart,

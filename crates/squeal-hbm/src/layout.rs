@@ -218,7 +218,8 @@ impl HarmonicLayout {
         Ok(())
     }
 
-    pub(crate) fn check_len(&self, what: &'static str, got: usize) -> Result<(), HbmError> {
+    /// An error naming `what` unless `got` is the layout's length.
+    pub fn check_len(&self, what: &'static str, got: usize) -> Result<(), HbmError> {
         if got != self.len() {
             return Err(HbmError::Dimension {
                 what,

@@ -13,6 +13,8 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
+use common::best;
+
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
@@ -27,18 +29,6 @@ use std::time::Instant;
 
 /// The CLI's initial amplitudes.
 const AMPLITUDES: [f64; 4] = RESTART_AMPLITUDES;
-
-fn best<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut best = f64::INFINITY;
-    let mut out = None;
-    for _ in 0..reps {
-        let t = Instant::now();
-        let r = f();
-        best = best.min(t.elapsed().as_secs_f64());
-        out = Some(r);
-    }
-    (best, out.unwrap())
-}
 
 fn short(o: Outcome) -> &'static str {
     match o {

@@ -3,20 +3,10 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
+use common::best;
+
 use squeal_brake::sweep::{SweepMethod, SweepOptions, sweep};
 use std::time::Instant;
-
-fn best<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut best = f64::INFINITY;
-    let mut out = None;
-    for _ in 0..reps {
-        let t = Instant::now();
-        let r = f();
-        best = best.min(t.elapsed().as_secs_f64());
-        out = Some(r);
-    }
-    (best, out.unwrap())
-}
 
 fn main() {
     let t = Instant::now();

@@ -24,6 +24,8 @@ pub enum PipelineError {
     #[error(transparent)]
     Chbm(#[from] squeal_chbm::ChbmError),
     #[error(transparent)]
+    Floquet(#[from] squeal_chbm::floquet::FloquetError),
+    #[error(transparent)]
     Start(#[from] squeal_chbm::start::StartError),
     #[error(transparent)]
     Compare(#[from] squeal_chbm::compare::CompareError),

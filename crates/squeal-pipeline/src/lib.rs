@@ -15,13 +15,15 @@
 //! ```
 //!
 //! - [`model`]: the scene's reduced model (cached in a `.rom`) and brake.
-//! - [`stability`], [`chbm`], [`compare`], [`study`]: the analyses and their outputs.
+//! - [`stability`], [`branch`], [`chbm`], [`compare`], [`study`]: the analyses and their
+//!   outputs.
 //! - [`shapes`]: reduced vectors expanded onto the meshes (VTU).
 //! - [`report`]: the report of a run.
 
 // Index loops over dofs read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+pub mod branch;
 pub mod chbm;
 pub mod compare;
 mod error;

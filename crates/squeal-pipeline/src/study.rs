@@ -1268,7 +1268,7 @@ fn mesh_study(scene: &Scene, dir: &Path, mus: &[f64], levels: &[String], log: Lo
 }
 
 /// Creates a folder (and its parents), naming it in the error.
-fn create_dir(dir: &Path) -> Result<()> {
+pub(crate) fn create_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|source| PipelineError::File {
         what: "creating the folder",
         path: dir.to_path_buf(),

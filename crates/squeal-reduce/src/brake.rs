@@ -1,8 +1,9 @@
 //! The brake: a disc and a pad, from their mesh files to the reduced model of eqs (1)–(7).
 //!
 //! [`reduce_brake`] reads both meshes (recording their SHA-256), checks that every disc
-//! contact point faces a pad contact point, then reduces the disc and then the pad with
-//! [`reduce_part`]. With [`BrakeInputs::default`] (the bundled setup: disc clamped on `CLAMP`,
+//! contact point faces a pad contact point, then reduces the disc and the pad with
+//! [`reduce_part`] at the same time, as two tasks of the rayon pool (each part's own parallel
+//! work shares the pool with the other's; the results do not depend on the thread count). With [`BrakeInputs::default`] (the bundled setup: disc clamped on `CLAMP`,
 //! pad held in-plane on `ABUTMENT` with its `PISTON` nodes' normal dof kept, nine contact points
 //! per part, 50 fixed-interface modes) the result is the paper's 158-dof brake:
 //! 27 + 50 disc dofs and 27 + 4 + 50 pad dofs (Sec. 2.1).
@@ -14,6 +15,7 @@ use crate::craig_bampton::{
     PartSpec, ReduceError, ReduceOptions, ReduceReport, Stage, reduce_part,
 };
 use crate::interface::{Axis, InterfaceError, contact_nodes, patches};
+use crate::rom::ReducedPart;
 use crate::rom::{
     BuildRecord, InterfaceKind, MeshInfo, PartRole, ReducedModel, RomError, RomHeader, VERSION,
     read_header, sha256_file,
@@ -24,10 +26,14 @@ use squeal_eigs::{Backend, EigOptions};
 use squeal_fe::{ElasticMaterial, MaterialTable, NodeSelection, Restraint};
 use squeal_mesh::Mesh;
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, PoisonError, mpsc};
 use std::time::{Duration, Instant};
 
-/// The version written into every `.rom` file; a file made by another version is stale.
-pub const TOOL_VERSION: &str = concat!("squeal ", env!("CARGO_PKG_VERSION"));
+/// The version written into every `.rom` file; a file made by another version is stale. The
+/// suffix is the revision of the numbers a reduction produces: bump it with every change that
+/// moves the reduced matrices (fe2: curved tet10 elements integrated with the 24-point rule), so
+/// that a cache made by older code is reduced again instead of silently reused.
+pub const TOOL_VERSION: &str = concat!("squeal ", env!("CARGO_PKG_VERSION"), "+fe2");
 
 /// Default multiple of the highest frequency of interest below which modes are kept in
 /// [`ModeChoice::Auto`] (see `docs/reduction.md` for how the choice moves the frequencies).
@@ -419,23 +425,36 @@ pub fn reduce_brake_loaded(
         PairingTolerance::Relative(inputs.pairing_tolerance),
     )?;
     let opts = inputs.reduce_options();
+    let (tx, rx) = mpsc::channel::<(&'static str, Stage)>();
+    let slots: [Mutex<Option<Reduced>>; 2] = Default::default();
+    rayon::in_place_scope(|scope| {
+        for ((loaded, (name, input)), slot) in
+            [disc, pad].into_iter().zip(inputs.parts()).zip(&slots)
+        {
+            let tx = tx.clone();
+            let opts = &opts;
+            scope.spawn(move |_| {
+                let mut tell = |stage| {
+                    // The receiver lives until every part is done.
+                    let _ = tx.send((name, stage));
+                };
+                let reduced = reduce_loaded(inputs, name, input, loaded, opts, &mut tell);
+                *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(reduced);
+            });
+        }
+        drop(tx);
+        relay(&rx, progress);
+    });
     let mut parts = Vec::with_capacity(2);
     let mut reports = Vec::with_capacity(2);
-    for (loaded, (name, input)) in [disc, pad].into_iter().zip(inputs.parts()) {
-        let materials = MaterialTable::from_mesh(&loaded.mesh, &input.material_overrides)?;
-        let spec = inputs.spec(name, input, loaded.info.clone());
-        let (mut part, reduce) = reduce_part(&loaded.mesh, &materials, &spec, &opts, &mut |s| {
-            progress(name, s)
-        })?;
-        part.info.build = Some(inputs.record(input));
+    for slot in slots {
+        let reduced = slot.into_inner().unwrap_or_else(PoisonError::into_inner);
+        let (part, report) = reduced.ok_or_else(|| ReduceError::Invalid {
+            part: "brake".into(),
+            what: "a part's reduction ended without a result".into(),
+        })??;
         parts.push(part);
-        reports.push(PartReport {
-            name: name.into(),
-            mesh: loaded.info,
-            warnings: loaded.warnings,
-            read_time: loaded.read_time,
-            reduce,
-        });
+        reports.push(report);
     }
     let model = ReducedModel {
         tool_version: TOOL_VERSION.into(),
@@ -449,6 +468,69 @@ pub fn reduce_brake_loaded(
         total: t0.elapsed() + read,
     };
     Ok((model, report))
+}
+
+/// A reduced part and its report, or why not.
+type Reduced = Result<(ReducedPart, PartReport), ReduceError>;
+
+/// Reduces one read part with the brake's options.
+fn reduce_loaded(
+    inputs: &BrakeInputs,
+    name: &'static str,
+    input: &PartInput,
+    loaded: LoadedPart,
+    opts: &ReduceOptions,
+    progress: &mut dyn FnMut(Stage),
+) -> Reduced {
+    let materials = MaterialTable::from_mesh(&loaded.mesh, &input.material_overrides)?;
+    let spec = inputs.spec(name, input, loaded.info.clone());
+    let (mut part, reduce) = reduce_part(&loaded.mesh, &materials, &spec, opts, progress)?;
+    part.info.build = Some(inputs.record(input));
+    let report = PartReport {
+        name: name.into(),
+        mesh: loaded.info,
+        warnings: loaded.warnings,
+        read_time: loaded.read_time,
+        reduce,
+    };
+    Ok((part, report))
+}
+
+/// Hands the parts' progress messages to `progress` on this thread, in the order each part
+/// sent them, until every part has finished. A thread of the rayon pool (a caller inside
+/// `ThreadPool::install`) runs pending work between messages instead of blocking the pool.
+fn relay(rx: &mpsc::Receiver<(&'static str, Stage)>, progress: &mut dyn FnMut(&str, Stage)) {
+    let worker = rayon::current_thread_index().is_some();
+    loop {
+        let next = if worker {
+            next_helping(rx)
+        } else {
+            rx.recv().ok()
+        };
+        match next {
+            Some((name, stage)) => progress(name, stage),
+            None => return,
+        }
+    }
+}
+
+/// The next message, running pending pool work while there is none (None: every sender is
+/// gone).
+fn next_helping(rx: &mpsc::Receiver<(&'static str, Stage)>) -> Option<(&'static str, Stage)> {
+    loop {
+        match rx.try_recv() {
+            Ok(m) => return Some(m),
+            Err(mpsc::TryRecvError::Disconnected) => return None,
+            Err(mpsc::TryRecvError::Empty) => {}
+        }
+        if rayon::yield_now() != Some(rayon::Yield::Executed) {
+            match rx.recv_timeout(Duration::from_millis(2)) {
+                Ok(m) => return Some(m),
+                Err(mpsc::RecvTimeoutError::Disconnected) => return None,
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+            }
+        }
+    }
 }
 
 /// Checks a part's node sets before any work: every set named exists and is not empty, and

@@ -2,32 +2,46 @@
 //!
 //! The boundary coordinates `r` are given as rows of a constraint `r = C u` on the part's free
 //! dofs: one dof per row for the node interface and the piston nodes, the patch weights of
-//! [`crate::interface`] for the patch interface. Each row is solved for one "master" dof that
-//! appears in no other row (for a patch: a face node inside it), `u_S = A u_I + B r`, so that
-//! `u = T v + G r` with `v = u_I` the interior dofs, `T = [I; A]`, `G = [0; B]`. This is the
-//! null-space form of the saddle-point system `[[K, Cᵀ], [C, 0]]`: the same constraint modes
-//! and fixed-interface modes, but with a symmetric positive definite interior matrix
-//! `K_vv = Tᵀ K T`, so one sparse Cholesky factorization serves both. For the node interface
-//! `A = 0` and it reduces to the paper's partition into `u_B` and `u_I`.
+//! [`crate::interface`] (a weighted mean of a few hundred face dofs) for the patch interface.
 //!
-//! - constraint modes, eq (3): `v = -K_vv⁻¹ K_vr`, `K_vr = Tᵀ K G`;
-//! - fixed-interface modes, eqs (4)–(5): the `N` lowest of `K_vv φ = ω² M_vv φ` (`r = 0`,
-//!   i.e. `C φ = 0`), mass-normalized, by shift-invert Lanczos on that same factorization;
-//! - eqs (6)–(7): `K̂ = Bᵀ K B`, `M̂ = Bᵀ M B` with the full-space basis
-//!   `B = [T Ψ_v + G, T Φ_v]`; `K̂` is block diagonal (`K̂_CN = 0` to round-off).
+//! - A row with one entry `r_b = c u_m` is the paper's partition: the dof `m` is a boundary dof,
+//!   `u_m = r_b / c`, and leaves the interior.
+//! - The other rows stay constraints `C_P u = r_P` on the interior dofs `v` (all free dofs but the
+//!   eliminated ones), so that the interior matrices `K_vv`, `M_vv` keep the sparsity of `K`
+//!   whatever the patches couple. Eliminating one master dof per patch row instead (the null-space
+//!   form `u = T v + G r`) would put the dense block `Aᵀ K_SS A` of all the patch's face dofs
+//!   into `K_vv` and multiply the fill of its factor.
+//!
+//! With `K_vv = L Lᵀ` factored once (nested dissection, supernodal Cholesky), `X = K_vv⁻¹ C_Pᵀ`
+//! and `S = C_P X` (see [`squeal_eigs::ConstrainedFactor`]):
+//!
+//! - constraint modes, eq (3), the least-energy motion for each unit boundary coordinate: for a
+//!   constraint row `p`, `v = X S⁻¹ e_p`; for an eliminated dof `m` (`u_m = 1/c`),
+//!   `v = P y - X S⁻¹ C_E e_m / c` with `y = -K_vv⁻¹ K_vm / c` and `P = I - X S⁻¹ C_P` (the
+//!   constraint rows' share of `u_m`, `C_E`, moved to the right-hand side);
+//! - fixed-interface modes, eqs (4)–(5): the `N` lowest of `K_vv φ = ω² M_vv φ + C_Pᵀ μ`,
+//!   `C_P φ = 0` (`r = 0`), mass-normalized, by shift-invert Lanczos with the operator
+//!   `P K_vv⁻¹ M_vv` on the same factor, Sturm-checked on the constrained pencil;
+//! - eqs (6)–(7): `K̂ = Bᵀ K B`, `M̂ = Bᵀ M B` with the full-space basis `B = [Ψ, Φ]`; `K̂` is
+//!   block diagonal (`K̂_CN = Ψᵀ K Φ = 0` to round-off, since `K Ψ` lies in the range of `Cᵀ`
+//!   and `C Φ = 0`). For the node interface there are no constraint rows and this is the
+//!   paper's partition into `u_B` and `u_I`.
 
 use crate::interface::{Axis, InterfaceError, contact_nodes, patches, tributary_areas};
 use crate::rom::{
     Basis, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo, PartInfo, PartRole,
     PointRole, ReducedPart, RestraintInfo,
 };
-use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Accum, Mat, MatRef, Par};
 use rayon::prelude::*;
-use squeal_eigs::{EigError, EigOptions, SparseCholesky, lowest_modes_with_factor};
+use squeal_eigs::{
+    ConstrainedFactor, Constraints, EigError, EigOptions, SparseCholesky, lowest_modes_constrained,
+    lowest_modes_with_factor,
+};
 use squeal_fe::{DofMap, FeError, MaterialTable, Restraint, assemble};
 use squeal_mesh::Mesh;
-use std::collections::HashMap;
+use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
 /// Errors of the reduction, named in the user's terms.
@@ -201,6 +215,8 @@ pub struct ReduceReport {
     pub nnz_factor: usize,
     /// Bytes held by that factor.
     pub factor_bytes: usize,
+    /// The whole of the factor's statistics (fill, flops, times, the split of its solves).
+    pub factor: squeal_eigs::FactorStats,
     pub timings: Vec<(Stage, Duration)>,
     pub eig: squeal_eigs::EigStats,
     /// Sturm check of the kept modes: the bound `ω²` and the number of eigenvalues of the
@@ -253,8 +269,10 @@ pub fn reduce_part(
     let t = Instant::now();
     let (points, rows) = boundary_rows(mesh, &dofmap, spec)?;
     let split = Split::new(&rows, dofmap.num_free(), &part)?;
-    let k_vv = split.interior(&system.k);
-    let m_vv = split.interior(&system.m);
+    let (k_interior, m_interior) = (split.interior_of(&system.k), split.interior_of(&system.m));
+    let (k_vv, m_vv): (&SparseColMat<usize, f64>, &SparseColMat<usize, f64>) =
+        (&k_interior, &m_interior);
+    let constraints = split.constraints().map_err(eigen)?;
     clock(Stage::Interface, t, &mut timings);
 
     progress(Stage::Factor);
@@ -274,18 +292,26 @@ pub fn reduce_part(
 
     progress(Stage::ConstraintModes);
     let t = Instant::now();
-    let mut psi_v = split.coupling(&system.k);
-    factor.solve_in_place(psi_v.as_mut()).map_err(eigen)?;
-    for v in psi_v.col_iter_mut() {
-        for x in v.iter_mut() {
-            *x = -*x;
-        }
-    }
+    let constrained = match constraints.is_empty() {
+        true => None,
+        false => Some(ConstrainedFactor::new(&factor, &constraints).map_err(eigen)?),
+    };
+    let psi_v = split
+        .constraint_modes(&system.k, &factor, constrained.as_ref())
+        .map_err(eigen)?;
     clock(Stage::ConstraintModes, t, &mut timings);
 
     progress(Stage::Eigensolve);
     let t = Instant::now();
-    let modes = fixed_interface_modes(&k_vv, &m_vv, &factor, spec, opts)?;
+    let factor_stats = factor.stats();
+    let sturm = sturm_placement(opts, &factor_stats, spec.modes);
+    let modes =
+        fixed_interface_modes(k_vv, m_vv, &factor, constrained.as_ref(), spec, opts, sturm)?;
+    drop(constrained);
+    let modes = match modes.deferred {
+        false => modes,
+        true => check_deferred(modes, factor, k_vv, m_vv, &constraints, spec, opts)?,
+    };
     clock(Stage::Eigensolve, t, &mut timings);
 
     progress(Stage::Project);
@@ -296,8 +322,9 @@ pub fn reduce_part(
     let mut basis = try_zeros(dofmap.num_free(), n, &part)?;
     for b in 0..nb {
         split.expand_into(psi_v.col(b), basis.col_mut(b));
-        let (m, inv) = split.masters[b];
-        basis[(m, b)] += inv;
+        if let Some((m, inv)) = split.eliminated_dof(b) {
+            basis[(m, b)] = inv;
+        }
     }
     drop(psi_v);
     for j in 0..nm {
@@ -353,8 +380,9 @@ pub fn reduce_part(
         boundary_dofs: nb,
         modes: nm,
         nnz_k: system.nnz_k(),
-        nnz_factor: factor.stats().nnz_l,
-        factor_bytes: factor.stats().factor_bytes,
+        nnz_factor: factor_stats.nnz_l,
+        factor_bytes: factor_stats.factor_bytes,
+        factor: factor_stats,
         timings,
         eig: modes.stats,
         sturm: modes.sturm,
@@ -388,9 +416,104 @@ struct FixedModes {
     values: Vec<f64>,
     vectors: Mat<f64>,
     residuals: Vec<f64>,
+    /// The guard eigenvalues above `values` (for a Sturm check made later).
+    guard_values: Vec<f64>,
     stats: squeal_eigs::EigStats,
     /// Sturm bound `ω²` and the count of eigenvalues below it.
     sturm: Option<(f64, usize)>,
+    /// The Sturm check is still to be made ([`SturmPlacement::Deferred`]).
+    deferred: bool,
+}
+
+/// Where the Sturm check of the fixed-interface modes runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum SturmPlacement {
+    /// Beside the Lanczos iteration (a second factor in memory at the same time).
+    Beside,
+    /// After the iteration, with the Cholesky factor still held (the eigensolver's own check,
+    /// which finds missed eigenvalues by locked restarts).
+    After,
+    /// After the iteration, with the Cholesky factor's values freed first
+    /// ([`check_deferred`]): the peak memory holds one factor.
+    Deferred,
+}
+
+/// The Sturm check beside the iteration when the options allow it (`EigOptions::sturm_beside`)
+/// and a second factor fits in the memory available now (Linux: `MemAvailable` of
+/// `/proc/meminfo`; elsewhere it is taken to fit), else after it with the Cholesky factor
+/// freed. The results do not depend on the choice (only the reported Sturm bound may).
+fn sturm_placement(
+    opts: &ReduceOptions,
+    factor: &squeal_eigs::FactorStats,
+    modes: usize,
+) -> SturmPlacement {
+    if !opts.eig.sturm_beside {
+        return SturmPlacement::Deferred;
+    }
+    // The LBL^T's values and its copy of K - b M, and the Lanczos basis (about 3 x modes).
+    let need = factor.factor_bytes + 16 * factor.nnz_a + 8 * factor.n * 3 * modes;
+    let available = std::fs::read_to_string("/proc/meminfo").ok().and_then(|s| {
+        s.lines()
+            .find_map(|l| l.strip_prefix("MemAvailable:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<usize>().ok())
+            .map(|kb| kb * 1024)
+    });
+    match available {
+        // A quarter kept free for the other part and the allocator.
+        Some(bytes) if need > bytes / 4 * 3 => SturmPlacement::Deferred,
+        _ => SturmPlacement::Beside,
+    }
+}
+
+/// The deferred Sturm check: frees the factor's values, counts the eigenvalues below a bound
+/// placed among the modes and their guards with an LBLᵀ on the factor's analysis, and if some
+/// were missed (rare), factors again and solves with the eigensolver's own check.
+fn check_deferred(
+    mut modes: FixedModes,
+    factor: SparseCholesky,
+    k_vv: &SparseColMat<usize, f64>,
+    m_vv: &SparseColMat<usize, f64>,
+    constraints: &Constraints,
+    spec: &PartSpec,
+    opts: &ReduceOptions,
+) -> Result<FixedModes, ReduceError> {
+    let eigen = |source: EigError| ReduceError::Eigen {
+        part: spec.name.clone(),
+        source,
+    };
+    let analysis = factor.into_analysis();
+    let t = Instant::now();
+    let c = (!constraints.is_empty()).then_some(constraints);
+    let all: Vec<f64> = modes
+        .values
+        .iter()
+        .chain(&modes.guard_values)
+        .copied()
+        .collect();
+    let (k, m) = (k_vv.as_ref(), m_vv.as_ref());
+    match squeal_eigs::sturm_check_with(k, m, &all, modes.values.len(), Some(&analysis), c) {
+        Ok(found) => {
+            modes.sturm = Some(found);
+            modes.stats.sturm = Some(found);
+            modes.stats.sturm_time = t.elapsed();
+            modes.deferred = false;
+            Ok(modes)
+        }
+        Err(EigError::MissedEigenvalues { .. }) => {
+            let chol = squeal_eigs::CholeskyOptions {
+                par: opts.eig.par,
+                ..Default::default()
+            };
+            let factor = analysis.factorize(k, &chol).map_err(eigen)?;
+            let constrained = match c {
+                None => None,
+                Some(c) => Some(ConstrainedFactor::new(&factor, c).map_err(eigen)?),
+            };
+            let after = SturmPlacement::After;
+            fixed_interface_modes(k_vv, m_vv, &factor, constrained.as_ref(), spec, opts, after)
+        }
+        Err(e) => Err(eigen(e)),
+    }
 }
 
 /// Eqs (4)–(5): the fixed-interface modes of `K_vv φ = ω² M_vv φ` with the factor of `K_vv`,
@@ -400,8 +523,10 @@ fn fixed_interface_modes(
     k_vv: &SparseColMat<usize, f64>,
     m_vv: &SparseColMat<usize, f64>,
     factor: &SparseCholesky,
+    constrained: Option<&ConstrainedFactor<'_>>,
     spec: &PartSpec,
     opts: &ReduceOptions,
+    sturm: SturmPlacement,
 ) -> Result<FixedModes, ReduceError> {
     let part = &spec.name;
     let eigen = |source: EigError| ReduceError::Eigen {
@@ -411,8 +536,13 @@ fn fixed_interface_modes(
     let n = k_vv.nrows();
     let mut eig_opts = EigOptions {
         shift: 0.0,
+        sturm_beside: sturm == SturmPlacement::Beside,
         ..opts.eig
     };
+    let deferred = sturm == SturmPlacement::Deferred && opts.eig.sturm_check;
+    if deferred {
+        eig_opts.sturm_check = false;
+    }
     let mut below = None;
     let nm = match opts.modes_below_hz {
         None => spec.modes,
@@ -424,8 +554,12 @@ fn fixed_interface_modes(
                 });
             }
             let bound = omega2(f);
-            let count =
-                squeal_eigs::count_below(k_vv.as_ref(), m_vv.as_ref(), bound).map_err(eigen)?;
+            let (k, m) = (k_vv.as_ref(), m_vv.as_ref());
+            let count = match constrained {
+                None => squeal_eigs::count_below(k, m, bound),
+                Some(c) => squeal_eigs::count_below_constrained(k, m, c.constraints(), bound),
+            }
+            .map_err(eigen)?;
             if count > spec.modes {
                 return Err(ReduceError::TooManyModes {
                     part: part.clone(),
@@ -446,35 +580,46 @@ fn fixed_interface_modes(
             values: Vec::new(),
             vectors: Mat::zeros(n, 0),
             residuals: Vec::new(),
+            guard_values: Vec::new(),
             stats: Default::default(),
             sturm: below,
+            deferred: false,
         });
     }
-    if nm >= n {
+    let dim = n - constrained.map_or(0, |c| c.constraints().len());
+    if nm >= dim {
         return Err(ReduceError::Invalid {
             part: part.clone(),
-            what: format!("{nm} fixed-interface modes asked for, the interior has {n} dofs"),
+            what: format!("{nm} fixed-interface modes asked for, the interior has {dim} free dofs"),
         });
     }
-    let modes = lowest_modes_with_factor(k_vv.as_ref(), m_vv.as_ref(), factor, nm, &eig_opts)
-        .map_err(eigen)?;
+    let solve = |eig_opts: &EigOptions| {
+        let (k, m) = (k_vv.as_ref(), m_vv.as_ref());
+        match constrained {
+            None => lowest_modes_with_factor(k, m, factor, nm, eig_opts),
+            Some(c) => lowest_modes_constrained(k, m, c, nm, eig_opts),
+        }
+        .map_err(eigen)
+    };
+    let modes = solve(&eig_opts)?;
     let modes = match below {
         Some((bound, _)) if modes.values.iter().any(|&v| v >= bound) => {
             // A mode below the bound was missed: solve again with the solver's Sturm check,
             // which finds missed copies of multiple eigenvalues by locked restarts.
             eig_opts.sturm_check = true;
-            lowest_modes_with_factor(k_vv.as_ref(), m_vv.as_ref(), factor, nm, &eig_opts)
-                .map_err(eigen)?
+            solve(&eig_opts)?
         }
         _ => modes,
     };
-    let sturm = below.or(modes.stats.sturm);
     Ok(FixedModes {
+        sturm: below.or(modes.stats.sturm),
+        // The count below the cut-off is itself the Sturm check.
+        deferred: deferred && below.is_none(),
         values: modes.values,
         vectors: modes.vectors,
         residuals: modes.residuals,
+        guard_values: modes.guard_values,
         stats: modes.stats,
-        sturm,
     })
 }
 
@@ -620,98 +765,168 @@ fn boundary_rows(
     Ok((points, rows))
 }
 
-/// The elimination `u_S = A u_I + B r` and the interior numbering.
+/// How each boundary row enters: a dof of its own (`u_m = r_b / c`) or a constraint row on the
+/// interior dofs.
+#[derive(Clone, Copy, Debug)]
+enum RowKind {
+    /// The dof `m` and `1 / c`.
+    Eliminated { dof: usize, inv: f64 },
+    /// Index among the constraint rows.
+    Constraint(usize),
+}
+
+/// The boundary rows split into eliminated dofs and constraints, and the interior numbering.
 struct Split {
-    /// Master free dof of each row and `1 / c_bm`.
-    masters: Vec<(usize, f64)>,
-    /// Free dofs of the interior, ascending; `interior_index[f]` their position.
+    kinds: Vec<RowKind>,
+    /// Free dofs of the interior (all but the eliminated ones), ascending; `interior_index[f]`
+    /// their position.
     interior: Vec<usize>,
     interior_index: Vec<Option<usize>>,
-    /// Rows of `A` in interior numbering: `u_{m_b} = Σ a_bk v_k + r_b / c_bm`.
-    a: Vec<Vec<(usize, f64)>>,
+    /// Constraint rows on the interior dofs (`C_P`, interior numbering) and their entries on
+    /// eliminated dofs (`C_E`: boundary row of the dof, coefficient).
+    constraint_rows: Vec<Vec<(usize, f64)>>,
+    constraint_eliminated: Vec<Vec<(usize, f64)>>,
 }
 
 impl Split {
     fn new(rows: &[Row], n_free: usize, part: &str) -> Result<Self, ReduceError> {
-        let mut uses: HashMap<usize, usize> = HashMap::new();
-        for r in rows {
-            for &(f, _) in &r.entries {
-                *uses.entry(f).or_default() += 1;
-            }
+        let mut owner: Vec<Option<usize>> = vec![None; n_free];
+        let mut kinds = Vec::with_capacity(rows.len());
+        let mut n_constraints = 0;
+        for (b, r) in rows.iter().enumerate() {
+            let single = match r.entries.as_slice() {
+                &[(dof, c)] if c != 0.0 => Some((dof, c)),
+                _ => None,
+            };
+            kinds.push(match single {
+                Some((dof, c)) => {
+                    // Two rows on one dof are the same coordinate twice.
+                    if owner[dof].replace(b).is_some() {
+                        return Err(ReduceError::NoMaster {
+                            part: part.into(),
+                            point: r.point,
+                            direction: AXES[r.direction],
+                        });
+                    }
+                    RowKind::Eliminated { dof, inv: 1.0 / c }
+                }
+                None => {
+                    n_constraints += 1;
+                    RowKind::Constraint(n_constraints - 1)
+                }
+            });
         }
-        let mut masters = Vec::with_capacity(rows.len());
-        let mut is_master = vec![false; n_free];
-        for r in rows {
-            let best = r
-                .entries
-                .iter()
-                .filter(|(f, w)| uses[f] == 1 && *w != 0.0)
-                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()).then(b.0.cmp(&a.0)));
-            let &(m, c) = best.ok_or_else(|| ReduceError::NoMaster {
-                part: part.into(),
-                point: r.point,
-                direction: AXES[r.direction],
-            })?;
-            masters.push((m, 1.0 / c));
-            is_master[m] = true;
-        }
-        let interior: Vec<usize> = (0..n_free).filter(|&f| !is_master[f]).collect();
+        let interior: Vec<usize> = (0..n_free).filter(|&f| owner[f].is_none()).collect();
         let mut interior_index = vec![None; n_free];
         for (i, &f) in interior.iter().enumerate() {
             interior_index[f] = Some(i);
         }
-        let a = rows
-            .iter()
-            .zip(&masters)
-            .map(|(r, &(m, inv))| {
-                r.entries
-                    .iter()
-                    .filter(|(f, _)| *f != m)
-                    .filter_map(|&(f, w)| interior_index[f].map(|i| (i, -w * inv)))
-                    .collect()
-            })
-            .collect();
+        let mut constraint_rows = Vec::with_capacity(n_constraints);
+        let mut constraint_eliminated = Vec::with_capacity(n_constraints);
+        for (r, kind) in rows.iter().zip(&kinds) {
+            if let RowKind::Constraint(_) = kind {
+                let (mut on_interior, mut on_eliminated) = (Vec::new(), Vec::new());
+                for &(f, w) in &r.entries {
+                    match (interior_index[f], owner[f]) {
+                        (Some(i), _) => on_interior.push((i, w)),
+                        (None, Some(b)) => on_eliminated.push((b, w)),
+                        (None, None) => {}
+                    }
+                }
+                constraint_rows.push(on_interior);
+                constraint_eliminated.push(on_eliminated);
+            }
+        }
         Ok(Self {
-            masters,
+            kinds,
             interior,
             interior_index,
-            a,
+            constraint_rows,
+            constraint_eliminated,
         })
     }
 
-    /// `Tᵀ X T = X_II + X_IS A + Aᵀ X_SI + Aᵀ X_SS A` for a symmetric sparse `X`.
-    fn interior(&self, x: &SparseColMat<usize, f64>) -> SparseColMat<usize, f64> {
-        let base = self.extract_interior(x);
-        let mut extra: Vec<Triplet<usize, usize, f64>> = Vec::new();
-        for (b, &(m, _)) in self.masters.iter().enumerate() {
-            // Column m of X on interior rows, times row b of A (and its transpose).
-            for (r, &v) in x.as_ref().row_idx_of_col(m).zip(x.as_ref().val_of_col(m)) {
+    /// The constraint rows `C_P` on the interior dofs.
+    fn constraints(&self) -> Result<Constraints, EigError> {
+        Constraints::new(self.interior.len(), self.constraint_rows.clone())
+    }
+
+    /// The dof of an eliminated boundary row and `1 / c`.
+    fn eliminated_dof(&self, b: usize) -> Option<(usize, f64)> {
+        match self.kinds[b] {
+            RowKind::Eliminated { dof, inv } => Some((dof, inv)),
+            RowKind::Constraint(_) => None,
+        }
+    }
+
+    /// Eq (3): the interior part of the constraint modes, one column per boundary row (see the
+    /// module documentation), from the factor of `K_vv` and, if there are constraint rows, its
+    /// constrained form.
+    fn constraint_modes(
+        &self,
+        k: &SparseColMat<usize, f64>,
+        factor: &SparseCholesky,
+        constrained: Option<&ConstrainedFactor<'_>>,
+    ) -> Result<Mat<f64>, EigError> {
+        let eliminated: Vec<(usize, usize, f64)> = (0..self.kinds.len())
+            .filter_map(|b| self.eliminated_dof(b).map(|(m, inv)| (b, m, inv)))
+            .collect();
+        // y = -K_vv⁻¹ K_vm / c for every eliminated dof.
+        let mut y = Mat::<f64>::zeros(self.interior.len(), eliminated.len());
+        let kr = k.as_ref();
+        for (e, &(_, m, inv)) in eliminated.iter().enumerate() {
+            for (r, &v) in kr.row_idx_of_col(m).zip(kr.val_of_col(m)) {
                 if let Some(i) = self.interior_index[r] {
-                    for &(k, a) in &self.a[b] {
-                        extra.push(Triplet::new(i, k, v * a));
-                        extra.push(Triplet::new(k, i, v * a));
-                    }
-                }
-            }
-            for (b2, &(m2, _)) in self.masters.iter().enumerate() {
-                let v = entry(x, m, m2);
-                if v != 0.0 {
-                    for &(k, a) in &self.a[b] {
-                        for &(k2, a2) in &self.a[b2] {
-                            extra.push(Triplet::new(k, k2, a * v * a2));
-                        }
-                    }
+                    y[(i, e)] -= v * inv;
                 }
             }
         }
-        if extra.is_empty() {
-            return base;
+        factor.solve_in_place(y.as_mut())?;
+        let mut out = Mat::<f64>::zeros(self.interior.len(), self.kinds.len());
+        let (y, x) = match constrained {
+            None => (y, None),
+            Some(c) => {
+                // P y - X S⁻¹ C_E e_m / c, and X S⁻¹ for the constraint rows.
+                let mut y = y;
+                c.project(y.as_mut());
+                let column = |b: usize| eliminated.iter().position(|&(row, _, _)| row == b);
+                let g = Mat::from_fn(self.constraint_rows.len(), eliminated.len(), |p, e| {
+                    self.constraint_eliminated[p]
+                        .iter()
+                        .filter(|&&(b, _)| column(b) == Some(e))
+                        .map(|&(_, w)| w * eliminated[e].2)
+                        .sum()
+                });
+                let y = &y - c.correction(g.as_ref())?;
+                let q = self.constraint_rows.len();
+                (y, Some(c.correction(Mat::<f64>::identity(q, q).as_ref())?))
+            }
+        };
+        let mut next_eliminated = 0;
+        for (b, kind) in self.kinds.iter().enumerate() {
+            match (kind, &x) {
+                (RowKind::Eliminated { .. }, _) => {
+                    out.col_mut(b).copy_from(y.col(next_eliminated));
+                    next_eliminated += 1;
+                }
+                (RowKind::Constraint(p), Some(x)) => out.col_mut(b).copy_from(x.col(*p)),
+                (RowKind::Constraint(_), None) => {}
+            }
         }
-        let n = self.interior.len();
-        // Indices are in range by construction.
-        let e =
-            SparseColMat::try_new_from_triplets(n, n, &extra).expect("interior triplets in range");
-        faer::sparse::ops::add(base.as_ref(), e.as_ref()).expect("same dimensions")
+        Ok(out)
+    }
+
+    /// `X_II`: `x` itself when no dof is eliminated (no copy of a large matrix), else
+    /// [`Split::extract_interior`].
+    fn interior_of<'x>(
+        &self,
+        x: &'x SparseColMat<usize, f64>,
+    ) -> Cow<'x, SparseColMat<usize, f64>> {
+        if self.interior.len() == x.ncols() {
+            Cow::Borrowed(x)
+        } else {
+            Cow::Owned(self.extract_interior(x))
+        }
     }
 
     /// `X_II` as a sparse matrix (rows and columns of the interior dofs).
@@ -737,47 +952,12 @@ impl Split {
         )
     }
 
-    /// `K_vr = Tᵀ K G`: column b is `(K_{I,m_b} + Σ_b' A_b'ᵀ K_{m_b', m_b}) / c_bm`.
-    fn coupling(&self, k: &SparseColMat<usize, f64>) -> Mat<f64> {
-        let nb = self.masters.len();
-        let mut out = Mat::<f64>::zeros(self.interior.len(), nb);
-        let kr = k.as_ref();
-        for (b, &(m, inv)) in self.masters.iter().enumerate() {
-            for (r, &v) in kr.row_idx_of_col(m).zip(kr.val_of_col(m)) {
-                if let Some(i) = self.interior_index[r] {
-                    out[(i, b)] += v * inv;
-                }
-            }
-            for (b2, &(m2, _)) in self.masters.iter().enumerate() {
-                let v = entry(k, m2, m);
-                if v != 0.0 {
-                    for &(i, a) in &self.a[b2] {
-                        out[(i, b)] += a * v * inv;
-                    }
-                }
-            }
-        }
-        out
-    }
-
-    /// Writes `T v` (full free-dof vector) into `out`.
+    /// Writes an interior vector into the interior dofs of `out` (a full free-dof vector whose
+    /// eliminated dofs are left as they are).
     fn expand_into(&self, v: faer::ColRef<'_, f64>, mut out: faer::ColMut<'_, f64>) {
         for (i, &f) in self.interior.iter().enumerate() {
             out[f] = v[i];
         }
-        for (b, &(m, _)) in self.masters.iter().enumerate() {
-            out[m] = self.a[b].iter().map(|&(i, a)| a * v[i]).sum();
-        }
-    }
-}
-
-/// `X[r, c]` of a sparse matrix with sorted row indices.
-fn entry(x: &SparseColMat<usize, f64>, r: usize, c: usize) -> f64 {
-    let xr = x.as_ref();
-    let rows = xr.row_idx_of_col_raw(c);
-    match rows.binary_search(&r) {
-        Ok(k) => xr.val_of_col(c)[k],
-        Err(_) => 0.0,
     }
 }
 

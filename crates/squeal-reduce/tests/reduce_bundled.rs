@@ -117,3 +117,28 @@ fn disc_reduces_to_77_dofs() {
         report.coupling
     );
 }
+
+#[test]
+fn a_sturm_check_after_the_iteration_with_the_factor_freed_gives_the_same_part() {
+    // The memory-saving order (Lanczos without the check, the Cholesky factor's values freed,
+    // then the LBLᵀ count on its analysis) against the default (the count beside the
+    // iteration): the reduced matrices are the same bits, only the check's bound may differ.
+    for interface in [InterfaceKind::Patch, InterfaceKind::Node] {
+        let (mesh, spec) = spec("pad", interface);
+        let materials = MaterialTable::from_mesh(&mesh, &[]).unwrap();
+        let run = |sturm_beside: bool| {
+            let mut opts = ReduceOptions::default();
+            opts.eig.sturm_beside = sturm_beside;
+            reduce_part(&mesh, &materials, &spec, &opts, &mut |_| {}).unwrap()
+        };
+        let (beside, report_beside) = run(true);
+        let (after, report_after) = run(false);
+        assert!(report_beside.eig.sturm_beside && !report_after.eig.sturm_beside);
+        assert_eq!(beside.k, after.k);
+        assert_eq!(beside.m, after.m);
+        let (bound, count) = report_after.sturm.unwrap();
+        // The check covered the modes kept.
+        assert!(count >= 50 && bound > (2.0 * std::f64::consts::PI * 1e3).powi(2));
+        assert_eq!(report_after.eig.sturm, report_after.sturm);
+    }
+}

@@ -154,7 +154,8 @@ fn modal_columns(part: &ReducedPart) -> Vec<(usize, usize)> {
 #[test]
 fn patch_fixed_interface_modes_solve_the_constrained_eigenproblem() {
     // Eqs (4)-(5) with the patch interface: K φ - ω² M φ = Cᵀ λ and C φ = 0. The reduction
-    // solves them in a null-space form; here they are checked on the full mesh dofs.
+    // solves them with a projected shift-invert operator on the interior dofs; here they are
+    // checked on the full mesh dofs.
     let reduced_brake = coarse_brake(InterfaceKind::Patch);
     for part in ["disc", "pad"] {
         let loaded = coarse(part);

@@ -22,3 +22,20 @@ pub fn orthonormality_error(m: SparseColMatRef<'_, usize, f64>, phi: &Mat<f64>) 
     }
     worst
 }
+
+/// Runs `f` in a rayon pool of `threads` threads, with faer's parallelism set
+/// to match (sequential for one thread).
+pub fn in_pool<T: Send>(threads: usize, f: impl FnOnce(faer::Par) -> T + Send) -> T {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let par = if threads == 1 {
+            faer::Par::Seq
+        } else {
+            faer::Par::rayon(threads)
+        };
+        f(par)
+    })
+}

@@ -77,3 +77,16 @@ pub fn mus(lo: f64, hi: f64, count: usize) -> Vec<f64> {
         .map(|k| lo + (hi - lo) * k as f64 / (count - 1) as f64)
         .collect()
 }
+
+/// Best-of-`reps` wall time of `f` (s) and its last result: the benches' timer.
+pub fn best<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
+    let mut best = f64::INFINITY;
+    let mut out = None;
+    for _ in 0..reps.max(1) {
+        let t = std::time::Instant::now();
+        let r = f();
+        best = best.min(t.elapsed().as_secs_f64());
+        out = Some(r);
+    }
+    (best, out.expect("at least one repetition"))
+}

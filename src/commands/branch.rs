@@ -1,0 +1,112 @@
+//! `squeal branch`: where and how loud the brake squeals. The branch of limit cycles from the
+//! Hopf point in μ, through its folds, with each cycle's Floquet stability (issue 10).
+
+use crate::commands::stability::pipeline;
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use squeal_chbm::branch::{BranchOptions, Harmonics};
+use squeal_chbm::floquet::HillOptions;
+use squeal_pipeline::{Pipeline, branch};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Args, Clone)]
+pub struct BranchArgs {
+    /// Scene file (TOML), e.g. meshes/brake.toml
+    pub scene: PathBuf,
+    /// The branch ends below this multiple of mu0
+    #[arg(long, default_value_t = 0.5)]
+    pub min_ratio: f64,
+    /// The branch ends above this multiple of mu0
+    #[arg(long, default_value_t = 1.3)]
+    pub max_ratio: f64,
+    /// Use this many harmonics everywhere (default: from 3, two more wherever the highest
+    /// holds more than 1e-6 of the vibration's energy, up to --max-harmonics)
+    #[arg(long)]
+    pub harmonics: Option<usize>,
+    /// Most harmonics of the adaptive choice
+    #[arg(long, default_value_t = 15)]
+    pub max_harmonics: usize,
+    /// Most cycles on the branch
+    #[arg(long, default_value_t = 400)]
+    pub max_points: usize,
+    /// Also report the branch's cycles at these multiples of mu0 (comma list, e.g. 0.998,1.01):
+    /// every crossing, each with its stability
+    #[arg(long, value_delimiter = ',')]
+    pub at: Vec<f64>,
+    /// Output folder (default: out/<scene name>)
+    #[arg(long, short)]
+    pub out: Option<PathBuf>,
+}
+
+/// The branch's options from the command line, checked before any work.
+pub fn options(args: &BranchArgs) -> Result<BranchOptions> {
+    let (lo, hi) = (args.min_ratio, args.max_ratio);
+    if !(lo.is_finite() && hi.is_finite() && 0.0 < lo && lo < 1.0 && hi > 1.0) {
+        bail!("--min-ratio must be in (0, 1) and --max-ratio above 1 (got {lo} and {hi})");
+    }
+    let check = |h: usize, name: &str| {
+        if (1..=50).contains(&h) {
+            Ok(h)
+        } else {
+            bail!("{name} must be between 1 and 50 (got {h})")
+        }
+    };
+    let harmonics = match args.harmonics {
+        Some(h) => Harmonics::Fixed(check(h, "--harmonics")?),
+        None => Harmonics::Adaptive {
+            start: 3.min(check(args.max_harmonics, "--max-harmonics")?),
+            max: args.max_harmonics,
+            tolerance: 1e-6,
+        },
+    };
+    if let Some(r) = args.at.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
+        bail!("--at takes positive multiples of mu0 (got {r})");
+    }
+    if args.max_points < 2 {
+        bail!("--max-points must be at least 2");
+    }
+    let mut o = BranchOptions {
+        harmonics,
+        range: (lo, hi),
+        ..BranchOptions::default()
+    };
+    o.continuation.max_points = args.max_points;
+    Ok(o)
+}
+
+pub fn run(args: BranchArgs) -> Result<ExitCode> {
+    let opts = options(&args)?;
+    let p = pipeline(&args.scene, &args.out, &None)?;
+    Ok(if write(&p, &opts, &args.at)?.is_some() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(3)
+    })
+}
+
+/// Follows the branch of `p` and writes `<out>/branch`, with the cycles at `at` × μ0; `None`
+/// when there is no Hopf point.
+pub fn write(
+    p: &Pipeline,
+    opts: &BranchOptions,
+    at: &[f64],
+) -> Result<Option<branch::BranchAnalysis>> {
+    let m = p.model()?;
+    let st = p.stability().context("stability analysis")?;
+    let t = std::time::Instant::now();
+    let mus: Vec<f64> = match &st.sweep.hopf {
+        Some(h) => at.iter().map(|r| r * h.mu0).collect(),
+        None => Vec::new(),
+    };
+    let Some(a) = branch::analyse(m, st, opts, &HillOptions::default(), &mus, p.log())? else {
+        println!("no Hopf point in the band of the friction sweep: no branch of limit cycles");
+        return Ok(None);
+    };
+    p.record("branch and its stability", t.elapsed().as_secs_f64());
+    print!("{}", branch::summary_text(&a));
+    let dir = p.out.join("branch");
+    branch::write(&dir, &a)?;
+    println!("results in {}", dir.display());
+    Ok(Some(a))
+}
