@@ -666,10 +666,14 @@ fn boundary_rows(
         InterfaceKind::Node => {
             let nodes = contact_nodes(mesh, &spec.contact_set, &spec.axis)?;
             // Each node stands for its tributary share of the contact face, when the part has
-            // one: the area its contact stiffness per unit area is multiplied by.
-            let cells = match mesh.node_set(&spec.contact_face_set) {
-                Some(_) => Some(tributary_areas(mesh, &spec.contact_face_set, &nodes)?),
-                None => None,
+            // one: the area its contact stiffness per unit area is multiplied by. A part has
+            // none when the set is missing or names nodes with no boundary face among them (a
+            // point contact whose face set is its contact set): its points carry no area, and
+            // a scene's `[contact] point_area` gives them one.
+            let cells = match tributary_areas(mesh, &spec.contact_face_set, &nodes) {
+                Ok(cells) => Some(cells),
+                Err(InterfaceError::MissingSet(_) | InterfaceError::NoFaces { .. }) => None,
+                Err(e) => return Err(e.into()),
             };
             for (k, node) in nodes.into_iter().enumerate() {
                 let p = points.len();
