@@ -253,6 +253,18 @@ fn write_dof_labels(w: &mut dyn Write, part: &ReducedPart) -> std::io::Result<()
                 let d = ["x", "y", "z"].get(direction as usize).unwrap_or(&"?");
                 writeln!(w, "{},{role},{},,{d},{x:e},{y:e},{z:e}", i + 1, point + 1)?;
             }
+            DofLabel::Along { point, direction } => {
+                let p = &part.info.points[point];
+                let role = format!("{:?}", p.role).to_lowercase();
+                let [x, y, z] = p.position;
+                let [a, b, c] = direction;
+                writeln!(
+                    w,
+                    "{},{role},{},,along {a:.6} {b:.6} {c:.6},{x:e},{y:e},{z:e}",
+                    i + 1,
+                    point + 1
+                )?;
+            }
             DofLabel::Mode { mode } => writeln!(w, "{},mode,,{},,,,", i + 1, mode + 1)?,
         }
     }

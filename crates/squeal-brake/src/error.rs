@@ -136,7 +136,7 @@ pub enum BrakeError {
     /// [`Stiffness::PerArea`](crate::assemble::Stiffness::PerArea), but neither point of a pair
     /// has an area and no `point_area` is given.
     #[error(
-        "contact pair {pair}: a contact stiffness per unit area needs the pair's area, but the reduced model has none (node interface): give a point area or stiffnesses per point"
+        "contact pair {pair}: a contact stiffness per unit area needs the pair's area, but the reduced model has none (a node interface without a contact face set): give the parts a contact face, a point area ([contact] point_area in a scene) or stiffnesses per point"
     )]
     NoArea {
         /// Pair number (1-based).

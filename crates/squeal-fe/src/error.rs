@@ -59,6 +59,12 @@ pub enum FeError {
     UnknownElementSet(String),
     #[error("no node set named '{0}'")]
     UnknownNodeSet(String),
+    #[error(
+        "a restraint direction of node index {node} has zero length or is not finite (or the node is on the rotation axis, where radial and tangential are undefined)"
+    )]
+    BadDirection { node: u32 },
+    #[error("the rotation axis has zero length or is not finite, or its point is not finite")]
+    BadAxis,
     #[error("restraint names node index {index}, but the mesh has {num_nodes} nodes")]
     NodeOutOfRange { index: u32, num_nodes: usize },
     #[error("element {element} uses node index {node}, but the mesh has {num_nodes} nodes")]

@@ -8,6 +8,10 @@
 //!   conventions), and the material of each element from the mesh's sections and overrides.
 //! - [`element`]: element stiffness, mass, volume and strain of the isoparametric tet10.
 //! - [`dofmap`]: free dofs after restraints, node-major.
+//! - [`frames`]: restraints along directions that are not coordinate axes (nodes with
+//!   their own axes, as Abaqus' `*TRANSFORM`, exact by congruence), and the axial, radial and
+//!   tangential directions of a rotation axis anywhere in space (the tangent is the sliding
+//!   direction of the disc's surface).
 //! - [`assembly`]: global `K` and `M` as faer sparse matrices (both triangles), deterministic
 //!   for any thread count; volume, mass and size summaries.
 //! - [`export`]: MatrixMarket files with the dof map as CSV.
@@ -30,6 +34,7 @@ pub mod dofmap;
 pub mod element;
 pub mod error;
 pub mod export;
+pub mod frames;
 pub mod material;
 pub mod quadrature;
 

@@ -19,6 +19,10 @@
 //! - [`vtu`]: VTK XML unstructured grids (quadratic tetra, cell type 24) with point and cell
 //!   fields, and `.pvd` collections for time series, for ParaView.
 //! - [`generate`]: structured tet10 meshes of boxes, for tests and convergence studies.
+//! - [`select`]: sets chosen by geometry (boundary faces on a cylinder or plane, by normal,
+//!   in a box; nodes on a surface or in a box), with their counts, areas and centroids.
+//! - [`units`]: consistent unit systems (SI, mm-t-s, ...), conversion of a mesh to SI and
+//!   warnings when its numbers look like another system's.
 
 #![warn(missing_docs)]
 
@@ -29,7 +33,9 @@ pub mod inp;
 pub mod model;
 pub mod msh;
 pub mod quality;
+pub mod select;
 pub mod tet10;
+pub mod units;
 pub mod vtu;
 
 pub use builder::MeshBuilder;

@@ -149,7 +149,7 @@ pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
         stiffness: Stiffness::PerArea {
             linear: kl,
             cubic: knl,
-            point_area: None,
+            point_area: f.contact.point_area.as_ref().map(|a| *a.get_ref()),
         },
         pairing_tolerance: PairingTolerance::Absolute(*f.contact.pairing_tolerance.get_ref()),
         piston_force: f.piston.line_pressure_bar.get_ref() * 1e5 * f.piston.area.get_ref(),

@@ -17,8 +17,8 @@ use crate::craig_bampton::{
 use crate::interface::{Axis, InterfaceError, contact_nodes, patches};
 use crate::rom::ReducedPart;
 use crate::rom::{
-    BuildRecord, InterfaceKind, MeshInfo, ReducedModel, RomError, RomHeader, read_header,
-    sha256_file,
+    BuildRecord, InterfaceKind, MeshInfo, PartRole, ReducedModel, RomError, RomHeader, VERSION,
+    read_header, sha256_file,
 };
 use faer::Par;
 use serde::{Deserialize, Serialize};
@@ -274,6 +274,11 @@ impl BrakeInputs {
     fn spec(&self, name: &str, input: &PartInput, mesh: MeshInfo) -> PartSpec {
         PartSpec {
             name: name.into(),
+            role: if name == "disc" {
+                PartRole::Disc
+            } else {
+                PartRole::Pad
+            },
             mesh,
             restraints: input.restraints.clone(),
             interface: self.interface,
@@ -735,6 +740,12 @@ pub fn stale_reasons(
     hashes: &[String; 2],
 ) -> Vec<String> {
     let mut reasons = Vec::new();
+    if header.version < VERSION {
+        reasons.push(format!(
+            "written in format version {}, this is version {VERSION} (points with areas and normals)",
+            header.version
+        ));
+    }
     if header.tool_version != TOOL_VERSION {
         reasons.push(format!(
             "made by {}, this is {TOOL_VERSION}",

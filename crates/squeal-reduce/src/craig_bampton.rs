@@ -27,10 +27,10 @@
 //!   and `C Φ = 0`). For the node interface there are no constraint rows and this is the
 //!   paper's partition into `u_B` and `u_I`.
 
-use crate::interface::{Axis, InterfaceError, contact_nodes, patches};
+use crate::interface::{Axis, InterfaceError, contact_nodes, patches, tributary_areas};
 use crate::rom::{
-    Basis, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo, PartInfo, PointRole,
-    ReducedPart, RestraintInfo,
+    Basis, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo, PartInfo, PartRole,
+    PointRole, ReducedPart, RestraintInfo,
 };
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Accum, Mat, MatRef, Par};
@@ -131,6 +131,8 @@ const AXES: [char; 3] = ['x', 'y', 'z'];
 #[derive(Clone, Debug, PartialEq)]
 pub struct PartSpec {
     pub name: String,
+    /// Disc or pad.
+    pub role: PartRole,
     pub mesh: MeshInfo,
     pub restraints: Vec<Restraint>,
     pub interface: InterfaceKind,
@@ -364,6 +366,7 @@ pub fn reduce_part(
     let fixed_interface_hz: Vec<f64> = modes.values.iter().map(|&w2| hz(w2)).collect();
     let info = PartInfo {
         name: part.clone(),
+        role_field: Some(spec.role),
         mesh: spec.mesh.clone(),
         interface: spec.interface,
         materials: material_infos(materials),
@@ -678,14 +681,28 @@ fn boundary_rows(
     };
     match spec.interface {
         InterfaceKind::Node => {
-            for node in contact_nodes(mesh, &spec.contact_set, &spec.axis)? {
+            let nodes = contact_nodes(mesh, &spec.contact_set, &spec.axis)?;
+            // Each node stands for its tributary share of the contact face, when the part has
+            // one: the area its contact stiffness per unit area is multiplied by. A part has
+            // none when the set is missing or names nodes with no boundary face among them (a
+            // point contact whose face set is its contact set): its points carry no area, and
+            // a scene's `[contact] point_area` gives them one.
+            let cells = match tributary_areas(mesh, &spec.contact_face_set, &nodes) {
+                Ok(cells) => Some(cells),
+                Err(InterfaceError::MissingSet(_) | InterfaceError::NoFaces { .. }) => None,
+                Err(e) => return Err(e.into()),
+            };
+            for (k, node) in nodes.into_iter().enumerate() {
                 let p = points.len();
+                let cell = cells.as_ref().map(|c| c[k]);
                 points.push(InterfacePoint {
                     role: PointRole::Contact,
                     node_id: Some(mesh.node_ids[node as usize]),
                     patch: None,
                     position: mesh.nodes[node as usize],
-                    area: None,
+                    area: cell.map(|c| c.0),
+                    normal: cell.map(|c| c.1),
+                    surface: None,
                 });
                 for d in 0..3 {
                     let dof = dofmap
@@ -715,6 +732,8 @@ fn boundary_rows(
                     patch: Some(patch.number),
                     position: patch.centroid,
                     area: Some(patch.area),
+                    normal: Some(patch.normal),
+                    surface: None,
                 });
                 for d in 0..3 {
                     // A restrained face node would pin the patch's mean motion: refuse it,
@@ -751,6 +770,8 @@ fn boundary_rows(
                 patch: None,
                 position: mesh.nodes[node as usize],
                 area: None,
+                normal: None,
+                surface: None,
             });
             let dof = dofmap
                 .free_dof(node, d)

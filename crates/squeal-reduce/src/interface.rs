@@ -62,6 +62,9 @@ pub struct Patch {
     pub number: usize,
     pub area: f64,
     pub centroid: [f64; 3],
+    /// Unit outward normal of the part's face over the patch: the area-weighted mean of the
+    /// face's normals.
+    pub normal: [f64; 3],
     /// `(node index, weight)`, weights summing to 1, sorted by node index.
     pub weights: Vec<(u32, f64)>,
 }
@@ -206,11 +209,76 @@ pub fn patches(
         .collect()
 }
 
+/// Tributary areas of contact nodes on a contact face: every point of the face (the 6-point
+/// rule of each boundary triangle of `face_set`) belongs to the nearest of `nodes` (ties to the
+/// first), so the areas partition the face (a Voronoi split of it). This is the area a node
+/// interface's contact point stands for: its contact stiffness per unit area times this area
+/// is its spring. On the bundled meshes, whose contact nodes sit at the centres of the 3 × 3
+/// patches, these cells are close to the patches (equal where the patch edges are bisectors).
+///
+/// Returns each node's area and the unit outward normal of its cell (the area-weighted mean of
+/// the face's normals there; `[0, 0, 0]` for a node whose cell is empty).
+pub fn tributary_areas(
+    mesh: &Mesh,
+    face_set: &str,
+    nodes: &[u32],
+) -> Result<Vec<(f64, [f64; 3])>, InterfaceError> {
+    let face = mesh
+        .node_set(face_set)
+        .ok_or_else(|| InterfaceError::MissingSet(face_set.into()))?;
+    if face.is_empty() {
+        return Err(InterfaceError::EmptySet(face_set.into()));
+    }
+    let triangles = boundary_triangles(mesh, face);
+    if triangles.is_empty() {
+        return Err(InterfaceError::NoFaces {
+            set: face_set.into(),
+        });
+    }
+    let centres: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.nodes[n as usize]).collect();
+    let mut areas = vec![0.0; nodes.len()];
+    let mut normals = vec![[0.0; 3]; nodes.len()];
+    for tri in &triangles {
+        let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
+        for (s, t, w) in DUNAVANT4 {
+            let (n, ds, dt) = tri6_shape(s, t);
+            let (mut xs, mut xt, mut xp) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+            for a in 0..6 {
+                for d in 0..3 {
+                    xs[d] += ds[a] * x[a][d];
+                    xt[d] += dt[a] * x[a][d];
+                    xp[d] += n[a] * x[a][d];
+                }
+            }
+            let dn = scale(cross(xs, xt), 0.5 * w);
+            let da = norm(dn);
+            let nearest = centres
+                .iter()
+                .enumerate()
+                .map(|(k, c)| (k, norm(sub(xp, *c))))
+                .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+            if let Some((k, _)) = nearest {
+                areas[k] += da;
+                for d in 0..3 {
+                    normals[k][d] += dn[d];
+                }
+            }
+        }
+    }
+    Ok(areas
+        .into_iter()
+        .zip(normals)
+        .map(|(a, n)| (a, unit(n).unwrap_or([0.0; 3])))
+        .collect())
+}
+
 /// Running integrals of one patch.
 #[derive(Default)]
 struct PatchSums {
     area: f64,
     moment: [f64; 3],
+    /// `∫ n dA` (outward).
+    normal: [f64; 3],
     weights: HashMap<u32, f64>,
 }
 
@@ -231,8 +299,12 @@ impl PatchSums {
                     xp[d] += n[a] * x[a][d];
                 }
             }
-            let da = 0.5 * w * norm(cross(xs, xt));
+            let dn = cross(xs, xt);
+            let da = 0.5 * w * norm(dn);
             self.area += da;
+            for d in 0..3 {
+                self.normal[d] += 0.5 * w * dn[d];
+            }
             for d in 0..3 {
                 self.moment[d] += da * xp[d];
             }
@@ -253,6 +325,7 @@ impl PatchSums {
             number,
             area: self.area,
             centroid: self.moment.map(|m| m / self.area),
+            normal: unit(self.normal).unwrap_or([0.0; 3]),
             weights,
         }
     }
@@ -408,6 +481,40 @@ mod tests {
                 // The rule's weights and points are given to 15 digits.
                 assert!((q - exact).abs() < 1e-14, "s^{a} t^{b}: {q} vs {exact}");
             }
+        }
+    }
+
+    #[test]
+    fn tributary_areas_split_a_face_between_its_nearest_nodes() {
+        // A 1 x 1 face at z = 0.1 meshed 6 x 6; four "contact nodes" at the centres of its
+        // quadrants, which are mesh nodes (0.25 and 0.75 are not grid lines of a 6-division:
+        // take 1/6-multiples, 2/6 and 4/6, and the cells are then split at x, y = 1/2).
+        let mut mesh = box_tet10_origin([0.0, 0.0, 0.0], [1.0, 1.0, 0.1], [6, 6, 1]);
+        let face = mesh.node_set("ZMAX").unwrap().to_vec();
+        mesh.node_sets.insert("CONTACT_FACE".into(), face.clone());
+        let at = |x: f64, y: f64| {
+            *face
+                .iter()
+                .find(|&&n| {
+                    let p = mesh.nodes[n as usize];
+                    (p[0] - x).abs() < 1e-12 && (p[1] - y).abs() < 1e-12
+                })
+                .unwrap()
+        };
+        let nodes = [
+            at(2.0 / 6.0, 2.0 / 6.0),
+            at(4.0 / 6.0, 2.0 / 6.0),
+            at(2.0 / 6.0, 4.0 / 6.0),
+            at(4.0 / 6.0, 4.0 / 6.0),
+        ];
+        let cells = tributary_areas(&mesh, "CONTACT_FACE", &nodes).unwrap();
+        // The bisectors x = 1/2 and y = 1/2 are mesh lines, so every quadrature point falls
+        // strictly inside one quadrant: each node gets a quarter of the unit face, exactly
+        // up to the round-off of the straight triangles' areas.
+        for (area, normal) in &cells {
+            assert!((area - 0.25).abs() < 1e-14, "area {area}");
+            // The outward normal of the top face; the midside nodes' z carry round-off.
+            assert!((normal[2] - 1.0).abs() < 1e-15 && normal[0].hypot(normal[1]) < 1e-15);
         }
     }
 

@@ -26,8 +26,11 @@ use std::path::{Path, PathBuf};
 /// Name of the format in the header.
 pub const FORMAT: &str = "squeal-rom";
 /// Version of the format written by this code; readers refuse newer versions.
-/// Version 2 added `has_basis` and `build` to each part (version 1 files still read).
-pub const VERSION: u32 = 2;
+/// Version 2 added `has_basis` and `build` to each part; version 3 each part's `role`, each
+/// point's `normal` and `surface`, node-interface points' tributary `area`, and dofs along a
+/// point's normal (`along`). Files of versions 1 and 2 still read (their parts are a disc and
+/// a pad, by name); a scene reduces them again ([`crate::brake::freshness`]).
+pub const VERSION: u32 = 3;
 
 /// Largest JSON header accepted when reading (the header of the fine brake is about 20 kB).
 const MAX_HEADER_BYTES: u64 = 64 << 20;
@@ -62,6 +65,16 @@ pub enum InterfaceKind {
     Patch,
 }
 
+/// What a part is in the brake.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PartRole {
+    /// The disc: clamped at the hub, its contact points on the faces the pads press on.
+    Disc,
+    /// A pad: contact points on its friction face, loaded on its back (pistons or fingers).
+    Pad,
+}
+
 /// What a retained interface point is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -80,8 +93,18 @@ pub struct InterfacePoint {
     pub patch: Option<usize>,
     /// Coordinates: the node's, or the patch's centroid.
     pub position: [f64; 3],
-    /// Patch area (patch interface).
+    /// Area the point stands for (m²): the patch's (patch interface), the node's tributary
+    /// area on the contact face (node interface, from version 3), a piston footprint's.
     pub area: Option<f64>,
+    /// Unit outward normal of the part's surface at the point (the area-weighted mean over the
+    /// patch, the node's tributary cell or the footprint); for a piston point, the direction
+    /// of its dof. Absent in files before version 3.
+    #[serde(default)]
+    pub normal: Option<[f64; 3]>,
+    /// The contact surface of a disc contact point: the name of the pad it faces (a disc
+    /// braked by two pads has one surface per pad). Absent on pads and in one-pad files.
+    #[serde(default)]
+    pub surface: Option<String>,
 }
 
 /// The meaning of one reduced dof.
@@ -93,6 +116,9 @@ pub enum DofLabel {
     Point { point: usize, direction: u8 },
     /// Amplitude of fixed-interface mode `mode` (0-based, ascending frequency).
     Mode { mode: usize },
+    /// Motion of interface point `point` along the unit vector `direction` (a piston pushing
+    /// along a pad normal that is not a coordinate axis).
+    Along { point: usize, direction: [f64; 3] },
 }
 
 /// The mesh a part was reduced from.
@@ -128,6 +154,10 @@ pub struct RestraintInfo {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PartInfo {
     pub name: String,
+    /// Disc or pad; absent before version 3, where the part named `disc` is the disc and
+    /// every other part a pad ([`PartInfo::role`]).
+    #[serde(default, rename = "role")]
+    pub role_field: Option<PartRole>,
     pub mesh: MeshInfo,
     pub interface: InterfaceKind,
     pub materials: Vec<MaterialInfo>,
@@ -145,6 +175,17 @@ pub struct PartInfo {
     /// given inputs (see [`crate::brake::freshness`]); absent in files made part by part.
     #[serde(default)]
     pub build: Option<BuildRecord>,
+}
+
+impl PartInfo {
+    /// The part's role: as recorded, else by name (`disc` is the disc, anything else a pad).
+    pub fn role(&self) -> PartRole {
+        self.role_field.unwrap_or(if self.name == "disc" {
+            PartRole::Disc
+        } else {
+            PartRole::Pad
+        })
+    }
 }
 
 /// The options a part was reduced with, as given (before reading the mesh).
@@ -502,6 +543,7 @@ mod tests {
         let n = 3;
         let info = PartInfo {
             name: "pad".into(),
+            role_field: Some(PartRole::Pad),
             mesh: MeshInfo {
                 path: "meshes/pad.inp".into(),
                 sha256: "00".into(),
@@ -521,6 +563,8 @@ mod tests {
                 patch: Some(1),
                 position: [0.1, 0.2, 0.3],
                 area: Some(1e-4),
+                normal: Some([0.0, 0.0, -1.0]),
+                surface: None,
             }],
             dofs: vec![
                 DofLabel::Point {

@@ -158,6 +158,7 @@ fn automatic_choice_keeps_exactly_the_modes_below_the_cutoff() {
     let inputs = coarse_inputs(InterfaceKind::Patch);
     let spec = PartSpec {
         name: "pad".into(),
+        role: squeal_reduce::rom::PartRole::Pad,
         mesh: loaded.info.clone(),
         restraints: inputs.pad.restraints.clone(),
         interface: InterfaceKind::Patch,

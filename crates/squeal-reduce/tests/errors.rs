@@ -118,6 +118,7 @@ fn a_clamped_boundary_node_is_refused() {
 fn bar_spec(contact: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec {
     PartSpec {
         name: "bar".into(),
+        role: squeal_reduce::rom::PartRole::Pad,
         mesh: MeshInfo {
             path: "bar".into(),
             sha256: String::new(),

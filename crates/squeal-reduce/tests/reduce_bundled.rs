@@ -28,6 +28,11 @@ fn spec(name: &str, interface: InterfaceKind) -> (squeal_mesh::Mesh, PartSpec) {
     };
     let spec = PartSpec {
         name: name.into(),
+        role: if name == "disc" {
+            squeal_reduce::rom::PartRole::Disc
+        } else {
+            squeal_reduce::rom::PartRole::Pad
+        },
         mesh: info,
         restraints,
         interface,

@@ -142,6 +142,9 @@ pub struct ContactSection {
     /// Scale factor on both stiffnesses (for studies: 0.7, 1, 1.3).
     #[serde(default = "one")]
     pub stiffness_scale: Spanned<f64>,
+    /// Area (m²) a contact point stands for where the reduced model gives none (a node
+    /// interface on parts without a contact face set).
+    pub point_area: Option<Spanned<f64>>,
 }
 
 fn default_normal() -> Spanned<[f64; 3]> {
@@ -356,6 +359,9 @@ impl Scene {
         }
         self.positive("contact.pairing_tolerance", &f.contact.pairing_tolerance)?;
         self.positive("contact.stiffness_scale", &f.contact.stiffness_scale)?;
+        if let Some(a) = &f.contact.point_area {
+            self.positive("contact.point_area", a)?;
+        }
         match (
             &f.contact.compression_curve,
             &f.contact.k_linear_per_area,

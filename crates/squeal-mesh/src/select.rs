@@ -1,0 +1,635 @@
+//! Sets chosen by geometry, for meshes that carry no named sets: the boundary faces of a mesh,
+//! the faces lying on a cylinder or a plane, the nodes in a box, faces by their normal.
+//!
+//! A face is a 6-node triangle of a tet10 ([`crate::tet10::FACES`] order), oriented so that
+//! its corner normal points out of the part. A face lies on a surface when its three corners
+//! do (within a tolerance): corners of a mesh always sit on the geometry, while the midside
+//! nodes of a mesh with straight edges sit inside a curved surface by the edge's sagitta. The
+//! nodes of a face selection are all six nodes of its faces.
+//!
+//! Every description of a selection a user writes (a surface, a box, an angle, a tolerance)
+//! is checked before use; a description that cannot select anything sensible (an axis of
+//! zero length, a negative radius, a box whose minimum exceeds its maximum, a tolerance that
+//! is not a finite non-negative number) is a [`SelectError`], not a silent empty or complete
+//! selection.
+
+use crate::model::Mesh;
+use crate::tet10;
+use std::collections::HashMap;
+
+/// Why a geometric selection cannot be made.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SelectError {
+    /// A point, a direction, a radius or a box bound is not a finite number.
+    #[error("{what} is not a finite number")]
+    NotFinite {
+        /// What it is (e.g. "the cylinder's axis").
+        what: &'static str,
+    },
+    /// A cylinder's axis or a plane's normal has zero length.
+    #[error("{what} has zero length")]
+    ZeroDirection {
+        /// Which direction.
+        what: &'static str,
+    },
+    /// A cylinder's radius is not positive.
+    #[error("the cylinder's radius {0} is not positive")]
+    BadRadius(f64),
+    /// A distance tolerance is negative or not finite.
+    #[error("the tolerance {0} is not a finite non-negative distance")]
+    BadTolerance(f64),
+    /// An angle is outside `0..=180` degrees or not finite.
+    #[error("the angle {0} degrees is not between 0 and 180")]
+    BadAngle(f64),
+    /// A box's minimum exceeds its maximum along an axis.
+    #[error("the box's minimum {min:?} exceeds its maximum {max:?} along axis {axis}")]
+    EmptyBox {
+        /// The lower corner.
+        min: [f64; 3],
+        /// The upper corner.
+        max: [f64; 3],
+        /// The axis (0, 1, 2) along which `min > max`.
+        axis: usize,
+    },
+}
+
+fn finite(v: [f64; 3], what: &'static str) -> Result<(), SelectError> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(SelectError::NotFinite { what })
+    }
+}
+
+fn nonzero(v: [f64; 3], what: &'static str) -> Result<(), SelectError> {
+    finite(v, what)?;
+    if dot(v, v) > 0.0 {
+        Ok(())
+    } else {
+        Err(SelectError::ZeroDirection { what })
+    }
+}
+
+fn check_tolerance(tolerance: f64) -> Result<(), SelectError> {
+    if tolerance.is_finite() && tolerance >= 0.0 {
+        Ok(())
+    } else {
+        Err(SelectError::BadTolerance(tolerance))
+    }
+}
+
+fn check_box(min: [f64; 3], max: [f64; 3]) -> Result<(), SelectError> {
+    finite(min, "the box's minimum")?;
+    finite(max, "the box's maximum")?;
+    match (0..3).find(|&d| min[d] > max[d]) {
+        Some(axis) => Err(SelectError::EmptyBox { min, max, axis }),
+        None => Ok(()),
+    }
+}
+
+/// A 6-node boundary triangle (node indices), outward.
+pub type Face = [u32; 6];
+
+/// A surface faces are picked on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Surface {
+    /// The cylinder of `radius` about the line through `point` along `axis`.
+    Cylinder {
+        /// A point on the cylinder's axis.
+        point: [f64; 3],
+        /// The axis direction (need not be unit).
+        axis: [f64; 3],
+        /// Radius.
+        radius: f64,
+    },
+    /// The plane through `point` normal to `normal`.
+    Plane {
+        /// A point of the plane.
+        point: [f64; 3],
+        /// Its normal (need not be unit).
+        normal: [f64; 3],
+    },
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn unit(a: [f64; 3]) -> [f64; 3] {
+    let n = dot(a, a).sqrt();
+    if n > 0.0 { a.map(|x| x / n) } else { a }
+}
+
+impl Surface {
+    /// Checks that the surface is well defined: finite numbers, an axis or normal of nonzero
+    /// length, a positive radius.
+    pub fn check(&self) -> Result<(), SelectError> {
+        match *self {
+            Surface::Cylinder {
+                point,
+                axis,
+                radius,
+            } => {
+                finite(point, "the cylinder's point")?;
+                nonzero(axis, "the cylinder's axis")?;
+                if radius.is_finite() && radius > 0.0 {
+                    Ok(())
+                } else {
+                    Err(SelectError::BadRadius(radius))
+                }
+            }
+            Surface::Plane { point, normal } => {
+                finite(point, "the plane's point")?;
+                nonzero(normal, "the plane's normal")
+            }
+        }
+    }
+
+    /// Distance of `p` from the surface (of a surface that passes [`Surface::check`]).
+    pub fn distance(&self, p: [f64; 3]) -> f64 {
+        match *self {
+            Surface::Cylinder {
+                point,
+                axis,
+                radius,
+            } => {
+                let a = unit(axis);
+                let d = sub(p, point);
+                let along = dot(d, a);
+                let r = (dot(d, d) - along * along).max(0.0).sqrt();
+                (r - radius).abs()
+            }
+            Surface::Plane { point, normal } => dot(sub(p, point), unit(normal)).abs(),
+        }
+    }
+}
+
+/// All boundary faces of a mesh (element faces that belong to one element only), outward,
+/// in a fixed order (by their sorted corner indices).
+pub fn boundary_faces(mesh: &Mesh) -> Vec<Face> {
+    let mut seen: HashMap<[u32; 3], (usize, Face)> = HashMap::new();
+    for el in &mesh.elements {
+        for f in tet10::FACES {
+            let tri: Face = f.map(|i| el[i]);
+            let mut key = [tri[0], tri[1], tri[2]];
+            key.sort_unstable();
+            seen.entry(key).and_modify(|e| e.0 += 1).or_insert((1, tri));
+        }
+    }
+    let mut out: Vec<([u32; 3], Face)> = seen
+        .into_iter()
+        .filter(|(_, (count, _))| *count == 1)
+        .map(|(k, (_, t))| (k, t))
+        .collect();
+    out.sort_unstable_by_key(|(k, _)| *k);
+    out.into_iter().map(|(_, t)| t).collect()
+}
+
+/// The centroid of a face's corners.
+pub fn corner_centroid(mesh: &Mesh, face: &Face) -> [f64; 3] {
+    let x = |i: usize| mesh.nodes[face[i] as usize];
+    std::array::from_fn(|d| (x(0)[d] + x(1)[d] + x(2)[d]) / 3.0)
+}
+
+/// The unit outward normal of a face's corner triangle.
+pub fn corner_normal(mesh: &Mesh, face: &Face) -> [f64; 3] {
+    let x = |i: usize| mesh.nodes[face[i] as usize];
+    unit(cross(sub(x(1), x(0)), sub(x(2), x(0))))
+}
+
+/// The faces among `faces` whose three corners lie within `tolerance` of `surface`.
+pub fn faces_on(
+    mesh: &Mesh,
+    faces: &[Face],
+    surface: &Surface,
+    tolerance: f64,
+) -> Result<Vec<Face>, SelectError> {
+    surface.check()?;
+    check_tolerance(tolerance)?;
+    Ok(faces
+        .iter()
+        .filter(|f| {
+            f[..3]
+                .iter()
+                .all(|&n| surface.distance(mesh.nodes[n as usize]) <= tolerance)
+        })
+        .copied()
+        .collect())
+}
+
+/// The nodes of the boundary faces of `mesh` that lie on `surface` (within `tolerance`, by
+/// their corners): e.g. the clamp as the nodes on the bore of a disc. Sorted and unique.
+pub fn nodes_on(mesh: &Mesh, surface: &Surface, tolerance: f64) -> Result<Vec<u32>, SelectError> {
+    let faces = faces_on(mesh, &boundary_faces(mesh), surface, tolerance)?;
+    Ok(face_nodes(&faces))
+}
+
+/// The faces among `faces` whose outward corner normal makes an angle of at most
+/// `angle_deg` with `direction(centroid)` (a direction that may vary over the part, e.g. the
+/// tangent of a rotation). A face where `direction` is zero or not finite is not selected.
+pub fn faces_facing(
+    mesh: &Mesh,
+    faces: &[Face],
+    direction: impl Fn([f64; 3]) -> [f64; 3],
+    angle_deg: f64,
+) -> Result<Vec<Face>, SelectError> {
+    if !(0.0..=180.0).contains(&angle_deg) {
+        return Err(SelectError::BadAngle(angle_deg));
+    }
+    let cos = angle_deg.to_radians().cos();
+    Ok(faces
+        .iter()
+        .filter(|f| {
+            let d = direction(corner_centroid(mesh, f));
+            if !d.iter().all(|x| x.is_finite()) || dot(d, d) == 0.0 {
+                return false;
+            }
+            dot(corner_normal(mesh, f), unit(d)) >= cos
+        })
+        .copied()
+        .collect())
+}
+
+/// The sorted, unique nodes of faces.
+pub fn face_nodes(faces: &[Face]) -> Vec<u32> {
+    let mut v: Vec<u32> = faces.iter().flatten().copied().collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// The nodes used by an element that lie in the box `[min, max]` (inclusive).
+pub fn nodes_in_box(mesh: &Mesh, min: [f64; 3], max: [f64; 3]) -> Result<Vec<u32>, SelectError> {
+    check_box(min, max)?;
+    let used = mesh.used_nodes();
+    Ok((0..mesh.num_nodes() as u32)
+        .filter(|&n| {
+            let p = mesh.nodes[n as usize];
+            used[n as usize] && (0..3).all(|d| p[d] >= min[d] && p[d] <= max[d])
+        })
+        .collect())
+}
+
+/// The faces whose six nodes all lie in the box `[min, max]` (inclusive).
+pub fn faces_in_box(
+    mesh: &Mesh,
+    faces: &[Face],
+    min: [f64; 3],
+    max: [f64; 3],
+) -> Result<Vec<Face>, SelectError> {
+    check_box(min, max)?;
+    Ok(faces
+        .iter()
+        .filter(|f| {
+            f.iter().all(|&n| {
+                let p = mesh.nodes[n as usize];
+                (0..3).all(|d| p[d] >= min[d] && p[d] <= max[d])
+            })
+        })
+        .copied()
+        .collect())
+}
+
+/// The faces whose six nodes are all in the node set `nodes` (sorted), as boundary faces.
+pub fn faces_of_set(mesh: &Mesh, faces: &[Face], nodes: &[u32]) -> Vec<Face> {
+    let mut member = vec![false; mesh.num_nodes()];
+    for &n in nodes {
+        if let Some(m) = member.get_mut(n as usize) {
+            *m = true;
+        }
+    }
+    faces
+        .iter()
+        .filter(|f| f.iter().all(|&n| member[n as usize]))
+        .copied()
+        .collect()
+}
+
+/// Six-point degree-4 rule on the reference triangle (Dunavant): area coordinates
+/// `(L1, L2, L3)` and weights summing to 1.
+const TRI6: [([f64; 3], f64); 6] = {
+    const A: f64 = 0.445_948_490_915_965;
+    const WA: f64 = 0.223_381_589_678_011;
+    const B: f64 = 0.091_576_213_509_771;
+    const WB: f64 = 0.109_951_743_655_322;
+    [
+        ([1.0 - 2.0 * A, A, A], WA),
+        ([A, 1.0 - 2.0 * A, A], WA),
+        ([A, A, 1.0 - 2.0 * A], WA),
+        ([1.0 - 2.0 * B, B, B], WB),
+        ([B, 1.0 - 2.0 * B, B], WB),
+        ([B, B, 1.0 - 2.0 * B], WB),
+    ]
+};
+
+/// Position and area element `|dx/dxi x dx/deta|` of a 6-node face at area coordinates `l`
+/// (corners `a, b, c` at `L1, L2, L3 = 1`; midsides `ab, bc, ca`).
+fn face_point(mesh: &Mesh, face: &Face, l: [f64; 3]) -> ([f64; 3], f64) {
+    let [l1, l2, l3] = l;
+    let n = [
+        l1 * (2.0 * l1 - 1.0),
+        l2 * (2.0 * l2 - 1.0),
+        l3 * (2.0 * l3 - 1.0),
+        4.0 * l1 * l2,
+        4.0 * l2 * l3,
+        4.0 * l3 * l1,
+    ];
+    // xi = L2, eta = L3, L1 = 1 - xi - eta.
+    let dxi = [
+        -(4.0 * l1 - 1.0),
+        4.0 * l2 - 1.0,
+        0.0,
+        4.0 * (l1 - l2),
+        4.0 * l3,
+        -4.0 * l3,
+    ];
+    let deta = [
+        -(4.0 * l1 - 1.0),
+        0.0,
+        4.0 * l3 - 1.0,
+        -4.0 * l2,
+        4.0 * l2,
+        4.0 * (l1 - l3),
+    ];
+    let (mut x, mut a, mut b) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+    for (k, &node) in face.iter().enumerate() {
+        let p = mesh.nodes[node as usize];
+        for d in 0..3 {
+            x[d] += n[k] * p[d];
+            a[d] += dxi[k] * p[d];
+            b[d] += deta[k] * p[d];
+        }
+    }
+    let c = cross(a, b);
+    (x, dot(c, c).sqrt())
+}
+
+/// What a face selection covers: how many faces and nodes, the area, and the area centroid
+/// (of the quadratic faces, by a degree-4 rule: exact for flat straight-sided faces).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FaceSummary {
+    /// Number of faces.
+    pub faces: usize,
+    /// Number of distinct nodes of the faces.
+    pub nodes: usize,
+    /// Total area (mesh units squared).
+    pub area: f64,
+    /// Area centroid (`[NaN; 3]` for an empty selection).
+    pub centroid: [f64; 3],
+}
+
+/// The area of a 6-node face (quadratic geometry, degree-4 rule).
+pub fn face_area(mesh: &Mesh, face: &Face) -> f64 {
+    TRI6.iter()
+        .map(|&(l, w)| 0.5 * w * face_point(mesh, face, l).1)
+        .sum()
+}
+
+/// Counts, area and centroid of a face selection, for reports such as a listing of what a
+/// scene selects.
+pub fn summarize(mesh: &Mesh, faces: &[Face]) -> FaceSummary {
+    let (mut area, mut moment) = (0.0, [0.0; 3]);
+    for f in faces {
+        for &(l, w) in &TRI6 {
+            let (x, da) = face_point(mesh, f, l);
+            let wa = 0.5 * w * da;
+            area += wa;
+            for d in 0..3 {
+                moment[d] += wa * x[d];
+            }
+        }
+    }
+    FaceSummary {
+        faces: faces.len(),
+        nodes: face_nodes(faces).len(),
+        area,
+        centroid: if faces.is_empty() {
+            [f64::NAN; 3]
+        } else {
+            moment.map(|m| m / area)
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{box_tet10, box_tet10_origin};
+    use std::f64::consts::PI;
+
+    #[test]
+    fn the_faces_of_a_box_are_found_by_plane_normal_and_box() {
+        let mesh = box_tet10([1.0, 2.0, 3.0], [2, 3, 2]);
+        let faces = boundary_faces(&mesh);
+        // 2 triangles per cell face: 2 (2*3 + 2*2 + 3*2) cells = 32 faces.
+        assert_eq!(faces.len(), 2 * 2 * (2 * 3 + 2 * 2 + 3 * 2));
+        let top_plane = Surface::Plane {
+            point: [0.0, 0.0, 3.0],
+            normal: [0.0, 0.0, 1.0],
+        };
+        let top = faces_on(&mesh, &faces, &top_plane, 1e-12).unwrap();
+        assert_eq!(face_nodes(&top), mesh.node_set("ZMAX").unwrap());
+        assert_eq!(
+            nodes_on(&mesh, &top_plane, 1e-12).unwrap(),
+            mesh.node_set("ZMAX").unwrap()
+        );
+        let facing_up = faces_facing(&mesh, &faces, |_| [0.0, 0.0, 1.0], 1.0).unwrap();
+        assert_eq!(facing_up, top);
+        // A direction that vanishes selects nothing.
+        assert!(
+            faces_facing(&mesh, &faces, |_| [0.0; 3], 180.0)
+                .unwrap()
+                .is_empty()
+        );
+        let xmin = faces_in_box(&mesh, &faces, [-1.0; 3], [0.0, 9.0, 9.0]).unwrap();
+        assert_eq!(face_nodes(&xmin), mesh.node_set("XMIN").unwrap());
+        assert_eq!(
+            nodes_in_box(&mesh, [-1.0; 3], [0.0, 9.0, 9.0]).unwrap(),
+            mesh.node_set("XMIN").unwrap()
+        );
+        assert_eq!(
+            faces_of_set(&mesh, &faces, mesh.node_set("XMIN").unwrap()),
+            xmin
+        );
+        // Flat straight-sided faces: the degree-4 rule is exact, so area and centroid are
+        // exact up to round-off (a few ulps of the sums of 12 faces).
+        let s = summarize(&mesh, &top);
+        assert_eq!((s.faces, s.nodes), (12, 5 * 7));
+        assert!((s.area - 2.0).abs() < 1e-14, "{}", s.area);
+        for (c, e) in s.centroid.iter().zip([0.5, 1.0, 3.0]) {
+            assert!((c - e).abs() < 1e-14, "{:?}", s.centroid);
+        }
+        let all = summarize(&mesh, &faces);
+        assert!((all.area - 2.0 * (2.0 + 3.0 + 6.0)).abs() < 1e-13);
+    }
+
+    /// A general rotation (unit quaternion along (1, 2, 3, 4)).
+    fn rotation() -> [[f64; 3]; 3] {
+        let n = 30f64.sqrt();
+        let (w, x, y, z) = (1.0 / n, 2.0 / n, 3.0 / n, 4.0 / n);
+        [
+            [
+                1.0 - 2.0 * (y * y + z * z),
+                2.0 * (x * y - w * z),
+                2.0 * (x * z + w * y),
+            ],
+            [
+                2.0 * (x * y + w * z),
+                1.0 - 2.0 * (x * x + z * z),
+                2.0 * (y * z - w * x),
+            ],
+            [
+                2.0 * (x * z - w * y),
+                2.0 * (y * z + w * x),
+                1.0 - 2.0 * (x * x + y * y),
+            ],
+        ]
+    }
+
+    fn apply(r: &[[f64; 3]; 3], p: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|i| (0..3).map(|j| r[i][j] * p[j]).sum())
+    }
+
+    #[test]
+    fn the_bore_of_a_turned_and_shifted_sector_is_the_cylinder_of_its_inner_radius() {
+        // An annular sector r in [0.05, 0.15] m, theta in [0, 60 deg], z in [0, 0.02] m from a
+        // box in (r, theta, z) with every node (midside nodes too) mapped onto the curved
+        // geometry, then turned by a general rotation and shifted: its axis is the line
+        // through `c` along `r e_z`.
+        let (r_in, r_out, span, h) = (0.05, 0.15, PI / 3.0, 0.02);
+        let mut mesh = box_tet10_origin([r_in, 0.0, 0.0], [r_out - r_in, span, h], [3, 6, 2]);
+        let rot = rotation();
+        let c = [0.3, -1.2, 0.7];
+        for p in &mut mesh.nodes {
+            let [r, t, z] = *p;
+            let q = apply(&rot, [r * t.cos(), r * t.sin(), z]);
+            *p = [q[0] + c[0], q[1] + c[1], q[2] + c[2]];
+        }
+        let axis = apply(&rot, [0.0, 0.0, 3.0]);
+        // Any point of the axis will do.
+        let on_axis = [
+            c[0] - 2.0 * axis[0],
+            c[1] - 2.0 * axis[1],
+            c[2] - 2.0 * axis[2],
+        ];
+        let faces = boundary_faces(&mesh);
+        let cylinder = |radius| Surface::Cylinder {
+            point: on_axis,
+            axis,
+            radius,
+        };
+        // Corners on the bore are at r_in to round-off of coordinates ~1 (~1e-16); the next
+        // ring of nodes is 0.1/6 m away, so 1e-12 separates them with room to spare.
+        let bore = faces_on(&mesh, &faces, &cylinder(r_in), 1e-12).unwrap();
+        assert_eq!(bore.len(), 2 * 6 * 2);
+        assert_eq!(face_nodes(&bore), mesh.node_set("XMIN").unwrap());
+        assert_eq!(
+            nodes_on(&mesh, &cylinder(r_in), 1e-12).unwrap(),
+            mesh.node_set("XMIN").unwrap()
+        );
+        let rim = faces_on(&mesh, &faces, &cylinder(r_out), 1e-12).unwrap();
+        assert_eq!(face_nodes(&rim), mesh.node_set("XMAX").unwrap());
+        // The bore's faces are quadratic interpolants of the arc (10 degrees a face): the
+        // area is r_in span h to the interpolation error, which is of order dtheta^4 (measured
+        // -9.6e-7 relative, asserted 1e-5); its centroid is on the bisector at
+        // r_in sin(span/2)/(span/2) from the axis, at mid-height (measured 7.0e-7 r_in off,
+        // asserted 1e-5 r_in).
+        let s = summarize(&mesh, &bore);
+        let exact = r_in * span * h;
+        assert!((s.area / exact - 1.0).abs() < 1e-5, "{} vs {exact}", s.area);
+        let rc = r_in * (span / 2.0).sin() / (span / 2.0);
+        let local = [rc * (span / 2.0).cos(), rc * (span / 2.0).sin(), h / 2.0];
+        let q = apply(&rot, local);
+        for d in 0..3 {
+            assert!(
+                (s.centroid[d] - (q[d] + c[d])).abs() < 1e-5 * r_in,
+                "{:?}",
+                s.centroid
+            );
+        }
+        // The end plane theta = 0 by its normal and by a plane through the axis; the bore
+        // by its outward normal, which points at the axis.
+        let end_normal = apply(&rot, [0.0, -1.0, 0.0]);
+        let end = faces_on(
+            &mesh,
+            &faces,
+            &Surface::Plane {
+                point: on_axis,
+                normal: end_normal,
+            },
+            1e-12,
+        )
+        .unwrap();
+        assert_eq!(face_nodes(&end), mesh.node_set("YMIN").unwrap());
+        assert_eq!(
+            faces_facing(&mesh, &faces, |_| end_normal, 1.0).unwrap(),
+            end
+        );
+        let towards_axis = |p: [f64; 3]| {
+            let d = [on_axis[0] - p[0], on_axis[1] - p[1], on_axis[2] - p[2]];
+            let a = unit(axis);
+            let along = dot(d, a);
+            [
+                d[0] - along * a[0],
+                d[1] - along * a[1],
+                d[2] - along * a[2],
+            ]
+        };
+        // A face normal on the bore is within half a face's angle (5 deg) of the direction
+        // to the axis at its centroid; 6 deg takes them all and nothing else.
+        let inward = faces_facing(&mesh, &faces, towards_axis, 6.0).unwrap();
+        assert_eq!(inward, bore);
+    }
+
+    #[test]
+    fn selections_that_cannot_mean_anything_are_errors() {
+        let mesh = box_tet10([1.0; 3], [1, 1, 1]);
+        let faces = boundary_faces(&mesh);
+        let cyl = |axis, radius| Surface::Cylinder {
+            point: [0.0; 3],
+            axis,
+            radius,
+        };
+        assert_eq!(
+            faces_on(&mesh, &faces, &cyl([0.0; 3], 1.0), 0.0),
+            Err(SelectError::ZeroDirection {
+                what: "the cylinder's axis"
+            })
+        );
+        assert_eq!(
+            nodes_on(&mesh, &cyl([0.0, 0.0, 1.0], -1.0), 0.0),
+            Err(SelectError::BadRadius(-1.0))
+        );
+        assert!(matches!(
+            faces_on(&mesh, &faces, &cyl([0.0, 0.0, 1.0], 1.0), f64::NAN),
+            Err(SelectError::BadTolerance(_))
+        ));
+        let plane = Surface::Plane {
+            point: [0.0; 3],
+            normal: [f64::NAN, 0.0, 1.0],
+        };
+        assert_eq!(
+            plane.check(),
+            Err(SelectError::NotFinite {
+                what: "the plane's normal"
+            })
+        );
+        assert!(matches!(
+            nodes_in_box(&mesh, [0.0, 1.0, 0.0], [1.0, 0.5, 1.0]),
+            Err(SelectError::EmptyBox { axis: 1, .. })
+        ));
+        assert_eq!(
+            faces_facing(&mesh, &faces, |_| [1.0, 0.0, 0.0], 200.0),
+            Err(SelectError::BadAngle(200.0))
+        );
+    }
+}
