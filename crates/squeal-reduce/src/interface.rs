@@ -402,28 +402,8 @@ fn triangle_centroid(x: &[[f64; 3]; 6]) -> [f64; 3] {
 /// Element faces (6-node triangles, tet10::FACES order) whose six nodes are all in `set` and
 /// that belong to a single element (boundary faces).
 fn boundary_triangles(mesh: &Mesh, set: &[u32]) -> Vec<[u32; 6]> {
-    let mut member = vec![false; mesh.num_nodes()];
-    for &n in set {
-        member[n as usize] = true;
-    }
-    let mut seen: HashMap<[u32; 3], (usize, [u32; 6])> = HashMap::new();
-    for el in &mesh.elements {
-        for f in tet10::FACES {
-            let tri: [u32; 6] = f.map(|i| el[i]);
-            if tri.iter().all(|&n| member[n as usize]) {
-                let mut key = [tri[0], tri[1], tri[2]];
-                key.sort_unstable();
-                seen.entry(key).and_modify(|e| e.0 += 1).or_insert((1, tri));
-            }
-        }
-    }
-    let mut out: Vec<([u32; 3], [u32; 6])> = seen
-        .into_iter()
-        .filter(|(_, (count, _))| *count == 1)
-        .map(|(k, (_, t))| (k, t))
-        .collect();
-    out.sort_unstable_by_key(|(k, _)| *k);
-    out.into_iter().map(|(_, t)| t).collect()
+    use squeal_mesh::select::{boundary_faces, faces_of_set};
+    faces_of_set(mesh, &boundary_faces(mesh), set)
 }
 
 fn mean_point(points: impl Iterator<Item = [f64; 3]>) -> [f64; 3] {
