@@ -12,7 +12,7 @@
 //! Patches are numbered radius-major from the inner radius and the smallest angle (angles
 //! counter-clockwise about the axis), the numbering of the bundled meshes' `CONTACT_PATCH_k`.
 
-use squeal_mesh::{Mesh, tet10};
+use squeal_mesh::Mesh;
 use std::collections::HashMap;
 
 /// Errors of the interface models.
