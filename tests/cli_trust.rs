@@ -107,9 +107,10 @@ fn bad_arguments_fail_before_any_work() {
     let unwritable = blocked.join("out");
     for (args, says) in [
         (
-            vec!["chbm", s, "--mu-ratio", "0.9", "-o", o_s],
+            vec!["chbm", s, "--mu-ratio", "0.9", "--guessed-start", "-o", o_s],
             "--mu-ratio 0.9",
         ),
+        (vec!["chbm", s, "--mu-ratio=0", "-o", o_s], "--mu-ratio 0"),
         (vec!["chbm", s, "--mu", "nan", "-o", o_s], "--mu NaN"),
         (
             vec!["stability", s, "--mu", "1..0/201", "-o", o_s],

@@ -109,6 +109,11 @@ fn coarse_brake_headline_numbers_are_unchanged() {
         "second crossing f = {f1}, pinned {MU1_HZ}"
     );
 
+    // The pins are CHBM from the guessed start (eq 48), as when they were taken. From the
+    // branch (the default since issue 10) 10 harmonics give the same cycle (2e-11, the branch
+    // test below); 3 harmonics on 32 AFT samples land on another root of the same sampled
+    // equations, 4006.8500 Hz (1.8e-5 away: the open part of the cycle covers 3 samples at one
+    // root and a little more at the other).
     for (h, f_pin, a_pin) in CHBM {
         let out_h = dir.join(format!("out_h{h}"));
         std::fs::create_dir_all(&out_h).unwrap();
@@ -120,6 +125,7 @@ fn coarse_brake_headline_numbers_are_unchanged() {
             "1.01",
             "--harmonics",
             &h.to_string(),
+            "--guessed-start",
             "--out",
             out_h.to_str().unwrap(),
             "--no-vtu",
@@ -218,5 +224,37 @@ fn coarse_brake_branch_folds_below_mu0_and_meets_chbm_at_1_01_mu0() {
     for name in ["branch.csv", "branch.svg", "branch.png"] {
         assert!(out.join("branch").join(name).is_file(), "{name} missing");
     }
+    // `squeal chbm` along the branch: below mu0, between the fold and mu0, it returns the
+    // stable cycle of the two (4035.05 Hz, pair 7 23.0 um); below the fold there is none and
+    // it says so with exit code 3 (no limit cycle).
+    let text = run_ok(&[
+        "chbm",
+        scene_s,
+        "--out",
+        out_s,
+        "--mu-ratio",
+        "0.998",
+        "--harmonics",
+        "10",
+        "--no-vtu",
+    ]);
+    assert!(text.contains("crosses mu = 0.460899 2 time(s)"), "{text}");
+    assert!(text.contains("CHBM starts from cycle 2 (stable)"), "{text}");
+    let c = json(&out.join("chbm/chbm.json"));
+    let f = number(&c, "frequency_hz");
+    assert!((f - 4035.0524).abs() < 1e-3, "{f}");
+    let below = squeal(&[
+        "chbm",
+        scene_s,
+        "--out",
+        out_s,
+        "--mu-ratio",
+        "0.997",
+        "--harmonics",
+        "10",
+        "--no-vtu",
+    ]);
+    assert_eq!(below.status.code(), Some(3));
+    assert!(String::from_utf8_lossy(&below.stdout).contains("does not reach"));
     std::fs::remove_dir_all(&dir).ok();
 }

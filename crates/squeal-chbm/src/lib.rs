@@ -33,6 +33,6 @@ pub mod start;
 pub mod timeint;
 
 pub use solve::{
-    ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Outcome, RESTART_AMPLITUDES, check_jacobian,
-    solve, solve_with_restarts,
+    ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Guess, Outcome, RESTART_AMPLITUDES,
+    check_jacobian, solve, solve_from_guess, solve_with_restarts,
 };

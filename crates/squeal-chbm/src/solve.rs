@@ -321,11 +321,25 @@ struct Setup {
     omega0: f64,
 }
 
+/// A cycle CHBM starts from instead of eq (48): the nonlinear dofs' Fourier coefficients (any
+/// number of harmonics: padded with zeros or truncated to the solve's), the frequency, and the
+/// eigenvalue the constraint follows.
+#[derive(Clone, Copy, Debug)]
+pub struct Guess<'a> {
+    /// Coefficients of the nonlinear dofs (eq 25).
+    pub nl_coeffs: &'a [f64],
+    /// ω (rad/s).
+    pub omega: f64,
+    /// The eigenvalue of the equivalent linearization to follow (`i ω` on a cycle).
+    pub lambda: c64,
+}
+
 fn setup(
     mb: &ModalBrake,
     start: &ChbmStart,
     opts: &ChbmOptions,
-    previous: Option<&ChbmSolution>,
+    previous: Option<Guess<'_>>,
+    align: bool,
 ) -> Result<Setup, ChbmError> {
     let nn = mb.nl();
     if opts.harmonics == 0 {
@@ -354,6 +368,12 @@ fn setup(
             let mut u = vec![0.0; layout.len()];
             let m = p.nl_coeffs.len().min(u.len());
             u[..m].copy_from_slice(&p.nl_coeffs[..m]);
+            if align {
+                // A cycle from elsewhere (a branch) has its own phase: shift it onto this
+                // solve's phase condition so that a root of the same equations stays put.
+                let d = phase_dof(mb, &u, &layout);
+                layout.align_phase(&mut u, d)?;
+            }
             (u, p.omega)
         }
     };
@@ -388,6 +408,32 @@ pub fn solve_from(
     opts: &ChbmOptions,
     previous: Option<&ChbmSolution>,
 ) -> Result<ChbmSolution, ChbmError> {
+    let guess = previous.map(|p| Guess {
+        nl_coeffs: &p.nl_coeffs,
+        omega: p.omega,
+        lambda: p.lambda,
+    });
+    solve_guessed(mb, start, opts, guess, false)
+}
+
+/// One CHBM solve with `opts.harmonics` harmonics (no ladder) from `guess` (e.g. a cycle of the
+/// branch of limit cycles at this μ), or from eq (48) when there is none.
+pub fn solve_from_guess(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &ChbmOptions,
+    guess: Option<Guess<'_>>,
+) -> Result<ChbmSolution, ChbmError> {
+    solve_guessed(mb, start, opts, guess, true)
+}
+
+fn solve_guessed(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &ChbmOptions,
+    previous: Option<Guess<'_>>,
+    align: bool,
+) -> Result<ChbmSolution, ChbmError> {
     let t0 = Instant::now();
     let Setup {
         mut hb,
@@ -396,7 +442,7 @@ pub fn solve_from(
         scales,
         z0,
         omega0,
-    } = setup(mb, start, opts, previous)?;
+    } = setup(mb, start, opts, previous, align)?;
     let samples = hb.aft().n_samples();
     let (k0, c0) = static_reference(mb, start, hb.force());
     let lambda = previous.map_or(start.lambda, |p| p.lambda);
@@ -622,7 +668,7 @@ pub fn check_jacobian(
         scales,
         z0,
         omega0,
-    } = setup(mb, start, opts, None)?;
+    } = setup(mb, start, opts, None, false)?;
     let (k0, c0) = static_reference(mb, start, hb.force());
     let constraint = ReLambda::new(BrakeEigen::new(mb, None), k0, c0, start.lambda, 1.0, omega0)?;
     let mut problem = AutonomousProblem::constrained(&mut hb, phase, constraint, scales)?;

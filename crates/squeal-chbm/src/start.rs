@@ -43,3 +43,31 @@ pub fn start_at(
         equilibrium: eq.x,
     })
 }
+
+/// Equilibrium at `mu` and the in-band mode whose frequency is nearest `omega` (rad/s), stable
+/// or not: the start of a CHBM solve from a known cycle of frequency `omega` (a branch cycle,
+/// below μ0 too, where no mode is unstable).
+pub fn start_near(
+    brake: &Brake,
+    reference: &Reference,
+    mu: f64,
+    band: &Band,
+    newton: &NewtonOptions,
+    omega: f64,
+) -> Result<ChbmStart, StartError> {
+    let eq = static_equilibrium(brake, mu, None, newton)?;
+    let sp = spectrum(brake, reference, &eq)?;
+    let j = (0..sp.values.len())
+        .filter(|&j| band.contains(sp.frequency_hz(j)) && sp.values[j].im > 0.0)
+        .min_by(|&a, &b| {
+            (sp.values[a].im - omega)
+                .abs()
+                .total_cmp(&(sp.values[b].im - omega).abs())
+        })
+        .ok_or(StartError::Stable { mu })?;
+    Ok(ChbmStart {
+        lambda: sp.values[j],
+        mode: sp.shape(&reference.basis, j),
+        equilibrium: eq.x,
+    })
+}

@@ -57,6 +57,103 @@ pub fn solve_with_restarts(
     last.ok_or_else(|| PipelineError::input("initial amplitudes", "none given"))
 }
 
+/// A cycle of the branch at the friction asked for.
+pub struct BranchCycle {
+    /// Index of the branch point before it.
+    pub after_point: usize,
+    /// The cycle (nonlinear dofs).
+    pub cycle: squeal_chbm::branch::BranchPoint,
+    /// Its stability by Hill's method (`None`: not computed, with the reason logged).
+    pub stability: Option<squeal_chbm::floquet::Stability>,
+    /// Its largest Floquet multiplier modulus.
+    pub largest_multiplier: Option<f64>,
+}
+
+/// What [`solve_along_branch`] found: every crossing of μ, and CHBM from the chosen one with
+/// its start (the equilibrium at μ and the in-band mode nearest the cycle's frequency).
+pub type AlongBranch = (Vec<BranchCycle>, Option<(usize, ChbmStart, ChbmSolution)>);
+
+/// CHBM at `mu` reached along the branch of limit cycles from the Hopf point (issue 10,
+/// item 5): the branch is followed with CHBM's harmonics up to `mu`, every crossing of `mu` is
+/// corrected and its stability computed, and CHBM starts from the chosen one — the first
+/// stable crossing, else the first — below μ0 as well as above. The chosen index is `None`
+/// when the branch does not reach `mu`: no limit cycle of the branch there.
+pub fn solve_along_branch(
+    m: &Model,
+    st: &Stability,
+    mu: f64,
+    opts: &ChbmOptions,
+    log: Log,
+) -> Result<AlongBranch> {
+    use squeal_chbm::bifurcation::cycle_of;
+    use squeal_chbm::branch::{BranchOptions, Harmonics, cycles_at, follow_from_hopf};
+    use squeal_chbm::floquet::{HillOptions, Stability as Verdict, hill};
+    let Some(nf) = crate::stability::normal_form(m, st)? else {
+        let sw = &st.sweep.points;
+        return Err(PipelineError::NoHopfPoint {
+            from: sw.first().map_or(f64::NAN, |p| p.equilibrium.mu),
+            to: sw.last().map_or(f64::NAN, |p| p.equilibrium.mu),
+            what: "a limit cycle along the branch",
+        });
+    };
+    let mb = &ModalBrake::new(&m.brake, &st.reference, mu);
+    let ratio = mu / nf.mu0;
+    let bopts = BranchOptions {
+        harmonics: Harmonics::Fixed(opts.harmonics),
+        samples: opts.samples,
+        range: (ratio.min(0.5) * 0.99, ratio.max(1.3) * 1.01),
+        ..BranchOptions::default()
+    };
+    let mb0 = ModalBrake::new(&m.brake, &st.reference, nf.mu0);
+    let branch = follow_from_hopf(&mb0, &nf, &bopts)?;
+    log(&format!(
+        "branch with {} harmonics: {} cycles in {:.2} s ({})",
+        opts.harmonics,
+        branch.points.len(),
+        branch.time.as_secs_f64(),
+        branch.stop
+    ));
+    let mut crossings = Vec::new();
+    for (after_point, cycle) in cycles_at(&mb0, &branch, mu, &bopts)? {
+        let f = cycle_of(&mb0, &cycle, opts.samples)
+            .and_then(|c| hill(mb, &c, &HillOptions::default()));
+        if let Err(e) = &f {
+            log(&format!(
+                "stability of the branch cycle after point {after_point} not computed: {e}"
+            ));
+        }
+        crossings.push(BranchCycle {
+            after_point,
+            stability: f.as_ref().ok().map(|f| f.stability()),
+            largest_multiplier: f.as_ref().ok().map(|f| f.largest_multiplier()),
+            cycle,
+        });
+    }
+    let chosen = crossings
+        .iter()
+        .position(|c| c.stability == Some(Verdict::Stable))
+        .or(if crossings.is_empty() { None } else { Some(0) });
+    let Some(i) = chosen else {
+        return Ok((crossings, None));
+    };
+    let c = &crossings[i].cycle;
+    let guess = squeal_chbm::Guess {
+        nl_coeffs: &c.nl_coeffs,
+        omega: c.omega,
+        lambda: faer::c64::new(0.0, c.omega),
+    };
+    let start = squeal_chbm::start::start_near(
+        &m.brake,
+        &st.reference,
+        mu,
+        &m.sweep.band,
+        &m.sweep.newton,
+        c.omega,
+    )?;
+    let sol = squeal_chbm::solve_from_guess(mb, &start, opts, Some(guess))?;
+    Ok((crossings, Some((i, start, sol))))
+}
+
 /// Physical dof of a point's direction in the brake (disc or pad).
 pub fn point_dof(m: &Model, part: &str, role_contact_index: usize, direction: u8) -> Option<usize> {
     let rp = m.rom.part(part)?;
@@ -92,7 +189,7 @@ pub fn solution_text(m: &Model, start: &ChbmStart, s: &ChbmSolution) -> String {
     );
     let _ = writeln!(
         out,
-        "  frequency {:.4} Hz ({:+.4} Hz from the unstable mode's {:.4} Hz)",
+        "  frequency {:.4} Hz ({:+.4} Hz from the linear mode it started from, {:.4} Hz)",
         f,
         f - start.lambda.im / (2.0 * std::f64::consts::PI),
         start.lambda.im / (2.0 * std::f64::consts::PI)
