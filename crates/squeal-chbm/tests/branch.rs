@@ -79,7 +79,7 @@ fn cycle_state(mb: &ModalBrake, p: &BranchPoint) -> Vec<f64> {
     let (mut x, mut v) = (vec![0.0; 2], vec![0.0; 2]);
     layout.displacement_at(&p.nl_coeffs, 0.0, &mut x).unwrap();
     layout
-        .velocity_at(&p.nl_coeffs, 0.0, p.omega, &mut v)
+        .velocity_at(&p.nl_coeffs, p.omega, 0.0, &mut v)
         .unwrap();
     let (mut xp, mut vp) = (vec![0.0; 2], vec![0.0; 2]);
     for (k, &d) in mb.nl_dofs.iter().enumerate() {
