@@ -54,7 +54,12 @@ pub enum ModeChoice {
     /// The `n` lowest (the paper: 50).
     Fixed(usize),
     /// All modes below `factor × fmax_hz`: the fewest a study up to `fmax_hz` needs.
-    Auto { fmax_hz: f64, factor: f64 },
+    Auto {
+        /// Highest frequency of the study (Hz).
+        fmax_hz: f64,
+        /// Multiple of `fmax_hz` up to which modes are kept ([`DEFAULT_AUTO_FACTOR`]).
+        factor: f64,
+    },
 }
 
 impl ModeChoice {
@@ -74,6 +79,7 @@ pub struct PartInput {
     pub mesh: PathBuf,
     /// Materials by element set, applied after the mesh's own sections (a `.msh` has none).
     pub material_overrides: Vec<(String, ElasticMaterial)>,
+    /// How the part is held: node sets and their clamped directions.
     pub restraints: Vec<Restraint>,
     /// Node set of the contact points (node interface).
     pub contact_set: String,
@@ -113,9 +119,13 @@ impl PartInput {
 /// Everything [`reduce_brake`] needs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BrakeInputs {
+    /// The disc.
     pub disc: PartInput,
+    /// The pad.
     pub pad: PartInput,
+    /// Node or patch interface, for both parts.
     pub interface: InterfaceKind,
+    /// How many fixed-interface modes each part keeps.
     pub modes: ModeChoice,
     /// Most fixed-interface modes a part may keep (bounds the memory of the basis).
     pub max_modes: usize,
@@ -125,6 +135,7 @@ pub struct BrakeInputs {
     pub axis: Axis,
     /// Direction of the contact normal (0 = x, 1 = y, 2 = z): the pistons' kept dof.
     pub normal_direction: usize,
+    /// Eigensolver of the fixed-interface modes (Lanczos or ARPACK).
     pub backend: Backend,
     /// Relative tolerance of the eigensolver's Ritz residuals.
     pub eig_tol: f64,
@@ -317,10 +328,13 @@ fn selection_name(nodes: &NodeSelection) -> String {
 /// A part's mesh as read, with what the `.rom` records about the file.
 #[derive(Clone, Debug)]
 pub struct LoadedPart {
+    /// The mesh.
     pub mesh: Mesh,
+    /// Its path, SHA-256 and size, as the `.rom` records them.
     pub info: MeshInfo,
     /// The reader's warnings.
     pub warnings: Vec<String>,
+    /// Time spent reading and hashing the file.
     pub read_time: Duration,
 }
 
@@ -360,19 +374,26 @@ pub struct ContactPair {
 pub struct BrakeReport {
     /// Disc, then pad.
     pub parts: Vec<PartReport>,
+    /// The disc's contact points paired with the pad's.
     pub pairs: Vec<ContactPair>,
     /// Pairing tolerance in metres.
     pub pairing_tolerance: f64,
+    /// Wall time of the whole reduction, reading the meshes included.
     pub total: Duration,
 }
 
 /// One part's share of a [`BrakeReport`].
 #[derive(Clone, Debug)]
 pub struct PartReport {
+    /// The part's name.
     pub name: String,
+    /// The mesh it was reduced from.
     pub mesh: MeshInfo,
+    /// The mesh reader's warnings.
     pub warnings: Vec<String>,
+    /// Time spent reading and hashing the mesh.
     pub read_time: Duration,
+    /// What [`crate::craig_bampton::reduce_part`] did and cost.
     pub reduce: ReduceReport,
 }
 

@@ -83,12 +83,15 @@ pub fn reduced_frequencies(
 pub struct Definiteness {
     /// `max |A - Aᵀ| / max |A|` of `K̂` and of `M̂`.
     pub k_asymmetry: f64,
+    /// The same for `M̂`.
     pub m_asymmetry: f64,
     /// Smallest and largest eigenvalue of `M̂`.
     pub m_min: f64,
+    /// Largest eigenvalue of `M̂`.
     pub m_max: f64,
     /// Smallest and largest eigenvalue of `K̂`.
     pub k_min: f64,
+    /// Largest eigenvalue of `K̂`.
     pub k_max: f64,
     /// Eigenvalues of `K̂` below `1e-9 max` in absolute value: the rigid motions left free.
     pub k_zero: usize,

@@ -51,68 +51,126 @@ pub enum ReduceError {
     /// `source()`, so an error chain prints it once).
     #[error("{}: {error}", path.display())]
     InMesh {
+        /// The part's mesh file.
         path: std::path::PathBuf,
+        /// What went wrong.
         error: Box<ReduceError>,
     },
+    /// The mesh file could not be read.
     #[error(transparent)]
     Mesh(#[from] squeal_mesh::MeshError),
+    /// A reduced-model file could not be read or written.
     #[error(transparent)]
     Rom(#[from] crate::rom::RomError),
+    /// The inputs of the brake's reduction are inconsistent or out of range.
     #[error("invalid option: {0}")]
     Options(String),
+    /// The disc and the pad have different numbers of contact points, so they cannot be
+    /// paired one to one.
     #[error(
         "the disc has {disc} contact points and the pad {pad}: they must pair one to one (same interface sets and grid on both parts)"
     )]
-    ContactCountMismatch { disc: usize, pad: usize },
+    ContactCountMismatch {
+        /// Contact points of the disc.
+        disc: usize,
+        /// Contact points of the pad.
+        pad: usize,
+    },
+    /// A disc contact point has no pad contact point within the pairing tolerance: the
+    /// contact sets of the two parts do not face each other.
     #[error(
         "disc contact point {point} at ({:.6}, {:.6}, {:.6}) m finds no pad contact point within {tolerance:.3e} m (nearest {nearest:.3e} m away): the parts' contact sets do not face each other",
         position[0], position[1], position[2]
     )]
     NoPartner {
-        /// 1-based.
+        /// The disc's contact point, 1-based.
         point: usize,
+        /// Its position (m).
         position: [f64; 3],
+        /// Distance to the nearest pad contact point (m).
         nearest: f64,
+        /// The pairing tolerance (m).
         tolerance: f64,
     },
+    /// Assembling `K` and `M` failed (a material undefined or invalid, a restraint on a
+    /// missing node set, an element whose matrix cannot be computed, ...).
     #[error(transparent)]
     Fe(#[from] FeError),
+    /// The contact points could not be built from the mesh's sets.
     #[error(transparent)]
     Interface(#[from] InterfaceError),
+    /// The interior stiffness `K_II` of a part is singular: its restraints leave a rigid
+    /// motion free.
     #[error(
         "{part}: the interior stiffness K_II is singular: the part is not held (check its restraints: {restraints})"
     )]
-    NotHeld { part: String, restraints: String },
+    NotHeld {
+        /// The part.
+        part: String,
+        /// Its restraints, as given.
+        restraints: String,
+    },
+    /// The factorization or the eigensolver of a part failed.
     #[error("{part}: eigensolver: {source}")]
-    Eigen { part: String, source: EigError },
+    Eigen {
+        /// The part.
+        part: String,
+        /// The eigensolver's error.
+        source: EigError,
+    },
+    /// A contact or piston node is also restrained in a direction whose dof it keeps as a
+    /// boundary coordinate.
     #[error(
         "{part}: boundary node {node} ({set}) is restrained in direction {direction}: a boundary dof cannot also be clamped"
     )]
     BoundaryRestrained {
+        /// The part.
         part: String,
+        /// The boundary node set (contact or piston).
         set: String,
+        /// The node's id in the mesh.
         node: u64,
+        /// The direction both kept and restrained: `x`, `y` or `z`.
         direction: char,
     },
+    /// Two boundary coordinates of a part fall on the same dof: a contact patch has no face
+    /// dof of its own in that direction.
     #[error(
         "{part}: contact point {point} has no dof of its own in direction {direction}: the patch shares all its face nodes with its neighbours (refine the mesh or use a coarser grid)"
     )]
     NoMaster {
+        /// The part.
         part: String,
+        /// The contact point.
         point: usize,
+        /// The direction: `x`, `y` or `z`.
         direction: char,
     },
+    /// Keeping the modes below a frequency would keep more than the limit on a part's
+    /// fixed-interface modes.
     #[error(
         "{part}: {count} fixed-interface modes lie below {below_hz} Hz, more than the limit of {limit}: lower the frequency or raise the limit"
     )]
     TooManyModes {
+        /// The part.
         part: String,
+        /// The cut-off frequency (Hz).
         below_hz: f64,
+        /// Fixed-interface modes below it.
         count: usize,
+        /// The most a part may keep.
         limit: usize,
     },
+    /// Something else is wrong with a part's reduction (an option out of range, more modes
+    /// asked for than the interior has dofs, a basis too large for the memory, a reduced
+    /// matrix that is not positive definite, ...): the message says what.
     #[error("{part}: {what}")]
-    Invalid { part: String, what: String },
+    Invalid {
+        /// The part (`brake` for the brake as a whole).
+        part: String,
+        /// What is wrong.
+        what: String,
+    },
 }
 
 impl ReduceError {
@@ -130,11 +188,15 @@ const AXES: [char; 3] = ['x', 'y', 'z'];
 /// What to keep of one part and how it is held.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PartSpec {
+    /// The part's name (`disc`, or the pad's name), used in messages and in the `.rom`.
     pub name: String,
     /// Disc or pad.
     pub role: PartRole,
+    /// The mesh file it comes from, as recorded in the `.rom`.
     pub mesh: MeshInfo,
+    /// How the part is held: node sets and their clamped directions.
     pub restraints: Vec<Restraint>,
+    /// Node or patch interface.
     pub interface: InterfaceKind,
     /// Node set of the contact points (node interface).
     pub contact_set: String,
@@ -142,6 +204,7 @@ pub struct PartSpec {
     pub contact_face_set: String,
     /// Patch grid `[radial, angular]`.
     pub grid: [usize; 2],
+    /// The disc's axis, about which the patches are cut in radius and angle.
     pub axis: Axis,
     /// Node set whose nodes keep their `normal_direction` dof (the pad's pistons).
     pub piston_set: Option<String>,
@@ -154,6 +217,7 @@ pub struct PartSpec {
 /// Options of [`reduce_part`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReduceOptions {
+    /// Options of the eigensolver of the fixed-interface modes (backend, shift, tolerance, Sturm check, threads).
     pub eig: EigOptions,
     /// M-orthonormalize the kept modes again after the solve, so that the modal block of `M̂`
     /// is the identity and that of `K̂` is `diag(ω²)` to round-off.
@@ -181,13 +245,21 @@ impl Default for ReduceOptions {
 /// `Assemble` to `Project`; `Read` and `Write` are the brake-level stages around it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
+    /// Reading and hashing the mesh file.
     Read,
+    /// Assembling the sparse `K` and `M` of the part.
     Assemble,
+    /// Building the boundary coordinates (contact and piston points) and the interior.
     Interface,
+    /// Ordering and factoring the interior stiffness `K_II`.
     Factor,
+    /// The constraint modes, eq (3).
     ConstraintModes,
+    /// The fixed-interface modes, eqs (4)–(5).
     Eigensolve,
+    /// The projection `K̂ = Bᵀ K B`, `M̂ = Bᵀ M B`, eqs (6)–(7).
     Project,
+    /// Writing the `.rom` file.
     Write,
 }
 
@@ -204,6 +276,7 @@ impl Stage {
         Stage::Write,
     ];
 
+    /// The stage's name as shown to the user (`assemble K, M`, ...).
     pub fn label(&self) -> &'static str {
         match self {
             Stage::Read => "read mesh",
@@ -221,8 +294,12 @@ impl Stage {
 /// What the reduction of one part did and cost.
 #[derive(Clone, Debug)]
 pub struct ReduceReport {
+    /// Free dofs of the part (all dofs but the restrained ones).
     pub free_dofs: usize,
+    /// Interior dofs `v`: the free dofs but those eliminated as boundary dofs (a patch's
+    /// face dofs stay interior, under its constraint row).
     pub interior_dofs: usize,
+    /// Boundary coordinates, one constraint mode each.
     pub boundary_dofs: usize,
     /// Fixed-interface modes kept.
     pub modes: usize,
@@ -234,7 +311,9 @@ pub struct ReduceReport {
     pub factor_bytes: usize,
     /// The whole of the factor's statistics (fill, flops, times, the split of its solves).
     pub factor: squeal_eigs::FactorStats,
+    /// Wall time of each stage, in the order they ran.
     pub timings: Vec<(Stage, Duration)>,
+    /// What the eigensolver did (restarts, operator applications, basis size).
     pub eig: squeal_eigs::EigStats,
     /// Sturm check of the kept modes: the bound `ω²` and the number of eigenvalues of the
     /// fixed-interface problem below it (equal to the modes found below it).

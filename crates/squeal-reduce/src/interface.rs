@@ -18,21 +18,34 @@ use std::collections::HashMap;
 /// Errors of the interface models.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum InterfaceError {
+    /// The mesh has no node set of that name (check the set names given for the part).
     #[error("node set {0} is missing from the mesh")]
     MissingSet(String),
+    /// The node set exists but holds no node.
     #[error("node set {0} is empty")]
     EmptySet(String),
+    /// The contact-face set does not cover a whole element face anywhere, so there is no
+    /// surface to cut into patches.
     #[error("node set {set} has no boundary triangle: no element face has all six nodes in it")]
-    NoFaces { set: String },
+    NoFaces {
+        /// The contact-face node set.
+        set: String,
+    },
+    /// A cell of the patch grid holds no face triangle: use a coarser grid or a finer mesh.
     #[error(
         "patch {patch} of the {radial} x {angular} grid on {set} holds no triangle: the mesh is too coarse for that grid"
     )]
     EmptyPatch {
+        /// The contact-face node set.
         set: String,
+        /// The empty patch, 1-based.
         patch: usize,
+        /// Patches across the radius.
         radial: usize,
+        /// Patches around the axis.
         angular: usize,
     },
+    /// The axis direction given is the zero vector.
     #[error("the disc axis has zero length")]
     BadAxis,
 }
@@ -40,6 +53,7 @@ pub enum InterfaceError {
 /// The disc's axis of rotation: radii and angles are measured about it.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Axis {
+    /// A point on the axis (m).
     pub origin: [f64; 3],
     /// Direction (need not be unit); angles are counter-clockwise seen from its tip.
     pub direction: [f64; 3],
@@ -60,7 +74,9 @@ impl Default for Axis {
 pub struct Patch {
     /// 1-based patch number.
     pub number: usize,
+    /// Area of the patch (m²).
     pub area: f64,
+    /// Area-weighted centroid of the patch (m).
     pub centroid: [f64; 3],
     /// Unit outward normal of the part's face over the patch: the area-weighted mean of the
     /// face's normals.

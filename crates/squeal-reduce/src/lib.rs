@@ -2,6 +2,7 @@
 
 // Index loops over the three directions read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
+#![warn(missing_docs)]
 
 pub mod brake;
 pub mod check;

@@ -42,15 +42,31 @@ pub enum RomError {
     /// `{:#}` would otherwise show it twice).
     #[error("{}: {error}", path.display())]
     Io {
+        /// The file that could not be read.
         path: PathBuf,
+        /// What the operating system said.
         error: std::io::Error,
     },
+    /// The file could not be written (it is written atomically, through a temporary file).
     #[error(transparent)]
     Write(#[from] squeal_io::IoError),
+    /// The file is not a reduced-model file, or is truncated or damaged.
     #[error("{}: not a reduced-model file: {message}", path.display())]
-    Format { path: PathBuf, message: String },
+    Format {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// The file was written by a newer squeal, in a format version this one does not read.
     #[error("{}: format version {found} is newer than this squeal reads ({VERSION})", path.display())]
-    Version { path: PathBuf, found: u32 },
+    Version {
+        /// The file.
+        path: PathBuf,
+        /// The version it declares.
+        found: u32,
+    },
+    /// The model could not be turned into the file's bytes (header JSON or arrays).
     #[error("cannot serialize the reduced model: {0}")]
     Serialize(String),
 }
@@ -79,13 +95,17 @@ pub enum PartRole {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum PointRole {
+    /// A contact point: where the part touches the other part.
     Contact,
+    /// A piston point: where the piston load enters the pad (its dof along the normal is
+    /// kept).
     Piston,
 }
 
 /// A retained interface point.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct InterfacePoint {
+    /// Contact or piston point.
     pub role: PointRole,
     /// The mesh node id (node interface and piston points).
     pub node_id: Option<u64>,
@@ -113,20 +133,37 @@ pub struct InterfacePoint {
 pub enum DofLabel {
     /// Physical motion of interface point `point` (index into `points`) along `direction`
     /// (0 = x, 1 = y, 2 = z): a constraint-mode coordinate.
-    Point { point: usize, direction: u8 },
+    Point {
+        /// Index of the point in [`PartInfo::points`].
+        point: usize,
+        /// Direction: 0 = x, 1 = y, 2 = z.
+        direction: u8,
+    },
     /// Amplitude of fixed-interface mode `mode` (0-based, ascending frequency).
-    Mode { mode: usize },
+    Mode {
+        /// Mode number, 0-based, in ascending frequency.
+        mode: usize,
+    },
     /// Motion of interface point `point` along the unit vector `direction` (a piston pushing
     /// along a pad normal that is not a coordinate axis).
-    Along { point: usize, direction: [f64; 3] },
+    Along {
+        /// Index of the point in [`PartInfo::points`].
+        point: usize,
+        /// Unit vector of the motion.
+        direction: [f64; 3],
+    },
 }
 
 /// The mesh a part was reduced from.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MeshInfo {
+    /// The mesh file's path, as given.
     pub path: String,
+    /// SHA-256 of the file's bytes (hex), to tell whether the mesh changed since.
     pub sha256: String,
+    /// Number of nodes in the mesh.
     pub nodes: usize,
+    /// Number of elements in the mesh.
     pub elements: usize,
 }
 
@@ -144,25 +181,35 @@ pub struct MaterialInfo {
 /// A restraint applied before reduction.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RestraintInfo {
+    /// The restrained node set (`(nodes)` for nodes given by index).
     pub node_set: String,
     /// Restrained directions x, y, z.
     pub directions: [bool; 3],
+    /// Number of nodes restrained.
     pub nodes: usize,
 }
 
 /// Everything about a part except its arrays.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PartInfo {
+    /// The part's name (`disc`, or the pad's name).
     pub name: String,
     /// Disc or pad; absent before version 3, where the part named `disc` is the disc and
     /// every other part a pad ([`PartInfo::role`]).
     #[serde(default, rename = "role")]
     pub role_field: Option<PartRole>,
+    /// The mesh the part was reduced from.
     pub mesh: MeshInfo,
+    /// Node or patch interface.
     pub interface: InterfaceKind,
+    /// The materials of its elements.
     pub materials: Vec<MaterialInfo>,
+    /// The restraints applied before reduction.
     pub restraints: Vec<RestraintInfo>,
+    /// The retained interface points (contact, then piston), indexed by [`DofLabel`].
     pub points: Vec<InterfacePoint>,
+    /// The meaning of each reduced dof, in the order of the rows of `K̂` and `M̂`:
+    /// the boundary coordinates first, then the fixed-interface modes.
     pub dofs: Vec<DofLabel>,
     /// Fixed-interface natural frequencies (Hz) of the kept modes, ascending.
     pub fixed_interface_hz: Vec<f64>,
@@ -195,19 +242,25 @@ pub struct BuildRecord {
     pub restraints: Vec<(String, [bool; 3])>,
     /// Material overrides (element set, material) applied after the mesh's sections.
     pub material_overrides: Vec<(String, squeal_fe::ElasticMaterial)>,
+    /// Node set of the contact points (node interface).
     pub contact_set: String,
+    /// Node set of the contact face (patch interface).
     pub contact_face_set: String,
+    /// Node set of the piston nodes, if any.
     pub piston_set: Option<String>,
     /// Patch grid `[radial, angular]`.
     pub grid: [usize; 2],
+    /// The disc's axis, around which the patches are laid out.
     pub axis: crate::interface::Axis,
     /// Direction of the contact normal and of the piston dofs (0 = x, 1 = y, 2 = z).
     pub normal_direction: usize,
+    /// How many fixed-interface modes were asked for.
     pub modes: crate::brake::ModeChoice,
     /// Most fixed-interface modes a part may keep.
     pub max_modes: usize,
     /// Eigensolver backend (`lanczos` or `arpack`) and relative tolerance.
     pub backend: String,
+    /// Relative tolerance of the eigensolver.
     pub eig_tol: f64,
     /// Modal block of `M̂` made the identity after the solve.
     pub orthonormalize: bool,
@@ -216,16 +269,22 @@ pub struct BuildRecord {
 /// The JSON header stored in `__metadata__.squeal`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RomHeader {
+    /// Format name, [`FORMAT`].
     pub format: String,
+    /// Format version, at most [`VERSION`].
     pub version: u32,
+    /// The squeal that wrote the file ([`crate::brake::TOOL_VERSION`]).
     pub tool_version: String,
+    /// The parts, in the order their dofs are stacked in the brake.
     pub parts: Vec<PartInfo>,
 }
 
 /// The basis `[T_C T_phi]` on the part's free dofs, with each row's node id and direction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Basis {
+    /// Mesh node id of each row.
     pub dof_node: Vec<u64>,
+    /// Direction of each row: 0 = x, 1 = y, 2 = z.
     pub dof_dir: Vec<u8>,
     /// `n_free x n_reduced`.
     pub values: Mat<f64>,
@@ -234,9 +293,13 @@ pub struct Basis {
 /// A reduced part: its description, reduced K and M, and optionally its basis.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReducedPart {
+    /// Everything about the part but its arrays.
     pub info: PartInfo,
+    /// Reduced stiffness `K̂` (N/m on point dofs), eq (6).
     pub k: Mat<f64>,
+    /// Reduced mass `M̂` (kg on point dofs), eq (7).
     pub m: Mat<f64>,
+    /// The full-space basis, if it was kept.
     pub basis: Option<Basis>,
 }
 
@@ -250,7 +313,9 @@ impl ReducedPart {
 /// A reduced model: the parts, in the order their dofs are stacked in the brake.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReducedModel {
+    /// The squeal that made the model.
     pub tool_version: String,
+    /// The parts.
     pub parts: Vec<ReducedPart>,
 }
 
