@@ -1,7 +1,7 @@
 //! CHBM on the coarse bundled brake (158 dofs): harmonics × harmonic ladder at 1.01 μ0 and
 //! 1.1 μ0, with LM iterations, best-of-N wall time and a per-call cost breakdown.
 //!
-//! `cargo bench -p squeal-chbm --bench chbm` (options after `--`: `reps=N` (5), `H=1,3,5,10`,
+//! `cargo bench -p squeal-pipeline --bench chbm` (options after `--`: `reps=N` (5), `H=1,3,5,10`,
 //! `ratios=1.01,1.1`, `restarts` to also time the CLI's amplitude restarts for H = 1,2,3,5,10).
 //!
 //! The brake is the bundled scene on the coarse meshes built by the production builder
