@@ -287,6 +287,24 @@ impl BrakeFamily<'_> {
         brake_harmonic_balance(self.mb, h, self.samples)
     }
 
+    /// The continuation family over this brake with `h` harmonics to start with, the phase
+    /// condition on nonlinear dof `phase_dof` and the row scales `sc`.
+    fn continuation(
+        &self,
+        h: usize,
+        phase_dof: usize,
+        sc: RowScales,
+    ) -> Result<impl Family + '_, HbmError> {
+        HbFamily::new(
+            |h| self.build(h),
+            |hb: &mut BrakeHb, p| self.set(hb, p),
+            h,
+            PhaseCondition::FirstSineZero { dof: phase_dof },
+            sc,
+            1e-7,
+        )
+    }
+
     fn set(&self, hb: &mut BrakeHb, p: f64) -> Result<(), HbmError> {
         if !p.is_finite() {
             return Err(HbmError::Parameter {
@@ -449,14 +467,7 @@ pub fn follow_from_hopf(
         load: Vec::new(),
     };
     let sc = scales(mb, &x_eq, family.build(h)?.external_force());
-    let mut hb_family = HbFamily::new(
-        |h| family.build(h),
-        |hb: &mut BrakeHb, p| family.set(hb, p),
-        h,
-        PhaseCondition::FirstSineZero { dof: d },
-        sc,
-        1e-7,
-    )?;
+    let mut hb_family = family.continuation(h, d, sc)?;
     let wf = weights(sc.phase, nf.omega0, mu0);
     // Correct with the amplitude U1c[d] fixed; the tangent points to growing amplitude.
     let ic = layout.index(1, Part::Cos, d).ok_or(ChbmError::NoBranch)?;
@@ -669,14 +680,7 @@ pub fn follow_from_point(
     let hb0 = family.build(h)?;
     family.load = hb0.external_force().to_vec();
     let sc = scales(&mbp, &x_eq, hb0.external_force());
-    let mut hb_family = HbFamily::new(
-        |h| family.build(h),
-        |hb: &mut BrakeHb, p| family.set(hb, p),
-        h,
-        PhaseCondition::FirstSineZero { dof: phase_dof },
-        sc,
-        1e-7,
-    )?;
+    let mut hb_family = family.continuation(h, phase_dof, sc)?;
     let wf = weights(sc.phase, point.omega, p0);
     let mut z0 = point.nl_coeffs.clone();
     z0.push(point.omega);
@@ -728,16 +732,7 @@ pub fn cycles_at(
     };
     let x_eq = first.nl_coeffs[..mb.nl()].to_vec();
     let sc = scales(mb, &x_eq, family.build(first.harmonics)?.external_force());
-    let mut hb_family = HbFamily::new(
-        |h| family.build(h),
-        |hb: &mut BrakeHb, p| family.set(hb, p),
-        first.harmonics,
-        PhaseCondition::FirstSineZero {
-            dof: branch.phase_dof,
-        },
-        sc,
-        1e-7,
-    )?;
+    let mut hb_family = family.continuation(first.harmonics, branch.phase_dof, sc)?;
     let wf = weights(sc.phase, first.omega, mu);
     let copts = ContinuationOptions {
         parameter_range: (f64::NEG_INFINITY, f64::INFINITY),

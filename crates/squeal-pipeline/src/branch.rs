@@ -290,12 +290,8 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
         "Hill error (1/s)",
         "stability",
     ]);
-    let n = b.points.len();
-    let stride = n.div_ceil(20).max(1);
-    for (i, p) in b.points.iter().enumerate() {
-        if i % stride != 0 && i + 1 != n {
-            continue;
-        }
+    for i in shown_points(b.points.len(), 20) {
+        let p = &b.points[i];
         let (rho, err, verdict) = match &a.floquet[i] {
             Ok(f) => (
                 format!("{:.5}", f.largest_multiplier()),
@@ -318,6 +314,12 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
     }
     out.push_str(&t.to_text());
     out
+}
+
+/// About `rows` evenly spread indices of `n` points for a table, always with the last one.
+pub fn shown_points(n: usize, rows: usize) -> impl Iterator<Item = usize> {
+    let stride = n.div_ceil(rows.max(1)).max(1);
+    (0..n).filter(move |i| i % stride == 0 || i + 1 == n)
 }
 
 /// `branch.csv`: one row per cycle.
@@ -516,21 +518,16 @@ pub fn figure(a: &BranchAnalysis) -> Figure {
         };
         let name = if named[k] { "" } else { name };
         named[k] = true;
-        let mut pts: Vec<usize> = (first..=last).collect();
         // The Hopf point begins the branch.
-        let hopf_first = first == 0;
         let series = |f: &dyn Fn(usize) -> f64, at_hopf: f64| {
-            let mut v: Vec<(f64, f64)> = Vec::new();
-            if hopf_first {
-                v.push((mu0, at_hopf));
-            }
-            v.extend(pts.iter().map(|&i| (b.points[i].parameter, f(i))));
-            v
+            let hopf = (first == 0).then_some((mu0, at_hopf));
+            hopf.into_iter()
+                .chain((first..=last).map(|i| (b.points[i].parameter, f(i))))
+                .collect::<Vec<_>>()
         };
         let s_amp = series(&|i| b.points[i].pairs[pair].peak_to_peak() * 1e6, 0.0);
         let s_f = series(&|i| b.points[i].frequency_hz(), f0);
         let s_o = series(&|i| b.points[i].largest_open_fraction(), 0.0);
-        pts.clear();
         amp.series
             .push(Series::line(name, s_amp).with_dash(dash).with_color(color));
         freq.series

@@ -880,11 +880,8 @@ fn branch_section(branch: Option<&crate::branch::BranchAnalysis>) -> Section {
         "stability",
     ]);
     let n = b.points.len();
-    let stride = n.div_ceil(12).max(1);
-    for (i, p) in b.points.iter().enumerate() {
-        if i % stride != 0 && i + 1 != n {
-            continue;
-        }
+    for i in crate::branch::shown_points(n, 12) {
+        let p = &b.points[i];
         let (rho, verdict) = match &a.floquet[i] {
             Ok(f) => (
                 format!("{:.5}", f.largest_multiplier()),
