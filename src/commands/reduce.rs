@@ -1,19 +1,16 @@
 //! `squeal reduce`: Craig–Bampton reduction of a disc and a pad to the reduced brake.
 
+use crate::progress::StageBars;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
-use indicatif::{ProgressBar, ProgressStyle};
 use squeal_eigs::Backend;
-use squeal_fe::ElasticMaterial;
-use squeal_reduce::brake::{
-    BrakeInputs, BrakeReport, DEFAULT_AUTO_FACTOR, ModeChoice, reduce_brake,
-};
+use squeal_reduce::brake::{BrakeInputs, DEFAULT_AUTO_FACTOR, ModeChoice, reduce_brake};
 use squeal_reduce::craig_bampton::Stage;
-use squeal_reduce::rom::{DofLabel, InterfaceKind, ReducedModel, ReducedPart};
-use std::io::Write;
+use squeal_reduce::rom::{InterfaceKind, ReducedModel};
+use squeal_reduce::summary::summary_text;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 #[derive(Args)]
 pub struct ReduceArgs {
@@ -51,10 +48,8 @@ pub struct ReduceArgs {
     /// Patch grid of the contact face, radial x angular
     #[arg(long, default_value = "3x3")]
     pub grid: String,
-    /// Material of an element set, isotropic: SET=E,nu,rho (Pa, -, kg/m^3); overrides the
-    /// mesh's section (a .msh mesh has none). Repeat for several sets.
-    #[arg(long = "material", value_name = "SET=E,NU,RHO")]
-    pub materials: Vec<String>,
+    #[command(flatten)]
+    pub materials: crate::commands::fe::MaterialArgs,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -89,19 +84,33 @@ pub fn run(args: ReduceArgs) -> Result<ExitCode> {
         squeal_io::check_writable(dir)?;
     }
     let mut bars = StageBars::default();
-    let (model, report) = reduce_brake(&inputs, &mut |part, stage| bars.start(part, stage))
+    let (model, report) = reduce_brake(&inputs, &mut |part, stage| bars.start(part, stage.label()))
         .context("reducing the brake")?;
-    bars.start("brake", Stage::Write);
+    bars.start("brake", Stage::Write.label());
     let t = Instant::now();
     model
         .write(&args.output)
         .with_context(|| format!("writing {}", args.output.display()))?;
-    if args.export == Some(Export::Mtx) {
-        export_mtx(&model, &args.output)?;
-    }
+    let exported = match args.export {
+        Some(Export::Mtx) => export_mtx(&model, &args.output)?,
+        None => Vec::new(),
+    };
     let write_time = t.elapsed();
     bars.finish();
-    print_summary(&model, &report, write_time, &args.output)?;
+    println!();
+    print!("{}", summary_text(&model, &report, write_time));
+    let backend = model.parts.first().and_then(|p| p.info.build.as_ref());
+    let megabytes = std::fs::metadata(&args.output).map_or(0.0, |m| m.len() as f64 / 1e6);
+    println!();
+    println!(
+        "wrote {} ({} dofs, {} backend, {megabytes:.1} MB)",
+        args.output.display(),
+        model.size(),
+        backend.map_or("?", |b| b.backend.as_str()),
+    );
+    for path in exported {
+        println!("wrote {}", path.display());
+    }
     Ok(ExitCode::SUCCESS)
 }
 
@@ -136,8 +145,7 @@ fn inputs(args: &ReduceArgs) -> Result<BrakeInputs> {
         ModeChoice::Fixed(n)
     };
     inputs.grid = parse_grid(&args.grid)?;
-    for text in &args.materials {
-        let (set, material) = parse_material(text)?;
+    for (set, material) in args.materials.overrides()? {
         let mut used = false;
         for (path, part) in [(&args.disc, &mut inputs.disc), (&args.pad, &mut inputs.pad)] {
             if mesh_has_element_set(path, &set)? {
@@ -146,7 +154,7 @@ fn inputs(args: &ReduceArgs) -> Result<BrakeInputs> {
             }
         }
         if !used {
-            bail!("--material {text}: neither mesh has an element set named {set}");
+            bail!("--material {set}=...: neither mesh has an element set named {set}");
         }
     }
     inputs.validate()?;
@@ -161,24 +169,6 @@ fn parse_grid(text: &str) -> Result<[usize; 2]> {
     parse().with_context(|| format!("--grid {text}: expected RADIALxANGULAR, e.g. 3x3"))
 }
 
-fn parse_material(text: &str) -> Result<(String, ElasticMaterial)> {
-    let parse = || -> Option<(String, ElasticMaterial)> {
-        let (set, values) = text.split_once('=')?;
-        let v: Vec<f64> = values
-            .split(',')
-            .map(|x| x.trim().parse().ok())
-            .collect::<Option<_>>()?;
-        let [e, nu, rho] = v[..] else { return None };
-        Some((
-            set.trim().to_string(),
-            ElasticMaterial::isotropic(e, nu, rho),
-        ))
-    };
-    parse().with_context(|| {
-        format!("--material {text}: expected SET=E,nu,rho, e.g. DISC=125e9,0.26,7200")
-    })
-}
-
 /// Whether a mesh file has an element set (read only for `--material`).
 fn mesh_has_element_set(path: &Path, set: &str) -> Result<bool> {
     let read =
@@ -186,251 +176,12 @@ fn mesh_has_element_set(path: &Path, set: &str) -> Result<bool> {
     Ok(read.mesh.element_set(set).is_some())
 }
 
-/// One spinner per stage, finished with its time when the next stage starts.
-#[derive(Default)]
-struct StageBars {
-    current: Option<ProgressBar>,
-}
-
-impl StageBars {
-    fn start(&mut self, part: &str, stage: Stage) {
-        self.finish();
-        let bar = ProgressBar::new_spinner();
-        let style =
-            ProgressStyle::with_template("{spinner} {prefix:<5} {msg:<24} {elapsed_precise}")
-                .unwrap_or_else(|_| ProgressStyle::default_spinner());
-        bar.set_style(style);
-        bar.set_prefix(part.to_string());
-        bar.set_message(stage.label());
-        bar.enable_steady_tick(Duration::from_millis(120));
-        self.current = Some(bar);
-    }
-
-    fn finish(&mut self) {
-        if let Some(bar) = self.current.take() {
-            let style = ProgressStyle::with_template("  {prefix:<5} {msg:<24} {elapsed_precise}")
-                .unwrap_or_else(|_| ProgressStyle::default_spinner());
-            bar.set_style(style);
-            bar.finish();
-        }
-    }
-}
-
-/// `<stem>.<part>.K.mtx`, `.M.mtx` (dense MatrixMarket arrays) and `.dofs.csv` per part.
-fn export_mtx(model: &ReducedModel, output: &Path) -> Result<()> {
-    let stem = output.with_extension("");
-    for part in &model.parts {
-        let name = &part.info.name;
-        let base = format!("{}.{name}", stem.display());
-        for (what, mat) in [("K", &part.k), ("M", &part.m)] {
-            let path = PathBuf::from(format!("{base}.{what}.mtx"));
-            let n = mat.nrows();
-            let values: Vec<f64> = (0..n * n).map(|k| mat[(k % n, k / n)]).collect();
-            let comment = format!(
-                "squeal reduced {what} of part {name} (eq {}); dof labels in {base}.dofs.csv",
-                if what == "K" { 6 } else { 7 }
-            );
-            squeal_io::mtx::write_dense(&path, n, n, &values, &comment)
-                .with_context(|| format!("writing {}", path.display()))?;
-        }
-        let path = PathBuf::from(format!("{base}.dofs.csv"));
-        squeal_io::atomic_write(&path, |w| write_dof_labels(w, part))
-            .with_context(|| format!("writing {}", path.display()))?;
-    }
-    Ok(())
-}
-
-/// One line per reduced dof: index (1-based, as in the .mtx), kind, point or mode, direction,
-/// point coordinates.
-fn write_dof_labels(w: &mut dyn Write, part: &ReducedPart) -> std::io::Result<()> {
-    writeln!(w, "dof,kind,point,mode,direction,x,y,z")?;
-    for (i, label) in part.info.dofs.iter().enumerate() {
-        match *label {
-            DofLabel::Point { point, direction } => {
-                let p = &part.info.points[point];
-                let role = format!("{:?}", p.role).to_lowercase();
-                let [x, y, z] = p.position;
-                let d = ["x", "y", "z"].get(direction as usize).unwrap_or(&"?");
-                writeln!(w, "{},{role},{},,{d},{x:e},{y:e},{z:e}", i + 1, point + 1)?;
-            }
-            DofLabel::Along { point, direction } => {
-                let p = &part.info.points[point];
-                let role = format!("{:?}", p.role).to_lowercase();
-                let [x, y, z] = p.position;
-                let [a, b, c] = direction;
-                writeln!(
-                    w,
-                    "{},{role},{},,along {a:.6} {b:.6} {c:.6},{x:e},{y:e},{z:e}",
-                    i + 1,
-                    point + 1
-                )?;
-            }
-            DofLabel::Mode { mode } => writeln!(w, "{},mode,,{},,,,", i + 1, mode + 1)?,
-        }
-    }
-    Ok(())
-}
-
-fn print_summary(
-    model: &ReducedModel,
-    report: &BrakeReport,
-    write_time: Duration,
-    output: &Path,
-) -> Result<()> {
-    println!();
-    println!("reduced brake: {} dofs", model.size());
-    for (part, r) in model.parts.iter().zip(&report.parts) {
-        let red = &r.reduce;
-        println!(
-            "  {:<5} {} ({} nodes, {} free dofs): {} boundary + {} modes = {} dofs; factor of K_II {} nonzeros ({:.0} MB)",
-            part.info.name,
-            r.mesh.path,
-            r.mesh.nodes,
-            red.free_dofs,
-            red.boundary_dofs,
-            red.modes,
-            part.size(),
-            red.nnz_factor,
-            red.factor_bytes as f64 / 1e6
-        );
-        for w in &r.warnings {
-            println!("        warning: {w}");
-        }
-    }
-    if let Some(ModeChoice::Auto { fmax_hz, factor }) = model
-        .parts
-        .first()
-        .and_then(|p| p.info.build.as_ref())
-        .map(|b| b.modes)
-    {
-        println!(
-            "  modes: all fixed-interface modes below {factor} x {fmax_hz} Hz = {} Hz",
-            factor * fmax_hz
-        );
-    }
-    println!();
-    print_timings(report, write_time);
-    println!();
-    print_frequencies(model);
-    println!();
-    println!("checks");
-    for (part, r) in model.parts.iter().zip(&report.parts) {
-        let red = &r.reduce;
-        let sturm = match red.sturm {
-            Some((bound, count)) => format!(
-                "{count} eigenvalues below {:.1} Hz, as found",
-                squeal_reduce::craig_bampton::hz(bound)
-            ),
-            None => "not checked".into(),
-        };
-        println!("  {}", part.info.name);
-        println!(
-            "    K_CN coupling ||K_CN|| / ||K||      {:.2e}  (eq 6: zero)",
-            red.coupling
-        );
-        println!(
-            "    modal mass deviation max|M_NN - I| {:.2e}  (before re-orthonormalization)",
-            red.modal_mass_deviation
-        );
-        println!(
-            "    largest eigen backward error       {:.2e}",
-            red.max_residual
-        );
-        println!("    Sturm count                        {sturm}");
-        let e = &red.eig;
-        println!(
-            "    eigensolver: {} solves with the factor (block {}, basis {}, {} restarts), {:.2} s of solves, Sturm check {:.2} s",
-            e.operator_applications,
-            e.block,
-            e.ncv,
-            e.restarts,
-            e.operator_time.as_secs_f64(),
-            e.sturm_time.as_secs_f64()
-        );
-    }
-    let worst = report.pairs.iter().map(|p| p.distance).fold(0.0, f64::max);
-    println!(
-        "  contact pairs: {} disc/pad points paired, farthest {:.2e} m apart (tolerance {:.2e} m)",
-        report.pairs.len(),
-        worst,
-        report.pairing_tolerance
-    );
-    let backend = model
-        .parts
-        .first()
-        .and_then(|p| p.info.build.as_ref())
-        .map_or("?", |b| b.backend.as_str());
-    println!();
-    println!(
-        "wrote {} ({} dofs, {} backend, {:.1} MB)",
-        output.display(),
-        model.size(),
-        backend,
-        std::fs::metadata(output).map_or(0.0, |m| m.len() as f64 / 1e6)
-    );
-    Ok(())
-}
-
-fn print_timings(report: &BrakeReport, write_time: Duration) {
-    println!("timings (s)");
-    let names: Vec<&str> = report.parts.iter().map(|p| p.name.as_str()).collect();
-    print!("  {:<24}", "stage");
-    for n in &names {
-        print!(" {n:>8}");
-    }
-    println!(" {:>8}", "total");
-    for stage in Stage::ALL {
-        if stage == Stage::Write {
-            continue;
-        }
-        let times: Vec<f64> = report
-            .parts
-            .iter()
-            .map(|p| p.time(stage).as_secs_f64())
-            .collect();
-        print!("  {:<24}", stage.label());
-        for t in &times {
-            print!(" {t:>8.2}");
-        }
-        println!(" {:>8.2}", times.iter().sum::<f64>());
-    }
-    println!(
-        "  {:<24} {:>width$.2}",
-        Stage::Write.label(),
-        write_time.as_secs_f64(),
-        width = 9 * names.len() + 8
-    );
-    println!(
-        "  {:<24} {:>width$.2}",
-        "all",
-        (report.total + write_time).as_secs_f64(),
-        width = 9 * names.len() + 8
-    );
-}
-
-fn print_frequencies(model: &ReducedModel) {
-    const SHOWN: usize = 20;
-    println!("lowest fixed-interface frequencies (Hz)");
-    print!("  {:>4}", "mode");
-    for p in &model.parts {
-        print!(" {:>12}", p.info.name);
-    }
-    println!();
-    let rows = model
-        .parts
-        .iter()
-        .map(|p| p.info.fixed_interface_hz.len())
-        .max()
-        .unwrap_or(0)
-        .min(SHOWN);
-    for i in 0..rows {
-        print!("  {:>4}", i + 1);
-        for p in &model.parts {
-            match p.info.fixed_interface_hz.get(i) {
-                Some(f) => print!(" {f:>12.2}"),
-                None => print!(" {:>12}", "-"),
-            }
-        }
-        println!();
-    }
+/// The MatrixMarket files of `--export mtx`, beside the .rom and named after it.
+fn export_mtx(model: &ReducedModel, output: &Path) -> Result<Vec<PathBuf>> {
+    let dir = output.parent().unwrap_or(Path::new(""));
+    let stem = output
+        .file_stem()
+        .map_or("brake".into(), |s| s.to_string_lossy());
+    squeal_reduce::export::write_matrix_market(model, dir, &stem)
+        .with_context(|| format!("exporting {} as MatrixMarket", output.display()))
 }

@@ -7,7 +7,9 @@
 pub mod brake;
 pub mod check;
 pub mod craig_bampton;
+pub mod export;
 pub mod interface;
 pub mod rom;
+pub mod summary;
 
 pub use craig_bampton::ReduceError;
