@@ -235,48 +235,42 @@ impl Forms<'_> {
 
     /// `B(a, b)`: the velocity rows (the displacement rows are zero).
     fn b(&self, a: &State, b: &State) -> Vec<c64> {
-        let w: Vec<[c64; 2]> = self
-            .brake
-            .pairs
-            .iter()
-            .zip(&self.derivatives)
-            .map(|(p, d)| {
-                let (sa, sb) = (pair_state(p, a), pair_state(p, b));
-                let mut out = [c64::new(0.0, 0.0); 2];
-                for (f, o) in out.iter_mut().enumerate() {
-                    for i in 0..3 {
-                        for j in 0..3 {
-                            *o += sa[i] * sb[j] * d.second[f][i][j];
-                        }
+        self.per_pair(|p, d| {
+            let (sa, sb) = (pair_state(p, a), pair_state(p, b));
+            let mut out = [c64::new(0.0, 0.0); 2];
+            for (f, o) in out.iter_mut().enumerate() {
+                for i in 0..3 {
+                    for j in 0..3 {
+                        *o += sa[i] * sb[j] * d.second[f][i][j];
                     }
                 }
-                out
-            })
-            .collect();
-        self.output(&w)
+            }
+            out
+        })
     }
 
     /// `C(a, b, c)`: the velocity rows.
     fn c(&self, a: &State, b: &State, c: &State) -> Vec<c64> {
-        let w: Vec<[c64; 2]> = self
-            .brake
-            .pairs
-            .iter()
-            .zip(&self.derivatives)
-            .map(|(p, d)| {
-                let (sa, sb, sc) = (pair_state(p, a), pair_state(p, b), pair_state(p, c));
-                let mut out = [c64::new(0.0, 0.0); 2];
-                for (f, o) in out.iter_mut().enumerate() {
-                    for i in 0..3 {
-                        for j in 0..3 {
-                            for k in 0..3 {
-                                *o += sa[i] * sb[j] * sc[k] * d.third[f][i][j][k];
-                            }
+        self.per_pair(|p, d| {
+            let (sa, sb, sc) = (pair_state(p, a), pair_state(p, b), pair_state(p, c));
+            let mut out = [c64::new(0.0, 0.0); 2];
+            for (f, o) in out.iter_mut().enumerate() {
+                for i in 0..3 {
+                    for j in 0..3 {
+                        for k in 0..3 {
+                            *o += sa[i] * sb[j] * sc[k] * d.third[f][i][j][k];
                         }
                     }
                 }
-                out
-            })
+            }
+            out
+        })
+    }
+
+    /// [`Self::output`] of the weights `weight(pair, its derivatives)`.
+    fn per_pair(&self, weight: impl Fn(&ContactPair, &Derivatives) -> [c64; 2]) -> Vec<c64> {
+        let w: Vec<[c64; 2]> = (self.brake.pairs.iter().zip(&self.derivatives))
+            .map(|(p, d)| weight(p, d))
             .collect();
         self.output(&w)
     }

@@ -33,7 +33,8 @@ use crate::constraint::{ConstrainedFactor, Projector};
 use crate::inertia::{Lblt, constrained_count};
 use crate::lanczos::{Locked, ShiftInvert, ShiftSolve};
 use crate::solver::{
-    EigOptions, EigStats, Modes, default_ncv, merge, normalize, residuals, sturm_bound,
+    EigOptions, EigStats, FactoredPencil, Modes, default_ncv, merge, normalize, residuals,
+    sturm_bound,
 };
 use crate::sparse::{shifted, sym_matmul};
 use faer::Mat;
@@ -54,13 +55,16 @@ struct Shift<'a> {
 /// The `nev` lowest eigenpairs by spectrum slicing (see the module
 /// documentation); `factor` is the Cholesky factor of K - opts.shift M.
 pub(crate) fn solve_sliced(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    factor: &SparseCholesky,
-    constrained: Option<&ConstrainedFactor<'_>>,
+    pencil: FactoredPencil<'_>,
     nev: usize,
     opts: &EigOptions,
 ) -> Result<Modes, EigError> {
+    let FactoredPencil {
+        k,
+        m,
+        factor,
+        constrained,
+    } = pencil;
     let t0 = Instant::now();
     let n = k.nrows();
     let constraints = constrained.map(ConstrainedFactor::constraints);

@@ -183,7 +183,13 @@ pub fn lowest_modes(
         ..Default::default()
     };
     let factor = SparseCholesky::factorize_shifted(k, m, opts.shift, &chol)?;
-    let mut modes = solve_checked(k, m, &factor, None, nev, opts)?;
+    let pencil = FactoredPencil {
+        k,
+        m,
+        factor: &factor,
+        constrained: None,
+    };
+    let mut modes = solve_checked(pencil, nev, opts)?;
     modes.stats.factor = Some(factor.stats());
     modes.stats.time = t0.elapsed();
     Ok(modes)
@@ -200,7 +206,13 @@ pub fn lowest_modes_with_factor(
     nev: usize,
     opts: &EigOptions,
 ) -> Result<Modes, EigError> {
-    with_factor(k, m, factor, None, nev, opts)
+    let pencil = FactoredPencil {
+        k,
+        m,
+        factor,
+        constrained: None,
+    };
+    with_factor(pencil, nev, opts)
 }
 
 /// The `nev` lowest eigenpairs of K phi = w^2 M phi + C^T mu with C phi = 0
@@ -216,23 +228,42 @@ pub fn lowest_modes_constrained(
     nev: usize,
     opts: &EigOptions,
 ) -> Result<Modes, EigError> {
-    with_factor(k, m, constrained.factor(), Some(constrained), nev, opts)
+    let pencil = FactoredPencil {
+        k,
+        m,
+        factor: constrained.factor(),
+        constrained: Some(constrained),
+    };
+    with_factor(pencil, nev, opts)
+}
+
+/// The pencil K - λM with a Cholesky factor of K - σM (σ = `opts.shift`) and, for the
+/// constrained problem, its constrained operator: what every solve below works on.
+#[derive(Clone, Copy)]
+pub(crate) struct FactoredPencil<'a> {
+    pub k: SparseColMatRef<'a, usize, f64>,
+    pub m: SparseColMatRef<'a, usize, f64>,
+    pub factor: &'a SparseCholesky,
+    pub constrained: Option<&'a ConstrainedFactor<'a>>,
 }
 
 /// Checks, then [`solve_checked`] with a factor given by the caller.
 fn with_factor(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    factor: &SparseCholesky,
-    constrained: Option<&ConstrainedFactor<'_>>,
+    pencil: FactoredPencil<'_>,
     nev: usize,
     opts: &EigOptions,
 ) -> Result<Modes, EigError> {
+    let FactoredPencil {
+        k,
+        m,
+        factor,
+        constrained: _,
+    } = pencil;
     let t0 = Instant::now();
     check_pair(k, m)?;
     check_options(opts)?;
     check_factor(k, m, factor, opts.shift)?;
-    let mut modes = solve_checked(k, m, factor, constrained, nev, opts)?;
+    let mut modes = solve_checked(pencil, nev, opts)?;
     modes.stats.time = t0.elapsed();
     Ok(modes)
 }
@@ -299,13 +330,16 @@ type EarlyCount = (f64, Result<usize, EigError>, Duration);
 /// with at least `nev` values below it, the count checks them, else a count
 /// at a bound from the converged values follows the iteration.
 fn solve_checked(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
-    factor: &SparseCholesky,
-    constrained: Option<&ConstrainedFactor<'_>>,
+    pencil: FactoredPencil<'_>,
     nev: usize,
     opts: &EigOptions,
 ) -> Result<Modes, EigError> {
+    let FactoredPencil {
+        k,
+        m,
+        factor,
+        constrained,
+    } = pencil;
     let n = k.nrows();
     let constraints = constrained.map(ConstrainedFactor::constraints);
     let dim = n.saturating_sub(constraints.map_or(0, Constraints::len));
@@ -321,7 +355,7 @@ fn solve_checked(
         && nwant > opts.slice
         && opts.ncv.is_none()
     {
-        return crate::slicing::solve_sliced(k, m, factor, constrained, nev, opts);
+        return crate::slicing::solve_sliced(pencil, nev, opts);
     }
     let ncv = match opts.ncv {
         Some(c) => c.min(dim),

@@ -14,6 +14,19 @@ pub enum NodeSelection {
     Indices(Vec<u32>),
 }
 
+impl NodeSelection {
+    /// The selected node indices of `mesh`; a set the mesh does not have is
+    /// [`FeError::UnknownNodeSet`].
+    pub fn nodes<'a>(&'a self, mesh: &'a Mesh) -> Result<&'a [u32], FeError> {
+        match self {
+            NodeSelection::Set(name) => mesh
+                .node_set(name)
+                .ok_or_else(|| FeError::UnknownNodeSet(name.clone())),
+            NodeSelection::Indices(ix) => Ok(ix),
+        }
+    }
+}
+
 /// Zero displacement in the chosen directions (`[x, y, z]`) at the chosen nodes.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Restraint {
@@ -102,12 +115,7 @@ impl DofMap {
             }
         }
         for r in restraints {
-            let nodes: &[u32] = match &r.nodes {
-                NodeSelection::Set(name) => mesh
-                    .node_set(name)
-                    .ok_or_else(|| FeError::UnknownNodeSet(name.clone()))?,
-                NodeSelection::Indices(ix) => ix,
-            };
+            let nodes = r.nodes.nodes(mesh)?;
             for &node in nodes {
                 let i = node as usize;
                 if i >= n {

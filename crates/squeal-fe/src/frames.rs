@@ -18,7 +18,7 @@
 //! Ansys' `CMROTATE`), so nothing assumes the disc turns about z or through the origin.
 
 use crate::assembly::System;
-use crate::dofmap::{DofMap, NodeSelection, Restraint};
+use crate::dofmap::{DofMap, Restraint};
 use crate::error::FeError;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Mat, MatRef};
@@ -105,12 +105,7 @@ impl HeldNodes {
         // The coordinate directions the caller's restraints already hold each such node in.
         let mut global_dirs: BTreeMap<u32, [bool; 3]> = BTreeMap::new();
         for r in restraints {
-            let nodes: &[u32] = match &r.nodes {
-                NodeSelection::Set(name) => mesh
-                    .node_set(name)
-                    .ok_or_else(|| FeError::UnknownNodeSet(name.clone()))?,
-                NodeSelection::Indices(ix) => ix,
-            };
+            let nodes = r.nodes.nodes(mesh)?;
             for n in nodes {
                 if by_node.contains_key(n) {
                     let g = global_dirs.entry(*n).or_default();
