@@ -77,18 +77,9 @@ pub fn write(
         squeal_brake::modal_brake::ModalBrake,
     )>,
 ) -> Result<squeal_pipeline::compare::CompareSummary> {
-    let mu0 = p.mu0()?;
     let dir = p.out.join("compare");
     let t = std::time::Instant::now();
-    let summary = compare::run(
-        p.model()?,
-        p.stability()?,
-        mu0,
-        first,
-        settings,
-        &dir,
-        p.log(),
-    )?;
+    let summary = compare::run(p, first, settings, &dir)?;
     p.record("comparison", t.elapsed().as_secs_f64());
     println!("\nresults in {}", dir.display());
     Ok(summary)

@@ -1,6 +1,7 @@
 //! `squeal stability`: the paper's section 3 for a scene: static equilibrium, complex
 //! eigenvalues against friction (Figure 2), the Hopf point μ0 and the unstable mode shape.
 
+use crate::progress::{BARS, say};
 use anyhow::{Context, Result};
 use clap::Args;
 use squeal_pipeline::model::default_out;
@@ -26,11 +27,6 @@ pub struct StabilityArgs {
     pub no_vtu: bool,
 }
 
-/// Prints to the terminal.
-pub fn say(text: &str) {
-    println!("{text}");
-}
-
 /// The pipeline of a scene with the friction values of `--mu` (or the scene's).
 pub fn pipeline<'a>(
     scene: &Path,
@@ -39,7 +35,7 @@ pub fn pipeline<'a>(
 ) -> Result<Pipeline<'a>> {
     let s = Scene::read(scene)?;
     let out = out.clone().unwrap_or_else(|| default_out(scene));
-    let p = Pipeline::new(s, out, &say)?;
+    let p = Pipeline::new(s, out, &say)?.with_progress(&BARS);
     Ok(match mu {
         Some(r) => p.with_mus(parse_range(r).map_err(anyhow::Error::msg).context("--mu")?)?,
         None => p,

@@ -3,7 +3,7 @@
 //! damping-induced destabilization at vanishing friction, the mesh-convergence study, and the
 //! identification of the modes that couple at μ0 ([`squeal_pipeline::study`]).
 
-use crate::commands::stability::say;
+use crate::progress::say;
 use anyhow::{Context, Result};
 use clap::Args;
 use squeal_pipeline::model::default_out;

@@ -331,15 +331,72 @@ pub fn compare_at(
     start: &ChbmStart,
     opts: &CompareOptions,
 ) -> Result<Comparison, CompareError> {
+    compare_at_with(mb, start, opts, &mut |_| {})
+}
+
+/// One run of a comparison, announced by [`compare_at_with`] as it starts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CompareStep {
+    /// The reference's seed: BDF from the perturbed equilibrium at this tolerance.
+    Seed(f64),
+    /// The check run continued from the seed's steady cycle at this tolerance.
+    Check(f64),
+    /// The reference run continued from the check's steady cycle at this tolerance.
+    Reference(f64),
+    /// A BDF run from the perturbed equilibrium at this tolerance (Table 1).
+    Integration(f64),
+    /// A CHBM solve with this many harmonics.
+    Chbm(usize),
+}
+
+impl std::fmt::Display for CompareStep {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Seed(r) => write!(f, "reference seed, BDF rtol {r:e}"),
+            Self::Check(r) => write!(f, "reference check, BDF rtol {r:e}"),
+            Self::Reference(r) => write!(f, "reference, BDF rtol {r:e}"),
+            Self::Integration(r) => write!(f, "BDF rtol {r:e}"),
+            Self::Chbm(h) => write!(f, "CHBM, {h} harmonics"),
+        }
+    }
+}
+
+impl CompareOptions {
+    /// The runs [`compare_at_with`] announces, in order.
+    pub fn steps(&self) -> Vec<CompareStep> {
+        let mut steps = vec![
+            CompareStep::Seed(self.seed_rtol),
+            CompareStep::Check(self.check_factor * self.reference_rtol),
+            CompareStep::Reference(self.reference_rtol),
+        ];
+        // A tolerance equal to the seed's reuses the seed's run.
+        let rtols = self.rtols.iter().filter(|&&r| r != self.seed_rtol);
+        steps.extend(rtols.map(|&r| CompareStep::Integration(r)));
+        steps.extend(self.harmonics.iter().map(|&h| CompareStep::Chbm(h)));
+        steps
+    }
+}
+
+/// [`compare_at`], telling `step` each run (of [`CompareOptions::steps`]) as it starts: for a
+/// progress display over runs that take up to minutes each.
+pub fn compare_at_with(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &CompareOptions,
+    step: &mut dyn FnMut(CompareStep),
+) -> Result<Comparison, CompareError> {
+    step(CompareStep::Seed(opts.seed_rtol));
     let seed = ti_row(mb, start, &opts.ti, opts.seed_rtol)?;
     steady_cycle(&seed.run)?;
     let check_rtol = opts.check_factor * opts.reference_rtol;
+    step(CompareStep::Check(check_rtol));
     let check_run = integrate_from(mb, &seed.run.continuation(), &continued(opts, check_rtol))?;
     let from = if check_run.steady.is_some() {
         check_run.continuation()
     } else {
         seed.run.continuation()
     };
+    step(CompareStep::Reference(opts.reference_rtol));
     let ref_run = integrate_from(mb, &from, &continued(opts, opts.reference_rtol))?;
     let row = |rtol: f64, run: TiRun| TiRow {
         rtol,
@@ -405,6 +462,7 @@ pub fn compare_at(
                 measures: None,
             }
         } else {
+            step(CompareStep::Integration(rtol));
             ti_row(mb, start, &opts.ti, rtol)?
         };
         if let Some(s) = &row.run.steady {
@@ -417,6 +475,7 @@ pub fn compare_at(
     }
     let mut chbm = Vec::new();
     for &h in &opts.harmonics {
+        step(CompareStep::Chbm(h));
         let o = ChbmOptions {
             harmonics: h,
             ..opts.chbm.clone()

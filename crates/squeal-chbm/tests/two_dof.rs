@@ -429,7 +429,7 @@ fn a_reference_that_does_not_settle_falls_back_to_the_tightest_steady_run() {
     // Ten periods are too few for two 20-cycle averages: neither the check nor the asked
     // reference settles, so the seed is the reference, without an estimate, and the asked run
     // is kept to be reported (exact outcomes, no tolerance).
-    use squeal_chbm::compare::{CompareOptions, compare_at};
+    use squeal_chbm::compare::{CompareOptions, compare_at_with};
     let m = model(KL, KNL);
     let mu = 1.01 * hopf(&m);
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
@@ -449,7 +449,11 @@ fn a_reference_that_does_not_settle_falls_back_to_the_tightest_steady_run() {
         reference_max_cycles: 10.0,
         ..CompareOptions::default()
     };
-    let c = compare_at(&mb, &start(&m, mu), &opts).unwrap();
+    // Every run is announced before it starts, in the order `steps` lists (exact).
+    let mut announced = Vec::new();
+    let c = compare_at_with(&mb, &start(&m, mu), &opts, &mut |s| announced.push(s)).unwrap();
+    assert_eq!(announced, opts.steps());
+    assert_eq!(announced.len(), 4, "seed, check, reference, one CHBM solve");
     assert_eq!(c.reference.rtol, 1e-5);
     assert!(c.estimate.all.is_none());
     let u = c.estimate.unsteady.as_ref().unwrap();

@@ -8,6 +8,7 @@
 //! the RMS of the reference's oscillation; the same for velocities; "all" is every physical dof
 //! of the reduced brake, "contact" the dofs the contact forces act on.
 
+use crate::Pipeline;
 use crate::chbm::point_dof;
 use crate::error::{PipelineError, Result, json_text};
 use crate::model::{Log, Model};
@@ -15,7 +16,7 @@ use squeal_brake::analysis::Stability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::compare::{
     CellOutcome, CompareOptions, Comparison, GridCell, GridModel, GridOptions, TiCell, TiRow,
-    compare_at, robustness,
+    compare_at_with, robustness,
 };
 use squeal_chbm::cycle::RelativeErrors;
 use squeal_chbm::timeint::TiOptions;
@@ -128,19 +129,19 @@ pub struct CompareSummary {
     pub json: serde_json::Value,
 }
 
-/// The comparisons at every friction level of `settings` (and the robustness map), written to
-/// `dir`; returns the summary (also written as `dir/summary.json`). `first` is the start and
-/// modal brake at the first level when the caller has them already.
+/// The comparisons at every friction level of `settings` (and the robustness map) of the
+/// pipeline `p`'s brake, written to `dir`; returns the summary (also written as
+/// `dir/summary.json`). `first` is the start and modal brake at the first level when the
+/// caller has them already. The time integrations and CHBM solves are told to `p`'s progress.
 pub fn run(
-    m: &Model,
-    st: &Stability,
-    mu0: f64,
+    p: &Pipeline,
     first: Option<(ChbmStart, ModalBrake)>,
     settings: &CompareSettings,
     dir: &Path,
-    log: Log,
 ) -> Result<CompareSummary> {
     settings.validate()?;
+    let (m, st, mu0) = (p.model()?, p.stability()?, p.mu0()?);
+    let (log, progress) = (p.log(), p.progress());
     // The integrations' Fourier averages keep at least as many harmonics as CHBM's largest
     // (at least 20), so that the reference does not truncate what it judges.
     let ti_harmonics = settings
@@ -170,6 +171,8 @@ pub fn run(
     let mut summary = Vec::new();
     let mut levels = Vec::new();
     let mut first = first;
+    let steps = opts.steps().len() * settings.mu_ratios.len();
+    progress.begin("CHBM against BDF", steps);
     let mut guess: Option<Vec<f64>> = None;
     for &ratio in &settings.mu_ratios {
         let mu = ratio * mu0;
@@ -187,7 +190,9 @@ pub fn run(
             settings.rtols.len(),
             settings.harmonics.len()
         ));
-        let c = compare_at(&mb, &start, &opts)?;
+        let c = compare_at_with(&mb, &start, &opts, &mut |step| {
+            progress.item(&format!("{ratio} mu0: {step}"))
+        })?;
         let folder = format!("mu_{ratio:.3}");
         let files = write_comparison(&dir.join(&folder), m, &c, ratio, log)?;
         summary.push(comparison_json(&c, ratio, &files));
@@ -201,6 +206,7 @@ pub fn run(
             files,
         });
     }
+    progress.end();
     let mut grid_json = serde_json::Value::Null;
     if settings.grid {
         grid_json = run_grid(dir, m, st, mu0, settings, log)?;

@@ -30,6 +30,7 @@ pub mod compare;
 mod error;
 pub mod model;
 pub mod pictures;
+pub mod progress;
 pub mod report;
 pub mod shapes;
 pub mod stability;
@@ -38,6 +39,7 @@ pub mod study;
 pub use error::{PipelineError, Result};
 
 use model::{Log, Model};
+use progress::{Progress, Silent};
 use squeal_brake::analysis::Stability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::ChbmStart;
@@ -54,6 +56,7 @@ pub struct Pipeline<'a> {
     /// The friction values of the stability sweep.
     pub mus: Vec<f64>,
     log: Log<'a>,
+    progress: &'a dyn Progress,
     model: OnceCell<Model>,
     stability: OnceCell<Stability>,
     timings: RefCell<Vec<(String, f64)>>,
@@ -73,6 +76,7 @@ impl<'a> Pipeline<'a> {
             out,
             mus,
             log,
+            progress: &Silent,
             model: OnceCell::new(),
             stability: OnceCell::new(),
             timings: RefCell::new(Vec::new()),
@@ -86,9 +90,20 @@ impl<'a> Pipeline<'a> {
         Ok(self)
     }
 
+    /// The same pipeline telling `progress` about its long steps.
+    pub fn with_progress(mut self, progress: &'a dyn Progress) -> Self {
+        self.progress = progress;
+        self
+    }
+
     /// The log this pipeline reports to.
     pub fn log(&self) -> Log<'a> {
         self.log
+    }
+
+    /// Where this pipeline tells its progress.
+    pub fn progress(&self) -> &'a dyn Progress {
+        self.progress
     }
 
     /// Wall time of each stage computed so far (s).
