@@ -1,8 +1,9 @@
 //! End-to-end tests of the report of `squeal run` (issue 12) on the bundled coarse brake: the
 //! first screen names every unstable mode in the band (the Hopf mode at 4061 Hz from
 //! μ0 = 0.4618 and the second instability at 2952 Hz from μ ≈ 0.772), the stability figure's
-//! legend has both, the comparison section is there (or says it was not run), and no Rust
-//! debug formatting reaches the page.
+//! legend has both, the comparison section is there (or says it was not run), no Rust
+//! debug formatting reaches the page, and in headless Chromium every image loads and every
+//! link and anchor has its target (a screenshot is kept in the target folder).
 
 mod common;
 
@@ -128,7 +129,74 @@ fn the_report_shows_both_instabilities_of_the_coarse_brake() {
     // Units on the limit cycle at the contacts.
     assert!(html.contains("closure amplitude (µm)"));
     assert!(html.contains("sliding-velocity amplitude (mm/s)"));
+
+    check_in_browser(&out, html.matches("<img").count());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Chromium's binary: `$SQUEAL_BROWSER`, else `chromium`, `chromium-browser` or
+/// `google-chrome` on the PATH.
+fn browser() -> Option<std::path::PathBuf> {
+    if let Some(b) = std::env::var_os("SQUEAL_BROWSER") {
+        return Some(b.into());
+    }
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path)
+        .flat_map(|d| ["chromium", "chromium-browser", "google-chrome"].map(|b| d.join(b)))
+        .find(|b| b.is_file())
+}
+
+fn headless(browser: &Path, args: &[&str], page: &Path) -> std::process::Output {
+    std::process::Command::new(browser)
+        .args(["--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars"])
+        .args(["--allow-file-access-from-files", "--virtual-time-budget=20000"])
+        .args(args)
+        .arg(format!("file://{}", page.display()))
+        .output()
+        .unwrap_or_else(|e| panic!("starting {}: {e}", browser.display()))
+}
+
+/// Opens the report of `out` in headless Chromium: every one of its `images` must load, every
+/// relative link must name a file that can be read and every anchor its target
+/// (`tests/browser_check.js` lists the failures in the page, read back with `--dump-dom`); a
+/// screenshot 800 px wide is kept in the target folder. Without a browser the check is
+/// skipped with a note, unless `SQUEAL_REQUIRE_BROWSER` is set (CI sets it and installs
+/// Debian's chromium), so that the README's test command still needs only Rust.
+fn check_in_browser(out: &Path, images: usize) {
+    let Some(browser) = browser() else {
+        assert!(
+            std::env::var_os("SQUEAL_REQUIRE_BROWSER").is_none(),
+            "SQUEAL_REQUIRE_BROWSER is set but no Chromium was found (install chromium or set SQUEAL_BROWSER)"
+        );
+        eprintln!("note: no Chromium found: the report was not opened in a browser");
+        return;
+    };
+    let html = read(&out.join("index.html"));
+    let script = format!("<script>{}</script></body>", include_str!("browser_check.js"));
+    let page = out.join("browser-check.html");
+    std::fs::write(&page, html.replace("</body>", &script)).unwrap();
+    let dom = headless(&browser, &["--dump-dom"], &page);
+    let dom = String::from_utf8_lossy(&dom.stdout);
+    let start = dom
+        .find("<pre id=\"squeal-browser-check\">")
+        .unwrap_or_else(|| panic!("the check did not run in {}:\n{dom}", browser.display()));
+    let found = &dom[start..dom[start..].find("</pre>").map_or(dom.len(), |e| start + e)];
+    assert!(
+        found.contains(&format!("CHECKED {images} images")),
+        "not every image was checked: {found}"
+    );
+    assert!(!found.contains("BROKEN"), "the report in Chromium: {found}");
+    std::fs::remove_file(&page).unwrap();
+
+    let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report-screenshot.png");
+    let _ = std::fs::remove_file(&shot);
+    let arg = format!("--screenshot={}", shot.display());
+    headless(&browser, &[&arg, "--window-size=800,2400"], &out.join("index.html"));
+    let bytes = std::fs::metadata(&shot).map_or(0, |m| m.len());
+    // A blank 800 x 2400 page compresses to a few kB; the report's text and pictures to
+    // hundreds (about 420 kB measured).
+    assert!(bytes > 50_000, "screenshot {} has {bytes} bytes", shot.display());
+    eprintln!("report screenshot: {}", shot.display());
 }
 
 /// The whole job with the comparison at one friction level (1.1 μ0) and one tolerance besides
