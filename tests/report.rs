@@ -148,8 +148,16 @@ fn browser() -> Option<std::path::PathBuf> {
 
 fn headless(browser: &Path, args: &[&str], page: &Path) -> std::process::Output {
     std::process::Command::new(browser)
-        .args(["--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars"])
-        .args(["--allow-file-access-from-files", "--virtual-time-budget=20000"])
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--hide-scrollbars",
+        ])
+        .args([
+            "--allow-file-access-from-files",
+            "--virtual-time-budget=20000",
+        ])
         .args(args)
         .arg(format!("file://{}", page.display()))
         .output()
@@ -172,7 +180,10 @@ fn check_in_browser(out: &Path, images: usize) {
         return;
     };
     let html = read(&out.join("index.html"));
-    let script = format!("<script>{}</script></body>", include_str!("browser_check.js"));
+    let script = format!(
+        "<script>{}</script></body>",
+        include_str!("browser_check.js")
+    );
     let page = out.join("browser-check.html");
     std::fs::write(&page, html.replace("</body>", &script)).unwrap();
     let dom = headless(&browser, &["--dump-dom"], &page);
@@ -191,11 +202,19 @@ fn check_in_browser(out: &Path, images: usize) {
     let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report-screenshot.png");
     let _ = std::fs::remove_file(&shot);
     let arg = format!("--screenshot={}", shot.display());
-    headless(&browser, &[&arg, "--window-size=800,2400"], &out.join("index.html"));
+    headless(
+        &browser,
+        &[&arg, "--window-size=800,2400"],
+        &out.join("index.html"),
+    );
     let bytes = std::fs::metadata(&shot).map_or(0, |m| m.len());
     // A blank 800 x 2400 page compresses to a few kB; the report's text and pictures to
     // hundreds (about 420 kB measured).
-    assert!(bytes > 50_000, "screenshot {} has {bytes} bytes", shot.display());
+    assert!(
+        bytes > 50_000,
+        "screenshot {} has {bytes} bytes",
+        shot.display()
+    );
     eprintln!("report screenshot: {}", shot.display());
 }
 

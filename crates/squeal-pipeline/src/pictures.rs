@@ -14,7 +14,8 @@ use squeal_chbm::ChbmSolution;
 use squeal_mesh::Mesh;
 use squeal_mesh::tet10::FACES;
 use squeal_report::raster::{
-    Surface, View, colour_bar, render, screen_bounds, side_by_side, write_apng, write_rgb_png,
+    Surface, View, colour_bar_with_scale, render, screen_bounds, side_by_side, write_apng,
+    write_rgb_png,
 };
 use std::collections::HashMap;
 use std::path::Path;
@@ -254,8 +255,7 @@ pub fn write_mode_picture(
             .collect::<Vec<_>>(),
         8,
     );
-    let bar = colour_bar(rw / 3, 12);
-    let (bar_row, _, bh) = side_by_side(&[(&bar, rw / 3, 12)], 0);
+    let (bar_row, bh) = colour_bar_with_scale(rw / 3, 12, "|u| / max |u|")?;
     let mut img = row;
     // The colour bar, centred under the views, after a white gap.
     let gap = vec![255u8; 3 * (rw * 6) as usize];

@@ -257,6 +257,47 @@ pub fn colour_bar(width: u32, height: u32) -> Vec<u8> {
     out
 }
 
+/// Pixels of the scale row under [`colour_bar_with_scale`]'s bar.
+const SCALE_ROW: u32 = 18;
+
+/// A horizontal colour bar `width x bar_height` with its scale in a row of text underneath:
+/// `0` under the left end, `1` under the right end and `caption` (what the colour measures)
+/// between them, in the embedded font. Returns the RGB pixels and the height.
+pub fn colour_bar_with_scale(
+    width: u32,
+    bar_height: u32,
+    caption: &str,
+) -> Result<(Vec<u8>, u32), ReportError> {
+    use plotters::prelude::*;
+    use plotters::style::text_anchor::{HPos, Pos, VPos};
+    if !crate::font::ensure_registered() {
+        return Err(ReportError::Font);
+    }
+    let height = bar_height + SCALE_ROW;
+    let mut rgb = vec![255u8; 3 * (width * height) as usize];
+    rgb[..3 * (width * bar_height) as usize].copy_from_slice(&colour_bar(width, bar_height));
+    {
+        let area = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
+        let font = FontDesc::new(crate::font::FAMILY, 13.0, FontStyle::Normal);
+        let y = (bar_height + 3) as i32;
+        let right = width.saturating_sub(1) as i32;
+        for (text, x, h) in [
+            ("0", 0, HPos::Left),
+            (caption, right / 2, HPos::Center),
+            ("1", right, HPos::Right),
+        ] {
+            let style = TextStyle::from(font.clone())
+                .color(&BLACK)
+                .pos(Pos::new(h, VPos::Top));
+            area.draw_text(text, &style, (x, y))
+                .map_err(|e| ReportError::Draw(e.to_string()))?;
+        }
+        area.present()
+            .map_err(|e| ReportError::Draw(e.to_string()))?;
+    }
+    Ok((rgb, height))
+}
+
 /// Places images side by side (same height) with `gap` white pixels between them.
 pub fn side_by_side(images: &[(&[u8], u32, u32)], gap: u32) -> (Vec<u8>, u32, u32) {
     let h = images.iter().map(|i| i.2).max().unwrap_or(0);
@@ -394,6 +435,24 @@ mod tests {
             p[1] > p[2],
             "{p:?}: the near (yellow) square must be on top"
         );
+    }
+
+    #[test]
+    fn the_colour_bar_has_its_scale_written_under_it() {
+        let (img, h) = colour_bar_with_scale(300, 12, "|u| / max |u|").unwrap();
+        assert_eq!(h, 12 + SCALE_ROW);
+        // The bar itself is the map: dark at the left end, yellow at the right (exact pixels).
+        assert_eq!(pixel(&img, 300, 0, 5), colormap(0.0));
+        assert_eq!(pixel(&img, 300, 299, 5), colormap(1.0));
+        // Under it, dark text on white: the "0" at the left, the caption in the middle, the
+        // "1" at the right (each column range has ink, i.e. a pixel darker than mid-grey).
+        let ink = |x0: u32, x1: u32| {
+            (x0..x1).any(|x| (13..h).any(|y| pixel(&img, 300, x, y).iter().all(|&c| c < 128)))
+        };
+        assert!(ink(0, 10), "no 0 under the left end");
+        assert!(ink(110, 190), "no caption");
+        assert!(ink(290, 300), "no 1 under the right end");
+        assert!(!ink(20, 60), "text where there should be none");
     }
 
     #[test]
