@@ -22,8 +22,12 @@ pub enum SceneError {
         path: PathBuf,
         error: std::io::Error,
     },
-    #[error("{}: {message}", path.display())]
-    Syntax { path: PathBuf, message: String },
+    /// Not TOML, or not a scene's layout: `file:line:column: message`.
+    #[error("{location}: {message}")]
+    Syntax { location: String, message: String },
+    /// Bytes that are not UTF-8 text, at `file:line`.
+    #[error("{location}: not UTF-8 text (save the scene as UTF-8)")]
+    Encoding { location: String },
     /// A value at fault: `file:line: key: message` (no line for a default value).
     #[error("{location}: {key}: {message}")]
     Value {
@@ -234,12 +238,31 @@ pub struct Scene {
     pub file: SceneFile,
 }
 
+/// `file:line:column` of byte `at` of `text` (1-based, the column in characters), or `file`
+/// alone without a place.
+fn location(path: &Path, text: &str, at: Option<usize>) -> String {
+    let Some(at) = at.map(|a| a.min(text.len())) else {
+        return path.display().to_string();
+    };
+    let before = text.get(..at).unwrap_or(text);
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    format!("{}:{line}:{column}", path.display())
+}
+
 impl Scene {
     /// Reads and validates a scene file.
     pub fn read(path: &Path) -> Result<Scene> {
-        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Read {
+        let bytes = std::fs::read(path).map_err(|error| SceneError::Read {
             path: path.to_path_buf(),
             error,
+        })?;
+        let text = String::from_utf8(bytes).map_err(|e| {
+            let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+            let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
+            SceneError::Encoding {
+                location: format!("{}:{line}", path.display()),
+            }
         })?;
         Self::parse(path, text)
     }
@@ -248,8 +271,8 @@ impl Scene {
     /// folder; errors name `path`).
     pub fn parse(path: &Path, text: String) -> Result<Scene> {
         let file: SceneFile = toml::from_str(&text).map_err(|e| SceneError::Syntax {
-            path: path.to_path_buf(),
-            message: e.to_string().trim_end().to_string(),
+            location: location(path, &text, e.span().map(|r| r.start)),
+            message: e.message().trim_end().to_string(),
         })?;
         let scene = Scene {
             path: path.to_path_buf(),
