@@ -97,7 +97,9 @@ fn an_unknown_key_is_reported_with_its_name_and_line() {
     );
     let (err, line) = scene_error("unknown-key", &text, "line_presure_bar");
     assert!(
-        err.contains(&format!("scene.toml:{line}:1: unknown field `line_presure_bar`")),
+        err.contains(&format!(
+            "scene.toml:{line}:1: unknown field `line_presure_bar`"
+        )),
         "{err}"
     );
 }

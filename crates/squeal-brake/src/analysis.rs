@@ -6,7 +6,7 @@ use crate::error::BrakeError;
 use crate::modal::Damping;
 use crate::model::Brake;
 use crate::spectrum::Reference;
-use crate::sweep::{Sweep, SweepOptions, reference, sweep};
+use crate::sweep::{Sweep, SweepOptions, reference, sweep, sweep_to_hopf};
 
 /// Which two modes of the frictionless basis get eq (13)'s `D1`, `D2`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,7 +77,12 @@ pub fn stability(
         PairChoice::Modes(a, b) => (Some((a, b)), None),
         PairChoice::Auto => {
             let r = reference(brake, &global, &newton)?;
-            let s = sweep(brake, &r, mus, opts)?;
+            // With pair damping this sweep only names the pair: it may stop at the Hopf point.
+            let s = if has_pair_damping {
+                sweep_to_hopf(brake, &r, mus, opts)?
+            } else {
+                sweep(brake, &r, mus, opts)?
+            };
             let pair = s.hopf.as_ref().and_then(|h| {
                 h.partner.map(|p| {
                     (

@@ -213,6 +213,28 @@ pub fn sweep(
     mus: &[f64],
     opts: &SweepOptions,
 ) -> Result<Sweep, BrakeError> {
+    sweep_until(brake, reference, mus, opts, false)
+}
+
+/// [`sweep`] up to the first in-band crossing only: with continuation the points end at the
+/// first one past it (the same points as the whole sweep's up to there), which is all the Hopf
+/// point and its coalescing partner need; the dense method sweeps all of `mus`.
+pub fn sweep_to_hopf(
+    brake: &Brake,
+    reference: &Reference,
+    mus: &[f64],
+    opts: &SweepOptions,
+) -> Result<Sweep, BrakeError> {
+    sweep_until(brake, reference, mus, opts, true)
+}
+
+fn sweep_until(
+    brake: &Brake,
+    reference: &Reference,
+    mus: &[f64],
+    opts: &SweepOptions,
+    to_hopf: bool,
+) -> Result<Sweep, BrakeError> {
     check_ascending(mus)?;
     brake.validate()?;
     let lin = LinearizedBrake::new(brake, reference)?;
@@ -221,13 +243,14 @@ pub fn sweep(
     let low_rank = (opts.method == SweepMethod::Continuation
         && reference.damping.diagonal().is_some())
     .then_some(&lin);
-    let (points, branches, stats) = match low_rank {
-        Some(lr) => continued_points(brake, reference, lr, mus, opts)?,
-        None => dense_points(brake, reference, mus, opts)?,
-    };
     let tau = opts
         .threshold
         .unwrap_or_else(|| default_threshold(reference));
+    let stop = to_hopf.then_some(tau);
+    let (points, branches, stats) = match low_rank {
+        Some(lr) => continued_points(brake, reference, lr, mus, opts, stop)?,
+        None => dense_points(brake, reference, mus, opts)?,
+    };
     let crossings = crossings(&points, &branches, opts, tau);
     let mut sweep = Sweep {
         points,
@@ -308,12 +331,15 @@ fn dense_points(
 }
 
 /// Points and branches with [`SweepMethod::Continuation`].
+/// The continued points of `mus`; with `stop_at = Some(τ)` they end at the first point where a
+/// branch has crossed `Re λ = τ` in the band since the previous one.
 fn continued_points(
     brake: &Brake,
     reference: &Reference,
     lr: &LinearizedBrake,
     mus: &[f64],
     opts: &SweepOptions,
+    stop_at: Option<f64>,
 ) -> Result<SweptPoints, BrakeError> {
     let mut walker = Walker {
         brake,
@@ -339,8 +365,32 @@ fn continued_points(
             br.push(position[b]);
         }
         points.push(point);
+        if let Some(tau) = stop_at
+            && crossed_in_band(&points, &branches, opts, tau)
+        {
+            break;
+        }
     }
     Ok((points, branches, walker.stats))
+}
+
+/// Whether a branch crossed `Re λ = τ` in the band between the last two points (the test of
+/// [`crossings`] on the last interval).
+fn crossed_in_band(
+    points: &[SweepPoint],
+    branches: &[Vec<usize>],
+    opts: &SweepOptions,
+    tau: f64,
+) -> bool {
+    let [.., a, b] = points else {
+        return false;
+    };
+    branches.iter().any(|br| {
+        let (i, j) = (br[br.len() - 2], br[br.len() - 1]);
+        a.spectrum.values[i].re <= tau
+            && b.spectrum.values[j].re > tau
+            && opts.band.contains(b.spectrum.frequency_hz(j))
+    })
 }
 
 /// A point of the continuation: equilibrium, coupling, and eigenpairs by branch.

@@ -41,3 +41,24 @@ fn continuation_agrees_with_dense_eigen_decompositions() {
     assert!((hc.mu0 - hd.mu0).abs() < 2e-8, "{} vs {}", hc.mu0, hd.mu0);
     assert!((hc.frequency_hz / hd.frequency_hz - 1.0).abs() < 1e-8);
 }
+
+#[test]
+fn the_sweep_to_the_hopf_point_is_the_whole_sweeps_beginning() {
+    // `sweep_to_hopf` (the preliminary sweep that names the coalescing pair) must stop right
+    // after the first in-band crossing with the same points, bit for bit, and the same Hopf
+    // point and partner as the whole sweep: it runs the same continuation and only stops.
+    use squeal_brake::sweep::sweep_to_hopf;
+    let c = common::coarse();
+    let mus = common::mus(0.0, 1.0, 101);
+    let opts = common::options(c);
+    let whole = sweep(&c.model.brake, &c.reference, &mus, &opts).unwrap();
+    let early = sweep_to_hopf(&c.model.brake, &c.reference, &mus, &opts).unwrap();
+    let first = whole.crossings.iter().find(|x| x.in_band).unwrap();
+    assert_eq!(early.points.len(), first.k + 2, "ends at the point after the crossing");
+    for (k, (a, b)) in early.points.iter().zip(&whole.points).enumerate() {
+        assert_eq!(a.spectrum.values, b.spectrum.values, "point {k}");
+    }
+    let (he, hw) = (early.hopf.unwrap(), whole.hopf.unwrap());
+    assert_eq!(he.mu0.to_bits(), hw.mu0.to_bits());
+    assert_eq!((he.branch, he.partner), (hw.branch, hw.partner));
+}
