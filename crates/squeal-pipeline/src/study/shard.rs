@@ -182,13 +182,19 @@ impl Identity {
         })
     }
 
-    /// Why `self` (a shard's) is not `now` (the merge's), when it is not.
+    /// Why `self` (a shard's) is not `now` (the merge's), and what to do, when it is not.
     fn differs(&self, now: &Identity) -> Option<String> {
         if self.scene_sha256 != now.scene_sha256 {
-            return Some("the scene file has changed since it was computed".into());
+            return Some(
+                "stale shard: the scene file has changed since it was computed; run the shards again"
+                    .into(),
+            );
         }
         if self.mesh_sha256 != now.mesh_sha256 {
-            return Some("a mesh file has changed since it was computed".into());
+            return Some(
+                "stale shard: a mesh file has changed since it was computed; run the shards again"
+                    .into(),
+            );
         }
         if self.mu != now.mu {
             let r = |m: &[F]| match (m.first(), m.last()) {
@@ -196,14 +202,14 @@ impl Identity {
                 _ => "no values".into(),
             };
             return Some(format!(
-                "it was computed over other friction values ({}; the merge asks for {}): give the merge the shards' --mu",
+                "it was computed over other friction values ({}; the merge asks for {}): give the merge the shards' --mu, or run the shards again with this one",
                 r(&self.mu),
                 r(&now.mu)
             ));
         }
         if self.levels != now.levels {
             return Some(format!(
-                "it was computed for the mesh levels {} (the merge asks for {}): give the merge the shards' --levels",
+                "it was computed for the mesh levels {} (the merge asks for {}): give the merge the shards' --levels, or run the shards again with these",
                 self.levels.join(","),
                 now.levels.join(",")
             ));
@@ -384,10 +390,7 @@ pub fn read_all(dir: &Path, kind: Kind, identity: &Identity) -> Result<Vec<Shard
             ));
         }
         if let Some(why) = file.identity.differs(identity) {
-            return Err(shard_error(
-                p,
-                format!("stale shard: {why}; run the shards again"),
-            ));
+            return Err(shard_error(p, why));
         }
         if let Some(first) = files.first().map(|f: &ShardFile| &f.nominal)
             && *first != file.nominal
