@@ -7,7 +7,7 @@
 //! every case as CSV, and the overlaid figures as SVG and PNG.
 //!
 //! A study is a list of independent units (the cases, the mesh levels: [`shard`]) computed
-//! into plain records ([`record`]), then written by one writer ([`write`]). The unsplit run
+//! into plain records ([`record`]), then written by one writer ([`write()`]). The unsplit run
 //! ([`run`]) computes every unit and writes; a shard ([`run_shard`]) computes its share and
 //! stores the records in a JSON file; the merge ([`merge`]) reads the shards and calls the
 //! same writer, so both give the same files, bit for bit.

@@ -349,6 +349,12 @@ pub fn read_all(dir: &Path, kind: Kind, identity: &Identity) -> Result<Vec<Shard
             ),
         ));
     }
+    if let Some((i, _, p)) = found.iter().find(|f| f.0 == 0 || f.0 > n) {
+        return Err(shard_error(
+            p,
+            format!("there is no shard {i} of {n}: remove the file"),
+        ));
+    }
     let missing: Vec<String> = (1..=n)
         .filter(|i| !found.iter().any(|f| f.0 == *i))
         .map(|i| format!("{i}/{n}"))
@@ -372,7 +378,7 @@ pub fn read_all(dir: &Path, kind: Kind, identity: &Identity) -> Result<Vec<Shard
         ));
     }
     let mut files = Vec::with_capacity(n);
-    for (i, _, p) in found.iter().filter(|f| f.0 >= 1 && f.0 <= n) {
+    for (i, _, p) in &found {
         let file = read(p)?;
         let want = Shard {
             index: *i,
