@@ -363,15 +363,11 @@ pub fn read_all(dir: &Path, kind: Kind, identity: &Identity) -> Result<Vec<Shard
         return Err(PipelineError::input(
             "merging the shards",
             format!(
-                "shard {} of the {} study missing in {} (expected {}): run squeal study ... --kind {} --shard {} first",
+                "shard {} of the {} study missing in {} (expected {}-<i>-of-{n}.json): run squeal study ... --kind {} --shard {} first",
                 missing.join(", "),
                 name(kind),
                 folder.display(),
-                path(dir, kind, Shard { index: 1, count: n })
-                    .file_name()
-                    .map_or(String::new(), |f| f
-                        .to_string_lossy()
-                        .replace("-1-of-", "-<i>-of-")),
+                name(kind),
                 name(kind),
                 missing[0]
             ),
