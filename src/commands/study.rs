@@ -1,13 +1,14 @@
 //! `squeal study`: the parametric stability studies of the paper's sections 6.2–6.4 (piston
 //! pressure, contact stiffness, modal damping: Tables 4–6, Figures 9–11 (a, b)), the
 //! damping-induced destabilization at vanishing friction, the mesh-convergence study, and the
-//! identification of the modes that couple at μ0 ([`squeal_pipeline::study`]).
+//! identification of the modes that couple at μ0 ([`squeal_pipeline::study`]); split into
+//! shards for a batch scheduler (`--shard i/n`) and merged (`--merge`).
 
 use crate::progress::say;
 use anyhow::{Context, Result};
 use clap::Args;
 use squeal_pipeline::model::default_out;
-use squeal_pipeline::study::{self, Kind as StudyKind};
+use squeal_pipeline::study::{self, Kind as StudyKind, Shard};
 use squeal_scene::{Scene, parse_range};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -22,6 +23,15 @@ fn kind_parser() -> clap::builder::PossibleValuesParser {
 }
 
 #[derive(Args)]
+#[command(
+    after_help = "On a cluster: run the study's shards as independent jobs (a Slurm job array, GNU \
+parallel), each with the same options and --shard i/n (1-based: 1/n .. n/n), then the same command \
+with --merge instead of --shard. The shards write <out>/study/shards/<kind>-<i>-of-<n>.json; the \
+merge checks that all n are there, from one split, computed from this scene and meshes with these \
+--mu and --levels, and writes the same tables and figures as the unsplit run, bit for bit. Units \
+are dealt round-robin: unit u (0-based) to shard u mod n + 1; every shard but the mesh study's \
+also computes the nominal sweep. README.md, \"Studies on a cluster\", has a Slurm script."
+)]
 pub struct StudyArgs {
     /// Scene file (TOML), e.g. meshes/brake.toml
     pub scene: PathBuf,
@@ -39,6 +49,14 @@ pub struct StudyArgs {
     /// disc_medium.inp), the other levels are found by replacing it
     #[arg(long, value_delimiter = ',', default_value = "coarse,medium,fine")]
     pub levels: Vec<String>,
+    /// Compute only shard i of n (1-based, e.g. 2/4) and write it to
+    /// <out>/study/shards/<kind>-<i>-of-<n>.json, for a batch scheduler; merge with --merge
+    #[arg(long, value_name = "I/N", value_parser = Shard::parse, conflicts_with = "merge")]
+    pub shard: Option<Shard>,
+    /// Merge the shards in <out>/study/shards into the study's tables and figures (give the
+    /// shards' --kind, --mu and --levels)
+    #[arg(long)]
+    pub merge: bool,
 }
 
 pub fn run(args: StudyArgs) -> Result<ExitCode> {
@@ -54,7 +72,24 @@ pub fn run(args: StudyArgs) -> Result<ExitCode> {
         .find(|c| c.1 == args.kind)
         .map(|c| c.0)
         .context("--kind")?;
-    study::run(&scene, &out, kind, &mus, &args.levels, &say)?;
-    println!("results in {}", out.join("study").display());
+    if args.merge {
+        let n = study::merge(&scene, &out, kind, &mus, &args.levels, &say)?;
+        println!(
+            "merged {n} shards: results in {}",
+            out.join("study").display()
+        );
+    } else if let Some(shard) = args.shard {
+        let path = study::run_shard(&scene, &out, kind, &mus, &args.levels, shard, &say)?;
+        println!(
+            "shard {shard} in {}; when all {} are done: squeal study {} --kind {} ... --merge",
+            path.display(),
+            shard.count,
+            args.scene.display(),
+            args.kind
+        );
+    } else {
+        study::run(&scene, &out, kind, &mus, &args.levels, &say)?;
+        println!("results in {}", out.join("study").display());
+    }
     Ok(ExitCode::SUCCESS)
 }

@@ -5,19 +5,35 @@
 //!
 //! Everything goes to `<out>/study/`: a CSV (and Markdown) table per study, the branches of
 //! every case as CSV, and the overlaid figures as SVG and PNG.
+//!
+//! A study is a list of independent units (the cases, the mesh levels: [`shard`]) computed
+//! into plain records ([`record`]), then written by one writer ([`write()`]). The unsplit run
+//! ([`run`]) computes every unit and writes; a shard ([`run_shard`]) computes its share and
+//! stores the records in a JSON file; the merge ([`merge`]) reads the shards and calls the
+//! same writer, so both give the same files, bit for bit.
+
+pub mod record;
+pub mod shard;
+
+pub use shard::Shard;
 
 use crate::error::{Context, PipelineError, Result, json_text};
-use crate::model::{Log, Model, build, read_mesh, reduced_model, valid_max_hz};
+use crate::model::{Log, Model, build, damping_spec, read_mesh, reduced_model, valid_max_hz};
 use crate::shapes::expand_complex;
 use faer::c64;
 use rayon::prelude::*;
+use record::{
+    CoupledModes, F, GrowthRecord, MeshOutcome, MeshRow, Nominal, OutcomeRecord, ParadoxRecord,
+    UnitResult,
+};
+use shard::{Collected, Identity, ShardFile, Unit, UnitEntry};
 use squeal_brake::Brake;
 use squeal_brake::analysis::{DampingSpec, PairChoice, Stability, basis_mode_of_branch, stability};
 use squeal_brake::assemble::{Stiffness, assemble};
 use squeal_brake::studies::{
     BranchCurve, Case, CaseOutcome, GrowthRow, ShapeSummary, circumferential_orders, coupling,
-    damping_cases, energy_share, log_slope, other_mode_growth, outcome, pad_profile,
-    pressure_cases, run_cases, small_friction_grid, stiffness_cases,
+    energy_share, log_slope, other_mode_growth, outcome, pad_profile, run_case,
+    small_friction_grid,
 };
 use squeal_brake::sweep::SweepOptions;
 use squeal_mesh::Mesh;
@@ -85,8 +101,8 @@ impl Kind {
     ];
 }
 
-/// Runs the study `kind` of a scene over the friction values `mus` into `dir` (the mesh study
-/// over the mesh `levels`).
+/// Runs the study `kind` of a scene over the friction values `mus` (the mesh study over the
+/// mesh `levels`) and writes its tables and figures to `<out>/study`.
 pub fn run(
     scene: &Scene,
     out: &Path,
@@ -95,10 +111,140 @@ pub fn run(
     levels: &[String],
     log: Log,
 ) -> Result<()> {
+    let file = compute(scene, out, kind, mus, levels, Shard::WHOLE, log)?;
+    let results = shard::collect(kind, levels, vec![file])?;
+    write(kind, &results, &out.join("study"), log)
+}
+
+/// Computes shard `shard` of the study ([`shard`]) and writes its results to
+/// `<out>/study/shards/<kind>-<i>-of-<n>.json`, whose path it returns.
+pub fn run_shard(
+    scene: &Scene,
+    out: &Path,
+    kind: Kind,
+    mus: &[f64],
+    levels: &[String],
+    shard: Shard,
+    log: Log,
+) -> Result<PathBuf> {
+    let file = compute(scene, out, kind, mus, levels, shard, log)?;
+    let path = shard::path(&out.join("study"), kind, shard);
+    shard::write(&path, &file)?;
+    Ok(path)
+}
+
+/// Merges the shards of the study in `<out>/study/shards` (all of one split, computed from
+/// this scene, its meshes, `mus` and `levels`) and writes the tables and figures the unsplit
+/// run writes, by the same writer. Returns the number of shards.
+pub fn merge(
+    scene: &Scene,
+    out: &Path,
+    kind: Kind,
+    mus: &[f64],
+    levels: &[String],
+    log: Log,
+) -> Result<usize> {
     let dir = out.join("study");
+    let id = identity(scene, kind, mus, levels)?;
+    let files = shard::read_all(&dir, kind, &id)?;
+    let n = files.len();
+    log(&format!("merging {n} shards of the {} study", name(kind)));
+    let results = shard::collect(kind, levels, files)?;
+    write(kind, &results, &dir, log)?;
+    Ok(n)
+}
+
+/// What the study's results depend on (the merge refuses shards computed from anything else).
+fn identity(scene: &Scene, kind: Kind, mus: &[f64], levels: &[String]) -> Result<Identity> {
     if kind == Kind::Mesh {
-        return mesh_study(scene, &dir, mus, levels, log);
+        return Identity::of(scene, &level_meshes(scene, levels)?, mus, levels);
     }
+    let m = &scene.file.model;
+    let meshes = [scene.resolve(&m.disc), scene.resolve(&m.pad)];
+    Identity::of(scene, &meshes, mus, &[])
+}
+
+/// Computes the units of the study that `shard` owns (all of them for [`Shard::WHOLE`]).
+fn compute(
+    scene: &Scene,
+    out: &Path,
+    kind: Kind,
+    mus: &[f64],
+    levels: &[String],
+    shard: Shard,
+    log: Log,
+) -> Result<ShardFile> {
+    // Inputs are checked before any work: the mesh study's files, the damping study's ratios.
+    let id = identity(scene, kind, mus, levels)?;
+    check_pair_ratios(scene, kind)?;
+    let all = shard::units(kind, levels);
+    let total = all.len();
+    let mine: Vec<Unit> = all
+        .into_iter()
+        .enumerate()
+        .filter(|(u, _)| shard.owns(*u))
+        .map(|(_, unit)| unit)
+        .collect();
+    if shard != Shard::WHOLE {
+        log(&format!(
+            "shard {shard} of the {} study: {} of its {total} units ({})",
+            name(kind),
+            mine.len(),
+            mine.iter().map(Unit::key).collect::<Vec<_>>().join(", ")
+        ));
+    }
+    let (nominal, results) = if kind == Kind::Mesh {
+        (
+            None,
+            mesh_units(scene, &out.join("study/mesh"), mus, &mine, log)?,
+        )
+    } else {
+        let (n, r) = study_units(scene, out, mus, &mine, log)?;
+        (Some(n), r)
+    };
+    Ok(ShardFile {
+        format: shard::FORMAT.into(),
+        kind: name(kind).into(),
+        shard,
+        squeal_version: env!("CARGO_PKG_VERSION").into(),
+        identity: id,
+        nominal,
+        units: mine
+            .iter()
+            .zip(results)
+            .map(|(u, result)| UnitEntry {
+                unit: u.key(),
+                result,
+            })
+            .collect(),
+    })
+}
+
+/// The damping study scales the scene's pair ratios: they must not all be zero.
+fn check_pair_ratios(scene: &Scene, kind: Kind) -> Result<()> {
+    if !shard::studies(kind).contains(&Kind::Damping)
+        || damping_spec(scene)?.pair_ratios.iter().any(|r| *r != 0.0)
+    {
+        return Ok(());
+    }
+    let key = &scene.file.damping.pair_ratios;
+    let msg = "the damping study scales the pair ratios: give damping.pair_ratios > 0 (e.g. [0.001, 0.001])";
+    Err(match key {
+        Some(k) => scene.error_at("damping.pair_ratios", k, msg),
+        None => scene.section_error(msg),
+    }
+    .into())
+}
+
+/// The nominal brake's sweep (every case is normalized by its Hopf point, the damping cases
+/// damp its pair), then the units, in parallel.
+fn study_units(
+    scene: &Scene,
+    out: &Path,
+    mus: &[f64],
+    units: &[Unit],
+    log: Log,
+) -> Result<(Nominal, Vec<UnitResult>)> {
     let s = build(scene, out, log)?;
     let t = Instant::now();
     let st = stability(&s.brake, &s.damping, mus, &s.sweep)?;
@@ -117,29 +263,119 @@ pub fn run(
         pair.0 + 1,
         pair.1 + 1
     ));
-    coupled_modes(&s, &st, &dir, log)?;
-    drop(st);
-    let kinds: Vec<Kind> = match kind {
-        Kind::All => vec![
-            Kind::Pressure,
-            Kind::Stiffness,
-            Kind::Damping,
-            Kind::Paradox,
-        ],
-        k => vec![k],
+    let grid = paradox_grid(mus);
+    log(&format!("{} units in parallel ...", units.len()));
+    let t = Instant::now();
+    let results = units
+        .par_iter()
+        .map(|u| -> Result<UnitResult> {
+            let t = Instant::now();
+            let r = match u {
+                Unit::CoupledModes => UnitResult::CoupledModes(coupled_modes(&s, &st, log)?),
+                Unit::Case(k, case) => {
+                    // Table 6 damps the same two modes in every case: the nominal's pair.
+                    let p = (*k == Kind::Damping).then_some(pair);
+                    let o =
+                        run_case(&s.brake, &s.damping, case, p, mus, &s.sweep).map_err(|e| {
+                            PipelineError::Context {
+                                context: format!(
+                                    "{} study, case {} ({})",
+                                    name(*k),
+                                    case.number,
+                                    case.label
+                                ),
+                                error: Box::new(PipelineError::input("stability", e)),
+                            }
+                        })?;
+                    UnitResult::Case(OutcomeRecord::from(&o))
+                }
+                Unit::Paradox(i) => UnitResult::Paradox(paradox_case(&s, pair, &grid, *i)?),
+                Unit::Level(l) => {
+                    return Err(PipelineError::input(
+                        "study",
+                        format!("mesh level {l} outside the mesh study"),
+                    ));
+                }
+            };
+            log(&format!(
+                "  {}: {:.1} s",
+                u.key(),
+                t.elapsed().as_secs_f64()
+            ));
+            Ok(r)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    log(&format!("units: {:.1} s", t.elapsed().as_secs_f64()));
+    let nominal = Nominal {
+        outcome: OutcomeRecord::from(&nominal),
+        piston_force: F(s.params.piston_force),
+        contact_stiffness: F(contact_stiffness(&s.brake)),
+        pair_ratios: s.damping.pair_ratios.map(F),
     };
-    for kind in kinds {
-        let t = Instant::now();
-        if kind == Kind::Paradox {
-            paradox(&s, pair, mus, &dir, log)?;
-        } else {
-            parametric(kind, scene, &s, &nominal, mus, &dir, log)?;
+    Ok((nominal, results))
+}
+
+/// The total linear contact stiffness at first touch (for eq (8), the sum of the `k_l`).
+fn contact_stiffness(brake: &Brake) -> f64 {
+    brake
+        .pairs
+        .iter()
+        .map(|p| {
+            let touch = squeal_brake::Kinematics {
+                penetration: f64::MIN_POSITIVE,
+                ..Default::default()
+            };
+            p.law.response(0.0, &touch).normal_derivatives[0]
+        })
+        .sum()
+}
+
+/// Writes a study's tables and figures from its units' results (in unit order): the one
+/// writer of the unsplit run and of the merge, so that both give the same files.
+pub fn write(kind: Kind, results: &Collected, dir: &Path, log: Log) -> Result<()> {
+    create_dir(dir)?;
+    let mismatch = |u: &Unit| {
+        PipelineError::input(
+            "study",
+            format!("the result of unit {} is of another kind", u.key()),
+        )
+    };
+    if kind == Kind::Mesh {
+        let mut levels = Vec::new();
+        for (u, r) in &results.results {
+            match (u, r) {
+                (Unit::Level(l), UnitResult::Level(rows)) => levels.push((l.as_str(), rows)),
+                _ => return Err(mismatch(u)),
+            }
         }
-        log(&format!(
-            "{} study: {:.1} s",
-            name(kind),
-            t.elapsed().as_secs_f64()
-        ));
+        return write_mesh(&levels, dir, log);
+    }
+    let nominal = results
+        .nominal
+        .as_ref()
+        .ok_or_else(|| PipelineError::input("study", "no nominal outcome"))?;
+    let mut cases: Vec<(Kind, &OutcomeRecord)> = Vec::new();
+    let mut paradox = Vec::new();
+    for (u, r) in &results.results {
+        match (u, r) {
+            (Unit::CoupledModes, UnitResult::CoupledModes(m)) => {
+                if let Some(m) = m {
+                    write_coupled_modes(m, dir, log)?;
+                }
+            }
+            (Unit::Case(k, _), UnitResult::Case(o)) => cases.push((*k, o)),
+            (Unit::Paradox(_), UnitResult::Paradox(p)) => paradox.push(p),
+            _ => return Err(mismatch(u)),
+        }
+    }
+    for k in shard::studies(kind) {
+        if k == Kind::Paradox {
+            write_paradox(&paradox, dir, log)?;
+        } else {
+            let mine: Vec<&OutcomeRecord> =
+                cases.iter().filter(|c| c.0 == k).map(|c| c.1).collect();
+            write_parametric(k, nominal, &mine, dir, log)?;
+        }
     }
     if kind == Kind::All {
         log("(the mesh study runs only with --kind mesh: it reduces six models)");
@@ -157,77 +393,46 @@ fn name(kind: Kind) -> &'static str {
         .map_or("study", |c| c.1)
 }
 
-/// Runs one parametric study: the nominal outcome is case 1 of every table.
-fn parametric(
+/// Writes one parametric study from its non-nominal cases' outcomes (in case order): the
+/// nominal outcome is case 1 of every table.
+fn write_parametric(
     kind: Kind,
-    scene: &Scene,
-    s: &Model,
-    nominal: &CaseOutcome,
-    mus: &[f64],
+    nominal: &Nominal,
+    others: &[&OutcomeRecord],
     dir: &Path,
     log: Log,
 ) -> Result<()> {
-    let (cases, pair) = match kind {
-        Kind::Pressure => (pressure_cases(), None),
-        Kind::Stiffness => (stiffness_cases(), None),
-        _ => {
-            if s.damping.pair_ratios.iter().all(|r| *r == 0.0) {
-                let key = &scene.file.damping.pair_ratios;
-                let msg = "the damping study scales the pair ratios: give damping.pair_ratios > 0 (e.g. [0.001, 0.001])";
-                return Err(match key {
-                    Some(k) => scene.error_at("damping.pair_ratios", k, msg),
-                    None => scene.section_error(msg),
-                }
-                .into());
-            }
-            // Table 6 damps the same two modes in every case: the nominal's pair.
-            (damping_cases(), nominal.pair)
-        }
-    };
-    let todo: Vec<Case> = cases.iter().filter(|c| c.number != 1).cloned().collect();
-    log(&format!(
-        "{} study: {} cases in parallel ...",
-        name(kind),
-        todo.len()
-    ));
-    let results = run_cases(&s.brake, &s.damping, &todo, pair, mus, &s.sweep);
-    let mut outcomes = Vec::with_capacity(cases.len());
-    for case in &cases {
+    let nominal_outcome = nominal.outcome.outcome();
+    let mut others = others.iter();
+    let mut outcomes = Vec::new();
+    for case in shard::cases(kind) {
         if case.number == 1 {
             outcomes.push(CaseOutcome {
-                case: case.clone(),
-                ..nominal.clone()
+                case,
+                ..nominal_outcome.clone()
             });
-            continue;
-        }
-        let k = todo.iter().position(|c| c == case).unwrap_or(0);
-        match &results[k] {
-            Ok(o) => outcomes.push(o.clone()),
-            Err(e) => {
-                return Err(PipelineError::Context {
-                    context: format!(
-                        "{} study, case {} ({})",
-                        name(kind),
-                        case.number,
-                        case.label
-                    ),
-                    error: Box::new(PipelineError::input("stability", e)),
-                });
-            }
+        } else {
+            let o = others.next().ok_or_else(|| {
+                PipelineError::input(
+                    "study",
+                    format!("{} study: no result for case {}", name(kind), case.number),
+                )
+            })?;
+            outcomes.push(o.outcome());
         }
     }
-    let table = case_table(kind, s, &outcomes, nominal);
+    let table = case_table(kind, nominal, &outcomes, &nominal_outcome);
     log(&format!("\n{}", study_title(kind)));
     log(&table.to_text());
-    create_dir(dir)?;
     let stem = name(kind);
     table.write_csv(&dir.join(format!("{stem}.csv")))?;
     squeal_io::atomic_write_bytes(
         &dir.join(format!("{stem}.md")),
         table.to_markdown().as_bytes(),
     )?;
-    branch_table(&outcomes, nominal).write_csv(&dir.join(format!("{stem}_branches.csv")))?;
-    case_figure(kind, &outcomes, nominal, &dir.join(stem), log)?;
+    branch_table(&outcomes, &nominal_outcome)
+        .write_csv(&dir.join(format!("{stem}_branches.csv")))?;
+    case_figure(kind, &outcomes, &nominal_outcome, &dir.join(stem), log)?;
     Ok(())
 }
 
@@ -248,7 +453,12 @@ fn opt(x: Option<f64>, digits: usize) -> String {
 }
 
 /// The Table 4/5/6 analogue.
-fn case_table(kind: Kind, s: &Model, outcomes: &[CaseOutcome], nominal: &CaseOutcome) -> Table {
+fn case_table(
+    kind: Kind,
+    constants: &Nominal,
+    outcomes: &[CaseOutcome],
+    nominal: &CaseOutcome,
+) -> Table {
     let mut header: Vec<&str> = vec!["case"];
     match kind {
         Kind::Pressure => header.extend(["value", "piston_force_n"]),
@@ -266,20 +476,8 @@ fn case_table(kind: Kind, s: &Model, outcomes: &[CaseOutcome], nominal: &CaseOut
         "mode2_hz",
     ]);
     let mut t = Table::new(header);
-    let force = s.params.piston_force;
-    // The total contact stiffness at first touch (for eq (8), the sum of the k_l).
-    let kl: f64 = s
-        .brake
-        .pairs
-        .iter()
-        .map(|p| {
-            let touch = squeal_brake::Kinematics {
-                penetration: f64::MIN_POSITIVE,
-                ..Default::default()
-            };
-            p.law.response(0.0, &touch).normal_derivatives[0]
-        })
-        .sum();
+    let force = constants.piston_force.0;
+    let kl = constants.contact_stiffness.0;
     let (mu_n, f_n) = (nominal.mu0, nominal.frequency_hz);
     for o in outcomes {
         let c = &o.case;
@@ -291,8 +489,8 @@ fn case_table(kind: Kind, s: &Model, outcomes: &[CaseOutcome], nominal: &CaseOut
                 fmt_sig(c.pair_factors[0], 2),
                 fmt_sig(c.pair_factors[1], 2),
                 fmt_sig(c.pair_factors[0] / c.pair_factors[1], 2),
-                fmt_sig(s.damping.pair_ratios[0] * c.pair_factors[0], 2),
-                fmt_sig(s.damping.pair_ratios[1] * c.pair_factors[1], 2),
+                fmt_sig(constants.pair_ratios[0].0 * c.pair_factors[0], 2),
+                fmt_sig(constants.pair_ratios[1].0 * c.pair_factors[1], 2),
             ]),
         }
         row.extend([
@@ -498,31 +696,23 @@ fn paradox_grid(mus: &[f64]) -> Vec<f64> {
     g
 }
 
-struct ParadoxCase {
-    label: &'static str,
-    spec: DampingSpec,
-    rows: Vec<GrowthRow>,
-    /// First in-band crossing: μ0, frequency, frictionless mode (0-based), whether it is the
-    /// pair's.
-    hopf: Option<(f64, f64, usize, bool)>,
-}
-
-fn paradox(s: &Model, pair: (usize, usize), mus: &[f64], dir: &Path, log: Log) -> Result<()> {
-    let grid = paradox_grid(mus);
+/// Damping case `i` of the paradox study ([`shard::PARADOX_CASES`] of them): the scene's
+/// damping on the nominal pair, the pair's alone, none.
+fn paradox_spec(s: &Model, pair: (usize, usize), i: usize) -> Result<(&'static str, DampingSpec)> {
     let nominal = DampingSpec {
         pair: PairChoice::Modes(pair.0, pair.1),
         ..s.damping
     };
-    let specs = [
-        ("global + pair (scene)", nominal),
-        (
+    Ok(match i {
+        0 => ("global + pair (scene)", nominal),
+        1 => (
             "pair only (no global part)",
             DampingSpec {
                 global_ratio: 0.0,
                 ..nominal
             },
         ),
-        (
+        2 => (
             "undamped",
             DampingSpec {
                 global_ratio: 0.0,
@@ -530,32 +720,42 @@ fn paradox(s: &Model, pair: (usize, usize), mus: &[f64], dir: &Path, log: Log) -
                 ..nominal
             },
         ),
-    ];
-    log(&format!(
-        "paradox study: {} damping cases over {} friction values ...",
-        specs.len(),
-        grid.len()
-    ));
-    let cases: Vec<ParadoxCase> = specs
-        .par_iter()
-        .map(|(label, spec)| -> Result<ParadoxCase> {
-            let st = stability(&s.brake, spec, &grid, &s.sweep)
-                .with_context(|| format!("paradox study, {label}"))?;
-            let rows = other_mode_growth(&s.brake, &st, &s.sweep)?;
-            let hopf = st.sweep.hopf.as_ref().map(|h| {
-                let m = basis_mode_of_branch(&st.sweep, h.branch);
-                (h.mu0, h.frequency_hz, m, m == pair.0 || m == pair.1)
-            });
-            Ok(ParadoxCase {
-                label,
-                spec: *spec,
-                rows,
-                hopf,
-            })
-        })
-        .collect::<Result<_>>()?;
+        _ => {
+            return Err(PipelineError::input(
+                "paradox study",
+                format!("no damping case {}", i + 1),
+            ));
+        }
+    })
+}
+
+/// Runs damping case `i` of the paradox study over the friction values `grid`.
+fn paradox_case(s: &Model, pair: (usize, usize), grid: &[f64], i: usize) -> Result<ParadoxRecord> {
+    let (label, spec) = paradox_spec(s, pair, i)?;
+    let st = stability(&s.brake, &spec, grid, &s.sweep)
+        .with_context(|| format!("paradox study, {label}"))?;
+    let rows = other_mode_growth(&s.brake, &st, &s.sweep)?;
+    let hopf = st.sweep.hopf.as_ref().map(|h| {
+        let m = basis_mode_of_branch(&st.sweep, h.branch);
+        (F(h.mu0), F(h.frequency_hz), m, m == pair.0 || m == pair.1)
+    });
+    Ok(ParadoxRecord {
+        label: label.into(),
+        global_ratio: F(spec.global_ratio),
+        pair_ratios: spec.pair_ratios.map(F),
+        rows: rows.iter().map(GrowthRecord::from).collect(),
+        hopf,
+    })
+}
+
+/// Writes the paradox study from its damping cases (in order).
+fn write_paradox(cases: &[&ParadoxRecord], dir: &Path, log: Log) -> Result<()> {
     let small = small_friction_grid();
     let top = small[small.len() - 1] * (1.0 + 1e-12);
+    let rows: Vec<Vec<GrowthRow>> = cases
+        .iter()
+        .map(|c| c.rows.iter().map(GrowthRecord::row).collect())
+        .collect();
     let mut t = Table::new([
         "case",
         "mu",
@@ -566,10 +766,10 @@ fn paradox(s: &Model, pair: (usize, usize), mus: &[f64], dir: &Path, log: Log) -
         "frictionless_mode",
         "unstable_other_modes_in_band",
     ]);
-    for c in &cases {
-        for r in c.rows.iter().filter(|r| r.mu <= top) {
+    for (c, rows) in cases.iter().zip(&rows) {
+        for r in rows.iter().filter(|r| r.mu <= top) {
             t.push_row([
-                c.label.to_string(),
+                c.label.clone(),
                 fmt_sig(r.mu, 2),
                 fmt_sci(r.max_ratio, 3),
                 fmt_sci(r.predicted_ratio, 3),
@@ -591,21 +791,21 @@ fn paradox(s: &Model, pair: (usize, usize), mus: &[f64], dir: &Path, log: Log) -
         "is_the_pair",
         "slope_log_re_vs_log_mu",
     ]);
-    for c in &cases {
+    for (c, rows) in cases.iter().zip(&rows) {
         summary.push_row([
-            c.label.to_string(),
-            fmt_sig(c.spec.global_ratio, 2),
+            c.label.clone(),
+            fmt_sig(c.global_ratio.0, 2),
             format!(
                 "{}/{}",
-                fmt_sig(c.spec.pair_ratios[0], 2),
-                fmt_sig(c.spec.pair_ratios[1], 2)
+                fmt_sig(c.pair_ratios[0].0, 2),
+                fmt_sig(c.pair_ratios[1].0, 2)
             ),
-            c.hopf.map_or("none".into(), |h| fmt_sig(h.0, 6)),
-            c.hopf.map_or("-".into(), |h| fmt_sig(h.1, 5)),
+            c.hopf.map_or("none".into(), |h| fmt_sig(h.0.0, 6)),
+            c.hopf.map_or("-".into(), |h| fmt_sig(h.1.0, 5)),
             c.hopf.map_or("-".into(), |h| format!("#{}", h.2 + 1)),
             c.hopf
                 .map_or("-".into(), |h| if h.3 { "yes" } else { "no" }.into()),
-            growth_slope(&c.rows).map_or("-".into(), |v| fmt_sig(v, 3)),
+            growth_slope(rows).map_or("-".into(), |v| fmt_sig(v, 3)),
         ]);
     }
     let summary = summary.align_numbers_right();
@@ -615,14 +815,18 @@ fn paradox(s: &Model, pair: (usize, usize), mus: &[f64], dir: &Path, log: Log) -
     log(&t.to_text());
     log("first in-band crossing of each case (the mu0 a stability analysis would report):");
     log(&summary.to_text());
-    create_dir(dir)?;
     t.write_csv(&dir.join("paradox.csv"))?;
     summary.write_csv(&dir.join("paradox_summary.csv"))?;
     squeal_io::atomic_write_bytes(
         &dir.join("paradox.md"),
         format!("{}\n{}", t.to_markdown(), summary.to_markdown()).as_bytes(),
     )?;
-    paradox_figure(&cases, top, &dir.join("paradox"))
+    let labelled: Vec<(&str, &[GrowthRow])> = cases
+        .iter()
+        .zip(&rows)
+        .map(|(c, r)| (c.label.as_str(), r.as_slice()))
+        .collect();
+    paradox_figure(&labelled, top, &dir.join("paradox"))
 }
 
 /// Slope of ln(max Re/|λ|) against ln μ for μ in 1e-3..1e-2 (2 for second-order growth).
@@ -640,7 +844,8 @@ fn growth_slope(rows: &[GrowthRow]) -> Option<f64> {
     log_slope(&x, &y)
 }
 
-fn paradox_figure(cases: &[ParadoxCase], top: f64, stem: &Path) -> Result<()> {
+/// The growth of the other modes against μ, one colour per damping case (label, rows).
+fn paradox_figure(cases: &[(&str, &[GrowthRow])], top: f64, stem: &Path) -> Result<()> {
     let mut p = Panel {
         title: "largest Re/|lambda| of the other in-band modes".into(),
         x_label: "friction coefficient mu".into(),
@@ -649,23 +854,19 @@ fn paradox_figure(cases: &[ParadoxCase], top: f64, stem: &Path) -> Result<()> {
         y_scale: Scale::Log,
         ..Panel::default()
     };
-    for (i, c) in cases.iter().enumerate() {
-        let rows: Vec<&GrowthRow> = c
-            .rows
-            .iter()
-            .filter(|r| r.mu > 0.0 && r.mu <= top)
-            .collect();
+    for (i, (label, rows)) in cases.iter().enumerate() {
+        let rows: Vec<&GrowthRow> = rows.iter().filter(|r| r.mu > 0.0 && r.mu <= top).collect();
         if rows.iter().all(|r| r.max_ratio <= 0.0) {
             continue;
         }
         let color = palette_color(i);
         p.series.push(
-            Series::line_markers(c.label, rows.iter().map(|r| (r.mu, r.max_ratio)).collect())
+            Series::line_markers(*label, rows.iter().map(|r| (r.mu, r.max_ratio)).collect())
                 .with_color(color),
         );
         p.series.push(
             Series::line(
-                format!("{}: second-order prediction", c.label),
+                format!("{label}: second-order prediction"),
                 rows.iter().map(|r| (r.mu, r.predicted_ratio)).collect(),
             )
             .with_color(color)
@@ -931,11 +1132,12 @@ fn summarize(
     })
 }
 
-/// Prints and writes which modes couple at μ0: the two frictionless modes of the pair and the
-/// unstable mode at μ0, expanded on the meshes.
-fn coupled_modes(s: &Model, st: &Stability, dir: &Path, log: Log) -> Result<()> {
+/// Which modes couple at μ0 (the text and JSON [`write_coupled_modes`] writes): the two
+/// frictionless modes of the pair and the unstable mode at μ0, expanded on the meshes. `None`
+/// when the sweep has no Hopf point or pair.
+fn coupled_modes(s: &Model, st: &Stability, log: Log) -> Result<Option<CoupledModes>> {
     let (Some(h), Some((m1, m2))) = (&st.sweep.hopf, st.pair) else {
-        return Ok(());
+        return Ok(None);
     };
     let disc = read_mesh(&s.disc_mesh, log)?;
     let pad = read_mesh(&s.pad_mesh, log)?;
@@ -970,9 +1172,6 @@ fn coupled_modes(s: &Model, st: &Stability, dir: &Path, log: Log) -> Result<()> 
         unstable.describe(),
         verdict
     );
-    log(&format!("\n{text}"));
-    create_dir(dir)?;
-    squeal_io::atomic_write_bytes(&dir.join("coupled_modes.txt"), text.as_bytes())?;
     let json = |name: &str, m: Option<usize>, v: &ShapeSummary| {
         serde_json::json!({
             "mode": name,
@@ -992,10 +1191,17 @@ fn coupled_modes(s: &Model, st: &Stability, dir: &Path, log: Log) -> Result<()> 
         "verdict": verdict,
         "modes": [json("Mode 1", Some(m1), &mode1), json("Mode 2", Some(m2), &mode2), json("unstable at mu0", None, &unstable)],
     });
-    squeal_io::atomic_write_bytes(
-        &dir.join("coupled_modes.json"),
-        json_text(&all, "the coupled modes")?.as_bytes(),
-    )?;
+    Ok(Some(CoupledModes {
+        text,
+        json: json_text(&all, "the coupled modes")?,
+    }))
+}
+
+/// Prints and writes which modes couple at μ0 (`coupled_modes.txt`, `.json`).
+fn write_coupled_modes(m: &CoupledModes, dir: &Path, log: Log) -> Result<()> {
+    log(&format!("\n{}", m.text));
+    squeal_io::atomic_write_bytes(&dir.join("coupled_modes.txt"), m.text.as_bytes())?;
+    squeal_io::atomic_write_bytes(&dir.join("coupled_modes.json"), m.json.as_bytes())?;
     Ok(())
 }
 
@@ -1029,6 +1235,7 @@ struct MeshModel {
     interface: &'static str,
     nodes: usize,
     brake: Brake,
+    damping: DampingSpec,
     sweep: SweepOptions,
 }
 
@@ -1041,6 +1248,39 @@ fn variant(scene: &Scene, level: &str, interface: &str, dir: &Path) -> Result<Sc
     v.file.model.interface = Spanned::new(0..0, interface.to_string());
     v.file.model.rom = Some(abs(dir.join(format!("brake_{level}_{interface}.rom"))));
     Ok(v)
+}
+
+/// The disc and pad mesh files of every level, checked to exist (before the first, slow,
+/// reduction starts).
+fn level_meshes(scene: &Scene, levels: &[String]) -> Result<Vec<PathBuf>> {
+    if levels.is_empty() {
+        return Err(PipelineError::input(
+            "--levels",
+            "give at least one mesh level",
+        ));
+    }
+    let m = &scene.file.model;
+    let mut meshes = Vec::new();
+    for level in levels {
+        for p in [&m.disc, &m.pad] {
+            meshes.push(level_path(&scene.resolve(p), level)?);
+        }
+    }
+    let missing: Vec<String> = meshes
+        .iter()
+        .filter(|p| !p.is_file())
+        .map(|p| p.display().to_string())
+        .collect();
+    if !missing.is_empty() {
+        return Err(PipelineError::input(
+            "--kind mesh",
+            format!(
+                "mesh files not found: {} (the scene's meshes must end in _<level>; --levels chooses the levels)",
+                missing.join(", ")
+            ),
+        ));
+    }
+    Ok(meshes)
 }
 
 fn total_nodes(rom: &ReducedModel) -> usize {
@@ -1102,50 +1342,38 @@ fn min_spacing(b: &Brake) -> f64 {
     m
 }
 
-fn mesh_study(scene: &Scene, dir: &Path, mus: &[f64], levels: &[String], log: Log) -> Result<()> {
-    if levels.is_empty() {
-        return Err(PipelineError::input(
-            "--levels",
-            "give at least one mesh level",
-        ));
-    }
-    let mdir = dir.join("mesh");
-    // Every level's meshes are found before the first (slow) reduction starts.
-    let mut missing = Vec::new();
-    for level in levels {
-        let v = variant(scene, level, "patch", &mdir)?;
-        for p in [&v.file.model.disc, &v.file.model.pad] {
-            if !p.is_file() {
-                missing.push(p.display().to_string());
-            }
-        }
-    }
-    if !missing.is_empty() {
-        return Err(PipelineError::input(
-            "--kind mesh",
-            format!(
-                "mesh files not found: {} (the scene's meshes must end in _<level>; --levels chooses the levels)",
-                missing.join(", ")
-            ),
-        ));
-    }
-    create_dir(&mdir)?;
+/// Computes the mesh study's levels among `units`: each level's patch and node models
+/// (reduced one after the other, cached in `mdir`), then their sweeps in parallel.
+fn mesh_units(
+    scene: &Scene,
+    mdir: &Path,
+    mus: &[f64],
+    units: &[Unit],
+    log: Log,
+) -> Result<Vec<UnitResult>> {
+    create_dir(mdir)?;
     let mut models = Vec::new();
-    let mut damping = None;
-    for level in levels {
+    for u in units {
+        let Unit::Level(level) = u else {
+            return Err(PipelineError::input(
+                "mesh study",
+                format!("unit {} is not a mesh level", u.key()),
+            ));
+        };
         // Reductions one after the other (each is parallel inside and needs the memory).
-        let pv = variant(scene, level, "patch", &mdir)?;
-        let ps = build(&pv, &mdir, log).with_context(|| format!("{level} meshes, patch"))?;
-        let nv = variant(scene, level, "node", &mdir)?;
+        let pv = variant(scene, level, "patch", mdir)?;
+        let ps = build(&pv, mdir, log).with_context(|| format!("{level} meshes, patch"))?;
+        let nv = variant(scene, level, "node", mdir)?;
         let (nrom, _) =
-            reduced_model(&nv, &mdir, log).with_context(|| format!("{level} meshes, node"))?;
+            reduced_model(&nv, mdir, log).with_context(|| format!("{level} meshes, node"))?;
         let nb = node_brake(&nrom, &ps)?;
-        damping.get_or_insert(ps.damping);
+        // The damping comes from the scene's [damping] alone: the same on every level.
         models.push(MeshModel {
             level: level.clone(),
             interface: "node",
             nodes: total_nodes(&nrom),
             brake: nb,
+            damping: ps.damping,
             sweep: SweepOptions {
                 band: squeal_brake::sweep::Band {
                     valid_max_hz: valid_max_hz(&nrom),
@@ -1159,22 +1387,48 @@ fn mesh_study(scene: &Scene, dir: &Path, mus: &[f64], levels: &[String], log: Lo
             interface: "patch",
             nodes: total_nodes(&ps.rom),
             brake: ps.brake,
+            damping: ps.damping,
             sweep: ps.sweep,
         });
     }
-    let damping = damping.ok_or_else(|| PipelineError::input("--levels", "no mesh level"))?;
     log(&format!(
         "mesh study: {} stability analyses in parallel ...",
         models.len()
     ));
-    let results: Vec<Result<CaseOutcome>> = models
+    let rows: Vec<MeshRow> = models
         .par_iter()
         .map(|m| {
-            let st = stability(&m.brake, &damping, mus, &m.sweep)
-                .with_context(|| format!("{} meshes, {} contact", m.level, m.interface))?;
-            Ok(outcome(&Case::default(), &st))
+            let r = stability(&m.brake, &m.damping, mus, &m.sweep)
+                .with_context(|| format!("{} meshes, {} contact", m.level, m.interface))
+                .map(|st| outcome(&Case::default(), &st));
+            MeshRow {
+                interface: m.interface.into(),
+                nodes: m.nodes,
+                outcome: match r {
+                    Ok(o) => MeshOutcome::Found {
+                        mu0: o.mu0.map(F),
+                        frequency_hz: o.frequency_hz.map(F),
+                        pair: o.pair,
+                        pair_hz: o.pair_hz.map(|(a, b)| (F(a), F(b))),
+                    },
+                    // A model without a Hopf point in the band is a result (node contact on
+                    // fine meshes), not a failure of the study: the row says so. Any other
+                    // error is a failure, and the row says that.
+                    Err(e) if no_hopf_point(&e) => MeshOutcome::NoHopfPoint(e.to_string()),
+                    Err(e) => MeshOutcome::Failed(e.to_string()),
+                },
+            }
         })
         .collect();
+    // Two models (node, patch) per level.
+    Ok(rows
+        .chunks(2)
+        .map(|c| UnitResult::Level(c.to_vec()))
+        .collect())
+}
+
+/// Writes the mesh study from its levels' models (in level order).
+fn write_mesh(levels: &[(&str, &Vec<MeshRow>)], dir: &Path, log: Log) -> Result<()> {
     let mut t = Table::new([
         "level",
         "interface",
@@ -1195,26 +1449,33 @@ fn mesh_study(scene: &Scene, dir: &Path, mus: &[f64], levels: &[String], log: Lo
     let mut failures = Vec::new();
     for iface in ["patch", "node"] {
         let mut prev: Option<(f64, f64)> = None;
-        for (m, r) in models.iter().zip(&results) {
-            if m.interface != iface {
-                continue;
-            }
-            let o = match r {
-                Ok(o) => o,
-                Err(e) => {
-                    // A model without a Hopf point in the band is a result (node contact on
-                    // fine meshes), not a failure of the study: the row says so. Any other
-                    // error is a failure, and the row says that.
-                    let none = no_hopf_point(e);
+        for (level, rows) in levels {
+            let Some(m) = rows.iter().find(|r| r.interface == iface) else {
+                return Err(PipelineError::input(
+                    "mesh study",
+                    format!("no {iface}-contact result for the {level} meshes"),
+                ));
+            };
+            let (mu0, frequency_hz, pair, pair_hz) = match &m.outcome {
+                MeshOutcome::Found {
+                    mu0,
+                    frequency_hz,
+                    pair,
+                    pair_hz,
+                } => (
+                    mu0.map(|v| v.0),
+                    frequency_hz.map(|v| v.0),
+                    *pair,
+                    pair_hz.map(|(a, b)| (a.0, b.0)),
+                ),
+                MeshOutcome::NoHopfPoint(e) | MeshOutcome::Failed(e) => {
+                    let none = matches!(m.outcome, MeshOutcome::NoHopfPoint(_));
                     failures.push(if none {
-                        format!(
-                            "{} meshes, {iface}: no Hopf point in the band ({e})",
-                            m.level
-                        )
+                        format!("{level} meshes, {iface}: no Hopf point in the band ({e})")
                     } else {
-                        format!("{} meshes, {iface}: the analysis failed: {e}", m.level)
+                        format!("{level} meshes, {iface}: the analysis failed: {e}")
                     });
-                    let mut row = vec![m.level.clone(), iface.to_string(), m.nodes.to_string()];
+                    let mut row = vec![level.to_string(), iface.to_string(), m.nodes.to_string()];
                     row.push(if none { "none" } else { "failed" }.into());
                     row.extend(std::iter::repeat_n("-".to_string(), 7));
                     t.push_row(row);
@@ -1228,19 +1489,19 @@ fn mesh_study(scene: &Scene, dir: &Path, mus: &[f64], levels: &[String], log: Lo
                 })
             };
             t.push_row([
-                m.level.clone(),
+                level.to_string(),
                 iface.to_string(),
                 m.nodes.to_string(),
-                opt(o.mu0, 6),
-                opt(o.frequency_hz, 6),
-                o.pair.map_or("-".into(), |p| format!("#{}", p.0 + 1)),
-                opt(o.pair_hz.map(|p| p.0), 5),
-                o.pair.map_or("-".into(), |p| format!("#{}", p.1 + 1)),
-                opt(o.pair_hz.map(|p| p.1), 5),
-                change(o.mu0, prev.map(|p| p.0)),
-                change(o.frequency_hz, prev.map(|p| p.1)),
+                opt(mu0, 6),
+                opt(frequency_hz, 6),
+                pair.map_or("-".into(), |p| format!("#{}", p.0 + 1)),
+                opt(pair_hz.map(|p| p.0), 5),
+                pair.map_or("-".into(), |p| format!("#{}", p.1 + 1)),
+                opt(pair_hz.map(|p| p.1), 5),
+                change(mu0, prev.map(|p| p.0)),
+                change(frequency_hz, prev.map(|p| p.1)),
             ]);
-            if let (Some(mu0), Some(f)) = (o.mu0, o.frequency_hz) {
+            if let (Some(mu0), Some(f)) = (mu0, frequency_hz) {
                 prev = Some((mu0, f));
                 let k = usize::from(iface == "node");
                 points[k].1.push((m.nodes as f64, mu0));
