@@ -179,6 +179,13 @@ impl HeldNodes {
     }
 }
 
+/// A right-handed orthonormal basis `[e1, e2, e3]` with `e1` the unit `a` (e.g. an axis, `e2`
+/// and `e3` spanning the plane normal to it); for a coordinate axis, `e2` and `e3` are
+/// coordinate axes exactly.
+pub fn orthonormal_completion(a: [f64; 3]) -> [[f64; 3]; 3] {
+    complete(&[a])
+}
+
 /// An orthonormal basis whose first vectors are `basis` (one or two orthonormal vectors).
 fn complete(basis: &[[f64; 3]]) -> [[f64; 3]; 3] {
     let e1 = basis[0];
