@@ -39,7 +39,9 @@ use squeal_eigs::{
     ConstrainedFactor, Constraints, EigError, EigOptions, SparseCholesky, lowest_modes_constrained,
     lowest_modes_with_factor,
 };
-use squeal_fe::frames::{DofTransform, HeldNodes, SkewRestraint};
+use squeal_fe::frames::{
+    DofTransform, HeldNodes, NodeFrame, SkewRestraint, orthonormal_completion,
+};
 use squeal_fe::{DofMap, FeError, MaterialTable, Restraint, assemble};
 use squeal_mesh::Mesh;
 use std::borrow::Cow;
@@ -358,11 +360,60 @@ impl FreeDofs<'_> {
         }
     }
 
+    /// The row `w · u` of node `node` (`w` unit) on the free dofs: the node's dofs along the
+    /// non-zero components of `w`, or, for a node in its own axes, its kept coordinates with
+    /// `w · e_j` (coefficients below 1e-12 are round-off of the axes and dropped, so that a
+    /// node whose first axis is `w` gives a single entry). `None` when `w` has a part the
+    /// node's free motions do not reach (a restrained direction).
+    fn along(&self, node: u32, w: [f64; 3]) -> Option<Vec<(usize, f64)>> {
+        if let Some(t) = &self.transform
+            && let Some(kept) = t.kept(node)
+        {
+            let mut rest = w;
+            let mut out = Vec::new();
+            for &(dof, e) in kept {
+                let c: f64 = (0..3).map(|d| w[d] * e[d]).sum();
+                if c.abs() > 1e-12 {
+                    out.push((dof, c));
+                    for d in 0..3 {
+                        rest[d] -= c * e[d];
+                    }
+                }
+            }
+            return ((0..3).map(|d| rest[d] * rest[d]).sum::<f64>().sqrt() <= 1e-9).then_some(out);
+        }
+        (0..3)
+            .filter(|&d| w[d] != 0.0)
+            .map(|d| Some((self.free_dof(node, d)?, w[d])))
+            .collect()
+    }
+
     fn num_free(&self) -> usize {
         self.transform
             .as_ref()
             .map_or(self.dofmap.num_free(), |t| t.num_free())
     }
+}
+
+/// A piston node pushing along a skew direction `n` keeps its three motions in axes of its own
+/// whose first is `n` ([`NodeFrame`] with none held), so that its piston coordinate `n · u`
+/// is a dof of its own, eliminated like the paper's boundary dofs (a constraint row instead
+/// would leave the pad's motion along `n` free in the interior `K_vv`). A piston node that is
+/// held along skew directions already keeps its own axes, and the row is taken on those.
+fn piston_frames(mesh: &Mesh, spec: &PartSpec, held: &mut HeldNodes) -> Result<(), ReduceError> {
+    let (Some(set), Some(n)) = (&spec.piston_set, spec.piston_direction) else {
+        return Ok(());
+    };
+    let nodes = mesh
+        .node_set(set)
+        .ok_or_else(|| InterfaceError::MissingSet(set.clone()))?;
+    for &node in nodes {
+        held.frames.entry(node).or_insert(NodeFrame {
+            axes: orthonormal_completion(n),
+            held: 0,
+        });
+    }
+    Ok(())
 }
 
 /// The skew restraints of `spec` on the nodes of `mesh`.
@@ -405,7 +456,8 @@ pub fn reduce_part(
 
     progress(Stage::Assemble);
     let t = Instant::now();
-    let held = HeldNodes::new(mesh, &spec.restraints, &skew_restraints(mesh, spec)?)?;
+    let mut held = HeldNodes::new(mesh, &spec.restraints, &skew_restraints(mesh, spec)?)?;
+    piston_frames(mesh, spec, &mut held)?;
     let dofmap = DofMap::new(mesh, &held.restraints)?;
     let system = assemble(mesh, materials, &dofmap)?;
     // Nodes held along skew directions: K' = Tᵀ K T, M' = Tᵀ M T on the kept coordinates.
@@ -914,16 +966,13 @@ fn boundary_rows(
                     (point_label(p, d), vec![(dof, 1.0)], None)
                 }
                 Some(n) => {
-                    // `r = n · u`: a constraint row on the node's three dofs.
-                    let mut entries = Vec::with_capacity(3);
-                    for d in 0..3 {
-                        if n[d] != 0.0 {
-                            let dof = dofmap
-                                .free_dof(node, d)
-                                .ok_or_else(|| restrained(set, node, d))?;
-                            entries.push((dof, n[d]));
-                        }
-                    }
+                    // `r = n · u`: the node's own first axis (`piston_frames`).
+                    let entries = dofmap.along(node, n).ok_or_else(|| {
+                        let d = (0..3)
+                            .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+                            .unwrap_or(2);
+                        restrained(set, node, d)
+                    })?;
                     (
                         DofLabel::Along {
                             point: p,
