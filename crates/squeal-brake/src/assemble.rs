@@ -27,8 +27,8 @@ use crate::contact::{Law, PenaltyCoulomb};
 use crate::error::BrakeError;
 use crate::model::{Brake, ContactPair, SparseVec};
 use faer::Mat;
-use squeal_reduce::brake::{PairingTolerance, pair_contact_points};
 use squeal_fe::frames::RotationAxis;
+use squeal_reduce::brake::{PairingTolerance, pair_contact_points};
 use squeal_reduce::rom::{DofLabel, PointRole, ReducedModel, ReducedPart};
 use std::sync::Arc;
 

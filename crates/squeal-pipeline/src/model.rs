@@ -13,9 +13,9 @@ use squeal_brake::analysis::{DampingSpec, PairChoice};
 use squeal_brake::assemble::{
     BrakeParams, DiscRotation, Layout, Pairing, SlidingRule, Stiffness, assemble,
 };
-use squeal_fe::frames::RotationAxis;
 use squeal_brake::sweep::{Band, SweepOptions};
 use squeal_chbm::physics::DiscSpeed;
+use squeal_fe::frames::RotationAxis;
 use squeal_mesh::Mesh;
 use squeal_reduce::brake::{
     BrakeInputs, Freshness, ModeChoice, PairingTolerance, freshness, reduce_brake,

@@ -56,8 +56,14 @@ fn scene(m: &Motion) -> Scene {
     let path = meshes().join("brake_coarse.toml");
     let mut text = std::fs::read_to_string(meshes().join("brake.toml")).unwrap();
     for (from, to) in [
-        ("disc = \"disc_medium.inp\"", "disc = \"disc_coarse.inp\"".into()),
-        ("pad = \"pad_medium.inp\"", "pad = \"pad_coarse.inp\"".into()),
+        (
+            "disc = \"disc_medium.inp\"",
+            "disc = \"disc_coarse.inp\"".into(),
+        ),
+        (
+            "pad = \"pad_medium.inp\"",
+            "pad = \"pad_coarse.inp\"".into(),
+        ),
         (
             "axis = [0.0, 0.0, 1.0]",
             format!("axis = {}", vec_text(m.vector([0.0, 0.0, 1.0]))),
@@ -70,7 +76,10 @@ fn scene(m: &Motion) -> Scene {
             "normal = [0.0, 0.0, 1.0]",
             format!("normal = {}", vec_text(m.vector([0.0, 0.0, 1.0]))),
         ),
-        ("sliding_direction = [1.0, 0.0, 0.0]", "sliding = \"tangent\"".into()),
+        (
+            "sliding_direction = [1.0, 0.0, 0.0]",
+            "sliding = \"tangent\"".into(),
+        ),
         // 31 values around μ0 = 0.466 (tangent sliding) instead of 201 over [0, 1]: the
         // Hopf point is refined to the same bracket either way.
         ("mu = \"0..1/201\"", "mu = \"0.3..0.6/31\"".into()),
@@ -126,7 +135,10 @@ fn frequency_difference(a: &Stability, b: &Stability) -> f64 {
 }
 
 fn compare(a: &Stability, b: &Stability, what: &str) {
-    let (ha, hb) = (a.sweep.hopf.as_ref().unwrap(), b.sweep.hopf.as_ref().unwrap());
+    let (ha, hb) = (
+        a.sweep.hopf.as_ref().unwrap(),
+        b.sweep.hopf.as_ref().unwrap(),
+    );
     eprintln!(
         "{what}: mu0 {:.12} vs {:.12} (diff {:.1e}), f0 {:.6} vs {:.6} Hz (rel diff {:.1e}), pair {:?} vs {:?}, spectra rel diff {:.1e}",
         ha.mu0,

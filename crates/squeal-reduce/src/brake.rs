@@ -212,7 +212,9 @@ impl BrakeInputs {
             }
             None => self.piston_direction = Some(n),
         }
-        self.pad.restraints.retain(|r| r.nodes != NodeSelection::Set("ABUTMENT".into()));
+        self.pad
+            .restraints
+            .retain(|r| r.nodes != NodeSelection::Set("ABUTMENT".into()));
         self.pad.skew_restraints.retain(|r| r.0 != "ABUTMENT");
         match coordinate_axis(a) {
             Some(d) => {

@@ -463,9 +463,7 @@ pub fn reduce_part(
     // Nodes held along skew directions: K' = Tᵀ K T, M' = Tᵀ M T on the kept coordinates.
     let free = FreeDofs {
         dofmap: &dofmap,
-        transform: held
-            .has_frames()
-            .then(|| DofTransform::new(&dofmap, &held)),
+        transform: held.has_frames().then(|| DofTransform::new(&dofmap, &held)),
     };
     let system = match &free.transform {
         Some(t) => t.system(&dofmap, &system),
@@ -1051,7 +1049,9 @@ impl Split {
                             part: part.into(),
                             point: r.point,
                             direction: match r.label {
-                                DofLabel::Point { direction, .. } => AXES[direction.min(2) as usize],
+                                DofLabel::Point { direction, .. } => {
+                                    AXES[direction.min(2) as usize]
+                                }
                                 _ => 'n',
                             },
                         });

@@ -858,7 +858,9 @@ mod tests {
         // The bundled scene has a [rotation] without a speed; the older [disc] form is read
         // from a scene without [rotation].
         let start = base.find("[rotation]").unwrap();
-        let end = base[start..].find("\n[").map_or(base.len(), |e| start + e + 1);
+        let end = base[start..]
+            .find("\n[")
+            .map_or(base.len(), |e| start + e + 1);
         let no_rotation = format!("{}{}", &base[..start], &base[end..]);
         let with = |extra: &str| Scene::parse(&path, format!("{no_rotation}\n{extra}"));
         assert_eq!(with("").unwrap().disc_angular_speed().unwrap(), None);
@@ -875,11 +877,14 @@ mod tests {
         assert!(with("[disc]\nvehicle_speed_kmh = 36.0").is_err());
         assert!(with("[disc]\nrpm = 60.0\nrolling_radius = 0.25").is_err());
         // The same speed in [rotation].
-        let r = Scene::parse(&path, base.replace("[rotation]\n", "[rotation]\nrpm = 60.0\n"))
-            .unwrap()
-            .rotation()
-            .unwrap()
-            .unwrap();
+        let r = Scene::parse(
+            &path,
+            base.replace("[rotation]\n", "[rotation]\nrpm = 60.0\n"),
+        )
+        .unwrap()
+        .rotation()
+        .unwrap()
+        .unwrap();
         assert!((r.angular_speed.unwrap() - 2.0 * std::f64::consts::PI).abs() < 1e-12);
     }
 
@@ -893,7 +898,10 @@ mod tests {
             .unwrap();
         // The bundled disc turns clockwise about +z (seen from +z): under the pad (+y) its
         // surface moves along +x, the paper's global direction.
-        assert_eq!((r.axis, r.point, r.sense), ([0.0, 0.0, 1.0], [0.0; 3], -1.0));
+        assert_eq!(
+            (r.axis, r.point, r.sense),
+            ([0.0, 0.0, 1.0], [0.0; 3], -1.0)
+        );
         let edit = |from: &str, to: &str| {
             assert!(base.contains(from), "{from}");
             Scene::parse(&path, base.replacen(from, to, 1))
@@ -902,10 +910,10 @@ mod tests {
             "axis = [0.0, 0.0, 1.0]\npoint = [0.0, 0.0, 0.0]",
             "axis = [0.0, 2.0, 0.0]\npoint = [0.1, 0, 0.3]",
         )
-            .unwrap()
-            .rotation()
-            .unwrap()
-            .unwrap();
+        .unwrap()
+        .rotation()
+        .unwrap()
+        .unwrap();
         // A direction is made unit exactly when it is a multiple of a coordinate axis.
         assert_eq!((r.axis, r.point), ([0.0, 1.0, 0.0], [0.1, 0.0, 0.3]));
         let e = edit("sense = \"clockwise\"", "sense = \"cw\"").unwrap_err();
@@ -942,7 +950,9 @@ mod tests {
         }
         // Tangent sliding without [rotation]: refused with a message saying what to add.
         let start = base.find("[rotation]").unwrap();
-        let end = base[start..].find("\n[").map_or(base.len(), |e| start + e + 1);
+        let end = base[start..]
+            .find("\n[")
+            .map_or(base.len(), |e| start + e + 1);
         let no_rotation = format!("{}{}", &base[..start], &base[end..]);
         let e = Scene::parse(&path, no_rotation.replace(line, "")).unwrap_err();
         assert!(e.to_string().contains("needs a [rotation]"), "{e}");
