@@ -209,3 +209,48 @@ fn a_brake_whose_disc_turns_about_y_runs() {
     assert_eq!(about_y.vector([0.0, 0.0, 1.0]), [0.0, 1.0, 0.0]);
     compare(&stability(&IDENTITY).0, &stability(&about_y).0, "about y");
 }
+
+/// A scene that contradicts its mesh is refused when the brake is built, naming the pair: a
+/// global sliding direction against the rotation's sense, a normal 10 degrees off the disc
+/// face's (the check's limit is 5 degrees; the disc face's own normals are exact to 1e-16).
+#[test]
+fn a_scene_that_contradicts_the_mesh_is_refused() {
+    let path = meshes().join("brake_coarse.toml");
+    let base = std::fs::read_to_string(meshes().join("brake.toml"))
+        .unwrap()
+        .replacen("disc_medium.inp", "disc_coarse.inp", 1)
+        .replacen("pad_medium.inp", "pad_coarse.inp", 1);
+    let scene = Scene::parse(&path, base.clone()).unwrap();
+    let (rom, _) = reduce_brake_loaded(
+        &brake_inputs(&scene).unwrap(),
+        moved("disc_coarse.inp", &IDENTITY),
+        moved("pad_coarse.inp", &IDENTITY),
+        &mut |_, _| {},
+    )
+    .unwrap();
+    let build = |text: String| {
+        let scene = Scene::parse(&path, text).unwrap();
+        model_on(&scene, rom.clone(), PathBuf::from("in-memory.rom")).map(|_| ())
+    };
+    assert!(build(base.clone()).is_ok());
+    // The disc turning the other way under a sliding direction of +x.
+    let e = build(base.replacen("sense = \"clockwise\"", "sense = \"counterclockwise\"", 1))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("against the disc's motion"), "{e}");
+    // Without [rotation] (no axis to check the normal against in the scene), a normal tilted
+    // by 10 degrees about x: the mesh's faces disagree.
+    let start = base.find("[rotation]").unwrap();
+    let end = start + base[start..].find("\n[").unwrap() + 1;
+    let a = 10f64.to_radians();
+    let tilted = format!("{}{}", &base[..start], &base[end..]).replacen(
+        "normal = [0.0, 0.0, 1.0]",
+        &format!("normal = [0.0, {:?}, {:?}]", a.sin(), a.cos()),
+        1,
+    );
+    let e = build(tilted).unwrap_err().to_string();
+    assert!(
+        e.contains("is 10.0 degrees from the scene's contact normal"),
+        "{e}"
+    );
+}

@@ -51,6 +51,12 @@ pub enum SceneError {
 
 type Result<T> = std::result::Result<T, SceneError>;
 
+/// Largest angle (degrees) between a `[contact] normal` and the `[rotation] axis` (either
+/// way): a disc's braking faces are normal to its axis, so a larger angle is a scene that
+/// contradicts itself (the axis or the normal of another orientation of the mesh). The brake
+/// checks the normal against the mesh's faces with the same 5 degrees.
+pub const NORMAL_AXIS_TOLERANCE_DEG: f64 = 5.0;
+
 /// The scene as written.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -407,6 +413,20 @@ impl Scene {
         }
         let rotation = self.rotation()?;
         let normal = self.normal()?;
+        if let (Some(r), Some(n), Some(given)) = (rotation, normal, &f.contact.normal) {
+            // The pads of a disc brake press on faces normal to the disc's axis.
+            let cos = (r.axis[0] * n[0] + r.axis[1] * n[1] + r.axis[2] * n[2]).abs();
+            let degrees = cos.clamp(-1.0, 1.0).acos().to_degrees();
+            if degrees > NORMAL_AXIS_TOLERANCE_DEG {
+                return Err(self.error_at(
+                    "contact.normal",
+                    given,
+                    format!(
+                        "is {degrees:.1} degrees from rotation.axis: the pad presses on a disc face normal to the axis (fix one of the two, or remove normal to take the mesh's)"
+                    ),
+                ));
+            }
+        }
         match self.sliding()? {
             Sliding::Global(d) => {
                 if let Some(n) = normal {
@@ -906,19 +926,48 @@ mod tests {
             assert!(base.contains(from), "{from}");
             Scene::parse(&path, base.replacen(from, to, 1))
         };
-        let r = edit(
-            "axis = [0.0, 0.0, 1.0]\npoint = [0.0, 0.0, 0.0]",
-            "axis = [0.0, 2.0, 0.0]\npoint = [0.1, 0, 0.3]",
-        )
-        .unwrap()
-        .rotation()
-        .unwrap()
-        .unwrap();
+        let about_y = base
+            .replacen(
+                "axis = [0.0, 0.0, 1.0]\npoint = [0.0, 0.0, 0.0]",
+                "axis = [0.0, 2.0, 0.0]\npoint = [0.1, 0, 0.3]",
+                1,
+            )
+            .replacen("normal = [0.0, 0.0, 1.0]", "normal = [0.0, 1.0, 0.0]", 1)
+            .replacen(
+                "sliding_direction = [1.0, 0.0, 0.0]",
+                "sliding = \"tangent\"",
+                1,
+            );
+        let r = Scene::parse(&path, about_y)
+            .unwrap()
+            .rotation()
+            .unwrap()
+            .unwrap();
         // A direction is made unit exactly when it is a multiple of a coordinate axis.
         assert_eq!((r.axis, r.point), ([0.0, 1.0, 0.0], [0.1, 0.0, 0.3]));
+        // The axis turned to y with the normal left along z: refused.
+        let e = edit("axis = [0.0, 0.0, 1.0]", "axis = [0.0, 1.0, 0.0]").unwrap_err();
+        assert!(e.to_string().contains("90.0 degrees"), "{e}");
         let e = edit("sense = \"clockwise\"", "sense = \"cw\"").unwrap_err();
         assert!(e.to_string().contains("rotation.sense"), "{e}");
         assert!(edit("axis = [0.0, 0.0, 1.0]", "axis = [0.0, 0.0, 0.0]").is_err());
+        // A normal 10 degrees from the axis: refused; 3 degrees (a coned face) passes.
+        let tilted = |deg: f64| {
+            let a = deg.to_radians();
+            edit(
+                "normal = [0.0, 0.0, 1.0]",
+                &format!("normal = [0.0, {:?}, {:?}]", a.sin(), a.cos()),
+            )
+        };
+        let e = tilted(10.0).unwrap_err();
+        assert!(
+            e.to_string().contains("10.0 degrees from rotation.axis"),
+            "{e}"
+        );
+        assert!(tilted(3.0).is_ok());
+        // The normal reversed (from the pad into the disc) is along the axis too: the mesh's
+        // normals decide the sign, and the brake checks the given one against them.
+        assert!(edit("normal = [0.0, 0.0, 1.0]", "normal = [0.0, 0.0, -1.0]").is_ok());
         // [rotation] and the older [disc] at once: refused, naming both.
         let e = Scene::parse(&path, format!("{base}\n[disc]\nrpm = 60.0")).unwrap_err();
         assert!(e.to_string().contains("[disc] is the older form"), "{e}");
