@@ -48,6 +48,26 @@ pub struct ReduceArgs {
     /// Patch grid of the contact face, radial x angular
     #[arg(long, default_value = "3x3")]
     pub grid: String,
+    /// The disc's axis direction X,Y,Z: the patch grid is cut about it, the pad's ABUTMENT is
+    /// held in the plane normal to it (a scene's [rotation] axis)
+    #[arg(
+        long,
+        default_value = "0,0,1",
+        value_name = "X,Y,Z",
+        allow_hyphen_values = true
+    )]
+    pub axis: String,
+    /// A point X,Y,Z of the disc's axis (m)
+    #[arg(
+        long,
+        default_value = "0,0,0",
+        value_name = "X,Y,Z",
+        allow_hyphen_values = true
+    )]
+    pub axis_point: String,
+    /// Direction X,Y,Z of the pistons' dofs (the contact normal); default: the axis
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub normal: Option<String>,
     #[command(flatten)]
     pub materials: crate::commands::fe::MaterialArgs,
 }
@@ -114,9 +134,31 @@ pub fn run(args: ReduceArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The brake inputs from the command line: the bundled setup on the given meshes.
+/// `X,Y,Z` as three finite numbers.
+fn parse_vector(option: &str, text: &str) -> Result<[f64; 3]> {
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .with_context(|| format!("{option} {text}: expected three numbers X,Y,Z"))?;
+    match <[f64; 3]>::try_from(v) {
+        Ok(v) if v.iter().all(|x| x.is_finite()) => Ok(v),
+        _ => bail!("{option} {text}: expected three finite numbers X,Y,Z"),
+    }
+}
+
+/// The brake inputs from the command line: the bundled setup on the given meshes, turned to
+/// the given axis and normal.
 fn inputs(args: &ReduceArgs) -> Result<BrakeInputs> {
-    let mut inputs = BrakeInputs::bundled(&args.disc, &args.pad);
+    let direction = parse_vector("--axis", &args.axis)?;
+    let origin = parse_vector("--axis-point", &args.axis_point)?;
+    let normal = match &args.normal {
+        Some(n) => parse_vector("--normal", n)?,
+        None => direction,
+    };
+    let mut inputs = BrakeInputs::bundled(&args.disc, &args.pad)
+        .about(squeal_reduce::interface::Axis { origin, direction }, normal)
+        .map_err(|e| anyhow::anyhow!("--axis/--normal: {e}"))?;
     inputs.interface = match args.interface {
         Interface::Patch => InterfaceKind::Patch,
         Interface::Node => InterfaceKind::Node,

@@ -1,14 +1,67 @@
 //! The reduced brake of eq (11) from a reduced model: disc and pad stacked, contact points
 //! paired by position ([`squeal_reduce::brake::pair_contact_points`], the one pairing of the
 //! workspace), a contact element per pair, the piston load.
+//!
+//! Each pair's geometry comes from the model, not from a global frame:
+//!
+//! - **normal** `n_p`: the outward normal of the disc face under the disc's contact point
+//!   (area-weighted over its patch, or over a node's tributary cell), stored in the `.rom`
+//!   (format 3); else the pad point's normal reversed; else the scene's normal. A normal the
+//!   scene gives is checked against every pair's ([`NORMAL_TOLERANCE_DEG`]).
+//! - **sliding direction** `s_p`: with [`SlidingRule::Tangent`], the direction the disc's
+//!   surface moves in at the pair, `t = σ a × (x_p - c)` (axis `a` through `c`, sense
+//!   `σ = ±1`; Abaqus' `*MOTION`, Ansys' `CMROTATE`), projected into the contact plane,
+//!   `s_p = (t - (t·n_p) n_p) / |…|`; with [`SlidingRule::Global`], one direction projected
+//!   the same way (refused when it leaves the plane by more than 1e-6, or points against the
+//!   rotation where the sense is known).
+//! - **surface speed** `V_p = Ω (σ a × (x_p - c)) · s_p`, `Ω r_p` for tangent sliding on a
+//!   face normal to the axis, when the speed is known.
+//! - **piston**: the load pushes the pad towards the disc along the pads' mean normal
+//!   `-Σ A_p n_p / |Σ A_p n_p|`, projected on each piston point's dof (its axis, or the
+//!   direction of a `DofLabel::Along`).
+//!
+//! A rigid motion of the meshes with the scene's axis, point and normal moved alike moves every
+//! one of these with it, so the brake's spectrum does not change.
 
 use crate::contact::{Law, PenaltyCoulomb};
 use crate::error::BrakeError;
 use crate::model::{Brake, ContactPair, SparseVec};
 use faer::Mat;
+use squeal_fe::frames::RotationAxis;
 use squeal_reduce::brake::{PairingTolerance, pair_contact_points};
 use squeal_reduce::rom::{DofLabel, PointRole, ReducedModel, ReducedPart};
 use std::sync::Arc;
+
+/// Largest angle (degrees) between the disc face's normal at a pair and a normal the scene
+/// gives: beyond it the scene and the mesh disagree (a wrong axis, a reversed normal). Disc
+/// faces are flat, so their patch normals agree with the true one to round-off; 5 degrees
+/// still lets a faceted or slightly coned face through.
+pub const NORMAL_TOLERANCE_DEG: f64 = 5.0;
+
+/// Largest length of a load direction outside the span of a point's dofs (the part of the
+/// load that would be lost): round-off of normals taken from a mesh.
+const SPAN_TOLERANCE: f64 = 1e-9;
+
+/// How the disc's surface slides under the pad.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SlidingRule {
+    /// The tangent of the disc's rotation at each pair (needs [`BrakeParams::rotation`] with
+    /// a sense).
+    Tangent,
+    /// One global direction at every pair (the paper's choice).
+    Global([f64; 3]),
+}
+
+/// The disc's rotation: axis, sense, speed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DiscRotation {
+    /// The axis (a point and a unit direction).
+    pub axis: RotationAxis,
+    /// +1: the right-hand rule about the axis; -1: the other way; 0: not known.
+    pub sense: f64,
+    /// `Ω` (rad/s), when known.
+    pub angular_speed: Option<f64>,
+}
 
 /// Contact stiffness of eq (8): per contact point, or per unit area (then multiplied by each
 /// pair's tributary area: the patch area for the patch interface).
@@ -36,19 +89,20 @@ pub enum Stiffness {
 /// Physical parameters of the brake around the reduced model.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BrakeParams {
-    /// Unit normal from the disc into the pad.
-    pub normal: [f64; 3],
-    /// Direction in which the disc surface slides under the pad.
-    pub sliding: [f64; 3],
+    /// The normal from the disc into the pad the scene gives, if any: used at pairs whose
+    /// points carry no normal, and checked against those that do.
+    pub normal: Option<[f64; 3]>,
+    /// How the disc surface slides under the pad.
+    pub sliding: SlidingRule,
+    /// The disc's rotation, when known (needed by [`SlidingRule::Tangent`]).
+    pub rotation: Option<DiscRotation>,
     /// Contact stiffness of every pair's element.
     pub stiffness: Stiffness,
     /// How close paired contact points must be.
     pub pairing_tolerance: PairingTolerance,
     /// Total piston force (N) pressing the pad on the disc, shared equally by the pad's piston
-    /// points, each pushed along `-normal`.
+    /// points, each pushed towards the disc along the pads' mean normal.
     pub piston_force: f64,
-    /// The disc's surface speed under the pad (m/s), when known.
-    pub surface_speed: Option<f64>,
 }
 
 /// How a pair was formed.
@@ -62,6 +116,10 @@ pub struct Pairing {
     pub distance: f64,
     /// The pair's area (m²): the mean of the two points' areas, or the one given.
     pub area: Option<f64>,
+    /// Unit normal from the disc into the pad at the pair.
+    pub normal: [f64; 3],
+    /// Unit sliding direction at the pair.
+    pub sliding: [f64; 3],
     /// The pair's contact element.
     pub law: Law,
 }
@@ -87,16 +145,6 @@ fn part<'a>(rom: &'a ReducedModel, name: &str) -> Result<&'a ReducedPart, BrakeE
     })
 }
 
-/// The dof index (within the part) of point `p`'s direction `d`.
-fn point_dof(part: &ReducedPart, p: usize, d: u8) -> Option<usize> {
-    part.info.dofs.iter().position(|l| {
-        *l == DofLabel::Point {
-            point: p,
-            direction: d,
-        }
-    })
-}
-
 /// `v / |v|`; [`BrakeError::BadDirection`] naming `what` if `v` is zero or not finite.
 pub fn unit(v: [f64; 3], what: &'static str) -> Result<[f64; 3], BrakeError> {
     let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
@@ -117,7 +165,35 @@ fn points_of(p: &ReducedPart, role: PointRole) -> Vec<usize> {
         .collect()
 }
 
-/// `Σ_d w_d e_{dof(d)}` over a point's three dofs, offset by `shift`.
+/// The point's dofs and their unit directions: a `Point` label's coordinate axis, an
+/// `Along` label's vector.
+fn point_dofs(part: &ReducedPart, point: usize) -> Vec<(usize, [f64; 3])> {
+    part.info
+        .dofs
+        .iter()
+        .enumerate()
+        .filter_map(|(k, l)| match *l {
+            DofLabel::Point {
+                point: p,
+                direction,
+            } if p == point => {
+                let mut e = [0.0; 3];
+                e[direction.min(2) as usize] = 1.0;
+                Some((k, e))
+            }
+            DofLabel::Along {
+                point: p,
+                direction,
+            } if p == point => Some((k, direction)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// `sign · Σ_k (w · e_k) e_{dof k}` over a point's dofs, offset by `shift`: the motion of the
+/// point along `w` (its generalized force for a force along `w`). The point's dofs must be
+/// orthonormal (coordinate axes, or one `Along` vector) and span `w` to [`SPAN_TOLERANCE`],
+/// else part of the motion or load would be lost.
 fn along(
     part: &ReducedPart,
     name: &'static str,
@@ -127,18 +203,108 @@ fn along(
     sign: f64,
 ) -> Result<SparseVec, BrakeError> {
     let mut v = Vec::new();
-    for d in 0..3u8 {
-        if w[d as usize] == 0.0 {
-            continue;
+    let mut rest = w;
+    for (dof, e) in point_dofs(part, point) {
+        let c = dot(w, e);
+        for d in 0..3 {
+            rest[d] -= c * e[d];
         }
-        let dof = point_dof(part, point, d).ok_or(BrakeError::MissingPointDof {
+        if c != 0.0 {
+            v.push((shift + dof, sign * c));
+        }
+    }
+    let missing = dot(rest, rest).sqrt();
+    if missing > SPAN_TOLERANCE * dot(w, w).sqrt() {
+        return Err(BrakeError::MissingPointDof {
             part: name,
             point: point + 1,
-            direction: ['x', 'y', 'z'][d as usize],
-        })?;
-        v.push((shift + dof, sign * w[d as usize]));
+            direction: w,
+            missing,
+        });
     }
     Ok(v)
+}
+
+fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
+    dot(a, b).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// The unit normal from the disc into the pad at pair `pair` (1-based): the disc point's
+/// normal, else the pad point's reversed, else the scene's; checked against the scene's.
+fn pair_normal(
+    disc_normal: Option<[f64; 3]>,
+    pad_normal: Option<[f64; 3]>,
+    scene: Option<[f64; 3]>,
+    pair: usize,
+) -> Result<[f64; 3], BrakeError> {
+    let mesh = disc_normal
+        .and_then(|n| unit(n, "contact normal").ok())
+        .or_else(|| pad_normal.and_then(|n| unit(n.map(|x| -x), "contact normal").ok()));
+    match (mesh, scene) {
+        (Some(m), Some(s)) => {
+            let degrees = angle_deg(m, s);
+            if degrees > NORMAL_TOLERANCE_DEG {
+                return Err(BrakeError::NormalDisagrees {
+                    pair,
+                    mesh: m,
+                    degrees,
+                });
+            }
+            Ok(m)
+        }
+        (Some(m), None) => Ok(m),
+        (None, Some(s)) => Ok(s),
+        (None, None) => Err(BrakeError::NoNormal { pair }),
+    }
+}
+
+/// `v` with its component along the unit `n` removed, made unit; `None` when nothing is left.
+fn in_plane(v: [f64; 3], n: [f64; 3]) -> Option<[f64; 3]> {
+    let c = dot(v, n);
+    unit(std::array::from_fn(|d| v[d] - c * n[d]), "sliding").ok()
+}
+
+/// The sliding direction and surface speed at a pair at `x` with normal `n` (module docs).
+fn pair_sliding(
+    params: &BrakeParams,
+    x: [f64; 3],
+    n: [f64; 3],
+    pair: usize,
+) -> Result<([f64; 3], Option<f64>), BrakeError> {
+    // The disc's surface velocity per unit Ω, σ a × (x - c), when the sense is known.
+    let motion = params
+        .rotation
+        .filter(|r| r.sense != 0.0)
+        .map(|r| r.axis.velocity(x, r.sense));
+    let s = match params.sliding {
+        SlidingRule::Tangent => {
+            let t = motion.ok_or(BrakeError::NoSense)?;
+            in_plane(t, n).ok_or(BrakeError::OnAxis { pair })?
+        }
+        SlidingRule::Global(g) => {
+            let g = unit(g, "sliding")?;
+            let d = dot(n, g);
+            if d.abs() > 1e-6 {
+                return Err(BrakeError::SlidingNotTangent { dot: d });
+            }
+            let s = in_plane(g, n).ok_or(BrakeError::SlidingNotTangent { dot: d })?;
+            if let Some(t) = motion.and_then(|t| unit(t, "sliding").ok()) {
+                let cosine = dot(s, t);
+                if cosine <= 0.0 {
+                    return Err(BrakeError::SlidingAgainstRotation { pair, cosine });
+                }
+            }
+            s
+        }
+    };
+    let speed = params.rotation.and_then(|r| {
+        let w = r.angular_speed?;
+        Some(match motion {
+            Some(m) => w * dot(m, s),
+            None => w.abs() * r.axis.radius(x),
+        })
+    });
+    Ok((s, speed))
 }
 
 /// The pair's contact stiffnesses from the scene's stiffness and the pair's area.
@@ -170,12 +336,10 @@ pub fn assemble(
         disc: 0..nd,
         pad: nd..n,
     };
-    let normal = unit(params.normal, "contact normal")?;
-    let sliding = unit(params.sliding, "sliding")?;
-    let d = dot(normal, sliding);
-    if d.abs() > 1e-6 {
-        return Err(BrakeError::SlidingNotTangent { dot: d });
-    }
+    let scene_normal = params
+        .normal
+        .map(|n| unit(n, "contact normal"))
+        .transpose()?;
     let (dc, pc) = (
         points_of(disc, PointRole::Contact),
         points_of(pad, PointRole::Contact),
@@ -188,6 +352,8 @@ pub fn assemble(
     )?;
     let mut pairs = Vec::with_capacity(matched.len());
     let mut report = Vec::with_capacity(matched.len());
+    // Σ A_p n_p: the pads' mean normal, the pistons' direction.
+    let mut pad_normal = [0.0; 3];
     for (k, m) in matched.iter().enumerate() {
         let (i, j) = (dc[m.disc_point], pc[m.pad_point]);
         let area = match (disc.info.points[i].area, pad.info.points[j].area) {
@@ -195,20 +361,33 @@ pub fn assemble(
             (a, b) => a.or(b),
         };
         let law = element(&params.stiffness, area, k + 1)?;
+        let xi = position(disc, i);
+        let normal = pair_normal(
+            disc.info.points[i].normal,
+            pad.info.points[j].normal,
+            scene_normal,
+            k + 1,
+        )?;
+        let (sliding, surface_speed) = pair_sliding(params, xi, normal, k + 1)?;
         let mut g = along(disc, "disc", i, normal, 0, 1.0)?;
         g.extend(along(pad, "pad", j, normal, nd, -1.0)?);
         let mut h = along(disc, "disc", i, sliding, 0, 1.0)?;
         h.extend(along(pad, "pad", j, sliding, nd, -1.0)?);
-        let xi = position(disc, i);
         // A pad point below the disc surface (along n) starts in interference.
         let gap = -(0..3)
             .map(|d| normal[d] * (position(pad, j)[d] - xi[d]))
             .sum::<f64>();
+        let w = area.unwrap_or(1.0);
+        for d in 0..3 {
+            pad_normal[d] += w * normal[d];
+        }
         report.push(Pairing {
             disc_point: i,
             pad_point: j,
             distance: m.distance,
             area,
+            normal,
+            sliding,
             law: law.clone(),
         });
         pairs.push(ContactPair {
@@ -220,10 +399,11 @@ pub fn assemble(
             normal: g,
             tangent: h,
             gap,
-            surface_speed: params.surface_speed,
+            surface_speed,
             law,
         });
     }
+    let normal = unit(pad_normal, "contact normal")?;
     let pistons = points_of(pad, PointRole::Piston);
     if pistons.is_empty() {
         return Err(BrakeError::NoPistons);
@@ -231,8 +411,8 @@ pub fn assemble(
     let mut f_piston = vec![0.0; n];
     let share = params.piston_force / pistons.len() as f64;
     for &p in &pistons {
-        // The piston pushes the pad toward the disc: along -n. Every direction of the normal
-        // needs its dof, or part of the load would be lost.
+        // The piston pushes the pad toward the disc: along -n. The point's dofs must span the
+        // normal, or part of the load would be lost.
         for (dof, w) in along(pad, "pad", p, normal, nd, -1.0)? {
             f_piston[dof] += share * w;
         }

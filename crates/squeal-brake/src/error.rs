@@ -108,14 +108,67 @@ pub enum BrakeError {
     },
     /// [`assemble`](crate::assemble::assemble): a contact point has no dof in a direction in
     /// which the contact normal or the sliding direction has a nonzero component.
-    #[error("the {part}'s reduced model has no dof for point {point} in direction {direction}")]
+    #[error(
+        "the {part}'s reduced model has no dof for point {point} along [{:.6}, {:.6}, {:.6}] (its dofs leave {:.1e} of that direction out)",
+        direction[0], direction[1], direction[2], missing
+    )]
     MissingPointDof {
         /// `disc` or `pad`.
         part: &'static str,
         /// The point's number among the part's points (1-based).
         point: usize,
-        /// `x`, `y` or `z`.
-        direction: char,
+        /// The unit direction asked for.
+        direction: [f64; 3],
+        /// The length of its part outside the span of the point's dofs.
+        missing: f64,
+    },
+    /// [`assemble`](crate::assemble::assemble): the disc face's normal at a pair is further
+    /// from the scene's `[contact] normal` than
+    /// [`NORMAL_TOLERANCE_DEG`](crate::assemble::NORMAL_TOLERANCE_DEG).
+    #[error(
+        "contact pair {pair}: the disc face's normal [{:.4}, {:.4}, {:.4}] is {degrees:.1} degrees from the scene's contact normal: the scene and the mesh disagree (fix [contact] normal, or remove it to take the mesh's normals)",
+        mesh[0], mesh[1], mesh[2]
+    )]
+    NormalDisagrees {
+        /// Pair number (1-based).
+        pair: usize,
+        /// The normal from the mesh.
+        mesh: [f64; 3],
+        /// Angle to the scene's normal (degrees).
+        degrees: f64,
+    },
+    /// [`assemble`](crate::assemble::assemble): neither point of a pair carries a normal (a
+    /// node interface without a contact face) and the scene gives none.
+    #[error(
+        "contact pair {pair}: the reduced model gives no normal there (no contact face set): give [contact] normal"
+    )]
+    NoNormal {
+        /// Pair number (1-based).
+        pair: usize,
+    },
+    /// [`assemble`](crate::assemble::assemble): tangent sliding at a pair on the disc's axis,
+    /// where the rotation's tangent is undefined.
+    #[error("contact pair {pair} lies on the disc's axis: the rotation has no tangent there")]
+    OnAxis {
+        /// Pair number (1-based).
+        pair: usize,
+    },
+    /// [`assemble`](crate::assemble::assemble): tangent sliding needs the disc's sense of
+    /// rotation.
+    #[error(
+        "sliding along the rotation's tangent needs its sense: give [rotation] with axis and sense"
+    )]
+    NoSense,
+    /// [`assemble`](crate::assemble::assemble): a global sliding direction points against the
+    /// disc's motion at a pair (the friction would push the pad the wrong way).
+    #[error(
+        "contact pair {pair}: the sliding direction points against the disc's motion there (cosine {cosine:.3} with the rotation's tangent): reverse it or the rotation's sense"
+    )]
+    SlidingAgainstRotation {
+        /// Pair number (1-based).
+        pair: usize,
+        /// Cosine of the angle between the sliding direction and the tangent.
+        cosine: f64,
     },
     /// [`unit`](crate::assemble::unit): a direction vector is zero or not finite.
     #[error("the {what} direction has zero length or is not finite")]

@@ -39,7 +39,8 @@ pub struct SkewRestraint {
 pub struct NodeFrame {
     /// Orthonormal rows.
     pub axes: [[f64; 3]; 3],
-    /// How many of the first axes are restrained (1 or 2).
+    /// How many of the first axes are restrained (0 to 2; 0: a node that keeps all three
+    /// motions, in axes of its own, e.g. a piston node whose first axis is a skew normal).
     pub held: usize,
 }
 
@@ -174,6 +175,13 @@ impl HeldNodes {
     }
 }
 
+/// A right-handed orthonormal basis `[e1, e2, e3]` with `e1` the unit `a` (e.g. an axis, `e2`
+/// and `e3` spanning the plane normal to it); for a coordinate axis, `e2` and `e3` are
+/// coordinate axes exactly.
+pub fn orthonormal_completion(a: [f64; 3]) -> [[f64; 3]; 3] {
+    complete(&[a])
+}
+
 /// An orthonormal basis whose first vectors are `basis` (one or two orthonormal vectors).
 fn complete(basis: &[[f64; 3]]) -> [[f64; 3]; 3] {
     let e1 = basis[0];
@@ -256,6 +264,12 @@ impl DofTransform {
     /// Number of kept coordinates (rows and columns of the held system).
     pub fn num_free(&self) -> usize {
         self.num_new
+    }
+
+    /// The kept coordinates of a node with its own axes: `(new dof, axis e_j)` for each
+    /// kept axis; `None` for a node without a frame.
+    pub fn kept(&self, node: u32) -> Option<&[(usize, [f64; 3])]> {
+        self.framed.get(&node).map(|f| f.kept.as_slice())
     }
 
     /// The kept coordinate of old free dof `old` of a node without a frame.

@@ -272,7 +272,7 @@ pub fn sliding(m: &Model, s: &ChbmSolution) -> std::result::Result<Option<Slidin
 /// One line on the sliding margin, with a warning below 1.
 pub fn sliding_text(m: &std::result::Result<Option<SlidingMargin>, String>) -> String {
     match m {
-        Ok(None) => "not checked (the scene gives no [disc] speed)".into(),
+        Ok(None) => "not checked (the scene gives no disc speed: [rotation] rpm, or vehicle_speed_kmh with rolling_radius)".into(),
         Err(e) => format!("not checked: {e}"),
         Ok(Some(m)) => format!(
             "disc surface speed / largest tangential vibration velocity = {:.3} at pair {} (smallest over the pairs){}",

@@ -10,16 +10,19 @@
 use crate::error::{PipelineError, Result};
 use squeal_brake::Brake;
 use squeal_brake::analysis::{DampingSpec, PairChoice};
-use squeal_brake::assemble::{BrakeParams, Layout, Pairing, Stiffness, assemble};
+use squeal_brake::assemble::{
+    BrakeParams, DiscRotation, Layout, Pairing, SlidingRule, Stiffness, assemble,
+};
 use squeal_brake::sweep::{Band, SweepOptions};
 use squeal_chbm::physics::DiscSpeed;
+use squeal_fe::frames::RotationAxis;
 use squeal_mesh::Mesh;
 use squeal_reduce::brake::{
     BrakeInputs, Freshness, ModeChoice, PairingTolerance, freshness, reduce_brake,
 };
 use squeal_reduce::craig_bampton::Stage;
 use squeal_reduce::rom::{InterfaceKind, ReducedModel};
-use squeal_scene::Scene;
+use squeal_scene::{Scene, Sliding};
 use std::path::{Path, PathBuf};
 
 /// Everything an analysis of the scene needs.
@@ -35,7 +38,8 @@ pub struct Model {
     /// Meshes of the parts, as files.
     pub disc_mesh: PathBuf,
     pub pad_mesh: PathBuf,
-    /// The disc's rotation from the scene's `[disc]`, for the sliding check of every cycle.
+    /// The disc's speed from the scene's `[rotation]` (or `[disc]`), for the sliding check of
+    /// every cycle.
     pub disc: Option<DiscSpeed>,
 }
 
@@ -45,19 +49,32 @@ pub type Log<'a> = &'a (dyn Fn(&str) + Sync);
 /// A log that says nothing.
 pub fn quiet(_: &str) {}
 
-/// The reduction inputs of a scene: the bundled layout (disc clamped on `CLAMP`, pad held in
-/// plane on `ABUTMENT`, pistons on `PISTON`, contact on `CONTACT` / `CONTACT_FACE`) on the
-/// scene's meshes, interface and mode count.
-pub fn brake_inputs(scene: &Scene) -> BrakeInputs {
+/// The reduction inputs of a scene: the bundled layout (disc clamped on `CLAMP`, pad held on
+/// `ABUTMENT` in the plane normal to the disc's axis, pistons on `PISTON` pushing along the
+/// contact normal, contact on `CONTACT` / `CONTACT_FACE` cut into patches about the axis) on
+/// the scene's meshes, interface and mode count. The axis is `[rotation]`'s (without one,
+/// the line along `[contact] normal`, or z, through `[disc] axis_origin` or the origin); the
+/// pistons' direction is `[contact] normal`, else the axis.
+pub fn brake_inputs(scene: &Scene) -> Result<BrakeInputs> {
     let m = &scene.file.model;
-    let mut inputs = BrakeInputs::bundled(scene.resolve(&m.disc), scene.resolve(&m.pad));
+    let normal = scene.normal()?;
+    let (point, direction) = match scene.rotation()? {
+        Some(r) => (r.point, r.axis),
+        None => ([0.0; 3], normal.unwrap_or([0.0, 0.0, 1.0])),
+    };
+    let axis = squeal_reduce::interface::Axis {
+        origin: point,
+        direction,
+    };
+    let mut inputs = BrakeInputs::bundled(scene.resolve(&m.disc), scene.resolve(&m.pad))
+        .about(axis, normal.unwrap_or(direction))?;
     inputs.interface = if m.interface.get_ref() == "node" {
         InterfaceKind::Node
     } else {
         InterfaceKind::Patch
     };
     inputs.modes = ModeChoice::Fixed(*m.modes.get_ref());
-    inputs
+    Ok(inputs)
 }
 
 /// Where the scene's reduced model is kept: its `[model] rom`, else `<out>/brake.rom`.
@@ -96,7 +113,7 @@ pub fn check_outputs(scene: &Scene, out: &Path) -> Result<()> {
 /// missing or stale (other meshes, by SHA-256, other options, another tool version).
 pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedModel, PathBuf)> {
     let rom_path = rom_path(scene, out);
-    let inputs = brake_inputs(scene);
+    let inputs = brake_inputs(scene)?;
     match freshness(&rom_path, &inputs)? {
         Freshness::Fresh => match ReducedModel::read(&rom_path) {
             Ok(rom) => {
@@ -138,14 +155,34 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
     Ok((rom, rom_path))
 }
 
-/// The brake's parameters from the scene: normal, sliding direction, the contact stiffness
-/// per unit area (eq 8), pairing tolerance and piston force.
+/// The disc's rotation of the scene (`[rotation]`, or the older `[disc]`) as the brake takes
+/// it.
+pub fn disc_rotation(scene: &Scene) -> Result<Option<DiscRotation>> {
+    let Some(r) = scene.rotation()? else {
+        return Ok(None);
+    };
+    let axis = RotationAxis::new(r.point, r.axis)
+        .map_err(|e| PipelineError::input("[rotation]", e.to_string()))?;
+    Ok(Some(DiscRotation {
+        axis,
+        sense: r.sense,
+        angular_speed: r.angular_speed,
+    }))
+}
+
+/// The brake's parameters from the scene: the normal it gives (a check on the mesh's), how
+/// the disc slides, its rotation, the contact stiffness per unit area (eq 8), pairing
+/// tolerance and piston force.
 pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
     let f = &scene.file;
     let (kl, knl, _) = scene.stiffness()?;
     Ok(BrakeParams {
-        normal: *f.contact.normal.get_ref(),
-        sliding: *f.friction.sliding_direction.get_ref(),
+        normal: scene.normal()?,
+        sliding: match scene.sliding()? {
+            Sliding::Tangent => SlidingRule::Tangent,
+            Sliding::Global(d) => SlidingRule::Global(d),
+        },
+        rotation: disc_rotation(scene)?,
         stiffness: Stiffness::PerArea {
             linear: kl,
             cubic: knl,
@@ -153,20 +190,18 @@ pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
         },
         pairing_tolerance: PairingTolerance::Absolute(*f.contact.pairing_tolerance.get_ref()),
         piston_force: f.piston.line_pressure_bar.get_ref() * 1e5 * f.piston.area.get_ref(),
-        surface_speed: None,
     })
 }
 
-/// The disc's rotation the scene gives (`[disc]`), `None` without one.
+/// The disc's speed the scene gives (`[rotation]` or `[disc]`), `None` without one.
 pub fn disc_speed(scene: &Scene) -> Result<Option<DiscSpeed>> {
-    let Some(w) = scene.disc_angular_speed()? else {
+    let Some(r) = scene.rotation()? else {
         return Ok(None);
     };
-    let (origin, axis) = scene.disc_axis()?;
-    Ok(Some(DiscSpeed {
+    Ok(r.angular_speed.map(|w| DiscSpeed {
         angular_speed: w,
-        origin,
-        axis,
+        origin: r.point,
+        axis: r.axis,
     }))
 }
 

@@ -14,7 +14,6 @@ use crate::pictures::{ModePicture, write_cycle_animation, write_mode_picture};
 use crate::shapes::Meshes;
 use squeal_brake::analysis::Stability;
 use squeal_chbm::{ChbmSolution, Outcome};
-use squeal_reduce::rom::DofLabel;
 use squeal_report::format::fmt_sig;
 use squeal_report::{
     Annotation, Dash, Figure, Panel, Report, Section, Series, Table, write_svg_and_png,
@@ -173,36 +172,11 @@ fn growth_at_end(st: &Stability, b: usize) -> (f64, f64, f64) {
     )
 }
 
-/// The dof of a part's point in a direction, in brake numbering.
-fn dof_of_point(m: &Model, part: &str, point: usize, direction: u8) -> Option<usize> {
-    let rp = m.rom.part(part)?;
-    let offset = if part == "disc" {
-        m.layout.disc.start
-    } else {
-        m.layout.pad.start
-    };
-    rp.info
-        .dofs
-        .iter()
-        .position(|l| *l == DofLabel::Point { point, direction })
-        .map(|d| offset + d)
-}
-
-fn main_axis(v: [f64; 3]) -> u8 {
-    let a = v.map(f64::abs);
-    if a[0] >= a[1] && a[0] >= a[2] {
-        0
-    } else if a[1] >= a[2] {
-        1
-    } else {
-        2
-    }
-}
-
-/// Per contact pair over the cycle: half the peak-to-peak relative normal displacement (m),
-/// of the relative sliding velocity (m/s), and the open fraction.
+/// Per contact pair over the cycle: half the peak-to-peak relative normal displacement
+/// `g_p · x` (m), of the relative sliding velocity `h_p · x'` (m/s), each along the pair's own
+/// normal and sliding direction, and the open fraction.
 fn pair_motion(m: &Model, s: &ChbmSolution) -> Vec<(usize, f64, f64, f64)> {
-    let (nd, sd) = (main_axis(m.params.normal), main_axis(m.params.sliding));
+    const SAMPLES: usize = 256;
     let half_range = |v: &[f64]| {
         let (lo, hi) = v
             .iter()
@@ -211,26 +185,25 @@ fn pair_motion(m: &Model, s: &ChbmSolution) -> Vec<(usize, f64, f64, f64)> {
             });
         0.5 * (hi - lo)
     };
-    m.pairs
+    // Σ_k a_k x_k(θ) (or its velocity) over a sparse vector of the brake's dofs.
+    let combined = |vec: &[(usize, f64)], velocity: bool| -> Vec<f64> {
+        let mut out = vec![0.0; SAMPLES + 1];
+        for &(d, a) in vec {
+            for (o, (x, v)) in out.iter_mut().zip(crate::chbm::cycle_points(s, d, SAMPLES)) {
+                *o += a * if velocity { v } else { x };
+            }
+        }
+        out
+    };
+    m.brake
+        .pairs
         .iter()
         .enumerate()
-        .filter_map(|(p, pair)| {
-            let rel = |dir: u8, velocity: bool| -> Option<Vec<f64>> {
-                let dd = dof_of_point(m, "disc", pair.disc_point, dir)?;
-                let dp = dof_of_point(m, "pad", pair.pad_point, dir)?;
-                let a = crate::chbm::cycle_points(s, dd, 256);
-                let b = crate::chbm::cycle_points(s, dp, 256);
-                Some(
-                    a.iter()
-                        .zip(&b)
-                        .map(|(x, y)| if velocity { y.1 - x.1 } else { y.0 - x.0 })
-                        .collect(),
-                )
-            };
-            let closure = half_range(&rel(nd, false)?);
-            let sliding = half_range(&rel(sd, true)?);
+        .map(|(p, pair)| {
+            let closure = half_range(&combined(&pair.normal, false));
+            let sliding = half_range(&combined(&pair.tangent, true));
             let open = s.open_fraction.get(p).copied().unwrap_or(f64::NAN);
-            Some((p, closure, sliding, open))
+            (p, closure, sliding, open)
         })
         .collect()
 }

@@ -81,6 +81,9 @@ pub struct PartInput {
     pub material_overrides: Vec<(String, ElasticMaterial)>,
     /// How the part is held: node sets and their clamped directions.
     pub restraints: Vec<Restraint>,
+    /// Restraints along global directions that are not coordinate axes: node set and the
+    /// directions its nodes are held in (exact, by [`squeal_fe::frames`]).
+    pub skew_restraints: Vec<(String, Vec<[f64; 3]>)>,
     /// Node set of the contact points (node interface).
     pub contact_set: String,
     /// Node set of the contact face (patch interface).
@@ -96,6 +99,7 @@ impl PartInput {
             mesh: mesh.into(),
             material_overrides: Vec::new(),
             restraints: vec![Restraint::clamp("CLAMP")],
+            skew_restraints: Vec::new(),
             contact_set: "CONTACT".into(),
             contact_face_set: "CONTACT_FACE".into(),
             piston_set: None,
@@ -109,6 +113,7 @@ impl PartInput {
             mesh: mesh.into(),
             material_overrides: Vec::new(),
             restraints: vec![Restraint::set("ABUTMENT", [true, true, false])],
+            skew_restraints: Vec::new(),
             contact_set: "CONTACT".into(),
             contact_face_set: "CONTACT_FACE".into(),
             piston_set: Some("PISTON".into()),
@@ -135,6 +140,9 @@ pub struct BrakeInputs {
     pub axis: Axis,
     /// Direction of the contact normal (0 = x, 1 = y, 2 = z): the pistons' kept dof.
     pub normal_direction: usize,
+    /// The pistons' kept direction when it is not a coordinate axis (then `normal_direction`
+    /// is not used): a dof along this unit vector ([`crate::rom::DofLabel::Along`]).
+    pub piston_direction: Option<[f64; 3]>,
     /// Eigensolver of the fixed-interface modes (Lanczos or ARPACK).
     pub backend: Backend,
     /// Relative tolerance of the eigensolver's Ritz residuals.
@@ -165,6 +173,7 @@ impl Default for BrakeInputs {
             grid: [3, 3],
             axis: Axis::default(),
             normal_direction: 2,
+            piston_direction: None,
             backend: Backend::Lanczos,
             eig_tol: EigOptions::default().tol,
             orthonormalize: true,
@@ -185,6 +194,44 @@ impl BrakeInputs {
         }
     }
 
+    /// The bundled setup turned to a disc axis and contact normal: patches cut about `axis`,
+    /// the pad's `ABUTMENT` held in the plane normal to the axis (radially and tangentially,
+    /// free along the axis), the pistons' dof along `normal` (the pad's normal). When the axis
+    /// and the normal are coordinate axes (to 1e-12) these are the plain restraint and dof of
+    /// [`BrakeInputs::bundled`], bit for bit; otherwise the restraint is held in skew axes and
+    /// the piston dof is a [`crate::rom::DofLabel::Along`].
+    pub fn about(mut self, axis: Axis, normal: [f64; 3]) -> Result<Self, ReduceError> {
+        let bad = |what: &str| ReduceError::Options(format!("the {what} has zero length"));
+        let a = unit3(axis.direction).ok_or_else(|| bad("disc axis"))?;
+        let n = unit3(normal).ok_or_else(|| bad("contact normal"))?;
+        self.axis = axis;
+        match coordinate_axis(n) {
+            Some(d) => {
+                self.normal_direction = d;
+                self.piston_direction = None;
+            }
+            None => self.piston_direction = Some(n),
+        }
+        self.pad
+            .restraints
+            .retain(|r| r.nodes != NodeSelection::Set("ABUTMENT".into()));
+        self.pad.skew_restraints.retain(|r| r.0 != "ABUTMENT");
+        match coordinate_axis(a) {
+            Some(d) => {
+                let mut held = [true; 3];
+                held[d] = false;
+                self.pad.restraints.push(Restraint::set("ABUTMENT", held));
+            }
+            None => {
+                let [_, e2, e3] = squeal_fe::frames::orthonormal_completion(a);
+                self.pad
+                    .skew_restraints
+                    .push(("ABUTMENT".into(), vec![e2, e3]));
+            }
+        }
+        Ok(self)
+    }
+
     /// The two parts with their names, disc first.
     pub fn parts(&self) -> [(&'static str, &PartInput); 2] {
         [("disc", &self.disc), ("pad", &self.pad)]
@@ -198,6 +245,8 @@ impl BrakeInputs {
                 .iter()
                 .map(|r| (selection_name(&r.nodes), r.directions))
                 .collect(),
+            skew_restraints: input.skew_restraints.clone(),
+            piston_direction: self.piston_direction,
             material_overrides: input.material_overrides.clone(),
             contact_set: input.contact_set.clone(),
             contact_face_set: input.contact_face_set.clone(),
@@ -292,6 +341,7 @@ impl BrakeInputs {
             },
             mesh,
             restraints: input.restraints.clone(),
+            skew_restraints: input.skew_restraints.clone(),
             interface: self.interface,
             contact_set: input.contact_set.clone(),
             contact_face_set: input.contact_face_set.clone(),
@@ -299,6 +349,7 @@ impl BrakeInputs {
             axis: self.axis,
             piston_set: input.piston_set.clone(),
             normal_direction: self.normal_direction,
+            piston_direction: self.piston_direction,
             modes: match self.modes {
                 ModeChoice::Fixed(n) => n,
                 ModeChoice::Auto { .. } => self.max_modes,
@@ -592,8 +643,14 @@ pub fn check_sets(
         vec![(contact_set, set(contact_set)?, [true; 3])];
     if let Some(p) = &input.piston_set {
         let mut dirs = [false; 3];
-        dirs[inputs.normal_direction.min(2)] = true;
+        match inputs.piston_direction {
+            None => dirs[inputs.normal_direction.min(2)] = true,
+            Some(n) => (0..3).for_each(|d| dirs[d] = n[d] != 0.0),
+        }
         boundary.push((p, set(p)?, dirs));
+    }
+    for (s, _) in &input.skew_restraints {
+        set(s)?;
     }
     for r in &input.restraints {
         let held: &[u32] = match &r.nodes {
@@ -710,6 +767,16 @@ pub fn pair_contact_points(
         }
     }
     Ok((pairs, tolerance))
+}
+
+fn unit3(a: [f64; 3]) -> Option<[f64; 3]> {
+    let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+    (n.is_finite() && n > 0.0).then(|| a.map(|x| x / n))
+}
+
+/// The coordinate axis the unit `a` is along (other components within 1e-12), if any.
+fn coordinate_axis(a: [f64; 3]) -> Option<usize> {
+    (0..3).find(|&d| (0..3).all(|e| e == d || a[e].abs() <= 1e-12))
 }
 
 fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -834,5 +901,11 @@ fn record_differences(file: &BuildRecord, want: &BuildRecord) -> Vec<String> {
             let old = a.get(k).map_or("-".to_string(), |o| o.to_string());
             format!("{k}: {old} -> {v}")
         })
+        // A key only the file has (an optional field the wanted record leaves out).
+        .chain(
+            a.iter()
+                .filter(|(k, _)| !b.contains_key(*k))
+                .map(|(k, v)| format!("{k}: {v} -> -")),
+        )
         .collect()
 }

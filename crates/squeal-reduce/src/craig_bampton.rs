@@ -39,6 +39,9 @@ use squeal_eigs::{
     ConstrainedFactor, Constraints, EigError, EigOptions, SparseCholesky, lowest_modes_constrained,
     lowest_modes_with_factor,
 };
+use squeal_fe::frames::{
+    DofTransform, HeldNodes, NodeFrame, SkewRestraint, orthonormal_completion,
+};
 use squeal_fe::{DofMap, FeError, MaterialTable, Restraint, assemble};
 use squeal_mesh::Mesh;
 use std::borrow::Cow;
@@ -196,6 +199,9 @@ pub struct PartSpec {
     pub mesh: MeshInfo,
     /// How the part is held: node sets and their clamped directions.
     pub restraints: Vec<Restraint>,
+    /// Restraints along global directions that are not coordinate axes: node set and
+    /// directions (held exactly in each node's own axes, [`squeal_fe::frames`]).
+    pub skew_restraints: Vec<(String, Vec<[f64; 3]>)>,
     /// Node or patch interface.
     pub interface: InterfaceKind,
     /// Node set of the contact points (node interface).
@@ -210,6 +216,10 @@ pub struct PartSpec {
     pub piston_set: Option<String>,
     /// Direction (0 = x, 1 = y, 2 = z) of the piston dofs: the contact normal.
     pub normal_direction: usize,
+    /// The piston dofs' unit direction when it is not a coordinate axis (a constraint row
+    /// `n · u` on the node's three dofs, labelled [`DofLabel::Along`]); replaces
+    /// `normal_direction`.
+    pub piston_direction: Option<[f64; 3]>,
     /// Fixed-interface modes kept.
     pub modes: usize,
 }
@@ -329,8 +339,97 @@ pub struct ReduceReport {
 /// One boundary coordinate: `r = Σ c_k u_k` over free dofs.
 struct Row {
     point: usize,
-    direction: usize,
+    label: DofLabel,
     entries: Vec<(usize, f64)>,
+}
+
+/// The free dofs of a part: those of its [`DofMap`], or the kept coordinates of a
+/// [`DofTransform`] when some nodes are held along skew directions (such a node's x, y, z have
+/// no dof of their own: it cannot be a boundary node).
+struct FreeDofs<'a> {
+    dofmap: &'a DofMap,
+    transform: Option<DofTransform>,
+}
+
+impl FreeDofs<'_> {
+    fn free_dof(&self, node: u32, d: usize) -> Option<usize> {
+        let f = self.dofmap.free_dof(node, d)?;
+        match &self.transform {
+            None => Some(f),
+            Some(t) => t.new_dof(f),
+        }
+    }
+
+    /// The row `w · u` of node `node` (`w` unit) on the free dofs: the node's dofs along the
+    /// non-zero components of `w`, or, for a node in its own axes, its kept coordinates with
+    /// `w · e_j` (coefficients below 1e-12 are round-off of the axes and dropped, so that a
+    /// node whose first axis is `w` gives a single entry). `None` when `w` has a part the
+    /// node's free motions do not reach (a restrained direction).
+    fn along(&self, node: u32, w: [f64; 3]) -> Option<Vec<(usize, f64)>> {
+        if let Some(t) = &self.transform
+            && let Some(kept) = t.kept(node)
+        {
+            let mut rest = w;
+            let mut out = Vec::new();
+            for &(dof, e) in kept {
+                let c: f64 = (0..3).map(|d| w[d] * e[d]).sum();
+                if c.abs() > 1e-12 {
+                    out.push((dof, c));
+                    for d in 0..3 {
+                        rest[d] -= c * e[d];
+                    }
+                }
+            }
+            return ((0..3).map(|d| rest[d] * rest[d]).sum::<f64>().sqrt() <= 1e-9).then_some(out);
+        }
+        (0..3)
+            .filter(|&d| w[d] != 0.0)
+            .map(|d| Some((self.free_dof(node, d)?, w[d])))
+            .collect()
+    }
+
+    fn num_free(&self) -> usize {
+        self.transform
+            .as_ref()
+            .map_or(self.dofmap.num_free(), |t| t.num_free())
+    }
+}
+
+/// A piston node pushing along a skew direction `n` keeps its three motions in axes of its own
+/// whose first is `n` ([`NodeFrame`] with none held), so that its piston coordinate `n · u`
+/// is a dof of its own, eliminated like the paper's boundary dofs (a constraint row instead
+/// would leave the pad's motion along `n` free in the interior `K_vv`). A piston node that is
+/// held along skew directions already keeps its own axes, and the row is taken on those.
+fn piston_frames(mesh: &Mesh, spec: &PartSpec, held: &mut HeldNodes) -> Result<(), ReduceError> {
+    let (Some(set), Some(n)) = (&spec.piston_set, spec.piston_direction) else {
+        return Ok(());
+    };
+    let nodes = mesh
+        .node_set(set)
+        .ok_or_else(|| InterfaceError::MissingSet(set.clone()))?;
+    for &node in nodes {
+        held.frames.entry(node).or_insert(NodeFrame {
+            axes: orthonormal_completion(n),
+            held: 0,
+        });
+    }
+    Ok(())
+}
+
+/// The skew restraints of `spec` on the nodes of `mesh`.
+fn skew_restraints(mesh: &Mesh, spec: &PartSpec) -> Result<Vec<SkewRestraint>, ReduceError> {
+    let mut out = Vec::new();
+    for (set, directions) in &spec.skew_restraints {
+        let nodes = mesh
+            .node_set(set)
+            .ok_or_else(|| InterfaceError::MissingSet(set.clone()))?;
+        for &node in nodes {
+            for &direction in directions {
+                out.push(SkewRestraint { node, direction });
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// Reduces one part (eqs 1–7): assembles `K` and `M`, builds the boundary rows of the
@@ -357,14 +456,25 @@ pub fn reduce_part(
 
     progress(Stage::Assemble);
     let t = Instant::now();
-    let dofmap = DofMap::new(mesh, &spec.restraints)?;
+    let mut held = HeldNodes::new(mesh, &spec.restraints, &skew_restraints(mesh, spec)?)?;
+    piston_frames(mesh, spec, &mut held)?;
+    let dofmap = DofMap::new(mesh, &held.restraints)?;
     let system = assemble(mesh, materials, &dofmap)?;
+    // Nodes held along skew directions: K' = Tᵀ K T, M' = Tᵀ M T on the kept coordinates.
+    let free = FreeDofs {
+        dofmap: &dofmap,
+        transform: held.has_frames().then(|| DofTransform::new(&dofmap, &held)),
+    };
+    let system = match &free.transform {
+        Some(t) => t.system(&dofmap, &system),
+        None => system,
+    };
     clock(Stage::Assemble, t, &mut timings);
 
     progress(Stage::Interface);
     let t = Instant::now();
-    let (points, rows) = boundary_rows(mesh, &dofmap, spec)?;
-    let split = Split::new(&rows, dofmap.num_free(), &part)?;
+    let (points, rows) = boundary_rows(mesh, &free, spec)?;
+    let split = Split::new(&rows, free.num_free(), &part)?;
     let (k_interior, m_interior) = (split.interior_of(&system.k), split.interior_of(&system.m));
     let (k_vv, m_vv): (&SparseColMat<usize, f64>, &SparseColMat<usize, f64>) =
         (&k_interior, &m_interior);
@@ -415,7 +525,7 @@ pub fn reduce_part(
     let nb = rows.len();
     let nm = modes.values.len();
     let n = nb + nm;
-    let mut basis = try_zeros(dofmap.num_free(), n, &part)?;
+    let mut basis = try_zeros(free.num_free(), n, &part)?;
     for b in 0..nb {
         split.expand_into(psi_v.col(b), basis.col_mut(b));
         if let Some((m, inv)) = split.eliminated_dof(b) {
@@ -434,12 +544,15 @@ pub fn reduce_part(
     let coupling = block_norm(&k_hat, 0..nb, nb..n) / frobenius(&k_hat).max(f64::MIN_POSITIVE);
     clock(Stage::Project, t, &mut timings);
 
+    // The basis back on the mesh's x, y, z dofs (a skew-held node's kept coordinates as
+    // motions along its axes): the rows `dof_node`, `dof_dir` describe.
+    let basis = match &free.transform {
+        Some(t) => t.expand_rows(basis.as_ref(), dofmap.num_free()),
+        None => basis,
+    };
     let dofs: Vec<DofLabel> = rows
         .iter()
-        .map(|r| DofLabel::Point {
-            point: r.point,
-            direction: r.direction as u8,
-        })
+        .map(|r| r.label)
         .chain((0..nm).map(|mode| DofLabel::Mode { mode }))
         .collect();
     let fixed_interface_hz: Vec<f64> = modes.values.iter().map(|&w2| hz(w2)).collect();
@@ -746,7 +859,7 @@ fn describe(restraints: &[Restraint]) -> String {
 /// Boundary points and rows: contact points (3 rows each), then piston nodes (1 row each).
 fn boundary_rows(
     mesh: &Mesh,
-    dofmap: &DofMap,
+    dofmap: &FreeDofs,
     spec: &PartSpec,
 ) -> Result<(Vec<InterfacePoint>, Vec<Row>), ReduceError> {
     let part = &spec.name;
@@ -789,7 +902,7 @@ fn boundary_rows(
                         .ok_or_else(|| restrained(&spec.contact_set, node, d))?;
                     rows.push(Row {
                         point: p,
-                        direction: d,
+                        label: point_label(p, d),
                         entries: vec![(dof, 1.0)],
                     });
                 }
@@ -826,7 +939,7 @@ fn boundary_rows(
                     }
                     rows.push(Row {
                         point: p,
-                        direction: d,
+                        label: point_label(p, d),
                         entries,
                     });
                 }
@@ -840,29 +953,59 @@ fn boundary_rows(
         if nodes.is_empty() {
             return Err(InterfaceError::EmptySet(set.clone()).into());
         }
-        let d = spec.normal_direction;
         for &node in nodes {
             let p = points.len();
+            let (label, entries, normal) = match spec.piston_direction {
+                None => {
+                    let d = spec.normal_direction;
+                    let dof = dofmap
+                        .free_dof(node, d)
+                        .ok_or_else(|| restrained(set, node, d))?;
+                    (point_label(p, d), vec![(dof, 1.0)], None)
+                }
+                Some(n) => {
+                    // `r = n · u`: the node's own first axis (`piston_frames`).
+                    let entries = dofmap.along(node, n).ok_or_else(|| {
+                        let d = (0..3)
+                            .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+                            .unwrap_or(2);
+                        restrained(set, node, d)
+                    })?;
+                    (
+                        DofLabel::Along {
+                            point: p,
+                            direction: n,
+                        },
+                        entries,
+                        Some(n),
+                    )
+                }
+            };
             points.push(InterfacePoint {
                 role: PointRole::Piston,
                 node_id: Some(mesh.node_ids[node as usize]),
                 patch: None,
                 position: mesh.nodes[node as usize],
                 area: None,
-                normal: None,
+                normal,
                 surface: None,
             });
-            let dof = dofmap
-                .free_dof(node, d)
-                .ok_or_else(|| restrained(set, node, d))?;
             rows.push(Row {
                 point: p,
-                direction: d,
-                entries: vec![(dof, 1.0)],
+                label,
+                entries,
             });
         }
     }
     Ok((points, rows))
+}
+
+/// The label of point `p`'s dof along coordinate axis `d`.
+fn point_label(p: usize, d: usize) -> DofLabel {
+    DofLabel::Point {
+        point: p,
+        direction: d as u8,
+    }
 }
 
 /// How each boundary row enters: a dof of its own (`u_m = r_b / c`) or a constraint row on the
@@ -905,7 +1048,12 @@ impl Split {
                         return Err(ReduceError::NoMaster {
                             part: part.into(),
                             point: r.point,
-                            direction: AXES[r.direction],
+                            direction: match r.label {
+                                DofLabel::Point { direction, .. } => {
+                                    AXES[direction.min(2) as usize]
+                                }
+                                _ => 'n',
+                            },
                         });
                     }
                     RowKind::Eliminated { dof, inv: 1.0 / c }

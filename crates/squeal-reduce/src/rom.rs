@@ -252,8 +252,17 @@ pub struct BuildRecord {
     pub grid: [usize; 2],
     /// The disc's axis, around which the patches are laid out.
     pub axis: crate::interface::Axis,
-    /// Direction of the contact normal and of the piston dofs (0 = x, 1 = y, 2 = z).
+    /// Direction of the contact normal and of the piston dofs (0 = x, 1 = y, 2 = z), when
+    /// they are along a coordinate axis.
     pub normal_direction: usize,
+    /// The piston dofs' unit direction when it is not a coordinate axis (absent otherwise and
+    /// in older files).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub piston_direction: Option<[f64; 3]>,
+    /// Restraints along global directions that are not coordinate axes: node set and unit
+    /// directions (absent when there are none, and in older files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub skew_restraints: Vec<(String, Vec<[f64; 3]>)>,
     /// How many fixed-interface modes were asked for.
     pub modes: crate::brake::ModeChoice,
     /// Most fixed-interface modes a part may keep.

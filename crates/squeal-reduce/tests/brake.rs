@@ -161,6 +161,7 @@ fn automatic_choice_keeps_exactly_the_modes_below_the_cutoff() {
         role: squeal_reduce::rom::PartRole::Pad,
         mesh: loaded.info.clone(),
         restraints: inputs.pad.restraints.clone(),
+        skew_restraints: Vec::new(),
         interface: InterfaceKind::Patch,
         contact_set: "CONTACT".into(),
         contact_face_set: "CONTACT_FACE".into(),
@@ -168,6 +169,7 @@ fn automatic_choice_keeps_exactly_the_modes_below_the_cutoff() {
         axis: inputs.axis,
         piston_set: Some("PISTON".into()),
         normal_direction: 2,
+        piston_direction: None,
         modes: 100,
     };
     let opts = ReduceOptions {

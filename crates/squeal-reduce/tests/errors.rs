@@ -126,6 +126,7 @@ fn bar_spec(contact: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec
             elements: 0,
         },
         restraints,
+        skew_restraints: Vec::new(),
         interface: InterfaceKind::Node,
         contact_set: contact.into(),
         contact_face_set: contact.into(),
@@ -133,6 +134,7 @@ fn bar_spec(contact: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec
         axis: Axis::default(),
         piston_set: None,
         normal_direction: 2,
+        piston_direction: None,
         modes,
     }
 }

@@ -35,6 +35,7 @@ fn spec(name: &str, interface: InterfaceKind) -> (squeal_mesh::Mesh, PartSpec) {
         },
         mesh: info,
         restraints,
+        skew_restraints: Vec::new(),
         interface,
         contact_set: "CONTACT".into(),
         contact_face_set: "CONTACT_FACE".into(),
@@ -42,6 +43,7 @@ fn spec(name: &str, interface: InterfaceKind) -> (squeal_mesh::Mesh, PartSpec) {
         axis: Axis::default(),
         piston_set: piston,
         normal_direction: 2,
+        piston_direction: None,
         modes: 50,
     };
     (mesh, spec)

@@ -4,8 +4,21 @@
 //! Unknown keys are errors (a misspelt key must not be silently ignored); values that parse but
 //! make no physical sense are errors naming the file, the key and its line ([`SceneError`]).
 //! Derived values that need a little arithmetic live here too: the least-squares fit of the
-//! pad's compression curve to eq (8)'s `p = κ_l δ + κ_nl δ³` ([`fit_cubic`]) and friction
-//! ranges ([`parse_range`]).
+//! pad's compression curve to eq (8)'s `p = κ_l δ + κ_nl δ³` ([`fit_cubic`]), friction
+//! ranges ([`parse_range`]), the disc's rotation ([`Scene::rotation`]) and how the disc slides
+//! under the pad ([`Scene::sliding`]).
+//!
+//! **Rotation.** `[rotation]` gives the disc's axis (`axis`, a direction, and `point`, a point
+//! on it, the origin by default), the sense (`sense = "counterclockwise"` or `"clockwise"`,
+//! as seen from the tip of `axis` looking back along it: counterclockwise is the right-hand
+//! rule about `axis`) and optionally the speed (`rpm`, or `vehicle_speed_kmh` with
+//! `rolling_radius`). Nothing else assumes the disc turns about z or through the origin: the
+//! contact normals come from the mesh (the disc face under each contact point), the patch grid
+//! is cut about this axis, and by default the disc slides under the pad along the tangent of
+//! its rotation at each contact point (`[friction] sliding = "tangent"`, the convention of
+//! Abaqus' `*MOTION` and Ansys' `CMROTATE`). The older `[disc]` section (speed and
+//! `axis_origin`, the axis along `contact.normal`, no sense) still reads; a scene with both is
+//! refused.
 
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -42,6 +55,12 @@ pub enum SceneError {
 
 type Result<T> = std::result::Result<T, SceneError>;
 
+/// Largest angle (degrees) between a `[contact] normal` and the `[rotation] axis` (either
+/// way): a disc's braking faces are normal to its axis, so a larger angle is a scene that
+/// contradicts itself (the axis or the normal of another orientation of the mesh). The brake
+/// checks the normal against the mesh's faces with the same 5 degrees.
+pub const NORMAL_AXIS_TOLERANCE_DEG: f64 = 5.0;
+
 /// The scene as written.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -57,9 +76,54 @@ pub struct SceneFile {
     pub stability: StabilitySection,
     #[serde(default)]
     pub chbm: ChbmSection,
-    /// `[disc]`: the disc's rotation speed, for the sliding check of every limit cycle.
+    /// `[disc]`: the disc's rotation speed, for the sliding check of every limit cycle (the
+    /// older form of `[rotation]`).
     #[serde(default)]
     pub disc: DiscSection,
+    /// `[rotation]`: the disc's axis, sense and speed.
+    pub rotation: Option<RotationSection>,
+}
+
+/// `[rotation]`: the axis the disc turns about, the sense, and (optionally) the speed.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RotationSection {
+    /// Direction of the axis (need not be unit).
+    pub axis: Spanned<[f64; 3]>,
+    /// A point of the axis (m); the origin by default.
+    pub point: Option<Spanned<[f64; 3]>>,
+    /// `"counterclockwise"` (the right-hand rule about `axis`) or `"clockwise"`, seen from the
+    /// tip of `axis`.
+    pub sense: Spanned<String>,
+    /// Disc speed (revolutions per minute).
+    pub rpm: Option<Spanned<f64>>,
+    /// Vehicle speed (km/h); needs `rolling_radius`.
+    pub vehicle_speed_kmh: Option<Spanned<f64>>,
+    /// The wheel's effective rolling radius (m): the disc turns at `v / r`.
+    pub rolling_radius: Option<Spanned<f64>>,
+}
+
+/// The disc's rotation, resolved: `ω = sense · Ω · axis` about the line through `point`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rotation {
+    /// A point of the axis (m).
+    pub point: [f64; 3],
+    /// Unit direction of the axis.
+    pub axis: [f64; 3],
+    /// +1 when the disc turns by the right-hand rule about `axis` (counterclockwise seen from
+    /// its tip), -1 the other way; 0 when the scene gives no sense (the older `[disc]`).
+    pub sense: f64,
+    /// Angular speed `Ω` (rad/s), when the scene gives one.
+    pub angular_speed: Option<f64>,
+}
+
+/// How the disc's surface slides under the pad.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Sliding {
+    /// Along the tangent of the rotation at each contact point (needs `[rotation]`).
+    Tangent,
+    /// Along one global unit direction at every point (the paper's choice).
+    Global([f64; 3]),
 }
 
 /// `[disc]`: how fast the disc turns, as `rpm` or as `vehicle_speed_kmh` with the wheel's
@@ -133,9 +197,9 @@ fn default_modes() -> Spanned<usize> {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSection {
-    /// Unit normal from the disc into the pad.
-    #[serde(default = "default_normal")]
-    pub normal: Spanned<[f64; 3]>,
+    /// Normal from the disc into the pad; optional: every pair takes the disc face's normal
+    /// from the reduced model, and a normal given here is a check on it.
+    pub normal: Option<Spanned<[f64; 3]>>,
     #[serde(default = "default_pairing")]
     pub pairing_tolerance: Spanned<f64>,
     /// A pad compression curve to fit `p = κ_l δ + κ_nl δ³` to.
@@ -151,9 +215,6 @@ pub struct ContactSection {
     pub point_area: Option<Spanned<f64>>,
 }
 
-fn default_normal() -> Spanned<[f64; 3]> {
-    Spanned::new(0..0, [0.0, 0.0, 1.0])
-}
 fn default_pairing() -> Spanned<f64> {
     Spanned::new(0..0, 1e-3)
 }
@@ -175,8 +236,11 @@ pub struct CompressionCurve {
 pub struct FrictionSection {
     /// Friction coefficient for single-point analyses.
     pub mu: Option<Spanned<f64>>,
-    /// Direction in which the disc surface slides under the pad.
-    pub sliding_direction: Spanned<[f64; 3]>,
+    /// `"tangent"` (the default: the tangent of the rotation at each contact point) or a
+    /// global direction `[x, y, z]`.
+    pub sliding: Option<Spanned<toml::Value>>,
+    /// The older form of a global `sliding` direction.
+    pub sliding_direction: Option<Spanned<[f64; 3]>>,
 }
 
 /// `[piston]`: the clamp load.
@@ -370,15 +434,41 @@ impl Scene {
         if *f.model.modes.get_ref() == 0 {
             return Err(self.error_at("model.modes", &f.model.modes, "must be at least 1"));
         }
-        let n = self.direction("contact.normal", &f.contact.normal)?;
-        let s = self.direction("friction.sliding_direction", &f.friction.sliding_direction)?;
-        let dot = n[0] * s[0] + n[1] * s[1] + n[2] * s[2];
-        if dot.abs() > 1e-6 {
-            return Err(self.error_at(
-                "friction.sliding_direction",
-                &f.friction.sliding_direction,
-                "must be tangent to the contact (orthogonal to contact.normal)",
-            ));
+        let rotation = self.rotation()?;
+        let normal = self.normal()?;
+        if let (Some(r), Some(n), Some(given)) = (rotation, normal, &f.contact.normal) {
+            // The pads of a disc brake press on faces normal to the disc's axis.
+            let cos = (r.axis[0] * n[0] + r.axis[1] * n[1] + r.axis[2] * n[2]).abs();
+            let degrees = cos.clamp(-1.0, 1.0).acos().to_degrees();
+            if degrees > NORMAL_AXIS_TOLERANCE_DEG {
+                return Err(self.error_at(
+                    "contact.normal",
+                    given,
+                    format!(
+                        "is {degrees:.1} degrees from rotation.axis: the pad presses on a disc face normal to the axis (fix one of the two, or remove normal to take the mesh's)"
+                    ),
+                ));
+            }
+        }
+        match self.sliding()? {
+            Sliding::Global(d) => {
+                if let Some(n) = normal {
+                    let dot = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+                    if dot.abs() > 1e-6 {
+                        return Err(self.sliding_error(
+                            "must be tangent to the contact (orthogonal to contact.normal)",
+                        ));
+                    }
+                }
+            }
+            Sliding::Tangent => match rotation {
+                Some(r) if r.sense != 0.0 => {}
+                _ => {
+                    return Err(self.section_error(
+                        "[friction] sliding = \"tangent\" (the default) needs a [rotation] section with axis and sense; or give a global direction, e.g. sliding = [1.0, 0.0, 0.0]",
+                    ));
+                }
+            },
         }
         self.positive("contact.pairing_tolerance", &f.contact.pairing_tolerance)?;
         self.positive("contact.stiffness_scale", &f.contact.stiffness_scale)?;
@@ -446,38 +536,171 @@ impl Scene {
         Ok(())
     }
 
-    /// The disc's angular speed (rad/s) from `[disc]`, `None` when the section gives none.
+    /// The disc's angular speed (rad/s) from `[rotation]` (or the older `[disc]`), `None`
+    /// when the scene gives none.
     pub fn disc_angular_speed(&self) -> Result<Option<f64>> {
-        let d = &self.file.disc;
-        match (&d.rpm, &d.vehicle_speed_kmh, &d.rolling_radius) {
+        Ok(self.rotation()?.and_then(|r| r.angular_speed))
+    }
+
+    /// A speed from `rpm`, or `vehicle_speed_kmh` with `rolling_radius` (keys under `section`).
+    fn speed(
+        &self,
+        section: &str,
+        rpm: &Option<Spanned<f64>>,
+        vehicle: &Option<Spanned<f64>>,
+        radius: &Option<Spanned<f64>>,
+    ) -> Result<Option<f64>> {
+        match (rpm, vehicle, radius) {
             (None, None, None) => Ok(None),
             (Some(r), None, None) => {
-                self.positive("disc.rpm", r)?;
+                self.positive(&format!("{section}.rpm"), r)?;
                 Ok(Some(r.get_ref() * 2.0 * std::f64::consts::PI / 60.0))
             }
             (None, Some(v), Some(r)) => {
-                self.positive("disc.vehicle_speed_kmh", v)?;
-                self.positive("disc.rolling_radius", r)?;
+                self.positive(&format!("{section}.vehicle_speed_kmh"), v)?;
+                self.positive(&format!("{section}.rolling_radius"), r)?;
                 Ok(Some(v.get_ref() / 3.6 / r.get_ref()))
             }
-            _ => Err(self.section_error(
-                "[disc] takes either rpm, or vehicle_speed_kmh with rolling_radius",
-            )),
+            _ => Err(self.section_error(format!(
+                "[{section}] takes either rpm, or vehicle_speed_kmh with rolling_radius"
+            ))),
         }
     }
 
-    /// The disc's axis: a point (`disc.axis_origin`, the origin by default) and the unit
-    /// direction `contact.normal`.
-    pub fn disc_axis(&self) -> Result<([f64; 3], [f64; 3])> {
-        let n = self.direction("contact.normal", &self.file.contact.normal)?;
-        Ok((
-            self.file
-                .disc
-                .axis_origin
-                .as_ref()
-                .map_or([0.0; 3], |o| *o.get_ref()),
-            n,
-        ))
+    /// The disc's rotation: from `[rotation]`, or from the older `[disc]` (axis along
+    /// `contact.normal`, the z axis without one, through `axis_origin`; no sense); `None`
+    /// when the scene has neither.
+    pub fn rotation(&self) -> Result<Option<Rotation>> {
+        let f = &self.file;
+        let d = &f.disc;
+        let old = d.rpm.is_some()
+            || d.vehicle_speed_kmh.is_some()
+            || d.rolling_radius.is_some()
+            || d.axis_origin.is_some();
+        let finite_point = |key: &str, p: &Spanned<[f64; 3]>| -> Result<[f64; 3]> {
+            let x = *p.get_ref();
+            if !x.iter().all(|v| v.is_finite()) {
+                return Err(self.error_at(key, p, "must be a point [x, y, z] of finite numbers"));
+            }
+            Ok(x)
+        };
+        match &f.rotation {
+            Some(r) => {
+                if old {
+                    return Err(self.section_error(
+                        "both [rotation] and [disc] are given: [disc] is the older form of [rotation]; move its rpm (or vehicle_speed_kmh and rolling_radius) into [rotation] and its axis_origin to [rotation] point, and delete [disc]",
+                    ));
+                }
+                let axis = self.direction("rotation.axis", &r.axis)?;
+                let point = match &r.point {
+                    Some(p) => finite_point("rotation.point", p)?,
+                    None => [0.0; 3],
+                };
+                let sense = match r.sense.get_ref().as_str() {
+                    "counterclockwise" => 1.0,
+                    "clockwise" => -1.0,
+                    other => {
+                        return Err(self.error_at(
+                            "rotation.sense",
+                            &r.sense,
+                            format!(
+                                "'{other}' is neither \"counterclockwise\" (the right-hand rule about axis) nor \"clockwise\", as seen from the tip of axis"
+                            ),
+                        ));
+                    }
+                };
+                let angular_speed =
+                    self.speed("rotation", &r.rpm, &r.vehicle_speed_kmh, &r.rolling_radius)?;
+                Ok(Some(Rotation {
+                    point,
+                    axis,
+                    sense,
+                    angular_speed,
+                }))
+            }
+            None if old => {
+                let axis = match &f.contact.normal {
+                    Some(n) => self.direction("contact.normal", n)?,
+                    None => [0.0, 0.0, 1.0],
+                };
+                let point = match &d.axis_origin {
+                    Some(p) => finite_point("disc.axis_origin", p)?,
+                    None => [0.0; 3],
+                };
+                let angular_speed =
+                    self.speed("disc", &d.rpm, &d.vehicle_speed_kmh, &d.rolling_radius)?;
+                Ok(Some(Rotation {
+                    point,
+                    axis,
+                    sense: 0.0,
+                    angular_speed,
+                }))
+            }
+            None => Ok(None),
+        }
+    }
+
+    /// The unit normal `[contact] normal` gives, `None` when it is not given.
+    pub fn normal(&self) -> Result<Option<[f64; 3]>> {
+        self.file
+            .contact
+            .normal
+            .as_ref()
+            .map(|n| self.direction("contact.normal", n))
+            .transpose()
+    }
+
+    /// An error on the global sliding direction, at its key and line.
+    fn sliding_error(&self, message: &str) -> SceneError {
+        let fr = &self.file.friction;
+        match (&fr.sliding, &fr.sliding_direction) {
+            (Some(v), _) => self.error_at("friction.sliding", v, message),
+            (None, Some(d)) => self.error_at("friction.sliding_direction", d, message),
+            (None, None) => self.section_error(format!("[friction] sliding: {message}")),
+        }
+    }
+
+    /// How the disc slides under the pad: `[friction] sliding` (`"tangent"`, the default, or
+    /// a direction) or the older `sliding_direction`; both at once are refused.
+    pub fn sliding(&self) -> Result<Sliding> {
+        let fr = &self.file.friction;
+        match (&fr.sliding, &fr.sliding_direction) {
+            (Some(_), Some(d)) => Err(self.error_at(
+                "friction.sliding_direction",
+                d,
+                "is the older form of friction.sliding: give one of the two",
+            )),
+            (None, Some(d)) => Ok(Sliding::Global(
+                self.direction("friction.sliding_direction", d)?,
+            )),
+            (None, None) => Ok(Sliding::Tangent),
+            (Some(v), None) => match v.get_ref() {
+                toml::Value::String(s) if s == "tangent" => Ok(Sliding::Tangent),
+                toml::Value::Array(a) if a.len() == 3 => {
+                    let d: Vec<f64> = a
+                        .iter()
+                        .filter_map(|x| x.as_float().or(x.as_integer().map(|i| i as f64)))
+                        .collect();
+                    let d: [f64; 3] = d.try_into().map_err(|_| {
+                        self.error_at("friction.sliding", v, "must be three numbers [x, y, z]")
+                    })?;
+                    let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    if !(n.is_finite() && n > 0.0) {
+                        return Err(self.error_at(
+                            "friction.sliding",
+                            v,
+                            "must be a non-zero direction [x, y, z]",
+                        ));
+                    }
+                    Ok(Sliding::Global(d.map(|x| x / n)))
+                }
+                _ => Err(self.error_at(
+                    "friction.sliding",
+                    v,
+                    "must be \"tangent\" (the tangent of the disc's rotation at each contact point) or a global direction [x, y, z]",
+                )),
+            },
+        }
     }
 
     /// Contact stiffness per unit area `(κ_l, κ_nl)`, scaled, and the fit report if fitted.
@@ -666,11 +889,23 @@ mod tests {
         assert!(f.relative_rms < 1e-12);
     }
 
-    #[test]
-    fn the_disc_speed_comes_from_rpm_or_from_the_vehicle_speed() {
+    fn bundled() -> (PathBuf, String) {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/brake.toml");
         let base = std::fs::read_to_string(&path).unwrap();
-        let with = |extra: &str| Scene::parse(&path, format!("{base}\n{extra}"));
+        (path, base)
+    }
+
+    #[test]
+    fn the_disc_speed_comes_from_rpm_or_from_the_vehicle_speed() {
+        let (path, base) = bundled();
+        // The bundled scene has a [rotation] without a speed; the older [disc] form is read
+        // from a scene without [rotation].
+        let start = base.find("[rotation]").unwrap();
+        let end = base[start..]
+            .find("\n[")
+            .map_or(base.len(), |e| start + e + 1);
+        let no_rotation = format!("{}{}", &base[..start], &base[end..]);
+        let with = |extra: &str| Scene::parse(&path, format!("{no_rotation}\n{extra}"));
         assert_eq!(with("").unwrap().disc_angular_speed().unwrap(), None);
         // 60 rpm is one turn a second: 2π rad/s, to round-off.
         let w = with("[disc]\nrpm = 60.0")
@@ -684,6 +919,115 @@ mod tests {
         assert!(with("[disc]\nrpm = -1.0").is_err());
         assert!(with("[disc]\nvehicle_speed_kmh = 36.0").is_err());
         assert!(with("[disc]\nrpm = 60.0\nrolling_radius = 0.25").is_err());
+        // The same speed in [rotation].
+        let r = Scene::parse(
+            &path,
+            base.replace("[rotation]\n", "[rotation]\nrpm = 60.0\n"),
+        )
+        .unwrap()
+        .rotation()
+        .unwrap()
+        .unwrap();
+        assert!((r.angular_speed.unwrap() - 2.0 * std::f64::consts::PI).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_rotation_section_gives_axis_point_and_sense() {
+        let (path, base) = bundled();
+        let r = Scene::parse(&path, base.clone())
+            .unwrap()
+            .rotation()
+            .unwrap()
+            .unwrap();
+        // The bundled disc turns clockwise about +z (seen from +z): under the pad (+y) its
+        // surface moves along +x, the paper's global direction.
+        assert_eq!(
+            (r.axis, r.point, r.sense),
+            ([0.0, 0.0, 1.0], [0.0; 3], -1.0)
+        );
+        let edit = |from: &str, to: &str| {
+            assert!(base.contains(from), "{from}");
+            Scene::parse(&path, base.replacen(from, to, 1))
+        };
+        let about_y = base
+            .replacen(
+                "axis = [0.0, 0.0, 1.0]\npoint = [0.0, 0.0, 0.0]",
+                "axis = [0.0, 2.0, 0.0]\npoint = [0.1, 0, 0.3]",
+                1,
+            )
+            .replacen("normal = [0.0, 0.0, 1.0]", "normal = [0.0, 1.0, 0.0]", 1)
+            .replacen(
+                "sliding_direction = [1.0, 0.0, 0.0]",
+                "sliding = \"tangent\"",
+                1,
+            );
+        let r = Scene::parse(&path, about_y)
+            .unwrap()
+            .rotation()
+            .unwrap()
+            .unwrap();
+        // A direction is made unit exactly when it is a multiple of a coordinate axis.
+        assert_eq!((r.axis, r.point), ([0.0, 1.0, 0.0], [0.1, 0.0, 0.3]));
+        // The axis turned to y with the normal left along z: refused.
+        let e = edit("axis = [0.0, 0.0, 1.0]", "axis = [0.0, 1.0, 0.0]").unwrap_err();
+        assert!(e.to_string().contains("90.0 degrees"), "{e}");
+        let e = edit("sense = \"clockwise\"", "sense = \"cw\"").unwrap_err();
+        assert!(e.to_string().contains("rotation.sense"), "{e}");
+        assert!(edit("axis = [0.0, 0.0, 1.0]", "axis = [0.0, 0.0, 0.0]").is_err());
+        // A normal 10 degrees from the axis: refused; 3 degrees (a coned face) passes.
+        let tilted = |deg: f64| {
+            let a = deg.to_radians();
+            edit(
+                "normal = [0.0, 0.0, 1.0]",
+                &format!("normal = [0.0, {:?}, {:?}]", a.sin(), a.cos()),
+            )
+        };
+        let e = tilted(10.0).unwrap_err();
+        assert!(
+            e.to_string().contains("10.0 degrees from rotation.axis"),
+            "{e}"
+        );
+        assert!(tilted(3.0).is_ok());
+        // The normal reversed (from the pad into the disc) is along the axis too: the mesh's
+        // normals decide the sign, and the brake checks the given one against them.
+        assert!(edit("normal = [0.0, 0.0, 1.0]", "normal = [0.0, 0.0, -1.0]").is_ok());
+        // [rotation] and the older [disc] at once: refused, naming both.
+        let e = Scene::parse(&path, format!("{base}\n[disc]\nrpm = 60.0")).unwrap_err();
+        assert!(e.to_string().contains("[disc] is the older form"), "{e}");
+    }
+
+    #[test]
+    fn sliding_is_the_tangent_by_default_or_a_global_direction() {
+        let (path, base) = bundled();
+        let line = "sliding_direction = [1.0, 0.0, 0.0]";
+        assert!(base.contains(line));
+        let s = |text: String| Scene::parse(&path, text).map(|s| s.sliding().unwrap());
+        assert_eq!(s(base.clone()).unwrap(), Sliding::Global([1.0, 0.0, 0.0]));
+        assert_eq!(s(base.replace(line, "")).unwrap(), Sliding::Tangent);
+        assert_eq!(
+            s(base.replace(line, "sliding = \"tangent\"")).unwrap(),
+            Sliding::Tangent
+        );
+        assert_eq!(
+            s(base.replace(line, "sliding = [2, 0, 0]")).unwrap(),
+            Sliding::Global([1.0, 0.0, 0.0])
+        );
+        // Both forms at once, a direction along the normal, a word that is not "tangent".
+        for bad in [
+            format!("{line}\nsliding = \"tangent\""),
+            "sliding = [0.0, 0.0, 1.0]".into(),
+            "sliding = \"radial\"".into(),
+        ] {
+            assert!(s(base.replace(line, &bad)).is_err(), "{bad}");
+        }
+        // Tangent sliding without [rotation]: refused with a message saying what to add.
+        let start = base.find("[rotation]").unwrap();
+        let end = base[start..]
+            .find("\n[")
+            .map_or(base.len(), |e| start + e + 1);
+        let no_rotation = format!("{}{}", &base[..start], &base[end..]);
+        let e = Scene::parse(&path, no_rotation.replace(line, "")).unwrap_err();
+        assert!(e.to_string().contains("needs a [rotation]"), "{e}");
     }
 
     #[test]
