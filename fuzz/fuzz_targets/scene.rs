@@ -1,8 +1,8 @@
 #![no_main]
 //! Fuzzes the scene-file reader from memory: any bytes must give a scene or an error, never
 //! a panic, a hang or an unbounded allocation; every accessor a command calls on a scene that
-//! read (friction values, contact stiffness, the damped pair, the disc's axis and speed) must
-//! also give a value or an error.
+//! read (friction values, contact stiffness, the damped pair, the rotation, the normal and the
+//! sliding) must also give a value or an error.
 use libfuzzer_sys::fuzz_target;
 use squeal_scene::Scene;
 use std::path::Path;
@@ -18,7 +18,9 @@ fuzz_target!(|data: &[u8]| {
             let _ = scene.mu_values().map_err(|e| e.to_string());
             let _ = scene.stiffness().map_err(|e| e.to_string());
             let _ = scene.pair().map_err(|e| e.to_string());
-            let _ = scene.disc_axis().map_err(|e| e.to_string());
+            let _ = scene.rotation().map_err(|e| e.to_string());
+            let _ = scene.normal().map_err(|e| e.to_string());
+            let _ = scene.sliding().map_err(|e| e.to_string());
             let _ = scene.disc_angular_speed().map_err(|e| e.to_string());
         }
     }

@@ -54,7 +54,11 @@ fn the_sweep_to_the_hopf_point_is_the_whole_sweeps_beginning() {
     let whole = sweep(&c.model.brake, &c.reference, &mus, &opts).unwrap();
     let early = sweep_to_hopf(&c.model.brake, &c.reference, &mus, &opts).unwrap();
     let first = whole.crossings.iter().find(|x| x.in_band).unwrap();
-    assert_eq!(early.points.len(), first.k + 2, "ends at the point after the crossing");
+    assert_eq!(
+        early.points.len(),
+        first.k + 2,
+        "ends at the point after the crossing"
+    );
     for (k, (a, b)) in early.points.iter().zip(&whole.points).enumerate() {
         assert_eq!(a.spectrum.values, b.spectrum.values, "point {k}");
     }

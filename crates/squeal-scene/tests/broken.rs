@@ -22,7 +22,9 @@ fn first_error(path: &Path) -> Option<String> {
         scene.mu_values().err(),
         scene.stiffness().err(),
         scene.pair().err(),
-        scene.disc_axis().err(),
+        scene.rotation().err(),
+        scene.normal().err(),
+        scene.sliding().err(),
         scene.disc_angular_speed().err(),
     ];
     checks.into_iter().flatten().next().map(|e| e.to_string())
