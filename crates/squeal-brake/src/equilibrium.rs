@@ -1,25 +1,60 @@
 //! Eq (14): the static equilibrium `K x0 + F_nl(x0) = F_piston`, sliding at friction μ.
 //!
-//! Newton's method on the full reduced brake with a backtracking line search on the residual
-//! norm, started "with the contact closed": at the first iteration open pairs use their linear
-//! stiffness `k_l`, so that a start at `x = 0` (zero penetration) has a non-singular tangent.
+//! **Closure and initial gaps.** Pair `p` closes by `δ_p = g_p · x - g0_p`, its relative
+//! normal approach `g_p · x = n · (u_disc - u_pad)` less its initial gap `g0_p`
+//! ([`ContactPair::initial_gap`](crate::model::ContactPair::initial_gap), positive when open;
+//! stored as `gap = -g0`). The penalty law `F_c(δ) = k_l δ + k_nl δ³` for `δ > 0`, 0 otherwise
+//! (eq 8), is continuous but only piecewise smooth: its tangent jumps from 0 to `k_l` at
+//! `δ = 0`.
+//!
+//! **Continuation in the clamp force.** A brake whose pairs start open cannot be solved from
+//! `x = 0` by Newton's method alone: until a pair touches, the pad moves freely along the
+//! normal (the bundled pad is held in-plane only) and the residual does not fall. So eq (14)
+//! is solved under a load `λ F_piston` ramped from `λ = 0` (`x = 0` is the equilibrium there)
+//! to `λ = 1` in adaptive steps ([`NewtonOptions::first_load_step`], halved when Newton fails
+//! at a step, doubled after an easy one), each step started from the previous equilibrium.
+//! The first step is the whole load by default: a brake that Newton solves directly takes one
+//! step, and its result is bit for bit the direct solution.
+//!
+//! **Newton at one load.** A backtracking line search on the residual norm, started "with the
+//! contact closed": at the first iteration from `x = 0` open pairs use their linear stiffness
+//! `k_l`, so that a start at zero penetration has a non-singular tangent. While every pair is
+//! open the tangent is `K` alone, singular when the pad is free along the normal; there the
+//! step uses `K` if it lowers the residual (a pad held by springs: the open equilibrium in one
+//! step) and otherwise the closing stiffness `k_l` of every pair, accepted when it brings the
+//! nearest pair closer ("approach" steps: along a free mode the residual cannot fall before a
+//! pair touches). Open and closed sets cannot cycle: every other step must lower the residual
+//! norm, and when no step does the load step is halved, which starts Newton nearer to its
+//! solution (the residual is continuous in `λ`).
+//!
+//! **When the brake cannot close.** If at the full load every pair is still open, the clamp
+//! force is carried by the pad's restraints (springs, abutments) before the pad reaches the
+//! disc: that open state *is* the equilibrium of this model, and it is reported as
+//! [`BrakeError::GapsNotClosed`] with each pair's remaining opening. A load that pulls the pad
+//! away is [`BrakeError::ContactOpen`].
 
-use crate::error::BrakeError;
+use crate::error::{BrakeError, OpenPair};
 use crate::model::Brake;
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 
-/// Convergence controls of the Newton iteration.
+/// Convergence controls of the Newton iteration and of the load continuation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonOptions {
-    /// Converged when `||K x + F_nl - F_piston|| <= tolerance * max(||F_piston||, ||F_nl||)`:
+    /// Converged when `||K x + F_nl - λ F_piston|| <= tolerance * max(||λ F_piston||, ||F_nl||)`:
     /// relative to the forces being balanced (the contact forces carry the load even when a
     /// preload, not the piston, closes the contact).
     pub tolerance: f64,
-    /// Newton iterations allowed before [`BrakeError::NewtonFailed`].
+    /// Newton iterations allowed per load step before [`BrakeError::NewtonFailed`].
     pub max_iterations: usize,
     /// Halvings of the step allowed by the line search.
     pub max_halvings: usize,
+    /// The first load step of the continuation, as a fraction of the piston force in
+    /// `(0, 1]`; 1 tries the full load at once.
+    pub first_load_step: f64,
+    /// The smallest load step (fraction of the piston force): when a step this small fails,
+    /// the continuation stops with that step's error.
+    pub min_load_step: f64,
 }
 
 impl Default for NewtonOptions {
@@ -28,6 +63,8 @@ impl Default for NewtonOptions {
             tolerance: 1e-10,
             max_iterations: 60,
             max_halvings: 40,
+            first_load_step: 1.0,
+            min_load_step: 1e-4,
         }
     }
 }
@@ -39,12 +76,19 @@ pub struct Equilibrium {
     pub mu: f64,
     /// `x0` of eq (14).
     pub x: Vec<f64>,
-    /// Newton iterations taken.
+    /// Newton iterations taken, over every load step (failed ones included).
     pub iterations: usize,
+    /// Load steps of the continuation that converged (1 when the full load was solved at once;
+    /// 1 also for a start from a given point, which is not ramped).
+    pub load_steps: usize,
+    /// Load steps that failed and were halved.
+    pub rejected_load_steps: usize,
     /// Final `||K x + F_nl - F_piston|| / max(||F_piston||, ||F_nl||)`.
     pub residual: f64,
-    /// Penetration of each pair at `x0` (positive: closed).
+    /// Penetration `δ` of each pair at `x0` (m; positive: closed).
     pub penetrations: Vec<f64>,
+    /// Normal contact force `F_n` of each pair at `x0` (N; 0 when open).
+    pub normal_forces: Vec<f64>,
 }
 
 impl Equilibrium {
@@ -52,88 +96,225 @@ impl Equilibrium {
     pub fn closed_pairs(&self) -> usize {
         self.penetrations.iter().filter(|d| **d > 0.0).count()
     }
+
+    /// The sum of the pairs' normal forces (N): the clamp force the contact carries.
+    pub fn total_normal_force(&self) -> f64 {
+        self.normal_forces.iter().sum()
+    }
 }
 
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|a| a * a).sum::<f64>().sqrt()
 }
 
-/// Solves eq (14) at friction `mu`, from `start` (or from `x = 0`, contact closed).
+fn max_penetration(brake: &Brake, x: &[f64]) -> f64 {
+    brake
+        .penetrations(x)
+        .into_iter()
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// A Newton solution at one load.
+struct Solved {
+    x: Vec<f64>,
+    residual: f64,
+}
+
+/// Newton's method for `K x + F_nl(x) = load F_piston` from `x` (module docs); `fresh` marks
+/// a start from `x = 0` (its first iteration is taken with the contact closed). Returns the
+/// iterations taken with the outcome.
+fn newton_at(
+    brake: &Brake,
+    mu: f64,
+    load: f64,
+    mut x: Vec<f64>,
+    fresh: bool,
+    opts: &NewtonOptions,
+) -> (Result<Solved, BrakeError>, usize) {
+    let n = brake.size();
+    let force_scale = |x: &[f64]| {
+        let mut f = vec![0.0; n];
+        brake.add_nonlinear_force(x, None, mu, &mut f);
+        (load * norm(&brake.f_piston))
+            .max(norm(&f))
+            .max(f64::MIN_POSITIVE)
+    };
+    let mut r = brake.static_residual_at(&x, mu, load);
+    let mut rn = norm(&r);
+    let mut scale = force_scale(&x);
+    let mut it = 0;
+    while rn > opts.tolerance * scale {
+        if it == opts.max_iterations {
+            let e = BrakeError::NewtonFailed {
+                iterations: it,
+                residual: rn / scale,
+                tolerance: opts.tolerance,
+            };
+            return (Err(e), it);
+        }
+        let first = it == 0 && fresh;
+        let all_open = brake.penetrations(&x).iter().all(|d| *d <= 0.0);
+        // The tangents to try: the true one, then (every pair open) the closing stiffness.
+        let closings: &[bool] = match (first, all_open) {
+            (true, _) => &[true],
+            (false, true) => &[false, true],
+            (false, false) => &[false],
+        };
+        let mut accepted = false;
+        for &closed in closings {
+            let jac = &brake.k + brake.nonlinear_jacobian(&x, mu, closed).0;
+            let rhs = Mat::from_fn(n, 1, |i, _| -r[i]);
+            let dx = jac.partial_piv_lu().solve(&rhs);
+            if (0..n).any(|i| !dx[(i, 0)].is_finite()) {
+                if closed {
+                    return (Err(BrakeError::SingularTangent), it + 1);
+                }
+                continue;
+            }
+            let at = |x: &[f64], step: f64| -> Vec<f64> {
+                (0..n).map(|i| x[i] + step * dx[(i, 0)]).collect()
+            };
+            // Backtracking line search on ||r||.
+            let mut step = 1.0;
+            for _ in 0..=opts.max_halvings {
+                let trial = at(&x, step);
+                let rt = brake.static_residual_at(&trial, mu, load);
+                let rtn = norm(&rt);
+                if rtn < rn || rtn <= opts.tolerance * force_scale(&trial) {
+                    scale = force_scale(&trial);
+                    x = trial;
+                    r = rt;
+                    rn = rtn;
+                    accepted = true;
+                    break;
+                }
+                step *= 0.5;
+            }
+            if !accepted && closed && all_open {
+                // An approach step: the whole step if it brings the nearest pair closer.
+                let trial = at(&x, 1.0);
+                if max_penetration(brake, &trial) > max_penetration(brake, &x) {
+                    r = brake.static_residual_at(&trial, mu, load);
+                    rn = norm(&r);
+                    scale = force_scale(&trial);
+                    x = trial;
+                    accepted = true;
+                }
+            }
+            if accepted {
+                break;
+            }
+        }
+        it += 1;
+        if !accepted {
+            if brake.penetrations(&x).iter().all(|d| *d <= 0.0) {
+                return (Err(BrakeError::ContactOpen), it);
+            }
+            let e = BrakeError::NewtonFailed {
+                iterations: it,
+                residual: rn / scale,
+                tolerance: opts.tolerance,
+            };
+            return (Err(e), it);
+        }
+    }
+    let residual = rn / scale;
+    (Ok(Solved { x, residual }), it)
+}
+
+/// Solves eq (14) at friction `mu`: from `start` at the full load (a continuation in μ), or
+/// with `start = None` by continuation in the clamp force from `x = 0` (module docs).
 pub fn static_equilibrium(
     brake: &Brake,
     mu: f64,
     start: Option<&[f64]>,
     opts: &NewtonOptions,
 ) -> Result<Equilibrium, BrakeError> {
-    let n = brake.size();
-    let force_scale = |x: &[f64]| {
-        let mut f = vec![0.0; n];
-        brake.add_nonlinear_force(x, None, mu, &mut f);
-        norm(&brake.f_piston).max(norm(&f)).max(f64::MIN_POSITIVE)
+    let (solved, iterations, load_steps, rejected) = match start {
+        Some(x0) => {
+            let (s, it) = newton_at(brake, mu, 1.0, x0.to_vec(), false, opts);
+            (s?, it, 1, 0)
+        }
+        None => load_ramp(brake, mu, opts)?,
     };
-    let mut x: Vec<f64> = start.map(<[f64]>::to_vec).unwrap_or_else(|| vec![0.0; n]);
-    let mut r = brake.static_residual(&x, mu);
-    let mut rn = norm(&r);
-    let mut scale = force_scale(&x);
-    let mut it = 0;
-    while rn > opts.tolerance * scale {
-        if it == opts.max_iterations {
-            return Err(BrakeError::NewtonFailed {
-                iterations: it,
-                residual: rn / scale,
-                tolerance: opts.tolerance,
-            });
-        }
-        let closed_start = it == 0 && start.is_none();
-        if !closed_start && brake.penetrations(&x).iter().all(|d| *d <= 0.0) {
-            return Err(BrakeError::ContactOpen);
-        }
-        let jac = &brake.k + brake.nonlinear_jacobian(&x, mu, closed_start).0;
-        let rhs = Mat::from_fn(n, 1, |i, _| -r[i]);
-        let dx = jac.partial_piv_lu().solve(&rhs);
-        if (0..n).any(|i| !dx[(i, 0)].is_finite()) {
-            return Err(BrakeError::SingularTangent);
-        }
-        // Backtracking line search on ||r||.
-        let mut step = 1.0;
-        let mut accepted = false;
-        for _ in 0..=opts.max_halvings {
-            let trial: Vec<f64> = (0..n).map(|i| x[i] + step * dx[(i, 0)]).collect();
-            let rt = brake.static_residual(&trial, mu);
-            let rtn = norm(&rt);
-            if rtn < rn || rtn <= opts.tolerance * force_scale(&trial) {
-                scale = force_scale(&trial);
-                x = trial;
-                r = rt;
-                rn = rtn;
-                accepted = true;
-                break;
-            }
-            step *= 0.5;
-        }
-        it += 1;
-        if !accepted {
-            if brake.penetrations(&x).iter().all(|d| *d <= 0.0) {
-                return Err(BrakeError::ContactOpen);
-            }
-            return Err(BrakeError::NewtonFailed {
-                iterations: it,
-                residual: rn / scale,
-                tolerance: opts.tolerance,
-            });
-        }
-    }
-    let penetrations = brake.penetrations(&x);
+    let penetrations = brake.penetrations(&solved.x);
     if penetrations.iter().all(|d| *d <= 0.0) {
-        return Err(BrakeError::ContactOpen);
+        return Err(open_at_full_load(brake, &solved.x));
     }
+    let normal_forces = brake
+        .pairs
+        .iter()
+        .map(|p| p.response(&solved.x, None, mu).normal)
+        .collect();
     Ok(Equilibrium {
         mu,
-        x,
-        iterations: it,
-        residual: rn / scale,
+        x: solved.x,
+        iterations,
+        load_steps,
+        rejected_load_steps: rejected,
+        residual: solved.residual,
         penetrations,
+        normal_forces,
     })
+}
+
+/// The continuation in the clamp force: `(solution, iterations, steps, rejected steps)`.
+fn load_ramp(
+    brake: &Brake,
+    mu: f64,
+    opts: &NewtonOptions,
+) -> Result<(Solved, usize, usize, usize), BrakeError> {
+    let n = brake.size();
+    let mut x = vec![0.0; n];
+    let first = opts.first_load_step.max(opts.min_load_step).min(1.0);
+    let (mut load, mut step) = (0.0f64, first);
+    let (mut iterations, mut steps, mut rejected) = (0, 0, 0);
+    loop {
+        let target = if load + step >= 1.0 { 1.0 } else { load + step };
+        let (outcome, it) = newton_at(brake, mu, target, x.clone(), steps == 0, opts);
+        iterations += it;
+        match outcome {
+            Ok(s) => {
+                steps += 1;
+                load = target;
+                if load == 1.0 {
+                    return Ok((s, iterations, steps, rejected));
+                }
+                x = s.x;
+                // An easy step (a quarter of the iterations allowed or fewer): a longer one.
+                if it <= opts.max_iterations / 4 {
+                    step *= 2.0;
+                }
+            }
+            Err(e) => {
+                rejected += 1;
+                step *= 0.5;
+                if step < opts.min_load_step {
+                    return Err(e);
+                }
+            }
+        }
+    }
+}
+
+/// The error for an equilibrium `x` at the full load with every pair open: the restraints
+/// carry the clamp force ([`BrakeError::GapsNotClosed`]), or, when every pair opened further
+/// than it started, the load pulls the pad away ([`BrakeError::ContactOpen`]).
+fn open_at_full_load(brake: &Brake, x: &[f64]) -> BrakeError {
+    let pairs: Vec<OpenPair> = brake
+        .pairs
+        .iter()
+        .enumerate()
+        .map(|(p, pair)| OpenPair {
+            pair: p + 1,
+            initial_gap: pair.initial_gap(),
+            opening: -pair.penetration(x),
+        })
+        .collect();
+    if pairs.iter().all(|p| p.opening > p.initial_gap) {
+        return BrakeError::ContactOpen;
+    }
+    BrakeError::GapsNotClosed { pairs }
 }
 
 #[cfg(test)]

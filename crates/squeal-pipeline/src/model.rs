@@ -10,7 +10,7 @@
 use crate::error::{PipelineError, Result};
 use squeal_brake::Brake;
 use squeal_brake::analysis::{DampingSpec, PairChoice};
-use squeal_brake::assemble::{BrakeParams, Layout, Pairing, Stiffness, assemble};
+use squeal_brake::assemble::{BrakeParams, InitialGaps, Layout, Pairing, Stiffness, assemble};
 use squeal_brake::sweep::{Band, SweepOptions};
 use squeal_chbm::physics::DiscSpeed;
 use squeal_mesh::Mesh;
@@ -19,7 +19,7 @@ use squeal_reduce::brake::{
 };
 use squeal_reduce::craig_bampton::Stage;
 use squeal_reduce::rom::{InterfaceKind, ReducedModel};
-use squeal_scene::Scene;
+use squeal_scene::{GapSetting, Scene};
 use std::path::{Path, PathBuf};
 
 /// Everything an analysis of the scene needs.
@@ -139,7 +139,7 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
 }
 
 /// The brake's parameters from the scene: normal, sliding direction, the contact stiffness
-/// per unit area (eq 8), pairing tolerance and piston force.
+/// per unit area (eq 8), pairing tolerance, piston force and the pairs' initial gaps.
 pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
     let f = &scene.file;
     let (kl, knl, _) = scene.stiffness()?;
@@ -154,6 +154,12 @@ pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
         pairing_tolerance: PairingTolerance::Absolute(*f.contact.pairing_tolerance.get_ref()),
         piston_force: f.piston.line_pressure_bar.get_ref() * 1e5 * f.piston.area.get_ref(),
         surface_speed: None,
+        initial_gaps: match scene.initial_gaps()? {
+            GapSetting::Geometric => InitialGaps::Geometric,
+            GapSetting::Uniform(g) => InitialGaps::Uniform(g),
+            GapSetting::PerPair(g) => InitialGaps::PerPair(g),
+            GapSetting::Closed => InitialGaps::Closed,
+        },
     })
 }
 
