@@ -21,9 +21,11 @@
 //! `k_l`, so that a start at zero penetration has a non-singular tangent. While every pair is
 //! open the tangent is `K` alone, singular when the pad is free along the normal; there the
 //! step uses `K` if it lowers the residual (a pad held by springs: the open equilibrium in one
-//! step) and otherwise the closing stiffness `k_l` of every pair, accepted when it brings the
-//! nearest pair closer ("approach" steps: along a free mode the residual cannot fall before a
-//! pair touches). Open and closed sets cannot cycle: every other step must lower the residual
+//! step) and otherwise the closing stiffness `k_l` of every pair. A step with the closing
+//! stiffness that does not lower the residual is still taken when it brings the nearest pair
+//! closer, and lengthened to where the first pair touches (the penetrations are linear in `x`):
+//! along a free mode the residual cannot fall before a pair touches, and these "approach"
+//! steps cross a gap of any size in one or two iterations. Open and closed sets cannot cycle: every other step must lower the residual
 //! norm, and when no step does the load step is halved, which starts Newton nearer to its
 //! solution (the residual is continuous in `λ`).
 //!
@@ -114,6 +116,24 @@ fn max_penetration(brake: &Brake, x: &[f64]) -> f64 {
         .fold(f64::NEG_INFINITY, f64::max)
 }
 
+/// The length `s >= 1` of an approach step from `x` to `x + s (end - x)`: on to where the
+/// first approaching pair touches (`δ = 0`) when that lies beyond `end`; 1 when no pair
+/// approaches.
+fn approach_length(brake: &Brake, x: &[f64], end: &[f64]) -> f64 {
+    let (d0, d1) = (brake.penetrations(x), brake.penetrations(end));
+    let first_touch = d0
+        .iter()
+        .zip(&d1)
+        .filter(|(a, b)| *b > *a)
+        .map(|(a, b)| -a / (b - a))
+        .fold(f64::INFINITY, f64::min);
+    if first_touch.is_finite() {
+        first_touch.max(1.0)
+    } else {
+        1.0
+    }
+}
+
 /// A Newton solution at one load.
 struct Solved {
     x: Vec<f64>,
@@ -191,8 +211,9 @@ fn newton_at(
                 step *= 0.5;
             }
             if !accepted && closed && all_open {
-                // An approach step: the whole step if it brings the nearest pair closer.
-                let trial = at(&x, 1.0);
+                // An approach step: at least the whole step, and on to the first touch (the
+                // penetrations are linear in x), if it brings the nearest pair closer.
+                let trial = at(&x, approach_length(brake, &x, &at(&x, 1.0)));
                 if max_penetration(brake, &trial) > max_penetration(brake, &x) {
                     r = brake.static_residual_at(&trial, mu, load);
                     rn = norm(&r);
@@ -396,5 +417,190 @@ mod tests {
             ),
             "{r:?}"
         );
+    }
+
+    /// A pad on a spring `k_s` to ground (one dof `u`, along the normal, away from the disc),
+    /// pressed by `F` onto a rigid disc through pairs with initial gaps `g0`: the approach is
+    /// `w = -u` and pair `p` closes by `δ_p = w - g0_p`.
+    fn held_pad(force: f64, k_spring: f64, gaps: &[f64]) -> Brake {
+        let pairs = gaps
+            .iter()
+            .map(|&g0| ContactPair {
+                disc_point: 0,
+                pad_point: 0,
+                position: [0.0; 3],
+                normal_direction: [0.0, 0.0, 1.0],
+                sliding_direction: [1.0, 0.0, 0.0],
+                normal: vec![(0, -1.0)],
+                tangent: vec![],
+                gap: -g0,
+                surface_speed: None,
+                law: Arc::new(PenaltyCoulomb {
+                    k_linear: KL,
+                    k_cubic: KNL,
+                }),
+            })
+            .collect();
+        Brake {
+            m: Mat::identity(1, 1),
+            k: Mat::from_fn(1, 1, |_, _| k_spring),
+            f_piston: vec![-force],
+            pairs,
+        }
+    }
+
+    const KL: f64 = 1e7;
+    const KNL: f64 = 1e17;
+
+    /// The real root of `δ³ + p δ + q = 0` with `p > 0`, by Cardano's formula.
+    fn cardano(p: f64, q: f64) -> f64 {
+        let s = (q * q / 4.0 + p * p * p / 27.0).sqrt();
+        (-q / 2.0 + s).cbrt() + (-q / 2.0 - s).cbrt()
+    }
+
+    /// The approach `w` solving `k_s w + Σ_p F_c(w - g0_p) = F`, by bisection to the last bit.
+    fn bisect_approach(force: f64, k_spring: f64, gaps: &[f64]) -> f64 {
+        let f = |w: f64| {
+            k_spring * w
+                + gaps
+                    .iter()
+                    .map(|g| crate::contact::cubic_penalty(w - g, KL, KNL).0)
+                    .sum::<f64>()
+                - force
+        };
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        for _ in 0..2000 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if f(mid) > 0.0 { hi = mid } else { lo = mid }
+        }
+        lo
+    }
+
+    fn ramped(first_load_step: f64) -> NewtonOptions {
+        NewtonOptions {
+            first_load_step,
+            ..NewtonOptions::default()
+        }
+    }
+
+    #[test]
+    fn a_pad_on_a_spring_closes_its_gap_as_cardano_says() {
+        // k_s g0 = 100 N of the 300 N go into the spring before the pair touches; then
+        // k_nl δ³ + (k_s + k_l) δ + (k_s g0 - F) = 0.
+        let (force, ks, g0) = (300.0, 1e6, 1e-4);
+        let b = held_pad(force, ks, &[g0]);
+        let exact = cardano((ks + KL) / KNL, (ks * g0 - force) / KNL);
+        // Cardano against bisection: both at round-off of δ ≈ 1.2e-5 m (measured 1e-16 rel.).
+        let bis = bisect_approach(force, ks, &[g0]) - g0;
+        assert!((exact - bis).abs() < 1e-13 * exact, "{exact} vs {bis}");
+        for step in [1.0, 0.1, 0.013] {
+            let eq = static_equilibrium(&b, 0.0, None, &ramped(step)).unwrap();
+            // The residual is 1e-10 of the 300 N balanced: δ to 1e-10 F / (k_l + k_s) ≈ 3e-15 m,
+            // 2.5e-10 of δ; measured below 1e-13 relative. 1e-9 allows for the ramp's stop.
+            let d = eq.penetrations[0];
+            assert!(
+                (d - exact).abs() < 1e-9 * exact,
+                "step {step}: {d} vs {exact}"
+            );
+            // The pair carries what the spring does not: F - k_s (δ + g0), to the same accuracy.
+            let fc = force - ks * (exact + g0);
+            assert!((eq.normal_forces[0] - fc).abs() < 1e-9 * force);
+            if step < 1.0 {
+                // A real ramp: more than one step, every one converged.
+                assert!(eq.load_steps > 1, "{eq:?}");
+            }
+            eprintln!(
+                "first step {step}: {} load steps ({} rejected), {} Newton iterations, delta rel. err {:.1e}",
+                eq.load_steps,
+                eq.rejected_load_steps,
+                eq.iterations,
+                (d - exact).abs() / exact
+            );
+        }
+    }
+
+    #[test]
+    fn a_second_pair_with_a_larger_gap_closes_only_under_enough_load() {
+        // Gaps 20 and 60 um, k_s = 1e6 N/m: the second pair touches at
+        // F = k_s 60e-6 + F_c(40e-6) = 60 + 400 + 6400 N = 6860 N.
+        let (ks, gaps) = (1e6, [2e-5, 6e-5]);
+        for (force, second_closed) in [(3000.0, false), (12000.0, true)] {
+            let b = held_pad(force, ks, &gaps);
+            let w = bisect_approach(force, ks, &gaps);
+            for step in [1.0, 0.05] {
+                let eq = static_equilibrium(&b, 0.0, None, &ramped(step)).unwrap();
+                for (p, g) in gaps.iter().enumerate() {
+                    // As above: the residual's 1e-10 relative is ~1e-14 m of closure; 1e-9 of
+                    // the approach (measured below 1e-13).
+                    assert!(
+                        (eq.penetrations[p] - (w - g)).abs() < 1e-9 * w,
+                        "F {force}, step {step}, pair {p}: {} vs {}",
+                        eq.penetrations[p],
+                        w - g
+                    );
+                }
+                assert_eq!(eq.closed_pairs(), 1 + second_closed as usize);
+                // The spring and the pairs share the clamp force (the residual's 1e-10).
+                let total = ks * w + eq.total_normal_force();
+                assert!((total - force).abs() < 1e-9 * force, "{total} vs {force}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_free_pad_with_a_gap_moves_through_it_and_presses_as_without() {
+        // The pad of `pad_on_disc` is free along the normal: it travels through the gap rigidly
+        // and the pair then carries the whole force, so δ is the zero-gap one and the pad sits
+        // g0 further down. Today's Newton stopped here with "open at every pair".
+        let force = 300.0;
+        let closed =
+            static_equilibrium(&pad_on_disc(force), 0.4, None, &NewtonOptions::default()).unwrap();
+        // 0.1 mm and 10 mm: the approach steps go to the first touch, whatever the gap.
+        for (g0, step) in [(1e-4, 1.0), (1e-4, 0.1), (1e-2, 1.0), (1e-2, 0.01)] {
+            let mut b = pad_on_disc(force);
+            b.pairs[0].gap = -g0;
+            let eq = static_equilibrium(&b, 0.4, None, &ramped(step)).unwrap();
+            // Both converged to 1e-10 of 300 N: δ (≈ 1.8e-5 m) to ~3e-15 m; 1e-9 relative.
+            let d = eq.penetrations[0];
+            assert!((d - closed.penetrations[0]).abs() < 1e-9 * d, "{d}");
+            // The pad (dof 1) is g0 further towards the disc; the disc (dof 0) where it was.
+            assert!((eq.x[1] - (closed.x[1] - g0)).abs() < 1e-9 * g0);
+            assert!((eq.x[0] - closed.x[0]).abs() < 1e-9 * closed.x[0].abs());
+            eprintln!(
+                "free pad, gap {g0}, first step {step}: {} load steps, {} iterations",
+                eq.load_steps, eq.iterations
+            );
+        }
+    }
+
+    #[test]
+    fn a_gap_the_load_cannot_close_is_a_typed_error_with_the_openings() {
+        // k_s g0 = 1e6 × 1e-4 = 100 N > 60 N: the spring holds the pad 60 um down, 40 um short.
+        let (force, ks, g0) = (60.0, 1e6, 1e-4);
+        let b = held_pad(force, ks, &[g0, 2.0 * g0]);
+        for step in [1.0, 0.1] {
+            match static_equilibrium(&b, 0.0, None, &ramped(step)) {
+                Err(BrakeError::GapsNotClosed { pairs }) => {
+                    assert_eq!(pairs.len(), 2);
+                    // The open state is linear (K x = F): exact to round-off of 1e-4 m.
+                    for (p, open) in pairs.iter().enumerate() {
+                        let g = g0 * (p + 1) as f64;
+                        assert_eq!((open.pair, open.initial_gap), (p + 1, g));
+                        let want = g - force / ks;
+                        assert!((open.opening - want).abs() < 1e-15, "{open:?}");
+                    }
+                    let text = BrakeError::GapsNotClosed { pairs }.to_string();
+                    assert!(text.contains("pair 1 open by 40.000 um (initial gap 100.000 um)"));
+                    assert!(text.contains("close_initial_gaps"), "{text}");
+                }
+                other => panic!("step {step}: {other:?}"),
+            }
+        }
+        // Just enough load (k_s g0 and a little) closes the first pair.
+        let eq = static_equilibrium(&held_pad(101.0, ks, &[g0]), 0.0, None, &ramped(1.0)).unwrap();
+        assert_eq!(eq.closed_pairs(), 1);
     }
 }

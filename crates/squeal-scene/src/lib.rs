@@ -731,7 +731,10 @@ mod tests {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/brake.toml");
         let base = std::fs::read_to_string(&path).unwrap();
         let with = |extra: &str| {
-            Scene::parse(&path, base.replace("[contact]\n", &format!("[contact]\n{extra}\n")))
+            Scene::parse(
+                &path,
+                base.replace("[contact]\n", &format!("[contact]\n{extra}\n")),
+            )
         };
         let gaps = |extra: &str| with(extra).unwrap().initial_gaps().unwrap();
         assert_eq!(gaps(""), GapSetting::Geometric);
@@ -752,7 +755,10 @@ mod tests {
         ] {
             let e = with(bad).unwrap_err().to_string();
             // The error names the key and its line in the scene.
-            assert!(e.contains("contact.initial_gap") && e.contains("brake.toml:"), "{e}");
+            assert!(
+                e.contains("contact.initial_gap") && e.contains("brake.toml:"),
+                "{e}"
+            );
         }
     }
 
