@@ -20,8 +20,11 @@
 //! contact closed": at the first iteration from `x = 0` open pairs use their linear stiffness
 //! `k_l`, so that a start at zero penetration has a non-singular tangent. While every pair is
 //! open the tangent is `K` alone, singular when the pad is free along the normal; there the
-//! step uses `K` if it lowers the residual (a pad held by springs: the open equilibrium in one
-//! step) and otherwise the closing stiffness `k_l` of every pair. A step with the closing
+//! step uses `K` at full length if that reaches the open equilibrium (a pad held by springs:
+//! one step, the open problem being linear) or lowers the residual with a pair closed, and
+//! otherwise the closing stiffness `k_l` of every pair. (A pad free along the normal has a
+//! `K` singular to round-off: its step is some 1e7 m along the free mode and "lowers" the
+//! residual against the round-off stiffness there; those steps are refused.) A step with the closing
 //! stiffness that does not lower the residual is still taken when it brings the nearest pair
 //! closer, and lengthened to where the first pair touches (the penetrations are linear in `x`):
 //! along a free mode the residual cannot fall before a pair touches, and these "approach"
@@ -194,13 +197,26 @@ fn newton_at(
             let at = |x: &[f64], step: f64| -> Vec<f64> {
                 (0..n).map(|i| x[i] + step * dx[(i, 0)]).collect()
             };
-            // Backtracking line search on ||r||.
+            // Backtracking line search on ||r||; the bare `K` of an all-open state only at
+            // full length (its step is the open equilibrium, or far off when `K` is singular).
+            let halvings = if all_open && !closed {
+                0
+            } else {
+                opts.max_halvings
+            };
             let mut step = 1.0;
-            for _ in 0..=opts.max_halvings {
+            for _ in 0..=halvings {
                 let trial = at(&x, step);
                 let rt = brake.static_residual_at(&trial, mu, load);
                 let rtn = norm(&rt);
-                if rtn < rn || rtn <= opts.tolerance * force_scale(&trial) {
+                let converged = rtn <= opts.tolerance * force_scale(&trial);
+                // The bare K of an all-open state: only to the open equilibrium or into
+                // contact. A near-singular K (a pad free along the normal) "lowers" the
+                // residual by a step of 1e7 m against round-off stiffness.
+                let sound = !(all_open && !closed)
+                    || converged
+                    || brake.penetrations(&trial).iter().any(|d| *d > 0.0);
+                if sound && (rtn < rn || converged) {
                     scale = force_scale(&trial);
                     x = trial;
                     r = rt;
