@@ -199,11 +199,8 @@ fn newton_at(
             };
             // Backtracking line search on ||r||; the bare `K` of an all-open state only at
             // full length (its step is the open equilibrium, or far off when `K` is singular).
-            let halvings = if all_open && !closed {
-                0
-            } else {
-                opts.max_halvings
-            };
+            let bare = all_open && !closed;
+            let halvings = if bare { 0 } else { opts.max_halvings };
             let mut step = 1.0;
             for _ in 0..=halvings {
                 let trial = at(&x, step);
@@ -213,9 +210,8 @@ fn newton_at(
                 // The bare K of an all-open state: only to the open equilibrium or into
                 // contact. A near-singular K (a pad free along the normal) "lowers" the
                 // residual by a step of 1e7 m against round-off stiffness.
-                let sound = !(all_open && !closed)
-                    || converged
-                    || brake.penetrations(&trial).iter().any(|d| *d > 0.0);
+                let sound =
+                    !bare || converged || brake.penetrations(&trial).iter().any(|d| *d > 0.0);
                 if sound && (rtn < rn || converged) {
                     scale = force_scale(&trial);
                     x = trial;
