@@ -678,7 +678,7 @@ fn equilibrium_section(r: &RunResults<'_>) -> Section {
             eq.closed_pairs(),
             eq.penetrations.len(),
             eq.total_normal_force(),
-            crate::stability::gap_source(m),
+            crate::stability::gap_description(m),
             eq.load_steps,
             eq.rejected_load_steps,
             eq.iterations,

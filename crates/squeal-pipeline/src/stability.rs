@@ -141,7 +141,35 @@ pub fn gap_source(m: &Model) -> &'static str {
     }
 }
 
-/// The equilibrium pair by pair: points, geometric gap, initial gap used, closure
+/// [`gap_source`], with the largest adjustment when the gaps were closed.
+pub fn gap_description(m: &Model) -> String {
+    let largest = m
+        .pairs
+        .iter()
+        .map(|p| adjustment(m, p).abs())
+        .fold(0.0, f64::max);
+    match m.params.initial_gaps {
+        InitialGaps::Closed => format!(
+            "{} (the largest adjustment {:.3e} m)",
+            gap_source(m),
+            largest
+        ),
+        _ => gap_source(m).to_string(),
+    }
+}
+
+/// How far `close_initial_gaps` moved a pair's gap (m): its geometric gap when the gaps are
+/// closed, 0 otherwise (a gap given in the scene replaces the geometric one, it adjusts
+/// nothing).
+pub fn adjustment(m: &Model, pair: &squeal_brake::assemble::Pairing) -> f64 {
+    match m.params.initial_gaps {
+        InitialGaps::Closed => pair.geometric_gap,
+        _ => 0.0,
+    }
+}
+
+/// The equilibrium pair by pair: points, geometric gap, initial gap used, the adjustment
+/// of `close_initial_gaps`, closure
 /// (penetration) and normal force, in SI units (`equilibrium.csv`).
 pub fn equilibrium_table(m: &Model, eq: &Equilibrium) -> Table {
     let mut t = Table::new([
@@ -150,7 +178,7 @@ pub fn equilibrium_table(m: &Model, eq: &Equilibrium) -> Table {
         "pad_point",
         "geometric_gap_m",
         "initial_gap_m",
-        "gap_adjusted_m",
+        "gap_closed_by_m",
         "closure_m",
         "normal_force_n",
     ]);
@@ -161,7 +189,7 @@ pub fn equilibrium_table(m: &Model, eq: &Equilibrium) -> Table {
             (pair.pad_point + 1).to_string(),
             format!("{:e}", pair.geometric_gap),
             format!("{:e}", pair.initial_gap),
-            format!("{:e}", pair.geometric_gap - pair.initial_gap),
+            format!("{:e}", adjustment(m, pair)),
             format!("{:e}", eq.penetrations[p]),
             format!("{:e}", eq.normal_forces[p]),
         ]);
@@ -185,7 +213,7 @@ pub fn equilibrium_text(m: &Model, eq: &Equilibrium) -> String {
         eq.penetrations.len(),
         eq.total_normal_force(),
         m.params.piston_force,
-        gap_source(m)
+        gap_description(m)
     );
     let _ = writeln!(
         out,
@@ -435,11 +463,12 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
             "rejected_load_steps": st.reference.equilibrium.rejected_load_steps,
             "relative_residual": st.reference.equilibrium.residual,
             "penetrations_m": st.reference.equilibrium.penetrations,
-            "initial_gaps": gap_source(s),
+            "initial_gaps": gap_description(s),
             "pairs": s.pairs.iter().enumerate().map(|(p, pair)| serde_json::json!({
                 "pair": p + 1,
                 "geometric_gap_m": pair.geometric_gap,
                 "initial_gap_m": pair.initial_gap,
+                "gap_closed_by_m": adjustment(s, pair),
                 "closure_m": st.reference.equilibrium.penetrations[p],
                 "normal_force_n": st.reference.equilibrium.normal_forces[p],
             })).collect::<Vec<_>>(),

@@ -64,6 +64,10 @@ fn a_tenth_of_a_millimetre_gap_closes_under_the_clamp_force() {
             z.iterations
         );
         assert_eq!(e.closed_pairs(), 9, "{:?}", e.penetrations);
+        // What `squeal stability` prints: each pair's 100 um gap, closure and force.
+        let text = squeal_pipeline::stability::equilibrium_text(&gap, &e);
+        assert!(text.contains("9 of 9 pairs closed"), "{text}");
+        assert_eq!(text.matches("       100.000  ").count(), 9, "{text}");
         // The pad is free along the normal, so the pairs carry the whole clamp force; the
         // equilibrium converged to 1e-10 of the forces balanced. Measured: 2.8e-12 relative.
         let force = gap.params.piston_force;
@@ -92,6 +96,14 @@ fn closing_the_gaps_is_the_zero_gap_brake() {
     let closed = model("close_initial_gaps = true");
     let zero = model("initial_gap = 0.0");
     assert!(closed.pairs.iter().all(|p| p.initial_gap == 0.0));
+    // The adjustment reported is each pair's geometric gap (1.7e-17 m at most here).
+    for p in &closed.pairs {
+        assert_eq!(
+            squeal_pipeline::stability::adjustment(&closed, p),
+            p.geometric_gap
+        );
+    }
+    assert!(squeal_pipeline::stability::gap_description(&closed).contains("close_initial_gaps"));
     let opts = NewtonOptions::default();
     let a = static_equilibrium(&closed.brake, 0.5, None, &opts).unwrap();
     let b = static_equilibrium(&zero.brake, 0.5, None, &opts).unwrap();
