@@ -22,6 +22,13 @@
 //!
 //! A rigid motion of the meshes with the scene's axis, point and normal moved alike moves every
 //! one of these with it, so the brake's spectrum does not change.
+//!
+//! Each pair's initial gap `g0` ([`InitialGaps`]) is measured from the geometry by default:
+//! the normal distance `n · (x_pad - x_disc)` between the paired points (the patch centroids
+//! of the patch interface), positive when the pad point lies off the disc surface. It may be
+//! given instead (one value, or one per pair), or closed (`g0 = 0` whatever the geometry, as
+//! Abaqus' contact adjustment and Ansys' contact offset do); [`Pairing`] keeps both the
+//! geometric and the gap used.
 
 use crate::contact::{Law, PenaltyCoulomb};
 use crate::error::BrakeError;
@@ -86,6 +93,20 @@ pub enum Stiffness {
     },
 }
 
+/// Where the pairs' initial gaps `g0` (m; positive: open) come from.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum InitialGaps {
+    /// Measured at pairing: `g0 = n · (x_pad - x_disc)` of the paired points.
+    #[default]
+    Geometric,
+    /// The same `g0` for every pair (m), whatever the geometry.
+    Uniform(f64),
+    /// One `g0` per pair (m), in pair order.
+    PerPair(Vec<f64>),
+    /// Every `g0` set to zero (the geometric gaps are reported as the adjustment).
+    Closed,
+}
+
 /// Physical parameters of the brake around the reduced model.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BrakeParams {
@@ -103,6 +124,8 @@ pub struct BrakeParams {
     /// Total piston force (N) pressing the pad on the disc, shared equally by the pad's piston
     /// points, each pushed towards the disc along the pads' mean normal.
     pub piston_force: f64,
+    /// The pairs' initial gaps.
+    pub initial_gaps: InitialGaps,
 }
 
 /// How a pair was formed.
@@ -120,6 +143,10 @@ pub struct Pairing {
     pub normal: [f64; 3],
     /// Unit sliding direction at the pair.
     pub sliding: [f64; 3],
+    /// The normal distance `n · (x_pad - x_disc)` of the two points (m): the geometric gap.
+    pub geometric_gap: f64,
+    /// The initial gap `g0` the pair is given (m; positive: open), from [`InitialGaps`].
+    pub initial_gap: f64,
     /// The pair's contact element.
     pub law: Law,
 }
@@ -350,6 +377,14 @@ pub fn assemble(
         &pc.iter().map(|&j| position(pad, j)).collect::<Vec<_>>(),
         params.pairing_tolerance,
     )?;
+    if let InitialGaps::PerPair(g) = &params.initial_gaps
+        && g.len() != matched.len()
+    {
+        return Err(BrakeError::GapCount {
+            given: g.len(),
+            pairs: matched.len(),
+        });
+    }
     let mut pairs = Vec::with_capacity(matched.len());
     let mut report = Vec::with_capacity(matched.len());
     // Σ A_p n_p: the pads' mean normal, the pistons' direction.
@@ -374,13 +409,20 @@ pub fn assemble(
         let mut h = along(disc, "disc", i, sliding, 0, 1.0)?;
         h.extend(along(pad, "pad", j, sliding, nd, -1.0)?);
         // A pad point below the disc surface (along n) starts in interference.
-        let gap = -(0..3)
+        let geometric_gap = (0..3)
             .map(|d| normal[d] * (position(pad, j)[d] - xi[d]))
             .sum::<f64>();
         let w = area.unwrap_or(1.0);
         for d in 0..3 {
             pad_normal[d] += w * normal[d];
         }
+        let initial_gap = match &params.initial_gaps {
+            InitialGaps::Geometric => geometric_gap,
+            InitialGaps::Uniform(g) => *g,
+            InitialGaps::PerPair(g) => g[k],
+            InitialGaps::Closed => 0.0,
+        };
+        let gap = -initial_gap;
         report.push(Pairing {
             disc_point: i,
             pad_point: j,
@@ -388,6 +430,8 @@ pub fn assemble(
             area,
             normal,
             sliding,
+            geometric_gap,
+            initial_gap,
             law: law.clone(),
         });
         pairs.push(ContactPair {

@@ -1,15 +1,54 @@
 //! Errors of the brake model and its analyses.
 
+/// A contact pair still open at the full clamp force ([`BrakeError::GapsNotClosed`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OpenPair {
+    /// Pair number (1-based).
+    pub pair: usize,
+    /// Its initial gap `g0` (m; positive: open).
+    pub initial_gap: f64,
+    /// How far it is still open at the full load, `-δ` (m).
+    pub opening: f64,
+}
+
+/// `pair 3 open by 12.3 um (initial gap 100.0 um), ...`.
+fn open_pairs_text(pairs: &[OpenPair]) -> String {
+    pairs
+        .iter()
+        .map(|p| {
+            format!(
+                "pair {} open by {:.3} um (initial gap {:.3} um)",
+                p.pair,
+                p.opening * 1e6,
+                p.initial_gap * 1e6
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// What went wrong, in the user's terms.
 #[derive(Debug, thiserror::Error)]
 pub enum BrakeError {
     /// [`static_equilibrium`](crate::equilibrium::static_equilibrium) found every pair open
-    /// (penetration ≤ 0) during or at the end of Newton's method: nothing presses the pad on
-    /// the disc.
+    /// (penetration ≤ 0) and the pad moving away from the disc: nothing presses the pad on
+    /// the disc (a load of the wrong sign).
     #[error(
         "static equilibrium: the contact is open at every pair (no force holds the pad against the disc); check the piston load's sign and the gaps"
     )]
     ContactOpen,
+    /// [`static_equilibrium`](crate::equilibrium::static_equilibrium): at the full clamp force
+    /// every pair is still open. The pad's restraints (springs, abutments) carry the whole
+    /// load before it reaches the disc; this open state is the model's equilibrium, and the
+    /// brake does not brake.
+    #[error(
+        "static equilibrium: the full clamp force does not close the initial gaps; the pad's restraints carry the whole load before it touches the disc: {}. Reduce the gaps, or set [contact] close_initial_gaps = true to close them as the geometry adjustment of other codes does",
+        open_pairs_text(pairs)
+    )]
+    GapsNotClosed {
+        /// Every pair, with its initial gap and its opening at the full load.
+        pairs: Vec<OpenPair>,
+    },
     /// Newton's method for eq (14) used up
     /// [`NewtonOptions::max_iterations`](crate::equilibrium::NewtonOptions::max_iterations),
     /// or its line search found no step that lowers the residual.
@@ -194,6 +233,18 @@ pub enum BrakeError {
     NoArea {
         /// Pair number (1-based).
         pair: usize,
+    },
+    /// [`assemble`](crate::assemble::assemble): a list of initial gaps
+    /// ([`InitialGaps::PerPair`](crate::assemble::InitialGaps::PerPair)) does not have one
+    /// value per contact pair.
+    #[error(
+        "{given} initial gaps are given for {pairs} contact pairs: give one value for all pairs or one per pair"
+    )]
+    GapCount {
+        /// Values given.
+        given: usize,
+        /// Pairs formed.
+        pairs: usize,
     },
     /// [`assemble`](crate::assemble::assemble): the pad's reduced model has no point of role
     /// piston.

@@ -6,7 +6,8 @@
 //!   contact pairs (each with its own normal, sliding direction and element), their forces
 //!   and Jacobians (eqs 17–19).
 //! - [`damping`]: the modal damping `D` of eq (12), diagonal or full.
-//! - [`equilibrium`]: the static equilibrium of eq (14) by Newton's method with a line search.
+//! - [`equilibrium`]: the static equilibrium of eq (14) by Newton's method with a line search,
+//!   by continuation in the clamp force so that pairs with initial gaps close under load.
 //! - [`modal`]: the undamped, frictionless modal basis and the damping of eqs (12)–(13).
 //! - [`spectrum`]: the complex eigenvalues of the linearized brake (eqs 20–22).
 //! - [`tracking`]: following modes across a parameter sweep by eigenvector correlation.

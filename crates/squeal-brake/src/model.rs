@@ -47,7 +47,8 @@ pub struct ContactPair {
     /// `h_p`: the friction force acts along `h_p`, the slip velocity is `V + h_p · x'`.
     pub tangent: SparseVec,
     /// Penetration (m) at `x = 0`, positive when the pad point starts inside the disc; 0 when
-    /// the points coincide.
+    /// the points coincide. It is minus the pair's initial gap `g0`
+    /// ([`ContactPair::initial_gap`]): a pair that starts open by `g0` has `gap = -g0`.
     pub gap: f64,
     /// `V_p`: the disc's surface speed at the pair along `s` (m/s), when known.
     pub surface_speed: Option<f64>,
@@ -59,6 +60,14 @@ impl ContactPair {
     /// Penetration `δ = g · x + gap`.
     pub fn penetration(&self, x: &[f64]) -> f64 {
         self.gap + dot_sparse(&self.normal, x)
+    }
+
+    /// The initial gap `g0 = -gap` (m): how far the pair is open at `x = 0`, positive when
+    /// open, negative for an initial interference. With it the closure is
+    /// `δ = g · x - g0 = n · (u_disc - u_pad) - g0`: the relative normal approach of the pad
+    /// towards the disc less the initial gap.
+    pub fn initial_gap(&self) -> f64 {
+        -self.gap
     }
 
     /// The pair's state at displacements `x` and velocities `v` (`None`: at rest).
@@ -278,13 +287,19 @@ impl Brake {
 
     /// Residual of eq (14): `K x + F_nl(x) - F_piston`.
     pub fn static_residual(&self, x: &[f64], mu: f64) -> Vec<f64> {
+        self.static_residual_at(x, mu, 1.0)
+    }
+
+    /// Residual of eq (14) under a fraction `load` of the piston force:
+    /// `K x + F_nl(x) - load F_piston` (the load continuation's; `load = 1` is eq (14)).
+    pub fn static_residual_at(&self, x: &[f64], mu: f64, load: f64) -> Vec<f64> {
         let n = self.size();
         let mut r: Vec<f64> = (0..n)
             .map(|i| (0..n).map(|j| self.k[(i, j)] * x[j]).sum::<f64>())
             .collect();
         self.add_nonlinear_force(x, None, mu, &mut r);
         for i in 0..n {
-            r[i] -= self.f_piston[i];
+            r[i] -= load * self.f_piston[i];
         }
         r
     }

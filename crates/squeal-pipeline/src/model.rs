@@ -11,7 +11,7 @@ use crate::error::{PipelineError, Result};
 use squeal_brake::Brake;
 use squeal_brake::analysis::{DampingSpec, PairChoice};
 use squeal_brake::assemble::{
-    BrakeParams, DiscRotation, Layout, Pairing, SlidingRule, Stiffness, assemble,
+    BrakeParams, DiscRotation, InitialGaps, Layout, Pairing, SlidingRule, Stiffness, assemble,
 };
 use squeal_brake::sweep::{Band, SweepOptions};
 use squeal_chbm::physics::DiscSpeed;
@@ -22,7 +22,7 @@ use squeal_reduce::brake::{
 };
 use squeal_reduce::craig_bampton::Stage;
 use squeal_reduce::rom::{InterfaceKind, ReducedModel};
-use squeal_scene::{Scene, Sliding};
+use squeal_scene::{GapSetting, Scene, Sliding};
 use std::path::{Path, PathBuf};
 
 /// Everything an analysis of the scene needs.
@@ -172,7 +172,7 @@ pub fn disc_rotation(scene: &Scene) -> Result<Option<DiscRotation>> {
 
 /// The brake's parameters from the scene: the normal it gives (a check on the mesh's), how
 /// the disc slides, its rotation, the contact stiffness per unit area (eq 8), pairing
-/// tolerance and piston force.
+/// tolerance, piston force and the pairs' initial gaps.
 pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
     let f = &scene.file;
     let (kl, knl, _) = scene.stiffness()?;
@@ -190,6 +190,12 @@ pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
         },
         pairing_tolerance: PairingTolerance::Absolute(*f.contact.pairing_tolerance.get_ref()),
         piston_force: f.piston.line_pressure_bar.get_ref() * 1e5 * f.piston.area.get_ref(),
+        initial_gaps: match scene.initial_gaps()? {
+            GapSetting::Geometric => InitialGaps::Geometric,
+            GapSetting::Uniform(g) => InitialGaps::Uniform(g),
+            GapSetting::PerPair(g) => InitialGaps::PerPair(g),
+            GapSetting::Closed => InitialGaps::Closed,
+        },
     })
 }
 

@@ -67,6 +67,7 @@ pub fn build(r: &RunResults<'_>, out: &Path, log: Log) -> Result<Report> {
     let modes = mode_pictures(r, meshes.as_ref(), &pics, log);
     let mut sections = vec![summary_section(r, &modes)];
     sections.push(modes_section(r, &modes));
+    sections.push(equilibrium_section(r));
     sections.push(stability_section(r, &pics)?);
     sections.push(branch_section(r.branch));
     if let Some(s) = chbm_section(r, meshes.as_ref(), &pics, log)? {
@@ -611,6 +612,58 @@ fn eigenvalue_map(r: &RunResults<'_>, pics: &Path) -> Result<PathBuf> {
     let stem = pics.join("eigenvalues");
     write_svg_and_png(&fig, &stem)?;
     Ok(PathBuf::from(PICTURES).join("eigenvalues"))
+}
+
+/// The static equilibrium of eq (14) at μ = 0, pair by pair: initial gap, closure, force.
+fn equilibrium_section(r: &RunResults<'_>) -> Section {
+    let m = r.model;
+    let eq = &r.stability.reference.equilibrium;
+    let mut t = Table::new([
+        "pair",
+        "initial gap (µm)",
+        "geometric gap (µm)",
+        "closure at equilibrium (µm)",
+        "normal force (N)",
+    ]);
+    for (p, pair) in m.pairs.iter().enumerate() {
+        t.push_row([
+            format!(
+                "{}{}",
+                p + 1,
+                if eq.penetrations[p] > 0.0 {
+                    ""
+                } else {
+                    " (open)"
+                }
+            ),
+            format!("{:.3}", pair.initial_gap * 1e6),
+            format!("{:.3}", pair.geometric_gap * 1e6),
+            format!("{:.3}", eq.penetrations[p] * 1e6),
+            format!("{:.2}", eq.normal_forces[p]),
+        ]);
+    }
+    Section {
+        heading: "Static equilibrium (eq 14)".into(),
+        text: format!(
+            "The brake pressed by the clamp force of {:.0} N at μ = {}: {} of {} pairs closed,              carrying {:.1} N together. Initial gaps (positive: open) {}; the clamp force was              ramped in {} load step(s) ({} halved) with {} Newton iterations in all, to a              relative residual of {:.1e}. A pair's closure is its penetration δ = g·x − g0              (positive: closed), its force eq (8)'s F = k_l δ + k_nl δ³. Table:              [stability/equilibrium.csv](stability/equilibrium.csv).",
+            m.params.piston_force,
+            eq.mu,
+            eq.closed_pairs(),
+            eq.penetrations.len(),
+            eq.total_normal_force(),
+            crate::stability::gap_description(m),
+            eq.load_steps,
+            eq.rejected_load_steps,
+            eq.iterations,
+            eq.residual
+        ),
+        figures: vec![],
+        tables: vec![(
+            t.align_numbers_right(),
+            "Each contact pair at equilibrium".into(),
+        )],
+        after: String::new(),
+    }
 }
 
 fn stability_section(r: &RunResults<'_>, pics: &Path) -> Result<Section> {

@@ -6,7 +6,9 @@ use crate::error::{Result, json_text};
 use crate::model::{Log, Model};
 use crate::shapes::{Meshes, PartFields, normalize_mode, write_brake_vtu};
 use squeal_brake::analysis::Stability;
+use squeal_brake::assemble::InitialGaps;
 use squeal_brake::criticality::{Criticality, NormalForm, pair_closure};
+use squeal_brake::equilibrium::Equilibrium;
 use squeal_report::format::fmt_sig;
 use squeal_report::{Annotation, Dash, Figure, Panel, Rgb, Series, Table, write_svg_and_png};
 use std::fmt::Write as _;
@@ -98,7 +100,7 @@ pub fn pairs_text(s: &Model) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "contact pairs (disc point, pad point, distance, area, k_l, k_nl):"
+        "contact pairs (disc point, pad point, distance, area, geometric gap, k_l, k_nl):"
     );
     for p in &s.pairs {
         let params: Vec<String> = p
@@ -109,11 +111,12 @@ pub fn pairs_text(s: &Model) -> String {
             .collect();
         let _ = writeln!(
             out,
-            "  {:>2} {:>2}  {:.1e} m  {} m^2  {}",
+            "  {:>2} {:>2}  {:.1e} m  {} m^2  {:+.1e} m  {}",
             p.disc_point + 1,
             p.pad_point + 1,
             p.distance,
             p.area.map_or("-".into(), |a| format!("{a:.4e}")),
+            p.geometric_gap,
             params.join("  ")
         );
     }
@@ -123,6 +126,114 @@ pub fn pairs_text(s: &Model) -> String {
         s.params.piston_force,
         s.brake.f_piston.iter().filter(|f| **f != 0.0).count()
     );
+    out
+}
+
+/// Where the pairs' initial gaps come from, in words.
+pub fn gap_source(m: &Model) -> &'static str {
+    match m.params.initial_gaps {
+        InitialGaps::Geometric => "measured from the geometry",
+        InitialGaps::Uniform(_) => "given in the scene ([contact] initial_gap)",
+        InitialGaps::PerPair(_) => "given per pair in the scene ([contact] initial_gap)",
+        InitialGaps::Closed => {
+            "closed ([contact] close_initial_gaps = true): set to zero, adjusted from the geometry's"
+        }
+    }
+}
+
+/// [`gap_source`], with the largest adjustment when the gaps were closed.
+pub fn gap_description(m: &Model) -> String {
+    let largest = m
+        .pairs
+        .iter()
+        .map(|p| adjustment(m, p).abs())
+        .fold(0.0, f64::max);
+    match m.params.initial_gaps {
+        InitialGaps::Closed => format!(
+            "{} (the largest adjustment {:.3e} m)",
+            gap_source(m),
+            largest
+        ),
+        _ => gap_source(m).to_string(),
+    }
+}
+
+/// How far `close_initial_gaps` moved a pair's gap (m): its geometric gap when the gaps are
+/// closed, 0 otherwise (a gap given in the scene replaces the geometric one, it adjusts
+/// nothing).
+pub fn adjustment(m: &Model, pair: &squeal_brake::assemble::Pairing) -> f64 {
+    match m.params.initial_gaps {
+        InitialGaps::Closed => pair.geometric_gap,
+        _ => 0.0,
+    }
+}
+
+/// The equilibrium pair by pair: points, geometric gap, initial gap used, the adjustment
+/// of `close_initial_gaps`, closure
+/// (penetration) and normal force, in SI units (`equilibrium.csv`).
+pub fn equilibrium_table(m: &Model, eq: &Equilibrium) -> Table {
+    let mut t = Table::new([
+        "pair",
+        "disc_point",
+        "pad_point",
+        "geometric_gap_m",
+        "initial_gap_m",
+        "gap_closed_by_m",
+        "closure_m",
+        "normal_force_n",
+    ]);
+    for (p, pair) in m.pairs.iter().enumerate() {
+        t.push_row([
+            (p + 1).to_string(),
+            (pair.disc_point + 1).to_string(),
+            (pair.pad_point + 1).to_string(),
+            format!("{:e}", pair.geometric_gap),
+            format!("{:e}", pair.initial_gap),
+            format!("{:e}", adjustment(m, pair)),
+            format!("{:e}", eq.penetrations[p]),
+            format!("{:e}", eq.normal_forces[p]),
+        ]);
+    }
+    t
+}
+
+/// The equilibrium's lines `squeal stability` prints: how it was solved, then each pair's
+/// initial gap, closure and normal force.
+pub fn equilibrium_text(m: &Model, eq: &Equilibrium) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "equilibrium at mu = {}: {} load step(s) ({} halved), {} Newton iterations, relative residual {:.1e}, {} of {} pairs closed, contact force {:.1} N of {:.1} N; initial gaps {}",
+        eq.mu,
+        eq.load_steps,
+        eq.rejected_load_steps,
+        eq.iterations,
+        eq.residual,
+        eq.closed_pairs(),
+        eq.penetrations.len(),
+        eq.total_normal_force(),
+        m.params.piston_force,
+        gap_description(m)
+    );
+    let _ = writeln!(
+        out,
+        "  pair  initial gap (um)  closure (um)  normal force (N)"
+    );
+    for (p, pair) in m.pairs.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            "  {:>4}  {:>16.3}  {:>12.3}  {:>16.2}{}",
+            p + 1,
+            pair.initial_gap * 1e6,
+            eq.penetrations[p] * 1e6,
+            eq.normal_forces[p],
+            if eq.penetrations[p] > 0.0 {
+                ""
+            } else {
+                "  open"
+            }
+        );
+    }
     out
 }
 
@@ -146,25 +257,7 @@ pub fn disc_share(s: &Model, x: &[faer::c64]) -> f64 {
 pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
     let mut out = String::new();
     let sw = &st.sweep;
-    let eq0 = &st.reference.equilibrium;
-    let _ = writeln!(
-        out,
-        "equilibrium at mu = 0: {} Newton iterations, relative residual {:.1e}, {} of {} pairs closed, penetrations {:.1}..{:.1} um",
-        eq0.iterations,
-        eq0.residual,
-        eq0.closed_pairs(),
-        eq0.penetrations.len(),
-        eq0.penetrations
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min)
-            * 1e6,
-        eq0.penetrations
-            .iter()
-            .copied()
-            .fold(f64::NEG_INFINITY, f64::max)
-            * 1e6
-    );
+    out.push_str(&equilibrium_text(s, &st.reference.equilibrium));
     let _ = writeln!(
         out,
         "sweep: {} friction values {}..{} in {:.2} s; valid band up to {:.0} Hz{}",
@@ -291,7 +384,8 @@ pub fn other_instabilities(st: &Stability) -> Vec<squeal_brake::sweep::Crossing>
     out
 }
 
-/// `branches.csv`, `stability.csv` and `summary.json`.
+/// `branches.csv`, `stability.csv`, `equilibrium.csv` (the frictionless equilibrium pair by
+/// pair) and `summary.json`.
 pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
     let sw = &st.sweep;
     let tau = threshold(s, st);
@@ -348,6 +442,7 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
         t.push_row(row);
     }
     t.write_csv(&dir.join("stability.csv"))?;
+    equilibrium_table(s, &st.reference.equilibrium).write_csv(&dir.join("equilibrium.csv"))?;
     let summary = serde_json::json!({
         "mu0": sw.hopf.as_ref().map(|h| h.mu0),
         "frequency_hz": sw.hopf.as_ref().map(|h| h.frequency_hz),
@@ -362,9 +457,22 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
         "instability_threshold": "a mode is unstable when Re(lambda) > this threshold, 64 eps omega_max: the eigensolver's round-off relative to the largest |lambda| of the spectrum",
         "user_band_hz": s.sweep.band.user.map(|(a, b)| [a, b]),
         "equilibrium_mu0": {
+            "mu": st.reference.equilibrium.mu,
             "iterations": st.reference.equilibrium.iterations,
+            "load_steps": st.reference.equilibrium.load_steps,
+            "rejected_load_steps": st.reference.equilibrium.rejected_load_steps,
             "relative_residual": st.reference.equilibrium.residual,
             "penetrations_m": st.reference.equilibrium.penetrations,
+            "initial_gaps": gap_description(s),
+            "pairs": s.pairs.iter().enumerate().map(|(p, pair)| serde_json::json!({
+                "pair": p + 1,
+                "geometric_gap_m": pair.geometric_gap,
+                "initial_gap_m": pair.initial_gap,
+                "gap_closed_by_m": adjustment(s, pair),
+                "closure_m": st.reference.equilibrium.penetrations[p],
+                "normal_force_n": st.reference.equilibrium.normal_forces[p],
+            })).collect::<Vec<_>>(),
+            "total_normal_force_n": st.reference.equilibrium.total_normal_force(),
         },
         "rom": s.rom_path.display().to_string(),
     });

@@ -213,6 +213,25 @@ pub struct ContactSection {
     /// Area (m²) a contact point stands for where the reduced model gives none (a node
     /// interface on parts without a contact face set).
     pub point_area: Option<Spanned<f64>>,
+    /// Initial gap (m; positive: open, negative: interference) of every pair, or a list of
+    /// one per pair in pair order; without it each pair's gap is measured from the geometry.
+    pub initial_gap: Option<Spanned<toml::Value>>,
+    /// `true`: every initial gap is closed (set to zero), as Abaqus' contact adjustment and
+    /// Ansys' contact offset do; the geometric gaps are reported as the adjustment.
+    pub close_initial_gaps: Option<Spanned<bool>>,
+}
+
+/// The pairs' initial gaps a scene asks for (`[contact] initial_gap`, `close_initial_gaps`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum GapSetting {
+    /// Measured from the geometry at pairing (the default).
+    Geometric,
+    /// One gap (m) for every pair.
+    Uniform(f64),
+    /// One gap (m) per pair, in pair order.
+    PerPair(Vec<f64>),
+    /// Every gap closed.
+    Closed,
 }
 
 fn default_pairing() -> Spanned<f64> {
@@ -493,6 +512,7 @@ impl Scene {
                 ));
             }
         }
+        self.initial_gaps()?;
         if let Some(mu) = &f.friction.mu {
             self.non_negative("friction.mu", mu)?;
         }
@@ -699,6 +719,49 @@ impl Scene {
                     v,
                     "must be \"tangent\" (the tangent of the disc's rotation at each contact point) or a global direction [x, y, z]",
                 )),
+            },
+        }
+    }
+
+    /// The pairs' initial gaps: `[contact] initial_gap` (a number or a list of numbers, m),
+    /// `close_initial_gaps = true`, or neither (measured from the geometry). Both together
+    /// are refused: closing the gaps one gives is a contradiction.
+    pub fn initial_gaps(&self) -> Result<GapSetting> {
+        let c = &self.file.contact;
+        let close = c.close_initial_gaps.as_ref().is_some_and(|b| *b.get_ref());
+        let Some(v) = &c.initial_gap else {
+            return Ok(if close {
+                GapSetting::Closed
+            } else {
+                GapSetting::Geometric
+            });
+        };
+        if close {
+            return Err(self.error_at(
+                "contact.initial_gap",
+                v,
+                "is given together with close_initial_gaps = true, which sets every gap to zero: keep one of the two",
+            ));
+        }
+        let number = |x: &toml::Value| x.as_float().or(x.as_integer().map(|i| i as f64));
+        let bad = || {
+            self.error_at(
+                "contact.initial_gap",
+                v,
+                "must be a gap in metres (positive: open, e.g. 1.0e-4 for 0.1 mm) or a list of one per contact pair",
+            )
+        };
+        match v.get_ref() {
+            toml::Value::Array(a) => {
+                let g: Vec<f64> = a.iter().filter_map(number).collect();
+                if g.len() != a.len() || g.is_empty() || g.iter().any(|x| !x.is_finite()) {
+                    return Err(bad());
+                }
+                Ok(GapSetting::PerPair(g))
+            }
+            x => match number(x) {
+                Some(g) if g.is_finite() => Ok(GapSetting::Uniform(g)),
+                _ => Err(bad()),
             },
         }
     }
@@ -1028,6 +1091,42 @@ mod tests {
         let no_rotation = format!("{}{}", &base[..start], &base[end..]);
         let e = Scene::parse(&path, no_rotation.replace(line, "")).unwrap_err();
         assert!(e.to_string().contains("needs a [rotation]"), "{e}");
+    }
+
+    #[test]
+    fn initial_gaps_are_one_value_a_list_or_closed() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/brake.toml");
+        let base = std::fs::read_to_string(&path).unwrap();
+        let with = |extra: &str| {
+            Scene::parse(
+                &path,
+                base.replace("[contact]\n", &format!("[contact]\n{extra}\n")),
+            )
+        };
+        let gaps = |extra: &str| with(extra).unwrap().initial_gaps().unwrap();
+        assert_eq!(gaps(""), GapSetting::Geometric);
+        assert_eq!(gaps("initial_gap = 1.0e-4"), GapSetting::Uniform(1e-4));
+        assert_eq!(gaps("initial_gap = 0"), GapSetting::Uniform(0.0));
+        assert_eq!(
+            gaps("initial_gap = [1.0e-4, 0, -2.0e-6]"),
+            GapSetting::PerPair(vec![1e-4, 0.0, -2e-6])
+        );
+        assert_eq!(gaps("close_initial_gaps = true"), GapSetting::Closed);
+        assert_eq!(gaps("close_initial_gaps = false"), GapSetting::Geometric);
+        for bad in [
+            "initial_gap = \"0.1 mm\"",
+            "initial_gap = []",
+            "initial_gap = [1.0e-4, \"x\"]",
+            "initial_gap = nan",
+            "initial_gap = 1.0e-4\nclose_initial_gaps = true",
+        ] {
+            let e = with(bad).unwrap_err().to_string();
+            // The error names the key and its line in the scene.
+            assert!(
+                e.contains("contact.initial_gap") && e.contains("brake.toml:"),
+                "{e}"
+            );
+        }
     }
 
     #[test]

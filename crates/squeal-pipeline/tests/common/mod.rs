@@ -22,6 +22,11 @@ pub fn meshes() -> PathBuf {
 /// `meshes/brake.toml` with its disc and pad at `level`, read as if it were
 /// `meshes/brake_<level>.toml` (paths stay relative to `meshes`).
 pub fn bundled_scene(level: &str) -> Scene {
+    bundled_scene_with(level, "")
+}
+
+/// [`bundled_scene`] with `contact` (TOML lines) added to its `[contact]` section.
+pub fn bundled_scene_with(level: &str, contact: &str) -> Scene {
     let path = meshes().join("brake.toml");
     let text = std::fs::read_to_string(&path).unwrap();
     let mut replaced = 0;
@@ -33,6 +38,9 @@ pub fn bundled_scene(level: &str) -> Scene {
                     replaced += 1;
                     return format!("{part} = \"{part}_{level}.inp\"\n");
                 }
+            }
+            if l == "[contact]" && !contact.is_empty() {
+                return format!("{l}\n{contact}\n");
             }
             format!("{l}\n")
         })
