@@ -7,6 +7,8 @@
 //! pad's compression curve to eq (8)'s `p = κ_l δ + κ_nl δ³` ([`fit_cubic`]) and friction
 //! ranges ([`parse_range`]).
 
+pub mod sets;
+
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -56,6 +58,16 @@ pub struct SceneFile {
     /// `[disc]`: the disc's rotation speed, for the sliding check of every limit cycle.
     #[serde(default)]
     pub disc: DiscSection,
+    /// `[units]`: the unit system of the meshes and of the scene's keys without a unit in
+    /// their name (see [`sets`]).
+    #[serde(default)]
+    pub units: sets::UnitsSection,
+    /// `[sets.disc]`, `[sets.pad]`: the node sets the reduction uses, by name or by geometry.
+    #[serde(default)]
+    pub sets: sets::SetsSection,
+    /// `[materials.<ELEMENT_SET>]`: materials by element set, replacing the meshes' own.
+    #[serde(default)]
+    pub materials: std::collections::BTreeMap<String, sets::MaterialSpec>,
 }
 
 /// `[disc]`: how fast the disc turns, as `rpm` or as `vehicle_speed_kmh` with the wheel's
@@ -420,6 +432,9 @@ impl Scene {
             ));
         }
         self.disc_angular_speed()?;
+        self.units()?;
+        self.set_rules()?;
+        self.materials()?;
         Ok(())
     }
 
@@ -435,7 +450,9 @@ impl Scene {
             (None, Some(v), Some(r)) => {
                 self.positive("disc.vehicle_speed_kmh", v)?;
                 self.positive("disc.rolling_radius", r)?;
-                Ok(Some(v.get_ref() / 3.6 / r.get_ref()))
+                Ok(Some(
+                    v.get_ref() / 3.6 / (r.get_ref() * self.length_unit()?),
+                ))
             }
             _ => Err(self.section_error(
                 "[disc] takes either rpm, or vehicle_speed_kmh with rolling_radius",
@@ -443,26 +460,58 @@ impl Scene {
         }
     }
 
-    /// The disc's axis: a point (`disc.axis_origin`, the origin by default) and the unit
-    /// direction `contact.normal`.
+    /// The disc's axis: a point (`disc.axis_origin`, the origin by default; in metres) and
+    /// the unit direction `contact.normal`.
     pub fn disc_axis(&self) -> Result<([f64; 3], [f64; 3])> {
         let n = self.direction("contact.normal", &self.file.contact.normal)?;
+        let l = self.length_unit()?;
         Ok((
             self.file
                 .disc
                 .axis_origin
                 .as_ref()
-                .map_or([0.0; 3], |o| *o.get_ref()),
+                .map_or([0.0; 3], |o| o.get_ref().map(|x| x * l)),
             n,
         ))
     }
 
-    /// Contact stiffness per unit area `(κ_l, κ_nl)`, scaled, and the fit report if fitted.
+    /// `contact.pairing_tolerance` in metres.
+    pub fn pairing_tolerance(&self) -> Result<f64> {
+        Ok(self.file.contact.pairing_tolerance.get_ref() * self.length_unit()?)
+    }
+
+    /// `contact.point_area` in m².
+    pub fn point_area(&self) -> Result<Option<f64>> {
+        let a = self.units()?.area();
+        Ok(self
+            .file
+            .contact
+            .point_area
+            .as_ref()
+            .map(|p| p.get_ref() * a))
+    }
+
+    /// The clamp force (N): `piston.line_pressure_bar` (bar) times `piston.area` (in the
+    /// scene's area unit).
+    pub fn piston_force(&self) -> Result<f64> {
+        let p = &self.file.piston;
+        Ok(p.line_pressure_bar.get_ref() * 1e5 * p.area.get_ref() * self.units()?.area())
+    }
+
+    /// Contact stiffness per unit area `(κ_l, κ_nl)` in Pa/m and Pa/m³, scaled, and the fit
+    /// report if fitted (given directly, they are in the scene's stress per length and stress
+    /// per length cubed).
     pub fn stiffness(&self) -> Result<(f64, f64, Option<Fit>)> {
         let c = &self.file.contact;
         let scale = *c.stiffness_scale.get_ref();
         if let (Some(kl), Some(kn)) = (&c.k_linear_per_area, &c.k_cubic_per_area) {
-            return Ok((kl.get_ref() * scale, kn.get_ref() * scale, None));
+            let u = self.units()?;
+            let (kl_si, kn_si) = (u.stress() / u.length, u.stress() / u.length.powi(3));
+            return Ok((
+                kl.get_ref() * kl_si * scale,
+                kn.get_ref() * kn_si * scale,
+                None,
+            ));
         }
         let curve = c.compression_curve.as_ref().ok_or_else(|| {
             self.section_error(
