@@ -839,4 +839,71 @@ mod tests {
             Err(SelectError::BadAngle(200.0))
         );
     }
+
+    #[test]
+    fn a_rule_is_a_named_set_or_the_faces_meeting_all_its_criteria() {
+        let mut mesh = box_tet10([1.0, 2.0, 3.0], [2, 4, 3]);
+        let faces = boundary_faces(&mesh);
+        // A named set: its nodes, and the faces with all six nodes in it.
+        let named = Rule::named("zmax").apply(&mesh, &faces).unwrap();
+        assert_eq!(named.nodes, mesh.node_set("ZMAX").unwrap());
+        assert_eq!(named.faces.len(), 2 * 2 * 4);
+        // The same set by plane and by facing, and their intersection with a box: the half
+        // y <= 1 of the top (two of four cell rows), 8 faces of area 1.
+        let top = Rule {
+            surface: Some(Surface::Plane {
+                point: [0.0, 0.0, 3.0],
+                normal: [0.0, 0.0, 1.0],
+            }),
+            facing: Some(([0.0, 0.0, 1.0], 1.0)),
+            tolerance: 1e-12,
+            ..Rule::default()
+        };
+        assert_eq!(top.apply(&mesh, &faces).unwrap(), named);
+        let half = Rule {
+            bbox: Some(([-1.0; 3], [2.0, 1.0, 4.0])),
+            ..top.clone()
+        };
+        let s = half.apply(&mesh, &faces).unwrap();
+        let sum = summarize(&mesh, &s.faces);
+        assert_eq!(sum.faces, 8);
+        assert!((sum.area - 1.0).abs() < 1e-14 && (sum.centroid[1] - 0.5).abs() < 1e-14);
+        // A circle of diameter 1.2 about (0.5, 1, 3): the faces whose corner centroid is
+        // within 0.6 of it in the top plane. Cells are 0.5 x 0.5; each cell's two triangles
+        // have centroids (1/6, 1/3) of a cell from its corners. Counted by hand: the four
+        // cells around the centre put both triangles inside (8 faces).
+        let circle = Rule {
+            circle: Some(Circle {
+                centre: [0.5, 1.0, 3.0],
+                diameter: 1.2,
+            }),
+            ..top.clone()
+        };
+        let c = circle.apply(&mesh, &faces).unwrap();
+        for f in &c.faces {
+            let g = corner_centroid(&mesh, f);
+            assert!(((g[0] - 0.5).powi(2) + (g[1] - 1.0).powi(2)).sqrt() <= 0.6);
+        }
+        assert_eq!(c.faces.len(), 8);
+        // A missing set is an error naming the sets there are.
+        mesh.node_sets.retain(|k, _| k == "XMIN");
+        assert_eq!(
+            Rule::named("CLAMP").apply(&mesh, &faces),
+            Err(SelectError::MissingSet {
+                name: "CLAMP".into(),
+                known: "XMIN".into()
+            })
+        );
+        assert_eq!(
+            Rule {
+                circle: Some(Circle {
+                    centre: [0.0; 3],
+                    diameter: 0.0
+                }),
+                ..Rule::default()
+            }
+            .check(),
+            Err(SelectError::BadDiameter(0.0))
+        );
+    }
 }

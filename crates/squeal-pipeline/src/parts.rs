@@ -7,7 +7,8 @@
 //! (`CLAMP`, `CONTACT_FACE`, `PISTON`, `ABUTMENT`); a geometric default
 //! ([`squeal_scene::sets::SetsSection`] lists them). A set chosen by geometry is added to the
 //! mesh as a node set named after its key and rule (`sets.disc.clamp = plane point ...`),
-//! so the `.rom` records the rule and a changed rule makes a cached model stale.
+//! so the `.rom` records the rule and a changed rule makes a cached model stale. Pistons
+//! chosen by geometry (footprints) are listed but not yet reduced ([`brake_inputs`]).
 
 use crate::error::{PipelineError, Result};
 use crate::model::Log;
@@ -44,6 +45,8 @@ pub struct ChosenSet {
     pub origin: Origin,
     /// What selects it (a set name or the rules), for listings.
     pub description: String,
+    /// Whether geometry chose it (else a node set of the mesh is used as is).
+    pub by_geometry: bool,
     /// The selection: one piece, or one per piston.
     pub pieces: Vec<Selection>,
 }
@@ -250,6 +253,7 @@ fn from_scene(
         name,
         origin: Origin::Scene(given.location.clone()),
         description,
+        by_geometry: !named,
         pieces,
     })
 }
@@ -270,6 +274,7 @@ fn from_mesh(
         name: name.to_string(),
         origin: Origin::Mesh,
         description: format!("set {name}"),
+        by_geometry: false,
         pieces: vec![s],
     })
 }
@@ -296,6 +301,7 @@ fn from_default(
         name: format!("{key} = {description}"),
         origin: Origin::Default,
         description,
+        by_geometry: true,
         pieces: vec![Selection {
             nodes: select::face_nodes(&faces),
             faces,
@@ -357,8 +363,9 @@ pub fn choose_sets(scene: &Scene, disc: &mut Mesh, pad: &mut Mesh) -> Result<Vec
         } else {
             match k {
                 0 | 2 => {
-                    let dir = if k == 0 { n.map(|x| -x) } else { n };
-                    let rule = lowest_face_rule(mesh, dir);
+                    // Both face away from the pad side: the disc's hub seat and the pad's
+                    // friction face are each part's lowest faces along n.
+                    let rule = lowest_face_rule(mesh, n);
                     let faces = rule
                         .apply(mesh, boundary)
                         .map_err(|e| set_error(key, "default", e))?;
@@ -510,15 +517,18 @@ fn overrides_for(
 /// in plane on its abutments with the pistons' normal dof kept) with the chosen sets, the
 /// scene's materials and units, interface and mode count.
 ///
-/// Pistons given as `circles` are refused here: the reduction keeps one normal dof per piston
-/// node, and a footprint of many nodes would need its load spread by area (a mean-motion row
-/// per piston, as the contact patches have), which it does not do yet. `squeal mesh info
-/// --scene` lists and draws them.
+/// Pistons chosen by geometry (footprints such as `circles`) are refused here: the reduction
+/// keeps one normal dof per piston node and eliminates it, which is what holds the pad along
+/// the normal while its interior is factored. A footprint's load spread by area would be a
+/// mean-motion row (as a contact patch is), a constraint rather than an eliminated dof, and
+/// with only those the pad's interior stiffness is singular (measured: "the pad is not
+/// held" with two 40 mm footprints on the coarse pad). `squeal mesh info --scene` lists and
+/// draws them; the reduction needs a node set of piston points.
 pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
     if let Some(p) = parts
         .sets
         .iter()
-        .find(|c| c.key == "sets.pad.pistons" && c.description.contains("circle"))
+        .find(|c| c.key == "sets.pad.pistons" && c.by_geometry)
     {
         return Err(set_error(
             p.key,
@@ -526,7 +536,7 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
                 Origin::Scene(at) => at,
                 _ => "scene",
             },
-            "pistons as circles are listed and drawn by `squeal mesh info --scene`, but the reduction does not take footprints yet (it keeps one normal dof per piston node): give a node set of piston points instead",
+            "pistons chosen by geometry (footprints) are listed and drawn by `squeal mesh info --scene`, but the reduction does not take them yet: it needs a node set of piston points (one normal dof each), e.g. pistons = \"PISTON\"",
         ));
     }
     let mut inputs = crate::model::brake_inputs(scene);

@@ -1,6 +1,10 @@
 //! Scene files: one TOML file describing a brake study (meshes, reduction, contact, friction,
 //! piston load, damping, analyses). Paths are relative to the scene file.
 //!
+//! `[units]`, `[sets.disc]`, `[sets.pad]` and `[materials.<SET>]` are read by [`sets`]: the
+//! unit system of the meshes and of the keys without a unit in their name, the node sets of
+//! the reduction by name or by geometry, and materials by element set.
+//!
 //! Unknown keys are errors (a misspelt key must not be silently ignored); values that parse but
 //! make no physical sense are errors naming the file, the key and its line ([`SceneError`]).
 //! Derived values that need a little arithmetic live here too: the least-squares fit of the
@@ -81,9 +85,10 @@ pub struct DiscSection {
     pub rpm: Option<Spanned<f64>>,
     /// Vehicle speed (km/h); needs `rolling_radius`.
     pub vehicle_speed_kmh: Option<Spanned<f64>>,
-    /// The wheel's effective rolling radius (m): the disc turns at `v / r`.
+    /// The wheel's effective rolling radius (m, or the `[units]` length): the disc turns at
+    /// `v / r`.
     pub rolling_radius: Option<Spanned<f64>>,
-    /// A point of the disc's axis (m); the origin by default.
+    /// A point of the disc's axis (m, or the `[units]` length); the origin by default.
     pub axis_origin: Option<Spanned<[f64; 3]>>,
 }
 
@@ -144,18 +149,20 @@ pub struct ContactSection {
     /// Unit normal from the disc into the pad.
     #[serde(default = "default_normal")]
     pub normal: Spanned<[f64; 3]>,
+    /// Disc and pad points pair when closer than this (m, or the `[units]` length).
     #[serde(default = "default_pairing")]
     pub pairing_tolerance: Spanned<f64>,
     /// A pad compression curve to fit `p = κ_l δ + κ_nl δ³` to.
     pub compression_curve: Option<CompressionCurve>,
-    /// Or the stiffnesses per unit area directly (Pa/m, Pa/m³).
+    /// Or the stiffnesses per unit area directly (Pa/m, Pa/m³, or the `[units]` stress per
+    /// length and per length cubed).
     pub k_linear_per_area: Option<Spanned<f64>>,
     pub k_cubic_per_area: Option<Spanned<f64>>,
     /// Scale factor on both stiffnesses (for studies: 0.7, 1, 1.3).
     #[serde(default = "one")]
     pub stiffness_scale: Spanned<f64>,
-    /// Area (m²) a contact point stands for where the reduced model gives none (a node
-    /// interface on parts without a contact face set).
+    /// Area (m², or the `[units]` area) a contact point stands for where the reduced model
+    /// gives none (a node interface on parts without a contact face set).
     pub point_area: Option<Spanned<f64>>,
 }
 
@@ -193,7 +200,7 @@ pub struct FrictionSection {
 pub struct PistonSection {
     /// Hydraulic line pressure (bar).
     pub line_pressure_bar: Spanned<f64>,
-    /// Total piston area (m²).
+    /// Total piston area (m², or the `[units]` area).
     pub area: Spanned<f64>,
 }
 
@@ -734,5 +741,42 @@ mod tests {
             let e = parse_range(old).unwrap_err();
             assert!(e.contains("ambiguous") && e.contains("0..1/201"), "{e}");
         }
+    }
+
+    #[test]
+    fn scene_materials_are_read_in_the_scene_units() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/brake.toml");
+        let base = std::fs::read_to_string(&path).unwrap();
+        let lining = "[units]\nsystem = \"mm-t-s\"\n[materials.LINING]\nyoung_plane = 5000\npoisson_plane = 0.25\n\
+                      young_axial = 2000\npoisson_plane_axial = 0.2\nshear_axial = 1000\ndensity = 2.5e-9\n\
+                      [materials.DISC]\nyoung = 125e3\npoisson = 0.26\ndensity = 7.2e-9";
+        let s = Scene::parse(&path, format!("{base}\n{lining}")).unwrap();
+        let m = s.materials().unwrap();
+        // BTreeMap order: DISC, LINING. MPa -> Pa and t/mm^3 -> kg/m^3 by the exact factors
+        // 1e6 and 1e12: one rounding each.
+        let rel = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-15;
+        match m[0].1 {
+            squeal_fe::ElasticMaterial::Isotropic { young, density, .. } => {
+                assert!(rel(young, 125e9) && rel(density, 7200.0), "{:?}", m[0]);
+            }
+            ref other => panic!("{other:?}"),
+        }
+        match m[1].1 {
+            squeal_fe::ElasticMaterial::TransverselyIsotropic {
+                young_plane,
+                young_axial,
+                shear_axial,
+                axis,
+                density,
+                ..
+            } => {
+                assert!(rel(young_plane, 5e9) && rel(young_axial, 2e9) && rel(shear_axial, 1e9));
+                assert!(rel(density, 2500.0));
+                // The axis defaults to contact.normal.
+                assert_eq!(axis, [0.0, 0.0, 1.0]);
+            }
+            ref other => panic!("{other:?}"),
+        }
+        assert!(s.material_warnings().unwrap().is_empty());
     }
 }

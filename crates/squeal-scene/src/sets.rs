@@ -30,7 +30,8 @@
 //! `plane = { point, normal }` (corners within `tolerance`), `box = { min, max }` (all six
 //! nodes inside), `facing = [x, y, z]` with `angle` (degrees, default 1), `circles` (pistons
 //! only: one piston per circle, faces whose corner centroid is within the circle in the face's
-//! plane) and `tolerance` (default: 1e-6 of the part's largest extent). A key left out takes
+//! plane) and `tolerance` (default: 1e-6 of the part's largest extent). A list of rules is
+//! their union (for pistons: one piston per rule, as per circle). A key left out takes
 //! the mesh's conventional set when it has one (`CLAMP`, `CONTACT_FACE`, `PISTON`,
 //! `ABUTMENT`), else the geometric default of the generator's brake (see
 //! [`SetsSection`]); the pipeline resolves those (they need the meshes).
@@ -103,8 +104,9 @@ pub struct SetRule {
     pub key: String,
     /// `file:line` of the key.
     pub location: String,
-    /// The rule (for pistons given by circles: one per circle). A rule's tolerance is
-    /// `None`-like (negative) when the scene gives none: [`SetRule::tolerance_given`] tells.
+    /// The rules (one, one per item of a list, or for pistons given by circles one per
+    /// circle), whose union is the set. A rule's tolerance is 0 when the scene gives none:
+    /// [`SetRule::tolerance_given`] tells, and the caller picks one from the part's size.
     pub rules: Vec<Rule>,
     /// Whether the scene gave `tolerance` (else the caller picks one from the part's size).
     pub tolerance_given: bool,
