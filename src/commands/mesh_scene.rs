@@ -16,12 +16,13 @@ pub fn info(path: &Path, vtu: Option<&Path>) -> Result<ExitCode> {
     if let Some(v) = vtu {
         squeal_io::require_extension(v, "vtu", "VTK XML unstructured grids (.vtu)")?;
         let m = &scene.file.model;
+        let (disc, pad) = (scene.resolve(&m.disc), scene.resolve(&m.pad));
         squeal_io::refuse_inputs(
             v,
             &[
                 (path, "scene file"),
-                (&scene.resolve(&m.disc), "disc mesh"),
-                (&scene.resolve(&m.pad), "pad mesh"),
+                (disc.as_path(), "disc mesh"),
+                (pad.as_path(), "pad mesh"),
             ],
         )?;
     }
