@@ -487,13 +487,13 @@ impl std::fmt::Display for Rule {
                 axis,
                 radius,
             }) => parts.push(format!(
-                "cylinder point {} axis {} radius {radius} tol {}",
+                "cylinder point {} axis {} radius {radius} tol {:e}",
                 fmt3(point),
                 fmt3(axis),
                 self.tolerance
             )),
             Some(Surface::Plane { point, normal }) => parts.push(format!(
-                "plane point {} normal {} tol {}",
+                "plane point {} normal {} tol {:e}",
                 fmt3(point),
                 fmt3(normal),
                 self.tolerance
@@ -508,7 +508,7 @@ impl std::fmt::Display for Rule {
         }
         if let Some(c) = self.circle {
             parts.push(format!(
-                "circle centre {} diameter {} tol {}",
+                "circle centre {} diameter {} tol {:e}",
                 fmt3(c.centre),
                 c.diameter,
                 self.tolerance

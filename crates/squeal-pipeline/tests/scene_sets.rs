@@ -340,6 +340,18 @@ fn rules_and_materials_that_make_no_sense_are_errors_naming_key_and_line() {
     );
     let e = later("[sets.disc]\nclamp = { plane = { point = [0, 0, -1], normal = [0, 0, 1] } }");
     assert!(e.contains("selects nothing"), "{e}");
+    // A pad without PISTON and no pistons key: no default, the key to add.
+    let mut disc = read("disc_coarse.inp");
+    let mut pad = read("pad_coarse.inp");
+    pad.node_sets.retain(|k, _| k != "PISTON");
+    let s = scene_in(&m, "disc_coarse.inp", "pad_coarse.inp", 8, "").unwrap();
+    let e = choose_sets(&s, &mut disc, &mut pad)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("sets.pad.pistons") && e.contains("no PISTON node set"),
+        "{e}"
+    );
     let e = later("[materials.ROTOR]\nyoung = 125e9\npoisson = 0.26\ndensity = 7200");
     assert!(
         e.contains("[materials.ROTOR]") && e.contains("DISC (disc)"),
