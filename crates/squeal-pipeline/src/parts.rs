@@ -558,6 +558,7 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
     )];
     inputs.disc.material_overrides = overrides_for(&parts.materials, &parts.disc.mesh);
     inputs.pad.material_overrides = overrides_for(&parts.materials, &parts.pad.mesh);
+    inputs.grid = scene.patch_grid()?;
     inputs.disc.units = parts.units;
     inputs.pad.units = parts.units;
     Ok(inputs)

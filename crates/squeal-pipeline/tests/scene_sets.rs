@@ -406,3 +406,81 @@ fn pistons_as_circles_are_chosen_but_not_yet_reduced() {
         "{e}"
     );
 }
+
+/// The patches of `grid` on both parts of `level`: the largest distance between paired
+/// centroids, the pairing tolerance, and the largest paired area difference as a fraction of
+/// a mean patch.
+fn paired_patches(level: &str, grid: [usize; 2]) -> Result<(f64, f64, f64), String> {
+    use squeal_reduce::brake::{PairingTolerance, contact_positions, pair_contact_points};
+    let extra = format!("[sets]\npatch_grid = [{}, {}]", grid[0], grid[1]);
+    let (disc, pad) = (format!("disc_{level}.inp"), format!("pad_{level}.inp"));
+    let s = scene_in(&meshes(), &disc, &pad, 8, &extra).unwrap();
+    let parts = load_parts(&s, &quiet).unwrap();
+    let inputs = squeal_pipeline::parts::brake_inputs(&s, &parts).unwrap();
+    assert_eq!(inputs.grid, grid);
+    let d = contact_positions(&parts.disc.mesh, &inputs.disc, &inputs).unwrap();
+    let p = contact_positions(&parts.pad.mesh, &inputs.pad, &inputs).unwrap();
+    let (pairs, tol) =
+        pair_contact_points(&d, &p, PairingTolerance::Relative(0.05)).map_err(|e| e.to_string())?;
+    assert_eq!(pairs.len(), grid[0] * grid[1]);
+    let worst = pairs.iter().map(|q| q.distance).fold(0.0, f64::max);
+    let cut = |mesh, set: &str| patches(mesh, set, grid[0], grid[1], &Axis::default()).unwrap();
+    let da = cut(&parts.disc.mesh, &inputs.disc.contact_face_set);
+    let pa = cut(&parts.pad.mesh, &inputs.pad.contact_face_set);
+    let mean = da.iter().map(|x| x.area).sum::<f64>() / pairs.len() as f64;
+    let area = pairs
+        .iter()
+        .map(|q| (da[q.disc_point].area - pa[q.pad_point].area).abs() / mean)
+        .fold(0.0, f64::max);
+    eprintln!(
+        "{level} {grid:?}: worst centroid distance {worst:.3e} m (tolerance {tol:.3e} m), worst area difference {area:.3e} of a mean patch"
+    );
+    Ok((worst, tol, area))
+}
+
+#[test]
+fn patch_grids_pair_when_both_meshes_resolve_their_edges() {
+    // On the 3 x 3 grid and on the whole face the patch edges are mesh edges of both coarse
+    // parts: paired patches coincide (centroids measured 8e-11 m apart, asserted 1e-9 m;
+    // areas to 1e-9 of a patch). Other grids cut the footprint's triangles, which the two
+    // coarse meshes do not all share (same nodes, some other diagonals): each patch takes
+    // whole triangles by their centroids, so paired patches differ by a few triangles
+    // (2 x 5: centroids 0.11 mm apart, areas 0.8 % of a patch) but still pair within the
+    // reduction's tolerance (5 % of the patch spacing); asserted: they pair and differ by
+    // under 3 % of a patch. A 4 x 4 grid, whose 12.5 mm cells are about the coarse faces'
+    // size, does not pair (a patch of whole triangles lands 4.6 mm off its partner): not yet
+    // supported, see below.
+    let e = paired_patches("coarse", [4, 4]).unwrap_err();
+    assert!(e.contains("finds no pad contact point within"), "{e}");
+    for grid in [[3, 3], [1, 1], [2, 5]] {
+        let (d, _, a) = paired_patches("coarse", grid).unwrap();
+        let bound = if grid[0] * grid[1] == 9 || grid == [1, 1] {
+            1e-9
+        } else {
+            0.03
+        };
+        assert!(a < bound, "{grid:?}: {d:e} m, {a:e}");
+        if grid == [3, 3] || grid == [1, 1] {
+            assert!(d < 1e-9, "{grid:?}: {d:e} m");
+        }
+    }
+    // The medium meshes match only on the 3 x 3 patch edges: there the paired patches agree
+    // (areas differ where the arcs r = 85, 135 mm are quadratic edges of different lengths:
+    // measured 2.5e-7 of a mean patch, asserted 1e-6). A grid whose edges are not mesh edges
+    // gives each part jagged patches of whole triangles, and their centroids can miss the
+    // pairing tolerance (measured for 2 x 5: 0.96 mm against 0.84 mm): not yet supported
+    // (clipping the triangles at the patch edges would be needed), and said so.
+    let (d, _, a) = paired_patches("medium", [3, 3]).unwrap();
+    assert!(d < 1e-8 && a < 1e-6, "{d:e} m, {a:e}");
+    let e = paired_patches("medium", [2, 5]).unwrap_err();
+    assert!(e.contains("finds no pad contact point within"), "{e}");
+    let bad = scene_in(
+        &meshes(),
+        "disc_medium.inp",
+        "pad_medium.inp",
+        8,
+        "[sets]\npatch_grid = [0, 3]",
+    )
+    .unwrap_err();
+    assert!(bad.contains("sets.patch_grid"), "{bad}");
+}

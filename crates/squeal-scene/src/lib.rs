@@ -441,6 +441,7 @@ impl Scene {
         self.disc_angular_speed()?;
         self.units()?;
         self.set_rules()?;
+        self.patch_grid()?;
         self.materials()?;
         Ok(())
     }

@@ -68,6 +68,14 @@ pub struct UnitsSection {
 #[derive(Debug, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct SetsSection {
+    /// `patch_grid = [radial, angular]`: the contact patches of the patch interface, cut in
+    /// radius and angle about the disc axis on each part's contact face (3 x 3 by default).
+    /// The disc's and the pad's patches pair by their centroids. Each patch is made of whole
+    /// triangles (by their centroids), so a grid whose edges are not mesh edges of both
+    /// parts gives them different jagged patches whose centroids may not pair: on
+    /// non-matching meshes only grids along common mesh edges work (clipping triangles at
+    /// patch edges is not done yet).
+    pub patch_grid: Option<Spanned<[usize; 2]>>,
     #[serde(default)]
     pub disc: DiscSets,
     #[serde(default)]
@@ -162,6 +170,25 @@ impl Scene {
         }
     }
 
+    /// The patch grid `[radial, angular]` of `[sets] patch_grid` (3 x 3 by default), checked
+    /// to have 1 to 10000 cells.
+    pub fn patch_grid(&self) -> Result<[usize; 2]> {
+        match &self.file.sets.patch_grid {
+            None => Ok([3, 3]),
+            Some(g) => {
+                let [r, a] = *g.get_ref();
+                if r == 0 || a == 0 || r.saturating_mul(a) > 10_000 {
+                    return Err(self.error_at(
+                        "sets.patch_grid",
+                        g,
+                        "must be [radial, angular], each at least 1, at most 10000 patches",
+                    ));
+                }
+                Ok([r, a])
+            }
+        }
+    }
+
     /// Metres per length unit of the scene.
     pub fn length_unit(&self) -> Result<f64> {
         Ok(self.units()?.length)
@@ -252,7 +279,7 @@ impl Scene {
                             if rule.surface.is_some() {
                                 return Err(bad("give one of cylinder and plane, not both".into()));
                             }
-                            rule.surface = Some(surface(k, v, l).map_err(|m| bad(m))?);
+                            rule.surface = Some(surface(k, v, l).map_err(&bad)?);
                         }
                         "box" => {
                             let form = "{ min = [x, y, z], max = [x, y, z] }";
