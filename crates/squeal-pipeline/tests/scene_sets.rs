@@ -55,8 +55,18 @@ fn abutment_rule() -> String {
 }
 
 #[test]
-fn sets_chosen_by_geometry_are_the_named_sets_of_the_coarse_meshes() {
-    let (disc0, pad0) = (read("disc_coarse.inp"), read("pad_coarse.inp"));
+fn sets_chosen_by_geometry_are_the_named_sets_of_the_bundled_meshes() {
+    // The coarse meshes, and the medium ones whose disc and pad differ inside the footprint
+    // (618 and 652 face nodes): the disc's default contact face is found under the pad's
+    // friction face without shared nodes.
+    for level in ["coarse", "medium"] {
+        named_sets_by_geometry(level);
+    }
+}
+
+fn named_sets_by_geometry(level: &str) {
+    let disc0 = read(&format!("disc_{level}.inp"));
+    let pad0 = read(&format!("pad_{level}.inp"));
     let rules = format!(
         "[sets.disc]\nclamp = {{ plane = {{ point = [0, 0, -0.035], normal = [0, 0, 1] }}, facing = [0, 0, -1] }}\n\
          [sets.pad]\nfriction_face = {{ plane = {{ point = [0, 0, 0.02], normal = [0, 0, 1] }}, facing = [0, 0, -1], angle = 0.5 }}\n{}",
