@@ -239,3 +239,52 @@ fn exit_codes_are_distinct_and_documented() {
     assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `squeal mesh info --scene`: what the scene selects, with the areas of the bundled sets, a
+/// VTU with a flag per set, and the refusals (a .vtu over the scene, --material with --scene).
+#[test]
+fn mesh_info_lists_what_a_scene_selects() {
+    let dir = temp_dir("trust", "scene-info");
+    let scene = dir.join("scene.toml");
+    let extra = "\n[sets.disc]\nclamp = { plane = { point = [0, 0, -0.035], normal = [0, 0, 1] }, facing = [0, 0, -1] }\n";
+    std::fs::write(&scene, bundled_scene("coarse") + extra).unwrap();
+    let s = scene.to_str().unwrap();
+    let vtu = dir.join("sets.vtu");
+    let o = squeal(&["mesh", "info", "--scene", s, "--vtu", vtu.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // The clamp from the scene's line 2 of the appended text; the rest from the meshes' sets.
+    // Areas: the flange seat pi (0.086^2 - 0.033^2) = 1.9812e-2 m^2 (the coarse mesh's
+    // quadratic faces give 1.981537e-2), the footprint 4.80e-3 m^2 (README).
+    assert!(text.contains("sets.disc.clamp (scene, "), "{text}");
+    assert!(text.contains("area 1.981537e-2"), "{text}");
+    assert!(text.contains("sets.pad.friction_face (the mesh's node set): set CONTACT_FACE"));
+    assert!(text.contains("area 4.799658e-3"), "{text}");
+    let written = std::fs::read_to_string(&vtu).unwrap();
+    for flag in [
+        "set:disc:clamp",
+        "set:pad:pistons",
+        "set:pad:abutments",
+        "set:pad",
+    ] {
+        assert!(written.contains(&format!("Name=\"{flag}\"")), "{flag}");
+    }
+    let o = squeal(&["mesh", "info", "--scene", s, "--vtu", s]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("must end in .vtu"), "{}", stderr(&o));
+    let o = squeal(&[
+        "mesh",
+        "info",
+        "--scene",
+        s,
+        "--material",
+        "DISC=1e11,0.3,7000",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("does not go with --scene"),
+        "{}",
+        stderr(&o)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -10,11 +10,20 @@ use std::time::Instant;
 
 #[derive(Subcommand)]
 pub enum MeshCommand {
-    /// Nodes, elements, sets, materials, volume and quality findings of each mesh
+    /// Nodes, elements, sets, materials, volume and quality findings of each mesh; with
+    /// --scene, the sets and materials a scene selects on its meshes
     Info {
         /// Mesh files (.inp or .msh)
-        #[arg(required = true)]
+        #[arg(required_unless_present = "scene", conflicts_with = "scene")]
         files: Vec<PathBuf>,
+        /// List what a scene selects on its meshes ([sets], [units], [materials]): counts,
+        /// areas and centroids of each set
+        #[arg(long)]
+        scene: Option<PathBuf>,
+        /// With --scene: write both parts with the selected sets as point flags (.vtu, for
+        /// ParaView)
+        #[arg(long, requires = "scene")]
+        vtu: Option<PathBuf>,
         /// List every id of each finding instead of the first few
         #[arg(long)]
         all_ids: bool,
@@ -34,8 +43,24 @@ pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
     match cmd {
         MeshCommand::Info {
             files,
+            scene: Some(scene),
+            vtu,
+            materials,
+            ..
+        } => {
+            debug_assert!(files.is_empty());
+            if !materials.materials.is_empty() {
+                bail!(
+                    "--material does not go with --scene: give the materials in the scene's [materials.<SET>]"
+                );
+            }
+            crate::commands::mesh_scene::info(&scene, vtu.as_deref())
+        }
+        MeshCommand::Info {
+            files,
             all_ids,
             materials,
+            ..
         } => {
             let overrides = materials.overrides()?;
             // Everything is read and checked before anything is printed: a bad file or a

@@ -3,6 +3,7 @@ pub mod chbm;
 pub mod compare;
 pub mod fe;
 pub mod mesh;
+pub mod mesh_scene;
 pub mod reduce;
 pub mod run;
 pub mod stability;

@@ -41,6 +41,17 @@ pub enum SelectError {
     /// An angle is outside `0..=180` degrees or not finite.
     #[error("the angle {0} degrees is not between 0 and 180")]
     BadAngle(f64),
+    /// A circle's diameter is not positive.
+    #[error("the circle's diameter {0} is not positive")]
+    BadDiameter(f64),
+    /// A rule names a node set the mesh does not have.
+    #[error("the mesh has no node set {name} (node sets: {known})")]
+    MissingSet {
+        /// The set named.
+        name: String,
+        /// The mesh's node sets, comma-separated, or "none".
+        known: String,
+    },
     /// A box's minimum exceeds its maximum along an axis.
     #[error("the box's minimum {min:?} exceeds its maximum {max:?} along axis {axis}")]
     EmptyBox {
@@ -312,6 +323,202 @@ pub fn faces_of_set(mesh: &Mesh, faces: &[Face], nodes: &[u32]) -> Vec<Face> {
         .filter(|f| f.iter().all(|&n| member[n as usize]))
         .copied()
         .collect()
+}
+
+/// A circle on a face of a part (a piston's footprint on a pad's back face): the faces whose
+/// corner centroid lies within `diameter / 2` of `centre`, measured in the face's plane, and
+/// whose plane passes within the rule's tolerance of `centre`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Circle {
+    /// The circle's centre, on the face.
+    pub centre: [f64; 3],
+    /// Its diameter.
+    pub diameter: f64,
+}
+
+/// A selection rule as a scene states it: a named node set, or boundary faces narrowed by
+/// every criterion given (all must hold).
+///
+/// - `set` alone: the node set itself (its nodes; its faces are the boundary faces with all
+///   six nodes in it).
+/// - any geometric criterion (`surface`, `bbox`, `facing`, `circle`, possibly with `set`):
+///   the boundary faces meeting all of them; the nodes are those faces' nodes.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Rule {
+    /// A node set of the mesh (ASCII case-insensitive).
+    pub set: Option<String>,
+    /// Faces whose corners lie on this cylinder or plane (within `tolerance`).
+    pub surface: Option<Surface>,
+    /// Faces whose six nodes lie in this box `(min, max)`.
+    pub bbox: Option<([f64; 3], [f64; 3])>,
+    /// Faces whose outward normal is within `angle` degrees of `direction`: `(direction,
+    /// angle)`.
+    pub facing: Option<([f64; 3], f64)>,
+    /// Faces inside this circle.
+    pub circle: Option<Circle>,
+    /// Distance tolerance of `surface` and `circle` (mesh length units).
+    pub tolerance: f64,
+}
+
+/// What a [`Rule`] selects: boundary faces and nodes (sorted, unique).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Selection {
+    /// The boundary faces (for a named set: those with all six nodes in it).
+    pub faces: Vec<Face>,
+    /// The nodes.
+    pub nodes: Vec<u32>,
+}
+
+impl Rule {
+    /// The rule on a named set only.
+    pub fn named(set: &str) -> Self {
+        Self {
+            set: Some(set.to_string()),
+            ..Self::default()
+        }
+    }
+
+    /// Whether the rule has a geometric criterion (else it is a named set).
+    pub fn is_geometric(&self) -> bool {
+        self.surface.is_some()
+            || self.bbox.is_some()
+            || self.facing.is_some()
+            || self.circle.is_some()
+    }
+
+    /// Checks every criterion (finite numbers, non-zero directions, a positive radius or
+    /// diameter, an angle in 0..=180, a non-empty box, a finite non-negative tolerance).
+    pub fn check(&self) -> Result<(), SelectError> {
+        check_tolerance(self.tolerance)?;
+        if let Some(s) = &self.surface {
+            s.check()?;
+        }
+        if let Some((min, max)) = self.bbox {
+            check_box(min, max)?;
+        }
+        if let Some((d, angle)) = self.facing {
+            nonzero(d, "the facing direction")?;
+            if !(0.0..=180.0).contains(&angle) {
+                return Err(SelectError::BadAngle(angle));
+            }
+        }
+        if let Some(c) = self.circle {
+            finite(c.centre, "the circle's centre")?;
+            if !(c.diameter.is_finite() && c.diameter > 0.0) {
+                return Err(SelectError::BadDiameter(c.diameter));
+            }
+        }
+        Ok(())
+    }
+
+    /// The faces and nodes of `mesh` the rule selects; `boundary` are the mesh's
+    /// [`boundary_faces`] (computed once by the caller for several rules).
+    pub fn apply(&self, mesh: &Mesh, boundary: &[Face]) -> Result<Selection, SelectError> {
+        self.check()?;
+        let named = match &self.set {
+            Some(name) => Some(mesh.node_set(name).ok_or_else(|| SelectError::MissingSet {
+                name: name.clone(),
+                known: if mesh.node_sets.is_empty() {
+                    "none".into()
+                } else {
+                    mesh.node_sets
+                        .keys()
+                        .cloned()
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                },
+            })?),
+            None => None,
+        };
+        let mut faces = match named {
+            Some(nodes) => faces_of_set(mesh, boundary, nodes),
+            None => boundary.to_vec(),
+        };
+        if !self.is_geometric() {
+            return Ok(Selection {
+                faces,
+                nodes: named
+                    .map(<[u32]>::to_vec)
+                    .unwrap_or_else(|| face_nodes(boundary)),
+            });
+        }
+        if let Some(s) = &self.surface {
+            faces = faces_on(mesh, &faces, s, self.tolerance)?;
+        }
+        if let Some((min, max)) = self.bbox {
+            faces = faces_in_box(mesh, &faces, min, max)?;
+        }
+        if let Some((d, angle)) = self.facing {
+            faces = faces_facing(mesh, &faces, |_| d, angle)?;
+        }
+        if let Some(c) = self.circle {
+            faces.retain(|f| in_circle(mesh, f, &c, self.tolerance));
+        }
+        let nodes = face_nodes(&faces);
+        Ok(Selection { faces, nodes })
+    }
+}
+
+/// Whether a face's corner centroid is inside `circle` (in the face's plane) and the face's
+/// plane passes within `tolerance` of the circle's centre.
+fn in_circle(mesh: &Mesh, face: &Face, circle: &Circle, tolerance: f64) -> bool {
+    let n = corner_normal(mesh, face);
+    let d = sub(corner_centroid(mesh, face), circle.centre);
+    let off = dot(d, n);
+    let in_plane = sub(d, n.map(|x| x * off));
+    off.abs() <= tolerance && dot(in_plane, in_plane).sqrt() <= 0.5 * circle.diameter
+}
+
+fn fmt3(v: [f64; 3]) -> String {
+    format!("[{}, {}, {}]", v[0], v[1], v[2])
+}
+
+impl std::fmt::Display for Rule {
+    /// A canonical description, e.g. `set CLAMP` or `plane point [0, 0, -0.035] normal [0, 0,
+    /// -1] tol 1e-9 & facing [0, 0, -1] within 1 deg`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut parts = Vec::new();
+        if let Some(s) = &self.set {
+            parts.push(format!("set {s}"));
+        }
+        match self.surface {
+            Some(Surface::Cylinder {
+                point,
+                axis,
+                radius,
+            }) => parts.push(format!(
+                "cylinder point {} axis {} radius {radius} tol {:e}",
+                fmt3(point),
+                fmt3(axis),
+                self.tolerance
+            )),
+            Some(Surface::Plane { point, normal }) => parts.push(format!(
+                "plane point {} normal {} tol {:e}",
+                fmt3(point),
+                fmt3(normal),
+                self.tolerance
+            )),
+            None => {}
+        }
+        if let Some((min, max)) = self.bbox {
+            parts.push(format!("box {} .. {}", fmt3(min), fmt3(max)));
+        }
+        if let Some((d, a)) = self.facing {
+            parts.push(format!("facing {} within {a} deg", fmt3(d)));
+        }
+        if let Some(c) = self.circle {
+            parts.push(format!(
+                "circle centre {} diameter {} tol {:e}",
+                fmt3(c.centre),
+                c.diameter,
+                self.tolerance
+            ));
+        }
+        if parts.is_empty() {
+            parts.push("all boundary faces".into());
+        }
+        f.write_str(&parts.join(" & "))
+    }
 }
 
 /// Six-point degree-4 rule on the reference triangle (Dunavant): area coordinates
@@ -630,6 +837,73 @@ mod tests {
         assert_eq!(
             faces_facing(&mesh, &faces, |_| [1.0, 0.0, 0.0], 200.0),
             Err(SelectError::BadAngle(200.0))
+        );
+    }
+
+    #[test]
+    fn a_rule_is_a_named_set_or_the_faces_meeting_all_its_criteria() {
+        let mut mesh = box_tet10([1.0, 2.0, 3.0], [2, 4, 3]);
+        let faces = boundary_faces(&mesh);
+        // A named set: its nodes, and the faces with all six nodes in it.
+        let named = Rule::named("zmax").apply(&mesh, &faces).unwrap();
+        assert_eq!(named.nodes, mesh.node_set("ZMAX").unwrap());
+        assert_eq!(named.faces.len(), 2 * 2 * 4);
+        // The same set by plane and by facing, and their intersection with a box: the half
+        // y <= 1 of the top (two of four cell rows), 8 faces of area 1.
+        let top = Rule {
+            surface: Some(Surface::Plane {
+                point: [0.0, 0.0, 3.0],
+                normal: [0.0, 0.0, 1.0],
+            }),
+            facing: Some(([0.0, 0.0, 1.0], 1.0)),
+            tolerance: 1e-12,
+            ..Rule::default()
+        };
+        assert_eq!(top.apply(&mesh, &faces).unwrap(), named);
+        let half = Rule {
+            bbox: Some(([-1.0; 3], [2.0, 1.0, 4.0])),
+            ..top.clone()
+        };
+        let s = half.apply(&mesh, &faces).unwrap();
+        let sum = summarize(&mesh, &s.faces);
+        assert_eq!(sum.faces, 8);
+        assert!((sum.area - 1.0).abs() < 1e-14 && (sum.centroid[1] - 0.5).abs() < 1e-14);
+        // A circle of diameter 1.2 about (0.5, 1, 3): the faces whose corner centroid is
+        // within 0.6 of it in the top plane. Cells are 0.5 x 0.5; each cell's two triangles
+        // have centroids (1/6, 1/3) of a cell from its corners. Counted by hand: the four
+        // cells around the centre put both triangles inside (8 faces).
+        let circle = Rule {
+            circle: Some(Circle {
+                centre: [0.5, 1.0, 3.0],
+                diameter: 1.2,
+            }),
+            ..top.clone()
+        };
+        let c = circle.apply(&mesh, &faces).unwrap();
+        for f in &c.faces {
+            let g = corner_centroid(&mesh, f);
+            assert!(((g[0] - 0.5).powi(2) + (g[1] - 1.0).powi(2)).sqrt() <= 0.6);
+        }
+        assert_eq!(c.faces.len(), 8);
+        // A missing set is an error naming the sets there are.
+        mesh.node_sets.retain(|k, _| k == "XMIN");
+        assert_eq!(
+            Rule::named("CLAMP").apply(&mesh, &faces),
+            Err(SelectError::MissingSet {
+                name: "CLAMP".into(),
+                known: "XMIN".into()
+            })
+        );
+        assert_eq!(
+            Rule {
+                circle: Some(Circle {
+                    centre: [0.0; 3],
+                    diameter: 0.0
+                }),
+                ..Rule::default()
+            }
+            .check(),
+            Err(SelectError::BadDiameter(0.0))
         );
     }
 }

@@ -15,6 +15,8 @@
 //! ```
 //!
 //! - [`model`]: the scene's reduced model (cached in a `.rom`) and brake.
+//! - [`parts`]: the scene's meshes in SI with their sets chosen by name or geometry and
+//!   their materials.
 //! - [`stability`], [`branch`], [`chbm`], [`compare`], [`study`]: the analyses and their
 //!   outputs.
 //! - [`shapes`]: reduced vectors expanded onto the meshes (VTU); [`pictures`]: the same as
@@ -29,6 +31,7 @@ pub mod chbm;
 pub mod compare;
 mod error;
 pub mod model;
+pub mod parts;
 pub mod pictures;
 pub mod progress;
 pub mod report;

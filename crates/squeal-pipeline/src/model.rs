@@ -17,8 +17,9 @@ use squeal_brake::sweep::{Band, SweepOptions};
 use squeal_chbm::physics::DiscSpeed;
 use squeal_fe::frames::RotationAxis;
 use squeal_mesh::Mesh;
+use squeal_mesh::units::UnitSystem;
 use squeal_reduce::brake::{
-    BrakeInputs, Freshness, ModeChoice, PairingTolerance, freshness, reduce_brake,
+    BrakeInputs, Freshness, ModeChoice, PairingTolerance, freshness, reduce_brake_loaded,
 };
 use squeal_reduce::craig_bampton::Stage;
 use squeal_reduce::rom::{InterfaceKind, ReducedModel};
@@ -41,6 +42,18 @@ pub struct Model {
     /// The disc's speed from the scene's `[rotation]` (or `[disc]`), for the sliding check of
     /// every cycle.
     pub disc: Option<DiscSpeed>,
+    /// The unit system the mesh files are written in (`[units]`): [`Model::read_mesh`]
+    /// converts them to SI.
+    pub units: UnitSystem,
+}
+
+impl Model {
+    /// A part's mesh file read and converted to SI, its reader's warnings passed to `log`.
+    pub fn read_mesh(&self, path: &Path, log: Log) -> Result<Mesh> {
+        let mut mesh = read_mesh(path, log)?;
+        self.units.to_si(&mut mesh);
+        Ok(mesh)
+    }
 }
 
 /// What the pipeline tells its caller while it works (the CLI prints it).
@@ -49,12 +62,13 @@ pub type Log<'a> = &'a (dyn Fn(&str) + Sync);
 /// A log that says nothing.
 pub fn quiet(_: &str) {}
 
-/// The reduction inputs of a scene: the bundled layout (disc clamped on `CLAMP`, pad held on
-/// `ABUTMENT` in the plane normal to the disc's axis, pistons on `PISTON` pushing along the
-/// contact normal, contact on `CONTACT` / `CONTACT_FACE` cut into patches about the axis) on
-/// the scene's meshes, interface and mode count. The axis is `[rotation]`'s (without one,
-/// the line along `[contact] normal`, or z, through `[disc] axis_origin` or the origin); the
-/// pistons' direction is `[contact] normal`, else the axis.
+/// The reduction inputs of a scene before its meshes are read: the bundled layout (disc
+/// clamped on `CLAMP`, pad held on `ABUTMENT` in the plane normal to the disc's axis, pistons
+/// on `PISTON` pushing along the contact normal, contact on `CONTACT` / `CONTACT_FACE` cut into
+/// patches about the axis) on the scene's meshes, interface and mode count. The axis is
+/// `[rotation]`'s (without one, the line along `[contact] normal`, or z, through `[disc]
+/// axis_origin` or the origin); the pistons' direction is `[contact] normal`, else the axis.
+/// [`crate::parts::brake_inputs`] puts in the sets, materials and units of the scene.
 pub fn brake_inputs(scene: &Scene) -> Result<BrakeInputs> {
     let m = &scene.file.model;
     let normal = scene.normal()?;
@@ -113,7 +127,8 @@ pub fn check_outputs(scene: &Scene, out: &Path) -> Result<()> {
 /// missing or stale (other meshes, by SHA-256, other options, another tool version).
 pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedModel, PathBuf)> {
     let rom_path = rom_path(scene, out);
-    let inputs = brake_inputs(scene)?;
+    let parts = crate::parts::load_parts(scene, log)?;
+    let inputs = crate::parts::brake_inputs(scene, &parts)?;
     match freshness(&rom_path, &inputs)? {
         Freshness::Fresh => match ReducedModel::read(&rom_path) {
             Ok(rom) => {
@@ -140,9 +155,14 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
         inputs.pad.mesh.display()
     ));
     let t = std::time::Instant::now();
-    let (rom, _) = reduce_brake(&inputs, &mut |part: &str, stage: Stage| {
-        log(&format!("  {part}: {}", stage.label()));
-    })?;
+    let (rom, _) = reduce_brake_loaded(
+        &inputs,
+        parts.disc,
+        parts.pad,
+        &mut |part: &str, stage: Stage| {
+            log(&format!("  {part}: {}", stage.label()));
+        },
+    )?;
     log(&format!(
         "  reduced to {} dofs in {:.1} s",
         rom.size(),
@@ -174,7 +194,6 @@ pub fn disc_rotation(scene: &Scene) -> Result<Option<DiscRotation>> {
 /// the disc slides, its rotation, the contact stiffness per unit area (eq 8), pairing
 /// tolerance, piston force and the pairs' initial gaps.
 pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
-    let f = &scene.file;
     let (kl, knl, _) = scene.stiffness()?;
     Ok(BrakeParams {
         normal: scene.normal()?,
@@ -186,10 +205,10 @@ pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
         stiffness: Stiffness::PerArea {
             linear: kl,
             cubic: knl,
-            point_area: f.contact.point_area.as_ref().map(|a| *a.get_ref()),
+            point_area: scene.point_area()?,
         },
-        pairing_tolerance: PairingTolerance::Absolute(*f.contact.pairing_tolerance.get_ref()),
-        piston_force: f.piston.line_pressure_bar.get_ref() * 1e5 * f.piston.area.get_ref(),
+        pairing_tolerance: PairingTolerance::Absolute(scene.pairing_tolerance()?),
+        piston_force: scene.piston_force()?,
         initial_gaps: match scene.initial_gaps()? {
             GapSetting::Geometric => InitialGaps::Geometric,
             GapSetting::Uniform(g) => InitialGaps::Uniform(g),
@@ -270,6 +289,7 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
         disc_mesh: scene.resolve(&m.disc),
         pad_mesh: scene.resolve(&m.pad),
         disc: disc_speed(scene)?,
+        units: scene.units()?,
     })
 }
 

@@ -155,8 +155,8 @@ impl Meshes {
     /// Reads both meshes of `m`.
     pub fn read(m: &crate::model::Model, log: crate::model::Log) -> Result<Self> {
         Ok(Self {
-            disc: crate::model::read_mesh(&m.disc_mesh, log)?,
-            pad: crate::model::read_mesh(&m.pad_mesh, log)?,
+            disc: m.read_mesh(&m.disc_mesh, log)?,
+            pad: m.read_mesh(&m.pad_mesh, log)?,
             disc_path: m.disc_mesh.clone(),
             pad_path: m.pad_mesh.clone(),
         })

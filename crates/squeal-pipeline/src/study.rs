@@ -18,7 +18,7 @@ pub mod shard;
 pub use shard::Shard;
 
 use crate::error::{Context, PipelineError, Result, json_text};
-use crate::model::{Log, Model, build, damping_spec, read_mesh, reduced_model, valid_max_hz};
+use crate::model::{Log, Model, build, damping_spec, reduced_model, valid_max_hz};
 use crate::shapes::expand_complex;
 use faer::c64;
 use rayon::prelude::*;
@@ -1139,8 +1139,8 @@ fn coupled_modes(s: &Model, st: &Stability, log: Log) -> Result<Option<CoupledMo
     let (Some(h), Some((m1, m2))) = (&st.sweep.hopf, st.pair) else {
         return Ok(None);
     };
-    let disc = read_mesh(&s.disc_mesh, log)?;
-    let pad = read_mesh(&s.pad_mesh, log)?;
+    let disc = s.read_mesh(&s.disc_mesh, log)?;
+    let pad = s.read_mesh(&s.pad_mesh, log)?;
     let r = rings(&s.rom, &disc, &pad)?;
     let basis = &st.reference.basis;
     let real = |m: usize| -> Vec<c64> {

@@ -25,6 +25,7 @@ use serde::{Deserialize, Serialize};
 use squeal_eigs::{Backend, EigOptions};
 use squeal_fe::{ElasticMaterial, MaterialTable, NodeSelection, Restraint};
 use squeal_mesh::Mesh;
+use squeal_mesh::units::UnitSystem;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, PoisonError, mpsc};
 use std::time::{Duration, Instant};
@@ -90,6 +91,9 @@ pub struct PartInput {
     pub contact_face_set: String,
     /// Node set whose normal dof is kept (the pad's pistons).
     pub piston_set: Option<String>,
+    /// The unit system the mesh file is written in; [`load_part`]'s caller converts it to SI
+    /// ([`reduce_brake`] does), and the `.rom` records it.
+    pub units: UnitSystem,
 }
 
 impl PartInput {
@@ -103,6 +107,7 @@ impl PartInput {
             contact_set: "CONTACT".into(),
             contact_face_set: "CONTACT_FACE".into(),
             piston_set: None,
+            units: UnitSystem::default(),
         }
     }
 
@@ -117,6 +122,7 @@ impl PartInput {
             contact_set: "CONTACT".into(),
             contact_face_set: "CONTACT_FACE".into(),
             piston_set: Some("PISTON".into()),
+            units: UnitSystem::default(),
         }
     }
 }
@@ -259,6 +265,7 @@ impl BrakeInputs {
             backend: backend_name(self.backend).into(),
             eig_tol: self.eig_tol,
             orthonormalize: self.orthonormalize,
+            units: (!input.units.is_si()).then(|| input.units.name.to_string()),
         }
     }
 
@@ -409,6 +416,20 @@ pub fn load_part(path: &Path) -> Result<LoadedPart, ReduceError> {
     })
 }
 
+/// Reads a mesh file written in `units`, converts it to SI ([`UnitSystem::to_si`]) and adds
+/// to its warnings those of [`squeal_mesh::units::plausibility`] (a size, modulus or density
+/// that looks like another unit system's).
+pub fn load_part_in(path: &Path, units: &UnitSystem) -> Result<LoadedPart, ReduceError> {
+    let mut part = load_part(path)?;
+    units.to_si(&mut part.mesh);
+    part.warnings.extend(
+        squeal_mesh::units::plausibility(&part.mesh, units)
+            .into_iter()
+            .map(|w| format!("{}: {w}", path.display())),
+    );
+    Ok(part)
+}
+
 /// A disc contact point and the pad contact point it faces.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactPair {
@@ -471,9 +492,9 @@ pub fn reduce_brake(
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     inputs.validate()?;
     progress("disc", Stage::Read);
-    let disc = load_part(&inputs.disc.mesh)?;
+    let disc = load_part_in(&inputs.disc.mesh, &inputs.disc.units)?;
     progress("pad", Stage::Read);
-    let pad = load_part(&inputs.pad.mesh)?;
+    let pad = load_part_in(&inputs.pad.mesh, &inputs.pad.units)?;
     reduce_brake_loaded(inputs, disc, pad, progress)
 }
 

@@ -273,6 +273,10 @@ pub struct BuildRecord {
     pub eig_tol: f64,
     /// Modal block of `M̂` made the identity after the solve.
     pub orthonormalize: bool,
+    /// The unit system the mesh file was written in and converted to SI from on reading
+    /// (`None`: SI; absent from files of earlier versions, which read SI meshes only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub units: Option<String>,
 }
 
 /// The JSON header stored in `__metadata__.squeal`.

@@ -1,6 +1,10 @@
 //! Scene files: one TOML file describing a brake study (meshes, reduction, contact, friction,
 //! piston load, damping, analyses). Paths are relative to the scene file.
 //!
+//! `[units]`, `[sets.disc]`, `[sets.pad]` and `[materials.<SET>]` are read by [`sets`]: the
+//! unit system of the meshes and of the keys without a unit in their name, the node sets of
+//! the reduction by name or by geometry, and materials by element set.
+//!
 //! Unknown keys are errors (a misspelt key must not be silently ignored); values that parse but
 //! make no physical sense are errors naming the file, the key and its line ([`SceneError`]).
 //! Derived values that need a little arithmetic live here too: the least-squares fit of the
@@ -19,6 +23,8 @@
 //! Abaqus' `*MOTION` and Ansys' `CMROTATE`). The older `[disc]` section (speed and
 //! `axis_origin`, the axis along `contact.normal`, no sense) still reads; a scene with both is
 //! refused.
+
+pub mod sets;
 
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -82,6 +88,16 @@ pub struct SceneFile {
     pub disc: DiscSection,
     /// `[rotation]`: the disc's axis, sense and speed.
     pub rotation: Option<RotationSection>,
+    /// `[units]`: the unit system of the meshes and of the scene's keys without a unit in
+    /// their name (see [`sets`]).
+    #[serde(default)]
+    pub units: sets::UnitsSection,
+    /// `[sets.disc]`, `[sets.pad]`: the node sets the reduction uses, by name or by geometry.
+    #[serde(default)]
+    pub sets: sets::SetsSection,
+    /// `[materials.<ELEMENT_SET>]`: materials by element set, replacing the meshes' own.
+    #[serde(default)]
+    pub materials: std::collections::BTreeMap<String, sets::MaterialSpec>,
 }
 
 /// `[rotation]`: the axis the disc turns about, the sense, and (optionally) the speed.
@@ -137,9 +153,10 @@ pub struct DiscSection {
     pub rpm: Option<Spanned<f64>>,
     /// Vehicle speed (km/h); needs `rolling_radius`.
     pub vehicle_speed_kmh: Option<Spanned<f64>>,
-    /// The wheel's effective rolling radius (m): the disc turns at `v / r`.
+    /// The wheel's effective rolling radius (m, or the `[units]` length): the disc turns at
+    /// `v / r`.
     pub rolling_radius: Option<Spanned<f64>>,
-    /// A point of the disc's axis (m); the origin by default.
+    /// A point of the disc's axis (m, or the `[units]` length); the origin by default.
     pub axis_origin: Option<Spanned<[f64; 3]>>,
 }
 
@@ -200,18 +217,20 @@ pub struct ContactSection {
     /// Normal from the disc into the pad; optional: every pair takes the disc face's normal
     /// from the reduced model, and a normal given here is a check on it.
     pub normal: Option<Spanned<[f64; 3]>>,
+    /// Disc and pad points pair when closer than this (m, or the `[units]` length).
     #[serde(default = "default_pairing")]
     pub pairing_tolerance: Spanned<f64>,
     /// A pad compression curve to fit `p = κ_l δ + κ_nl δ³` to.
     pub compression_curve: Option<CompressionCurve>,
-    /// Or the stiffnesses per unit area directly (Pa/m, Pa/m³).
+    /// Or the stiffnesses per unit area directly (Pa/m, Pa/m³, or the `[units]` stress per
+    /// length and per length cubed).
     pub k_linear_per_area: Option<Spanned<f64>>,
     pub k_cubic_per_area: Option<Spanned<f64>>,
     /// Scale factor on both stiffnesses (for studies: 0.7, 1, 1.3).
     #[serde(default = "one")]
     pub stiffness_scale: Spanned<f64>,
-    /// Area (m²) a contact point stands for where the reduced model gives none (a node
-    /// interface on parts without a contact face set).
+    /// Area (m², or the `[units]` area) a contact point stands for where the reduced model
+    /// gives none (a node interface on parts without a contact face set).
     pub point_area: Option<Spanned<f64>>,
     /// Initial gap (m; positive: open, negative: interference) of every pair, or a list of
     /// one per pair in pair order; without it each pair's gap is measured from the geometry.
@@ -268,7 +287,7 @@ pub struct FrictionSection {
 pub struct PistonSection {
     /// Hydraulic line pressure (bar).
     pub line_pressure_bar: Spanned<f64>,
-    /// Total piston area (m²).
+    /// Total piston area (m², or the `[units]` area).
     pub area: Spanned<f64>,
 }
 
@@ -553,6 +572,10 @@ impl Scene {
             ));
         }
         self.disc_angular_speed()?;
+        self.units()?;
+        self.set_rules()?;
+        self.patch_grid()?;
+        self.materials()?;
         Ok(())
     }
 
@@ -579,7 +602,9 @@ impl Scene {
             (None, Some(v), Some(r)) => {
                 self.positive(&format!("{section}.vehicle_speed_kmh"), v)?;
                 self.positive(&format!("{section}.rolling_radius"), r)?;
-                Ok(Some(v.get_ref() / 3.6 / r.get_ref()))
+                Ok(Some(
+                    v.get_ref() / 3.6 / (r.get_ref() * self.length_unit()?),
+                ))
             }
             _ => Err(self.section_error(format!(
                 "[{section}] takes either rpm, or vehicle_speed_kmh with rolling_radius"
@@ -597,12 +622,14 @@ impl Scene {
             || d.vehicle_speed_kmh.is_some()
             || d.rolling_radius.is_some()
             || d.axis_origin.is_some();
+        let unit = self.length_unit()?;
+        // A point in the scene's length unit, in metres.
         let finite_point = |key: &str, p: &Spanned<[f64; 3]>| -> Result<[f64; 3]> {
             let x = *p.get_ref();
             if !x.iter().all(|v| v.is_finite()) {
                 return Err(self.error_at(key, p, "must be a point [x, y, z] of finite numbers"));
             }
-            Ok(x)
+            Ok(x.map(|v| v * unit))
         };
         match &f.rotation {
             Some(r) => {
@@ -670,6 +697,17 @@ impl Scene {
             .transpose()
     }
 
+    /// The direction from the disc into the pad as the scene gives it, for what must be known
+    /// before the meshes are read (the default sets, a transversely isotropic material's
+    /// axis): `[contact] normal`, else the `[rotation]` axis, else z (the bundled layout). Give
+    /// `[contact] normal` when the pad lies on the face the axis points away from.
+    pub fn contact_direction(&self) -> Result<[f64; 3]> {
+        if let Some(n) = self.normal()? {
+            return Ok(n);
+        }
+        Ok(self.rotation()?.map_or([0.0, 0.0, 1.0], |r| r.axis))
+    }
+
     /// An error on the global sliding direction, at its key and line.
     fn sliding_error(&self, message: &str) -> SceneError {
         let fr = &self.file.friction;
@@ -723,8 +761,9 @@ impl Scene {
         }
     }
 
-    /// The pairs' initial gaps: `[contact] initial_gap` (a number or a list of numbers, m),
-    /// `close_initial_gaps = true`, or neither (measured from the geometry). Both together
+    /// The pairs' initial gaps in metres: `[contact] initial_gap` (a number or a list of
+    /// numbers, in the `[units]` length), `close_initial_gaps = true`, or neither (measured
+    /// from the geometry). Both together
     /// are refused: closing the gaps one gives is a contradiction.
     pub fn initial_gaps(&self) -> Result<GapSetting> {
         let c = &self.file.contact;
@@ -743,12 +782,17 @@ impl Scene {
                 "is given together with close_initial_gaps = true, which sets every gap to zero: keep one of the two",
             ));
         }
-        let number = |x: &toml::Value| x.as_float().or(x.as_integer().map(|i| i as f64));
+        // In the scene's length unit (metres by default), returned in metres.
+        let unit = self.length_unit()?;
+        let number = |x: &toml::Value| {
+            let g = x.as_float().or(x.as_integer().map(|i| i as f64));
+            g.map(|g| g * unit)
+        };
         let bad = || {
             self.error_at(
                 "contact.initial_gap",
                 v,
-                "must be a gap in metres (positive: open, e.g. 1.0e-4 for 0.1 mm) or a list of one per contact pair",
+                "must be a gap in metres, or in the [units] length (positive: open, e.g. 1.0e-4 for 0.1 mm in SI), or a list of one per contact pair",
             )
         };
         match v.get_ref() {
@@ -766,12 +810,43 @@ impl Scene {
         }
     }
 
-    /// Contact stiffness per unit area `(κ_l, κ_nl)`, scaled, and the fit report if fitted.
+    /// `contact.pairing_tolerance` in metres.
+    pub fn pairing_tolerance(&self) -> Result<f64> {
+        Ok(self.file.contact.pairing_tolerance.get_ref() * self.length_unit()?)
+    }
+
+    /// `contact.point_area` in m².
+    pub fn point_area(&self) -> Result<Option<f64>> {
+        let a = self.units()?.area();
+        Ok(self
+            .file
+            .contact
+            .point_area
+            .as_ref()
+            .map(|p| p.get_ref() * a))
+    }
+
+    /// The clamp force (N): `piston.line_pressure_bar` (bar) times `piston.area` (in the
+    /// scene's area unit).
+    pub fn piston_force(&self) -> Result<f64> {
+        let p = &self.file.piston;
+        Ok(p.line_pressure_bar.get_ref() * 1e5 * p.area.get_ref() * self.units()?.area())
+    }
+
+    /// Contact stiffness per unit area `(κ_l, κ_nl)` in Pa/m and Pa/m³, scaled, and the fit
+    /// report if fitted (given directly, they are in the scene's stress per length and stress
+    /// per length cubed).
     pub fn stiffness(&self) -> Result<(f64, f64, Option<Fit>)> {
         let c = &self.file.contact;
         let scale = *c.stiffness_scale.get_ref();
         if let (Some(kl), Some(kn)) = (&c.k_linear_per_area, &c.k_cubic_per_area) {
-            return Ok((kl.get_ref() * scale, kn.get_ref() * scale, None));
+            let u = self.units()?;
+            let (kl_si, kn_si) = (u.stress() / u.length, u.stress() / u.length.powi(3));
+            return Ok((
+                kl.get_ref() * kl_si * scale,
+                kn.get_ref() * kn_si * scale,
+                None,
+            ));
         }
         let curve = c.compression_curve.as_ref().ok_or_else(|| {
             self.section_error(
@@ -1151,5 +1226,42 @@ mod tests {
             let e = parse_range(old).unwrap_err();
             assert!(e.contains("ambiguous") && e.contains("0..1/201"), "{e}");
         }
+    }
+
+    #[test]
+    fn scene_materials_are_read_in_the_scene_units() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/brake.toml");
+        let base = std::fs::read_to_string(&path).unwrap();
+        let lining = "[units]\nsystem = \"mm-t-s\"\n[materials.LINING]\nyoung_plane = 5000\npoisson_plane = 0.25\n\
+                      young_axial = 2000\npoisson_plane_axial = 0.2\nshear_axial = 1000\ndensity = 2.5e-9\n\
+                      [materials.DISC]\nyoung = 125e3\npoisson = 0.26\ndensity = 7.2e-9";
+        let s = Scene::parse(&path, format!("{base}\n{lining}")).unwrap();
+        let m = s.materials().unwrap();
+        // BTreeMap order: DISC, LINING. MPa -> Pa and t/mm^3 -> kg/m^3 by the exact factors
+        // 1e6 and 1e12: one rounding each.
+        let rel = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-15;
+        match m[0].1 {
+            squeal_fe::ElasticMaterial::Isotropic { young, density, .. } => {
+                assert!(rel(young, 125e9) && rel(density, 7200.0), "{:?}", m[0]);
+            }
+            ref other => panic!("{other:?}"),
+        }
+        match m[1].1 {
+            squeal_fe::ElasticMaterial::TransverselyIsotropic {
+                young_plane,
+                young_axial,
+                shear_axial,
+                axis,
+                density,
+                ..
+            } => {
+                assert!(rel(young_plane, 5e9) && rel(young_axial, 2e9) && rel(shear_axial, 1e9));
+                assert!(rel(density, 2500.0));
+                // The axis defaults to contact.normal.
+                assert_eq!(axis, [0.0, 0.0, 1.0]);
+            }
+            ref other => panic!("{other:?}"),
+        }
+        assert!(s.material_warnings().unwrap().is_empty());
     }
 }

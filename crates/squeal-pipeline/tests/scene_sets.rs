@@ -1,0 +1,523 @@
+//! The scene's `[sets]`, `[units]` and `[materials]` on the bundled coarse meshes: sets chosen
+//! by geometry are the named sets, a Gmsh `.msh` with its materials from the scene reduces as
+//! the `.inp` does, a millimetre scene reduces as the SI one, and what is missing or makes no
+//! sense is an error naming the key.
+
+use squeal_mesh::Mesh;
+use squeal_pipeline::model::{quiet, reduced_model};
+use squeal_pipeline::parts::{Origin, choose_sets, load_parts};
+use squeal_reduce::interface::{Axis, patches};
+use squeal_reduce::rom::ReducedModel;
+use squeal_scene::Scene;
+use std::path::{Path, PathBuf};
+
+fn meshes() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes")
+}
+
+/// `meshes/brake.toml` with the given meshes, `modes` fixed-interface modes and `extra`
+/// appended, read as if it were `<dir>/scene.toml`.
+fn scene_in(dir: &Path, disc: &str, pad: &str, modes: usize, extra: &str) -> Result<Scene, String> {
+    let text = std::fs::read_to_string(meshes().join("brake.toml")).unwrap();
+    let text: String = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("disc = ") {
+                format!("disc = \"{disc}\"\n")
+            } else if l.starts_with("pad = ") {
+                format!("pad = \"{pad}\"\n")
+            } else if l.starts_with("modes = ") {
+                format!("modes = {modes}\n")
+            } else {
+                format!("{l}\n")
+            }
+        })
+        .collect();
+    Scene::parse(&dir.join("scene.toml"), format!("{text}\n{extra}\n")).map_err(|e| e.to_string())
+}
+
+fn read(name: &str) -> Mesh {
+    squeal_mesh::read(&meshes().join(name)).unwrap().mesh
+}
+
+/// The abutments of the bundled pad as geometry: the backplate's (z = 30..35 mm) end faces,
+/// the planes through the z axis at 65 and 115 degrees.
+fn abutment_rule() -> String {
+    let plane = |deg: f64| {
+        let t = deg.to_radians();
+        format!(
+            "{{ plane = {{ point = [0, 0, 0], normal = [{}, {}, 0] }}, box = {{ min = [-1, -1, 0.0299999], max = [1, 1, 0.0350001] }} }}",
+            -t.sin(),
+            t.cos()
+        )
+    };
+    format!("abutments = [{}, {}]", plane(65.0), plane(115.0))
+}
+
+#[test]
+fn sets_chosen_by_geometry_are_the_named_sets_of_the_bundled_meshes() {
+    // The coarse meshes, and the medium ones whose disc and pad differ inside the footprint
+    // (618 and 652 face nodes): the disc's default contact face is found under the pad's
+    // friction face without shared nodes.
+    for level in ["coarse", "medium"] {
+        named_sets_by_geometry(level);
+    }
+}
+
+fn named_sets_by_geometry(level: &str) {
+    let disc0 = read(&format!("disc_{level}.inp"));
+    let pad0 = read(&format!("pad_{level}.inp"));
+    let rules = format!(
+        "[sets.disc]\nclamp = {{ plane = {{ point = [0, 0, -0.035], normal = [0, 0, 1] }}, facing = [0, 0, -1] }}\n\
+         [sets.pad]\nfriction_face = {{ plane = {{ point = [0, 0, 0.02], normal = [0, 0, 1] }}, facing = [0, 0, -1], angle = 0.5 }}\n{}",
+        abutment_rule()
+    );
+    // Explicit rules on the meshes as they are (their named sets present but not used), then
+    // the defaults on meshes stripped of every node set but PISTON (no default for it).
+    let explicit = scene_in(&meshes(), "disc_coarse.inp", "pad_coarse.inp", 8, &rules).unwrap();
+    let defaults = scene_in(
+        &meshes(),
+        "disc_coarse.inp",
+        "pad_coarse.inp",
+        8,
+        &format!("[sets.pad]\n{}", abutment_rule()),
+    )
+    .unwrap();
+    for (scene, strip) in [(&explicit, false), (&defaults, true)] {
+        let (mut disc, mut pad) = (disc0.clone(), pad0.clone());
+        if strip {
+            disc.node_sets.clear();
+            pad.node_sets.retain(|k, _| k == "PISTON");
+        }
+        let chosen = choose_sets(scene, &mut disc, &mut pad).unwrap();
+        let named = [
+            (&disc0, "CLAMP"),
+            (&disc0, "CONTACT_FACE"),
+            (&pad0, "CONTACT_FACE"),
+            (&pad0, "PISTON"),
+            (&pad0, "ABUTMENT"),
+        ];
+        for (c, (mesh, name)) in chosen.iter().zip(named) {
+            // PISTON is always the mesh's, and so is the disc's contact face when the mesh
+            // keeps it (the explicit scene gives no rule for it); every other set comes from a
+            // rule or a default.
+            let from_mesh = c.origin == Origin::Mesh;
+            let expected = name == "PISTON" || (!strip && c.key == "sets.disc.contact_face");
+            assert_eq!(from_mesh, expected, "{}: {:?}", c.key, c.origin);
+            assert_eq!(
+                c.nodes(),
+                mesh.node_set(name).unwrap(),
+                "{} vs {name}",
+                c.key
+            );
+        }
+        // The patches of the chosen faces are the named faces' patches, to the bit: the same
+        // nodes give the same triangles in the same order (asserted to 1e-12 relative, well
+        // inside the issue's 1e-9).
+        for (mesh, named_mesh, chosen_set) in
+            [(&disc, &disc0, &chosen[1]), (&pad, &pad0, &chosen[2])]
+        {
+            let a = patches(mesh, &chosen_set.name, 3, 3, &Axis::default()).unwrap();
+            let b = patches(named_mesh, "CONTACT_FACE", 3, 3, &Axis::default()).unwrap();
+            for (p, q) in a.iter().zip(&b) {
+                assert!(
+                    (p.area / q.area - 1.0).abs() < 1e-12,
+                    "{} {}",
+                    p.area,
+                    q.area
+                );
+                for d in 0..3 {
+                    assert!((p.centroid[d] - q.centroid[d]).abs() < 1e-12 * 0.14);
+                }
+            }
+            assert_eq!(a.len(), 9);
+        }
+    }
+}
+
+/// The coarse meshes, with `modes` modes, reduced in a fresh folder.
+fn reduce(scene: &Scene, tag: &str) -> ReducedModel {
+    let out = std::env::temp_dir().join(format!("squeal-scene-sets-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out).unwrap();
+    let (rom, _) = reduced_model(scene, &out, &quiet).unwrap();
+    let _ = std::fs::remove_dir_all(&out);
+    rom
+}
+
+/// Largest relative difference of the parts' fixed-interface frequencies and reduced
+/// matrices (relative to each matrix's largest entry). A fixed-interface mode's sign is
+/// arbitrary (the eigensolver's start vector decides it), and it flips the sign of its row and
+/// column of the coupling block of `M̂`: entries are compared in magnitude.
+fn difference(a: &ReducedModel, b: &ReducedModel) -> f64 {
+    let mut worst: f64 = 0.0;
+    for (p, q) in a.parts.iter().zip(&b.parts) {
+        for (f, g) in p
+            .info
+            .fixed_interface_hz
+            .iter()
+            .zip(&q.info.fixed_interface_hz)
+        {
+            worst = worst.max((f / g - 1.0).abs());
+        }
+        for (x, y) in [(&p.k, &q.k), (&p.m, &q.m)] {
+            assert_eq!((x.nrows(), x.ncols()), (y.nrows(), y.ncols()));
+            let mut scale: f64 = 0.0;
+            let mut diff: f64 = 0.0;
+            for j in 0..x.ncols() {
+                for i in 0..x.nrows() {
+                    scale = scale.max(x[(i, j)].abs());
+                    diff = diff.max((x[(i, j)].abs() - y[(i, j)].abs()).abs());
+                }
+            }
+            worst = worst.max(diff / scale);
+        }
+    }
+    worst
+}
+
+const MATERIALS: &str = "[materials.DISC]\nyoung = 125e9\npoisson = 0.26\ndensity = 7200\n\
+[materials.LINING]\nyoung = 2e9\npoisson = 0.25\ndensity = 2500\n\
+[materials.BACKPLATE]\nyoung = 210e9\npoisson = 0.3\ndensity = 7850\n";
+
+/// Writes `meshes/<name>` scaled to mm-t-s (coordinates x 1e3, moduli x 1e-6, densities x
+/// 1e-12) into `dir`.
+fn to_millimetres(name: &str, dir: &Path) {
+    let text = std::fs::read_to_string(meshes().join(name)).unwrap();
+    let mut out = String::new();
+    let mut block = "";
+    for line in text.lines() {
+        if line.starts_with('*') {
+            block = if line.starts_with("*NODE") {
+                "node"
+            } else if line.starts_with("*ELASTIC") {
+                "elastic"
+            } else if line.starts_with("*DENSITY") {
+                "density"
+            } else {
+                ""
+            };
+            out += line;
+            out += "\n";
+            continue;
+        }
+        let v: Vec<&str> = line.split(',').map(str::trim).collect();
+        let num = |s: &str| s.parse::<f64>().unwrap();
+        let scaled = match block {
+            "node" => format!(
+                "{}, {}, {}, {}",
+                v[0],
+                num(v[1]) * 1e3,
+                num(v[2]) * 1e3,
+                num(v[3]) * 1e3
+            ),
+            "elastic" => format!("{}, {}", num(v[0]) * 1e-6, v[1]),
+            "density" => format!("{}", num(v[0]) * 1e-12),
+            _ => line.to_string(),
+        };
+        out += &scaled;
+        out += "\n";
+    }
+    std::fs::write(dir.join(name), out).unwrap();
+}
+
+#[test]
+fn a_msh_with_scene_materials_and_a_millimetre_scene_reduce_as_the_si_inp() {
+    let si = scene_in(&meshes(), "disc_coarse.inp", "pad_coarse.inp", 8, "").unwrap();
+    let reference = reduce(&si, "inp");
+    // The .msh: the same nodes (ids and coordinates to the bit) and elements, no materials;
+    // the scene gives the .inp's. Assembly and reduction see the same numbers: measured 0
+    // difference; asserted 1e-12 relative (an element order differing between the files
+    // would move sums by round-off only).
+    let msh = scene_in(&meshes(), "disc_coarse.msh", "pad_coarse.msh", 8, MATERIALS).unwrap();
+    let d = difference(&reference, &reduce(&msh, "msh"));
+    eprintln!("msh vs inp: largest relative difference {d:e}");
+    assert!(d < 1e-12, "msh vs inp: {d:e}");
+    // Sets by geometry reach the reduction: the same nodes as the named sets, so the same
+    // model (measured 0 difference, asserted 1e-12), and the .rom records each rule in its
+    // set's name, so that another rule makes a kept model stale.
+    let rules = format!(
+        "[sets.disc]\nclamp = {{ plane = {{ point = [0, 0, -0.035], normal = [0, 0, 1] }}, facing = [0, 0, -1] }}\n\
+         [sets.pad]\nfriction_face = {{ facing = [0, 0, -1], angle = 0.5 }}\n{}",
+        abutment_rule()
+    );
+    let geometric = scene_in(&meshes(), "disc_coarse.inp", "pad_coarse.inp", 8, &rules).unwrap();
+    let by_rules = reduce(&geometric, "rules");
+    let d = difference(&reference, &by_rules);
+    eprintln!("sets by geometry vs named: largest relative difference {d:e}");
+    assert!(d < 1e-12, "rules vs named: {d:e}");
+    let build = by_rules.part("disc").unwrap().info.build.clone().unwrap();
+    assert!(
+        build.restraints[0]
+            .0
+            .starts_with("sets.disc.clamp = plane point [0, 0, -0.035]"),
+        "{:?}",
+        build.restraints
+    );
+    let pad_build = by_rules.part("pad").unwrap().info.build.clone().unwrap();
+    assert!(
+        pad_build
+            .contact_face_set
+            .starts_with("sets.pad.friction_face = facing [0, 0, -1] within 0.5 deg")
+    );
+    // Without the materials the .msh is refused, with every element set and its key.
+    let bare = scene_in(&meshes(), "disc_coarse.msh", "pad_coarse.msh", 8, "").unwrap();
+    let e = load_parts(&bare, &quiet).unwrap_err().to_string();
+    for key in [
+        "[materials.DISC]",
+        "[materials.LINING]",
+        "[materials.BACKPLATE]",
+    ] {
+        assert!(e.contains(key), "{e}");
+    }
+    // mm-t-s: coordinates x 1e3, moduli x 1e-6, densities x 1e-12, converted back on reading;
+    // each value is off by one rounding in each direction, so the model agrees to round-off
+    // amplified by the eigen-solves: measured 2.5e-13, asserted 1e-9 relative.
+    let dir = std::env::temp_dir().join(format!("squeal-scene-mm-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    to_millimetres("disc_coarse.inp", &dir);
+    to_millimetres("pad_coarse.inp", &dir);
+    let mm = scene_in(
+        &dir,
+        "disc_coarse.inp",
+        "pad_coarse.inp",
+        8,
+        "[units]\nsystem = \"mm-t-s\"",
+    )
+    .unwrap();
+    let d = difference(&reference, &reduce(&mm, "mm"));
+    eprintln!("mm-t-s vs SI: largest relative difference {d:e}");
+    assert!(d < 1e-9, "mm vs SI: {d:e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn scene_keys_without_a_unit_in_their_name_are_in_the_scene_units() {
+    let mm = scene_in(
+        &meshes(),
+        "disc_coarse.inp",
+        "pad_coarse.inp",
+        8,
+        "[units]\nsystem = \"mm-t-s-N-MPa\"",
+    )
+    .unwrap();
+    let si = scene_in(&meshes(), "disc_coarse.inp", "pad_coarse.inp", 8, "").unwrap();
+    // The same numbers read as mm: lengths 1e-3, areas 1e-6 of SI's; the compression curve
+    // (MPa, um) and the line pressure (bar) keep their units. Exact up to one rounding.
+    let rel = |a: f64, b: f64| (a / b - 1.0).abs();
+    assert!(
+        rel(
+            mm.pairing_tolerance().unwrap(),
+            1e-3 * si.pairing_tolerance().unwrap()
+        ) < 1e-15
+    );
+    assert!(
+        rel(
+            mm.piston_force().unwrap(),
+            1e-6 * si.piston_force().unwrap()
+        ) < 1e-15
+    );
+    assert!(rel(mm.stiffness().unwrap().0, si.stiffness().unwrap().0) < 1e-15);
+    // A steel in mm-t-s numbers read as SI is flagged, naming the system it fits.
+    let steel = "[materials.DISC]\nyoung = 2.1e5\npoisson = 0.3\ndensity = 7.85e-9";
+    let w = scene_in(&meshes(), "disc_coarse.inp", "pad_coarse.inp", 8, steel)
+        .unwrap()
+        .material_warnings()
+        .unwrap();
+    assert_eq!(w.len(), 2, "{w:?}");
+    assert!(w.iter().all(|m| m.contains("mm-t-s")), "{w:?}");
+}
+
+#[test]
+fn rules_and_materials_that_make_no_sense_are_errors_naming_key_and_line() {
+    let m = meshes();
+    let bad =
+        |extra: &str| scene_in(&m, "disc_coarse.inp", "pad_coarse.inp", 8, extra).unwrap_err();
+    // The scene's text has brake.toml's lines, then a blank line, then `extra`: its second
+    // line is line n + 3 of the whole.
+    let n = std::fs::read_to_string(m.join("brake.toml"))
+        .unwrap()
+        .lines()
+        .count();
+    let e = bad(
+        "[sets.disc]\nclamp = { cylinder = { point = [0, 0, 0], axis = [0, 0, 1], radius = -1 } }",
+    );
+    assert!(
+        e.contains(&format!("scene.toml:{}: sets.disc.clamp", n + 3)) && e.contains("radius -1"),
+        "{e}"
+    );
+    let e = bad("[sets.pad]\nfriction_face = { facing = [0, 0, 0] }");
+    assert!(
+        e.contains("sets.pad.friction_face") && e.contains("zero length"),
+        "{e}"
+    );
+    let e = bad("[sets.pad]\nfriction_face = { sphere = 1 }");
+    assert!(e.contains("unknown criterion 'sphere'"), "{e}");
+    let e = bad("[sets.pad]\nabutments = { angle = 3 }");
+    assert!(e.contains("angle goes with facing"), "{e}");
+    let e = bad("[units]\nsystem = \"furlong\"");
+    assert!(e.contains("units.system") && e.contains("mm-t-s"), "{e}");
+    let e = bad("[materials.DISC]\nyoung = 125e9\npoisson = 0.6\ndensity = 7200");
+    assert!(
+        e.contains("materials.DISC") && e.contains("positive definite"),
+        "{e}"
+    );
+    let e = bad("[materials.LINING]\nyoung_plane = 5e9\npoisson_plane = 0.2\ndensity = 2500");
+    assert!(e.contains("needs young_axial"), "{e}");
+    // A set name the mesh lacks, a rule that selects nothing, a material for no element set:
+    // errors once the meshes are read.
+    let later = |extra: &str| {
+        let s = scene_in(&m, "disc_coarse.inp", "pad_coarse.inp", 8, extra).unwrap();
+        load_parts(&s, &quiet).unwrap_err().to_string()
+    };
+    let e = later("[sets.disc]\nclamp = \"HUB\"");
+    assert!(
+        e.contains("sets.disc.clamp") && e.contains("no node set HUB"),
+        "{e}"
+    );
+    let e = later("[sets.disc]\nclamp = { plane = { point = [0, 0, -1], normal = [0, 0, 1] } }");
+    assert!(e.contains("selects nothing"), "{e}");
+    // A pad without PISTON and no pistons key: no default, the key to add.
+    let mut disc = read("disc_coarse.inp");
+    let mut pad = read("pad_coarse.inp");
+    pad.node_sets.retain(|k, _| k != "PISTON");
+    let s = scene_in(&m, "disc_coarse.inp", "pad_coarse.inp", 8, "").unwrap();
+    let e = choose_sets(&s, &mut disc, &mut pad)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("sets.pad.pistons") && e.contains("no PISTON node set"),
+        "{e}"
+    );
+    let e = later("[materials.ROTOR]\nyoung = 125e9\npoisson = 0.26\ndensity = 7200");
+    assert!(
+        e.contains("[materials.ROTOR]") && e.contains("DISC (disc)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn pistons_as_circles_are_chosen_but_not_yet_reduced() {
+    // The bundled pistons' centres (r = 110 mm at 77.5 and 102.5 deg, on the back face
+    // z = 35 mm), 40 mm diameter.
+    let (x, y) = (
+        0.11 * 77.5f64.to_radians().cos(),
+        0.11 * 77.5f64.to_radians().sin(),
+    );
+    let circles = format!(
+        "[sets.pad]\npistons = {{ facing = [0, 0, 1], circles = [{{ centre = [{x}, {y}, 0.035], diameter = 0.04 }}, {{ centre = [{}, {y}, 0.035], diameter = 0.04 }}] }}",
+        -x
+    );
+    let s = scene_in(&meshes(), "disc_coarse.inp", "pad_coarse.inp", 8, &circles).unwrap();
+    let parts = load_parts(&s, &quiet).unwrap();
+    let pistons = &parts.sets[3];
+    assert_eq!(pistons.pieces.len(), 2);
+    let disc_area = std::f64::consts::PI * 0.02 * 0.02;
+    for (k, piece) in pistons.pieces.iter().enumerate() {
+        let sum = squeal_mesh::select::summarize(&parts.pad.mesh, &piece.faces);
+        // Faces whose corner centroid lies in the circle cover it to about a row of the
+        // coarse pad's 13 mm faces: asserted within 50 % of pi d^2 / 4; the centroid lies on
+        // the back face and within a face size (13 mm) of the circle's centre.
+        assert!(
+            (sum.area / disc_area - 1.0).abs() < 0.5,
+            "{} vs {disc_area}",
+            sum.area
+        );
+        assert!(
+            (sum.centroid[2] - 0.035).abs() < 1e-12,
+            "{:?}",
+            sum.centroid
+        );
+        let cx = if k == 0 { x } else { -x };
+        assert!(
+            (sum.centroid[0] - cx).hypot(sum.centroid[1] - y) < 0.013,
+            "{:?}",
+            sum.centroid
+        );
+    }
+    let e = squeal_pipeline::parts::brake_inputs(&s, &parts)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("footprints") && e.contains("sets.pad.pistons"),
+        "{e}"
+    );
+}
+
+/// The patches of `grid` on both parts of `level`: the largest distance between paired
+/// centroids, the pairing tolerance, and the largest paired area difference as a fraction of
+/// a mean patch.
+fn paired_patches(level: &str, grid: [usize; 2]) -> Result<(f64, f64, f64), String> {
+    use squeal_reduce::brake::{PairingTolerance, contact_positions, pair_contact_points};
+    let extra = format!("[sets]\npatch_grid = [{}, {}]", grid[0], grid[1]);
+    let (disc, pad) = (format!("disc_{level}.inp"), format!("pad_{level}.inp"));
+    let s = scene_in(&meshes(), &disc, &pad, 8, &extra).unwrap();
+    let parts = load_parts(&s, &quiet).unwrap();
+    let inputs = squeal_pipeline::parts::brake_inputs(&s, &parts).unwrap();
+    assert_eq!(inputs.grid, grid);
+    let d = contact_positions(&parts.disc.mesh, &inputs.disc, &inputs).unwrap();
+    let p = contact_positions(&parts.pad.mesh, &inputs.pad, &inputs).unwrap();
+    let (pairs, tol) =
+        pair_contact_points(&d, &p, PairingTolerance::Relative(0.05)).map_err(|e| e.to_string())?;
+    assert_eq!(pairs.len(), grid[0] * grid[1]);
+    let worst = pairs.iter().map(|q| q.distance).fold(0.0, f64::max);
+    let cut = |mesh, set: &str| patches(mesh, set, grid[0], grid[1], &Axis::default()).unwrap();
+    let da = cut(&parts.disc.mesh, &inputs.disc.contact_face_set);
+    let pa = cut(&parts.pad.mesh, &inputs.pad.contact_face_set);
+    let mean = da.iter().map(|x| x.area).sum::<f64>() / pairs.len() as f64;
+    let area = pairs
+        .iter()
+        .map(|q| (da[q.disc_point].area - pa[q.pad_point].area).abs() / mean)
+        .fold(0.0, f64::max);
+    eprintln!(
+        "{level} {grid:?}: worst centroid distance {worst:.3e} m (tolerance {tol:.3e} m), worst area difference {area:.3e} of a mean patch"
+    );
+    Ok((worst, tol, area))
+}
+
+#[test]
+fn patch_grids_pair_when_both_meshes_resolve_their_edges() {
+    // On the 3 x 3 grid and on the whole face the patch edges are mesh edges of both coarse
+    // parts: paired patches coincide (centroids measured 8e-11 m apart, asserted 1e-9 m;
+    // areas to 1e-9 of a patch). Other grids cut the footprint's triangles, which the two
+    // coarse meshes do not all share (same nodes, some other diagonals): each patch takes
+    // whole triangles by their centroids, so paired patches differ by a few triangles
+    // (2 x 5: centroids 0.11 mm apart, areas 0.8 % of a patch) but still pair within the
+    // reduction's tolerance (5 % of the patch spacing); asserted: they pair and differ by
+    // under 3 % of a patch. A 4 x 4 grid, whose 12.5 mm cells are about the coarse faces'
+    // size, does not pair (a patch of whole triangles lands 4.6 mm off its partner): not yet
+    // supported, see below.
+    let e = paired_patches("coarse", [4, 4]).unwrap_err();
+    assert!(e.contains("finds no pad contact point within"), "{e}");
+    for grid in [[3, 3], [1, 1], [2, 5]] {
+        let (d, _, a) = paired_patches("coarse", grid).unwrap();
+        let bound = if grid[0] * grid[1] == 9 || grid == [1, 1] {
+            1e-9
+        } else {
+            0.03
+        };
+        assert!(a < bound, "{grid:?}: {d:e} m, {a:e}");
+        if grid == [3, 3] || grid == [1, 1] {
+            assert!(d < 1e-9, "{grid:?}: {d:e} m");
+        }
+    }
+    // The medium meshes match only on the 3 x 3 patch edges: there the paired patches agree
+    // (areas differ where the arcs r = 85, 135 mm are quadratic edges of different lengths:
+    // measured 2.5e-7 of a mean patch, asserted 1e-6). A grid whose edges are not mesh edges
+    // gives each part jagged patches of whole triangles, and their centroids can miss the
+    // pairing tolerance (measured for 2 x 5: 0.96 mm against 0.84 mm): not yet supported
+    // (clipping the triangles at the patch edges would be needed), and said so.
+    let (d, _, a) = paired_patches("medium", [3, 3]).unwrap();
+    assert!(d < 1e-8 && a < 1e-6, "{d:e} m, {a:e}");
+    let e = paired_patches("medium", [2, 5]).unwrap_err();
+    assert!(e.contains("finds no pad contact point within"), "{e}");
+    let bad = scene_in(
+        &meshes(),
+        "disc_medium.inp",
+        "pad_medium.inp",
+        8,
+        "[sets]\npatch_grid = [0, 3]",
+    )
+    .unwrap_err();
+    assert!(bad.contains("sets.patch_grid"), "{bad}");
+}
