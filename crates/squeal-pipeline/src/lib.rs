@@ -30,6 +30,7 @@ pub mod branch;
 pub mod chbm;
 pub mod compare;
 mod error;
+pub mod mesh_info;
 pub mod model;
 pub mod parts;
 pub mod pictures;

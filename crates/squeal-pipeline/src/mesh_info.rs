@@ -1,0 +1,256 @@
+//! The summary of a mesh file that `squeal mesh info` prints: nodes, elements, bounds, node
+//! and element sets, materials (the file's and those given on the command line), volume and
+//! Jacobian quality, dofs and nonzeros of K and M, the mass, and the quality findings with
+//! their ids.
+
+use crate::error::{PipelineError, Result};
+use squeal_fe::ElasticMaterial;
+use squeal_mesh::quality::{self, QualityOptions, Severity};
+use squeal_mesh::{Elastic, Mesh, ReadMesh};
+use std::fmt::Display;
+use std::path::Path;
+use std::time::Instant;
+
+/// Appends `text` and a line break.
+fn line(s: &mut String, text: impl Display) {
+    s.push_str(&text.to_string());
+    s.push('\n');
+}
+
+/// One mesh's summary, and whether the quality checks found errors.
+pub fn summary_text(
+    path: &Path,
+    read: &ReadMesh,
+    elapsed: std::time::Duration,
+    all_ids: bool,
+    overrides: &[(String, ElasticMaterial)],
+) -> Result<(String, bool)> {
+    let mut s = String::new();
+    let errors = summary(&mut s, path, read, elapsed, all_ids, overrides)?;
+    Ok((s, errors))
+}
+
+fn summary(
+    s: &mut String,
+    path: &Path,
+    read: &ReadMesh,
+    elapsed: std::time::Duration,
+    all_ids: bool,
+    overrides: &[(String, ElasticMaterial)],
+) -> Result<bool> {
+    let m = &read.mesh;
+    line(s, format_args!("{}", path.display()));
+    line(
+        s,
+        format_args!(
+            "  read in {:.3} s ({} warning(s))",
+            elapsed.as_secs_f64(),
+            read.warnings.len()
+        ),
+    );
+    line(s, format_args!("  nodes     {:>10}", m.num_nodes()));
+    line(
+        s,
+        format_args!("  elements  {:>10}  (10-node tetrahedra)", m.num_elements()),
+    );
+    if let Some((lo, hi)) = m.bounding_box() {
+        line(
+            s,
+            format_args!(
+                "  bounds    x [{:.6}, {:.6}]  y [{:.6}, {:.6}]  z [{:.6}, {:.6}]",
+                lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
+            ),
+        );
+    }
+    sets(s, m);
+    materials(s, m, overrides);
+    let report = quality::check(m, &QualityOptions::default());
+    line(s, format_args!("  volume    {:.9e} m^3", report.volume));
+    line(
+        s,
+        format_args!(
+            "  worst Jacobian ratio (min/max det J) {:.4}",
+            report.worst_jacobian_ratio
+        ),
+    );
+    if !report.has_errors() {
+        fe(s, m, overrides)?;
+    }
+    if report.findings.is_empty() {
+        line(s, format_args!("  quality   no findings"));
+    }
+    for f in &report.findings {
+        let tag = match f.severity {
+            Severity::Error => "ERROR",
+            Severity::Warning => "warning",
+        };
+        line(s, format_args!("  {tag}: {}", f.message));
+        if !f.ids.is_empty() {
+            line(
+                s,
+                format_args!("      ids: {}", format_ids(&f.ids, all_ids)),
+            );
+        }
+    }
+    Ok(report.has_errors())
+}
+
+/// Degrees of freedom, nonzeros of K and M (free part, no restraints) and the mass. A
+/// material given with `--material` that is invalid (E <= 0, nu outside (-1, 0.5), ...) is an
+/// error, as in `squeal reduce`.
+fn fe(s: &mut String, m: &Mesh, overrides: &[(String, ElasticMaterial)]) -> Result<()> {
+    use squeal_fe::{DofMap, MaterialTable, Summary, assemble};
+    let mine: Vec<(String, ElasticMaterial)> = overrides
+        .iter()
+        .filter(|(set, _)| m.element_set(set).is_some())
+        .cloned()
+        .collect();
+    let (materials, known) = match MaterialTable::from_mesh(m, &mine) {
+        Ok(t) => (t, true),
+        Err(e) if !mine.is_empty() => {
+            return Err(PipelineError::input("--material", e));
+        }
+        // The sparsity pattern does not depend on the material: count it with a placeholder.
+        Err(_) => match MaterialTable::uniform(m, ElasticMaterial::isotropic(1.0, 0.3, 1.0)) {
+            Ok(t) => (t, false),
+            Err(e) => {
+                line(s, format_args!("  fe        not assembled: {e}"));
+                return Ok(());
+            }
+        },
+    };
+    let t = Instant::now();
+    let result = DofMap::new(m, &[]).and_then(|dofs| {
+        let system = assemble(m, &materials, &dofs)?;
+        Summary::new(m, &materials, &dofs, &system)
+    });
+    match result {
+        Ok(sum) => {
+            line(
+                s,
+                format_args!(
+                    "  fe        {} dofs (free part), K {} and M {} stored nonzeros, assembled in {:.3} s",
+                    sum.free_dofs,
+                    sum.nnz_k,
+                    sum.nnz_m,
+                    t.elapsed().as_secs_f64()
+                ),
+            );
+            if known {
+                line(s, format_args!("  mass      {:.6e} kg", sum.mass));
+            } else {
+                line(
+                    s,
+                    format_args!(
+                        "  mass      unknown: not every element has a material (give --material SET=E,nu,rho)"
+                    ),
+                );
+            }
+        }
+        Err(e) => line(s, format_args!("  fe        not assembled: {e}")),
+    }
+    Ok(())
+}
+
+fn sets(s: &mut String, m: &Mesh) {
+    if !m.node_sets.is_empty() {
+        line(s, format_args!("  node sets"));
+        for (name, set) in &m.node_sets {
+            line(s, format_args!("    {name:<24} {:>8} nodes", set.len()));
+        }
+    }
+    if !m.element_sets.is_empty() {
+        let materials: Vec<(&str, &str)> = m
+            .sections
+            .iter()
+            .map(|sec| (sec.element_set.as_str(), sec.material.as_str()))
+            .collect();
+        line(s, format_args!("  element sets"));
+        for (name, set) in &m.element_sets {
+            let mat = materials
+                .iter()
+                .rev()
+                .find(|(es, _)| es.eq_ignore_ascii_case(name))
+                .map(|(_, mat)| format!("  material {mat}"))
+                .unwrap_or_default();
+            line(
+                s,
+                format_args!("    {name:<24} {:>8} elements{mat}", set.len()),
+            );
+        }
+    }
+}
+
+fn materials(s: &mut String, m: &Mesh, overrides: &[(String, ElasticMaterial)]) {
+    let given: Vec<&(String, ElasticMaterial)> = overrides
+        .iter()
+        .filter(|(set, _)| m.element_set(set).is_some())
+        .collect();
+    if !given.is_empty() {
+        line(
+            s,
+            format_args!(
+                "  materials given with --material (they replace the file's on their sets)"
+            ),
+        );
+        for (set, mat) in given {
+            line(s, format_args!("    {set:<24} {}", describe(mat)));
+        }
+    }
+    if m.materials.is_empty() {
+        if overrides.is_empty() {
+            line(
+                s,
+                format_args!(
+                    "  materials none in the file (give them on the command line or in a scene)"
+                ),
+            );
+        }
+        return;
+    }
+    line(s, format_args!("  materials in the file"));
+    for (name, mat) in &m.materials {
+        let elastic = match mat.elastic {
+            Some(Elastic::Isotropic { young, poisson }) => {
+                format!("E = {young:.4e} Pa, nu = {poisson}")
+            }
+            Some(Elastic::EngineeringConstants { e, nu, g }) => format!(
+                "E1,E2,E3 = {:.3e},{:.3e},{:.3e} Pa; nu12,nu13,nu23 = {},{},{}; G12,G13,G23 = {:.3e},{:.3e},{:.3e} Pa",
+                e[0], e[1], e[2], nu[0], nu[1], nu[2], g[0], g[1], g[2]
+            ),
+            None => "no elastic constants".to_string(),
+        };
+        let rho = mat
+            .density
+            .map(|r| format!(", rho = {r} kg/m^3"))
+            .unwrap_or_else(|| ", no density".into());
+        line(s, format_args!("    {name:<24} {elastic}{rho}"));
+    }
+}
+
+/// `E = .. Pa, nu = .., rho = .. kg/m^3` of a material given on the command line.
+fn describe(m: &ElasticMaterial) -> String {
+    match *m {
+        ElasticMaterial::Isotropic {
+            young,
+            poisson,
+            density,
+        } => format!("E = {young:.4e} Pa, nu = {poisson}, rho = {density} kg/m^3"),
+        _ => "anisotropic".to_string(),
+    }
+}
+
+fn format_ids(ids: &[u64], all: bool) -> String {
+    const SHOWN: usize = 12;
+    let shown: Vec<String> = ids
+        .iter()
+        .take(if all { ids.len() } else { SHOWN })
+        .map(u64::to_string)
+        .collect();
+    let more = if !all && ids.len() > SHOWN {
+        format!(" ... ({} in all; --all-ids lists them)", ids.len())
+    } else {
+        String::new()
+    };
+    format!("{}{more}", shown.join(" "))
+}
