@@ -142,34 +142,14 @@ pub fn solve_on_branch(
         );
         return Ok(None);
     }
-    println!(
-        "the branch crosses mu = {mu:.6} {} time(s):",
-        crossings.len()
-    );
-    for (k, c) in crossings.iter().enumerate() {
-        let (pair, p2p) = c.cycle.loudest();
-        println!(
-            "  {}. after branch point {}: {:.4} Hz, pair {} {:.3} um peak to peak, {}{}",
-            k + 1,
-            c.after_point,
-            c.cycle.frequency_hz(),
-            pair + 1,
-            p2p * 1e6,
-            c.stability
-                .map_or("stability not computed".to_string(), |s| s.to_string()),
-            c.largest_multiplier
-                .map_or(String::new(), |r| format!(" (largest multiplier {r:.5})"))
-        );
-    }
+    print!("{}", chbm::crossings_text(mu, &crossings));
     let Some((i, start, sol)) = chosen else {
         return Ok(None);
     };
     println!(
         "CHBM starts from cycle {} ({})",
         i + 1,
-        crossings[i]
-            .stability
-            .map_or("stability not computed".to_string(), |s| s.to_string())
+        crossings[i].verdict()
     );
     write_solution(p, mu, &start, &sol, vtu)?;
     Ok(Some(sol))

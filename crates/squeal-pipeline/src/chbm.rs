@@ -69,6 +69,40 @@ pub struct BranchCycle {
     pub largest_multiplier: Option<f64>,
 }
 
+impl BranchCycle {
+    /// `"stable"`, `"unstable"`, ... or that it was not computed.
+    pub fn verdict(&self) -> String {
+        self.stability
+            .map_or("stability not computed".to_string(), |s| s.to_string())
+    }
+}
+
+/// The crossings of `mu` by the branch, one line each (frequency, loudest pair's peak-to-peak
+/// closure, stability and largest multiplier), as `squeal chbm` prints them.
+pub fn crossings_text(mu: f64, crossings: &[BranchCycle]) -> String {
+    let mut s = format!(
+        "the branch crosses mu = {mu:.6} {} time(s):\n",
+        crossings.len()
+    );
+    for (k, c) in crossings.iter().enumerate() {
+        let (pair, p2p) = c.cycle.loudest();
+        let multiplier = c
+            .largest_multiplier
+            .map_or(String::new(), |r| format!(" (largest multiplier {r:.5})"));
+        let _ = writeln!(
+            s,
+            "  {}. after branch point {}: {:.4} Hz, pair {} {:.3} um peak to peak, {}{multiplier}",
+            k + 1,
+            c.after_point,
+            c.cycle.frequency_hz(),
+            pair + 1,
+            p2p * 1e6,
+            c.verdict(),
+        );
+    }
+    s
+}
+
 /// What [`solve_along_branch`] found: every crossing of μ, and CHBM from the chosen one with
 /// its start (the equilibrium at μ and the in-band mode nearest the cycle's frequency).
 pub type AlongBranch = (Vec<BranchCycle>, Option<(usize, ChbmStart, ChbmSolution)>);
