@@ -231,12 +231,17 @@ fn along(
 ) -> Result<SparseVec, BrakeError> {
     let mut v = Vec::new();
     let mut rest = w;
+    // A direction computed from the mesh (a face normal, a tangent) has round-off components
+    // of 1e-17 where it lies along a dof's axis: they are dropped, so that such a pair keeps
+    // one entry per direction instead of three (every contact force and its Jacobian costs in
+    // proportion), and the direction moves by no more than 64 ε.
+    let negligible = 64.0 * f64::EPSILON * dot(w, w).sqrt();
     for (dof, e) in point_dofs(part, point) {
         let c = dot(w, e);
         for d in 0..3 {
             rest[d] -= c * e[d];
         }
-        if c != 0.0 {
+        if c.abs() > negligible {
             v.push((shift + dof, sign * c));
         }
     }
