@@ -3,7 +3,8 @@
 //! default step and for a finer one that gives about 100 cycles.
 //!
 //! `cargo bench -p squeal-pipeline --bench branch` (options after `--`: `level=coarse` or
-//! `medium`, `reps=N` (1)).
+//! `medium`, `reps=N` (1), `coverage=c` (Hill's strip coverage, default 0.02: with another
+//! value each cycle's verdict and largest multiplier are compared with the default's)).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -47,7 +48,10 @@ fn main() {
         let mut opts = BranchOptions::default();
         opts.continuation.max_step = max_step;
         let (tc, b) = best(reps, || follow_from_hopf(&mb, &nf, &opts).unwrap());
-        let h = HillOptions::default();
+        let mut h = HillOptions::default();
+        if let Some(c) = arg("coverage") {
+            h.coverage = c.parse().unwrap();
+        }
         let one = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
             .build()
@@ -64,6 +68,19 @@ fn main() {
             differ, 0,
             "exponents of {differ} cycles depend on the thread count"
         );
+        if h.coverage != HillOptions::default().coverage {
+            let reference = hill_along(&mb, &b, None, &HillOptions::default());
+            let (mut verdicts, mut worst) = (0, 0.0f64);
+            for (a, r) in fnn.iter().zip(&reference) {
+                let (a, r) = (a.as_ref().unwrap(), r.as_ref().unwrap());
+                verdicts += usize::from(a.stability() != r.stability());
+                worst = worst.max((a.largest_multiplier() - r.largest_multiplier()).abs());
+            }
+            println!(
+                "coverage {}: {verdicts} verdicts differ from coverage 0.02; largest multiplier moduli differ by at most {worst:.1e}",
+                h.coverage
+            );
+        }
         let (hmin, hmax) = b.points.iter().fold((usize::MAX, 0), |(lo, hi), p| {
             (lo.min(p.harmonics), hi.max(p.harmonics))
         });
