@@ -3,7 +3,7 @@
 //! default step and for a finer one that gives about 100 cycles.
 //!
 //! `cargo bench -p squeal-pipeline --bench branch` (options after `--`: `level=coarse` or
-//! `medium`, `reps=N` (1), `coverage=c` (Hill's strip coverage, default 0.02: with another
+//! `medium`, `reps=N` (1), `coverage=c` (Hill's strip coverage, default 0.01: with another
 //! value each cycle's verdict and largest multiplier are compared with the default's)).
 
 #[path = "../tests/common/mod.rs"]
@@ -77,8 +77,9 @@ fn main() {
                 worst = worst.max((a.largest_multiplier() - r.largest_multiplier()).abs());
             }
             println!(
-                "coverage {}: {verdicts} verdicts differ from coverage 0.02; largest multiplier moduli differ by at most {worst:.1e}",
-                h.coverage
+                "coverage {}: {verdicts} verdicts differ from coverage {}; largest multiplier moduli differ by at most {worst:.1e}",
+                h.coverage,
+                HillOptions::default().coverage
             );
         }
         let (hmin, hmax) = b.points.iter().fold((usize::MAX, 0), |(lo, hi), p| {
