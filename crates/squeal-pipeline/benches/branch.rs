@@ -3,8 +3,9 @@
 //! default step and for a finer one that gives about 100 cycles.
 //!
 //! `cargo bench -p squeal-pipeline --bench branch` (options after `--`: `level=coarse` or
-//! `medium`, `reps=N` (1), `coverage=c` (Hill's strip coverage, default 0.01: with another
-//! value each cycle's verdict and largest multiplier are compared with the default's)).
+//! `medium`, `reps=N` (1), `coverage=c` (Hill's strip coverage, default 0.01) and `tolerance=t`
+//! (its Ritz acceptance, default 1e-10): with other values each cycle's verdict and largest
+//! multiplier are compared with the defaults').
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -52,6 +53,9 @@ fn main() {
         if let Some(c) = arg("coverage") {
             h.coverage = c.parse().unwrap();
         }
+        if let Some(t) = arg("tolerance") {
+            h.tolerance = t.parse().unwrap();
+        }
         let one = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
             .build()
@@ -68,7 +72,9 @@ fn main() {
             differ, 0,
             "exponents of {differ} cycles depend on the thread count"
         );
-        if h.coverage != HillOptions::default().coverage {
+        if h.coverage != HillOptions::default().coverage
+            || h.tolerance != HillOptions::default().tolerance
+        {
             let reference = hill_along(&mb, &b, None, &HillOptions::default());
             let (mut verdicts, mut worst) = (0, 0.0f64);
             for (a, r) in fnn.iter().zip(&reference) {
@@ -77,9 +83,8 @@ fn main() {
                 worst = worst.max((a.largest_multiplier() - r.largest_multiplier()).abs());
             }
             println!(
-                "coverage {}: {verdicts} verdicts differ from coverage {}; largest multiplier moduli differ by at most {worst:.1e}",
-                h.coverage,
-                HillOptions::default().coverage
+                "coverage {}, tolerance {:e}: {verdicts} verdicts differ from the defaults'; largest multiplier moduli differ by at most {worst:.1e}",
+                h.coverage, h.tolerance
             );
         }
         let (hmin, hmax) = b.points.iter().fold((usize::MAX, 0), |(lo, hi), p| {
