@@ -16,9 +16,10 @@
 //!   rotation where the sense is known).
 //! - **surface speed** `V_p = Ω (σ a × (x_p - c)) · s_p`, `Ω r_p` for tangent sliding on a
 //!   face normal to the axis, when the speed is known.
-//! - **piston**: the load pushes the pad towards the disc along the pads' mean normal
-//!   `-Σ A_p n_p / |Σ A_p n_p|`, projected on each piston point's dof (its axis, or the
-//!   direction of a `DofLabel::Along`).
+//! - **piston**: the load pushes the pad towards the disc: a piston point with one dof (the
+//!   piston's axis, a coordinate axis or a `DofLabel::Along`) pushes along it, towards the
+//!   disc, and its axis must be within [`NORMAL_TOLERANCE_DEG`] of the pads' mean normal
+//!   `Σ A_p n_p / |Σ A_p n_p|`; a point with several dofs pushes along `-n` itself.
 //!
 //! A rigid motion of the meshes with the scene's axis, point and normal moved alike moves every
 //! one of these with it, so the brake's spectrum does not change.
@@ -459,11 +460,31 @@ pub fn assemble(
     }
     let mut f_piston = vec![0.0; n];
     let share = params.piston_force / pistons.len() as f64;
+    let aligned = NORMAL_TOLERANCE_DEG.to_radians().cos();
     for &p in &pistons {
-        // The piston pushes the pad toward the disc: along -n. The point's dofs must span the
-        // normal, or part of the load would be lost.
-        for (dof, w) in along(pad, "pad", p, normal, nd, -1.0)? {
-            f_piston[dof] += share * w;
+        match point_dofs(pad, p).as_slice() {
+            // The piston's own axis (its one dof): it pushes along it, towards the disc. The
+            // axis is the scene's normal or rotation axis, within NORMAL_TOLERANCE_DEG of the
+            // mesh's, so a few degrees between the two do not refuse the brake.
+            [(dof, e)] => {
+                let c = dot(*e, normal);
+                if c.abs() < aligned {
+                    return Err(BrakeError::MissingPointDof {
+                        part: "pad",
+                        point: p + 1,
+                        direction: normal,
+                        missing: (1.0 - c * c).max(0.0).sqrt(),
+                    });
+                }
+                f_piston[nd + dof] -= share * c.signum();
+            }
+            // Several dofs: the piston pushes the pad toward the disc, along -n; the point's
+            // dofs must span the normal, or part of the load would be lost.
+            _ => {
+                for (dof, w) in along(pad, "pad", p, normal, nd, -1.0)? {
+                    f_piston[dof] += share * w;
+                }
+            }
         }
     }
     let brake = Brake {

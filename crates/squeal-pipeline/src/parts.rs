@@ -338,12 +338,32 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
     })
 }
 
+/// The direction from the disc into the pad that the geometric defaults use: `[contact]
+/// normal` when the scene gives one; else the `[rotation]` axis (or z), turned to point from
+/// the disc's centroid towards the pad's (the axis' sign is free: the same disc turns
+/// clockwise about `a` and counterclockwise about `-a`).
+fn default_direction(scene: &Scene, disc: &Mesh, pad: &Mesh) -> Result<[f64; 3]> {
+    if let Some(n) = scene.normal()? {
+        return Ok(unit(n));
+    }
+    let a = unit(scene.contact_direction()?);
+    let centroid = |m: &Mesh| {
+        let k = m.nodes.len().max(1) as f64;
+        m.nodes.iter().fold([0.0; 3], |c, x| {
+            [c[0] + x[0] / k, c[1] + x[1] / k, c[2] + x[2] / k]
+        })
+    };
+    let (cd, cp) = (centroid(disc), centroid(pad));
+    let side: f64 = (0..3).map(|i| a[i] * (cp[i] - cd[i])).sum();
+    Ok(if side < 0.0 { a.map(|x| -x) } else { a })
+}
+
 /// Chooses the sets of the scene on both meshes (in SI) and adds those chosen by geometry to
 /// the meshes as node sets (see the module docs). Returns them in the order disc clamp, disc
 /// contact face, pad friction face, pad pistons, pad abutments.
 pub fn choose_sets(scene: &Scene, disc: &mut Mesh, pad: &mut Mesh) -> Result<Vec<ChosenSet>> {
     let rules = scene.set_rules()?;
-    let n = unit(scene.contact_direction()?);
+    let n = default_direction(scene, disc, pad)?;
     let disc_faces = select::boundary_faces(disc);
     let pad_faces = select::boundary_faces(pad);
     let mut chosen: Vec<ChosenSet> = Vec::with_capacity(5);

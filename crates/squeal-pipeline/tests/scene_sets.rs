@@ -521,3 +521,48 @@ fn patch_grids_pair_when_both_meshes_resolve_their_edges() {
     .unwrap_err();
     assert!(bad.contains("sets.patch_grid"), "{bad}");
 }
+
+#[test]
+fn the_defaults_do_not_depend_on_the_sign_of_the_rotation_axis() {
+    // Without [contact] normal the defaults take the rotation axis, turned towards the pad:
+    // the bundled disc described as turning counterclockwise about -z (the same motion as
+    // clockwise about +z) must give the named clamp and contact faces, not the pad's back face
+    // (exact node lists).
+    let text = std::fs::read_to_string(meshes().join("brake.toml")).unwrap();
+    let flipped: String = text
+        .lines()
+        .filter(|l| !l.starts_with("normal = "))
+        .map(|l| match l {
+            "axis = [0.0, 0.0, 1.0]" => "axis = [0.0, 0.0, -1.0]\n".to_string(),
+            "sense = \"clockwise\"" => "sense = \"counterclockwise\"\n".to_string(),
+            _ => format!("{l}\n"),
+        })
+        .collect();
+    assert!(flipped.contains("axis = [0.0, 0.0, -1.0]") && flipped.contains("counterclockwise"));
+    let flipped = flipped
+        .replace("disc_medium.inp", "disc_coarse.inp")
+        .replace("pad_medium.inp", "pad_coarse.inp");
+    let scene = Scene::parse(
+        &meshes().join("scene.toml"),
+        format!("{flipped}\n[sets.pad]\n{}\n", abutment_rule()),
+    )
+    .unwrap();
+    assert!(scene.normal().unwrap().is_none());
+    let (disc0, pad0) = (read("disc_coarse.inp"), read("pad_coarse.inp"));
+    let (mut disc, mut pad) = (disc0.clone(), pad0.clone());
+    disc.node_sets.clear();
+    pad.node_sets.retain(|k, _| k == "PISTON");
+    let chosen = choose_sets(&scene, &mut disc, &mut pad).unwrap();
+    for (c, (mesh, name)) in chosen.iter().zip([
+        (&disc0, "CLAMP"),
+        (&disc0, "CONTACT_FACE"),
+        (&pad0, "CONTACT_FACE"),
+    ]) {
+        assert_eq!(
+            c.nodes(),
+            mesh.node_set(name).unwrap(),
+            "{} vs {name}",
+            c.key
+        );
+    }
+}

@@ -810,9 +810,14 @@ impl Scene {
         }
     }
 
-    /// `contact.pairing_tolerance` in metres.
+    /// `contact.pairing_tolerance` in metres: a given value is in the `[units]` length; the
+    /// default is 1 mm whatever the units (it has no span: it was not written in the file).
     pub fn pairing_tolerance(&self) -> Result<f64> {
-        Ok(self.file.contact.pairing_tolerance.get_ref() * self.length_unit()?)
+        let t = &self.file.contact.pairing_tolerance;
+        if t.span() == (0..0) {
+            return Ok(*t.get_ref());
+        }
+        Ok(t.get_ref() * self.length_unit()?)
     }
 
     /// `contact.point_area` in m².
@@ -1013,6 +1018,33 @@ pub fn parse_range(s: &str) -> std::result::Result<Vec<f64>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_default_pairing_tolerance_is_one_millimetre_in_any_units() {
+        // The default is in metres (1e-3); only a value the file gives is in its units.
+        let base = std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/brake.toml"),
+        )
+        .unwrap();
+        let without: String = base
+            .lines()
+            .filter(|l| !l.starts_with("pairing_tolerance"))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        let mm = format!("{without}\n[units]\nsystem = \"mm-t-s\"\n");
+        let path = Path::new("/scenes/brake.toml");
+        for text in [without.clone(), mm.clone()] {
+            let s = Scene::parse(path, text).unwrap();
+            assert_eq!(s.pairing_tolerance().unwrap(), 1e-3);
+        }
+        let given = mm.replace("[contact]\n", "[contact]\npairing_tolerance = 0.5\n");
+        let s = Scene::parse(path, given).unwrap();
+        assert_eq!(
+            s.pairing_tolerance().unwrap(),
+            0.5e-3,
+            "0.5 mm given in mm-t-s"
+        );
+    }
 
     #[test]
     fn cubic_fit_recovers_an_exact_law() {

@@ -5,7 +5,8 @@
 //! `"in-lbf-s"`; see [`squeal_mesh::units::SYSTEMS`]) says in which consistent system the
 //! meshes' coordinates and materials, the `[materials]` constants and every scene key without
 //! a unit in its name are written (lengths such as `contact.pairing_tolerance`,
-//! `disc.rolling_radius`, the points, radii and tolerances of `[sets]`; areas such as
+//! `contact.initial_gap`, `rotation.point`, `rotation.rolling_radius`, `disc.rolling_radius`,
+//! `disc.axis_origin`, the points, radii and tolerances of `[sets]`; areas such as
 //! `piston.area`; `contact.k_*_per_area`). Everything is converted to SI on reading. Keys
 //! with a unit in their name (`line_pressure_bar`, `compression_curve`'s `pressure_mpa` and
 //! `closure_um`, `vehicle_speed_kmh`, `band_hz`) keep that unit whatever the system.

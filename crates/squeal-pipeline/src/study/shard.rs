@@ -299,7 +299,9 @@ fn parse_name(file: &str, kind: Kind) -> Option<(usize, usize)> {
         .strip_prefix('-')?
         .strip_suffix(".json")?;
     let (i, n) = rest.split_once("-of-")?;
-    Some((i.parse().ok()?, n.parse().ok()?))
+    let (i, n): (usize, usize) = (i.parse().ok()?, n.parse().ok()?);
+    // Only the names `path` writes: `damping-01-of-2.json` is not shard 1 of 2.
+    (format!("{}-{i}-of-{n}.json", name(kind)) == file).then_some((i, n))
 }
 
 /// Reads and checks the `n` shard files of study `kind` in `<dir>/shards`: all present, from
@@ -333,6 +335,7 @@ pub fn read_all(dir: &Path, kind: Kind, identity: &Identity) -> Result<Vec<Shard
         ));
     };
     let mut counts: Vec<usize> = found.iter().map(|f| f.1).collect();
+    counts.sort_unstable();
     counts.dedup();
     if counts.len() > 1 {
         return Err(PipelineError::input(
@@ -355,8 +358,10 @@ pub fn read_all(dir: &Path, kind: Kind, identity: &Identity) -> Result<Vec<Shard
             format!("there is no shard {i} of {n}: remove the file"),
         ));
     }
+    // At most a few missing are named: a stray `-of-99999999999` must not list them all.
     let missing: Vec<String> = (1..=n)
         .filter(|i| !found.iter().any(|f| f.0 == *i))
+        .take(20)
         .map(|i| format!("{i}/{n}"))
         .collect();
     if !missing.is_empty() {
@@ -462,6 +467,17 @@ pub fn collect(kind: Kind, levels: &[String], files: Vec<ShardFile>) -> Result<C
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn only_the_names_a_shard_is_written_under_are_read() {
+        assert_eq!(
+            parse_name("damping-1-of-2.json", Kind::Damping),
+            Some((1, 2))
+        );
+        assert_eq!(parse_name("damping-01-of-2.json", Kind::Damping), None);
+        assert_eq!(parse_name("damping-1-of-+2.json", Kind::Damping), None);
+        assert_eq!(parse_name("pressure-1-of-2.json", Kind::Damping), None);
+    }
 
     #[test]
     fn shard_arguments_are_checked() {
