@@ -14,7 +14,7 @@
 
 mod common;
 
-use common::{bundled_scene, squeal, temp_dir};
+use common::{bundled_scene, run_ok, squeal, temp_dir};
 use std::path::Path;
 
 /// μ0 and its frequency: `squeal stability` refines μ0 to a bracket of 1e-8 (5.0e-9 measured).
@@ -42,17 +42,6 @@ fn number(v: &serde_json::Value, key: &str) -> f64 {
     v[key]
         .as_f64()
         .unwrap_or_else(|| panic!("{key} missing in {v}"))
-}
-
-fn run_ok(args: &[&str]) -> String {
-    let out = squeal(args);
-    assert!(
-        out.status.success(),
-        "squeal {args:?} failed:\n{}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
 #[test]

@@ -7,19 +7,9 @@
 
 mod common;
 
-use common::{bundled_scene, squeal, temp_dir};
+use common::{bundled_scene, run_ok, temp_dir};
 use std::path::Path;
-
-fn run_ok(args: &[&str]) -> String {
-    let out = squeal(args);
-    assert!(
-        out.status.success(),
-        "squeal {args:?} failed:\n{}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
+use std::path::PathBuf;
 
 fn read(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("reading {}: {e}", path.display()))
@@ -41,21 +31,24 @@ fn assert_no_debug_formatting(text: &str, what: &str) {
     }
 }
 
+/// `squeal run <bundled scene on the coarse meshes> -o <folder>/out <extra>` in a fresh folder
+/// named after `name`; returns the folder and the output folder.
+fn coarse_run(name: &str, extra: &[&str]) -> (PathBuf, PathBuf) {
+    let dir = temp_dir("report", name);
+    let scene = dir.join("brake.toml");
+    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
+    let out = dir.join("out");
+    let mut args = vec!["run", scene.to_str().unwrap(), "-o", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    run_ok(&args);
+    (dir, out)
+}
+
 /// `squeal run --no-compare` on the coarse brake (about 40 s: the reduction, the 201-point
 /// sweep and one CHBM solve).
 #[test]
 fn the_report_shows_both_instabilities_of_the_coarse_brake() {
-    let dir = temp_dir("report", "coarse");
-    let scene = dir.join("brake.toml");
-    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
-    let out = dir.join("out");
-    run_ok(&[
-        "run",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--no-compare",
-    ]);
+    let (dir, out) = coarse_run("coarse", &["--no-compare"]);
     let html = read(&out.join("index.html"));
     let md = read(&out.join("index.md"));
     assert_no_debug_formatting(&html, "index.html");
@@ -226,20 +219,10 @@ fn check_in_browser(out: &Path, images: usize) {
 #[test]
 #[ignore = "about 2 to 4 minutes: the reference time integration"]
 fn the_report_has_the_comparison_tables_and_failures() {
-    let dir = temp_dir("report", "compare");
-    let scene = dir.join("brake.toml");
-    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
-    let out = dir.join("out");
-    run_ok(&[
-        "run",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--compare-mu-ratio",
-        "1.1",
-        "--compare-rtol",
-        "1e-5",
-    ]);
+    let (dir, out) = coarse_run(
+        "compare",
+        &["--compare-mu-ratio", "1.1", "--compare-rtol", "1e-5"],
+    );
     let html = read(&out.join("index.html"));
     assert_no_debug_formatting(&html, "index.html");
     assert!(html.contains("4061 Hz from μ ≈ 0.462; 2952 Hz from μ ≈ 0.772"));

@@ -25,6 +25,19 @@ pub fn squeal(args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// Runs the `squeal` binary and returns its standard output; fails the test, with both
+/// outputs, when it exits non-zero.
+pub fn run_ok(args: &[&str]) -> String {
+    let out = squeal(args);
+    assert!(
+        out.status.success(),
+        "squeal {args:?} failed:\n{}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
 /// The text of `meshes/brake.toml` with its disc and pad meshes at `level`, as absolute paths
 /// (so the scene can be written elsewhere; the mesh study finds the other levels by the
 /// `_<level>` suffix).

@@ -67,8 +67,7 @@ pub(crate) fn solve_sliced(
     } = pencil;
     let t0 = Instant::now();
     let n = k.nrows();
-    let constraints = constrained.map(ConstrainedFactor::constraints);
-    let dim = n - constraints.map_or(0, |c| c.len());
+    let (constraints, dim) = (pencil.constraints(), pencil.dim());
     let target = (nev + opts.guard).min(dim);
     let max_shifts = SHIFTS_PER_SLICE * target.div_ceil(opts.slice) + 2;
     let mut stats = EigStats::default();

@@ -247,6 +247,19 @@ pub(crate) struct FactoredPencil<'a> {
     pub constrained: Option<&'a ConstrainedFactor<'a>>,
 }
 
+impl<'a> FactoredPencil<'a> {
+    /// The constraints `C φ = 0`, if any.
+    pub fn constraints(&self) -> Option<&'a Constraints> {
+        self.constrained.map(ConstrainedFactor::constraints)
+    }
+
+    /// How many eigenpairs the (constrained) pencil has: its size less the constraints.
+    pub fn dim(&self) -> usize {
+        let n = self.k.nrows();
+        n.saturating_sub(self.constraints().map_or(0, Constraints::len))
+    }
+}
+
 /// Checks, then [`solve_checked`] with a factor given by the caller.
 fn with_factor(
     pencil: FactoredPencil<'_>,
@@ -340,9 +353,7 @@ fn solve_checked(
         factor,
         constrained,
     } = pencil;
-    let n = k.nrows();
-    let constraints = constrained.map(ConstrainedFactor::constraints);
-    let dim = n.saturating_sub(constraints.map_or(0, Constraints::len));
+    let (constraints, dim) = (pencil.constraints(), pencil.dim());
     if nev == 0 || nev > dim {
         return Err(EigError::TooManyRequested {
             requested: nev,
