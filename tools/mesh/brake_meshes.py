@@ -1,18 +1,24 @@
 #!/usr/bin/env python3
 """Generate squeal's bundled disc and pad meshes (10-node tetrahedra) with Gmsh.
 
-For each refinement level (coarse, medium, fine) and each part (disc, pad) this writes
+For each refinement level (coarse, medium, fine) and each part of a brake this writes
 ``meshes/<part>_<level>.msh`` (Gmsh MSH 4.1 ASCII, physical groups named) and
 ``meshes/<part>_<level>.inp`` (Abaqus input: *NODE, *ELEMENT TYPE=C3D10, *NSET, materials and
 sections). The geometry, the sets and the materials are described in ``meshes/README.md``.
 
+Two brakes (``--brake``): the one-pad brake (the default) is ``disc`` and ``pad``; the two-pad
+brake is ``two_pad/disc`` (the same disc with the outboard footprint imprinted on its bottom
+face too) and ``two_pad/outboard`` (a second pad on the disc's bottom face), and reuses the
+one-pad brake's ``pad`` as its inboard pad (not written again).
+
 Usage (from the repository root)::
 
-    python3 tools/mesh/brake_meshes.py                  # the bundled levels into meshes/
+    python3 tools/mesh/brake_meshes.py                  # the bundled one-pad levels into meshes/
     python3 tools/mesh/brake_meshes.py --levels coarse  # one level
+    python3 tools/mesh/brake_meshes.py --brake two-pad  # meshes/two_pad/{disc,outboard}_<level>
     python3 tools/mesh/brake_meshes.py --levels huge --parts disc --out-dir /tmp/squeal-huge
                                                         # ~1M-dof disc of the scaling study
-    python3 tools/mesh/check_meshes.py                  # verify what was written
+    python3 tools/mesh/check_meshes.py                  # verify what was written (both brakes)
 
 The output is deterministic: Gmsh runs on one thread with its serial Delaunay mesher, and
 nothing time- or host-dependent is written.
@@ -121,10 +127,12 @@ def set_common_options(level: Level, max_size: float) -> None:
     opt("Geometry.OCCParallel", 0)
 
 
-def patch_sector_faces(z: float) -> list[int]:
-    """The 3 x 3 contact patches as OCC faces at height z, numbered as geo.patch_index."""
+def patch_sector_faces(pad: geo.PadGeometry) -> list[int]:
+    """The 3 x 3 contact patches of a pad's footprint as OCC faces on its friction face's plane,
+    numbered as geo.patch_index."""
     occ = gmsh.model.occ
-    radii = geo.patch_radii()
+    z = pad.face_z
+    radii = geo.patch_radii(pad)
     angles = geo.patch_angles()
     centre = occ.addPoint(0.0, 0.0, z)
     pts = [[occ.addPoint(r * math.cos(a), r * math.sin(a), z) for a in angles] for r in radii]
@@ -190,7 +198,8 @@ def check_cad_volume(volumes: list[int], exact: float, what: str) -> None:
 
 
 def contact_size_field(patches: list[int], level: Level) -> None:
-    """Mesh size: contact_size on the footprint patches, growing to disc_size away from them."""
+    """Mesh size: contact_size on the footprints' patches, growing to disc_size away from them
+    (over level.transition from the nearest patch)."""
     field = gmsh.model.mesh.field
     dist = field.add("Distance")
     field.setNumbers(dist, "SurfacesList", patches)
@@ -204,10 +213,13 @@ def contact_size_field(patches: list[int], level: Level) -> None:
     field.setAsBackgroundMesh(thr)
 
 
-def build_disc(level: Level) -> None:
-    """Disc: braking annulus, hat wall and hub flange, top face under the pad in 9 patches."""
+def build_disc(level: Level, part: geo.Part) -> None:
+    """Disc: braking annulus, hat wall and hub flange, each pad's footprint in 9 patches.
+
+    The sets of a footprint are named CONTACT_FACE, CONTACT_PATCH_k and CONTACT followed by the
+    pad's disc_suffix (CONTACT_PATCH_OUTBOARD_k for the outboard pad)."""
     occ = gmsh.model.occ
-    gmsh.model.add(f"disc_{level.name}")
+    gmsh.model.add(part.stem.replace("/", "_") + f"_{level.name}")
     set_common_options(level, level.disc_size)
     # The annulus as two half-thickness layers sharing a conforming mid-plane face: no tet can
     # reach from one braking face to the other, so there are >= 2 elements through the thickness.
@@ -221,16 +233,20 @@ def build_disc(level: Level) -> None:
         + tube(geo.DISC_R_IN, geo.HAT_R_OUT, geo.FLANGE_Z_TOP, geo.DISC_Z_BOTTOM)
         + tube(geo.BORE_R, geo.HAT_R_OUT, geo.FLANGE_Z_BOTTOM, geo.FLANGE_Z_TOP)
     )
-    patches_in = patch_sector_faces(geo.DISC_Z_TOP)
+    patches_in = [f for pad in part.pads for f in patch_sector_faces(pad)]
     out, out_map = occ.fragment(parts, [(2, f) for f in patches_in])
-    patch_tags = [_single_child(out_map[len(parts) + k], 2) for k in range(9)]
+    patch_tags = [
+        [_single_child(out_map[len(parts) + 9 * n + k], 2) for k in range(9)]
+        for n in range(len(part.pads))
+    ]
     volumes = sorted(t for d, t in out if d == 3)
     check_cad_volume(volumes, geo.disc_volume(), "disc")
-    contact_pts = add_points(geo.contact_points(geo.DISC_Z_TOP))
+    contact_pts = [add_points(geo.contact_points(pad)) for pad in part.pads]
     occ.synchronize()
 
-    for k, p in enumerate(contact_pts):
-        gmsh.model.mesh.embed(0, [p], 2, patch_tags[k])
+    for pts, tags in zip(contact_pts, patch_tags):
+        for k, p in enumerate(pts):
+            gmsh.model.mesh.embed(0, [p], 2, tags[k])
     boundary = gmsh.model.getBoundary([(3, v) for v in volumes], oriented=False)
     clamp = faces_at(
         boundary,
@@ -239,26 +255,36 @@ def build_disc(level: Level) -> None:
 
     physical(3, volumes, "DISC")
     physical(2, clamp, "CLAMP")
-    physical(2, patch_tags, "CONTACT_FACE")
-    for k, tag in enumerate(patch_tags):
-        physical(2, [tag], f"CONTACT_PATCH_{k + 1}")
-    physical(0, contact_pts, "CONTACT")
-    contact_size_field(patch_tags, level)
+    for pad, pts, tags in zip(part.pads, contact_pts, patch_tags):
+        physical(2, tags, f"CONTACT_FACE{pad.disc_suffix}")
+        for k, tag in enumerate(tags):
+            physical(2, [tag], f"CONTACT_PATCH{pad.disc_suffix}_{k + 1}")
+        physical(0, pts, f"CONTACT{pad.disc_suffix}")
+    contact_size_field([t for tags in patch_tags for t in tags], level)
 
 
-def build_pad(level: Level) -> None:
-    """Pad: lining and backplate sectors fragmented together, friction face split into 9 patches."""
+def pad_layer(pad: geo.PadGeometry, z0: float, z1: float) -> list[tuple[int, int]]:
+    """The pad's sector between two of its heights, in either order."""
+    return sector(pad.r_in, pad.r_out, min(z0, z1), max(z0, z1))
+
+
+def build_pad(level: Level, part: geo.Part) -> None:
+    """Pad: lining and backplate sectors fragmented together, friction face split into 9 patches.
+
+    Sets: LINING, BACKPLATE (elements); CONTACT_FACE, CONTACT_PATCH_k, CONTACT, ABUTMENT and the
+    load points (pad.load_set)."""
     occ = gmsh.model.occ
-    gmsh.model.add(f"pad_{level.name}")
+    (pad,) = part.pads
+    gmsh.model.add(part.stem.replace("/", "_") + f"_{level.name}")
     set_common_options(level, level.pad_size)
     # The lining as two half-thickness layers (see build_disc): >= 2 elements through it.
     if level.two_layers:
-        lining = sector(geo.PAD_R_IN, geo.PAD_R_OUT, geo.LINING_Z_BOTTOM, geo.LINING_Z_MID)
-        lining += sector(geo.PAD_R_IN, geo.PAD_R_OUT, geo.LINING_Z_MID, geo.LINING_Z_TOP)
+        lining = pad_layer(pad, pad.face_z, pad.lining_mid_z)
+        lining += pad_layer(pad, pad.lining_mid_z, pad.lining_back_z)
     else:
-        lining = sector(geo.PAD_R_IN, geo.PAD_R_OUT, geo.LINING_Z_BOTTOM, geo.LINING_Z_TOP)
-    backplate = sector(geo.PAD_R_IN, geo.PAD_R_OUT, geo.LINING_Z_TOP, geo.BACKPLATE_Z_TOP)
-    patches_in = patch_sector_faces(geo.LINING_Z_BOTTOM)
+        lining = pad_layer(pad, pad.face_z, pad.lining_back_z)
+    backplate = pad_layer(pad, pad.lining_back_z, pad.back_z)
+    patches_in = patch_sector_faces(pad)
     solids = lining + backplate
     out, out_map = occ.fragment(solids, [(2, f) for f in patches_in])
     lining_vols = sorted(t for k in range(len(lining)) for d, t in out_map[k] if d == 3)
@@ -266,10 +292,10 @@ def build_pad(level: Level) -> None:
         t for k in range(len(lining), len(solids)) for d, t in out_map[k] if d == 3
     )
     patch_tags = [_single_child(out_map[len(solids) + k], 2) for k in range(9)]
-    check_cad_volume(lining_vols, geo.lining_volume(), "lining")
-    check_cad_volume(backplate_vols, geo.backplate_volume(), "backplate")
-    contact_pts = add_points(geo.contact_points(geo.LINING_Z_BOTTOM))
-    piston_pts = add_points(geo.piston_points())
+    check_cad_volume(lining_vols, geo.lining_volume(pad), "lining")
+    check_cad_volume(backplate_vols, geo.backplate_volume(pad), "backplate")
+    contact_pts = add_points(geo.contact_points(pad))
+    load_pts = add_points(geo.load_points(pad))
     occ.synchronize()
 
     for k, p in enumerate(contact_pts):
@@ -277,11 +303,11 @@ def build_pad(level: Level) -> None:
     back_boundary = gmsh.model.getBoundary([(3, v) for v in backplate_vols], oriented=False)
     back_face = faces_at(
         back_boundary,
-        lambda b: abs(b[2] - geo.BACKPLATE_Z_TOP) < 1e-6 and abs(b[5] - geo.BACKPLATE_Z_TOP) < 1e-6,
+        lambda b: abs(b[2] - pad.back_z) < 1e-6 and abs(b[5] - pad.back_z) < 1e-6,
     )
     if len(back_face) != 1:
         raise RuntimeError(f"expected one backplate back face, found {back_face}")
-    gmsh.model.mesh.embed(0, piston_pts, 2, back_face[0])
+    gmsh.model.mesh.embed(0, load_pts, 2, back_face[0])
     abutment = sector_end_faces(back_boundary)
     if len(abutment) != 2:
         raise RuntimeError(f"expected two backplate end faces, found {abutment}")
@@ -293,7 +319,7 @@ def build_pad(level: Level) -> None:
         physical(2, [tag], f"CONTACT_PATCH_{k + 1}")
     physical(2, abutment, "ABUTMENT")
     physical(0, contact_pts, "CONTACT")
-    physical(0, piston_pts, "PISTON")
+    physical(0, load_pts, pad.load_set)
 
 
 def sector_end_faces(dim_tags: list[tuple[int, int]]) -> list[int]:
@@ -319,23 +345,33 @@ def _single_child(children: list[tuple[int, int]], dim: int) -> int:
     return tags[0]
 
 
-def mesh_and_write(part: str, level: Level, out_dir: str) -> dict:
+def mesh_and_write(stem: str, level: Level, out_dir: str) -> dict:
     """Mesh the current model (second order), renumber, write .msh and .inp; return counts."""
     gmsh.model.mesh.generate(3)
     gmsh.model.mesh.setOrder(2)
     gmsh.model.mesh.renumberNodes()
     gmsh.model.mesh.renumberElements()
-    base = os.path.join(out_dir, f"{part}_{level.name}")
+    base = os.path.join(out_dir, f"{stem}_{level.name}")
+    os.makedirs(os.path.dirname(base), exist_ok=True)
     gmsh.write(base + ".msh")
-    counts = abaqus_inp.write_inp(base + ".inp", part, level.name, gmsh.__version__)
+    counts = abaqus_inp.write_inp(base + ".inp", stem, level.name, gmsh.__version__)
     tets, _ = gmsh.model.mesh.getElementsByType(abaqus_inp.GMSH_TET10)
     gamma = gmsh.model.mesh.getElementQualities(tets, "gamma")
     counts["min_gamma"] = float(min(gamma))
     return counts
 
 
-def generate(levels: list[str], parts: list[str], out_dir: str) -> None:
-    """Write <part>_<level>.msh and .inp into out_dir for every level and part named."""
+def default_parts(brake: str) -> list[str]:
+    """The parts a brake writes: all but those it reuses from another brake."""
+    return [name for name, part in geo.BRAKES[brake].items() if not part.reused]
+
+
+def generate(
+    levels: list[str], parts: list[str], out_dir: str, brake: str = "one-pad"
+) -> dict[str, float]:
+    """Write <stem>_<level>.msh and .inp under out_dir for every level and named part of the
+    brake (stems as in geo.BRAKES: two_pad/disc goes to out_dir/two_pad/disc_<level>.*).
+    Returns the seconds each level took."""
     if gmsh.__version__ != GMSH_VERSION:
         print(
             f"warning: Gmsh {gmsh.__version__}, not {GMSH_VERSION}: the meshes will differ from "
@@ -345,36 +381,58 @@ def generate(levels: list[str], parts: list[str], out_dir: str) -> None:
     os.makedirs(out_dir, exist_ok=True)
     gmsh.initialize(["brake_meshes"], readConfigFiles=False)
     gmsh.option.setNumber("General.Terminal", 0)
+    seconds = {}
     try:
         for name in levels:
             level = LEVELS[name]
-            for part in parts:
+            seconds[name] = 0.0
+            for part_name in parts:
+                part = geo.BRAKES[brake][part_name]
                 start = time.perf_counter()
                 gmsh.clear()
-                if part == "disc":
-                    build_disc(level)
+                if part.is_disc:
+                    build_disc(level, part)
                 else:
-                    build_pad(level)
-                counts = mesh_and_write(part, level, out_dir)
+                    build_pad(level, part)
+                counts = mesh_and_write(part.stem, level, out_dir)
                 secs = time.perf_counter() - start
+                seconds[name] += secs
                 print(
-                    f"{part}_{name}: {counts['nodes']} nodes, {counts['elements']} C3D10, "
+                    f"{part.stem}_{name}: {counts['nodes']} nodes, {counts['elements']} C3D10, "
                     f"worst tet shape (gamma) {counts['min_gamma']:.3f}, {secs:.1f} s",
                     flush=True,
                 )
+            print(f"level {name}: {seconds[name]:.1f} s", flush=True)
     finally:
         gmsh.finalize()
+    return seconds
 
 
 def main(argv: list[str] | None = None) -> int:
     here = os.path.dirname(os.path.abspath(__file__))
     default_out = os.path.normpath(os.path.join(here, "..", "..", "meshes"))
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument(
+        "--brake",
+        choices=list(geo.BRAKES),
+        default="one-pad",
+        help="one-pad: disc and pad (default); two-pad: two_pad/disc and two_pad/outboard "
+        "(its inboard pad is the one-pad brake's pad)",
+    )
     ap.add_argument("--levels", nargs="+", choices=list(LEVELS), default=BUNDLED)
-    ap.add_argument("--parts", nargs="+", choices=["disc", "pad"], default=["disc", "pad"])
+    ap.add_argument(
+        "--parts",
+        nargs="+",
+        choices=sorted({p for parts in geo.BRAKES.values() for p in parts}),
+        help="parts of the brake to write (default: all it does not reuse)",
+    )
     ap.add_argument("--out-dir", default=default_out)
     args = ap.parse_args(argv)
-    generate(args.levels, args.parts, args.out_dir)
+    parts = args.parts or default_parts(args.brake)
+    own = default_parts(args.brake)
+    if any(p not in own for p in parts):
+        ap.error(f"the {args.brake} brake writes the parts {', '.join(own)}")
+    generate(args.levels, parts, args.out_dir, args.brake)
     return 0
 
 

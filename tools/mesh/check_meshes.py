@@ -6,9 +6,13 @@ Gmsh's own reader. Each check compares against something defined without the mes
 analytic volume, the sets recomputed from node coordinates and the dimensions in
 brake_geometry.py, the edge midpoints. Exit status 0 when everything passes.
 
+Both bundled brakes are checked: the one-pad brake (disc, pad) and the two-pad brake
+(two_pad/disc, the same pad, two_pad/outboard); each file once.
+
 Usage (from the repository root)::
 
     python3 tools/mesh/check_meshes.py [--levels coarse medium fine] [--mesh-dir meshes]
+                                       [--brakes one-pad two-pad]
 """
 
 from __future__ import annotations
@@ -31,11 +35,17 @@ ABAQUS_EDGES = ((0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3))
 # plane or a circle reads back to within a few ulps of 0.1 m: 1e-12 m is 1e4 ulps of slack.
 GEOM_TOL = 1e-12
 
-# Radii of the cylindrical surfaces and arcs whose edges may carry curved midside nodes.
-CURVED_RADII = {
-    "disc": (geo.DISC_R_IN, geo.DISC_R_OUT, geo.HAT_R_OUT, geo.BORE_R, *geo.patch_radii()),
-    "pad": (geo.PAD_R_IN, geo.PAD_R_OUT, *geo.patch_radii()),
-}
+
+def curved_radii(part: geo.Part) -> tuple[float, ...]:
+    """Radii of the part's cylindrical surfaces and arcs, whose edges may carry curved midside
+    nodes: the disc's cylinders or the pad's two, and the patch arcs of every footprint."""
+    own = (
+        (geo.DISC_R_IN, geo.DISC_R_OUT, geo.HAT_R_OUT, geo.BORE_R)
+        if part.is_disc
+        else (part.pads[0].r_in, part.pads[0].r_out)
+    )
+    return own + tuple(r for pad in part.pads for r in geo.patch_radii(pad))
+
 
 MATERIALS = {
     "GREY_CAST_IRON": (125.0e9, 0.26, 7200.0),
@@ -43,8 +53,8 @@ MATERIALS = {
     "STEEL": (210.0e9, 0.30, 7850.0),
 }
 SECTIONS = {
-    "disc": {"DISC": "GREY_CAST_IRON"},
-    "pad": {"LINING": "FRICTION_LINING", "BACKPLATE": "STEEL"},
+    True: {"DISC": "GREY_CAST_IRON"},  # by Part.is_disc
+    False: {"LINING": "FRICTION_LINING", "BACKPLATE": "STEEL"},
 }
 
 
@@ -190,8 +200,14 @@ class Report:
 
     def __init__(self, verbose: bool = True) -> None:
         self.failures: list[str] = []
+        self.notes: list[str] = []
         self.passed = 0
         self.verbose = verbose
+
+    def note(self, what: str) -> None:
+        self.notes.append(what)
+        if self.verbose:
+            print(f"NOTE {what}", flush=True)
 
     def check(self, ok: bool, what: str) -> None:
         if ok:
@@ -208,7 +224,7 @@ def element_coords(mesh: InpMesh, conn: np.ndarray) -> np.ndarray:
     return mesh.coords[index[conn]]
 
 
-def check_midside(rep: Report, tag: str, part: str, x: np.ndarray) -> dict:
+def check_midside(rep: Report, tag: str, part: geo.Part, x: np.ndarray) -> dict:
     """Every midside node sits at its edge's midpoint, unless the edge lies on one of the part's
     cylinders or arcs, where it sits on that circle within the arc's sagitta of the midpoint."""
     radius = np.hypot(x[..., 0], x[..., 1])
@@ -220,7 +236,7 @@ def check_midside(rep: Report, tag: str, part: str, x: np.ndarray) -> dict:
         off = np.linalg.norm(xm - 0.5 * (xa + xb), axis=1)
         straight = off <= GEOM_TOL
         curved = np.zeros_like(straight)
-        for r in CURVED_RADII[part]:
+        for r in curved_radii(part):
             on = (
                 (np.abs(radius[:, a] - r) < GEOM_TOL)
                 & (np.abs(radius[:, b] - r) < GEOM_TOL)
@@ -270,9 +286,10 @@ def ids_where(mesh: InpMesh, mask: np.ndarray) -> set:
     return set(int(i) for i in mesh.node_ids[mask])
 
 
-def in_patch(r, a, k: int) -> np.ndarray:
-    """Nodes inside or on the boundary of patch k (1-based), from the grid in brake_geometry."""
-    radii, angles = geo.patch_radii(), geo.patch_angles()
+def in_patch(r, a, k: int, pad: geo.PadGeometry = geo.INBOARD) -> np.ndarray:
+    """Nodes inside or on the boundary of patch k (1-based) of a pad's footprint, from the grid
+    in brake_geometry."""
+    radii, angles = geo.patch_radii(pad), geo.patch_angles()
     i, j = divmod(k - 1, 3)
     eps = 1e-9
     return (
@@ -284,45 +301,64 @@ def in_patch(r, a, k: int) -> np.ndarray:
 
 
 def check_contact_sets(
-    rep: Report, tag: str, mesh: InpMesh, z_face: float, footprint_only: bool
+    rep: Report,
+    tag: str,
+    mesh: InpMesh,
+    pad: geo.PadGeometry,
+    suffix: str = "",
+    footprint_only: bool = False,
 ) -> np.ndarray:
-    """CONTACT_FACE, CONTACT_PATCH_k and CONTACT against sets recomputed from coordinates."""
+    """CONTACT_FACE, CONTACT_PATCH_k and CONTACT (each name followed by suffix) of a pad's
+    footprint against sets recomputed from coordinates: the nodes on the pad's friction-face
+    plane, only those inside its footprint if footprint_only (a disc face is wider)."""
     c = mesh.coords
     r, a = polar(c)
-    on_face = np.abs(c[:, 2] - z_face) < GEOM_TOL
+    face_set, contact_set = f"CONTACT_FACE{suffix}", f"CONTACT{suffix}"
+    on_face = np.abs(c[:, 2] - pad.face_z) < GEOM_TOL
     if footprint_only:
         on_face &= (
-            (r >= geo.PAD_R_IN - 1e-9)
-            & (r <= geo.PAD_R_OUT + 1e-9)
+            (r >= pad.r_in - 1e-9)
+            & (r <= pad.r_out + 1e-9)
             & (a >= geo.PAD_ANGLE_MIN - 1e-9)
             & (a <= geo.PAD_ANGLE_MAX + 1e-9)
         )
     face = ids_where(mesh, on_face)
+    got_face = set(mesh.nsets.get(face_set, []))
+    where = "inside the footprint" if footprint_only else "on the friction face"
     rep.check(
-        len(face) > 0 and set(mesh.nsets.get("CONTACT_FACE", [])) == face,
-        f"{tag}: CONTACT_FACE differs from the nodes on the footprint",
+        len(got_face) > 0 and got_face <= face,
+        f"{tag}: {len(got_face - face)} {face_set} nodes not at z = {pad.face_z} {where}",
+    )
+    rep.check(
+        len(face) > 0 and got_face == face,
+        f"{tag}: {face_set} differs from the nodes on the footprint",
     )
     for k in range(1, 10):
-        expect = ids_where(mesh, on_face & in_patch(r, a, k))
-        got = set(mesh.nsets.get(f"CONTACT_PATCH_{k}", []))
+        expect = ids_where(mesh, on_face & in_patch(r, a, k, pad))
+        name = f"CONTACT_PATCH{suffix}_{k}"
+        got = set(mesh.nsets.get(name, []))
         rep.check(
             len(expect) > 3 and got == expect,
-            f"{tag}: CONTACT_PATCH_{k} differs from the nodes in patch {k}",
+            f"{tag}: {name} differs from the nodes in patch {k}",
         )
-    contact = mesh.nsets.get("CONTACT", [])
-    rep.check(len(contact) == 9, f"{tag}: CONTACT has {len(contact)} nodes, not 9")
+    contact = mesh.nsets.get(contact_set, [])
+    rep.check(len(contact) == 9, f"{tag}: {contact_set} has {len(contact)} nodes, not 9")
     # patch order is also id order, so a reader that sorts the set keeps the pairing
-    rep.check(contact == sorted(contact), f"{tag}: CONTACT ids not ascending in patch order")
+    rep.check(
+        contact == sorted(contact), f"{tag}: {contact_set} ids not ascending in patch order"
+    )
     table = node_table(mesh)
     xyz = np.array([table[i] for i in contact]) if contact else np.zeros((0, 3))
-    expect_xyz = np.array(geo.contact_points(z_face))
+    expect_xyz = np.array(geo.contact_points(pad))
     if len(contact) == 9:
         err = np.abs(xyz - expect_xyz).max()
-        rep.check(err <= GEOM_TOL, f"{tag}: CONTACT nodes {err:.2e} m from the patch centres")
+        rep.check(
+            err <= GEOM_TOL, f"{tag}: {contact_set} nodes {err:.2e} m from the patch centres"
+        )
         for k, nid in enumerate(contact):
             rep.check(
-                nid in set(mesh.nsets.get(f"CONTACT_PATCH_{k + 1}", [])),
-                f"{tag}: CONTACT node {k + 1} not in CONTACT_PATCH_{k + 1}",
+                nid in set(mesh.nsets.get(f"CONTACT_PATCH{suffix}_{k + 1}", [])),
+                f"{tag}: {contact_set} node {k + 1} not in CONTACT_PATCH{suffix}_{k + 1}",
             )
     return xyz
 
@@ -351,30 +387,43 @@ def check_disc(rep: Report, tag: str, mesh: InpMesh, x: dict) -> dict:
     }
 
 
-def check_pad(rep: Report, tag: str, mesh: InpMesh, x: dict) -> dict:
+def between(z: np.ndarray, z0: float, z1: float, tol: float = 0.0) -> np.ndarray:
+    """z0..z1 in either order, widened by tol (strictly inside for tol = 0)."""
+    lo, hi = min(z0, z1), max(z0, z1)
+    if tol == 0.0:
+        return (z > lo) & (z < hi)
+    return (z >= lo - tol) & (z <= hi + tol)
+
+
+def check_pad(rep: Report, tag: str, mesh: InpMesh, x: dict, pad: geo.PadGeometry) -> dict:
     c = mesh.coords
-    r, a = polar(c)
     table = node_table(mesh)
-    piston = mesh.nsets.get("PISTON", [])
-    rep.check(len(piston) == 4, f"{tag}: PISTON has {len(piston)} nodes, not 4")
-    rep.check(piston == sorted(piston), f"{tag}: PISTON ids not ascending in point order")
-    if len(piston) == 4:
-        err = np.abs(np.array([table[i] for i in piston]) - np.array(geo.piston_points())).max()
-        rep.check(err <= GEOM_TOL, f"{tag}: PISTON nodes {err:.2e} m from the piston points")
+    name = pad.load_set
+    load = mesh.nsets.get(name, [])
+    rep.check(len(load) == 4, f"{tag}: {name} has {len(load)} nodes, not 4")
+    rep.check(load == sorted(load), f"{tag}: {name} ids not ascending in point order")
+    if len(load) == 4:
+        xyz = np.array([table[i] for i in load])
+        rep.check(
+            bool((xyz[:, 2] == pad.back_z).all()),
+            f"{tag}: {name} nodes not at z = {pad.back_z} (the back face)",
+        )
+        err = np.abs(xyz - np.array(geo.load_points(pad))).max()
+        rep.check(err <= GEOM_TOL, f"{tag}: {name} nodes {err:.2e} m from the load points")
     on_end = np.zeros(len(c), dtype=bool)
     for ang in (geo.PAD_ANGLE_MIN, geo.PAD_ANGLE_MAX):
         on_end |= np.abs(c[:, 0] * math.sin(ang) - c[:, 1] * math.cos(ang)) < GEOM_TOL
-    abut = ids_where(mesh, on_end & (c[:, 2] >= geo.LINING_Z_TOP - GEOM_TOL))
+    abut = ids_where(mesh, on_end & between(c[:, 2], pad.lining_back_z, pad.back_z, GEOM_TOL))
     rep.check(
         len(abut) > 0 and set(mesh.nsets.get("ABUTMENT", [])) == abut,
         f"{tag}: ABUTMENT differs from the backplate end-face nodes",
     )
-    # conforming lining/backplate interface: the same node ids on z = LINING_Z_TOP from both sides
+    # conforming lining/backplate interface: the same node ids on z = lining_back_z from both sides
     iface = {}
-    for name in ("LINING", "BACKPLATE"):
-        ids = np.unique(mesh.elsets[name][1])
+    for elset in ("LINING", "BACKPLATE"):
+        ids = np.unique(mesh.elsets[elset][1])
         zz = np.array([table[int(i)][2] for i in ids])
-        iface[name] = set(int(i) for i in ids[np.abs(zz - geo.LINING_Z_TOP) < GEOM_TOL])
+        iface[elset] = set(int(i) for i in ids[np.abs(zz - pad.lining_back_z) < GEOM_TOL])
     rep.check(
         len(iface["LINING"]) > 0 and iface["LINING"] == iface["BACKPLATE"],
         f"{tag}: lining/backplate interface not conforming",
@@ -382,21 +431,19 @@ def check_pad(rep: Report, tag: str, mesh: InpMesh, x: dict) -> dict:
     z_lin = x["LINING"][:, :4, 2].mean(axis=1)
     z_bp = x["BACKPLATE"][:, :4, 2].mean(axis=1)
     rep.check(
-        bool(((z_lin > geo.LINING_Z_BOTTOM) & (z_lin < geo.LINING_Z_TOP)).all()),
+        bool(between(z_lin, pad.face_z, pad.lining_back_z).all()),
         f"{tag}: LINING element outside the lining",
     )
     rep.check(
-        bool(((z_bp > geo.LINING_Z_TOP) & (z_bp < geo.BACKPLATE_Z_TOP)).all()),
+        bool(between(z_bp, pad.lining_back_z, pad.back_z).all()),
         f"{tag}: BACKPLATE element outside the backplate",
     )
     vols = {
-        "LINING": (mesh_volume(x["LINING"]), geo.lining_volume()),
-        "BACKPLATE": (mesh_volume(x["BACKPLATE"]), geo.backplate_volume()),
+        "LINING": (mesh_volume(x["LINING"]), geo.lining_volume(pad)),
+        "BACKPLATE": (mesh_volume(x["BACKPLATE"]), geo.backplate_volume(pad)),
     }
-    return {
-        "volume": vols,
-        "layers": {"lining": layers_ok(x["LINING"], geo.LINING_Z_BOTTOM, geo.LINING_Z_TOP)},
-    }
+    z0, z1 = sorted((pad.face_z, pad.lining_back_z))
+    return {"volume": vols, "layers": {"lining": layers_ok(x["LINING"], z0, z1)}}
 
 
 def layers_ok(x: np.ndarray, z0: float, z1: float, r_min: float = 0.0) -> bool:
@@ -409,9 +456,10 @@ def layers_ok(x: np.ndarray, z0: float, z1: float, r_min: float = 0.0) -> bool:
     return not bool((both & region).any())
 
 
-def check_materials(rep: Report, tag: str, part: str, mesh: InpMesh) -> None:
-    rep.check(set(mesh.elsets) == set(SECTIONS[part]), f"{tag}: element sets {sorted(mesh.elsets)}")
-    for elset, mat in SECTIONS[part].items():
+def check_materials(rep: Report, tag: str, part: geo.Part, mesh: InpMesh) -> None:
+    sections = SECTIONS[part.is_disc]
+    rep.check(set(mesh.elsets) == set(sections), f"{tag}: element sets {sorted(mesh.elsets)}")
+    for elset, mat in sections.items():
         rep.check(
             mesh.sections.get(elset) == mat,
             f"{tag}: section of {elset} is {mesh.sections.get(elset)}",
@@ -423,8 +471,13 @@ def check_materials(rep: Report, tag: str, part: str, mesh: InpMesh) -> None:
 
 
 def check_msh_agrees(rep: Report, tag: str, msh_path: str, mesh: InpMesh) -> None:
-    """Gmsh's reader on the .msh gives the .inp's nodes, tets (8 <-> 9 swapped) and node sets."""
+    """Gmsh's reader on the .msh gives the .inp's nodes, tets (8 <-> 9 swapped) and node sets.
+    A missing .msh is noted (not a failure): a large level may be shipped as .inp only."""
     import gmsh
+
+    if not os.path.exists(msh_path):
+        rep.note(f"{tag}: no {os.path.basename(msh_path)}, its checks skipped")
+        return
 
     gmsh.initialize(readConfigFiles=False)
     try:
@@ -482,17 +535,20 @@ def check_msh_agrees(rep: Report, tag: str, msh_path: str, mesh: InpMesh) -> Non
 VOLUME_RTOL = 5e-5
 
 
-def check_part(rep: Report, mesh_dir: str, part: str, level: str) -> dict:
+def check_part(
+    rep: Report, mesh_dir: str, part: str, level: str, brake: str = "one-pad"
+) -> dict:
     """All checks of one part's .inp, and its agreement with the .msh beside it."""
-    tag = f"{part}_{level}"
+    tag = f"{geo.BRAKES[brake][part].stem}_{level}"
     mesh = read_inp(os.path.join(mesh_dir, tag + ".inp"))
-    info = check_inp(rep, tag, part, mesh)
+    info = check_inp(rep, tag, part, mesh, brake)
     check_msh_agrees(rep, tag, os.path.join(mesh_dir, tag + ".msh"), mesh)
     return info
 
 
-def check_inp(rep: Report, tag: str, part: str, mesh: InpMesh) -> dict:
+def check_inp(rep: Report, tag: str, part_name: str, mesh: InpMesh, brake: str = "one-pad") -> dict:
     """All checks of one part's mesh as read from its .inp; returns counts and measures."""
+    part = geo.BRAKES[brake][part_name]
     x = {name: element_coords(mesh, conn) for name, (_, conn) in mesh.elsets.items()}
     info = {
         "nodes": int(mesh.node_ids.size),
@@ -515,10 +571,22 @@ def check_inp(rep: Report, tag: str, part: str, mesh: InpMesh) -> dict:
             {f"{name}_{k}": v for k, v in check_jacobians(rep, f"{tag} {name}", xe).items()}
         )
     check_materials(rep, tag, part, mesh)
-    contact_xyz = check_contact_sets(
-        rep, tag, mesh, geo.DISC_Z_TOP, footprint_only=(part == "disc")
-    )
-    more = check_disc(rep, tag, mesh, x) if part == "disc" else check_pad(rep, tag, mesh, x)
+    # a disc names each footprint's sets with the pad's suffix; a pad's own sets have none
+    contact_xyz = {
+        pad.name: check_contact_sets(
+            rep,
+            tag,
+            mesh,
+            pad,
+            suffix=pad.disc_suffix if part.is_disc else "",
+            footprint_only=part.is_disc,
+        )
+        for pad in part.pads
+    }
+    if part.is_disc:
+        more = check_disc(rep, tag, mesh, x)
+    else:
+        more = check_pad(rep, tag, mesh, x, part.pads[0])
     for name, (got, exact) in more["volume"].items():
         rel = abs(got - exact) / exact
         rep.check(
@@ -537,6 +605,7 @@ def main(argv: list[str] | None = None) -> int:
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser(description="Check the bundled brake meshes.")
     ap.add_argument("--levels", nargs="+", default=["coarse", "medium", "fine"])
+    ap.add_argument("--brakes", nargs="+", choices=list(geo.BRAKES), default=list(geo.BRAKES))
     ap.add_argument(
         "--mesh-dir", default=os.path.normpath(os.path.join(here, "..", "..", "meshes"))
     )
@@ -548,31 +617,82 @@ def main(argv: list[str] | None = None) -> int:
     )
     args = ap.parse_args(argv)
     rep = Report()
-    print(
-        "| file | nodes | C3D10 | CLAMP / ABUTMENT | CONTACT | CONTACT_FACE | CONTACT_PATCH_k"
-        " | PISTON | curved edges | min detJ ratio | volume rel. err | 2 layers |"
-    )
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for level in args.levels:
-        infos = {}
-        for part in ("disc", "pad"):
-            info = check_part(rep, args.mesh_dir, part, level)
-            infos[part] = info
-            for what, ok in info["layers"].items():
-                if level in args.require_layers:
-                    rep.check(ok, f"{part}_{level}: fewer than two elements through the {what}")
-            print(table_row(f"{part}_{level}", info), flush=True)
-        gap = np.abs(infos["disc"]["contact_xyz"] - infos["pad"]["contact_xyz"]).max()
-        rep.check(gap <= 1e-9, f"{level}: pad and disc contact nodes {gap:.2e} m apart")
-    print(f"{rep.passed} passed, {len(rep.failures)} failed")
+    checked: dict[tuple[str, str], dict] = {}  # (stem, level) -> info: each file once
+    totals = []
+    for brake in args.brakes:
+        print(f"\n{brake} brake\n")
+        print(table_header(brake))
+        for level in args.levels:
+            infos = {}
+            for name, part in geo.BRAKES[brake].items():
+                key = (part.stem, level)
+                if key not in checked:
+                    info = check_part(rep, args.mesh_dir, name, level, brake)
+                    for what, ok in info["layers"].items():
+                        if level in args.require_layers:
+                            rep.check(
+                                ok,
+                                f"{part.stem}_{level}: fewer than two elements through the {what}",
+                            )
+                    print(table_row(f"{part.stem}_{level}", info), flush=True)
+                    checked[key] = info
+                infos[name] = checked[key]
+            check_pairs(rep, brake, level, infos)
+            counts = " + ".join(str(infos[name]["nodes"]) for name in geo.BRAKES[brake])
+            total = sum(infos[name]["nodes"] for name in geo.BRAKES[brake])
+            totals.append(f"{brake} {level}: {counts} = {total} nodes")
+    print()
+    for line in totals:
+        print(line)
+    print(f"{rep.passed} passed, {len(rep.failures)} failed, {len(rep.notes)} notes")
     return 0 if not rep.failures else 1
+
+
+def check_pairs(rep: Report, brake: str, level: str, infos: dict) -> None:
+    """Each pad's contact nodes and the disc's under it are the same points, bit for bit."""
+    parts = geo.BRAKES[brake]
+    disc = next(name for name, part in parts.items() if part.is_disc)
+    for pad in parts[disc].pads:
+        (pad_part,) = [n for n, p in parts.items() if not p.is_disc and p.pads == (pad,)]
+        on_disc = infos[disc]["contact_xyz"][pad.name]
+        on_pad = infos[pad_part]["contact_xyz"][pad.name]
+        same = on_disc.shape == on_pad.shape == (9, 3) and np.array_equal(on_disc, on_pad)
+        gap = np.abs(on_disc - on_pad).max() if on_disc.shape == on_pad.shape else math.inf
+        rep.check(
+            same,
+            f"{brake} {level}: {pad.name} pad's and disc's contact nodes differ "
+            f"(up to {gap:.2e} m)",
+        )
+
+
+def table_header(brake: str) -> str:
+    """The Markdown table header of table_row; a two-pad disc's cells are inboard / outboard."""
+    if brake == "one-pad":
+        contact, load = "CONTACT | CONTACT_FACE | CONTACT_PATCH_k", "PISTON"
+    else:
+        contact = "CONTACT (in / out) | CONTACT_FACE (in / out) | CONTACT_PATCH_k (in / out)"
+        load = "PISTON / FINGERS"
+    head = (
+        f"| file | nodes | C3D10 | CLAMP / ABUTMENT | {contact} | {load} | curved edges"
+        " | min detJ ratio | volume rel. err | 2 layers |"
+    )
+    return head + "\n" + "|---" * 12 + "|"
 
 
 def table_row(name: str, info: dict) -> str:
     """One Markdown table row of counts and measures for meshes/README.md."""
     n = info["nsets"]
     elems = " + ".join(f"{v} {k}" for k, v in info["elsets"].items())
-    patches = [n[f"CONTACT_PATCH_{k}"] for k in range(1, 10)]
+    # the footprints by their set-name suffix: a pad's own sets and a one-pad disc's have none
+    suffixes = [s for s in ("", "_OUTBOARD") if f"CONTACT{s}" in n]
+
+    def per_footprint(fmt) -> str:
+        return " / ".join(fmt(s) for s in suffixes)
+
+    def patch_range(s: str) -> str:
+        patches = [n[f"CONTACT_PATCH{s}_{k}"] for k in range(1, 10)]
+        return f"{min(patches)}..{max(patches)}"
+
     curved = sum(v for k, v in info.items() if k.endswith("curved_edges"))
     ratio = min(v for k, v in info.items() if k.endswith("min_det_ratio"))
     vol = max(v for k, v in info.items() if k.endswith("volume_rel_err"))
@@ -582,10 +702,10 @@ def table_row(name: str, info: dict) -> str:
         str(info["nodes"]),
         elems,
         str(n.get("CLAMP", n.get("ABUTMENT"))),
-        str(n["CONTACT"]),
-        str(n["CONTACT_FACE"]),
-        f"{min(patches)}..{max(patches)}",
-        str(n.get("PISTON", "-")),
+        per_footprint(lambda s: str(n[f"CONTACT{s}"])),
+        per_footprint(lambda s: str(n[f"CONTACT_FACE{s}"])),
+        per_footprint(patch_range),
+        str(n.get("PISTON", n.get("FINGERS", "-"))),
         str(curved),
         f"{ratio:.3f}",
         f"{vol:.1e}",

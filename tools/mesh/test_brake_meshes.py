@@ -2,9 +2,9 @@
 
 Run from the repository root:  python3 -m unittest discover -s tools/mesh -v
 
-The generator's coarse level is made once in a temporary directory (under a second). Besides
-checking it, the tests corrupt it in the ways a writer could go wrong and require the checker to
-notice: a checker that passes everything would pass a broken mesh.
+The generator's coarse level of both brakes is made once in a temporary directory (about a
+second). Besides checking it, the tests corrupt it in the ways a writer could go wrong and
+require the checker to notice: a checker that passes everything would pass a broken mesh.
 """
 
 from __future__ import annotations
@@ -29,21 +29,26 @@ _DIR = _TMP.name
 _generated = False
 
 
+_BUNDLED = os.path.normpath(os.path.join(os.path.dirname(__file__), "..", "..", "meshes"))
+
+
 def coarse_dir() -> str:
     global _generated
     if not _generated:
         brake_meshes.generate(["coarse"], ["disc", "pad"], _DIR)
+        brake_meshes.generate(["coarse"], ["disc", "outboard"], _DIR, brake="two-pad")
         _generated = True
     return _DIR
 
 
-def read(part: str) -> cm.InpMesh:
-    return cm.read_inp(os.path.join(coarse_dir(), f"{part}_coarse.inp"))
+def read(part: str, brake: str = "one-pad") -> cm.InpMesh:
+    stem = geo.BRAKES[brake][part].stem
+    return cm.read_inp(os.path.join(coarse_dir(), f"{stem}_coarse.inp"))
 
 
-def failures(part: str, mesh: cm.InpMesh) -> list[str]:
+def failures(part: str, mesh: cm.InpMesh, brake: str = "one-pad") -> list[str]:
     rep = cm.Report(verbose=False)
-    cm.check_inp(rep, f"{part}_test", part, mesh)
+    cm.check_inp(rep, f"{part}_test", part, mesh, brake)
     return rep.failures
 
 
@@ -60,12 +65,47 @@ class GeometryTest(unittest.TestCase):
         self.assertLess(abs(pappus - geo.disc_volume()) / pappus, 1e-15)
 
     def test_patch_centres_inside_their_patches(self):
-        # every contact point lies strictly inside the patch of the same number (exact test)
-        radii, angles = geo.patch_radii(), geo.patch_angles()
-        for k, (x, y, _) in enumerate(geo.contact_points(geo.DISC_Z_TOP)):
-            i, j = divmod(k, 3)
-            r, a = math.hypot(x, y), math.atan2(y, x)
-            self.assertTrue(radii[i] < r < radii[i + 1] and angles[j] < a < angles[j + 1])
+        # every contact point lies strictly inside the patch of the same number (exact test),
+        # on its pad's friction face: the disc's top face (inboard) or bottom face (outboard)
+        for pad, z in ((geo.INBOARD, geo.DISC_Z_TOP), (geo.OUTBOARD, geo.DISC_Z_BOTTOM)):
+            radii, angles = geo.patch_radii(pad), geo.patch_angles()
+            for k, (x, y, zk) in enumerate(geo.contact_points(pad)):
+                i, j = divmod(k, 3)
+                r, a = math.hypot(x, y), math.atan2(y, x)
+                self.assertTrue(radii[i] < r < radii[i + 1] and angles[j] < a < angles[j + 1])
+                self.assertEqual(zk, z)
+
+    def test_outboard_volumes_formula(self):
+        # the brief's closed form: pi (r_out^2 - r_in^2) (50/360) thickness
+        for got, h in (
+            (geo.lining_volume(geo.OUTBOARD), 0.010),
+            (geo.backplate_volume(geo.OUTBOARD), 0.005),
+        ):
+            exact = math.pi * (0.138**2 - 0.088**2) * (50.0 / 360.0) * h
+            self.assertLess(abs(got - exact) / exact, 1e-14)
+
+    def test_outboard_pad_geometry(self):
+        # below the disc, clear of the hat wall, lining then backplate going down
+        pad = geo.OUTBOARD
+        self.assertEqual(pad.direction, -1)
+        self.assertEqual(geo.INBOARD.direction, 1)
+        self.assertEqual(pad.face_z, geo.DISC_Z_BOTTOM)
+        self.assertGreaterEqual(pad.r_in - geo.HAT_R_OUT, 0.002 - 1e-15)
+        self.assertLessEqual(pad.r_out, geo.DISC_R_OUT)
+        self.assertTrue(pad.back_z < pad.lining_back_z < pad.lining_mid_z < pad.face_z)
+
+    def test_finger_points_on_backplate(self):
+        # (93, 77.5), (93, 102.5), (133, 77.5), (133, 102.5) on the back face z = -15 mm,
+        # resultant at the centre of the friction face (mean radius, 90 degrees)
+        expect = [(0.093, 77.5), (0.093, 102.5), (0.133, 77.5), (0.133, 102.5)]
+        pts = geo.finger_points()
+        for (x, y, z), (r0, a0) in zip(pts, expect):
+            self.assertEqual(z, -0.015)
+            self.assertAlmostEqual(math.hypot(x, y), r0, delta=1e-15)
+            self.assertAlmostEqual(math.degrees(math.atan2(y, x)), a0, delta=1e-12)
+        self.assertAlmostEqual(sum(p[0] for p in pts), 0.0, delta=1e-15)
+        mean_r = 0.25 * sum(math.hypot(x, y) for x, y, _ in pts)
+        self.assertAlmostEqual(mean_r, 0.5 * (geo.OUTBOARD_R_IN + geo.OUTBOARD_R_OUT), delta=1e-15)
 
     def test_piston_points_on_backplate(self):
         # each piston point lies inside the backplate's back face, on its piston's rim
@@ -85,16 +125,51 @@ class GeneratedMeshTest(unittest.TestCase):
         self.assertEqual(rep.failures, [])
         self.assertGreater(rep.passed, 100)
         # the two parts' contact nodes coincide (the brief's 1e-9 m; they are in fact equal)
-        self.assertLessEqual(np.abs(disc["contact_xyz"] - pad["contact_xyz"]).max(), 1e-9)
+        self.assertTrue(
+            np.array_equal(disc["contact_xyz"]["inboard"], pad["contact_xyz"]["inboard"])
+        )
+
+    def test_two_pad_coarse_passes_all_checks(self):
+        rep = cm.Report()
+        infos = {
+            "disc": cm.check_part(rep, coarse_dir(), "disc", "coarse", "two-pad"),
+            "pad": cm.check_part(rep, coarse_dir(), "pad", "coarse", "two-pad"),
+            "outboard": cm.check_part(rep, coarse_dir(), "outboard", "coarse", "two-pad"),
+        }
+        cm.check_pairs(rep, "two-pad", "coarse", infos)
+        self.assertEqual(rep.failures, [])
+        self.assertGreater(rep.passed, 200)
+        # both pads' contact nodes are the disc's bit for bit
+        disc = infos["disc"]["contact_xyz"]
+        self.assertTrue(np.array_equal(disc["inboard"], infos["pad"]["contact_xyz"]["inboard"]))
+        self.assertTrue(
+            np.array_equal(disc["outboard"], infos["outboard"]["contact_xyz"]["outboard"])
+        )
 
     def test_deterministic(self):
         # same command, same bytes
         with tempfile.TemporaryDirectory() as other:
             brake_meshes.generate(["coarse"], ["pad"], other)
+            brake_meshes.generate(["coarse"], ["outboard"], other, brake="two-pad")
+            for stem in ("pad_coarse", "two_pad/outboard_coarse"):
+                for ext in (".inp", ".msh"):
+                    a = os.path.join(coarse_dir(), stem + ext)
+                    b = os.path.join(other, stem + ext)
+                    self.assertTrue(filecmp.cmp(a, b, shallow=False), stem + ext)
+
+    @unittest.skipUnless(
+        brake_meshes.gmsh.__version__ == brake_meshes.GMSH_VERSION, "another Gmsh meshes otherwise"
+    )
+    def test_bundled_coarse_files_reproduced(self):
+        # the committed coarse files are what the generator makes: the one-pad ones were not
+        # changed by the two-pad brake's parametrization
+        for stem in ("disc_coarse", "pad_coarse", "two_pad/disc_coarse", "two_pad/outboard_coarse"):
             for ext in (".inp", ".msh"):
-                a = os.path.join(coarse_dir(), "pad_coarse" + ext)
-                b = os.path.join(other, "pad_coarse" + ext)
-                self.assertTrue(filecmp.cmp(a, b, shallow=False), ext)
+                committed = os.path.join(_BUNDLED, stem + ext)
+                if not os.path.exists(committed):
+                    self.skipTest(f"{committed} not generated yet")
+                made = os.path.join(coarse_dir(), stem + ext)
+                self.assertTrue(filecmp.cmp(committed, made, shallow=False), stem + ext)
 
 
 class CheckerCatchesFaultsTest(unittest.TestCase):
@@ -153,6 +228,78 @@ class CheckerCatchesFaultsTest(unittest.TestCase):
         top = mesh.coords[:, 2] > 0.5 * (geo.DISC_Z_TOP + geo.DISC_Z_BOTTOM)
         mesh.coords[top, 2] += 1e-4
         self.assertTrue(any("volume" in f for f in failures("disc", mesh)))
+
+    def test_moved_outboard_contact_node(self):
+        # the disc's bottom footprint: a centre node off by 1 nm
+        mesh = read("disc", "two-pad")
+        k = int(np.flatnonzero(mesh.node_ids == mesh.nsets["CONTACT_OUTBOARD"][4])[0])
+        mesh.coords = mesh.coords.copy()
+        mesh.coords[k, 1] += 1e-9
+        found = failures("disc", mesh, "two-pad")
+        self.assertTrue(any("CONTACT_OUTBOARD nodes" in f for f in found), found)
+
+    def test_hat_wall_node_in_outboard_face(self):
+        # a node at z = 0 but on the hat wall's top (r < 88 mm) is outside the footprint
+        mesh = read("disc", "two-pad")
+        r = np.hypot(mesh.coords[:, 0], mesh.coords[:, 1])
+        hat = mesh.node_ids[(np.abs(mesh.coords[:, 2]) < 1e-12) & (r < geo.HAT_R_OUT + 1e-9)]
+        self.assertGreater(hat.size, 0)
+        mesh.nsets["CONTACT_FACE_OUTBOARD"] = sorted(
+            mesh.nsets["CONTACT_FACE_OUTBOARD"] + [int(hat[0])]
+        )
+        found = failures("disc", mesh, "two-pad")
+        self.assertTrue(any("inside the footprint" in f for f in found), found)
+
+    def test_outboard_sets_missing(self):
+        # a two-pad disc written with the top footprint only fails
+        mesh = read("disc", "one-pad")
+        found = failures("disc", mesh, "two-pad")
+        self.assertTrue(any("CONTACT_OUTBOARD" in f for f in found))
+        self.assertTrue(any("CONTACT_FACE_OUTBOARD" in f for f in found))
+
+    def test_fingers_off_back_face(self):
+        mesh = read("outboard", "two-pad")
+        k = int(np.flatnonzero(mesh.node_ids == mesh.nsets["FINGERS"][0])[0])
+        mesh.coords = mesh.coords.copy()
+        mesh.coords[k, 2] += 1e-9
+        found = failures("outboard", mesh, "two-pad")
+        self.assertTrue(any("FINGERS nodes not at z" in f for f in found), found)
+
+    def test_outboard_lining_nodes_in_abutment(self):
+        # the outboard backplate is below the lining: its ABUTMENT is z = -15 .. -10 mm
+        mesh = read("outboard", "two-pad")
+        ang = geo.PAD_ANGLE_MAX
+        x, y, z = mesh.coords[:, 0], mesh.coords[:, 1], mesh.coords[:, 2]
+        on_end = np.abs(x * math.sin(ang) - y * math.cos(ang)) < 1e-12
+        lining_end = mesh.node_ids[on_end & (z > geo.OUTBOARD_LINING_Z_BOTTOM + 1e-6)]
+        self.assertGreater(lining_end.size, 0)
+        mesh.nsets["ABUTMENT"] = sorted(
+            set(mesh.nsets["ABUTMENT"]) | set(int(i) for i in lining_end)
+        )
+        self.assertTrue(any("ABUTMENT" in f for f in failures("outboard", mesh, "two-pad")))
+
+    def test_outboard_pad_too_narrow(self):
+        # the outboard pad meshed with the inboard radii (85..135) is caught by its volume
+        mesh = read("outboard", "two-pad")
+        scale = geo.PAD_R_OUT / geo.OUTBOARD_R_OUT
+        mesh.coords = mesh.coords * np.array([scale, scale, 1.0])
+        found = failures("outboard", mesh, "two-pad")
+        self.assertTrue(any("volume" in f for f in found))
+
+    def test_pairs_compared_bit_for_bit(self):
+        # a pad's contact nodes 1e-15 m off the disc's are reported (no tolerance)
+        rep = cm.Report(verbose=False)
+        xyz = np.array(geo.contact_points(geo.OUTBOARD))
+        moved = xyz.copy()
+        moved[3, 0] = np.nextafter(moved[3, 0], 1.0)
+        infos = {
+            "disc": {"contact_xyz": {"inboard": np.array(geo.contact_points()), "outboard": xyz}},
+            "pad": {"contact_xyz": {"inboard": np.array(geo.contact_points())}},
+            "outboard": {"contact_xyz": {"outboard": moved}},
+        }
+        cm.check_pairs(rep, "two-pad", "coarse", infos)
+        self.assertEqual(len(rep.failures), 1)
+        self.assertIn("outboard", rep.failures[0])
 
     def test_wrong_material(self):
         mesh = read("pad")
