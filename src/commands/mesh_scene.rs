@@ -16,15 +16,15 @@ pub fn info(path: &Path, vtu: Option<&Path>) -> Result<ExitCode> {
     if let Some(v) = vtu {
         squeal_io::require_extension(v, "vtu", "VTK XML unstructured grids (.vtu)")?;
         let m = &scene.file.model;
-        let (disc, pad) = (scene.resolve(&m.disc), scene.resolve(&m.pad));
-        squeal_io::refuse_inputs(
-            v,
-            &[
-                (path, "scene file"),
-                (disc.as_path(), "disc mesh"),
-                (pad.as_path(), "pad mesh"),
-            ],
-        )?;
+        let disc = scene.resolve(&m.disc);
+        let pads: Vec<_> = scene
+            .pads()?
+            .iter()
+            .map(|(_, p)| scene.resolve(p))
+            .collect();
+        let mut inputs = vec![(path, "scene file"), (disc.as_path(), "disc mesh")];
+        inputs.extend(pads.iter().map(|p| (p.as_path(), "pad mesh")));
+        squeal_io::refuse_inputs(v, &inputs)?;
     }
     let parts = load_parts(&scene, &|m: &str| eprintln!("{m}"))?;
     println!("{}", path.display());
@@ -32,7 +32,7 @@ pub fn info(path: &Path, vtu: Option<&Path>) -> Result<ExitCode> {
         "  units     {} ({}); read into SI (m, kg, s, N, Pa)",
         parts.units.name, parts.units.description
     );
-    for (name, loaded) in [("disc", &parts.disc), ("pad", &parts.pad)] {
+    for (name, loaded) in parts.all() {
         println!(
             "  {name:<5}     {} ({} nodes, {} elements)",
             loaded.info.path, loaded.info.nodes, loaded.info.elements
@@ -56,10 +56,8 @@ pub fn info(path: &Path, vtu: Option<&Path>) -> Result<ExitCode> {
 }
 
 fn print_set(parts: &SceneParts, c: &ChosenSet) {
-    let mesh = if c.part == "disc" {
-        &parts.disc.mesh
-    } else {
-        &parts.pad.mesh
+    let Some(mesh) = parts.part(&c.part).map(|p| &p.mesh) else {
+        return;
     };
     let origin = match &c.origin {
         Origin::Scene(at) => format!("scene, {at}"),
@@ -92,7 +90,7 @@ fn print_set(parts: &SceneParts, c: &ChosenSet) {
 
 fn print_materials(parts: &SceneParts) {
     println!("  materials by element set");
-    for (name, loaded) in [("disc", &parts.disc), ("pad", &parts.pad)] {
+    for (name, loaded) in parts.all() {
         let m = &loaded.mesh;
         for set in m.element_sets.keys() {
             let scene = parts
@@ -140,7 +138,7 @@ fn describe(m: &squeal_fe::ElasticMaterial) -> String {
 /// set (`disc`, `pad`), each chosen set a node set `<part>:<key>` (pistons also per piece).
 fn merged(parts: &SceneParts) -> Mesh {
     let mut out = Mesh::default();
-    for (name, loaded) in [("disc", &parts.disc), ("pad", &parts.pad)] {
+    for (name, loaded) in parts.all() {
         let (n0, e0) = (out.nodes.len() as u32, out.elements.len() as u32);
         let m = &loaded.mesh;
         out.nodes.extend(&m.nodes);
@@ -153,7 +151,11 @@ fn merged(parts: &SceneParts) -> Mesh {
             (e0..e0 + m.num_elements() as u32).collect(),
         );
         for c in parts.sets.iter().filter(|c| c.part == name) {
-            let key = c.key.rsplit('.').next().unwrap_or(c.key);
+            // `sets.disc.clamp` -> clamp; `pads.outboard.load` -> outboard.load.
+            let key = match c.key.strip_prefix("pads.") {
+                Some(k) => k,
+                None => c.key.rsplit('.').next().unwrap_or(&c.key),
+            };
             let shift = |v: &[u32]| v.iter().map(|n| n + n0).collect::<Vec<u32>>();
             out.node_sets
                 .insert(format!("{name}:{key}"), shift(&c.nodes()));

@@ -189,7 +189,8 @@ fn inputs(args: &ReduceArgs) -> Result<BrakeInputs> {
     inputs.grid = parse_grid(&args.grid)?;
     for (set, material) in args.materials.overrides()? {
         let mut used = false;
-        for (path, part) in [(&args.disc, &mut inputs.disc), (&args.pad, &mut inputs.pad)] {
+        let (disc, pads) = (&mut inputs.disc, &mut inputs.pads);
+        for (path, part) in [(&args.disc, disc), (&args.pad, &mut pads[0].part)] {
             if mesh_has_element_set(path, &set)? {
                 part.material_overrides.push((set.clone(), material));
                 used = true;

@@ -37,7 +37,7 @@ use crate::model::{Brake, ContactPair, SparseVec};
 use faer::Mat;
 use squeal_fe::frames::RotationAxis;
 use squeal_reduce::brake::{PairingTolerance, pair_contact_points};
-use squeal_reduce::rom::{DofLabel, PointRole, ReducedModel, ReducedPart};
+use squeal_reduce::rom::{DofLabel, PartRole, PointRole, ReducedModel, ReducedPart};
 use std::sync::Arc;
 
 /// Largest angle (degrees) between the disc face's normal at a pair and a normal the scene
@@ -136,6 +136,8 @@ pub struct Pairing {
     pub disc_point: usize,
     /// Index of the pad's point among the pad part's points.
     pub pad_point: usize,
+    /// The pad's name (`pad` in a one-pad brake).
+    pub pad: String,
     /// Distance between the two points (m).
     pub distance: f64,
     /// The pair's area (m²): the mean of the two points' areas, or the one given.
@@ -152,13 +154,22 @@ pub struct Pairing {
     pub law: Law,
 }
 
-/// Index of each part's dofs in the brake: the disc first, then the pad.
+/// Index of each part's dofs in the brake: the disc first, then the pads in the model's order.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Layout {
     /// The disc's dofs, `0..n_disc`.
     pub disc: std::ops::Range<usize>,
-    /// The pad's dofs, after the disc's.
+    /// The first pad's dofs, after the disc's.
     pub pad: std::ops::Range<usize>,
+    /// Every pad's name and dofs (the first is `pad`'s).
+    pub pads: Vec<(String, std::ops::Range<usize>)>,
+}
+
+impl Layout {
+    /// All the pads' dofs: from the first pad's first to the last pad's last.
+    pub fn all_pads(&self) -> std::ops::Range<usize> {
+        self.pad.start..self.pads.last().map_or(self.pad.end, |p| p.1.end)
+    }
 }
 
 fn part<'a>(rom: &'a ReducedModel, name: &str) -> Result<&'a ReducedPart, BrakeError> {
@@ -356,110 +367,173 @@ fn element(stiffness: &Stiffness, area: Option<f64>, pair: usize) -> Result<Law,
     Ok(Arc::new(PenaltyCoulomb { k_linear, k_cubic }))
 }
 
-/// Builds the brake; returns it with its dof layout and the pairing report.
+/// The model's pads in file order: every part but the disc.
+fn pads_of(rom: &ReducedModel) -> Vec<&ReducedPart> {
+    rom.parts
+        .iter()
+        .filter(|p| p.info.role() == PartRole::Pad)
+        .collect()
+}
+
+/// Builds the brake; returns it with its dof layout and the pairing report. The disc's dofs
+/// come first, then each pad's, in the model's order; each pad's contact points pair with the
+/// disc's points of the surface facing it (all of the disc's in a one-pad brake), and each
+/// pad's load points share the clamp force (a floating caliper: the fingers react the
+/// pistons).
 pub fn assemble(
     rom: &ReducedModel,
     params: &BrakeParams,
 ) -> Result<(Brake, Layout, Vec<Pairing>), BrakeError> {
     let disc = part(rom, "disc")?;
-    let pad = part(rom, "pad")?;
-    let (nd, np) = (disc.size(), pad.size());
-    let n = nd + np;
-    let layout = Layout {
+    let pads = pads_of(rom);
+    if pads.is_empty() {
+        return Err(part(rom, "pad").err().unwrap_or(BrakeError::NoPistons));
+    }
+    let nd = disc.size();
+    let mut layout = Layout {
         disc: 0..nd,
-        pad: nd..n,
+        pad: 0..0,
+        pads: Vec::with_capacity(pads.len()),
     };
+    let mut start = nd;
+    for p in &pads {
+        layout
+            .pads
+            .push((p.info.name.clone(), start..start + p.size()));
+        start += p.size();
+    }
+    layout.pad = layout.pads[0].1.clone();
+    let n = start;
     let scene_normal = params
         .normal
         .map(|n| unit(n, "contact normal"))
         .transpose()?;
-    let (dc, pc) = (
-        points_of(disc, PointRole::Contact),
-        points_of(pad, PointRole::Contact),
-    );
+    let disc_contact = points_of(disc, PointRole::Contact);
     let position = |p: &ReducedPart, i: usize| p.info.points[i].position;
-    let (matched, _) = pair_contact_points(
-        &dc.iter().map(|&i| position(disc, i)).collect::<Vec<_>>(),
-        &pc.iter().map(|&j| position(pad, j)).collect::<Vec<_>>(),
-        params.pairing_tolerance,
-    )?;
+    let mut pairs = Vec::new();
+    let mut report = Vec::new();
+    let mut f_piston = vec![0.0; n];
+    for (pad, (_, range)) in pads.iter().zip(&layout.pads) {
+        let name = pad.info.name.as_str();
+        let np0 = range.start;
+        // The disc's points facing this pad: those of its surface, or all of them when the
+        // disc has one surface.
+        let dc: Vec<usize> = disc_contact
+            .iter()
+            .copied()
+            .filter(|&i| match &disc.info.points[i].surface {
+                Some(s) => s == name,
+                None => pads.len() == 1,
+            })
+            .collect();
+        let pc = points_of(pad, PointRole::Contact);
+        let (matched, _) = pair_contact_points(
+            &dc.iter().map(|&i| position(disc, i)).collect::<Vec<_>>(),
+            &pc.iter().map(|&j| position(pad, j)).collect::<Vec<_>>(),
+            params.pairing_tolerance,
+        )?;
+        // Σ A_p n_p: this pad's mean normal, its load's direction.
+        let mut pad_normal = [0.0; 3];
+        for m in &matched {
+            let k = pairs.len();
+            let (i, j) = (dc[m.disc_point], pc[m.pad_point]);
+            let area = match (disc.info.points[i].area, pad.info.points[j].area) {
+                (Some(a), Some(b)) => Some(0.5 * (a + b)),
+                (a, b) => a.or(b),
+            };
+            let law = element(&params.stiffness, area, k + 1)?;
+            let xi = position(disc, i);
+            let normal = pair_normal(
+                disc.info.points[i].normal,
+                pad.info.points[j].normal,
+                scene_normal.filter(|_| pads.len() == 1),
+                k + 1,
+            )?;
+            let (sliding, surface_speed) = pair_sliding(params, xi, normal, k + 1)?;
+            let mut g = along(disc, "disc", i, normal, 0, 1.0)?;
+            g.extend(along(pad, "pad", j, normal, np0, -1.0)?);
+            let mut h = along(disc, "disc", i, sliding, 0, 1.0)?;
+            h.extend(along(pad, "pad", j, sliding, np0, -1.0)?);
+            // A pad point below the disc surface (along n) starts in interference.
+            let geometric_gap = (0..3)
+                .map(|d| normal[d] * (position(pad, j)[d] - xi[d]))
+                .sum::<f64>();
+            let w = area.unwrap_or(1.0);
+            for d in 0..3 {
+                pad_normal[d] += w * normal[d];
+            }
+            report.push(Pairing {
+                disc_point: i,
+                pad_point: j,
+                pad: name.to_string(),
+                distance: m.distance,
+                area,
+                normal,
+                sliding,
+                geometric_gap,
+                initial_gap: 0.0,
+                law: law.clone(),
+            });
+            pairs.push(ContactPair {
+                disc_point: i,
+                pad_point: j,
+                position: xi,
+                normal_direction: normal,
+                sliding_direction: sliding,
+                normal: g,
+                tangent: h,
+                gap: 0.0,
+                surface_speed,
+                law,
+            });
+        }
+        let normal = unit(pad_normal, "contact normal")?;
+        add_load(pad, normal, np0, params.piston_force, &mut f_piston)?;
+    }
     if let InitialGaps::PerPair(g) = &params.initial_gaps
-        && g.len() != matched.len()
+        && g.len() != pairs.len()
     {
         return Err(BrakeError::GapCount {
             given: g.len(),
-            pairs: matched.len(),
+            pairs: pairs.len(),
         });
     }
-    let mut pairs = Vec::with_capacity(matched.len());
-    let mut report = Vec::with_capacity(matched.len());
-    // Σ A_p n_p: the pads' mean normal, the pistons' direction.
-    let mut pad_normal = [0.0; 3];
-    for (k, m) in matched.iter().enumerate() {
-        let (i, j) = (dc[m.disc_point], pc[m.pad_point]);
-        let area = match (disc.info.points[i].area, pad.info.points[j].area) {
-            (Some(a), Some(b)) => Some(0.5 * (a + b)),
-            (a, b) => a.or(b),
-        };
-        let law = element(&params.stiffness, area, k + 1)?;
-        let xi = position(disc, i);
-        let normal = pair_normal(
-            disc.info.points[i].normal,
-            pad.info.points[j].normal,
-            scene_normal,
-            k + 1,
-        )?;
-        let (sliding, surface_speed) = pair_sliding(params, xi, normal, k + 1)?;
-        let mut g = along(disc, "disc", i, normal, 0, 1.0)?;
-        g.extend(along(pad, "pad", j, normal, nd, -1.0)?);
-        let mut h = along(disc, "disc", i, sliding, 0, 1.0)?;
-        h.extend(along(pad, "pad", j, sliding, nd, -1.0)?);
-        // A pad point below the disc surface (along n) starts in interference.
-        let geometric_gap = (0..3)
-            .map(|d| normal[d] * (position(pad, j)[d] - xi[d]))
-            .sum::<f64>();
-        let w = area.unwrap_or(1.0);
-        for d in 0..3 {
-            pad_normal[d] += w * normal[d];
-        }
-        let initial_gap = match &params.initial_gaps {
-            InitialGaps::Geometric => geometric_gap,
+    for (k, (pair, r)) in pairs.iter_mut().zip(&mut report).enumerate() {
+        r.initial_gap = match &params.initial_gaps {
+            InitialGaps::Geometric => r.geometric_gap,
             InitialGaps::Uniform(g) => *g,
             InitialGaps::PerPair(g) => g[k],
             InitialGaps::Closed => 0.0,
         };
-        let gap = -initial_gap;
-        report.push(Pairing {
-            disc_point: i,
-            pad_point: j,
-            distance: m.distance,
-            area,
-            normal,
-            sliding,
-            geometric_gap,
-            initial_gap,
-            law: law.clone(),
-        });
-        pairs.push(ContactPair {
-            disc_point: i,
-            pad_point: j,
-            position: xi,
-            normal_direction: normal,
-            sliding_direction: sliding,
-            normal: g,
-            tangent: h,
-            gap,
-            surface_speed,
-            law,
-        });
+        pair.gap = -r.initial_gap;
     }
-    let normal = unit(pad_normal, "contact normal")?;
+    let blocks: Vec<&ReducedPart> = std::iter::once(disc).chain(pads.iter().copied()).collect();
+    let brake = Brake {
+        m: block_diag(&blocks.iter().map(|p| &p.m).collect::<Vec<_>>()),
+        k: block_diag(&blocks.iter().map(|p| &p.k).collect::<Vec<_>>()),
+        f_piston,
+        pairs,
+    };
+    brake.validate()?;
+    Ok((brake, layout, report))
+}
+
+/// Adds pad `pad`'s share of the clamp force `force` (N) to `f` (the pad's dofs from `start`),
+/// spread equally over its load points (pistons or fingers), each pushing the pad towards the
+/// disc: along its one dof (the piston's axis), within [`NORMAL_TOLERANCE_DEG`] of the pad's
+/// mean normal `normal`, or along `-normal` for a point with several dofs.
+fn add_load(
+    pad: &ReducedPart,
+    normal: [f64; 3],
+    start: usize,
+    force: f64,
+    f: &mut [f64],
+) -> Result<(), BrakeError> {
     let pistons = points_of(pad, PointRole::Piston);
     if pistons.is_empty() {
         return Err(BrakeError::NoPistons);
     }
-    let mut f_piston = vec![0.0; n];
-    let share = params.piston_force / pistons.len() as f64;
+    let share = force / pistons.len() as f64;
     let aligned = NORMAL_TOLERANCE_DEG.to_radians().cos();
     for &p in &pistons {
         match point_dofs(pad, p).as_slice() {
@@ -476,32 +550,30 @@ pub fn assemble(
                         missing: (1.0 - c * c).max(0.0).sqrt(),
                     });
                 }
-                f_piston[nd + dof] -= share * c.signum();
+                f[start + dof] -= share * c.signum();
             }
             // Several dofs: the piston pushes the pad toward the disc, along -n; the point's
             // dofs must span the normal, or part of the load would be lost.
             _ => {
-                for (dof, w) in along(pad, "pad", p, normal, nd, -1.0)? {
-                    f_piston[dof] += share * w;
+                for (dof, w) in along(pad, "pad", p, normal, start, -1.0)? {
+                    f[dof] += share * w;
                 }
             }
         }
     }
-    let brake = Brake {
-        m: block_diag(&disc.m, &pad.m),
-        k: block_diag(&disc.k, &pad.k),
-        f_piston,
-        pairs,
-    };
-    brake.validate()?;
-    Ok((brake, layout, report))
+    Ok(())
 }
 
-fn block_diag(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
-    let (na, nb) = (a.nrows(), b.nrows());
-    Mat::from_fn(na + nb, na + nb, |i, j| match (i < na, j < na) {
-        (true, true) => a[(i, j)],
-        (false, false) => b[(i - na, j - na)],
-        _ => 0.0,
-    })
+fn block_diag(blocks: &[&Mat<f64>]) -> Mat<f64> {
+    let n: usize = blocks.iter().map(|b| b.nrows()).sum();
+    let mut out = Mat::zeros(n, n);
+    let mut at = 0;
+    for b in blocks {
+        let k = b.nrows();
+        out.as_mut()
+            .submatrix_mut(at, at, k, k)
+            .copy_from(b.as_ref());
+        at += k;
+    }
+    out
 }

@@ -19,7 +19,8 @@ use squeal_fe::frames::RotationAxis;
 use squeal_mesh::Mesh;
 use squeal_mesh::units::UnitSystem;
 use squeal_reduce::brake::{
-    BrakeInputs, Freshness, ModeChoice, PairingTolerance, freshness, reduce_brake_loaded,
+    BrakeInputs, Freshness, ModeChoice, PadInput, PairingTolerance, PartInput, freshness,
+    reduce_brake_loaded,
 };
 use squeal_reduce::craig_bampton::Stage;
 use squeal_reduce::rom::{InterfaceKind, ReducedModel};
@@ -38,7 +39,8 @@ pub struct Model {
     pub sweep: SweepOptions,
     /// Meshes of the parts, as files.
     pub disc_mesh: PathBuf,
-    pub pad_mesh: PathBuf,
+    /// The pads' names and mesh files, in the brake's order.
+    pub pad_meshes: Vec<(String, PathBuf)>,
     /// The disc's speed from the scene's `[rotation]` (or `[disc]`), for the sliding check of
     /// every cycle.
     pub disc: Option<DiscSpeed>,
@@ -80,8 +82,16 @@ pub fn brake_inputs(scene: &Scene) -> Result<BrakeInputs> {
         origin: point,
         direction,
     };
-    let mut inputs = BrakeInputs::bundled(scene.resolve(&m.disc), scene.resolve(&m.pad))
-        .about(axis, normal.unwrap_or(direction))?;
+    let pads = scene.pads()?;
+    let mut inputs = BrakeInputs::bundled(scene.resolve(&m.disc), scene.resolve(&pads[0].1));
+    inputs.pads = pads
+        .iter()
+        .map(|(name, path)| PadInput {
+            name: name.clone(),
+            part: PartInput::pad(scene.resolve(path)),
+        })
+        .collect();
+    let mut inputs = inputs.about(axis, normal.unwrap_or(direction))?;
     inputs.interface = if m.interface.get_ref() == "node" {
         InterfaceKind::Node
     } else {
@@ -107,15 +117,18 @@ pub fn check_outputs(scene: &Scene, out: &Path) -> Result<()> {
     let rom = rom_path(scene, out);
     squeal_io::require_extension(&rom, "rom", "the reduced model (.rom)")?;
     let m = &scene.file.model;
-    let (disc, pad) = (scene.resolve(&m.disc), scene.resolve(&m.pad));
-    squeal_io::refuse_inputs(
-        &rom,
-        &[
-            (&scene.path, "scene file"),
-            (&disc, "disc mesh"),
-            (&pad, "pad mesh"),
-        ],
-    )?;
+    let disc = scene.resolve(&m.disc);
+    let pads: Vec<PathBuf> = scene
+        .pads()?
+        .iter()
+        .map(|(_, p)| scene.resolve(p))
+        .collect();
+    let mut inputs = vec![
+        (scene.path.as_path(), "scene file"),
+        (disc.as_path(), "disc mesh"),
+    ];
+    inputs.extend(pads.iter().map(|p| (p.as_path(), "pad mesh")));
+    squeal_io::refuse_inputs(&rom, &inputs)?;
     squeal_io::check_writable(out)?;
     if let Some(dir) = rom.parent().filter(|d| !d.as_os_str().is_empty()) {
         squeal_io::check_writable(dir)?;
@@ -150,15 +163,19 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
         Freshness::Missing => {}
     }
     log(&format!(
-        "reduced model: reducing {} and {} ...",
-        inputs.disc.mesh.display(),
-        inputs.pad.mesh.display()
+        "reduced model: reducing {} ...",
+        inputs
+            .parts()
+            .iter()
+            .map(|p| p.1.mesh.display().to_string())
+            .collect::<Vec<_>>()
+            .join(" and ")
     ));
     let t = std::time::Instant::now();
     let (rom, _) = reduce_brake_loaded(
         &inputs,
         parts.disc,
-        parts.pad,
+        parts.pads.into_iter().map(|p| p.1).collect(),
         &mut |part: &str, stage: Stage| {
             log(&format!("  {part}: {}", stage.label()));
         },
@@ -287,7 +304,11 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
         pairs,
         params,
         disc_mesh: scene.resolve(&m.disc),
-        pad_mesh: scene.resolve(&m.pad),
+        pad_meshes: scene
+            .pads()?
+            .iter()
+            .map(|(n, p)| (n.clone(), scene.resolve(p)))
+            .collect(),
         disc: disc_speed(scene)?,
         units: scene.units()?,
     })

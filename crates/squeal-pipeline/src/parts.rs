@@ -17,6 +17,7 @@ use squeal_mesh::Mesh;
 use squeal_mesh::select::{self, Face, Rule, Selection, Surface};
 use squeal_mesh::units::UnitSystem;
 use squeal_reduce::brake::{BrakeInputs, LoadedPart, load_part_in};
+use squeal_reduce::rom::ContactSurface;
 use squeal_scene::Scene;
 use squeal_scene::sets::SetRule;
 
@@ -34,10 +35,10 @@ pub enum Origin {
 /// A set the reduction uses, as chosen.
 #[derive(Clone, Debug)]
 pub struct ChosenSet {
-    /// `disc` or `pad`.
-    pub part: &'static str,
-    /// The scene key that sets it (`sets.disc.clamp`).
-    pub key: &'static str,
+    /// `disc` or the pad's name.
+    pub part: String,
+    /// The scene key that sets it (`sets.disc.clamp`, `pads.outboard.load`).
+    pub key: String,
     /// The node-set name the reduction is given (the mesh's own, or one added for a
     /// geometric choice).
     pub name: String,
@@ -66,29 +67,62 @@ impl ChosenSet {
     }
 }
 
-/// Both parts of a scene, read, converted to SI and with their sets chosen.
+/// The parts of a scene, read, converted to SI and with their sets chosen.
 #[derive(Debug)]
 pub struct SceneParts {
     /// The disc (mesh in SI, with the sets added).
     pub disc: LoadedPart,
-    /// The pad.
-    pub pad: LoadedPart,
+    /// The pads with their names (`pad` for a one-pad brake), in the scene's order.
+    pub pads: Vec<(String, LoadedPart)>,
     /// The unit system the meshes were read in.
     pub units: UnitSystem,
-    /// Disc clamp, disc contact face, pad friction face, pad pistons, pad abutments.
+    /// Disc clamp, then for each pad: the disc contact face under it, its friction face, its
+    /// load points (pistons or fingers), its abutments.
     pub sets: Vec<ChosenSet>,
     /// The scene's materials (SI), by element set.
     pub materials: Vec<(String, ElasticMaterial)>,
 }
 
-/// The keys, parts and conventional names of the sets, in [`Scene::set_rules`]'s order.
-const SETS: [(&str, &str, &str); 5] = [
-    ("disc", "sets.disc.clamp", "CLAMP"),
-    ("disc", "sets.disc.contact_face", "CONTACT_FACE"),
-    ("pad", "sets.pad.friction_face", "CONTACT_FACE"),
-    ("pad", "sets.pad.pistons", "PISTON"),
-    ("pad", "sets.pad.abutments", "ABUTMENT"),
+impl SceneParts {
+    /// Every part with its name, disc first.
+    pub fn all(&self) -> Vec<(&str, &LoadedPart)> {
+        std::iter::once(("disc", &self.disc))
+            .chain(self.pads.iter().map(|(n, p)| (n.as_str(), p)))
+            .collect()
+    }
+
+    /// The part named `name`.
+    pub fn part(&self, name: &str) -> Option<&LoadedPart> {
+        self.all().into_iter().find(|p| p.0 == name).map(|p| p.1)
+    }
+
+    /// The chosen set of key `key`.
+    pub fn set(&self, key: &str) -> Option<&ChosenSet> {
+        self.sets.iter().find(|c| c.key == key)
+    }
+}
+
+/// What a pad's set is for: the key of a one-pad brake, the key's last part in `[pads]`, and
+/// the conventional names looked for in the mesh.
+const PAD_SETS: [(&str, &str, &[&str]); 4] = [
+    ("sets.pad.friction_face", "friction_face", &["CONTACT_FACE"]),
+    ("sets.pad.pistons", "load", &["PISTON", "FINGERS"]),
+    ("sets.pad.abutments", "abutments", &["ABUTMENT"]),
+    (
+        "sets.disc.contact_face",
+        "disc_contact_face",
+        &["CONTACT_FACE"],
+    ),
 ];
+
+/// The key of set `k` of [`PAD_SETS`] for pad `pad` of a brake with `pads` pads.
+pub fn pad_key(k: usize, pad: &str, pads: usize) -> String {
+    if pads == 1 {
+        PAD_SETS[k].0.to_string()
+    } else {
+        format!("pads.{pad}.{}", PAD_SETS[k].1)
+    }
+}
 
 /// The default distance tolerance of a part: 1e-6 of its largest extent.
 fn default_tolerance(mesh: &Mesh) -> f64 {
@@ -214,8 +248,8 @@ fn set_error(key: &str, at: &str, message: impl std::fmt::Display) -> PipelineEr
 
 /// Applies the scene's rules for one key on `mesh`.
 fn from_scene(
-    part: &'static str,
-    key: &'static str,
+    part: &str,
+    key: &str,
     given: &SetRule,
     mesh: &Mesh,
     boundary: &[Face],
@@ -248,8 +282,8 @@ fn from_scene(
         _ => format!("{key} = {description}"),
     };
     Ok(ChosenSet {
-        part,
-        key,
+        part: part.into(),
+        key: key.into(),
         name,
         origin: Origin::Scene(given.location.clone()),
         description,
@@ -260,8 +294,8 @@ fn from_scene(
 
 /// A set from the mesh's own node set `name`.
 fn from_mesh(
-    part: &'static str,
-    key: &'static str,
+    part: &str,
+    key: &str,
     name: &str,
     mesh: &Mesh,
     boundary: &[Face],
@@ -269,8 +303,8 @@ fn from_mesh(
     let rule = Rule::named(name);
     let s = rule.apply(mesh, boundary).ok()?;
     Some(ChosenSet {
-        part,
-        key,
+        part: part.into(),
+        key: key.into(),
         name: name.to_string(),
         origin: Origin::Mesh,
         description: format!("set {name}"),
@@ -280,12 +314,7 @@ fn from_mesh(
 }
 
 /// A set from a geometric default (faces), named after its key.
-fn from_default(
-    part: &'static str,
-    key: &'static str,
-    description: String,
-    faces: Vec<Face>,
-) -> Result<ChosenSet> {
+fn from_default(part: &str, key: &str, description: String, faces: Vec<Face>) -> Result<ChosenSet> {
     if faces.is_empty() {
         return Err(set_error(
             key,
@@ -296,8 +325,8 @@ fn from_default(
         ));
     }
     Ok(ChosenSet {
-        part,
-        key,
+        part: part.into(),
+        key: key.into(),
         name: format!("{key} = {description}"),
         origin: Origin::Default,
         description,
@@ -319,19 +348,31 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
     }
     let m = &scene.file.model;
     let mut disc = load_part_in(&scene.resolve(&m.disc), &units)?;
-    let mut pad = load_part_in(&scene.resolve(&m.pad), &units)?;
-    for w in disc.warnings.iter().chain(&pad.warnings) {
+    let mut pads = Vec::new();
+    for (name, path) in scene.pads()? {
+        pads.push((name, load_part_in(&scene.resolve(&path), &units)?));
+    }
+    for w in disc
+        .warnings
+        .iter()
+        .chain(pads.iter().flat_map(|p| &p.1.warnings))
+    {
         log(&format!("warning: {w}"));
     }
-    let sets = choose_sets(scene, &mut disc.mesh, &mut pad.mesh)?;
-    check_materials(
-        scene,
-        &materials,
-        &[("disc", &disc.mesh), ("pad", &pad.mesh)],
-    )?;
+    let sets = {
+        let mut meshes: Vec<(&str, &mut Mesh)> = pads
+            .iter_mut()
+            .map(|(n, p)| (n.as_str(), &mut p.mesh))
+            .collect();
+        choose_sets(scene, &mut disc.mesh, &mut meshes)?
+    };
+    let all: Vec<(&str, &Mesh)> = std::iter::once(("disc", &disc.mesh))
+        .chain(pads.iter().map(|(n, p)| (n.as_str(), &p.mesh)))
+        .collect();
+    check_materials(scene, &materials, &all)?;
     Ok(SceneParts {
         disc,
-        pad,
+        pads,
         units,
         sets,
         materials,
@@ -342,10 +383,13 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
 /// normal` when the scene gives one; else the `[rotation]` axis (or z), turned to point from
 /// the disc's centroid towards the pad's (the axis' sign is free: the same disc turns
 /// clockwise about `a` and counterclockwise about `-a`).
-fn default_direction(scene: &Scene, disc: &Mesh, pad: &Mesh) -> Result<[f64; 3]> {
-    if let Some(n) = scene.normal()? {
+fn default_direction(scene: &Scene, disc: &Mesh, pad: &Mesh, pads: usize) -> Result<[f64; 3]> {
+    if let Some(n) = scene.normal()?
+        && pads == 1
+    {
         return Ok(unit(n));
     }
+    // With several pads the normal's line is kept, its sign taken towards each pad.
     let a = unit(scene.contact_direction()?);
     let centroid = |m: &Mesh| {
         let k = m.nodes.len().max(1) as f64;
@@ -358,72 +402,112 @@ fn default_direction(scene: &Scene, disc: &Mesh, pad: &Mesh) -> Result<[f64; 3]>
     Ok(if side < 0.0 { a.map(|x| -x) } else { a })
 }
 
-/// Chooses the sets of the scene on both meshes (in SI) and adds those chosen by geometry to
-/// the meshes as node sets (see the module docs). Returns them in the order disc clamp, disc
-/// contact face, pad friction face, pad pistons, pad abutments.
-pub fn choose_sets(scene: &Scene, disc: &mut Mesh, pad: &mut Mesh) -> Result<Vec<ChosenSet>> {
+/// Chooses the sets of the scene on the disc and the pads (in SI) and adds those chosen by
+/// geometry to the meshes as node sets (see the module docs). Returns them in the order disc
+/// clamp, then for each pad the disc contact face under it, its friction face, its load
+/// points and its abutments.
+pub fn choose_sets(
+    scene: &Scene,
+    disc: &mut Mesh,
+    pads: &mut [(&str, &mut Mesh)],
+) -> Result<Vec<ChosenSet>> {
     let rules = scene.set_rules()?;
-    let n = default_direction(scene, disc, pad)?;
     let disc_faces = select::boundary_faces(disc);
-    let pad_faces = select::boundary_faces(pad);
-    let mut chosen: Vec<ChosenSet> = Vec::with_capacity(5);
-    // Pad first: the disc's default contact face is the pad's friction face projected.
-    for k in [2, 3, 4, 0, 1] {
-        let (part, key, conventional) = SETS[k];
-        let (mesh, boundary) = if part == "disc" {
-            (&*disc, &disc_faces)
-        } else {
-            (&*pad, &pad_faces)
-        };
-        let set = if let Some(given) = &rules[k] {
-            from_scene(part, key, given, mesh, boundary)?
-        } else if let Some(s) = from_mesh(part, key, conventional, mesh, boundary) {
-            s
-        } else {
-            match k {
-                0 | 2 => {
-                    // Both face away from the pad side: the disc's hub seat and the pad's
-                    // friction face are each part's lowest faces along n.
-                    let rule = lowest_face_rule(mesh, n);
-                    let faces = rule
-                        .apply(mesh, boundary)
-                        .map_err(|e| set_error(key, "default", e))?;
-                    from_default(part, key, rule.to_string(), faces.faces)?
-                }
-                1 => {
-                    let friction = chosen
-                        .iter()
-                        .find(|c| c.key == "sets.pad.friction_face")
-                        .map(ChosenSet::faces)
-                        .unwrap_or_default();
-                    let faces = projected_faces(mesh, boundary, pad, &friction, n);
-                    from_default(
-                        part,
-                        key,
-                        format!("faces facing {n:?} under the pad's friction face"),
-                        faces,
-                    )?
-                }
-                _ => {
-                    return Err(set_error(
-                        key,
-                        &scene.path.display().to_string(),
-                        format!(
-                            "the pad mesh has no {conventional} node set and there is no geometric default: give {key} = \"SET\" or a rule, e.g. {key} = {{ facing = [0, 0, 1], circles = [{{ centre = [x, y, z], diameter = d }}] }}"
-                        ),
-                    ));
-                }
-            }
-        };
-        chosen.push(set);
+    let count = pads.len();
+    let mut chosen: Vec<ChosenSet> = Vec::with_capacity(1 + 4 * count);
+    let mut towards = Vec::with_capacity(count);
+    for (_, pad) in pads.iter() {
+        towards.push(default_direction(scene, disc, pad, count)?);
     }
-    // Back to the scene's order.
-    chosen.sort_by_key(|c| SETS.iter().position(|s| s.1 == c.key));
+    // The clamp: the disc's hub seat is its lowest face along the first pad's direction.
+    let key = "sets.disc.clamp";
+    chosen.push(if let Some(given) = &rules[0] {
+        from_scene("disc", key, given, disc, &disc_faces)?
+    } else if let Some(s) = from_mesh("disc", key, "CLAMP", disc, &disc_faces) {
+        s
+    } else {
+        let rule = lowest_face_rule(disc, towards[0]);
+        let faces = rule
+            .apply(disc, &disc_faces)
+            .map_err(|e| set_error(key, "default", e))?;
+        from_default("disc", key, rule.to_string(), faces.faces)?
+    });
+    for (i, (name, pad)) in pads.iter().enumerate() {
+        let n = towards[i];
+        let pad_faces = select::boundary_faces(pad);
+        let given = scene.pad_set_rules(name, i == 0)?;
+        let mut mine: Vec<ChosenSet> = Vec::with_capacity(4);
+        for (k, (_, _, conventional)) in PAD_SETS.iter().enumerate() {
+            let on_disc = k == 3;
+            let (mesh, boundary, part): (&Mesh, &[Face], &str) = if on_disc {
+                (&*disc, &disc_faces, "disc")
+            } else {
+                (&**pad, &pad_faces, name)
+            };
+            // The disc face under a further pad is conventionally CONTACT_FACE_<NAME>.
+            let own = format!("CONTACT_FACE_{}", name.to_uppercase());
+            let names: Vec<&str> = match (on_disc, i) {
+                (true, 0) => conventional.to_vec(),
+                (true, _) => vec![own.as_str()],
+                (false, _) => conventional.to_vec(),
+            };
+            let key = match &given[k] {
+                Some((key, _)) => key.clone(),
+                None => pad_key(k, name, count),
+            };
+            let set = if let Some((key, rule)) = &given[k] {
+                from_scene(part, key, rule, mesh, boundary)?
+            } else if let Some(s) = names
+                .iter()
+                .find_map(|c| from_mesh(part, &key, c, mesh, boundary))
+            {
+                s
+            } else {
+                match k {
+                    // The pad's friction face is its lowest face along n.
+                    0 => {
+                        let rule = lowest_face_rule(mesh, n);
+                        let faces = rule
+                            .apply(mesh, boundary)
+                            .map_err(|e| set_error(&key, "default", e))?;
+                        from_default(part, &key, rule.to_string(), faces.faces)?
+                    }
+                    3 => {
+                        let friction = mine[0].faces();
+                        let faces = projected_faces(mesh, boundary, pad, &friction, n);
+                        from_default(
+                            part,
+                            &key,
+                            format!("faces facing {n:?} under the {name}'s friction face"),
+                            faces,
+                        )?
+                    }
+                    _ => {
+                        return Err(set_error(
+                            &key,
+                            &scene.path.display().to_string(),
+                            format!(
+                                "the {name} mesh has no {} node set and there is no geometric default: give {key} = \"SET\" or a rule, e.g. {key} = {{ facing = [0, 0, 1], circles = [{{ centre = [x, y, z], diameter = d }}] }}",
+                                conventional.join(" or ")
+                            ),
+                        ));
+                    }
+                }
+            };
+            mine.push(set);
+        }
+        // The scene's order: the disc face first.
+        mine.rotate_right(1);
+        chosen.extend(mine);
+    }
     for c in &chosen {
-        let mesh = if c.part == "disc" {
+        let mesh: &mut Mesh = if c.part == "disc" {
             &mut *disc
         } else {
-            &mut *pad
+            match pads.iter_mut().find(|p| p.0 == c.part) {
+                Some(p) => &mut *p.1,
+                None => continue,
+            }
         };
         if c.origin != Origin::Mesh && mesh.node_set(&c.name).is_none() {
             mesh.node_sets.insert(c.name.clone(), c.nodes());
@@ -544,13 +628,14 @@ fn overrides_for(
 /// held" with two 40 mm footprints on the coarse pad). `squeal mesh info --scene` lists and
 /// draws them; the reduction needs a node set of piston points.
 pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
-    if let Some(p) = parts
-        .sets
-        .iter()
-        .find(|c| c.key == "sets.pad.pistons" && c.by_geometry)
-    {
+    if let Some(p) = parts.sets.iter().find(|c| {
+        PAD_SETS[1..2]
+            .iter()
+            .any(|k| c.key.ends_with(k.0) || c.key.ends_with(&format!(".{}", k.1)))
+            && c.by_geometry
+    }) {
         return Err(set_error(
-            p.key,
+            &p.key,
             match &p.origin {
                 Origin::Scene(at) => at,
                 _ => "scene",
@@ -559,35 +644,70 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
         ));
     }
     let mut inputs = crate::model::brake_inputs(scene)?;
-    let name = |key: &str| {
-        parts
-            .sets
-            .iter()
-            .find(|c| c.key == key)
-            .map(|c| c.name.clone())
-            .unwrap_or_default()
-    };
+    let name = |key: &str| parts.set(key).map(|c| c.name.clone()).unwrap_or_default();
     inputs.disc.restraints = vec![Restraint::clamp(&name("sets.disc.clamp"))];
-    inputs.disc.contact_face_set = name("sets.disc.contact_face");
-    inputs.pad.contact_face_set = name("sets.pad.friction_face");
-    inputs.pad.piston_set = Some(name("sets.pad.pistons"));
-    // The abutments stay held as `model::brake_inputs` holds `ABUTMENT`: in the plane normal
-    // to the disc's axis (in skew node axes when the axis is skew), now on the chosen nodes.
-    let abutments = name("sets.pad.abutments");
-    for r in &mut inputs.pad.restraints {
-        if r.nodes == NodeSelection::Set("ABUTMENT".into()) {
-            r.nodes = NodeSelection::Set(abutments.clone());
-        }
-    }
-    for (set, _) in &mut inputs.pad.skew_restraints {
-        if set == "ABUTMENT" {
-            set.clone_from(&abutments);
-        }
-    }
     inputs.disc.material_overrides = overrides_for(&parts.materials, &parts.disc.mesh);
-    inputs.pad.material_overrides = overrides_for(&parts.materials, &parts.pad.mesh);
-    inputs.grid = scene.patch_grid()?;
     inputs.disc.units = parts.units;
-    inputs.pad.units = parts.units;
+    let count = inputs.pads.len();
+    inputs.disc.extra_surfaces.clear();
+    for (i, pad) in inputs.pads.iter_mut().enumerate() {
+        let key = |k: usize| {
+            parts
+                .sets
+                .iter()
+                .filter(|c| c.part == pad.name || (k == 3 && c.part == "disc"))
+                .find(|c| {
+                    c.key == pad_key(k, &pad.name, count)
+                        || c.key
+                            .starts_with(&format!("pads.{}.{}", pad.name, PAD_SETS[k].1))
+                        || c.key == PAD_SETS[k].0
+                })
+                .map(|c| c.name.clone())
+                .unwrap_or_default()
+        };
+        let p = &mut pad.part;
+        p.contact_face_set = key(0);
+        p.piston_set = Some(key(1));
+        // The abutments stay held as `model::brake_inputs` holds `ABUTMENT`: in the plane
+        // normal to the disc's axis (in skew node axes when the axis is skew), now on the
+        // chosen nodes.
+        let abutments = key(2);
+        for r in &mut p.restraints {
+            if r.nodes == NodeSelection::Set("ABUTMENT".into()) {
+                r.nodes = NodeSelection::Set(abutments.clone());
+            }
+        }
+        for (set, _) in &mut p.skew_restraints {
+            if set == "ABUTMENT" {
+                set.clone_from(&abutments);
+            }
+        }
+        if let Some((_, loaded)) = parts.pads.iter().find(|(n, _)| *n == pad.name) {
+            p.material_overrides = overrides_for(&parts.materials, &loaded.mesh);
+        }
+        p.units = parts.units;
+        let disc_face = key(3);
+        let disc_contact = scene
+            .file
+            .pads
+            .get(&pad.name)
+            .and_then(|t| t.disc_contact.as_ref())
+            .map(|c| c.get_ref().clone());
+        if i == 0 {
+            inputs.disc.contact_face_set = disc_face;
+            if let Some(c) = disc_contact {
+                inputs.disc.contact_set = c;
+            }
+            inputs.disc.facing = (count > 1).then(|| pad.name.clone());
+        } else {
+            inputs.disc.extra_surfaces.push(ContactSurface {
+                facing: Some(pad.name.clone()),
+                contact_set: disc_contact
+                    .unwrap_or_else(|| format!("CONTACT_{}", pad.name.to_uppercase())),
+                contact_face_set: disc_face,
+            });
+        }
+    }
+    inputs.grid = scene.patch_grid()?;
     Ok(inputs)
 }

@@ -240,10 +240,11 @@ pub fn write_mode_picture(
     let s = surfaces(&parts, &tris, &u_re, scale, umax);
     let (w, h) = (380, 300);
     let mut images = Vec::new();
+    let all: Vec<_> = s.iter().collect();
     for (view, which) in [
-        (View::ISO, vec![&s[0], &s[1]]),
+        (View::ISO, all.clone()),
         (View::TOP, vec![&s[0]]),
-        (View::SIDE, vec![&s[0], &s[1]]),
+        (View::SIDE, all),
     ] {
         let b = screen_bounds(&which, &view).unwrap_or(([0.0, 0.0], [1.0, 1.0]));
         images.push(render(&which, &view, b, w, h));

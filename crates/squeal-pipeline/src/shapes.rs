@@ -146,45 +146,53 @@ pub fn normalize_mode(x: &[c64]) -> Vec<c64> {
 /// The disc and pad meshes of a model, read once for the writers.
 pub struct Meshes {
     pub disc: Mesh,
-    pub pad: Mesh,
+    /// The pads' meshes, in the brake's order.
+    pub pads: Vec<Mesh>,
     disc_path: PathBuf,
-    pad_path: PathBuf,
+    pad_paths: Vec<(String, PathBuf)>,
 }
 
 impl Meshes {
-    /// Reads both meshes of `m`.
+    /// Reads every mesh of `m`.
     pub fn read(m: &crate::model::Model, log: crate::model::Log) -> Result<Self> {
         Ok(Self {
             disc: m.read_mesh(&m.disc_mesh, log)?,
-            pad: m.read_mesh(&m.pad_mesh, log)?,
+            pads: m
+                .pad_meshes
+                .iter()
+                .map(|(_, p)| m.read_mesh(p, log))
+                .collect::<Result<_>>()?,
             disc_path: m.disc_mesh.clone(),
-            pad_path: m.pad_mesh.clone(),
+            pad_paths: m.pad_meshes.clone(),
         })
     }
 
-    /// The two parts for [`write_brake_vtu`].
-    pub fn parts<'a>(&'a self, m: &'a crate::model::Model) -> Result<[PartMesh<'a>; 2]> {
+    /// The parts for [`write_brake_vtu`], disc first.
+    pub fn parts<'a>(&'a self, m: &'a crate::model::Model) -> Result<Vec<PartMesh<'a>>> {
         let disc = m
             .rom
             .part("disc")
             .ok_or(PipelineError::NoPart { part: "disc" })?;
-        let pad = m
-            .rom
-            .part("pad")
-            .ok_or(PipelineError::NoPart { part: "pad" })?;
-        Ok([
-            PartMesh {
-                part: disc,
-                mesh: &self.disc,
-                path: &self.disc_path,
-                range: m.layout.disc.clone(),
-            },
-            PartMesh {
-                part: pad,
-                mesh: &self.pad,
-                path: &self.pad_path,
-                range: m.layout.pad.clone(),
-            },
-        ])
+        let mut parts = vec![PartMesh {
+            part: disc,
+            mesh: &self.disc,
+            path: &self.disc_path,
+            range: m.layout.disc.clone(),
+        }];
+        for ((mesh, (name, path)), (_, range)) in
+            self.pads.iter().zip(&self.pad_paths).zip(&m.layout.pads)
+        {
+            let part = m
+                .rom
+                .part(name)
+                .ok_or(PipelineError::NoPart { part: "pad" })?;
+            parts.push(PartMesh {
+                part,
+                mesh,
+                path,
+                range: range.clone(),
+            });
+        }
+        Ok(parts)
     }
 }

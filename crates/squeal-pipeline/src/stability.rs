@@ -102,7 +102,12 @@ pub fn pairs_text(s: &Model) -> String {
         out,
         "contact pairs (disc point, pad point, distance, area, geometric gap, k_l, k_nl):"
     );
+    let mut pad = "";
     for p in &s.pairs {
+        if s.layout.pads.len() > 1 && p.pad != pad {
+            pad = &p.pad;
+            let _ = writeln!(out, "  {pad}:");
+        }
         let params: Vec<String> = p
             .law
             .parameters()
@@ -122,9 +127,23 @@ pub fn pairs_text(s: &Model) -> String {
     }
     let _ = writeln!(
         out,
-        "piston force {:.1} N on {} piston dofs",
+        "piston force {:.1} N on {} piston dofs{}",
         s.params.piston_force,
-        s.brake.f_piston.iter().filter(|f| **f != 0.0).count()
+        s.brake.f_piston.iter().filter(|f| **f != 0.0).count(),
+        if s.layout.pads.len() > 1 {
+            format!(
+                " (the clamp force on each of the {} pads: {})",
+                s.layout.pads.len(),
+                s.layout
+                    .pads
+                    .iter()
+                    .map(|p| p.0.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        } else {
+            String::new()
+        }
     );
     out
 }
@@ -181,6 +200,7 @@ pub fn equilibrium_table(m: &Model, eq: &Equilibrium) -> Table {
         "gap_closed_by_m",
         "closure_m",
         "normal_force_n",
+        "pad",
     ]);
     for (p, pair) in m.pairs.iter().enumerate() {
         t.push_row([
@@ -192,6 +212,7 @@ pub fn equilibrium_table(m: &Model, eq: &Equilibrium) -> Table {
             format!("{:e}", adjustment(m, pair)),
             format!("{:e}", eq.penetrations[p]),
             format!("{:e}", eq.normal_forces[p]),
+            pair.pad.clone(),
         ]);
     }
     t
@@ -212,9 +233,33 @@ pub fn equilibrium_text(m: &Model, eq: &Equilibrium) -> String {
         eq.closed_pairs(),
         eq.penetrations.len(),
         eq.total_normal_force(),
-        m.params.piston_force,
+        m.params.piston_force * m.layout.pads.len() as f64,
         gap_description(m)
     );
+    if m.layout.pads.len() > 1 {
+        // Each pad carries the clamp force; the disc takes their difference.
+        let per_pad: Vec<String> = m
+            .layout
+            .pads
+            .iter()
+            .map(|(name, _)| {
+                let f: f64 = m
+                    .pairs
+                    .iter()
+                    .zip(&eq.normal_forces)
+                    .filter(|(p, _)| p.pad == *name)
+                    .map(|(_, f)| f)
+                    .sum();
+                format!("{name} {f:.3} N")
+            })
+            .collect();
+        let _ = writeln!(
+            out,
+            "  pad resultants (each should be the clamp force {:.3} N): {}",
+            m.params.piston_force,
+            per_pad.join(", ")
+        );
+    }
     let _ = writeln!(
         out,
         "  pair  initial gap (um)  closure (um)  normal force (N)"
@@ -249,7 +294,7 @@ pub fn disc_share(s: &Model, x: &[faer::c64]) -> f64 {
         }
         e
     };
-    let (d, p) = (energy(s.layout.disc.clone()), energy(s.layout.pad.clone()));
+    let (d, p) = (energy(s.layout.disc.clone()), energy(s.layout.all_pads()));
     d / (d + p).max(f64::MIN_POSITIVE)
 }
 

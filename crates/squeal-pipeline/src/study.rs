@@ -160,7 +160,8 @@ fn identity(scene: &Scene, kind: Kind, mus: &[f64], levels: &[String]) -> Result
         return Identity::of(scene, &level_meshes(scene, levels)?, mus, levels);
     }
     let m = &scene.file.model;
-    let meshes = [scene.resolve(&m.disc), scene.resolve(&m.pad)];
+    let mut meshes = vec![scene.resolve(&m.disc)];
+    meshes.extend(scene.pads()?.iter().map(|(_, p)| scene.resolve(p)));
     Identity::of(scene, &meshes, mus, &[])
 }
 
@@ -1037,13 +1038,19 @@ fn face_set<'a>(part: &ReducedPart, mesh: &'a Mesh) -> Result<&'a [u32]> {
     })
 }
 
+/// The model's first pad (the pistons' in a two-pad brake, whose shape the study measures).
+fn first_pad(rom: &ReducedModel) -> Result<&squeal_reduce::rom::ReducedPart> {
+    rom.parts
+        .iter()
+        .find(|p| p.info.role() == squeal_reduce::rom::PartRole::Pad)
+        .ok_or(PipelineError::NoPart { part: "pad" })
+}
+
 fn rings(rom: &ReducedModel, disc: &Mesh, pad: &Mesh) -> Result<Rings> {
     let dp = rom
         .part("disc")
         .ok_or(PipelineError::NoPart { part: "disc" })?;
-    let pp = rom
-        .part("pad")
-        .ok_or(PipelineError::NoPart { part: "pad" })?;
+    let pp = first_pad(rom)?;
     let axis = dp
         .info
         .build
@@ -1104,13 +1111,15 @@ fn summarize(
         .rom
         .part("disc")
         .ok_or(PipelineError::NoPart { part: "disc" })?;
-    let pp = s
-        .rom
-        .part("pad")
-        .ok_or(PipelineError::NoPart { part: "pad" })?;
+    let pp = first_pad(&s.rom)?;
     let e = unit(r.axis.direction);
     let ud = expand_complex(dp, meshes.0, &s.disc_mesh, &x[s.layout.disc.clone()])?;
-    let up = expand_complex(pp, meshes.1, &s.pad_mesh, &x[s.layout.pad.clone()])?;
+    let pad_path = s
+        .pad_meshes
+        .first()
+        .map(|p| p.1.as_path())
+        .unwrap_or(Path::new(""));
+    let up = expand_complex(pp, meshes.1, pad_path, &x[s.layout.pad.clone()])?;
     let axial = |u: &[c64], i: usize| u[3 * i] * e[0] + u[3 * i + 1] * e[1] + u[3 * i + 2] * e[2];
     let w: Vec<c64> = r.disc.iter().map(|&(i, _)| axial(&ud, i)).collect();
     let angles: Vec<f64> = r.disc.iter().map(|&(_, t)| t).collect();
@@ -1140,7 +1149,10 @@ fn coupled_modes(s: &Model, st: &Stability, log: Log) -> Result<Option<CoupledMo
         return Ok(None);
     };
     let disc = s.read_mesh(&s.disc_mesh, log)?;
-    let pad = s.read_mesh(&s.pad_mesh, log)?;
+    let pad = match s.pad_meshes.first() {
+        Some((_, p)) => s.read_mesh(p, log)?,
+        None => return Err(PipelineError::NoPart { part: "pad" }),
+    };
     let r = rings(&s.rom, &disc, &pad)?;
     let basis = &st.reference.basis;
     let real = |m: usize| -> Vec<c64> {
@@ -1244,7 +1256,14 @@ fn variant(scene: &Scene, level: &str, interface: &str, dir: &Path) -> Result<Sc
     let mut v = Scene::read(&scene.path)?;
     let abs = |p: PathBuf| std::path::absolute(&p).unwrap_or(p);
     v.file.model.disc = abs(level_path(&scene.resolve(&scene.file.model.disc), level)?);
-    v.file.model.pad = abs(level_path(&scene.resolve(&scene.file.model.pad), level)?);
+    if let Some(p) = &scene.file.model.pad {
+        v.file.model.pad = Some(abs(level_path(&scene.resolve(p), level)?));
+    }
+    for (name, pad) in &mut v.file.pads {
+        if let Some(p) = scene.file.pads.get(name) {
+            pad.mesh = abs(level_path(&scene.resolve(&p.mesh), level)?);
+        }
+    }
     v.file.model.interface = Spanned::new(0..0, interface.to_string());
     v.file.model.rom = Some(abs(dir.join(format!("brake_{level}_{interface}.rom"))));
     Ok(v)
@@ -1262,8 +1281,9 @@ fn level_meshes(scene: &Scene, levels: &[String]) -> Result<Vec<PathBuf>> {
     let m = &scene.file.model;
     let mut meshes = Vec::new();
     for level in levels {
-        for p in [&m.disc, &m.pad] {
-            meshes.push(level_path(&scene.resolve(p), level)?);
+        meshes.push(level_path(&scene.resolve(&m.disc), level)?);
+        for (_, p) in scene.pads()? {
+            meshes.push(level_path(&scene.resolve(&p), level)?);
         }
     }
     let missing: Vec<String> = meshes

@@ -106,7 +106,7 @@ fn stability(m: &Motion) -> (Stability, bool) {
     let (rom, _) = reduce_brake_loaded(
         &inputs,
         moved("disc_coarse.inp", m),
-        moved("pad_coarse.inp", m),
+        vec![moved("pad_coarse.inp", m)],
         &mut |_, _| {},
     )
     .unwrap();
@@ -224,7 +224,7 @@ fn a_scene_that_contradicts_the_mesh_is_refused() {
     let (rom, _) = reduce_brake_loaded(
         &brake_inputs(&scene).unwrap(),
         moved("disc_coarse.inp", &IDENTITY),
-        moved("pad_coarse.inp", &IDENTITY),
+        vec![moved("pad_coarse.inp", &IDENTITY)],
         &mut |_, _| {},
     )
     .unwrap();
@@ -276,7 +276,7 @@ fn a_normal_a_few_degrees_off_the_mesh_builds() {
     let (rom, _) = reduce_brake_loaded(
         &brake_inputs(&scene).unwrap(),
         moved("disc_coarse.inp", &IDENTITY),
-        moved("pad_coarse.inp", &IDENTITY),
+        vec![moved("pad_coarse.inp", &IDENTITY)],
         &mut |_, _| {},
     )
     .unwrap();

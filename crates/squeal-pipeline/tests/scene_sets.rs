@@ -89,7 +89,7 @@ fn named_sets_by_geometry(level: &str) {
             disc.node_sets.clear();
             pad.node_sets.retain(|k, _| k == "PISTON");
         }
-        let chosen = choose_sets(scene, &mut disc, &mut pad).unwrap();
+        let chosen = choose_sets(scene, &mut disc, &mut [("pad", &mut pad)]).unwrap();
         let named = [
             (&disc0, "CLAMP"),
             (&disc0, "CONTACT_FACE"),
@@ -382,7 +382,7 @@ fn rules_and_materials_that_make_no_sense_are_errors_naming_key_and_line() {
     let mut pad = read("pad_coarse.inp");
     pad.node_sets.retain(|k, _| k != "PISTON");
     let s = scene_in(&m, "disc_coarse.inp", "pad_coarse.inp", 8, "").unwrap();
-    let e = choose_sets(&s, &mut disc, &mut pad)
+    let e = choose_sets(&s, &mut disc, &mut [("pad", &mut pad)])
         .unwrap_err()
         .to_string();
     assert!(
@@ -414,7 +414,7 @@ fn pistons_as_circles_are_chosen_but_not_yet_reduced() {
     assert_eq!(pistons.pieces.len(), 2);
     let disc_area = std::f64::consts::PI * 0.02 * 0.02;
     for (k, piece) in pistons.pieces.iter().enumerate() {
-        let sum = squeal_mesh::select::summarize(&parts.pad.mesh, &piece.faces);
+        let sum = squeal_mesh::select::summarize(&parts.pads[0].1.mesh, &piece.faces);
         // Faces whose corner centroid lies in the circle cover it to about a row of the
         // coarse pad's 13 mm faces: asserted within 50 % of pi d^2 / 4; the centroid lies on
         // the back face and within a face size (13 mm) of the circle's centre.
@@ -455,15 +455,15 @@ fn paired_patches(level: &str, grid: [usize; 2]) -> Result<(f64, f64, f64), Stri
     let parts = load_parts(&s, &quiet).unwrap();
     let inputs = squeal_pipeline::parts::brake_inputs(&s, &parts).unwrap();
     assert_eq!(inputs.grid, grid);
-    let d = contact_positions(&parts.disc.mesh, &inputs.disc, &inputs).unwrap();
-    let p = contact_positions(&parts.pad.mesh, &inputs.pad, &inputs).unwrap();
+    let d = contact_positions(&parts.disc.mesh, &inputs.disc.surfaces()[0], &inputs).unwrap();
+    let p = contact_positions(&parts.pads[0].1.mesh, &inputs.pad().surfaces()[0], &inputs).unwrap();
     let (pairs, tol) =
         pair_contact_points(&d, &p, PairingTolerance::Relative(0.05)).map_err(|e| e.to_string())?;
     assert_eq!(pairs.len(), grid[0] * grid[1]);
     let worst = pairs.iter().map(|q| q.distance).fold(0.0, f64::max);
     let cut = |mesh, set: &str| patches(mesh, set, grid[0], grid[1], &Axis::default()).unwrap();
     let da = cut(&parts.disc.mesh, &inputs.disc.contact_face_set);
-    let pa = cut(&parts.pad.mesh, &inputs.pad.contact_face_set);
+    let pa = cut(&parts.pads[0].1.mesh, &inputs.pad().contact_face_set);
     let mean = da.iter().map(|x| x.area).sum::<f64>() / pairs.len() as f64;
     let area = pairs
         .iter()
@@ -552,7 +552,7 @@ fn the_defaults_do_not_depend_on_the_sign_of_the_rotation_axis() {
     let (mut disc, mut pad) = (disc0.clone(), pad0.clone());
     disc.node_sets.clear();
     pad.node_sets.retain(|k, _| k == "PISTON");
-    let chosen = choose_sets(&scene, &mut disc, &mut pad).unwrap();
+    let chosen = choose_sets(&scene, &mut disc, &mut [("pad", &mut pad)]).unwrap();
     for (c, (mesh, name)) in chosen.iter().zip([
         (&disc0, "CLAMP"),
         (&disc0, "CONTACT_FACE"),

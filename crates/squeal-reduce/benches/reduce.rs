@@ -134,11 +134,11 @@ fn child(level: &str, backend: Backend, interface: InterfaceKind) {
     };
     reset_peak();
     let disc = load_part(&inputs.disc.mesh).expect("disc mesh");
-    let pad = load_part(&inputs.pad.mesh).expect("pad mesh");
+    let pad = load_part(&inputs.pad().mesh).expect("pad mesh");
     let mut stage_peaks = vec![0.0f64; Stage::ALL.len()];
     stage_peaks[0] = peak_mb();
     let mut current = [Stage::Read; 2];
-    let (model, report) = reduce_brake_loaded(&inputs, disc, pad, &mut |part, stage| {
+    let (model, report) = reduce_brake_loaded(&inputs, disc, vec![pad], &mut |part, stage| {
         let peak = peak_mb();
         reset_peak();
         let k = Stage::ALL

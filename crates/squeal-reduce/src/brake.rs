@@ -17,8 +17,8 @@ use crate::craig_bampton::{
 use crate::interface::{Axis, InterfaceError, contact_nodes, patches};
 use crate::rom::ReducedPart;
 use crate::rom::{
-    BuildRecord, InterfaceKind, MeshInfo, PartRole, ReducedModel, RomError, RomHeader, VERSION,
-    read_header, sha256_file,
+    BuildRecord, ContactSurface, InterfaceKind, MeshInfo, PartRole, ReducedModel, RomError,
+    RomHeader, VERSION, read_header, sha256_file,
 };
 use faer::Par;
 use serde::{Deserialize, Serialize};
@@ -89,8 +89,14 @@ pub struct PartInput {
     pub contact_set: String,
     /// Node set of the contact face (patch interface).
     pub contact_face_set: String,
-    /// Node set whose normal dof is kept (the pad's pistons).
+    /// Node set whose normal dof is kept (the pad's pistons, or the caliper's fingers on an
+    /// outboard pad).
     pub piston_set: Option<String>,
+    /// The pad `contact_set` / `contact_face_set` face, on a disc braked by several pads
+    /// (`None` on a pad, and on a disc braked by one).
+    pub facing: Option<String>,
+    /// A disc's further contact surfaces, one for each pad after the first.
+    pub extra_surfaces: Vec<ContactSurface>,
     /// The unit system the mesh file is written in; [`load_part`]'s caller converts it to SI
     /// ([`reduce_brake`] does), and the `.rom` records it.
     pub units: UnitSystem,
@@ -107,6 +113,8 @@ impl PartInput {
             contact_set: "CONTACT".into(),
             contact_face_set: "CONTACT_FACE".into(),
             piston_set: None,
+            facing: None,
+            extra_surfaces: Vec::new(),
             units: UnitSystem::default(),
         }
     }
@@ -122,9 +130,43 @@ impl PartInput {
             contact_set: "CONTACT".into(),
             contact_face_set: "CONTACT_FACE".into(),
             piston_set: Some("PISTON".into()),
+            facing: None,
+            extra_surfaces: Vec::new(),
             units: UnitSystem::default(),
         }
     }
+}
+
+impl PartInput {
+    /// The part's contact surfaces: its own sets first, then the further ones.
+    pub fn surfaces(&self) -> Vec<ContactSurface> {
+        std::iter::once(ContactSurface {
+            facing: self.facing.clone(),
+            contact_set: self.contact_set.clone(),
+            contact_face_set: self.contact_face_set.clone(),
+        })
+        .chain(self.extra_surfaces.iter().cloned())
+        .collect()
+    }
+
+    /// The surface facing pad `pad` of a brake with `pads` pads: the one named after it, or
+    /// the only one when the brake has one pad and the part one surface.
+    pub fn surface_facing(&self, pad: &str, pads: usize) -> Option<ContactSurface> {
+        let all = self.surfaces();
+        if pads == 1 && all.len() == 1 {
+            return all.into_iter().next();
+        }
+        all.into_iter().find(|s| s.facing.as_deref() == Some(pad))
+    }
+}
+
+/// A pad of the brake: its name in the model (`pad` for a brake with one pad) and its part.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PadInput {
+    /// The pad's name: the part's name in the `.rom`, the disc surface facing it is named so.
+    pub name: String,
+    /// Its mesh, sets and restraints.
+    pub part: PartInput,
 }
 
 /// Everything [`reduce_brake`] needs.
@@ -132,8 +174,8 @@ impl PartInput {
 pub struct BrakeInputs {
     /// The disc.
     pub disc: PartInput,
-    /// The pad.
-    pub pad: PartInput,
+    /// The pads, the first pushed by the pistons (a one-pad brake has one, named `pad`).
+    pub pads: Vec<PadInput>,
     /// Node or patch interface, for both parts.
     pub interface: InterfaceKind,
     /// How many fixed-interface modes each part keeps.
@@ -172,7 +214,10 @@ impl Default for BrakeInputs {
     fn default() -> Self {
         Self {
             disc: PartInput::disc("meshes/disc_fine.inp"),
-            pad: PartInput::pad("meshes/pad_fine.inp"),
+            pads: vec![PadInput {
+                name: "pad".into(),
+                part: PartInput::pad("meshes/pad_fine.inp"),
+            }],
             interface: InterfaceKind::Patch,
             modes: ModeChoice::Fixed(50),
             max_modes: DEFAULT_MAX_MODES,
@@ -195,7 +240,10 @@ impl BrakeInputs {
     pub fn bundled(disc: impl Into<PathBuf>, pad: impl Into<PathBuf>) -> Self {
         Self {
             disc: PartInput::disc(disc),
-            pad: PartInput::pad(pad),
+            pads: vec![PadInput {
+                name: "pad".into(),
+                part: PartInput::pad(pad),
+            }],
             ..Self::default()
         }
     }
@@ -218,29 +266,41 @@ impl BrakeInputs {
             }
             None => self.piston_direction = Some(n),
         }
-        self.pad
-            .restraints
-            .retain(|r| r.nodes != NodeSelection::Set("ABUTMENT".into()));
-        self.pad.skew_restraints.retain(|r| r.0 != "ABUTMENT");
-        match coordinate_axis(a) {
-            Some(d) => {
-                let mut held = [true; 3];
-                held[d] = false;
-                self.pad.restraints.push(Restraint::set("ABUTMENT", held));
-            }
-            None => {
-                let [_, e2, e3] = squeal_fe::frames::orthonormal_completion(a);
-                self.pad
-                    .skew_restraints
-                    .push(("ABUTMENT".into(), vec![e2, e3]));
+        for pad in &mut self.pads {
+            let pad = &mut pad.part;
+            pad.restraints
+                .retain(|r| r.nodes != NodeSelection::Set("ABUTMENT".into()));
+            pad.skew_restraints.retain(|r| r.0 != "ABUTMENT");
+            match coordinate_axis(a) {
+                Some(d) => {
+                    let mut held = [true; 3];
+                    held[d] = false;
+                    pad.restraints.push(Restraint::set("ABUTMENT", held));
+                }
+                None => {
+                    let [_, e2, e3] = squeal_fe::frames::orthonormal_completion(a);
+                    pad.skew_restraints.push(("ABUTMENT".into(), vec![e2, e3]));
+                }
             }
         }
         Ok(self)
     }
 
-    /// The two parts with their names, disc first.
-    pub fn parts(&self) -> [(&'static str, &PartInput); 2] {
-        [("disc", &self.disc), ("pad", &self.pad)]
+    /// The parts with their names, disc first, then the pads in order.
+    pub fn parts(&self) -> Vec<(&str, &PartInput)> {
+        std::iter::once(("disc", &self.disc))
+            .chain(self.pads.iter().map(|p| (p.name.as_str(), &p.part)))
+            .collect()
+    }
+
+    /// The first pad (the one the pistons push).
+    pub fn pad(&self) -> &PartInput {
+        &self.pads[0].part
+    }
+
+    /// The first pad, to change.
+    pub fn pad_mut(&mut self) -> &mut PartInput {
+        &mut self.pads[0].part
     }
 
     /// The record stored with part `input` in the `.rom` file.
@@ -257,6 +317,8 @@ impl BrakeInputs {
             contact_set: input.contact_set.clone(),
             contact_face_set: input.contact_face_set.clone(),
             piston_set: input.piston_set.clone(),
+            facing: input.facing.clone(),
+            extra_surfaces: input.extra_surfaces.clone(),
             grid: self.grid,
             axis: self.axis,
             normal_direction: self.normal_direction,
@@ -272,6 +334,24 @@ impl BrakeInputs {
     /// Checks the options that do not need the meshes.
     pub fn validate(&self) -> Result<(), ReduceError> {
         let bad = |what: String| Err(ReduceError::Options(what));
+        if self.pads.is_empty() {
+            return bad("the brake has no pad".into());
+        }
+        for (i, p) in self.pads.iter().enumerate() {
+            if p.name.is_empty() || p.name == "disc" {
+                return bad(format!("a pad cannot be named '{}'", p.name));
+            }
+            if self.pads[..i].iter().any(|q| q.name == p.name) {
+                return bad(format!("two pads are named '{}'", p.name));
+            }
+            if self.disc.surface_facing(&p.name, self.pads.len()).is_none() {
+                return bad(format!(
+                    "the disc has no contact surface facing pad '{}' (a disc braked by {} pads needs one surface per pad, named after it)",
+                    p.name,
+                    self.pads.len()
+                ));
+            }
+        }
         if self.normal_direction > 2 {
             return bad(format!(
                 "normal direction {} is not 0 (x), 1 (y) or 2 (z)",
@@ -352,6 +432,8 @@ impl BrakeInputs {
             interface: self.interface,
             contact_set: input.contact_set.clone(),
             contact_face_set: input.contact_face_set.clone(),
+            facing: input.facing.clone(),
+            extra_surfaces: input.extra_surfaces.clone(),
             grid: self.grid,
             axis: self.axis,
             piston_set: input.piston_set.clone(),
@@ -484,8 +566,8 @@ impl PartReport {
     }
 }
 
-/// Reads both meshes, pairs their contact points and reduces the disc, then the pad.
-/// `progress(part, stage)` is told each stage as it starts.
+/// Reads the meshes, pairs each pad's contact points with the disc surface facing it and
+/// reduces every part. `progress(part, stage)` is told each stage as it starts.
 pub fn reduce_brake(
     inputs: &BrakeInputs,
     progress: &mut dyn FnMut(&str, Stage),
@@ -493,20 +575,31 @@ pub fn reduce_brake(
     inputs.validate()?;
     progress("disc", Stage::Read);
     let disc = load_part_in(&inputs.disc.mesh, &inputs.disc.units)?;
-    progress("pad", Stage::Read);
-    let pad = load_part_in(&inputs.pad.mesh, &inputs.pad.units)?;
-    reduce_brake_loaded(inputs, disc, pad, progress)
+    let mut pads = Vec::with_capacity(inputs.pads.len());
+    for pad in &inputs.pads {
+        progress(&pad.name, Stage::Read);
+        pads.push(load_part_in(&pad.part.mesh, &pad.part.units)?);
+    }
+    reduce_brake_loaded(inputs, disc, pads, progress)
 }
 
-/// [`reduce_brake`] on meshes already read (the mesh paths of `inputs` are not opened).
+/// [`reduce_brake`] on meshes already read, the pads in the order of `inputs.pads` (the mesh
+/// paths of `inputs` are not opened).
 pub fn reduce_brake_loaded(
     inputs: &BrakeInputs,
     disc: LoadedPart,
-    pad: LoadedPart,
+    pads: Vec<LoadedPart>,
     progress: &mut dyn FnMut(&str, Stage),
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     let t0 = Instant::now();
     inputs.validate()?;
+    if pads.len() != inputs.pads.len() {
+        return Err(ReduceError::Options(format!(
+            "{} pad meshes read for {} pads",
+            pads.len(),
+            inputs.pads.len()
+        )));
+    }
     // Errors in a part name its mesh file.
     let in_mesh = |input: &PartInput| {
         let path = input.mesh.clone();
@@ -515,42 +608,65 @@ pub fn reduce_brake_loaded(
             error: Box::new(e),
         }
     };
-    for (loaded, (name, input)) in [&disc, &pad].into_iter().zip(inputs.parts()) {
-        check_sets(&loaded.mesh, name, input, inputs).map_err(in_mesh(input))?;
+    let loaded: Vec<LoadedPart> = std::iter::once(disc).chain(pads).collect();
+    let parts = inputs.parts();
+    for (part, (name, input)) in loaded.iter().zip(&parts) {
+        check_sets(&part.mesh, name, input, inputs).map_err(in_mesh(input))?;
     }
-    let disc_points =
-        contact_positions(&disc.mesh, &inputs.disc, inputs).map_err(in_mesh(&inputs.disc))?;
-    let pad_points =
-        contact_positions(&pad.mesh, &inputs.pad, inputs).map_err(in_mesh(&inputs.pad))?;
-    let (pairs, tolerance) = pair_contact_points(
-        &disc_points,
-        &pad_points,
-        PairingTolerance::Relative(inputs.pairing_tolerance),
-    )?;
+    // The disc's contact points, surface by surface in the order of its reduced points.
+    let surfaces = inputs.disc.surfaces();
+    let mut disc_points = Vec::with_capacity(surfaces.len());
+    for surface in &surfaces {
+        disc_points.push(
+            contact_positions(&loaded[0].mesh, surface, inputs).map_err(in_mesh(&inputs.disc))?,
+        );
+    }
+    let mut pairs = Vec::new();
+    let mut tolerance = 0.0;
+    for (pad, part) in inputs.pads.iter().zip(&loaded[1..]) {
+        let k = surfaces
+            .iter()
+            .position(|s| inputs.pads.len() == 1 || s.facing.as_deref() == Some(&pad.name))
+            .ok_or_else(|| ReduceError::Options(format!("no disc surface faces {}", pad.name)))?;
+        let offset: usize = disc_points[..k].iter().map(Vec::len).sum();
+        let pad_surface = pad.part.surfaces().swap_remove(0);
+        let pad_points =
+            contact_positions(&part.mesh, &pad_surface, inputs).map_err(in_mesh(&pad.part))?;
+        let (p, t) = pair_contact_points(
+            &disc_points[k],
+            &pad_points,
+            PairingTolerance::Relative(inputs.pairing_tolerance),
+        )?;
+        pairs.extend(p.into_iter().map(|mut c| {
+            c.disc_point += offset;
+            c
+        }));
+        tolerance = f64::max(tolerance, t);
+    }
     let opts = inputs.reduce_options();
-    let (tx, rx) = mpsc::channel::<(&'static str, Stage)>();
-    let slots: [Mutex<Option<Reduced>>; 2] = Default::default();
+    let (tx, rx) = mpsc::channel::<(usize, Stage)>();
+    let slots: Vec<Mutex<Option<Reduced>>> = parts.iter().map(|_| Mutex::new(None)).collect();
     rayon::in_place_scope(|scope| {
-        for ((loaded, (name, input)), slot) in
-            [disc, pad].into_iter().zip(inputs.parts()).zip(&slots)
+        for (k, ((part, (name, input)), slot)) in
+            loaded.into_iter().zip(&parts).zip(&slots).enumerate()
         {
             let tx = tx.clone();
             let opts = &opts;
             scope.spawn(move |_| {
                 let mut tell = |stage| {
                     // The receiver lives until every part is done.
-                    let _ = tx.send((name, stage));
+                    let _ = tx.send((k, stage));
                 };
-                let reduced = reduce_loaded(inputs, name, input, loaded, opts, &mut tell);
+                let reduced = reduce_loaded(inputs, name, input, part, opts, &mut tell);
                 *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(reduced);
             });
         }
         drop(tx);
-        relay(&rx, progress);
+        relay(&rx, &mut |k, stage| progress(parts[k].0, stage));
     });
-    let mut parts = Vec::with_capacity(2);
-    let mut reports = Vec::with_capacity(2);
-    for (slot, (_, input)) in slots.into_iter().zip(inputs.parts()) {
+    let mut reduced_parts = Vec::with_capacity(parts.len());
+    let mut reports = Vec::with_capacity(parts.len());
+    for (slot, (_, input)) in slots.into_iter().zip(&parts) {
         let reduced = slot.into_inner().unwrap_or_else(PoisonError::into_inner);
         let (part, report) = reduced
             .ok_or_else(|| ReduceError::Invalid {
@@ -558,12 +674,12 @@ pub fn reduce_brake_loaded(
                 what: "a part's reduction ended without a result".into(),
             })?
             .map_err(in_mesh(input))?;
-        parts.push(part);
+        reduced_parts.push(part);
         reports.push(report);
     }
     let model = ReducedModel {
         tool_version: TOOL_VERSION.into(),
-        parts,
+        parts: reduced_parts,
     };
     let read: Duration = reports.iter().map(|r| r.read_time).sum();
     let report = BrakeReport {
@@ -581,7 +697,7 @@ type Reduced = Result<(ReducedPart, PartReport), ReduceError>;
 /// Reduces one read part with the brake's options.
 fn reduce_loaded(
     inputs: &BrakeInputs,
-    name: &'static str,
+    name: &str,
     input: &PartInput,
     loaded: LoadedPart,
     opts: &ReduceOptions,
@@ -604,7 +720,7 @@ fn reduce_loaded(
 /// Hands the parts' progress messages to `progress` on this thread, in the order each part
 /// sent them, until every part has finished. A thread of the rayon pool (a caller inside
 /// `ThreadPool::install`) runs pending work between messages instead of blocking the pool.
-fn relay(rx: &mpsc::Receiver<(&'static str, Stage)>, progress: &mut dyn FnMut(&str, Stage)) {
+fn relay(rx: &mpsc::Receiver<(usize, Stage)>, progress: &mut dyn FnMut(usize, Stage)) {
     let worker = rayon::current_thread_index().is_some();
     loop {
         let next = if worker {
@@ -621,7 +737,7 @@ fn relay(rx: &mpsc::Receiver<(&'static str, Stage)>, progress: &mut dyn FnMut(&s
 
 /// The next message, running pending pool work while there is none (None: every sender is
 /// gone).
-fn next_helping(rx: &mpsc::Receiver<(&'static str, Stage)>) -> Option<(&'static str, Stage)> {
+fn next_helping(rx: &mpsc::Receiver<(usize, Stage)>) -> Option<(usize, Stage)> {
     loop {
         match rx.try_recv() {
             Ok(m) => return Some(m),
@@ -656,12 +772,15 @@ pub fn check_sets(
         }
         Ok(nodes)
     };
-    let contact_set = match inputs.interface {
-        InterfaceKind::Node => &input.contact_set,
-        InterfaceKind::Patch => &input.contact_face_set,
-    };
-    let mut boundary: Vec<(&str, &[u32], [bool; 3])> =
-        vec![(contact_set, set(contact_set)?, [true; 3])];
+    let surfaces = input.surfaces();
+    let mut boundary: Vec<(&str, &[u32], [bool; 3])> = Vec::new();
+    for s in &surfaces {
+        let contact_set = match inputs.interface {
+            InterfaceKind::Node => &s.contact_set,
+            InterfaceKind::Patch => &s.contact_face_set,
+        };
+        boundary.push((contact_set, set(contact_set)?, [true; 3]));
+    }
     if let Some(p) = &input.piston_set {
         let mut dirs = [false; 3];
         match inputs.piston_direction {
@@ -699,11 +818,12 @@ pub fn check_sets(
     Ok(())
 }
 
-/// Positions of a part's contact points, in the order of its reduced dofs: the `CONTACT`
-/// nodes (node interface) or the patch centroids (patch interface).
+/// Positions of the contact points of one contact surface of a part, in the order of its
+/// reduced dofs: the `CONTACT` nodes (node interface) or the patch centroids (patch
+/// interface).
 pub fn contact_positions(
     mesh: &Mesh,
-    input: &PartInput,
+    input: &ContactSurface,
     inputs: &BrakeInputs,
 ) -> Result<Vec<[f64; 3]>, ReduceError> {
     Ok(match inputs.interface {
@@ -829,10 +949,11 @@ pub fn freshness(path: &Path, inputs: &BrakeInputs) -> Result<Freshness, ReduceE
         }
         Err(e) => return Err(e.into()),
     };
-    let hashes = [
-        sha256_file(&inputs.disc.mesh)?,
-        sha256_file(&inputs.pad.mesh)?,
-    ];
+    let hashes = inputs
+        .parts()
+        .iter()
+        .map(|(_, p)| sha256_file(&p.mesh))
+        .collect::<Result<Vec<_>, _>>()?;
     let reasons = stale_reasons(&header, inputs, &hashes);
     Ok(if reasons.is_empty() {
         Freshness::Fresh
@@ -841,13 +962,9 @@ pub fn freshness(path: &Path, inputs: &BrakeInputs) -> Result<Freshness, ReduceE
     })
 }
 
-/// Why a header does not match `inputs` whose mesh files hash to `hashes` (disc, pad);
-/// empty if it matches.
-pub fn stale_reasons(
-    header: &RomHeader,
-    inputs: &BrakeInputs,
-    hashes: &[String; 2],
-) -> Vec<String> {
+/// Why a header does not match `inputs` whose mesh files hash to `hashes` (disc, then the
+/// pads in order); empty if it matches.
+pub fn stale_reasons(header: &RomHeader, inputs: &BrakeInputs, hashes: &[String]) -> Vec<String> {
     let mut reasons = Vec::new();
     if header.version < VERSION {
         reasons.push(format!(
@@ -861,13 +978,16 @@ pub fn stale_reasons(
             header.tool_version
         ));
     }
-    if header.parts.len() != 2 {
+    let parts = inputs.parts();
+    if header.parts.len() != parts.len() {
         reasons.push(format!(
-            "{} parts, expected disc and pad",
-            header.parts.len()
+            "{} parts, expected {} ({})",
+            header.parts.len(),
+            parts.len(),
+            parts.iter().map(|p| p.0).collect::<Vec<_>>().join(", ")
         ));
     }
-    for ((name, input), hash) in inputs.parts().into_iter().zip(hashes) {
+    for ((name, input), hash) in parts.into_iter().zip(hashes) {
         let Some(info) = header.parts.iter().find(|p| p.name == name) else {
             reasons.push(format!("no part named {name}"));
             continue;

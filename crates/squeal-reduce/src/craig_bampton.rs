@@ -29,8 +29,8 @@
 
 use crate::interface::{Axis, InterfaceError, contact_nodes, patches, tributary_areas};
 use crate::rom::{
-    Basis, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo, PartInfo, PartRole,
-    PointRole, ReducedPart, RestraintInfo,
+    Basis, ContactSurface, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo,
+    PartInfo, PartRole, PointRole, ReducedPart, RestraintInfo,
 };
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Accum, Mat, MatRef, Par};
@@ -208,6 +208,10 @@ pub struct PartSpec {
     pub contact_set: String,
     /// Node set of the contact face (patch interface).
     pub contact_face_set: String,
+    /// The pad `contact_set` / `contact_face_set` face, on a disc braked by several pads.
+    pub facing: Option<String>,
+    /// Further contact surfaces (a disc braked by several pads: one per further pad).
+    pub extra_surfaces: Vec<ContactSurface>,
     /// Patch grid `[radial, angular]`.
     pub grid: [usize; 2],
     /// The disc's axis, about which the patches are cut in radius and angle.
@@ -222,6 +226,19 @@ pub struct PartSpec {
     pub piston_direction: Option<[f64; 3]>,
     /// Fixed-interface modes kept.
     pub modes: usize,
+}
+
+impl PartSpec {
+    /// The part's contact surfaces: its own sets first, then the further ones.
+    pub fn surfaces(&self) -> Vec<ContactSurface> {
+        std::iter::once(ContactSurface {
+            facing: self.facing.clone(),
+            contact_set: self.contact_set.clone(),
+            contact_face_set: self.contact_face_set.clone(),
+        })
+        .chain(self.extra_surfaces.iter().cloned())
+        .collect()
+    }
 }
 
 /// Options of [`reduce_part`].
@@ -871,77 +888,79 @@ fn boundary_rows(
         node: mesh.node_ids[node as usize],
         direction: AXES[d],
     };
-    match spec.interface {
-        InterfaceKind::Node => {
-            let nodes = contact_nodes(mesh, &spec.contact_set, &spec.axis)?;
-            // Each node stands for its tributary share of the contact face, when the part has
-            // one: the area its contact stiffness per unit area is multiplied by. A part has
-            // none when the set is missing or names nodes with no boundary face among them (a
-            // point contact whose face set is its contact set): its points carry no area, and
-            // a scene's `[contact] point_area` gives them one.
-            let cells = match tributary_areas(mesh, &spec.contact_face_set, &nodes) {
-                Ok(cells) => Some(cells),
-                Err(InterfaceError::MissingSet(_) | InterfaceError::NoFaces { .. }) => None,
-                Err(e) => return Err(e.into()),
-            };
-            for (k, node) in nodes.into_iter().enumerate() {
-                let p = points.len();
-                let cell = cells.as_ref().map(|c| c[k]);
-                points.push(InterfacePoint {
-                    role: PointRole::Contact,
-                    node_id: Some(mesh.node_ids[node as usize]),
-                    patch: None,
-                    position: mesh.nodes[node as usize],
-                    area: cell.map(|c| c.0),
-                    normal: cell.map(|c| c.1),
-                    surface: None,
-                });
-                for d in 0..3 {
-                    let dof = dofmap
-                        .free_dof(node, d)
-                        .ok_or_else(|| restrained(&spec.contact_set, node, d))?;
-                    rows.push(Row {
-                        point: p,
-                        label: point_label(p, d),
-                        entries: vec![(dof, 1.0)],
+    for surface in spec.surfaces() {
+        match spec.interface {
+            InterfaceKind::Node => {
+                let nodes = contact_nodes(mesh, &surface.contact_set, &spec.axis)?;
+                // Each node stands for its tributary share of the contact face, when the part has
+                // one: the area its contact stiffness per unit area is multiplied by. A part has
+                // none when the set is missing or names nodes with no boundary face among them (a
+                // point contact whose face set is its contact set): its points carry no area, and
+                // a scene's `[contact] point_area` gives them one.
+                let cells = match tributary_areas(mesh, &surface.contact_face_set, &nodes) {
+                    Ok(cells) => Some(cells),
+                    Err(InterfaceError::MissingSet(_) | InterfaceError::NoFaces { .. }) => None,
+                    Err(e) => return Err(e.into()),
+                };
+                for (k, node) in nodes.into_iter().enumerate() {
+                    let p = points.len();
+                    let cell = cells.as_ref().map(|c| c[k]);
+                    points.push(InterfacePoint {
+                        role: PointRole::Contact,
+                        node_id: Some(mesh.node_ids[node as usize]),
+                        patch: None,
+                        position: mesh.nodes[node as usize],
+                        area: cell.map(|c| c.0),
+                        normal: cell.map(|c| c.1),
+                        surface: surface.facing.clone(),
                     });
-                }
-            }
-        }
-        InterfaceKind::Patch => {
-            let patches = patches(
-                mesh,
-                &spec.contact_face_set,
-                spec.grid[0],
-                spec.grid[1],
-                &spec.axis,
-            )?;
-            for patch in patches {
-                let p = points.len();
-                points.push(InterfacePoint {
-                    role: PointRole::Contact,
-                    node_id: None,
-                    patch: Some(patch.number),
-                    position: patch.centroid,
-                    area: Some(patch.area),
-                    normal: Some(patch.normal),
-                    surface: None,
-                });
-                for d in 0..3 {
-                    // A restrained face node would pin the patch's mean motion: refuse it,
-                    // as for a restrained contact node.
-                    let mut entries = Vec::with_capacity(patch.weights.len());
-                    for &(node, w) in &patch.weights {
+                    for d in 0..3 {
                         let dof = dofmap
                             .free_dof(node, d)
-                            .ok_or_else(|| restrained(&spec.contact_face_set, node, d))?;
-                        entries.push((dof, w));
+                            .ok_or_else(|| restrained(&surface.contact_set, node, d))?;
+                        rows.push(Row {
+                            point: p,
+                            label: point_label(p, d),
+                            entries: vec![(dof, 1.0)],
+                        });
                     }
-                    rows.push(Row {
-                        point: p,
-                        label: point_label(p, d),
-                        entries,
+                }
+            }
+            InterfaceKind::Patch => {
+                let patches = patches(
+                    mesh,
+                    &surface.contact_face_set,
+                    spec.grid[0],
+                    spec.grid[1],
+                    &spec.axis,
+                )?;
+                for patch in patches {
+                    let p = points.len();
+                    points.push(InterfacePoint {
+                        role: PointRole::Contact,
+                        node_id: None,
+                        patch: Some(patch.number),
+                        position: patch.centroid,
+                        area: Some(patch.area),
+                        normal: Some(patch.normal),
+                        surface: surface.facing.clone(),
                     });
+                    for d in 0..3 {
+                        // A restrained face node would pin the patch's mean motion: refuse it,
+                        // as for a restrained contact node.
+                        let mut entries = Vec::with_capacity(patch.weights.len());
+                        for &(node, w) in &patch.weights {
+                            let dof = dofmap
+                                .free_dof(node, d)
+                                .ok_or_else(|| restrained(&surface.contact_face_set, node, d))?;
+                            entries.push((dof, w));
+                        }
+                        rows.push(Row {
+                            point: p,
+                            label: point_label(p, d),
+                            entries,
+                        });
+                    }
                 }
             }
         }

@@ -235,6 +235,20 @@ impl PartInfo {
     }
 }
 
+/// A contact surface of a part: the node sets of its contact points (node interface) and of
+/// its contact face (patch interface), and the pad it faces. A disc braked by several pads
+/// has one per pad; its contact points carry the pad's name as their
+/// [`InterfacePoint::surface`].
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ContactSurface {
+    /// The pad it faces (`None`: the brake's only pad).
+    pub facing: Option<String>,
+    /// Node set of the contact points (node interface).
+    pub contact_set: String,
+    /// Node set of the contact face (patch interface).
+    pub contact_face_set: String,
+}
+
 /// The options a part was reduced with, as given (before reading the mesh).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BuildRecord {
@@ -248,6 +262,12 @@ pub struct BuildRecord {
     pub contact_face_set: String,
     /// Node set of the piston nodes, if any.
     pub piston_set: Option<String>,
+    /// The pad the contact set faces, on a disc braked by several pads (absent otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub facing: Option<String>,
+    /// The disc's further contact surfaces, one per further pad (absent with one pad).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub extra_surfaces: Vec<ContactSurface>,
     /// Patch grid `[radial, angular]`.
     pub grid: [usize; 2],
     /// The disc's axis, around which the patches are laid out.

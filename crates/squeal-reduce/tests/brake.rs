@@ -107,7 +107,7 @@ fn file_round_trip_and_freshness() {
     let copy = dir.join("pad.inp");
     std::fs::copy(mesh_path("pad_coarse.inp"), &copy).unwrap();
     other = inputs.clone();
-    other.pad.mesh = copy.clone();
+    other.pad_mut().mesh = copy.clone();
     assert_eq!(freshness(&path, &other).unwrap(), Freshness::Fresh);
     let mut text = std::fs::read_to_string(&copy).unwrap();
     text.push_str("** edited\n");
@@ -160,11 +160,13 @@ fn automatic_choice_keeps_exactly_the_modes_below_the_cutoff() {
         name: "pad".into(),
         role: squeal_reduce::rom::PartRole::Pad,
         mesh: loaded.info.clone(),
-        restraints: inputs.pad.restraints.clone(),
+        restraints: inputs.pad().restraints.clone(),
         skew_restraints: Vec::new(),
         interface: InterfaceKind::Patch,
         contact_set: "CONTACT".into(),
         contact_face_set: "CONTACT_FACE".into(),
+        facing: None,
+        extra_surfaces: Vec::new(),
         grid: [3, 3],
         axis: inputs.axis,
         piston_set: Some("PISTON".into()),

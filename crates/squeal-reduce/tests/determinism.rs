@@ -23,7 +23,7 @@ fn rom_bytes_do_not_depend_on_the_thread_count() {
             let inputs = coarse_inputs(InterfaceKind::Patch);
             let mut stages = Vec::new();
             let (model, report) =
-                reduce_brake_loaded(&inputs, coarse("disc"), coarse("pad"), &mut |p, s| {
+                reduce_brake_loaded(&inputs, coarse("disc"), vec![coarse("pad")], &mut |p, s| {
                     stages.push((p.to_string(), s))
                 })
                 .unwrap();

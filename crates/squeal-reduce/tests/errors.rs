@@ -20,7 +20,7 @@ fn reduce_edited(
 ) -> ReduceError {
     let (mut disc, mut pad) = (coarse("disc"), coarse("pad"));
     edit(&mut disc, &mut pad);
-    match reduce_brake_loaded(inputs, disc, pad, &mut |_, _| {}) {
+    match reduce_brake_loaded(inputs, disc, vec![pad], &mut |_, _| {}) {
         Ok(_) => panic!("the reduction should have failed"),
         Err(ReduceError::InMesh { path, error }) => {
             // An error of one part names its mesh file.
@@ -38,7 +38,7 @@ fn a_missing_node_set_names_the_mesh_file() {
     let patch = coarse_inputs(InterfaceKind::Patch);
     let (disc, mut pad) = (coarse("disc"), coarse("pad"));
     pad.mesh.node_sets.remove("PISTON");
-    let e = reduce_brake_loaded(&patch, disc, pad, &mut |_, _| {}).unwrap_err();
+    let e = reduce_brake_loaded(&patch, disc, vec![pad], &mut |_, _| {}).unwrap_err();
     let shown = e.to_string();
     assert!(
         shown.contains("pad_coarse.inp: node set PISTON is missing"),
@@ -106,7 +106,7 @@ fn a_clamped_boundary_node_is_refused() {
     }
     // A piston node held along the normal, the direction it keeps.
     let mut inputs = coarse_inputs(InterfaceKind::Patch);
-    inputs.pad.restraints = vec![Restraint::set("PISTON", [false, false, true])];
+    inputs.pad_mut().restraints = vec![Restraint::set("PISTON", [false, false, true])];
     let e = reduce_edited(&inputs, |_, _| {});
     assert!(
         matches!(&e, ReduceError::BoundaryRestrained { set, direction: 'z', .. } if set == "PISTON"),
@@ -130,6 +130,8 @@ fn bar_spec(contact: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec
         interface: InterfaceKind::Node,
         contact_set: contact.into(),
         contact_face_set: contact.into(),
+        facing: None,
+        extra_surfaces: Vec::new(),
         grid: [1, 1],
         axis: Axis::default(),
         piston_set: None,
@@ -251,7 +253,7 @@ fn bad_options_and_files_are_named() {
     assert!(matches!(inputs.validate(), Err(ReduceError::Options(_))));
     // A mesh file that is not there.
     let mut inputs = coarse_inputs(InterfaceKind::Patch);
-    inputs.pad.mesh = mesh_path("no_such_pad.inp");
+    inputs.pad_mut().mesh = mesh_path("no_such_pad.inp");
     let e = reduce_brake(&inputs, &mut |_, _| {}).unwrap_err();
     assert!(matches!(e, ReduceError::Mesh(_)), "{e}");
     assert!(e.to_string().contains("no_such_pad.inp"), "{e}");

@@ -39,6 +39,8 @@ fn spec(name: &str, interface: InterfaceKind) -> (squeal_mesh::Mesh, PartSpec) {
         interface,
         contact_set: "CONTACT".into(),
         contact_face_set: "CONTACT_FACE".into(),
+        facing: None,
+        extra_surfaces: Vec::new(),
         grid: [3, 3],
         axis: Axis::default(),
         piston_set: piston,

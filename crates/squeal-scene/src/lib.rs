@@ -98,6 +98,34 @@ pub struct SceneFile {
     /// `[materials.<ELEMENT_SET>]`: materials by element set, replacing the meshes' own.
     #[serde(default)]
     pub materials: std::collections::BTreeMap<String, sets::MaterialSpec>,
+    /// `[pads.<name>]`: the pads of a brake with more than one (instead of `[model] pad`), in
+    /// the order of their names.
+    #[serde(default)]
+    pub pads: std::collections::BTreeMap<String, PadSection>,
+}
+
+/// `[pads.<name>]`: one pad of a brake with several (an inboard pad pushed by the pistons, an
+/// outboard pad pulled by the caliper's fingers). Every pad is pressed on the disc by the
+/// same clamp force (a floating caliper's fingers react the pistons' force).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PadSection {
+    /// Its mesh, relative to the scene.
+    pub mesh: PathBuf,
+    /// Where the clamp force enters: the pistons' or the fingers' points (a node set or a
+    /// rule, as `[sets.pad] pistons`); default `PISTON`.
+    pub load: Option<Spanned<toml::Value>>,
+    /// Its friction face (default: `[sets.pad] friction_face`, else `CONTACT_FACE`, else the
+    /// face towards the disc).
+    pub friction_face: Option<Spanned<toml::Value>>,
+    /// Its abutments (default: `[sets.pad] abutments`, else `ABUTMENT`).
+    pub abutments: Option<Spanned<toml::Value>>,
+    /// The disc face it presses on (default: for the first pad `[sets.disc] contact_face`,
+    /// else `CONTACT_FACE`; for the others the pad's friction face projected on the disc).
+    pub disc_contact_face: Option<Spanned<toml::Value>>,
+    /// The disc's contact nodes under it for the node interface (default `CONTACT` for the
+    /// first pad, `CONTACT_<NAME>` for the others).
+    pub disc_contact: Option<Spanned<String>>,
 }
 
 /// `[rotation]`: the axis the disc turns about, the sense, and (optionally) the speed.
@@ -192,7 +220,8 @@ fn default_harmonics() -> Spanned<usize> {
 #[serde(deny_unknown_fields)]
 pub struct ModelSection {
     pub disc: PathBuf,
-    pub pad: PathBuf,
+    /// The one pad of a one-pad brake; a brake with several pads names them in `[pads]`.
+    pub pad: Option<PathBuf>,
     /// `patch` (default) or `node`.
     #[serde(default = "default_interface")]
     pub interface: Spanned<String>,
@@ -459,8 +488,36 @@ impl Scene {
         Ok(d.map(|x| x / n))
     }
 
+    /// The pads: `("pad", [model] pad)` for a one-pad brake, else the `[pads]` tables in the
+    /// order of their names, with their meshes relative to the scene.
+    pub fn pads(&self) -> Result<Vec<(String, PathBuf)>> {
+        let f = &self.file;
+        match (&f.model.pad, f.pads.is_empty()) {
+            (Some(p), true) => Ok(vec![("pad".into(), p.clone())]),
+            (None, false) => Ok(f
+                .pads
+                .iter()
+                .map(|(name, p)| (name.clone(), p.mesh.clone()))
+                .collect()),
+            (Some(_), false) => Err(self.section_error(
+                "[model] pad and [pads] are both given: a one-pad brake names its pad in [model] pad, a brake with several in [pads.<name>] tables (remove one)",
+            )),
+            (None, true) => Err(self.section_error(
+                "no pad: give [model] pad = \"pad.inp\" or [pads.<name>] tables with mesh = \"...\"",
+            )),
+        }
+    }
+
     fn validate(&self) -> Result<()> {
         let f = &self.file;
+        self.pads()?;
+        for name in f.pads.keys() {
+            if name == "disc" || name.is_empty() {
+                return Err(
+                    self.section_error(format!("[pads.{name}]: a pad cannot be named '{name}'"))
+                );
+            }
+        }
         let iface = f.model.interface.get_ref().as_str();
         if iface != "patch" && iface != "node" {
             return Err(self.error_at(

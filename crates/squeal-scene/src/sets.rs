@@ -208,6 +208,59 @@ impl Scene {
         ])
     }
 
+    /// The sets of pad `pad` (`first`: the first of the brake's pads), in the order friction
+    /// face, load points, abutments, disc contact face, each with the key it comes from: its
+    /// `[pads.<pad>]` key, else the `[sets.pad]` key (the load points: only for the first pad,
+    /// as `pistons`), else for the first pad the `[sets.disc] contact_face`; `None` for a set
+    /// nothing gives.
+    pub fn pad_set_rules(&self, pad: &str, first: bool) -> Result<[Option<(String, SetRule)>; 4]> {
+        let (d, p) = (&self.file.sets.disc, &self.file.sets.pad);
+        let table = self.file.pads.get(pad);
+        let pick = |own: Option<&Spanned<toml::Value>>,
+                    own_key: &str,
+                    shared: Option<&Spanned<toml::Value>>,
+                    shared_key: &str,
+                    pistons: bool|
+         -> Result<Option<(String, SetRule)>> {
+            let (key, value) = match (own, shared) {
+                (Some(v), _) => (format!("pads.{pad}.{own_key}"), v),
+                (None, Some(v)) => (shared_key.to_string(), v),
+                (None, None) => return Ok(None),
+            };
+            Ok(self.set_rule(&key, Some(value), pistons)?.map(|r| (key, r)))
+        };
+        Ok([
+            pick(
+                table.and_then(|t| t.friction_face.as_ref()),
+                "friction_face",
+                p.friction_face.as_ref(),
+                "sets.pad.friction_face",
+                false,
+            )?,
+            pick(
+                table.and_then(|t| t.load.as_ref()),
+                "load",
+                p.pistons.as_ref().filter(|_| first),
+                "sets.pad.pistons",
+                true,
+            )?,
+            pick(
+                table.and_then(|t| t.abutments.as_ref()),
+                "abutments",
+                p.abutments.as_ref(),
+                "sets.pad.abutments",
+                false,
+            )?,
+            pick(
+                table.and_then(|t| t.disc_contact_face.as_ref()),
+                "disc_contact_face",
+                d.contact_face.as_ref().filter(|_| first),
+                "sets.disc.contact_face",
+                false,
+            )?,
+        ])
+    }
+
     fn location(&self, value: &Spanned<toml::Value>) -> String {
         match self.error_at("", value, "") {
             SceneError::Value { location, .. } => location,

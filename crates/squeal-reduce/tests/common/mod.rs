@@ -30,7 +30,7 @@ pub fn coarse_inputs(interface: InterfaceKind) -> BrakeInputs {
 
 /// The coarse brake reduced with `inputs`.
 pub fn reduce(inputs: &BrakeInputs) -> ReducedModel {
-    reduce_brake_loaded(inputs, coarse("disc"), coarse("pad"), &mut |_, _| {})
+    reduce_brake_loaded(inputs, coarse("disc"), vec![coarse("pad")], &mut |_, _| {})
         .unwrap()
         .0
 }
