@@ -34,7 +34,7 @@ pub fn info(path: &Path, vtu: Option<&Path>) -> Result<ExitCode> {
     );
     for (name, loaded) in parts.all() {
         println!(
-            "  {name:<5}     {} ({} nodes, {} elements)",
+            "  {name:<9} {} ({} nodes, {} elements)",
             loaded.info.path, loaded.info.nodes, loaded.info.elements
         );
     }
@@ -71,6 +71,14 @@ fn print_set(parts: &SceneParts, c: &ChosenSet) {
         } else {
             "      ".to_string()
         };
+        if let [n] = piece.nodes.as_slice() {
+            let (id, x) = (mesh.node_ids[*n as usize], mesh.nodes[*n as usize]);
+            println!(
+                "{label}node {id} at [{:.6}, {:.6}, {:.6}]",
+                x[0], x[1], x[2]
+            );
+            continue;
+        }
         if piece.faces.is_empty() {
             println!("{label}{} nodes, no boundary face", piece.nodes.len());
             continue;

@@ -356,6 +356,9 @@ pub struct Rule {
     pub facing: Option<([f64; 3], f64)>,
     /// Faces inside this circle.
     pub circle: Option<Circle>,
+    /// Only the node of the selected faces nearest this point (a piston point picked by
+    /// position: the faces' node with the smallest distance, the lowest index on a tie).
+    pub nearest: Option<[f64; 3]>,
     /// Distance tolerance of `surface` and `circle` (mesh length units).
     pub tolerance: f64,
 }
@@ -384,6 +387,7 @@ impl Rule {
             || self.bbox.is_some()
             || self.facing.is_some()
             || self.circle.is_some()
+            || self.nearest.is_some()
     }
 
     /// Checks every criterion (finite numbers, non-zero directions, a positive radius or
@@ -407,6 +411,9 @@ impl Rule {
             if !(c.diameter.is_finite() && c.diameter > 0.0) {
                 return Err(SelectError::BadDiameter(c.diameter));
             }
+        }
+        if let Some(p) = self.nearest {
+            finite(p, "the piston point")?;
         }
         Ok(())
     }
@@ -455,6 +462,20 @@ impl Rule {
             faces.retain(|f| in_circle(mesh, f, &c, self.tolerance));
         }
         let nodes = face_nodes(&faces);
+        if let Some(p) = self.nearest {
+            let d = |n: u32| {
+                let q = sub(mesh.nodes[n as usize], p);
+                dot(q, q)
+            };
+            let best = nodes
+                .iter()
+                .copied()
+                .min_by(|&a, &b| d(a).total_cmp(&d(b)).then(a.cmp(&b)));
+            return Ok(Selection {
+                faces: Vec::new(),
+                nodes: best.into_iter().collect(),
+            });
+        }
         Ok(Selection { faces, nodes })
     }
 }
@@ -513,6 +534,9 @@ impl std::fmt::Display for Rule {
                 c.diameter,
                 self.tolerance
             ));
+        }
+        if let Some(p) = self.nearest {
+            parts.push(format!("node nearest {}", fmt3(p)));
         }
         if parts.is_empty() {
             parts.push("all boundary faces".into());

@@ -487,7 +487,7 @@ pub fn choose_sets(
                             &key,
                             &scene.path.display().to_string(),
                             format!(
-                                "the {name} mesh has no {} node set and there is no geometric default: give {key} = \"SET\" or a rule, e.g. {key} = {{ facing = [0, 0, 1], circles = [{{ centre = [x, y, z], diameter = d }}] }}",
+                                "the {name} mesh has no {} node set and there is no geometric default: give {key} = \"SET\" or a rule, e.g. {key} = {{ facing = [0, 0, 1], points = [[x, y, z], ...] }} (the node nearest each point)",
                                 conventional.join(" or ")
                             ),
                         ));
@@ -626,21 +626,22 @@ fn overrides_for(
 /// mean-motion row (as a contact patch is), a constraint rather than an eliminated dof, and
 /// with only those the pad's interior stiffness is singular (measured: "the pad is not
 /// held" with two 40 mm footprints on the coarse pad). `squeal mesh info --scene` lists and
-/// draws them; the reduction needs a node set of piston points.
+/// draws them; the reduction needs piston points: a node set, or `points` (one node each).
 pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
-    if let Some(p) = parts.sets.iter().find(|c| {
-        PAD_SETS[1..2]
-            .iter()
-            .any(|k| c.key.ends_with(k.0) || c.key.ends_with(&format!(".{}", k.1)))
-            && c.by_geometry
-    }) {
+    // Load points picked one node each (`points`) are piston points like a node set's;
+    // footprints (`circles`) are not taken yet.
+    let footprint = |c: &&ChosenSet| {
+        let load = c.key == PAD_SETS[1].0 || c.key.ends_with(&format!(".{}", PAD_SETS[1].1));
+        load && c.by_geometry && c.pieces.iter().any(|p| p.nodes.len() != 1)
+    };
+    if let Some(p) = parts.sets.iter().find(footprint) {
         return Err(set_error(
             &p.key,
             match &p.origin {
                 Origin::Scene(at) => at,
                 _ => "scene",
             },
-            "pistons chosen by geometry (footprints) are listed and drawn by `squeal mesh info --scene`, but the reduction does not take them yet: it needs a node set of piston points (one normal dof each), e.g. pistons = \"PISTON\"",
+            "pistons chosen by geometry (footprints) are listed and drawn by `squeal mesh info --scene`, but the reduction does not take them yet: it needs piston points (one normal dof each): a node set, e.g. pistons = \"PISTON\", or points = [[x, y, z], ...] (the node of the selected faces nearest each)",
         ));
     }
     let mut inputs = crate::model::brake_inputs(scene)?;

@@ -284,6 +284,12 @@ pub fn equilibrium_text(m: &Model, eq: &Equilibrium) -> String {
 
 /// Kinetic-energy share of the disc in a mode `x` (reduced brake coordinates).
 pub fn disc_share(s: &Model, x: &[faer::c64]) -> f64 {
+    part_shares(s, x).first().map_or(0.0, |p| p.1)
+}
+
+/// Kinetic-energy share `x_pᴴ M_pp x_p / Σ` of each part (disc, then the pads) in a mode
+/// `x` (reduced brake coordinates; the parts are not coupled through M).
+pub fn part_shares(s: &Model, x: &[faer::c64]) -> Vec<(String, f64)> {
     let m = &s.brake.m;
     let energy = |r: std::ops::Range<usize>| -> f64 {
         let mut e = 0.0;
@@ -294,8 +300,29 @@ pub fn disc_share(s: &Model, x: &[faer::c64]) -> f64 {
         }
         e
     };
-    let (d, p) = (energy(s.layout.disc.clone()), energy(s.layout.all_pads()));
-    d / (d + p).max(f64::MIN_POSITIVE)
+    let parts: Vec<(String, f64)> = std::iter::once(("disc".to_string(), s.layout.disc.clone()))
+        .chain(s.layout.pads.iter().cloned())
+        .map(|(name, r)| (name, energy(r)))
+        .collect();
+    let total = parts
+        .iter()
+        .map(|p| p.1)
+        .sum::<f64>()
+        .max(f64::MIN_POSITIVE);
+    parts.into_iter().map(|(n, e)| (n, e / total)).collect()
+}
+
+/// `; kinetic energy: disc 3%, inboard 50%, outboard 47%` for a brake with several pads
+/// (empty with one: the disc's share says it all).
+fn shares_text(s: &Model, x: &[faer::c64]) -> String {
+    if s.layout.pads.len() < 2 {
+        return String::new();
+    }
+    let parts: Vec<String> = part_shares(s, x)
+        .iter()
+        .map(|(n, e)| format!("{n} {:.0}%", 100.0 * e))
+        .collect();
+    format!(" (by part: {})", parts.join(", "))
 }
 
 /// What the sweep found, as the lines `squeal stability` prints.
@@ -336,23 +363,32 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
             let x = h.point.spectrum.shape(&st.reference.basis, h.index);
             let _ = writeln!(
                 out,
-                "Hopf point mu0 = {:.8} (bracket [{:.10}, {:.10}], {} refinements) at {:.2} Hz; disc share of the unstable mode's kinetic energy {:.0}%",
+                "Hopf point mu0 = {:.8} (bracket [{:.10}, {:.10}], {} refinements) at {:.2} Hz; disc share of the unstable mode's kinetic energy {:.0}%{}",
                 h.mu0,
                 h.bracket.0,
                 h.bracket.1,
                 h.evaluations,
                 h.frequency_hz,
-                100.0 * disc_share(s, &x)
+                100.0 * disc_share(s, &x),
+                shares_text(s, &x)
             );
             if let Some((m1, m2)) = st.pair {
                 let f = |m: usize| st.reference.basis.omega[m] / (2.0 * std::f64::consts::PI);
+                let mode = |m: usize| -> Vec<faer::c64> {
+                    let phi = &st.reference.basis.phi;
+                    (0..phi.nrows())
+                        .map(|i| faer::c64::new(phi[(i, m)], 0.0))
+                        .collect()
+                };
                 let _ = writeln!(
                     out,
-                    "coalescing pair (frictionless modes): Mode 1 = #{} at {:.1} Hz (stays stable), Mode 2 = #{} at {:.1} Hz (goes unstable)",
+                    "coalescing pair (frictionless modes): Mode 1 = #{} at {:.1} Hz (stays stable){}, Mode 2 = #{} at {:.1} Hz (goes unstable){}",
                     m1 + 1,
                     f(m1),
+                    shares_text(s, &mode(m1)),
                     m2 + 1,
-                    f(m2)
+                    f(m2),
+                    shares_text(s, &mode(m2))
                 );
             }
         }

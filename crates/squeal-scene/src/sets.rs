@@ -31,7 +31,9 @@
 //! `plane = { point, normal }` (corners within `tolerance`), `box = { min, max }` (all six
 //! nodes inside), `facing = [x, y, z]` with `angle` (degrees, default 1), `circles` (pistons
 //! only: one piston per circle, faces whose corner centroid is within the circle in the face's
-//! plane) and `tolerance` (default: 1e-6 of the part's largest extent). A list of rules is
+//! plane), `points = [[x, y, z], ...]` (pistons only: one piston point per point, the node of
+//! the selected faces nearest it, for meshes without a node set of piston points) and
+//! `tolerance` (default: 1e-6 of the part's largest extent). A list of rules is
 //! their union (for pistons: one piston per rule, as per circle). A key left out takes
 //! the mesh's conventional set when it has one (`CLAMP`, `CONTACT_FACE`, `PISTON`,
 //! `ABUTMENT`), else the geometric default of the generator's brake (see
@@ -310,6 +312,7 @@ impl Scene {
     ) -> Result<(Vec<Rule>, bool)> {
         let l = self.length_unit()?;
         let bad = |m: String| self.error_at(key, value, m);
+        let mut points = Vec::new();
         let (rule, circles, tolerance_given) = match v {
             toml::Value::String(s) if !s.trim().is_empty() => {
                 (Rule::named(s.trim()), Vec::new(), false)
@@ -379,10 +382,19 @@ impl Scene {
                                 return Err(what(form));
                             }
                         }
+                        "points" if pistons => {
+                            let form = "a list of points [[x, y, z], ...]";
+                            for p in v.as_array().ok_or_else(|| what(form))? {
+                                points.push(vec3(p).ok_or_else(|| what(form))?.map(|x| x * l));
+                            }
+                            if points.is_empty() {
+                                return Err(what(form));
+                            }
+                        }
                         other => {
                             return Err(bad(format!(
                                 "unknown criterion '{other}' (criteria: set, cylinder, plane, box, facing, angle, tolerance{})",
-                                if pistons { ", circles" } else { "" }
+                                if pistons { ", circles, points" } else { "" }
                             )));
                         }
                     }
@@ -392,7 +404,16 @@ impl Scene {
                     (Some(_), None) => return Err(bad("angle goes with facing".into())),
                     _ => {}
                 }
-                if !rule.is_geometric() && circles.is_empty() && rule.set.is_none() {
+                if !circles.is_empty() && !points.is_empty() {
+                    return Err(bad(
+                        "give circles (footprints) or points (piston points), not both".into(),
+                    ));
+                }
+                if !rule.is_geometric()
+                    && circles.is_empty()
+                    && points.is_empty()
+                    && rule.set.is_none()
+                {
                     return Err(bad(
                         "needs a set name or at least one criterion (set, cylinder, plane, box, facing)".into(),
                     ));
@@ -407,7 +428,19 @@ impl Scene {
             }
         };
         rule.check().map_err(|e| bad(e.to_string()))?;
-        let rules = if circles.is_empty() {
+        let rules = if !points.is_empty() {
+            points
+                .into_iter()
+                .map(|p| {
+                    let r = Rule {
+                        nearest: Some(p),
+                        ..rule.clone()
+                    };
+                    r.check().map_err(|e| bad(e.to_string()))?;
+                    Ok(r)
+                })
+                .collect::<Result<Vec<_>>>()?
+        } else if circles.is_empty() {
             vec![rule]
         } else {
             circles
