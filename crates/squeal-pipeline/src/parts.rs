@@ -115,7 +115,9 @@ const PAD_SETS: [(&str, &str, &[&str]); 4] = [
     ),
 ];
 
-/// The key of set `k` of [`PAD_SETS`] for pad `pad` of a brake with `pads` pads.
+/// The scene key of pad `pad`'s set `k` (0 friction face, 1 load points, 2 abutments, 3 the
+/// disc's contact face under it) in a brake with `pads` pads: `sets.pad.friction_face` ... with
+/// one pad, `pads.<pad>.friction_face` ... with several.
 pub fn pad_key(k: usize, pad: &str, pads: usize) -> String {
     if pads == 1 {
         PAD_SETS[k].0.to_string()
