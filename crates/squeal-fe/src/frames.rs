@@ -402,7 +402,8 @@ impl DofTransform {
 }
 
 /// A direction relative to a rotation axis.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum AxisDirection {
     /// Along the axis.
     Axial,

@@ -12,13 +12,16 @@
 
 use crate::error::{PipelineError, Result};
 use crate::model::Log;
+use squeal_fe::frames::AxisDirection;
 use squeal_fe::{ElasticMaterial, FeError, MaterialTable, NodeSelection, Restraint};
 use squeal_mesh::Mesh;
 use squeal_mesh::select::{self, Face, Rule, Selection, Surface};
 use squeal_mesh::units::UnitSystem;
+use squeal_reduce::brake::PartInput;
 use squeal_reduce::brake::{BrakeInputs, LoadedPart, load_part_in};
 use squeal_reduce::rom::ContactSurface;
 use squeal_scene::Scene;
+use squeal_scene::sets::Hold;
 use squeal_scene::sets::SetRule;
 
 /// Where a chosen set comes from.
@@ -648,7 +651,11 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
     }
     let mut inputs = crate::model::brake_inputs(scene)?;
     let name = |key: &str| parts.set(key).map(|c| c.name.clone()).unwrap_or_default();
-    inputs.disc.restraints = vec![Restraint::clamp(&name("sets.disc.clamp"))];
+    let clamp = name("sets.disc.clamp");
+    inputs.disc.restraints = vec![Restraint::clamp(&clamp)];
+    if let Some(hold) = scene.clamp_hold()? {
+        apply_hold(&mut inputs.disc, &clamp, &hold);
+    }
     inputs.disc.material_overrides = overrides_for(&parts.materials, &parts.disc.mesh);
     inputs.disc.units = parts.units;
     let count = inputs.pads.len();
@@ -685,6 +692,9 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
                 set.clone_from(&abutments);
             }
         }
+        if let Some(hold) = scene.abutments_hold(&pad.name)? {
+            apply_hold(p, &abutments, &hold);
+        }
         if let Some((_, loaded)) = parts.pads.iter().find(|(n, _)| *n == pad.name) {
             p.material_overrides = overrides_for(&parts.materials, &loaded.mesh);
         }
@@ -713,4 +723,46 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
     }
     inputs.grid = scene.patch_grid()?;
     Ok(inputs)
+}
+
+/// Holds node set `set` of `part` in the directions `hold` instead of its present restraints:
+/// global directions along a coordinate axis (to 1e-12) as a plain restraint, other global
+/// directions exactly in skew node axes, directions relative to the disc's axis (axial,
+/// radial, tangential at each node) likewise; all three axis directions are the plain clamp.
+pub fn apply_hold(part: &mut PartInput, set: &str, hold: &[Hold]) {
+    part.restraints
+        .retain(|r| r.nodes != NodeSelection::Set(set.into()));
+    part.skew_restraints.retain(|r| r.0 != set);
+    part.axis_restraints.retain(|r| r.0 != set);
+    let mut plain = [false; 3];
+    let mut skew = Vec::new();
+    let mut axis = Vec::new();
+    for h in hold {
+        match *h {
+            Hold::Axial => axis.push(AxisDirection::Axial),
+            Hold::Radial => axis.push(AxisDirection::Radial),
+            Hold::Tangential => axis.push(AxisDirection::Tangential),
+            Hold::Global(d) => {
+                match (0..3).find(|&k| (0..3).all(|e| e == k || d[e].abs() <= 1e-12)) {
+                    Some(k) => plain[k] = true,
+                    None => skew.push(d),
+                }
+            }
+        }
+    }
+    axis.sort_by_key(|a| *a as u8);
+    axis.dedup();
+    if axis.len() == 3 {
+        plain = [true; 3];
+        axis.clear();
+    }
+    if plain.iter().any(|&p| p) {
+        part.restraints.push(Restraint::set(set, plain));
+    }
+    if !skew.is_empty() {
+        part.skew_restraints.push((set.to_string(), skew));
+    }
+    if !axis.is_empty() {
+        part.axis_restraints.push((set.to_string(), axis));
+    }
 }

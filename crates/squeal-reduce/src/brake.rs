@@ -23,6 +23,7 @@ use crate::rom::{
 use faer::Par;
 use serde::{Deserialize, Serialize};
 use squeal_eigs::{Backend, EigOptions};
+use squeal_fe::frames::AxisDirection;
 use squeal_fe::{ElasticMaterial, MaterialTable, NodeSelection, Restraint};
 use squeal_mesh::Mesh;
 use squeal_mesh::units::UnitSystem;
@@ -85,6 +86,9 @@ pub struct PartInput {
     /// Restraints along global directions that are not coordinate axes: node set and the
     /// directions its nodes are held in (exact, by [`squeal_fe::frames`]).
     pub skew_restraints: Vec<(String, Vec<[f64; 3]>)>,
+    /// Restraints relative to the disc's axis ([`BrakeInputs::axis`]): node set and the
+    /// directions (axial, radial, tangential at each node) its nodes are held in.
+    pub axis_restraints: Vec<(String, Vec<AxisDirection>)>,
     /// Node set of the contact points (node interface).
     pub contact_set: String,
     /// Node set of the contact face (patch interface).
@@ -110,6 +114,7 @@ impl PartInput {
             material_overrides: Vec::new(),
             restraints: vec![Restraint::clamp("CLAMP")],
             skew_restraints: Vec::new(),
+            axis_restraints: Vec::new(),
             contact_set: "CONTACT".into(),
             contact_face_set: "CONTACT_FACE".into(),
             piston_set: None,
@@ -127,6 +132,7 @@ impl PartInput {
             material_overrides: Vec::new(),
             restraints: vec![Restraint::set("ABUTMENT", [true, true, false])],
             skew_restraints: Vec::new(),
+            axis_restraints: Vec::new(),
             contact_set: "CONTACT".into(),
             contact_face_set: "CONTACT_FACE".into(),
             piston_set: Some("PISTON".into()),
@@ -312,6 +318,7 @@ impl BrakeInputs {
                 .map(|r| (selection_name(&r.nodes), r.directions))
                 .collect(),
             skew_restraints: input.skew_restraints.clone(),
+            axis_restraints: input.axis_restraints.clone(),
             piston_direction: self.piston_direction,
             material_overrides: input.material_overrides.clone(),
             contact_set: input.contact_set.clone(),
@@ -429,6 +436,7 @@ impl BrakeInputs {
             mesh,
             restraints: input.restraints.clone(),
             skew_restraints: input.skew_restraints.clone(),
+            axis_restraints: input.axis_restraints.clone(),
             interface: self.interface,
             contact_set: input.contact_set.clone(),
             contact_face_set: input.contact_face_set.clone(),
@@ -790,6 +798,9 @@ pub fn check_sets(
         boundary.push((p, set(p)?, dirs));
     }
     for (s, _) in &input.skew_restraints {
+        set(s)?;
+    }
+    for (s, _) in &input.axis_restraints {
         set(s)?;
     }
     for r in &input.restraints {

@@ -40,7 +40,8 @@ use squeal_eigs::{
     lowest_modes_with_factor,
 };
 use squeal_fe::frames::{
-    DofTransform, HeldNodes, NodeFrame, SkewRestraint, orthonormal_completion,
+    AxisDirection, DofTransform, HeldNodes, NodeFrame, RotationAxis, SkewRestraint,
+    orthonormal_completion,
 };
 use squeal_fe::{DofMap, FeError, MaterialTable, Restraint, assemble};
 use squeal_mesh::Mesh;
@@ -202,6 +203,9 @@ pub struct PartSpec {
     /// Restraints along global directions that are not coordinate axes: node set and
     /// directions (held exactly in each node's own axes, [`squeal_fe::frames`]).
     pub skew_restraints: Vec<(String, Vec<[f64; 3]>)>,
+    /// Restraints relative to the disc's axis `axis`: node set and directions (axial, radial,
+    /// tangential at each node, held exactly in the node's own axes).
+    pub axis_restraints: Vec<(String, Vec<AxisDirection>)>,
     /// Node or patch interface.
     pub interface: InterfaceKind,
     /// Node set of the contact points (node interface).
@@ -444,6 +448,15 @@ fn skew_restraints(mesh: &Mesh, spec: &PartSpec) -> Result<Vec<SkewRestraint>, R
             for &direction in directions {
                 out.push(SkewRestraint { node, direction });
             }
+        }
+    }
+    if !spec.axis_restraints.is_empty() {
+        let axis = RotationAxis::new(spec.axis.origin, spec.axis.direction)?;
+        for (set, which) in &spec.axis_restraints {
+            let nodes = mesh
+                .node_set(set)
+                .ok_or_else(|| InterfaceError::MissingSet(set.clone()))?;
+            out.extend(axis.restraints(mesh, nodes, which)?);
         }
     }
     Ok(out)

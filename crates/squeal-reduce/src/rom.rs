@@ -283,6 +283,10 @@ pub struct BuildRecord {
     /// directions (absent when there are none, and in older files).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub skew_restraints: Vec<(String, Vec<[f64; 3]>)>,
+    /// Restraints relative to the disc's axis: node set and directions (absent when there are
+    /// none, and in older files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub axis_restraints: Vec<(String, Vec<squeal_fe::frames::AxisDirection>)>,
     /// How many fixed-interface modes were asked for.
     pub modes: crate::brake::ModeChoice,
     /// Most fixed-interface modes a part may keep.

@@ -162,6 +162,7 @@ fn automatic_choice_keeps_exactly_the_modes_below_the_cutoff() {
         mesh: loaded.info.clone(),
         restraints: inputs.pad().restraints.clone(),
         skew_restraints: Vec::new(),
+        axis_restraints: Vec::new(),
         interface: InterfaceKind::Patch,
         contact_set: "CONTACT".into(),
         contact_face_set: "CONTACT_FACE".into(),

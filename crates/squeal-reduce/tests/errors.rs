@@ -127,6 +127,7 @@ fn bar_spec(contact: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec
         },
         restraints,
         skew_restraints: Vec::new(),
+        axis_restraints: Vec::new(),
         interface: InterfaceKind::Node,
         contact_set: contact.into(),
         contact_face_set: contact.into(),

@@ -36,6 +36,7 @@ fn spec(name: &str, interface: InterfaceKind) -> (squeal_mesh::Mesh, PartSpec) {
         mesh: info,
         restraints,
         skew_restraints: Vec::new(),
+        axis_restraints: Vec::new(),
         interface,
         contact_set: "CONTACT".into(),
         contact_face_set: "CONTACT_FACE".into(),

@@ -120,6 +120,9 @@ pub struct PadSection {
     pub friction_face: Option<Spanned<toml::Value>>,
     /// Its abutments (default: `[sets.pad] abutments`, else `ABUTMENT`).
     pub abutments: Option<Spanned<toml::Value>>,
+    /// What its abutments hold (default: `[sets.pad] abutments_hold`, else the plane normal
+    /// to the axis).
+    pub abutments_hold: Option<Spanned<toml::Value>>,
     /// The disc face it presses on (default: for the first pad `[sets.disc] contact_face`,
     /// else `CONTACT_FACE`; for the others the pad's friction face projected on the disc).
     pub disc_contact_face: Option<Spanned<toml::Value>>,

@@ -91,6 +91,9 @@ pub struct SetsSection {
 pub struct DiscSets {
     /// Nodes clamped in all directions.
     pub clamp: Option<Spanned<toml::Value>>,
+    /// The directions the clamp holds (default: all): a list of `"axial"`, `"radial"`,
+    /// `"tangential"` (relative to the rotation axis at each node) and global directions.
+    pub clamp_hold: Option<Spanned<toml::Value>>,
     /// The face the pad's friction face lies on (patch interface).
     pub contact_face: Option<Spanned<toml::Value>>,
 }
@@ -105,6 +108,22 @@ pub struct PadSets {
     pub pistons: Option<Spanned<toml::Value>>,
     /// Nodes held in the plane of the disc (free along the normal).
     pub abutments: Option<Spanned<toml::Value>>,
+    /// The directions the abutments hold (default `["radial", "tangential"]`: the plane
+    /// normal to the axis), as `clamp_hold`.
+    pub abutments_hold: Option<Spanned<toml::Value>>,
+}
+
+/// A direction a restraint holds its nodes in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Hold {
+    /// Along the rotation axis.
+    Axial,
+    /// Away from the axis, at each node.
+    Radial,
+    /// Along the rotation's motion, at each node.
+    Tangential,
+    /// One global unit direction.
+    Global([f64; 3]),
 }
 
 /// A set the scene gives: its key (`sets.disc.clamp`), where it is written (`file:line`) and
@@ -261,6 +280,65 @@ impl Scene {
                 false,
             )?,
         ])
+    }
+
+    /// `[sets.disc] clamp_hold`, if given.
+    pub fn clamp_hold(&self) -> Result<Option<Vec<Hold>>> {
+        self.file
+            .sets
+            .disc
+            .clamp_hold
+            .as_ref()
+            .map(|v| self.hold("sets.disc.clamp_hold", v))
+            .transpose()
+    }
+
+    /// What pad `pad`'s abutments hold, if given: its `[pads.<pad>] abutments_hold`, else
+    /// `[sets.pad] abutments_hold`.
+    pub fn abutments_hold(&self, pad: &str) -> Result<Option<Vec<Hold>>> {
+        let own = self
+            .file
+            .pads
+            .get(pad)
+            .and_then(|t| t.abutments_hold.as_ref());
+        match (own, self.file.sets.pad.abutments_hold.as_ref()) {
+            (Some(v), _) => self
+                .hold(&format!("pads.{pad}.abutments_hold"), v)
+                .map(Some),
+            (None, Some(v)) => self.hold("sets.pad.abutments_hold", v).map(Some),
+            (None, None) => Ok(None),
+        }
+    }
+
+    /// A list of held directions: `"axial"`, `"radial"`, `"tangential"` or `[x, y, z]`.
+    fn hold(&self, key: &str, value: &Spanned<toml::Value>) -> Result<Vec<Hold>> {
+        let bad = |m: &str| self.error_at(key, value, m);
+        let form =
+            "must be a list of \"axial\", \"radial\", \"tangential\" or directions [x, y, z]";
+        let items = value.get_ref().as_array().ok_or_else(|| bad(form))?;
+        if items.is_empty() {
+            return Err(bad(form));
+        }
+        let mut out = Vec::with_capacity(items.len());
+        for item in items {
+            out.push(match item {
+                toml::Value::String(s) => match s.as_str() {
+                    "axial" => Hold::Axial,
+                    "radial" => Hold::Radial,
+                    "tangential" => Hold::Tangential,
+                    _ => return Err(bad(form)),
+                },
+                v => {
+                    let d = vec3(v).ok_or_else(|| bad(form))?;
+                    let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    if !(n.is_finite() && n > 0.0) {
+                        return Err(bad("a held direction must be non-zero"));
+                    }
+                    Hold::Global(d.map(|x| x / n))
+                }
+            });
+        }
+        Ok(out)
     }
 
     fn location(&self, value: &Spanned<toml::Value>) -> String {
