@@ -369,7 +369,16 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
             .iter_mut()
             .map(|(n, p)| (n.as_str(), &mut p.mesh))
             .collect();
-        choose_sets(scene, &mut disc.mesh, &mut meshes)?
+        let mut sets = choose_sets(scene, &mut disc.mesh, &mut meshes)?;
+        if scene.file.model.interface.get_ref() == "node" {
+            sets.extend(contact_points_by_geometry(
+                scene,
+                &sets,
+                &mut disc.mesh,
+                &mut meshes,
+            )?);
+        }
+        sets
     };
     let all: Vec<(&str, &Mesh)> = std::iter::once(("disc", &disc.mesh))
         .chain(pads.iter().map(|(n, p)| (n.as_str(), &p.mesh)))
@@ -765,4 +774,122 @@ pub fn apply_hold(part: &mut PartInput, set: &str, hold: &[Hold]) {
     if !axis.is_empty() {
         part.axis_restraints.push((set.to_string(), axis));
     }
+}
+
+/// The node interface's contact points where a mesh has no node set of them: on each contact
+/// face (the disc's under each pad, each pad's friction face) the face's node nearest each
+/// patch centroid of the `[sets] patch_grid` about the rotation axis, in patch order, added
+/// to the mesh as the set the reduction reads (`CONTACT`, or `CONTACT_<NAME>` on the disc
+/// under a further pad, or the pad's `disc_contact`). Returns them as chosen sets.
+fn contact_points_by_geometry(
+    scene: &Scene,
+    sets: &[ChosenSet],
+    disc: &mut Mesh,
+    pads: &mut [(&str, &mut Mesh)],
+) -> Result<Vec<ChosenSet>> {
+    let axis = crate::model::brake_inputs(scene)?.axis;
+    let grid = scene.patch_grid()?;
+    let count = pads.len();
+    let mut out = Vec::new();
+    for i in 0..count {
+        let name = pads[i].0.to_string();
+        let face = |k: usize| {
+            sets.iter()
+                .find(|c| c.key == pad_key(k, &name, count))
+                .map(|c| c.name.clone())
+        };
+        let disc_contact = scene
+            .file
+            .pads
+            .get(&name)
+            .and_then(|t| t.disc_contact.as_ref())
+            .map(|c| c.get_ref().clone())
+            .unwrap_or_else(|| {
+                if i == 0 {
+                    "CONTACT".into()
+                } else {
+                    format!("CONTACT_{}", name.to_uppercase())
+                }
+            });
+        let jobs: [(&str, Option<String>, String); 2] = [
+            ("disc", face(3), disc_contact),
+            (name.as_str(), face(0), "CONTACT".into()),
+        ];
+        for (part, face, contact) in jobs {
+            let mesh: &mut Mesh = if part == "disc" {
+                &mut *disc
+            } else {
+                &mut *pads[i].1
+            };
+            let Some(face) = face else { continue };
+            if mesh.node_set(&contact).is_some() {
+                continue;
+            }
+            let key = if count == 1 {
+                format!(
+                    "sets.{}.contact",
+                    if part == "disc" { "disc" } else { "pad" }
+                )
+            } else if part == "disc" {
+                format!("pads.{name}.disc_contact")
+            } else {
+                format!("pads.{name}.contact")
+            };
+            let nodes = nearest_to_patches(mesh, &face, grid, &axis)
+                .map_err(|e| set_error(&key, "default", e))?;
+            mesh.node_sets.insert(contact.clone(), nodes.clone());
+            out.push(ChosenSet {
+                part: part.to_string(),
+                key,
+                name: contact,
+                origin: Origin::Default,
+                description: format!(
+                    "the nodes of {face} nearest its {} x {} patch centroids",
+                    grid[0], grid[1]
+                ),
+                by_geometry: true,
+                pieces: vec![Selection {
+                    nodes,
+                    faces: Vec::new(),
+                }],
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The node of face set `face` nearest each patch centroid of the `grid` about `axis`, in
+/// patch order; an error when two patches share their nearest node (a grid finer than the
+/// face's nodes).
+fn nearest_to_patches(
+    mesh: &Mesh,
+    face: &str,
+    grid: [usize; 2],
+    axis: &squeal_reduce::interface::Axis,
+) -> std::result::Result<Vec<u32>, String> {
+    let patches = squeal_reduce::interface::patches(mesh, face, grid[0], grid[1], axis)
+        .map_err(|e| e.to_string())?;
+    let candidates = mesh
+        .node_set(face)
+        .ok_or_else(|| format!("no node set {face}"))?;
+    let mut out: Vec<u32> = Vec::with_capacity(patches.len());
+    for p in &patches {
+        let d = |n: u32| {
+            let x = mesh.nodes[n as usize];
+            (0..3).map(|k| (x[k] - p.centroid[k]).powi(2)).sum::<f64>()
+        };
+        let best = candidates
+            .iter()
+            .copied()
+            .min_by(|&a, &b| d(a).total_cmp(&d(b)).then(a.cmp(&b)))
+            .ok_or_else(|| format!("{face} has no nodes"))?;
+        if out.contains(&best) {
+            return Err(format!(
+                "patches of the {} x {} grid share their nearest node: the grid is finer than the face's nodes",
+                grid[0], grid[1]
+            ));
+        }
+        out.push(best);
+    }
+    Ok(out)
 }

@@ -589,14 +589,29 @@ fn a_two_pad_brake_without_node_sets_reduces_as_the_named_sets() {
     // The coarse two-pad brake of meshes/two_pad, as named sets and as a scene written by hand
     // for meshes stripped of every node set: the clamp, both friction faces and both disc
     // faces by the defaults (lowest faces towards each pad, the friction faces projected on
-    // the disc), pistons and fingers by `points`, abutments by boxes and facing.
+    // the disc), pistons and fingers by `points`, abutments by boxes and facing; with the
+    // node interface also the contact points (each face's node nearest each patch centroid:
+    // on these meshes the patch-centre nodes of the CONTACT sets).
+    for interface in ["patch", "node"] {
+        two_pad_without_node_sets(interface);
+    }
+}
+
+fn two_pad_without_node_sets(interface: &str) {
     let two = meshes().join("two_pad");
     let text = std::fs::read_to_string(two.join("brake.toml"))
         .unwrap()
         .replace("_medium", "_coarse")
-        .replace("modes = 50", "modes = 8");
+        .replace("modes = 50", "modes = 8")
+        .replace(
+            "interface = \"patch\"",
+            &format!("interface = \"{interface}\""),
+        );
     let named = Scene::parse(&two.join("scene.toml"), text.clone()).unwrap();
-    let dir = std::env::temp_dir().join(format!("squeal-two-pad-nosets-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!(
+        "squeal-two-pad-nosets-{interface}-{}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     for (src, dst) in [
@@ -651,7 +666,10 @@ fn a_two_pad_brake_without_node_sets_reduces_as_the_named_sets() {
     for c in &parts.sets {
         assert_ne!(c.origin, Origin::Mesh, "{}: {:?}", c.key, c.origin);
     }
-    let (a, b) = (reduce(&named, "two-named"), reduce(&bare, "two-bare"));
+    let (a, b) = (
+        reduce(&named, &format!("two-named-{interface}")),
+        reduce(&bare, &format!("two-bare-{interface}")),
+    );
     let names =
         |m: &ReducedModel| -> Vec<String> { m.parts.iter().map(|p| p.info.name.clone()).collect() };
     assert_eq!(names(&a), ["disc", "inboard", "outboard"]);
@@ -659,7 +677,9 @@ fn a_two_pad_brake_without_node_sets_reduces_as_the_named_sets() {
     // Measured 0 (the same nodes, faces and piston points in the same order): asserted to
     // round-off of a sum taken in another order.
     let d = difference(&a, &b);
-    println!("two-pad brake, named sets against geometry: largest difference {d:.1e}");
+    println!(
+        "two-pad brake, {interface} interface, named sets against geometry: largest difference {d:.1e}"
+    );
     assert!(d < 1e-12, "{d:e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
