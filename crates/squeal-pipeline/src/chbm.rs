@@ -188,14 +188,21 @@ pub fn solve_along_branch(
     Ok((crossings, Some((i, start, sol))))
 }
 
-/// Physical dof of a point's direction in the brake (disc or pad).
+/// Physical dof of a point's direction in the brake: of the disc, of a pad by its name, or of
+/// the first pad (`"pad"` in a brake whose pads have other names).
 pub fn point_dof(m: &Model, part: &str, role_contact_index: usize, direction: u8) -> Option<usize> {
-    let rp = m.rom.part(part)?;
-    let offset = if part == "disc" {
-        m.layout.disc.start
+    let (name, offset) = if part == "disc" {
+        ("disc", m.layout.disc.start)
     } else {
-        m.layout.pad.start
+        let (name, range) = m
+            .layout
+            .pads
+            .iter()
+            .find(|p| p.0 == part)
+            .or_else(|| m.layout.pads.first().filter(|_| part == "pad"))?;
+        (name.as_str(), range.start)
     };
+    let rp = m.rom.part(name)?;
     let point = rp
         .info
         .points
@@ -209,6 +216,14 @@ pub fn point_dof(m: &Model, part: &str, role_contact_index: usize, direction: u8
         .iter()
         .position(|l| *l == squeal_reduce::rom::DofLabel::Point { point, direction })
         .map(|d| offset + d)
+}
+
+/// How labels name the first pad: `pad` in a one-pad brake, else e.g. `inboard pad`.
+pub fn first_pad_label(m: &Model) -> String {
+    match m.layout.pads.as_slice() {
+        [(name, _), _, ..] => format!("{name} pad"),
+        _ => "pad".to_string(),
+    }
 }
 
 /// A solution as the lines `squeal chbm` prints: outcome, frequency, residuals, checks,
@@ -261,13 +276,14 @@ pub fn solution_text(m: &Model, start: &ChbmStart, s: &ChbmSolution) -> String {
     );
     let _ = writeln!(out, "  sliding: {}", sliding_text(&sliding(m, s)));
     let mut t = Table::new(["dof", "mean (um)", "H1 (um)", "H2 (um)", "H3 (um)"]);
+    let pad = first_pad_label(m);
     for (name, part, dir) in [
-        ("pad contact 5, normal", "pad", 2u8),
-        ("disc contact 5, normal", "disc", 2),
-        ("pad contact 5, sliding", "pad", 0),
+        (format!("{pad} contact 5, normal"), "pad", 2u8),
+        ("disc contact 5, normal".to_string(), "disc", 2),
+        (format!("{pad} contact 5, sliding"), "pad", 0),
     ] {
         if let Some(d) = point_dof(m, part, 4, dir) {
-            let mut row = vec![name.to_string()];
+            let mut row = vec![name];
             for k in 0..=3.min(s.harmonics) {
                 row.push(format!(
                     "{:+.4}",
@@ -390,12 +406,15 @@ pub fn write_solution(dir: &Path, m: &Model, mu: f64, s: &ChbmSolution) -> Resul
     // Figures: limit cycles, histories, power per harmonic.
     let mut panels = Vec::new();
     for (title, part) in [
-        ("(a) pad contact point 5, normal", "pad"),
-        ("(b) disc contact point 5, normal", "disc"),
+        (
+            format!("(a) {} contact point 5, normal", first_pad_label(m)),
+            "pad",
+        ),
+        ("(b) disc contact point 5, normal".to_string(), "disc"),
     ] {
         if let Some(d) = point_dof(m, part, 4, 2) {
             panels.push(Panel {
-                title: title.into(),
+                title,
                 x_label: "displacement (m)".into(),
                 y_label: "velocity (m/s)".into(),
                 series: vec![Series::line(

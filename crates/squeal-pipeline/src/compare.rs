@@ -721,8 +721,14 @@ const BLACK: Rgb = Rgb(0, 0, 0);
 fn figure4(m: &Model, c: &Comparison, ratio: f64) -> Figure {
     let mut panels = Vec::new();
     for (title, part) in [
-        ("(a) pad contact point 5, normal", "pad"),
-        ("(b) disc contact point 5, normal", "disc"),
+        (
+            format!(
+                "(a) {} contact point 5, normal",
+                crate::chbm::first_pad_label(m)
+            ),
+            "pad",
+        ),
+        ("(b) disc contact point 5, normal".to_string(), "disc"),
     ] {
         let Some(d) = point_dof(m, part, 4, 2) else {
             continue;
