@@ -55,6 +55,26 @@ fn expand_parts(parts: &[PartMesh<'_>], x: &[f64]) -> Result<Vec<Vec<f64>>> {
 }
 
 /// The largest model dimension (bounding-box diagonal over both parts, m).
+/// Level with the disc, from the pads' side (the azimuth of their nodes' mean about z), so that
+/// a pad under the disc is not hidden behind the hat; [`View::SIDE`] without pads.
+fn side_view(parts: &[PartMesh<'_>]) -> View {
+    let (mut x, mut y, mut n) = (0.0, 0.0, 0usize);
+    for p in parts.iter().skip(1) {
+        for q in &p.mesh.nodes {
+            x += q[0];
+            y += q[1];
+            n += 1;
+        }
+    }
+    if n == 0 || (x == 0.0 && y == 0.0) {
+        return View::SIDE;
+    }
+    View {
+        azimuth_deg: y.atan2(x).to_degrees(),
+        elevation_deg: 0.0,
+    }
+}
+
 fn model_size(parts: &[PartMesh<'_>]) -> f64 {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -244,7 +264,7 @@ pub fn write_mode_picture(
     for (view, which) in [
         (View::ISO, all.clone()),
         (View::TOP, vec![&s[0]]),
-        (View::SIDE, all),
+        (side_view(&parts), all),
     ] {
         let b = screen_bounds(&which, &view).unwrap_or(([0.0, 0.0], [1.0, 1.0]));
         images.push(render(&which, &view, b, w, h));
@@ -340,14 +360,14 @@ pub fn write_cycle_animation(
         0.0,
         1.0,
     );
-    let b = screen_bounds(&[&undeformed[0], &undeformed[1]], &View::ISO)
-        .unwrap_or(([0.0, 0.0], [1.0, 1.0]));
+    let all: Vec<&Surface> = undeformed.iter().collect();
+    let b = screen_bounds(&all, &View::ISO).unwrap_or(([0.0, 0.0], [1.0, 1.0]));
     let (w, hgt) = (480, 340);
     let images: Vec<Vec<u8>> = us
         .iter()
         .map(|u| {
             let s = surfaces(&parts, &tris, u, scale, umax);
-            render(&[&s[0], &s[1]], &View::ISO, b, w, hgt)
+            render(&s.iter().collect::<Vec<_>>(), &View::ISO, b, w, hgt)
         })
         .collect();
     let file = format!("{stem}.png");
