@@ -270,3 +270,60 @@ fn the_two_pad_brake_presses_both_pads_with_the_clamp_force_and_squeals() {
     assert_eq!(pads.iter().filter(|p| **p == "outboard").count(), 9);
     let _ = std::fs::remove_dir_all(Path::new(&dir));
 }
+
+#[test]
+fn reduce_with_a_scene_writes_the_model_the_scene_caches() {
+    // `squeal reduce --scene` on the coarse two-pad scene (8 modes) writes a model with one
+    // part per pad, and `squeal stability` on the same scene, pointed at that file by
+    // `[model] rom`, takes it as up to date instead of reducing again.
+    let two = common::root().join("meshes/two_pad");
+    let abs = |p: std::path::PathBuf| format!("{:?}", p.display().to_string());
+    let dir = temp_dir("reduce-scene");
+    let rom = dir.join("two.rom");
+    let text = std::fs::read_to_string(two.join("brake.toml"))
+        .unwrap()
+        .replace("_medium", "_coarse")
+        .replace(
+            "modes = 50",
+            &format!("modes = 8\nrom = {}", abs(rom.clone())),
+        )
+        .replace("\"disc_coarse.inp\"", &abs(two.join("disc_coarse.inp")))
+        .replace(
+            "\"../pad_coarse.inp\"",
+            &abs(common::root().join("meshes/pad_coarse.inp")),
+        )
+        .replace(
+            "\"outboard_coarse.inp\"",
+            &abs(two.join("outboard_coarse.inp")),
+        );
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out = common::run_ok(&[
+        "reduce",
+        "--scene",
+        scene.to_str().unwrap(),
+        "-o",
+        rom.to_str().unwrap(),
+    ]);
+    assert!(out.contains("18 disc/pad points paired"), "{out}");
+    let model = squeal_reduce::rom::ReducedModel::read(&rom).unwrap();
+    let names: Vec<&str> = model.parts.iter().map(|p| p.info.name.as_str()).collect();
+    assert_eq!(names, ["disc", "inboard", "outboard"]);
+    let out = squeal(&[
+        "stability",
+        scene.to_str().unwrap(),
+        "--mu",
+        "0..1/41",
+        "--out",
+        dir.join("out").to_str().unwrap(),
+        "--no-vtu",
+    ]);
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(out.status.success(), "{text}");
+    assert!(text.contains("(up to date)"), "{text}");
+    let _ = std::fs::remove_dir_all(Path::new(&dir));
+}

@@ -4,10 +4,14 @@ use crate::progress::StageBars;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use squeal_eigs::Backend;
-use squeal_reduce::brake::{BrakeInputs, DEFAULT_AUTO_FACTOR, ModeChoice, reduce_brake};
+use squeal_pipeline::parts::{SceneParts, brake_inputs, load_parts};
+use squeal_reduce::brake::{
+    BrakeInputs, DEFAULT_AUTO_FACTOR, ModeChoice, reduce_brake, reduce_brake_loaded,
+};
 use squeal_reduce::craig_bampton::Stage;
 use squeal_reduce::rom::{InterfaceKind, ReducedModel};
 use squeal_reduce::summary::summary_text;
+use squeal_scene::Scene;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -15,9 +19,16 @@ use std::time::Instant;
 #[derive(Args)]
 pub struct ReduceArgs {
     /// Disc mesh (.inp or .msh)
-    pub disc: PathBuf,
+    #[arg(required_unless_present = "scene")]
+    pub disc: Option<PathBuf>,
     /// Pad mesh (.inp or .msh)
-    pub pad: PathBuf,
+    #[arg(required_unless_present = "scene")]
+    pub pad: Option<PathBuf>,
+    /// Reduce the brake of a scene file instead (its meshes, pads, sets, units, materials,
+    /// rotation, interface and modes; --backend, --no-basis, --export and -o still apply): the
+    /// way to reduce a brake with several pads
+    #[arg(long, conflicts_with_all = ["disc", "pad"])]
+    pub scene: Option<PathBuf>,
     /// Output reduced model (.rom)
     #[arg(short, long, default_value = "brake.rom")]
     pub output: PathBuf,
@@ -95,17 +106,42 @@ pub fn run(args: ReduceArgs) -> Result<ExitCode> {
     // and do not. So the .rom is the same bits for any --threads.
     faer::set_global_parallelism(faer::Par::Seq);
     squeal_io::require_extension(&args.output, "rom", "the reduced model (.rom)")?;
-    squeal_io::refuse_inputs(
-        &args.output,
-        &[(&args.disc, "disc mesh"), (&args.pad, "pad mesh")],
-    )?;
-    let inputs = inputs(&args)?;
+    let scene = args.scene.as_deref().map(scene_parts).transpose()?;
+    let inputs = match &scene {
+        Some((_, inputs, _)) => {
+            let mut inputs = inputs.clone();
+            inputs.backend = backend(args.backend);
+            inputs.keep_basis = !args.no_basis;
+            inputs
+        }
+        None => inputs(&args)?,
+    };
+    let mut read: Vec<(&Path, &str)> = vec![(inputs.disc.mesh.as_path(), "disc mesh")];
+    read.extend(
+        inputs
+            .pads
+            .iter()
+            .map(|p| (p.part.mesh.as_path(), "pad mesh")),
+    );
+    if let Some(path) = &args.scene {
+        read.push((path.as_path(), "scene file"));
+    }
+    squeal_io::refuse_inputs(&args.output, &read)?;
     if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
         squeal_io::check_writable(dir)?;
     }
     let mut bars = StageBars::default();
-    let (model, report) = reduce_brake(&inputs, &mut |part, stage| bars.start(part, stage.label()))
-        .context("reducing the brake")?;
+    let mut tell = |part: &str, stage: Stage| bars.start(part, stage.label());
+    let (model, report) = match scene {
+        Some((_, _, parts)) => reduce_brake_loaded(
+            &inputs,
+            parts.disc,
+            parts.pads.into_iter().map(|p| p.1).collect(),
+            &mut tell,
+        ),
+        None => reduce_brake(&inputs, &mut tell),
+    }
+    .context("reducing the brake")?;
     bars.start("brake", Stage::Write.label());
     let t = Instant::now();
     model
@@ -134,6 +170,21 @@ pub fn run(args: ReduceArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// A scene's parts (read, sets chosen) and reduction inputs.
+fn scene_parts(path: &Path) -> Result<(Scene, BrakeInputs, SceneParts)> {
+    let scene = Scene::read(path)?;
+    let parts = load_parts(&scene, &|m: &str| eprintln!("{m}"))?;
+    let inputs = brake_inputs(&scene, &parts)?;
+    Ok((scene, inputs, parts))
+}
+
+fn backend(b: EigBackend) -> Backend {
+    match b {
+        EigBackend::Lanczos => Backend::Lanczos,
+        EigBackend::Arpack => Backend::Arpack,
+    }
+}
+
 /// `X,Y,Z` as three finite numbers.
 fn parse_vector(option: &str, text: &str) -> Result<[f64; 3]> {
     let v: Vec<f64> = text
@@ -156,17 +207,17 @@ fn inputs(args: &ReduceArgs) -> Result<BrakeInputs> {
         Some(n) => parse_vector("--normal", n)?,
         None => direction,
     };
-    let mut inputs = BrakeInputs::bundled(&args.disc, &args.pad)
+    let (Some(disc), Some(pad)) = (&args.disc, &args.pad) else {
+        bail!("give the disc and pad meshes, or --scene");
+    };
+    let mut inputs = BrakeInputs::bundled(disc, pad)
         .about(squeal_reduce::interface::Axis { origin, direction }, normal)
         .map_err(|e| anyhow::anyhow!("--axis/--normal: {e}"))?;
     inputs.interface = match args.interface {
         Interface::Patch => InterfaceKind::Patch,
         Interface::Node => InterfaceKind::Node,
     };
-    inputs.backend = match args.backend {
-        EigBackend::Lanczos => Backend::Lanczos,
-        EigBackend::Arpack => Backend::Arpack,
-    };
+    inputs.backend = backend(args.backend);
     inputs.keep_basis = !args.no_basis;
     inputs.modes = if args.modes.eq_ignore_ascii_case("auto") {
         let Some(fmax) = args.fmax else {
@@ -189,8 +240,8 @@ fn inputs(args: &ReduceArgs) -> Result<BrakeInputs> {
     inputs.grid = parse_grid(&args.grid)?;
     for (set, material) in args.materials.overrides()? {
         let mut used = false;
-        let (disc, pads) = (&mut inputs.disc, &mut inputs.pads);
-        for (path, part) in [(&args.disc, disc), (&args.pad, &mut pads[0].part)] {
+        let (disc_part, pads) = (&mut inputs.disc, &mut inputs.pads);
+        for (path, part) in [(disc, disc_part), (pad, &mut pads[0].part)] {
             if mesh_has_element_set(path, &set)? {
                 part.material_overrides.push((set.clone(), material));
                 used = true;
