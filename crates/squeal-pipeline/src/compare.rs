@@ -754,7 +754,7 @@ fn figure4(m: &Model, c: &Comparison, ratio: f64) -> Figure {
             );
         }
         panels.push(Panel {
-            title: title.into(),
+            title,
             x_label: "displacement (m)".into(),
             y_label: "velocity (m/s)".into(),
             series,
