@@ -148,6 +148,16 @@ fn three_shards_merge_to_the_unsplit_study_byte_for_byte_and_bad_shards_are_refu
         e.contains("all-3-of-3.json") && e.contains("differs from shard 1"),
         "{e}"
     );
+    std::fs::write(&s3, text.clone()).unwrap();
+    // A shard computed by another version of squeal.
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["squeal_version"] = serde_json::json!("squeal 0.0.1");
+    std::fs::write(&s3, serde_json::to_string(&v).unwrap()).unwrap();
+    let e = fails(with(&split, &["--merge"]));
+    assert!(
+        e.contains("all-3-of-3.json") && e.contains("computed by squeal 0.0.1"),
+        "{e}"
+    );
     std::fs::write(&s3, text).unwrap();
     // The scene changed since the shards ran.
     let mut edited = std::fs::read_to_string(scene).unwrap();

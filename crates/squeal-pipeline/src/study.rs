@@ -207,7 +207,7 @@ fn compute(
         format: shard::FORMAT.into(),
         kind: name(kind).into(),
         shard,
-        squeal_version: env!("CARGO_PKG_VERSION").into(),
+        squeal_version: squeal_reduce::brake::TOOL_VERSION.into(),
         identity: id,
         nominal,
         units: mine

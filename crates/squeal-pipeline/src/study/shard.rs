@@ -226,7 +226,8 @@ pub struct ShardFile {
     /// The study (`--kind`).
     pub kind: String,
     pub shard: Shard,
-    /// The version of squeal that computed it.
+    /// The version of squeal that computed it ([`squeal_reduce::brake::TOOL_VERSION`]); the
+    /// merge refuses a shard of another version.
     pub squeal_version: String,
     pub identity: Identity,
     /// The nominal brake (every study but the mesh study).
@@ -393,6 +394,16 @@ pub fn read_all(dir: &Path, kind: Kind, identity: &Identity) -> Result<Vec<Shard
                     file.shard,
                     file.kind,
                     name(kind)
+                ),
+            ));
+        }
+        if file.squeal_version != squeal_reduce::brake::TOOL_VERSION {
+            return Err(shard_error(
+                p,
+                format!(
+                    "it was computed by {}, this is {}: run every shard with one build",
+                    file.squeal_version,
+                    squeal_reduce::brake::TOOL_VERSION
                 ),
             ));
         }
