@@ -39,9 +39,12 @@
 //! definite when the footprints see every motion the restraints leave free (a rigid
 //! translation along the normal moves each `r_f` by its length). The projection (eqs 6–7)
 //! takes `K` itself. `ρ_f` only scales round-off: the mean diagonal of `K` over the
-//! footprint's dofs over `Σ_k c_fk²`, so that the rigid motion along the normal is held about
-//! as stiffly as a node held in a solid. A footprint of one node is that node's dof,
-//! eliminated as a piston node's is, and nothing is added.
+//! footprint's dofs over `Σ_k c_fk²`, so that the springs add at most that mean to a diagonal
+//! entry while a unit translation along the normal meets `ρ_f` (about the footprint's
+//! diagonal entries summed). A footprint of one node is that node's dof, eliminated as a
+//! piston node's is, and nothing is added. (Eliminating a master dof per footprint instead,
+//! `u_k = (r_f − Σ_{i≠k} c_i u_i) / c_k`, spans the same space but changes `M_vv` as well and
+//! couples every footprint dof to every neighbour of the master in `K_vv`.)
 
 use crate::interface::{Axis, InterfaceError, contact_nodes, footprint, patches, tributary_areas};
 use crate::rom::{
