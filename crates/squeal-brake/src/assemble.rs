@@ -19,7 +19,11 @@
 //! - **piston**: the load pushes the pad towards the disc: a piston point with one dof (the
 //!   piston's axis, a coordinate axis or a `DofLabel::Along`) pushes along it, towards the
 //!   disc, and its axis must be within [`NORMAL_TOLERANCE_DEG`] of the pads' mean normal
-//!   `Σ A_p n_p / |Σ A_p n_p|`; a point with several dofs pushes along `-n` itself.
+//!   `Σ A_p n_p / |Σ A_p n_p|`; a point with several dofs pushes along `-n` itself. The
+//!   clamp force is shared equally by the pad's piston points: a piston node, or a piston's
+//!   footprint, whose one dof is the footprint's area-weighted mean motion (its share then
+//!   acts as the consistent nodal loads of a uniform pressure over the footprint, by the
+//!   reduction's constraint modes: `ψ_bᵀ (F Σ_k w_k n e_k) = F δ_bf`).
 //!
 //! A rigid motion of the meshes with the scene's axis, point and normal moved alike moves every
 //! one of these with it, so the brake's spectrum does not change.
@@ -123,7 +127,8 @@ pub struct BrakeParams {
     /// How close paired contact points must be.
     pub pairing_tolerance: PairingTolerance,
     /// Total piston force (N) pressing the pad on the disc, shared equally by the pad's piston
-    /// points, each pushed towards the disc along the pads' mean normal.
+    /// points (piston nodes or footprints), each pushed towards the disc along the pads' mean
+    /// normal.
     pub piston_force: f64,
     /// The pairs' initial gaps.
     pub initial_gaps: InitialGaps,

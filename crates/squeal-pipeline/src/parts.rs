@@ -8,7 +8,9 @@
 //! ([`squeal_scene::sets::SetsSection`] lists them). A set chosen by geometry is added to the
 //! mesh as a node set named after its key and rule (`sets.disc.clamp = plane point ...`),
 //! so the `.rom` records the rule and a changed rule makes a cached model stale. Pistons
-//! chosen by geometry (footprints) are listed but not yet reduced ([`brake_inputs`]).
+//! chosen as faces (footprints: `circles`, or any rule selecting faces) are each added as a
+//! node set of their own, `<name> #k` ([`footprint_names`]), and each keeps its area-weighted
+//! mean motion along the normal in the reduction.
 
 use crate::error::{PipelineError, Result};
 use crate::model::Log;
@@ -56,6 +58,11 @@ pub struct ChosenSet {
 }
 
 impl ChosenSet {
+    /// Whether it is a pad's load points (pistons or fingers).
+    pub fn is_load(&self) -> bool {
+        self.key == PAD_SETS[1].0 || self.key.ends_with(&format!(".{}", PAD_SETS[1].1))
+    }
+
     /// All nodes of its pieces, sorted and unique.
     pub fn nodes(&self) -> Vec<u32> {
         let mut v: Vec<u32> = self.pieces.iter().flat_map(|p| p.nodes.clone()).collect();
@@ -127,6 +134,19 @@ pub fn pad_key(k: usize, pad: &str, pads: usize) -> String {
     } else {
         format!("pads.{pad}.{}", PAD_SETS[k].1)
     }
+}
+
+/// The footprints of a pad's load set chosen by geometry, one node-set name per piece
+/// (`<name> #1`, `<name> #2`, ...), when some piece has more than one node: pistons chosen as
+/// faces (`circles`, a plane, a box), each reduced to its area-weighted mean motion along the
+/// normal. `None` for a set of the mesh and for pieces of one node each (`points`): those are
+/// piston nodes.
+pub fn footprint_names(c: &ChosenSet) -> Option<Vec<String>> {
+    (c.is_load() && c.by_geometry && c.pieces.iter().any(|p| p.nodes.len() != 1)).then(|| {
+        (1..=c.pieces.len())
+            .map(|k| format!("{} #{k}", c.name))
+            .collect()
+    })
 }
 
 /// The default distance tolerance of a part: 1e-6 of its largest extent.
@@ -526,6 +546,15 @@ pub fn choose_sets(
         if c.origin != Origin::Mesh && mesh.node_set(&c.name).is_none() {
             mesh.node_sets.insert(c.name.clone(), c.nodes());
         }
+        for (name, piece) in footprint_names(c)
+            .unwrap_or_default()
+            .into_iter()
+            .zip(&c.pieces)
+        {
+            mesh.node_sets
+                .entry(name)
+                .or_insert_with(|| piece.nodes.clone());
+        }
     }
     Ok(chosen)
 }
@@ -634,29 +663,36 @@ fn overrides_for(
 /// in plane on its abutments with the pistons' normal dof kept) with the chosen sets, the
 /// scene's materials and units, interface and mode count.
 ///
-/// Pistons chosen by geometry (footprints such as `circles`) are refused here: the reduction
-/// keeps one normal dof per piston node and eliminates it, which is what holds the pad along
-/// the normal while its interior is factored. A footprint's load spread by area would be a
-/// mean-motion row (as a contact patch is), a constraint rather than an eliminated dof, and
-/// with only those the pad's interior stiffness is singular (measured: "the pad is not
-/// held" with two 40 mm footprints on the coarse pad). `squeal mesh info --scene` lists and
-/// draws them; the reduction needs piston points: a node set, or `points` (one node each).
+/// Pistons chosen as faces (footprints such as `circles`) are each reduced to one coordinate,
+/// the area-weighted mean motion of the footprint along the normal, on which the piston's
+/// share of the clamp force acts (spread over the footprint by area); pistons picked one node
+/// each (`points`) and a node set's nodes keep their nodes' normal dofs. A piece of a load
+/// rule with several nodes but no boundary face (a union of node sets without faces) is
+/// refused: a footprint needs faces to spread its load over.
 pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
-    // Load points picked one node each (`points`) are piston points like a node set's;
-    // footprints (`circles`) are not taken yet.
-    let footprint = |c: &&ChosenSet| {
-        let load = c.key == PAD_SETS[1].0 || c.key.ends_with(&format!(".{}", PAD_SETS[1].1));
-        load && c.by_geometry && c.pieces.iter().any(|p| p.nodes.len() != 1)
-    };
-    if let Some(p) = parts.sets.iter().find(footprint) {
-        return Err(set_error(
-            &p.key,
-            match &p.origin {
-                Origin::Scene(at) => at,
-                _ => "scene",
-            },
-            "pistons chosen by geometry (footprints) are listed and drawn by `squeal mesh info --scene`, but the reduction does not take them yet: it needs piston points (one normal dof each): a node set, e.g. pistons = \"PISTON\", or points = [[x, y, z], ...] (the node of the selected faces nearest each)",
-        ));
+    for c in parts.sets.iter() {
+        if footprint_names(c).is_none() {
+            continue;
+        }
+        if let Some((k, p)) = c
+            .pieces
+            .iter()
+            .enumerate()
+            .find(|(_, p)| p.nodes.len() > 1 && p.faces.is_empty())
+        {
+            return Err(set_error(
+                &c.key,
+                match &c.origin {
+                    Origin::Scene(at) => at,
+                    _ => "scene",
+                },
+                format!(
+                    "piston {} selects {} nodes but no boundary face: a piston's footprint is the faces it presses on (e.g. circles = [{{ centre = [x, y, z], diameter = d }}, ...] with facing), or give piston points (a node set, or points = [[x, y, z], ...])",
+                    k + 1,
+                    p.nodes.len()
+                ),
+            ));
+        }
     }
     let mut inputs = crate::model::brake_inputs(scene)?;
     let name = |key: &str| parts.set(key).map(|c| c.name.clone()).unwrap_or_default();
@@ -670,7 +706,7 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
     let count = inputs.pads.len();
     inputs.disc.extra_surfaces.clear();
     for (i, pad) in inputs.pads.iter_mut().enumerate() {
-        let key = |k: usize| {
+        let chosen = |k: usize| {
             parts
                 .sets
                 .iter()
@@ -681,12 +717,12 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
                             .starts_with(&format!("pads.{}.{}", pad.name, PAD_SETS[k].1))
                         || c.key == PAD_SETS[k].0
                 })
-                .map(|c| c.name.clone())
-                .unwrap_or_default()
         };
+        let key = |k: usize| chosen(k).map(|c| c.name.clone()).unwrap_or_default();
         let p = &mut pad.part;
         p.contact_face_set = key(0);
         p.piston_set = Some(key(1));
+        p.piston_footprints = chosen(1).and_then(footprint_names).unwrap_or_default();
         // The abutments stay held as `model::brake_inputs` holds `ABUTMENT`: in the plane
         // normal to the disc's axis (in skew node axes when the axis is skew), now on the
         // chosen nodes.

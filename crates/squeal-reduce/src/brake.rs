@@ -96,6 +96,11 @@ pub struct PartInput {
     /// Node set whose normal dof is kept (the pad's pistons, or the caliper's fingers on an
     /// outboard pad).
     pub piston_set: Option<String>,
+    /// The pistons as footprints instead, one node set per piston (the faces it presses on),
+    /// each keeping its area-weighted mean motion along the normal
+    /// ([`crate::craig_bampton::PartSpec::piston_footprints`]); `piston_set` then names all
+    /// their nodes.
+    pub piston_footprints: Vec<String>,
     /// The pad `contact_set` / `contact_face_set` face, on a disc braked by several pads
     /// (`None` on a pad, and on a disc braked by one).
     pub facing: Option<String>,
@@ -118,6 +123,7 @@ impl PartInput {
             contact_set: "CONTACT".into(),
             contact_face_set: "CONTACT_FACE".into(),
             piston_set: None,
+            piston_footprints: Vec::new(),
             facing: None,
             extra_surfaces: Vec::new(),
             units: UnitSystem::default(),
@@ -136,6 +142,7 @@ impl PartInput {
             contact_set: "CONTACT".into(),
             contact_face_set: "CONTACT_FACE".into(),
             piston_set: Some("PISTON".into()),
+            piston_footprints: Vec::new(),
             facing: None,
             extra_surfaces: Vec::new(),
             units: UnitSystem::default(),
@@ -324,6 +331,7 @@ impl BrakeInputs {
             contact_set: input.contact_set.clone(),
             contact_face_set: input.contact_face_set.clone(),
             piston_set: input.piston_set.clone(),
+            piston_footprints: input.piston_footprints.clone(),
             facing: input.facing.clone(),
             extra_surfaces: input.extra_surfaces.clone(),
             grid: self.grid,
@@ -445,6 +453,7 @@ impl BrakeInputs {
             grid: self.grid,
             axis: self.axis,
             piston_set: input.piston_set.clone(),
+            piston_footprints: input.piston_footprints.clone(),
             normal_direction: self.normal_direction,
             piston_direction: self.piston_direction,
             modes: match self.modes {
@@ -789,12 +798,12 @@ pub fn check_sets(
         };
         boundary.push((contact_set, set(contact_set)?, [true; 3]));
     }
-    if let Some(p) = &input.piston_set {
-        let mut dirs = [false; 3];
-        match inputs.piston_direction {
-            None => dirs[inputs.normal_direction.min(2)] = true,
-            Some(n) => (0..3).for_each(|d| dirs[d] = n[d] != 0.0),
-        }
+    let mut dirs = [false; 3];
+    match inputs.piston_direction {
+        None => dirs[inputs.normal_direction.min(2)] = true,
+        Some(n) => (0..3).for_each(|d| dirs[d] = n[d] != 0.0),
+    }
+    for p in input.piston_set.iter().chain(&input.piston_footprints) {
         boundary.push((p, set(p)?, dirs));
     }
     for (s, _) in &input.skew_restraints {

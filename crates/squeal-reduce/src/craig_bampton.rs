@@ -26,8 +26,27 @@
 //!   block diagonal (`K̂_CN = Ψᵀ K Φ = 0` to round-off, since `K Ψ` lies in the range of `Cᵀ`
 //!   and `C Φ = 0`). For the node interface there are no constraint rows and this is the
 //!   paper's partition into `u_B` and `u_I`.
+//!
+//! A piston's footprint keeps one coordinate, its area-weighted mean motion along the piston
+//! direction `r_f = c_f u = Σ_k w_k n · u_k` ([`crate::interface::footprint`]), a constraint row
+//! like a contact patch's. With only constraint rows along the normal (footprints and patches)
+//! the pad's `K_vv` is singular: nothing but those rows holds it along the normal. The
+//! footprints' rows are then added to the factored stiffness as springs,
+//! `K' = K + Σ_f ρ_f c_fᵀ c_f` (an augmented Lagrangian), which changes neither kind of mode:
+//! on every set `C u = r` the added energy `½ Σ_f ρ_f r_f²` is a constant, so the least-energy
+//! constraint modes are those of `K`; on `C u = 0`, `K' u = K u`, so the fixed-interface modes
+//! (and the Sturm counts of the constrained pencil) are those of `K`. `K'` is positive
+//! definite when the footprints see every motion the restraints leave free (a rigid
+//! translation along the normal moves each `r_f` by its length). The projection (eqs 6–7)
+//! takes `K` itself. `ρ_f` only scales round-off: the mean diagonal of `K` over the
+//! footprint's dofs over `Σ_k c_fk²`, so that the springs add at most that mean to a diagonal
+//! entry while a unit translation along the normal meets `ρ_f` (about the footprint's
+//! diagonal entries summed). A footprint of one node is that node's dof, eliminated as a
+//! piston node's is, and nothing is added. (Eliminating a master dof per footprint instead,
+//! `u_k = (r_f − Σ_{i≠k} c_i u_i) / c_k`, spans the same space but changes `M_vv` as well and
+//! couples every footprint dof to every neighbour of the master in `K_vv`.)
 
-use crate::interface::{Axis, InterfaceError, contact_nodes, patches, tributary_areas};
+use crate::interface::{Axis, InterfaceError, contact_nodes, footprint, patches, tributary_areas};
 use crate::rom::{
     Basis, ContactSurface, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo,
     PartInfo, PartRole, PointRole, ReducedPart, RestraintInfo,
@@ -222,6 +241,12 @@ pub struct PartSpec {
     pub axis: Axis,
     /// Node set whose nodes keep their `normal_direction` dof (the pad's pistons).
     pub piston_set: Option<String>,
+    /// The pistons as footprints instead: one node set per piston (the faces it presses on,
+    /// given by their nodes), each keeping one coordinate, its area-weighted mean motion along
+    /// the piston direction (module docs). A set of one node keeps that node's dof, as a
+    /// `piston_set` node does. When not empty, the nodes of `piston_set` are not taken one by
+    /// one.
+    pub piston_footprints: Vec<String>,
     /// Direction (0 = x, 1 = y, 2 = z) of the piston dofs: the contact normal.
     pub normal_direction: usize,
     /// The piston dofs' unit direction when it is not a coordinate axis (a constraint row
@@ -362,6 +387,9 @@ struct Row {
     point: usize,
     label: DofLabel,
     entries: Vec<(usize, f64)>,
+    /// A piston footprint's mean motion (held by a spring in the factored stiffness when it
+    /// is a constraint row, see the module docs).
+    footprint: bool,
 }
 
 /// The free dofs of a part: those of its [`DofMap`], or the kept coordinates of a
@@ -422,17 +450,19 @@ impl FreeDofs<'_> {
 /// would leave the pad's motion along `n` free in the interior `K_vv`). A piston node that is
 /// held along skew directions already keeps its own axes, and the row is taken on those.
 fn piston_frames(mesh: &Mesh, spec: &PartSpec, held: &mut HeldNodes) -> Result<(), ReduceError> {
-    let (Some(set), Some(n)) = (&spec.piston_set, spec.piston_direction) else {
+    let Some(n) = spec.piston_direction else {
         return Ok(());
     };
-    let nodes = mesh
-        .node_set(set)
-        .ok_or_else(|| InterfaceError::MissingSet(set.clone()))?;
-    for &node in nodes {
-        held.frames.entry(node).or_insert(NodeFrame {
-            axes: orthonormal_completion(n),
-            held: 0,
-        });
+    for set in spec.piston_set.iter().chain(&spec.piston_footprints) {
+        let nodes = mesh
+            .node_set(set)
+            .ok_or_else(|| InterfaceError::MissingSet(set.clone()))?;
+        for &node in nodes {
+            held.frames.entry(node).or_insert(NodeFrame {
+                axes: orthonormal_completion(n),
+                held: 0,
+            });
+        }
     }
     Ok(())
 }
@@ -505,7 +535,10 @@ pub fn reduce_part(
     let t = Instant::now();
     let (points, rows) = boundary_rows(mesh, &free, spec)?;
     let split = Split::new(&rows, free.num_free(), &part)?;
-    let (k_interior, m_interior) = (split.interior_of(&system.k), split.interior_of(&system.m));
+    // The stiffness factored: K, or K' = K + Σ ρ_f c_fᵀ c_f with footprints (module docs).
+    let held_k = footprint_springs(&system.k, &rows, &split);
+    let k_factored = held_k.as_ref().unwrap_or(&system.k);
+    let (k_interior, m_interior) = (split.interior_of(k_factored), split.interior_of(&system.m));
     let (k_vv, m_vv): (&SparseColMat<usize, f64>, &SparseColMat<usize, f64>) =
         (&k_interior, &m_interior);
     let constraints = split.constraints().map_err(eigen)?;
@@ -533,7 +566,7 @@ pub fn reduce_part(
         false => Some(ConstrainedFactor::new(&factor, &constraints).map_err(eigen)?),
     };
     let psi_v = split
-        .constraint_modes(&system.k, &factor, constrained.as_ref())
+        .constraint_modes(k_factored, &factor, constrained.as_ref())
         .map_err(eigen)?;
     clock(Stage::ConstraintModes, t, &mut timings);
 
@@ -935,6 +968,7 @@ fn boundary_rows(
                             point: p,
                             label: point_label(p, d),
                             entries: vec![(dof, 1.0)],
+                            footprint: false,
                         });
                     }
                 }
@@ -972,13 +1006,112 @@ fn boundary_rows(
                             point: p,
                             label: point_label(p, d),
                             entries,
+                            footprint: false,
                         });
                     }
                 }
             }
         }
     }
-    if let Some(set) = &spec.piston_set {
+    // A piston node's row: its dof along the piston direction (label, entries, normal).
+    type PistonRow = (DofLabel, Vec<(usize, f64)>, Option<[f64; 3]>);
+    let piston_row = |set: &str, node: u32, p: usize| -> Result<PistonRow, ReduceError> {
+        match spec.piston_direction {
+            None => {
+                let d = spec.normal_direction;
+                let dof = dofmap
+                    .free_dof(node, d)
+                    .ok_or_else(|| restrained(set, node, d))?;
+                Ok((point_label(p, d), vec![(dof, 1.0)], None))
+            }
+            Some(n) => {
+                // `r = n · u`: the node's own first axis (`piston_frames`).
+                let entries = dofmap.along(node, n).ok_or_else(|| {
+                    let d = (0..3)
+                        .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+                        .unwrap_or(2);
+                    restrained(set, node, d)
+                })?;
+                Ok((
+                    DofLabel::Along {
+                        point: p,
+                        direction: n,
+                    },
+                    entries,
+                    Some(n),
+                ))
+            }
+        }
+    };
+    let node_piston = |set: &str,
+                       node: u32,
+                       points: &mut Vec<InterfacePoint>,
+                       rows: &mut Vec<Row>|
+     -> Result<(), ReduceError> {
+        let p = points.len();
+        let (label, entries, normal) = piston_row(set, node, p)?;
+        points.push(InterfacePoint {
+            role: PointRole::Piston,
+            node_id: Some(mesh.node_ids[node as usize]),
+            patch: None,
+            position: mesh.nodes[node as usize],
+            area: None,
+            normal,
+            surface: None,
+        });
+        rows.push(Row {
+            point: p,
+            label,
+            entries,
+            footprint: false,
+        });
+        Ok(())
+    };
+    if !spec.piston_footprints.is_empty() {
+        for set in &spec.piston_footprints {
+            let nodes = mesh
+                .node_set(set)
+                .ok_or_else(|| InterfaceError::MissingSet(set.clone()))?;
+            match nodes {
+                [] => return Err(InterfaceError::EmptySet(set.clone()).into()),
+                &[node] => node_piston(set, node, &mut points, &mut rows)?,
+                _ => {
+                    let print = footprint(mesh, set)?;
+                    let p = points.len();
+                    let mut label = point_label(p, spec.normal_direction);
+                    let mut entries = Vec::new();
+                    for &(node, w) in &print.weights {
+                        let (l, e, _) = piston_row(set, node, p)?;
+                        label = l;
+                        entries.extend(e.into_iter().map(|(dof, c)| (dof, c * w)));
+                    }
+                    let direction = match spec.piston_direction {
+                        Some(n) => n,
+                        None => {
+                            let mut e = [0.0; 3];
+                            e[spec.normal_direction.min(2)] = 1.0;
+                            e
+                        }
+                    };
+                    points.push(InterfacePoint {
+                        role: PointRole::Piston,
+                        node_id: None,
+                        patch: None,
+                        position: print.centroid,
+                        area: Some(print.area),
+                        normal: Some(direction),
+                        surface: None,
+                    });
+                    rows.push(Row {
+                        point: p,
+                        label,
+                        entries,
+                        footprint: true,
+                    });
+                }
+            }
+        }
+    } else if let Some(set) = &spec.piston_set {
         let nodes = mesh
             .node_set(set)
             .ok_or_else(|| InterfaceError::MissingSet(set.clone()))?;
@@ -986,50 +1119,87 @@ fn boundary_rows(
             return Err(InterfaceError::EmptySet(set.clone()).into());
         }
         for &node in nodes {
-            let p = points.len();
-            let (label, entries, normal) = match spec.piston_direction {
-                None => {
-                    let d = spec.normal_direction;
-                    let dof = dofmap
-                        .free_dof(node, d)
-                        .ok_or_else(|| restrained(set, node, d))?;
-                    (point_label(p, d), vec![(dof, 1.0)], None)
-                }
-                Some(n) => {
-                    // `r = n · u`: the node's own first axis (`piston_frames`).
-                    let entries = dofmap.along(node, n).ok_or_else(|| {
-                        let d = (0..3)
-                            .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
-                            .unwrap_or(2);
-                        restrained(set, node, d)
-                    })?;
-                    (
-                        DofLabel::Along {
-                            point: p,
-                            direction: n,
-                        },
-                        entries,
-                        Some(n),
-                    )
-                }
-            };
-            points.push(InterfacePoint {
-                role: PointRole::Piston,
-                node_id: Some(mesh.node_ids[node as usize]),
-                patch: None,
-                position: mesh.nodes[node as usize],
-                area: None,
-                normal,
-                surface: None,
-            });
-            rows.push(Row {
-                point: p,
-                label,
-                entries,
-            });
+            node_piston(set, node, &mut points, &mut rows)?;
         }
     }
     Ok((points, rows))
+}
+
+/// `K + Σ_f ρ_f c_fᵀ c_f` over the footprint rows `c_f` that are constraint rows (module docs),
+/// or `None` when there are none. `ρ_f` is the mean of `K`'s diagonal over the row's dofs
+/// over `Σ_k c_fk²`. Both triangles are stored, each column's rows ascending; an entry both in
+/// `K` and added is `K`'s plus the footprints' in row order (the same bits for any thread
+/// count).
+fn footprint_springs(
+    k: &SparseColMat<usize, f64>,
+    rows: &[Row],
+    split: &Split,
+) -> Option<SparseColMat<usize, f64>> {
+    let n = k.ncols();
+    let kr = k.as_ref();
+    let diagonal = |j: usize| {
+        kr.row_idx_of_col(j)
+            .zip(kr.val_of_col(j))
+            .find(|&(i, _)| i == j)
+            .map_or(0.0, |(_, &v)| v)
+    };
+    let mut added: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+    let mut any = false;
+    for (r, kind) in rows.iter().zip(&split.kinds) {
+        if !r.footprint || !matches!(kind, RowKind::Constraint(_)) {
+            continue;
+        }
+        let norm2: f64 = r.entries.iter().map(|&(_, c)| c * c).sum();
+        if norm2 <= 0.0 {
+            continue;
+        }
+        let mean =
+            r.entries.iter().map(|&(f, _)| diagonal(f)).sum::<f64>() / r.entries.len() as f64;
+        let rho = mean / norm2;
+        for &(j, cj) in &r.entries {
+            for &(i, ci) in &r.entries {
+                added[j].push((i, rho * ci * cj));
+            }
+        }
+        any = true;
+    }
+    if !any {
+        return None;
+    }
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    let mut row_idx = Vec::with_capacity(kr.compute_nnz());
+    let mut val = Vec::with_capacity(kr.compute_nnz());
+    col_ptr.push(0);
+    for (j, more) in added.iter_mut().enumerate() {
+        let mut column: Vec<(usize, f64)> = kr
+            .row_idx_of_col(j)
+            .zip(kr.val_of_col(j))
+            .map(|(i, &v)| (i, v))
+            .collect();
+        if !more.is_empty() {
+            column.append(more);
+            // Stable: K's entry first, then the footprints' in row order.
+            column.sort_by_key(|e| e.0);
+        }
+        for (i, v) in column {
+            match row_idx.last() {
+                Some(&last) if last == i && row_idx.len() > col_ptr[j] => {
+                    if let Some(x) = val.last_mut() {
+                        *x += v;
+                    }
+                }
+                _ => {
+                    row_idx.push(i);
+                    val.push(v);
+                }
+            }
+        }
+        col_ptr.push(row_idx.len());
+    }
+    Some(SparseColMat::new(
+        SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx),
+        val,
+    ))
 }
 
 /// The label of point `p`'s dof along coordinate axis `d`.

@@ -225,6 +225,31 @@ pub fn patches(
         .collect()
 }
 
+/// A piston's footprint: the whole of `face_set` (its boundary triangles, as for a contact
+/// face) as one patch, whose weights give the footprint's area-weighted mean motion
+/// `r = Σ_k w_k u_k`, `w_k = (1/A) ∫ N_k dA` (the RBE3 idea): a force `F` on `r` is the
+/// consistent nodal load of the pressure `F / A` over the footprint, `F w_k` at node `k`.
+pub fn footprint(mesh: &Mesh, face_set: &str) -> Result<Patch, InterfaceError> {
+    let nodes = mesh
+        .node_set(face_set)
+        .ok_or_else(|| InterfaceError::MissingSet(face_set.into()))?;
+    if nodes.is_empty() {
+        return Err(InterfaceError::EmptySet(face_set.into()));
+    }
+    let triangles = boundary_triangles(mesh, nodes);
+    if triangles.is_empty() {
+        return Err(InterfaceError::NoFaces {
+            set: face_set.into(),
+        });
+    }
+    let mut sums = PatchSums::default();
+    for tri in &triangles {
+        let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
+        sums.add_triangle(tri, &x);
+    }
+    Ok(sums.finish(1))
+}
+
 /// Tributary areas of contact nodes on a contact face: every point of the face (the 6-point
 /// rule of each boundary triangle of `face_set`) belongs to the nearest of `nodes` (ties to the
 /// first), so the areas partition the face (a Voronoi split of it). This is the area a node
@@ -512,6 +537,32 @@ mod tests {
             // The outward normal of the top face; the midside nodes' z carry round-off.
             assert!((normal[2] - 1.0).abs() < 1e-15 && normal[0].hypot(normal[1]) < 1e-15);
         }
+    }
+
+    #[test]
+    fn a_footprint_spreads_a_force_as_a_uniform_pressure() {
+        // A 1 x 1 face at z = 0.1 meshed 4 x 4 as one footprint.
+        let mut mesh = box_tet10_origin([0.0, 0.0, 0.0], [1.0, 1.0, 0.1], [4, 4, 1]);
+        let face = mesh.node_set("ZMAX").unwrap().to_vec();
+        mesh.node_sets.insert("FOOT".into(), face);
+        let f = footprint(&mesh, "FOOT").unwrap();
+        // Straight-sided triangles: the area and the weights are exact to round-off.
+        assert!((f.area - 1.0).abs() < 1e-14, "area {}", f.area);
+        assert!((f.normal[2] - 1.0).abs() < 1e-14);
+        let total: f64 = f.weights.iter().map(|w| w.1).sum();
+        assert!((total - 1.0).abs() < 1e-14, "weights sum to {total}");
+        // The consistent load of a uniform pressure on 6-node triangles: nothing at the
+        // corners (∫ N_corner dA = 0), A/3 of each triangle at its midside nodes.
+        for &(n, w) in &f.weights {
+            let p = mesh.nodes[n as usize];
+            let on_grid = |x: f64| (4.0 * x - (4.0 * x).round()).abs() < 1e-9;
+            if on_grid(p[0]) && on_grid(p[1]) {
+                assert!(w.abs() < 1e-15, "corner node {n}: weight {w}");
+            } else {
+                assert!(w > 0.0, "midside node {n}: weight {w}");
+            }
+        }
+        assert!((f.centroid[0] - 0.5).abs() < 1e-14 && (f.centroid[1] - 0.5).abs() < 1e-14);
     }
 
     #[test]

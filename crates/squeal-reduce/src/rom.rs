@@ -262,6 +262,10 @@ pub struct BuildRecord {
     pub contact_face_set: String,
     /// Node set of the piston nodes, if any.
     pub piston_set: Option<String>,
+    /// The pistons' footprints, one node set each (absent when the pistons are the nodes of
+    /// `piston_set`, and in older files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub piston_footprints: Vec<String>,
     /// The pad the contact set faces, on a disc braked by several pads (absent otherwise).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub facing: Option<String>,

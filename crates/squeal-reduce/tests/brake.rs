@@ -171,6 +171,7 @@ fn automatic_choice_keeps_exactly_the_modes_below_the_cutoff() {
         grid: [3, 3],
         axis: inputs.axis,
         piston_set: Some("PISTON".into()),
+        piston_footprints: Vec::new(),
         normal_direction: 2,
         piston_direction: None,
         modes: 100,

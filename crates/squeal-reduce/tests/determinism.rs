@@ -62,3 +62,59 @@ fn rom_bytes_do_not_depend_on_the_thread_count() {
         }
     }
 }
+
+#[test]
+fn pistons_as_footprints_reduce_to_the_same_bits_for_any_thread_count() {
+    // The coarse brake with the pad's pistons as two 40 mm footprints on its back face (the
+    // footprint rows and the springs added to the factored stiffness).
+    use squeal_mesh::select::{Circle, Rule, boundary_faces};
+    faer::set_global_parallelism(faer::Par::Seq);
+    let pad = || {
+        let mut pad = coarse("pad");
+        let boundary = boundary_faces(&pad.mesh);
+        for (k, deg) in [77.5f64, 102.5].into_iter().enumerate() {
+            let t = deg.to_radians();
+            let rule = Rule {
+                facing: Some(([0.0, 0.0, 1.0], 1.0)),
+                circle: Some(Circle {
+                    centre: [0.11 * t.cos(), 0.11 * t.sin(), 0.035],
+                    diameter: 0.04,
+                }),
+                tolerance: 1e-7,
+                ..Rule::default()
+            };
+            let s = rule.apply(&pad.mesh, &boundary).unwrap();
+            pad.mesh
+                .node_sets
+                .insert(format!("FOOT_{}", k + 1), s.nodes);
+        }
+        pad
+    };
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut inputs = coarse_inputs(InterfaceKind::Patch);
+            inputs.pads[0].part.piston_footprints = vec!["FOOT_1".into(), "FOOT_2".into()];
+            let (model, _) =
+                reduce_brake_loaded(&inputs, coarse("disc"), vec![pad()], &mut |_, _| {}).unwrap();
+            assert_eq!(model.parts[1].size(), 27 + 2 + 50);
+            let bytes = model.to_bytes().unwrap();
+            // The file reads back as written, with its footprints recorded.
+            let back = squeal_reduce::rom::ReducedModel::from_bytes(
+                &bytes,
+                std::path::Path::new("footprints.rom"),
+            )
+            .unwrap();
+            assert_eq!(back.parts[1].info, model.parts[1].info);
+            let build = back.parts[1].info.build.as_ref().unwrap();
+            assert_eq!(build.piston_footprints, ["FOOT_1", "FOOT_2"]);
+            assert_eq!(*build, inputs.record(&inputs.pads[0].part));
+            bytes
+        })
+    };
+    let (one, two) = (run(1), run(2));
+    assert!(one == two, "the .rom bytes differ between 1 and 2 threads");
+}

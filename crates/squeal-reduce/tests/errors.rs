@@ -136,6 +136,7 @@ fn bar_spec(contact: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec
         grid: [1, 1],
         axis: Axis::default(),
         piston_set: None,
+        piston_footprints: Vec::new(),
         normal_direction: 2,
         piston_direction: None,
         modes,

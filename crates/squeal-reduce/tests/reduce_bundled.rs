@@ -45,6 +45,7 @@ fn spec(name: &str, interface: InterfaceKind) -> (squeal_mesh::Mesh, PartSpec) {
         grid: [3, 3],
         axis: Axis::default(),
         piston_set: piston,
+        piston_footprints: Vec::new(),
         normal_direction: 2,
         piston_direction: None,
         modes: 50,
