@@ -715,7 +715,9 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
                     c.key == pad_key(k, &pad.name, count)
                         || c.key
                             .starts_with(&format!("pads.{}.{}", pad.name, PAD_SETS[k].1))
-                        || c.key == PAD_SETS[k].0
+                        // The shared keys: [sets.pad] for every pad, [sets.disc]
+                        // contact_face for the first pad's disc face only.
+                        || (c.key == PAD_SETS[k].0 && (k < 3 || i == 0))
                 })
         };
         let key = |k: usize| chosen(k).map(|c| c.name.clone()).unwrap_or_default();

@@ -850,3 +850,35 @@ fn restraints_given_about_the_axis_or_globally_hold_as_the_default() {
         "{e}"
     );
 }
+
+#[test]
+fn a_disc_contact_face_under_sets_disc_is_the_first_pads_only() {
+    // `[sets.disc] contact_face` names the disc face under the first pad; the outboard pad
+    // keeps its own (CONTACT_FACE_OUTBOARD, the conventional name).
+    let two = meshes().join("two_pad");
+    let text = std::fs::read_to_string(two.join("brake.toml"))
+        .unwrap()
+        .replace("_medium", "_coarse")
+        .replace("disc_contact_face = \"CONTACT_FACE_OUTBOARD\"\n", "");
+    let scene = Scene::parse(
+        &two.join("scene.toml"),
+        format!("{text}\n[sets.disc]\ncontact_face = \"CONTACT_FACE\"\n"),
+    )
+    .unwrap();
+    let parts = load_parts(&scene, &quiet).unwrap();
+    let inputs = squeal_pipeline::parts::brake_inputs(&scene, &parts).unwrap();
+    assert_eq!(inputs.disc.contact_face_set, "CONTACT_FACE");
+    assert_eq!(inputs.disc.facing.as_deref(), Some("inboard"));
+    let extra: Vec<(&str, &str)> = inputs
+        .disc
+        .extra_surfaces
+        .iter()
+        .map(|s| {
+            (
+                s.facing.as_deref().unwrap_or(""),
+                s.contact_face_set.as_str(),
+            )
+        })
+        .collect();
+    assert_eq!(extra, [("outboard", "CONTACT_FACE_OUTBOARD")]);
+}
