@@ -1,0 +1,54 @@
+//! Wall time of the patch interface (`interface::patches`) on the bundled meshes: the contact
+//! face of each part cut on a few grids, best of several runs (the mesh is read once; the
+//! timing covers finding the face's triangles and integrating the patches).
+//!
+//! ```sh
+//! cargo run --release -p squeal-reduce --example patch_timing -- fine
+//! ```
+
+use squeal_reduce::interface::{Axis, patches};
+use std::path::PathBuf;
+use std::time::Instant;
+
+fn main() {
+    let levels: Vec<String> = std::env::args().skip(1).collect();
+    let levels = if levels.is_empty() {
+        vec!["fine".to_string()]
+    } else {
+        levels
+    };
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes");
+    for level in &levels {
+        for part in ["disc", "pad"] {
+            let path = root.join(format!("{part}_{level}.inp"));
+            let mesh = match squeal_mesh::read(&path) {
+                Ok(m) => m.mesh,
+                Err(e) => {
+                    eprintln!("{}: {e}", path.display());
+                    std::process::exit(1);
+                }
+            };
+            for grid in [[3, 3], [4, 4], [2, 5], [5, 7]] {
+                let mut best = f64::INFINITY;
+                let mut area = 0.0;
+                for _ in 0..5 {
+                    let t = Instant::now();
+                    match patches(&mesh, "CONTACT_FACE", grid[0], grid[1], &Axis::default()) {
+                        Ok(p) => area = p.iter().map(|q| q.area).sum::<f64>(),
+                        Err(e) => {
+                            println!("{part}_{level} {grid:?}: {e}");
+                            break;
+                        }
+                    }
+                    best = best.min(t.elapsed().as_secs_f64());
+                }
+                if best.is_finite() {
+                    println!(
+                        "{part}_{level} {grid:?}: {:.2} ms (face area {area:.9e} m^2)",
+                        best * 1e3
+                    );
+                }
+            }
+        }
+    }
+}
