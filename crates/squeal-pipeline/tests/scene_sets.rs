@@ -612,7 +612,11 @@ fn a_two_pad_brake_without_node_sets_reduces_as_the_named_sets() {
         for r in r {
             for deg in [77.5f64, 102.5] {
                 let t = deg.to_radians();
-                v.push(format!("[{}, {}, {z}]", 1e-3 * r * t.cos(), 1e-3 * r * t.sin()));
+                v.push(format!(
+                    "[{}, {}, {z}]",
+                    1e-3 * r * t.cos(),
+                    1e-3 * r * t.sin()
+                ));
             }
         }
         v.join(", ")
@@ -648,9 +652,8 @@ fn a_two_pad_brake_without_node_sets_reduces_as_the_named_sets() {
         assert_ne!(c.origin, Origin::Mesh, "{}: {:?}", c.key, c.origin);
     }
     let (a, b) = (reduce(&named, "two-named"), reduce(&bare, "two-bare"));
-    let names = |m: &ReducedModel| -> Vec<String> {
-        m.parts.iter().map(|p| p.info.name.clone()).collect()
-    };
+    let names =
+        |m: &ReducedModel| -> Vec<String> { m.parts.iter().map(|p| p.info.name.clone()).collect() };
     assert_eq!(names(&a), ["disc", "inboard", "outboard"]);
     assert_eq!(names(&a), names(&b));
     // Measured 0 (the same nodes, faces and piston points in the same order): asserted to
