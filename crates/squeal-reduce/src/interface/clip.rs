@@ -236,7 +236,7 @@ pub(super) struct PlanarMap<'a> {
 
 impl PlanarMap<'_> {
     /// `G(p) = g((a, b)(p))` and its gradient in `(s, t)`.
-    fn level(&self, cut: &Cut, p: [f64; 2]) -> (f64, [f64; 2]) {
+    fn level_and_gradient(&self, cut: &Cut, p: [f64; 2]) -> (f64, [f64; 2]) {
         let (n, ds, dt) = tri6_shape(p[0], p[1]);
         let (mut x, mut xs, mut xt) = ([0.0; 2], [0.0; 2], [0.0; 2]);
         for k in 0..6 {
@@ -252,9 +252,10 @@ impl PlanarMap<'_> {
 
     /// Newton's method on `G(start + w dir) = 0` from `w`: the root near `w`, or `w` where a
     /// step is impossible.
-    fn polish(&self, cut: &Cut, start: [f64; 2], dir: [f64; 2], mut w: f64) -> f64 {
+    fn root_near(&self, cut: &Cut, start: [f64; 2], dir: [f64; 2], mut w: f64) -> f64 {
         for _ in 0..8 {
-            let (g, grad) = self.level(cut, [start[0] + w * dir[0], start[1] + w * dir[1]]);
+            let (g, grad) =
+                self.level_and_gradient(cut, [start[0] + w * dir[0], start[1] + w * dir[1]]);
             let slope = dot2(grad, dir);
             let step = g / slope;
             if !step.is_finite() {
@@ -270,7 +271,7 @@ impl PlanarMap<'_> {
 
     /// Roots of `G(start + w dir)` in `[lo, hi]`: the roots of `ĝ` there (and a little beyond,
     /// where `G` and `ĝ` differ), polished on `G`.
-    fn roots(
+    fn roots_along(
         &self,
         level: &Level,
         start: [f64; 2],
@@ -282,7 +283,7 @@ impl PlanarMap<'_> {
         let guesses = quadratic_roots(level.along(start, dir));
         let polished = guesses.map(|w| {
             if w >= lo - slack && w <= hi + slack {
-                self.polish(&level.cut, start, dir, w)
+                self.root_near(&level.cut, start, dir, w)
             } else {
                 f64::NAN
             }
@@ -374,13 +375,13 @@ pub(super) fn split_quadrature(
         emit,
     };
     let state = vec![None; levels.len()];
-    splitter.leaf([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], &state, 0);
+    splitter.integrate_subtriangle([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], &state, 0);
 }
 
 impl<E: FnMut(Point)> Splitter<'_, E> {
     /// The sub-triangle `q`; `parent[k]` is `Some(beyond)` for a cut that does not cross the
     /// parent, `None` for one that may.
-    fn leaf(&mut self, q: [[f64; 2]; 3], parent: &[Option<bool>], depth: usize) {
+    fn integrate_subtriangle(&mut self, q: [[f64; 2]; 3], parent: &[Option<bool>], depth: usize) {
         let mut state = parent.to_vec();
         let mut crossing = Vec::new();
         let centre = centroid(&q);
@@ -391,7 +392,9 @@ impl<E: FnMut(Point)> Splitter<'_, E> {
             match level.side_on(&q) {
                 Side::Above => state[k] = Some(true),
                 Side::Below => state[k] = Some(false),
-                Side::Within => state[k] = Some(self.map.level(&level.cut, centre).0 > 0.0),
+                Side::Within => {
+                    state[k] = Some(self.map.level_and_gradient(&level.cut, centre).0 > 0.0)
+                }
                 Side::Crosses => crossing.push(k),
             }
         }
@@ -424,11 +427,11 @@ impl<E: FnMut(Point)> Splitter<'_, E> {
                 [m[2], m[1], q[2]],
                 [m[1], m[2], m[0]],
             ] {
-                self.leaf(child, &state, depth + 1);
+                self.integrate_subtriangle(child, &state, depth + 1);
             }
             return;
         }
-        self.iterated(&q, &state, &crossing, d.unwrap_or([1.0, 0.0]));
+        self.integrate_along(&q, &state, &crossing, d.unwrap_or([1.0, 0.0]));
     }
 
     /// A unit direction of the `(s, t)` plane across all the crossing cuts: of the unit
@@ -460,7 +463,7 @@ impl<E: FnMut(Point)> Splitter<'_, E> {
     }
 
     /// The iterated integral over `q` along `d` (module docs).
-    fn iterated(
+    fn integrate_along(
         &mut self,
         q: &[[f64; 2]; 3],
         state: &[Option<bool>],
@@ -487,7 +490,7 @@ impl<E: FnMut(Point)> Splitter<'_, E> {
             for &k in crossing {
                 for tau in self
                     .map
-                    .roots(&self.levels[k], q[i], dq, 0.0, 1.0, slack / length)
+                    .roots_along(&self.levels[k], q[i], dq, 0.0, 1.0, slack / length)
                 {
                     breaks.push(uv[i][0] + tau * (uv[j][0] - uv[i][0]));
                 }
@@ -539,10 +542,14 @@ impl<E: FnMut(Point)> Splitter<'_, E> {
                 pieces.clear();
                 pieces.push(0.0);
                 for &k in crossing {
-                    pieces.extend(
-                        self.map
-                            .roots(&self.levels[k], start, d, 0.0, length, slack),
-                    );
+                    pieces.extend(self.map.roots_along(
+                        &self.levels[k],
+                        start,
+                        d,
+                        0.0,
+                        length,
+                        slack,
+                    ));
                 }
                 pieces.push(length);
                 pieces.sort_by(f64::total_cmp);
@@ -572,7 +579,7 @@ impl<E: FnMut(Point)> Splitter<'_, E> {
     fn count_beyond(&self, state: &[Option<bool>], p: [f64; 2]) -> (usize, usize) {
         let mut n = (0, 0);
         for (level, s) in self.levels.iter().zip(state) {
-            if s.unwrap_or_else(|| self.map.level(&level.cut, p).0 > 0.0) {
+            if s.unwrap_or_else(|| self.map.level_and_gradient(&level.cut, p).0 > 0.0) {
                 match level.family() {
                     Family::Radial => n.0 += 1,
                     Family::Angular => n.1 += 1,
@@ -588,7 +595,10 @@ impl<E: FnMut(Point)> Splitter<'_, E> {
         let mut p = centroid(q);
         let mut converged = false;
         for _ in 0..50 {
-            let ((fa, ga), (fb, gb)) = (self.map.level(a, p), self.map.level(b, p));
+            let ((fa, ga), (fb, gb)) = (
+                self.map.level_and_gradient(a, p),
+                self.map.level_and_gradient(b, p),
+            );
             let det = ga[0] * gb[1] - ga[1] * gb[0];
             let step = [
                 (-fa * gb[1] + fb * ga[1]) / det,
@@ -671,7 +681,7 @@ mod tests {
         [0.0, 0.5],
     ];
 
-    fn level(cut: Cut) -> Level {
+    fn interpolant(cut: Cut) -> Level {
         Level::interpolating(cut, REFERENCE.map(|p| cut.level(p)), 1e-12)
     }
 
@@ -738,9 +748,9 @@ mod tests {
         // a² + b² = 1/4 (a quarter disc of radius 1/2 in the corner, away from s + t = 1) and
         // the ray at 45° through its centre: each half has area π/32 and first moments
         // (r³/3) sin 45° and (r³/3)(1 − cos 45°) (polar integration over 0..45° and 45..90°).
-        let circle = level(Cut::Radial { radius: 0.5 });
+        let circle = interpolant(Cut::Radial { radius: 0.5 });
         let phi = std::f64::consts::FRAC_PI_4;
-        let ray = level(Cut::Angular {
+        let ray = interpolant(Cut::Angular {
             sin: phi.sin(),
             cos: phi.cos(),
         });
@@ -771,7 +781,7 @@ mod tests {
         let cut = Cut::Angular { sin: 0.0, cos: 1.0 };
         let g = REFERENCE.map(|p| cut.level(p));
         assert_eq!(side_of(&g, 1e-12), Side::Above);
-        let m = moments(&[level(cut)]);
+        let m = moments(&[interpolant(cut)]);
         assert_eq!(m.len(), 1);
         // The degree-4 rule of the whole triangle: its weights are given to 15 digits.
         assert!((m[&(0, 1)][0] - 0.5).abs() < 2e-15, "{m:?}");
