@@ -5,6 +5,12 @@
 //! ```sh
 //! cargo run --release -p squeal-reduce --example patch_timing -- fine
 //! ```
+//!
+//! Measured on 2 shared cores (best of 5, three runs): the 3 x 3 grid, whose cuts are mesh
+//! edges, takes what the whole-triangle patches took before clipping, disc 0.43 ms (coarse) and
+//! 5.9 ms (fine, 855 face triangles; most of it finding the face among the disc's elements),
+//! pad 0.22 and 2.0 ms. Clipping adds about 10 µs per crossed triangle: fine disc 4 x 4
+//! 7.6 ms, 2 x 5 6.9 ms, 5 x 7 9.1 ms (371 triangles crossed); fine pad 4.0, 3.4, 5.2 ms.
 
 use squeal_reduce::interface::{Axis, patches};
 use std::path::PathBuf;
