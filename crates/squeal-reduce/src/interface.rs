@@ -11,6 +11,29 @@
 //!
 //! Patches are numbered radius-major from the inner radius and the smallest angle (angles
 //! counter-clockwise about the axis), the numbering of the bundled meshes' `CONTACT_PATCH_k`.
+//!
+//! # The patches
+//!
+//! The grid spans the face nodes' extent in radius `r₀ .. r₁` and angle `θ₀ .. θ₁` about the
+//! axis; its cuts are the circles `r = r₀ + k (r₁ − r₀)/N_r` and the half-planes
+//! `θ = θ₀ + k (θ₁ − θ₀)/N_θ` between them, and the first and last ring and sector reach past
+//! the extent so that the cells cover the face. Patch `p` is the part of the face (its 6-node
+//! boundary triangles, curved edges and all) inside cell `p`: a triangle no cut crosses lies in
+//! the cell of its centroid and adds its degree-4 Dunavant integrals whole; a triangle a cut
+//! crosses is split along the cuts and each piece adds its integrals to its own patch (module
+//! `clip`: which cuts cross, an iterated Gauss rule on the pieces exact to round-off on a flat
+//! face's cells). So the disc's and the pad's patches are the same regions of the same surface
+//! whatever their meshes, and pair; where the cuts are mesh edges (the bundled meshes imprint
+//! the 3 × 3 grid) no triangle is crossed and the patches are those of whole triangles, to the
+//! bit. Each patch's sums come from one set of quadrature points,
+//!
+//! `A_p = Σ_q w_q |J_q|`, `A_p x̄_p = Σ_q w_q |J_q| x(q)`, `A_p C_pk = Σ_q w_q |J_q| N_k(q)`,
+//!
+//! and `Σ_k N_k = 1`, `x(q) = Σ_k N_k(q) x_k` at every point, so that `Σ_k C_pk = 1` and
+//! `Σ_k C_pk x_k = x̄_p` to round-off: the patch's mean motion under a rigid translation is
+//! that translation, and its centroid is where its mean motion is taken.
+
+mod clip;
 
 use squeal_mesh::Mesh;
 use std::collections::HashMap;
@@ -31,9 +54,10 @@ pub enum InterfaceError {
         /// The contact-face node set.
         set: String,
     },
-    /// A cell of the patch grid holds no face triangle: use a coarser grid or a finer mesh.
+    /// A cell of the patch grid holds none of the face (the face leaves a cell of its
+    /// extent in radius and angle about the axis empty: is the axis the disc's?).
     #[error(
-        "patch {patch} of the {radial} x {angular} grid on {set} holds no triangle: the mesh is too coarse for that grid"
+        "patch {patch} of the {radial} x {angular} grid on {set} covers none of the face: the face does not fill its extent in radius and angle about the axis"
     )]
     EmptyPatch {
         /// The contact-face node set.
@@ -159,7 +183,8 @@ pub fn contact_nodes(mesh: &Mesh, set: &str, axis: &Axis) -> Result<Vec<u32>, In
     Ok(keyed.into_iter().map(|k| k.2).collect())
 }
 
-/// The patch interface: `face_set` split on a `radial x angular` grid about `axis`.
+/// The patch interface: `face_set` split on a `radial x angular` grid about `axis`, each
+/// patch the part of the face inside its cell (module docs).
 pub fn patches(
     mesh: &Mesh,
     face_set: &str,
@@ -181,33 +206,42 @@ pub fn patches(
     }
     let mean = mean_point(nodes.iter().map(|&n| mesh.nodes[n as usize]));
     let frame = Frame::new(axis, sub(mean, axis.origin))?;
-    // Grid bounds from the face nodes' extent.
-    let (mut r0, mut r1, mut t0, mut t1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
+    let grid = PolarGrid::spanning(
+        frame,
+        nodes.iter().map(|&n| mesh.nodes[n as usize]),
+        radial,
+        angular,
     );
-    for &n in nodes {
-        let (r, t) = frame.polar(mesh.nodes[n as usize]);
-        r0 = r0.min(r);
-        r1 = r1.max(r);
-        t0 = t0.min(t);
-        t1 = t1.max(t);
-    }
-    let (radial, angular) = (radial.max(1), angular.max(1));
-    let cell = |v: f64, lo: f64, hi: f64, n: usize| -> usize {
-        let f = if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
-        ((f * n as f64).floor().max(0.0) as usize).min(n - 1)
-    };
-    let mut acc: Vec<PatchSums> = (0..radial * angular)
+    let rules = clip::Rules::new();
+    let mut acc: Vec<PatchSums> = (0..grid.radial * grid.angular)
         .map(|_| PatchSums::default())
         .collect();
     for tri in &triangles {
         let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
-        let (r, t) = frame.polar(triangle_centroid(&x));
-        let p = cell(r, r0, r1, radial) * angular + cell(t, t0, t1, angular);
-        acc[p].add_triangle(tri, &x);
+        let cuts = grid.cuts_crossing(&x);
+        if cuts.levels.is_empty() {
+            acc[grid.cell_of(triangle_centroid(&x))].add_triangle(tri, &x);
+            continue;
+        }
+        // The triangle's pieces, summed apart and added to their patches once.
+        let mut pieces: Vec<(usize, PieceSums)> = Vec::new();
+        clip::split_quadrature(&cuts.planar, &cuts.levels, &rules, |q: clip::Point| {
+            let ring = cuts.rings_beyond + q.radial_beyond;
+            let sector = cuts.sectors_beyond + q.angular_beyond;
+            let cell = ring * grid.angular + sector;
+            let k = match pieces.iter().position(|p| p.0 == cell) {
+                Some(k) => k,
+                None => {
+                    pieces.push((cell, PieceSums::default()));
+                    pieces.len() - 1
+                }
+            };
+            let (n, xp, dn) = map_point(&x, q.st);
+            pieces[k].1.add_point(&n, xp, dn, q.weight);
+        });
+        for (cell, piece) in pieces {
+            acc[cell].add_piece(tri, &piece);
+        }
     }
     acc.into_iter()
         .enumerate()
@@ -216,8 +250,8 @@ pub fn patches(
                 return Err(InterfaceError::EmptyPatch {
                     set: face_set.into(),
                     patch: i + 1,
-                    radial,
-                    angular,
+                    radial: grid.radial,
+                    angular: grid.angular,
                 });
             }
             Ok(s.finish(i + 1))
@@ -248,6 +282,133 @@ pub fn footprint(mesh: &Mesh, face_set: &str) -> Result<Patch, InterfaceError> {
         sums.add_triangle(tri, &x);
     }
     Ok(sums.finish(1))
+}
+
+/// The patch grid on a face: `radial` rings between the radii `r[0]`, `r[1]` and `angular`
+/// sectors between the angles `t[0]`, `t[1]` about the axis (the face nodes' extent), the
+/// first and last ring and sector open outwards so that the cells cover the whole face.
+struct PolarGrid {
+    frame: Frame,
+    r: [f64; 2],
+    t: [f64; 2],
+    radial: usize,
+    angular: usize,
+    /// The radial cuts between rings, `r₀ + k (r₁ − r₀) / radial`, `k = 1 .. radial − 1`.
+    radii: Vec<f64>,
+    /// The angular cuts between sectors.
+    angles: Vec<f64>,
+    /// A length below which a triangle touches a cut rather than crosses it: 1e-9 of the
+    /// face's outer radius.
+    tol: f64,
+}
+
+/// The cuts of the grid on one triangle.
+struct TriangleCuts {
+    /// Radial cuts the whole triangle lies beyond.
+    rings_beyond: usize,
+    /// Angular cuts the whole triangle lies beyond.
+    sectors_beyond: usize,
+    /// The cuts that cross it, as level functions on it.
+    levels: Vec<clip::Level>,
+    /// Its nodes' coordinates in the plane normal to the axis, from the axis.
+    planar: [[f64; 2]; 6],
+}
+
+impl PolarGrid {
+    /// The grid over the extent of `points` (a face's nodes) in radius and angle.
+    fn spanning(
+        frame: Frame,
+        points: impl Iterator<Item = [f64; 3]>,
+        radial: usize,
+        angular: usize,
+    ) -> Self {
+        let (mut r, mut t) = (
+            [f64::INFINITY, f64::NEG_INFINITY],
+            [f64::INFINITY, f64::NEG_INFINITY],
+        );
+        for p in points {
+            let (rp, tp) = frame.polar(p);
+            r = [r[0].min(rp), r[1].max(rp)];
+            t = [t[0].min(tp), t[1].max(tp)];
+        }
+        let (radial, angular) = (radial.max(1), angular.max(1));
+        let cuts = |[lo, hi]: [f64; 2], n: usize| -> Vec<f64> {
+            (1..n)
+                .map(|k| lo + (hi - lo) * k as f64 / n as f64)
+                .collect()
+        };
+        Self {
+            radii: cuts(r, radial),
+            angles: cuts(t, angular),
+            tol: 1e-9 * r[1].abs(),
+            frame,
+            r,
+            t,
+            radial,
+            angular,
+        }
+    }
+
+    /// The cell (0-based patch) holding the point `p`.
+    fn cell_of(&self, p: [f64; 3]) -> usize {
+        let bin = |v: f64, [lo, hi]: [f64; 2], n: usize| -> usize {
+            let f = if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
+            ((f * n as f64).floor().max(0.0) as usize).min(n - 1)
+        };
+        let (r, t) = self.frame.polar(p);
+        bin(r, self.r, self.radial) * self.angular + bin(t, self.t, self.angular)
+    }
+
+    /// The cuts crossing the 6-node triangle `x` (see [`clip`]): radial cuts by
+    /// `ĝ = ρ² − c²` (tolerance `2 c tol`), angular cuts by the signed distance to their
+    /// half-plane (tolerance `tol`). An angular cut is only tested on a triangle whose six
+    /// nodes lie on its side of the axis (the plane through the axis also holds the opposite
+    /// half-plane, at `φ + π`); a triangle on a cut within the tolerance goes by its centroid.
+    fn cuts_crossing(&self, x: &[[f64; 3]; 6]) -> TriangleCuts {
+        let f = &self.frame;
+        let (r_mid, t_mid) = f.polar(triangle_centroid(x));
+        let planar = x.map(|p| {
+            let d = sub(p, f.origin);
+            [dot(d, f.e1), dot(d, f.e2)]
+        });
+        let mut cuts = TriangleCuts {
+            rings_beyond: 0,
+            sectors_beyond: 0,
+            levels: Vec::new(),
+            planar,
+        };
+        for &radius in &self.radii {
+            let cut = clip::Cut::Radial { radius };
+            let g = planar.map(|p| cut.level(p));
+            let tol = 2.0 * radius * self.tol;
+            match clip::side_of(&g, tol) {
+                clip::Side::Above => cuts.rings_beyond += 1,
+                clip::Side::Below => {}
+                clip::Side::Within => cuts.rings_beyond += usize::from(r_mid > radius),
+                clip::Side::Crosses => cuts.levels.push(clip::Level::interpolating(cut, g, tol)),
+            }
+        }
+        for &phi in &self.angles {
+            let (sin, cos) = phi.sin_cos();
+            let cut = clip::Cut::Angular { sin, cos };
+            let on_its_side = planar.iter().all(|[a, b]| a * cos + b * sin > 0.0);
+            let g = planar.map(|p| cut.level(p));
+            let side = if on_its_side {
+                clip::side_of(&g, self.tol)
+            } else {
+                clip::Side::Within
+            };
+            match side {
+                clip::Side::Above => cuts.sectors_beyond += 1,
+                clip::Side::Below => {}
+                clip::Side::Within => cuts.sectors_beyond += usize::from(t_mid > phi),
+                clip::Side::Crosses => cuts
+                    .levels
+                    .push(clip::Level::interpolating(cut, g, self.tol)),
+            }
+        }
+        cuts
+    }
 }
 
 /// Tributary areas of contact nodes on a contact face: every point of the face (the 6-point
@@ -325,33 +486,40 @@ struct PatchSums {
 
 impl PatchSums {
     /// Adds `∫ N_k dA` and `∫ x dA` of one 6-node triangle (degree-4 Dunavant rule: exact for
-    /// the shape functions times the area Jacobian of a straight-sided triangle, and
-    /// accurate to the mesh's order for curved ones).
+    /// the shape functions times the area Jacobian of a flat triangle, curved edges included,
+    /// and accurate to the mesh's order on a curved face).
     fn add_triangle(&mut self, nodes: &[u32; 6], x: &[[f64; 3]; 6]) {
         for (s, t, w) in DUNAVANT4 {
-            let (n, ds, dt) = tri6_shape(s, t);
-            let mut xs = [0.0; 3];
-            let mut xt = [0.0; 3];
-            let mut xp = [0.0; 3];
-            for a in 0..6 {
-                for d in 0..3 {
-                    xs[d] += ds[a] * x[a][d];
-                    xt[d] += dt[a] * x[a][d];
-                    xp[d] += n[a] * x[a][d];
-                }
-            }
-            let dn = cross(xs, xt);
-            let da = 0.5 * w * norm(dn);
-            self.area += da;
-            for d in 0..3 {
-                self.normal[d] += 0.5 * w * dn[d];
-            }
-            for d in 0..3 {
-                self.moment[d] += da * xp[d];
-            }
-            for a in 0..6 {
-                *self.weights.entry(nodes[a]).or_default() += da * n[a];
-            }
+            let (n, xp, dn) = map_point(x, [s, t]);
+            self.add_point(nodes, &n, xp, dn, 0.5 * w);
+        }
+    }
+
+    /// Adds one quadrature point of a triangle with `nodes`: shape function values `n`,
+    /// position `xp`, `dn = ∂x/∂s × ∂x/∂t` and reference weight `w` (`dA = w |dn|`).
+    fn add_point(&mut self, nodes: &[u32; 6], n: &[f64; 6], xp: [f64; 3], dn: [f64; 3], w: f64) {
+        let da = w * norm(dn);
+        self.area += da;
+        for d in 0..3 {
+            self.normal[d] += w * dn[d];
+        }
+        for d in 0..3 {
+            self.moment[d] += da * xp[d];
+        }
+        for a in 0..6 {
+            *self.weights.entry(nodes[a]).or_default() += da * n[a];
+        }
+    }
+
+    /// Adds a piece of the triangle with `nodes`.
+    fn add_piece(&mut self, nodes: &[u32; 6], piece: &PieceSums) {
+        self.area += piece.area;
+        for d in 0..3 {
+            self.normal[d] += piece.normal[d];
+            self.moment[d] += piece.moment[d];
+        }
+        for a in 0..6 {
+            *self.weights.entry(nodes[a]).or_default() += piece.weights[a];
         }
     }
 
@@ -368,6 +536,31 @@ impl PatchSums {
             centroid: self.moment.map(|m| m / self.area),
             normal: unit(self.normal).unwrap_or([0.0; 3]),
             weights,
+        }
+    }
+}
+
+/// Integrals over the part of one triangle in one patch: `∫ dA`, `∫ x dA`, `∫ n dA` and
+/// `∫ N_k dA` of its six nodes.
+#[derive(Default)]
+struct PieceSums {
+    area: f64,
+    moment: [f64; 3],
+    normal: [f64; 3],
+    weights: [f64; 6],
+}
+
+impl PieceSums {
+    /// Adds one quadrature point, as [`PatchSums::add_point`].
+    fn add_point(&mut self, n: &[f64; 6], xp: [f64; 3], dn: [f64; 3], w: f64) {
+        let da = w * norm(dn);
+        self.area += da;
+        for d in 0..3 {
+            self.normal[d] += w * dn[d];
+            self.moment[d] += da * xp[d];
+        }
+        for a in 0..6 {
+            self.weights[a] += da * n[a];
         }
     }
 }
@@ -429,6 +622,23 @@ fn tri6_shape(s: f64, t: f64) -> ([f64; 6], [f64; 6], [f64; 6]) {
     (n, ds, dt)
 }
 
+/// The 6-node triangle `x` at reference point `st`: shape function values, position and
+/// `∂x/∂s × ∂x/∂t` (the area element's normal times its reference-to-physical area ratio).
+fn map_point(x: &[[f64; 3]; 6], st: [f64; 2]) -> ([f64; 6], [f64; 3], [f64; 3]) {
+    let (n, ds, dt) = tri6_shape(st[0], st[1]);
+    let mut xs = [0.0; 3];
+    let mut xt = [0.0; 3];
+    let mut xp = [0.0; 3];
+    for a in 0..6 {
+        for d in 0..3 {
+            xs[d] += ds[a] * x[a][d];
+            xt[d] += dt[a] * x[a][d];
+            xp[d] += n[a] * x[a][d];
+        }
+    }
+    (n, xp, cross(xs, xt))
+}
+
 fn triangle_centroid(x: &[[f64; 3]; 6]) -> [f64; 3] {
     let (n, _, _) = tri6_shape(1.0 / 3.0, 1.0 / 3.0);
     let mut c = [0.0; 3];
@@ -487,6 +697,70 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 mod tests {
     use super::*;
     use squeal_mesh::generate::box_tet10_origin;
+
+    /// The patches as they were before clipping: each boundary triangle whole in the cell of
+    /// its centroid.
+    fn whole_triangle_patches(mesh: &Mesh, face_set: &str, grid: [usize; 2]) -> Vec<Patch> {
+        let nodes = mesh.node_set(face_set).unwrap();
+        let mean = mean_point(nodes.iter().map(|&n| mesh.nodes[n as usize]));
+        let frame = Frame::new(&Axis::default(), mean).unwrap();
+        let points = nodes.iter().map(|&n| mesh.nodes[n as usize]);
+        let grid = PolarGrid::spanning(frame, points, grid[0], grid[1]);
+        let mut acc: Vec<PatchSums> = (0..grid.radial * grid.angular)
+            .map(|_| PatchSums::default())
+            .collect();
+        for tri in &boundary_triangles(mesh, nodes) {
+            let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
+            assert!(
+                grid.cuts_crossing(&x).levels.is_empty(),
+                "a cut crosses {tri:?}"
+            );
+            acc[grid.cell_of(triangle_centroid(&x))].add_triangle(tri, &x);
+        }
+        acc.into_iter()
+            .enumerate()
+            .map(|(i, s)| s.finish(i + 1))
+            .collect()
+    }
+
+    #[test]
+    fn clipped_patches_are_whole_triangles_where_the_cuts_are_mesh_edges() {
+        // Every bundled contact face imprints the 3 x 3 grid (its CONTACT_PATCH_k): no cut
+        // crosses a triangle (asserted in whole_triangle_patches), so clipping must give the
+        // patches of whole triangles. Asserted to 1e-12 (areas relative, centroids and
+        // weights absolute on 0.1 m and O(0.1)); measured: equal to the bit.
+        let root = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes");
+        let mut faces = Vec::new();
+        for level in ["coarse", "medium", "fine"] {
+            faces.push((format!("disc_{level}.inp"), "CONTACT_FACE"));
+            faces.push((format!("pad_{level}.inp"), "CONTACT_FACE"));
+            faces.push((format!("two_pad/disc_{level}.inp"), "CONTACT_FACE"));
+            faces.push((format!("two_pad/disc_{level}.inp"), "CONTACT_FACE_OUTBOARD"));
+            faces.push((format!("two_pad/outboard_{level}.inp"), "CONTACT_FACE"));
+        }
+        for (file, set) in &faces {
+            let mesh = squeal_mesh::read(&root.join(file)).unwrap().mesh;
+            for grid in [[3, 3], [1, 1]] {
+                let clipped = patches(&mesh, set, grid[0], grid[1], &Axis::default()).unwrap();
+                let whole = whole_triangle_patches(&mesh, set, grid);
+                assert_eq!(clipped.len(), whole.len());
+                let mut worst = 0.0f64;
+                for (p, q) in clipped.iter().zip(&whole) {
+                    worst = worst.max((p.area / q.area - 1.0).abs());
+                    for d in 0..3 {
+                        worst = worst.max((p.centroid[d] - q.centroid[d]).abs());
+                    }
+                    assert_eq!(p.weights.len(), q.weights.len());
+                    for (a, b) in p.weights.iter().zip(&q.weights) {
+                        assert_eq!(a.0, b.0);
+                        worst = worst.max((a.1 - b.1).abs());
+                    }
+                }
+                eprintln!("{file} {set} {grid:?}: largest difference {worst:e}");
+                assert!(worst < 1e-12, "{file} {set} {grid:?}: {worst:e}");
+            }
+        }
+    }
 
     #[test]
     fn dunavant_rule_integrates_degree_four_exactly() {

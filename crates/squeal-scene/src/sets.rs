@@ -73,11 +73,10 @@ pub struct UnitsSection {
 pub struct SetsSection {
     /// `patch_grid = [radial, angular]`: the contact patches of the patch interface, cut in
     /// radius and angle about the disc axis on each part's contact face (3 x 3 by default).
-    /// The disc's and the pad's patches pair by their centroids. Each patch is made of whole
-    /// triangles (by their centroids), so a grid whose edges are not mesh edges of both
-    /// parts gives them different jagged patches whose centroids may not pair: on
-    /// non-matching meshes only grids along common mesh edges work (clipping triangles at
-    /// patch edges is not done yet).
+    /// Each patch is the part of the face inside its cell (a triangle that crosses a cut is
+    /// clipped there; one that only touches a cut, as where the mesh imprinted the grid, stays
+    /// whole), so the disc's and the pad's patches are the same regions of the footprint on
+    /// any grid, whether or not the two meshes match, and pair by their centroids.
     pub patch_grid: Option<Spanned<[usize; 2]>>,
     #[serde(default)]
     pub disc: DiscSets,
