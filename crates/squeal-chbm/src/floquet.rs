@@ -45,8 +45,9 @@
 //! each time) by the BDF integrator of [`squeal_ode`]; the multipliers are the eigenvalues of
 //! the resulting monodromy matrix: all `2n`, independent of Hill's truncation and sorting.
 
+use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::{PartialPivLu, Solve};
-use faer::{Mat, c64};
+use faer::{Accum, Mat, MatMut, MatRef, Par, c64};
 use rayon::prelude::*;
 use squeal_brake::dynamics::state_jacobian;
 use squeal_brake::harmonic::ModalSolver;
@@ -299,15 +300,22 @@ fn harmonics_of(samples: &[Mat<f64>], h: usize) -> Vec<Mat<c64>> {
         .collect()
 }
 
+/// A real matrix as a complex one.
+fn complex(m: &Mat<f64>) -> Mat<c64> {
+    Mat::from_fn(m.nrows(), m.ncols(), |i, j| c64::new(m[(i, j)], 0.0))
+}
+
 /// Hill's operator of a cycle: the pieces of `Q(σ)`, with the contact coupling in its low-rank
 /// form `Φ̂ᵀ Q̂_E Ĉ(σ) Q̂_Rᵀ Φ̂`.
 struct Hill<'a> {
     mb: &'a ModalBrake,
     h: usize,
     omega: f64,
-    /// `Q_Eᵀ Φ_n` (`q_E × n`) and `Q_Rᵀ Φ_n` (`q_R × n`).
-    phi_e: Mat<f64>,
-    phi_r: Mat<f64>,
+    /// `Q_Eᵀ Φ_n` (`q_E × n`), `Q_Rᵀ Φ_n` (`q_R × n`) and `Φ_n` (`n_nl × n`), as complex
+    /// matrices for the products with the Krylov vectors.
+    phi_e: Mat<c64>,
+    phi_r: Mat<c64>,
+    phi_n: Mat<c64>,
     /// `Ĉx_m`, `Ĉv_m` (`q_E × q_R`) for `m = -2H..=2H`.
     cx: Vec<Mat<c64>>,
     cv: Option<Vec<Mat<c64>>>,
@@ -369,8 +377,9 @@ impl<'a> Hill<'a> {
             mb,
             h,
             omega: cycle.omega,
-            phi_e: qe.transpose() * &mb.phi_n,
-            phi_r: qr.transpose() * &mb.phi_n,
+            phi_e: complex(&(qe.transpose() * &mb.phi_n)),
+            phi_r: complex(&(qr.transpose() * &mb.phi_n)),
+            phi_n: complex(&mb.phi_n),
             cx: harmonics_of(&cx, h),
             cv: cv.map(|v| harmonics_of(&v, h)),
         })
@@ -413,7 +422,7 @@ impl<'a> Hill<'a> {
     }
 
     fn shift(&self, sigma: c64) -> ShiftSolver {
-        let (n, nb) = (self.n(), self.blocks());
+        let nb = self.blocks();
         let (qe, qr) = (self.phi_e.nrows(), self.phi_r.nrows());
         let modal: Vec<ModalSolver> = (0..nb)
             .map(|b| {
@@ -424,12 +433,10 @@ impl<'a> Hill<'a> {
                 )
             })
             .collect();
-        let phi_e_t = Mat::<c64>::from_fn(n, qe, |i, j| c64::new(self.phi_e[(j, i)], 0.0));
-        let phi_r = Mat::<c64>::from_fn(qr, n, |i, j| c64::new(self.phi_r[(i, j)], 0.0));
         // V B⁻¹ U, block diagonal: Φ_R Δ_k⁻¹ Φ_Eᵀ.
         let receptances: Vec<Mat<c64>> = modal
             .iter()
-            .map(|s| &phi_r * s.solve(phi_e_t.as_ref()))
+            .map(|s| &self.phi_r * s.solve(self.phi_e.transpose()))
             .collect();
         let core = self.core(sigma);
         let r = qr * nb;
@@ -451,60 +458,72 @@ impl<'a> Hill<'a> {
         }
     }
 
-    /// `(I ⊗ M) y` blockwise for a `q × n` real matrix `m`.
-    fn reduce(&self, m: &Mat<f64>, y: &[c64]) -> Vec<c64> {
-        let (q, n) = (m.nrows(), self.n());
-        let mut out = vec![c64::new(0.0, 0.0); q * self.blocks()];
-        for b in 0..self.blocks() {
-            for i in 0..q {
-                out[b * q + i] = (0..n).map(|j| y[b * n + j] * m[(i, j)]).sum();
-            }
-        }
+    /// `(I ⊗ M) y` blockwise for a `q × n` matrix `m`: with the blocks of `y` as the columns of
+    /// an `n × (2H+1)` matrix `Y`, the columns of `M Y`.
+    fn reduce(&self, m: &Mat<c64>, y: &[c64]) -> Vec<c64> {
+        let (q, nb) = (m.nrows(), self.blocks());
+        let mut out = vec![c64::new(0.0, 0.0); q * nb];
+        matmul(
+            MatMut::from_column_major_slice_mut(&mut out, q, nb),
+            Accum::Replace,
+            m,
+            MatRef::from_column_major_slice(y, self.n(), nb),
+            c64::new(1.0, 0.0),
+            Par::Seq,
+        );
         out
     }
 
-    /// `(I ⊗ Mᵀ) c` blockwise.
-    fn expand(&self, m: &Mat<f64>, c: &[c64]) -> Vec<c64> {
-        let (q, n) = (m.nrows(), self.n());
-        let mut out = vec![c64::new(0.0, 0.0); n * self.blocks()];
-        for b in 0..self.blocks() {
-            for j in 0..n {
-                out[b * n + j] = (0..q).map(|i| c[b * q + i] * m[(i, j)]).sum();
-            }
-        }
+    /// `(I ⊗ Mᵀ) c` blockwise: the columns of `Mᵀ C`.
+    fn expand(&self, m: &Mat<c64>, c: &[c64]) -> Vec<c64> {
+        let (q, n, nb) = (m.nrows(), self.n(), self.blocks());
+        let mut out = vec![c64::new(0.0, 0.0); n * nb];
+        matmul(
+            MatMut::from_column_major_slice_mut(&mut out, n, nb),
+            Accum::Replace,
+            m.transpose(),
+            MatRef::from_column_major_slice(c, q, nb),
+            c64::new(1.0, 0.0),
+            Par::Seq,
+        );
         out
     }
 
     /// The nonlinear dofs of each block, `Φ̂ y`.
     fn to_nl(&self, y: &[c64]) -> Vec<c64> {
-        self.reduce(&self.mb.phi_n, y)
+        self.reduce(&self.phi_n, y)
     }
 
-    fn modal_solve(&self, s: &ShiftSolver, r: &[c64]) -> Vec<c64> {
-        let n = self.n();
-        let mut out = Vec::with_capacity(r.len());
-        for (b, solver) in s.modal.iter().enumerate() {
-            out.extend(solver.solve_vec(&r[b * n..(b + 1) * n]));
+    /// `x ← B⁻¹ x`, block by block.
+    fn modal_solve(&self, s: &ShiftSolver, x: &mut [c64]) {
+        for (xb, solver) in x.chunks_exact_mut(self.n()).zip(&s.modal) {
+            solver.solve_in_place(xb);
         }
-        out
     }
 
-    fn matvec(m: &Mat<c64>, v: &[c64]) -> Vec<c64> {
-        (0..m.nrows())
-            .map(|i| (0..m.ncols()).map(|j| m[(i, j)] * v[j]).sum())
-            .collect()
-    }
-
-    /// `Q(σ_s)⁻¹ r = y - B⁻¹ U Ĉ (I + V B⁻¹ U Ĉ)⁻¹ V y`, `y = B⁻¹ r`.
+    /// `Q(σ_s)⁻¹ r = y - B⁻¹ U Ĉ (I + V B⁻¹ U Ĉ)⁻¹ V y`, `y = B⁻¹ r` (Woodbury).
     fn solve_q(&self, s: &ShiftSolver, r: &[c64]) -> Vec<c64> {
-        let y = self.modal_solve(s, r);
-        let t = self.reduce(&self.phi_r, &y);
+        let mut y = r.to_vec();
+        self.modal_solve(s, &mut y);
+        let mut t = self.reduce(&self.phi_r, &y);
         let rr = t.len();
-        let c = s.capacitance.solve(Mat::<c64>::from_fn(rr, 1, |i, _| t[i]));
-        let c: Vec<c64> = (0..rr).map(|i| c[(i, 0)]).collect();
-        let e = self.expand(&self.phi_e, &Self::matvec(&s.core, &c));
-        let be = self.modal_solve(s, &e);
-        y.iter().zip(&be).map(|(a, b)| a - b).collect()
+        s.capacitance
+            .solve_in_place(MatMut::from_column_major_slice_mut(&mut t, rr, 1));
+        let mut c = vec![c64::new(0.0, 0.0); s.core.nrows()];
+        matmul(
+            MatMut::from_column_major_slice_mut(&mut c, s.core.nrows(), 1),
+            Accum::Replace,
+            &s.core,
+            MatRef::from_column_major_slice(&t, rr, 1),
+            c64::new(1.0, 0.0),
+            Par::Seq,
+        );
+        let mut be = self.expand(&self.phi_e, &c);
+        self.modal_solve(s, &mut be);
+        for (a, b) in y.iter_mut().zip(&be) {
+            *a -= b;
+        }
+        y
     }
 
     /// `M1 b` (`M1 = blockdiag(2ikω I + D) + Φ̂ᵀ Ĵv Φ̂`).
@@ -579,8 +598,10 @@ fn start_vector(len: usize) -> Vec<c64> {
 /// An Arnoldi factorization `op V_m = V_{m+1} H_m`, grown a step at a time (orthogonalized
 /// twice by classical Gram–Schmidt with matrix–vector products).
 struct Arnoldi {
-    /// Basis, `len × (m + 1)` columns used.
-    v: Mat<c64>,
+    /// Basis, column-major, `m + 1` columns of `len` (grown as the steps go: most shifts
+    /// converge long before the largest dimension, so its storage is never allocated whole).
+    v: Vec<c64>,
+    len: usize,
     /// Hessenberg, `(max + 1) × max`.
     h: Mat<c64>,
     /// Steps taken.
@@ -591,27 +612,34 @@ struct Arnoldi {
 
 impl Arnoldi {
     fn new(len: usize, max: usize) -> Self {
-        let mut v = Mat::<c64>::zeros(len, max + 1);
-        let q = start_vector(len);
-        let nq = q.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
-        for (i, x) in q.iter().enumerate() {
-            v[(i, 0)] = x / nq;
-        }
-        Self {
-            v,
+        let mut a = Self {
+            v: Vec::new(),
+            len,
             h: Mat::zeros(max + 1, max),
             m: 0,
             invariant: false,
-        }
+        };
+        a.restart();
+        a
+    }
+
+    /// Starts again from the start vector, keeping the storage of the basis.
+    fn restart(&mut self) {
+        let q = start_vector(self.len);
+        let nq = q.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
+        self.v.clear();
+        self.v.extend(q.iter().map(|x| x / nq));
+        self.h.fill(c64::new(0.0, 0.0));
+        self.m = 0;
+        self.invariant = false;
     }
 
     fn step(&mut self, op: &dyn Fn(&[c64]) -> Vec<c64>) {
         let j = self.m;
-        let len = self.v.nrows();
-        let vj: Vec<c64> = (0..len).map(|i| self.v[(i, j)]).collect();
-        let w = op(&vj);
+        let len = self.len;
+        let w = op(&self.v[j * len..(j + 1) * len]);
         let mut w = Mat::<c64>::from_fn(len, 1, |i, _| w[i]);
-        let basis = self.v.subcols(0, j + 1);
+        let basis = MatRef::from_column_major_slice(&self.v[..(j + 1) * len], len, j + 1);
         for _ in 0..2 {
             let c = basis.adjoint() * &w;
             w -= basis * &c;
@@ -628,9 +656,7 @@ impl Arnoldi {
             self.invariant = true;
             return;
         }
-        for i in 0..len {
-            self.v[(i, j + 1)] = w[(i, 0)] / nw;
-        }
+        self.v.extend((0..len).map(|i| w[(i, 0)] / nw));
     }
 
     /// Ritz values with residual estimates, and the coefficients of their vectors.
@@ -658,11 +684,10 @@ impl Arnoldi {
 
     /// The Ritz vector of coefficients `y`.
     fn vector(&self, y: &[c64]) -> Vec<c64> {
-        let len = self.v.nrows();
-        let mut x = vec![c64::new(0.0, 0.0); len];
-        for (j, c) in y.iter().enumerate() {
-            for (i, xi) in x.iter_mut().enumerate() {
-                *xi += c * self.v[(i, j)];
+        let mut x = vec![c64::new(0.0, 0.0); self.len];
+        for (c, v) in y.iter().zip(self.v.chunks_exact(self.len)) {
+            for (xi, vi) in x.iter_mut().zip(v) {
+                *xi += c * vi;
             }
         }
         x
@@ -727,6 +752,7 @@ pub fn hill(
     };
     // (σ, MAC with the cycle's velocity)
     let mut found: Vec<(c64, f64)> = Vec::new();
+    let mut arnoldi = Arnoldi::new(len, max_krylov);
     let mut coverage = f64::INFINITY;
     let mut solves = 0;
     for c in 0..shifts {
@@ -737,7 +763,7 @@ pub fn hill(
             2.0 * c as f64 * half_height,
             2.0 * (c + 1) as f64 * half_height,
         );
-        let mut arnoldi = Arnoldi::new(len, max_krylov);
+        arnoldi.restart();
         let mut check = 12.min(max_krylov);
         loop {
             while arnoldi.m < check && !arnoldi.invariant {
