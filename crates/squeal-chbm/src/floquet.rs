@@ -637,17 +637,32 @@ impl Arnoldi {
     fn step(&mut self, op: &dyn Fn(&[c64]) -> Vec<c64>) {
         let j = self.m;
         let len = self.len;
-        let w = op(&self.v[j * len..(j + 1) * len]);
-        let mut w = Mat::<c64>::from_fn(len, 1, |i, _| w[i]);
+        let mut w = op(&self.v[j * len..(j + 1) * len]);
         let basis = MatRef::from_column_major_slice(&self.v[..(j + 1) * len], len, j + 1);
+        let mut c = vec![c64::new(0.0, 0.0); j + 1];
         for _ in 0..2 {
-            let c = basis.adjoint() * &w;
-            w -= basis * &c;
-            for i in 0..=j {
-                self.h[(i, j)] += c[(i, 0)];
+            // c = Vᴴ w, w ← w - V c.
+            matmul(
+                MatMut::from_column_major_slice_mut(&mut c, j + 1, 1),
+                Accum::Replace,
+                basis.adjoint(),
+                MatRef::from_column_major_slice(&w, len, 1),
+                c64::new(1.0, 0.0),
+                Par::Seq,
+            );
+            matmul(
+                MatMut::from_column_major_slice_mut(&mut w, len, 1),
+                Accum::Add,
+                basis,
+                MatRef::from_column_major_slice(&c, j + 1, 1),
+                c64::new(-1.0, 0.0),
+                Par::Seq,
+            );
+            for (i, ci) in c.iter().enumerate() {
+                self.h[(i, j)] += ci;
             }
         }
-        let nw = w.norm_l2();
+        let nw = faer::ColRef::from_slice(&w).norm_l2();
         self.h[(j + 1, j)] = c64::new(nw, 0.0);
         self.m += 1;
         let scale = (0..=j).map(|i| self.h[(i, j)].norm()).fold(nw, f64::max);
@@ -656,7 +671,7 @@ impl Arnoldi {
             self.invariant = true;
             return;
         }
-        self.v.extend((0..len).map(|i| w[(i, 0)] / nw));
+        self.v.extend(w.iter().map(|x| x / nw));
     }
 
     /// Ritz values with residual estimates, and the coefficients of their vectors.
