@@ -381,11 +381,78 @@ impl LinearizedBrake {
 
     /// `yᴴ T(λ) x` and `yᴴ T'(λ) x`: the Rayleigh functional's Newton step is their ratio.
     pub fn rayleigh(&self, c: &Coupling, l: c64, x: &[c64], y: &[c64]) -> (c64, c64) {
-        let dot = |a: &[c64], b: &[c64]| a.iter().zip(b).map(|(p, q)| p.conj() * q).sum::<c64>();
-        (
-            dot(y, &self.apply(c, l, x)),
-            dot(y, &self.apply_derivative(c, l, x)),
-        )
+        let Some(d) = self.damping.diagonal() else {
+            let dot =
+                |a: &[c64], b: &[c64]| a.iter().zip(b).map(|(p, q)| p.conj() * q).sum::<c64>();
+            return (
+                dot(y, &self.apply(c, l, x)),
+                dot(y, &self.apply_derivative(c, l, x)),
+            );
+        };
+        // The entries of `T x` and `T' x` one at a time, with the sums of `apply` and
+        // `apply_derivative` in their order (the same bits, without the vectors).
+        let n = self.size();
+        let z = self.project(&c.v, x);
+        let (mut num, mut den) = (c64::new(0.0, 0.0), c64::new(0.0, 0.0));
+        for j in 0..n {
+            let mut uz = c64::new(0.0, 0.0);
+            for (p, zp) in z.iter().enumerate() {
+                uz += zp * c.u0[p * n + j];
+                if let Some(u1) = &c.u1 {
+                    uz += l * zp * u1[p * n + j];
+                }
+            }
+            let dx = x[j] * d[j];
+            let tx = (l * l + self.omega[j] * self.omega[j]) * x[j] + l * dx + uz;
+            let mut dtx = dx + l * 2.0 * x[j];
+            if let Some(u1) = &c.u1 {
+                for (p, zp) in z.iter().enumerate() {
+                    dtx += zp * u1[p * n + j];
+                }
+            }
+            let yc = y[j].conj();
+            num += yc * tx;
+            den += yc * dtx;
+        }
+        (num, den)
+    }
+
+    /// `||T(λ) x||` and `||T(λ)ᴴ y||`, with the sums of `apply` and `apply_adjoint` in their
+    /// order (the same bits, without the vectors).
+    pub fn residual_norms(&self, c: &Coupling, l: c64, x: &[c64], y: &[c64]) -> (f64, f64) {
+        let norm = |v: &[c64]| v.iter().map(|a| a.norm_sqr()).sum::<f64>().sqrt();
+        let Some(d) = self.damping.diagonal() else {
+            return (
+                norm(&self.apply(c, l, x)),
+                norm(&self.apply_adjoint(c, l, y)),
+            );
+        };
+        let n = self.size();
+        let lc = l.conj();
+        let z = self.project(&c.v, x);
+        let mut w = self.project(&c.u0, y);
+        if let Some(u1) = &c.u1 {
+            for (wp, a) in w.iter_mut().zip(self.project(u1, y)) {
+                *wp += lc * a;
+            }
+        }
+        let (mut rx, mut ry) = (0.0, 0.0);
+        for j in 0..n {
+            let mut uz = c64::new(0.0, 0.0);
+            for (p, zp) in z.iter().enumerate() {
+                uz += zp * c.u0[p * n + j];
+                if let Some(u1) = &c.u1 {
+                    uz += l * zp * u1[p * n + j];
+                }
+            }
+            let w2 = self.omega[j] * self.omega[j];
+            let tx = (l * l + w2) * x[j] + l * (x[j] * d[j]) + uz;
+            let vw: c64 = (0..c.rank).map(|p| w[p] * c.v[p * n + j]).sum();
+            let ty = (lc * lc + w2) * y[j] + lc * (y[j] * d[j]) + vw;
+            rx += tx.norm_sqr();
+            ry += ty.norm_sqr();
+        }
+        (rx.sqrt(), ry.sqrt())
     }
 
     /// `yᴴ (∂T/∂θ) x` for a change `(dU₀, dU₁)` of the coupling (same `V`): the derivative of
