@@ -54,6 +54,7 @@ use squeal_brake::harmonic::ModalSolver;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_hbm::{HarmonicLayout, HbmError, Part};
 use squeal_ode::{Atol, Bdf, BdfOptions, OdeSystem};
+use std::borrow::Cow;
 use std::f64::consts::PI;
 use std::time::{Duration, Instant};
 
@@ -319,15 +320,20 @@ struct Hill<'a> {
     /// `Ĉx_m`, `Ĉv_m` (`q_E × q_R`) for `m = -2H..=2H`.
     cx: Vec<Mat<c64>>,
     cv: Option<Vec<Mat<c64>>>,
+    /// `Ĉ`, when it does not depend on σ (no `Ĉv`): the same for every shift.
+    fixed_core: Option<Mat<c64>>,
+    /// Row `i + q_R l` holds `(Q_Rᵀ Φ_n)_ij (Q_Eᵀ Φ_n)_lj` over the modes `j`: with a diagonal
+    /// `Δ_k⁻¹`, the receptance `Φ_R Δ_k⁻¹ Φ_Eᵀ` of every harmonic is one product with it.
+    pair_products: Mat<c64>,
 }
 
 /// `Q(σ_s)⁻¹` by Woodbury, for one shift.
-struct ShiftSolver {
+struct ShiftSolver<'h> {
     sigma: c64,
     /// `Δ(σ_s + ikω)` per harmonic `k = -H..=H`.
     modal: Vec<ModalSolver>,
-    /// `Ĉ(σ_s)` (`q_E (2H+1) × q_R (2H+1)`).
-    core: Mat<c64>,
+    /// `Ĉ(σ_s)` (`q_E (2H+1) × q_R (2H+1)`): [`Hill`]'s own when it does not depend on σ.
+    core: Cow<'h, Mat<c64>>,
     /// LU of `I + V B⁻¹ U Ĉ` (`q_R (2H+1)` square).
     capacitance: PartialPivLu<c64>,
 }
@@ -373,16 +379,28 @@ impl<'a> Hill<'a> {
             .iter()
             .map(|(_, b)| b.as_ref().map(core))
             .collect::<Option<Vec<_>>>();
-        Ok(Self {
+        let phi_e = complex(&(qe.transpose() * &mb.phi_n));
+        let phi_r = complex(&(qr.transpose() * &mb.phi_n));
+        let (nqe, nqr) = (phi_e.nrows(), phi_r.nrows());
+        let pair_products = Mat::from_fn(nqr * nqe, mb.modes(), |row, j| {
+            phi_r[(row % nqr, j)] * phi_e[(row / nqr, j)]
+        });
+        let mut hill = Self {
             mb,
             h,
             omega: cycle.omega,
-            phi_e: complex(&(qe.transpose() * &mb.phi_n)),
-            phi_r: complex(&(qr.transpose() * &mb.phi_n)),
+            phi_e,
+            phi_r,
             phi_n: complex(&mb.phi_n),
             cx: harmonics_of(&cx, h),
             cv: cv.map(|v| harmonics_of(&v, h)),
-        })
+            fixed_core: None,
+            pair_products,
+        };
+        if hill.cv.is_none() {
+            hill.fixed_core = Some(hill.core(c64::new(0.0, 0.0)));
+        }
+        Ok(hill)
     }
 
     fn blocks(&self) -> usize {
@@ -421,7 +439,7 @@ impl<'a> Hill<'a> {
         out
     }
 
-    fn shift(&self, sigma: c64) -> ShiftSolver {
+    fn shift(&self, sigma: c64) -> ShiftSolver<'_> {
         let nb = self.blocks();
         let (qe, qr) = (self.phi_e.nrows(), self.phi_r.nrows());
         let modal: Vec<ModalSolver> = (0..nb)
@@ -433,17 +451,41 @@ impl<'a> Hill<'a> {
                 )
             })
             .collect();
-        // V B⁻¹ U, block diagonal: Φ_R Δ_k⁻¹ Φ_Eᵀ.
-        let receptances: Vec<Mat<c64>> = modal
+        // V B⁻¹ U, block diagonal: Φ_R Δ_k⁻¹ Φ_Eᵀ (q_R × q_E, column-major), column k of
+        // `receptances`.
+        let n = self.n();
+        let inverses: Option<Vec<&[c64]>> = modal
             .iter()
-            .map(|s| &self.phi_r * s.solve(self.phi_e.transpose()))
+            .map(|s| match s {
+                ModalSolver::Diagonal(d) => Some(&d[..]),
+                ModalSolver::Full(_) => None,
+            })
             .collect();
-        let core = self.core(sigma);
+        let receptances = match inverses {
+            Some(d) => &self.pair_products * Mat::from_fn(n, nb, |j, k| d[k][j]),
+            None => {
+                let mut out = Mat::<c64>::zeros(qr * qe, nb);
+                for (k, s) in modal.iter().enumerate() {
+                    let rk = &self.phi_r * s.solve(self.phi_e.transpose());
+                    for l in 0..qe {
+                        for i in 0..qr {
+                            out[(i + qr * l, k)] = rk[(i, l)];
+                        }
+                    }
+                }
+                out
+            }
+        };
+        let core = match &self.fixed_core {
+            Some(c) => Cow::Borrowed(c),
+            None => Cow::Owned(self.core(sigma)),
+        };
         let r = qr * nb;
         let mut c = Mat::<c64>::identity(r, r);
-        for (bk, rk) in receptances.iter().enumerate() {
+        for bk in 0..nb {
+            let rk = Mat::<c64>::from_fn(qr, qe, |i, l| receptances[(i + qr * l, bk)]);
             let rows = core.subrows(bk * qe, qe);
-            let prod = rk * rows;
+            let prod = &rk * rows;
             for i in 0..qr {
                 for j in 0..r {
                     c[(bk * qr + i, j)] += prod[(i, j)];
@@ -509,11 +551,12 @@ impl<'a> Hill<'a> {
         let rr = t.len();
         s.capacitance
             .solve_in_place(MatMut::from_column_major_slice_mut(&mut t, rr, 1));
-        let mut c = vec![c64::new(0.0, 0.0); s.core.nrows()];
+        let core = &*s.core;
+        let mut c = vec![c64::new(0.0, 0.0); core.nrows()];
         matmul(
-            MatMut::from_column_major_slice_mut(&mut c, s.core.nrows(), 1),
+            MatMut::from_column_major_slice_mut(&mut c, core.nrows(), 1),
             Accum::Replace,
-            &s.core,
+            core,
             MatRef::from_column_major_slice(&t, rr, 1),
             c64::new(1.0, 0.0),
             Par::Seq,
