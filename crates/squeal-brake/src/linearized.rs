@@ -744,8 +744,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// `x_j = (b_j - u_jᵀ z) / δ_j` for `j ∉ J`,
 ///
 /// with the Schur complement `S = I + Σ_{j∉J} v_j u_jᵀ / δ_j` (`r × r`). The adjoint uses the
-/// same blocks with `U` and `V` exchanged (`Tᵀ = Δ + V Uᵀ`): its bordered matrix is
-/// `E Aᵀ E` with `E = diag(I, -I)`, solved with the factors of `A`. Keeping the nearest modes in the
+/// same blocks with `U` and `V` exchanged (`Tᵀ = Δ + V Uᵀ`). Keeping the nearest modes in the
 /// small system avoids dividing by a `δ_j` that vanishes where λ meets a mode barely touched
 /// by the contact. `U = U₀ + λ U₁` is complex when `U₁ ≠ 0`.
 pub struct Bordered {
@@ -755,6 +754,7 @@ pub struct Bordered {
     /// `U = U₀`, read from the coupling.
     u_lambda: Option<(Vec<f64>, Vec<f64>)>,
     lu: SmallLu,
+    lu_t: SmallLu,
 }
 
 /// Column `p` (of `n` entries) of a column-major matrix, and of its imaginary part if any.
@@ -819,16 +819,21 @@ impl Bordered {
         let s = schur(n, r, &c.v, u_re, u_im, &delta, &near);
         let size = m + r;
         let mut a = vec![c64::new(0.0, 0.0); size * size];
+        let mut at = vec![c64::new(0.0, 0.0); size * size];
         for (row, &j) in near.iter().enumerate() {
             a[row * size + row] = delta[j];
+            at[row * size + row] = delta[j];
             for p in 0..r {
                 a[row * size + m + p] = u_at(p * n + j);
                 a[(m + p) * size + row] = c64::new(-c.v[p * n + j], 0.0);
+                at[row * size + m + p] = c64::new(c.v[p * n + j], 0.0);
+                at[(m + p) * size + row] = -u_at(p * n + j);
             }
         }
         for p in 0..r {
             for q in 0..r {
                 a[(m + p) * size + m + q] = s[p * r + q];
+                at[(m + p) * size + m + q] = s[q * r + p];
             }
         }
         Bordered {
@@ -836,6 +841,7 @@ impl Bordered {
             near,
             u_lambda,
             lu: SmallLu::new(size, a),
+            lu_t: SmallLu::new(size, at),
         }
     }
 
@@ -873,14 +879,7 @@ impl Bordered {
             rhs[m + p] = dot_column(&inv_b, right(p));
         }
         if adjoint {
-            // E Aᵀ E x = rhs: Aᵀ (E x) = E rhs.
-            for v in &mut rhs[m..] {
-                *v = -*v;
-            }
-            self.lu.solve_transposed(&mut rhs);
-            for v in &mut rhs[m..] {
-                *v = -*v;
-            }
+            self.lu_t.solve(&mut rhs);
         } else {
             self.lu.solve(&mut rhs);
         }
@@ -1055,29 +1054,6 @@ impl SmallLu {
         }
         for (i, v) in x.iter().enumerate() {
             b[i] = *v * self.col_scale[i];
-        }
-    }
-
-    /// Solves `Aᵀ x = b` in place with the factors of `A`: `R A C = Pᵀ L U` (row and column
-    /// scales `R`, `C`), so `A⁻ᵀ = R Pᵀ L⁻ᵀ U⁻ᵀ C`.
-    fn solve_transposed(&self, b: &mut [c64]) {
-        let n = self.n;
-        let mut x: Vec<c64> = b.iter().zip(&self.col_scale).map(|(v, s)| v * s).collect();
-        for i in 0..n {
-            for k in 0..i {
-                let v = x[k];
-                x[i] -= self.a[k * n + i] * v;
-            }
-            x[i] /= self.a[i * n + i];
-        }
-        for i in (0..n).rev() {
-            for k in i + 1..n {
-                let v = x[k];
-                x[i] -= self.a[k * n + i] * v;
-            }
-        }
-        for (k, &i) in self.perm.iter().enumerate() {
-            b[i] = x[k] * self.row_scale[i];
         }
     }
 }
