@@ -36,9 +36,14 @@
 //! nonlinear dofs). Each solve with `Q(σ_c) = B + U Ĉ V` (`B` block diagonal of
 //! `Δ(σ_c + ikω)`, diagonal for modal damping; `U = Φ̂ᵀ Q̂_E`, `V = Q̂_Rᵀ Φ̂`) is then a solve with
 //! `B` and the Woodbury correction `Q⁻¹ = B⁻¹ - B⁻¹ U Ĉ (I + V B⁻¹ U Ĉ)⁻¹ V B⁻¹`, whose
-//! capacitance of size `q_R (2H + 1)` is factored once per shift. The Ritz values converged in a
-//! disk around each shift cover the cell of the strip around it; the region where *every*
-//! exponent was found is reported ([`HillFloquet::coverage`]).
+//! capacitance of size `q_R (2H + 1)` is factored once per shift. Its blocks `V B⁻¹ U` are the
+//! receptances `Φ_R Δ_k⁻¹ Φ_Eᵀ = Σ_j φ_R,j φ_E,jᵀ / Δ_jj(σ_c + ikω)` (`Φ_R = Q_Rᵀ Φ_n`,
+//! `Φ_E = Q_Eᵀ Φ_n`): with modal damping, those of every harmonic are one product of the
+//! modes' pair products `φ_R,j φ_E,jᵀ` with the table of `1/Δ_jj`. With the blocks of a Krylov
+//! vector as the columns of an `n × (2H + 1)` matrix, `V y` and `U c` are one matrix product
+//! each. The Ritz values converged in a disk around each shift cover the cell of the strip
+//! around it; the region where *every* exponent was found is reported
+//! ([`HillFloquet::coverage`]).
 //!
 //! **Monodromy.** The `2n` columns of the identity are integrated over one period through the
 //! variational equations (first-order form, `J` evaluated on the cycle's Fourier series at
