@@ -93,10 +93,8 @@ pub fn correlation(a: &[c64], b: &[c64]) -> f64 {
 /// Whether `(λ, x, y)` is an eigenpair of `T` to `tol` relative residual on both sides.
 fn converged(lr: &LinearizedBrake, c: &Coupling, l: c64, x: &[c64], y: &[c64], tol: f64) -> bool {
     let bound = tol * lr.scale(c, l);
-    let rx = lr.apply(c, l, x);
-    let ry = lr.apply_adjoint(c, l, y);
-    let norm = |v: &[c64]| v.iter().map(|a| a.norm_sqr()).sum::<f64>().sqrt();
-    norm(&rx) <= bound && norm(&ry) <= bound
+    let (rx, ry) = lr.residual_norms(c, l, x, y);
+    rx <= bound && ry <= bound
 }
 
 /// Carries `start` to the coupling `c` by the two-sided Rayleigh functional iteration. Returns

@@ -181,8 +181,24 @@ impl ModalSolver {
 
     /// `Δ⁻¹ b` for one vector.
     pub fn solve_vec(&self, b: &[c64]) -> Vec<c64> {
-        let m = self.solve(Mat::from_fn(b.len(), 1, |i, _| b[i]).as_ref());
-        (0..b.len()).map(|i| m[(i, 0)]).collect()
+        let mut x = b.to_vec();
+        self.solve_in_place(&mut x);
+        x
+    }
+
+    /// `b ← Δ⁻¹ b` for one vector, without allocating.
+    pub fn solve_in_place(&self, b: &mut [c64]) {
+        match self {
+            ModalSolver::Diagonal(r) => {
+                for (x, ri) in b.iter_mut().zip(r) {
+                    *x *= ri;
+                }
+            }
+            ModalSolver::Full(lu) => {
+                let n = b.len();
+                lu.solve_in_place(MatMut::from_column_major_slice_mut(b, n, 1));
+            }
+        }
     }
 }
 

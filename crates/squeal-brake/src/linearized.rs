@@ -381,11 +381,78 @@ impl LinearizedBrake {
 
     /// `yᴴ T(λ) x` and `yᴴ T'(λ) x`: the Rayleigh functional's Newton step is their ratio.
     pub fn rayleigh(&self, c: &Coupling, l: c64, x: &[c64], y: &[c64]) -> (c64, c64) {
-        let dot = |a: &[c64], b: &[c64]| a.iter().zip(b).map(|(p, q)| p.conj() * q).sum::<c64>();
-        (
-            dot(y, &self.apply(c, l, x)),
-            dot(y, &self.apply_derivative(c, l, x)),
-        )
+        let Some(d) = self.damping.diagonal() else {
+            let dot =
+                |a: &[c64], b: &[c64]| a.iter().zip(b).map(|(p, q)| p.conj() * q).sum::<c64>();
+            return (
+                dot(y, &self.apply(c, l, x)),
+                dot(y, &self.apply_derivative(c, l, x)),
+            );
+        };
+        // The entries of `T x` and `T' x` one at a time, with the sums of `apply` and
+        // `apply_derivative` in their order (the same bits, without the vectors).
+        let n = self.size();
+        let z = self.project(&c.v, x);
+        let (mut num, mut den) = (c64::new(0.0, 0.0), c64::new(0.0, 0.0));
+        for j in 0..n {
+            let mut uz = c64::new(0.0, 0.0);
+            for (p, zp) in z.iter().enumerate() {
+                uz += zp * c.u0[p * n + j];
+                if let Some(u1) = &c.u1 {
+                    uz += l * zp * u1[p * n + j];
+                }
+            }
+            let dx = x[j] * d[j];
+            let tx = (l * l + self.omega[j] * self.omega[j]) * x[j] + l * dx + uz;
+            let mut dtx = dx + l * 2.0 * x[j];
+            if let Some(u1) = &c.u1 {
+                for (p, zp) in z.iter().enumerate() {
+                    dtx += zp * u1[p * n + j];
+                }
+            }
+            let yc = y[j].conj();
+            num += yc * tx;
+            den += yc * dtx;
+        }
+        (num, den)
+    }
+
+    /// `||T(λ) x||` and `||T(λ)ᴴ y||`, with the sums of `apply` and `apply_adjoint` in their
+    /// order (the same bits, without the vectors).
+    pub fn residual_norms(&self, c: &Coupling, l: c64, x: &[c64], y: &[c64]) -> (f64, f64) {
+        let norm = |v: &[c64]| v.iter().map(|a| a.norm_sqr()).sum::<f64>().sqrt();
+        let Some(d) = self.damping.diagonal() else {
+            return (
+                norm(&self.apply(c, l, x)),
+                norm(&self.apply_adjoint(c, l, y)),
+            );
+        };
+        let n = self.size();
+        let lc = l.conj();
+        let z = self.project(&c.v, x);
+        let mut w = self.project(&c.u0, y);
+        if let Some(u1) = &c.u1 {
+            for (wp, a) in w.iter_mut().zip(self.project(u1, y)) {
+                *wp += lc * a;
+            }
+        }
+        let (mut rx, mut ry) = (0.0, 0.0);
+        for j in 0..n {
+            let mut uz = c64::new(0.0, 0.0);
+            for (p, zp) in z.iter().enumerate() {
+                uz += zp * c.u0[p * n + j];
+                if let Some(u1) = &c.u1 {
+                    uz += l * zp * u1[p * n + j];
+                }
+            }
+            let w2 = self.omega[j] * self.omega[j];
+            let tx = (l * l + w2) * x[j] + l * (x[j] * d[j]) + uz;
+            let vw: c64 = (0..c.rank).map(|p| w[p] * c.v[p * n + j]).sum();
+            let ty = (lc * lc + w2) * y[j] + lc * (y[j] * d[j]) + vw;
+            rx += tx.norm_sqr();
+            ry += ty.norm_sqr();
+        }
+        (rx.sqrt(), ry.sqrt())
     }
 
     /// `yᴴ (∂T/∂θ) x` for a change `(dU₀, dU₁)` of the coupling (same `V`): the derivative of
@@ -683,12 +750,50 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 pub struct Bordered {
     delta: Vec<c64>,
     near: Vec<usize>,
-    /// `U(λ)` split into real and imaginary parts (column-major `n × r`; `u_im` empty when
-    /// `U₁ = 0`).
-    u_re: Vec<f64>,
-    u_im: Vec<f64>,
+    /// `U(λ)` split into real and imaginary parts (column-major `n × r`) when `U₁ ≠ 0`; else
+    /// `U = U₀`, read from the coupling.
+    u_lambda: Option<(Vec<f64>, Vec<f64>)>,
     lu: SmallLu,
     lu_t: SmallLu,
+}
+
+/// Column `p` (of `n` entries) of a column-major matrix, and of its imaginary part if any.
+fn column<'a>(re: &'a [f64], im: &'a [f64], p: usize, n: usize) -> (&'a [f64], Option<&'a [f64]>) {
+    (&re[p * n..(p + 1) * n], im.get(p * n..(p + 1) * n))
+}
+
+/// `Σ_j x_j m_j` over a column `m` (real, or complex `re + i im`), summed in order of `j`.
+fn dot_column(x: &[c64], (re, im): (&[f64], Option<&[f64]>)) -> c64 {
+    let mut s = c64::new(0.0, 0.0);
+    match im {
+        None => {
+            for (a, &m) in x.iter().zip(re) {
+                s += c64::new(a.re * m, a.im * m);
+            }
+        }
+        Some(im) => {
+            for ((a, &mr), &mi) in x.iter().zip(re).zip(im) {
+                s += a * c64::new(mr, mi);
+            }
+        }
+    }
+    s
+}
+
+/// `acc_j += a m_j` over a column `m` (real, or complex `re + i im`).
+fn add_column(acc: &mut [c64], a: c64, (re, im): (&[f64], Option<&[f64]>)) {
+    match im {
+        None => {
+            for (o, &m) in acc.iter_mut().zip(re) {
+                *o += c64::new(a.re * m, a.im * m);
+            }
+        }
+        Some(im) => {
+            for ((o, &mr), &mi) in acc.iter_mut().zip(re).zip(im) {
+                *o += a * c64::new(mr, mi);
+            }
+        }
+    }
 }
 
 impl Bordered {
@@ -700,15 +805,18 @@ impl Bordered {
             .collect();
         let near = nearest(&delta, NEAR.min(n));
         let m = near.len();
-        let (u_re, u_im) = match &c.u1 {
-            None => (c.u0.clone(), Vec::new()),
-            Some(u1) => (
+        let u_lambda: Option<(Vec<f64>, Vec<f64>)> = c.u1.as_ref().map(|u1| {
+            (
                 c.u0.iter().zip(u1).map(|(a, b)| a + l.re * b).collect(),
                 u1.iter().map(|b| l.im * b).collect(),
-            ),
+            )
+        });
+        let (u_re, u_im): (&[f64], &[f64]) = match &u_lambda {
+            Some((re, im)) => (re, im),
+            None => (&c.u0, &[]),
         };
         let u_at = |i: usize| c64::new(u_re[i], u_im.get(i).copied().unwrap_or(0.0));
-        let s = schur(n, r, &c.v, &u_re, &u_im, &delta, &near);
+        let s = schur(n, r, &c.v, u_re, u_im, &delta, &near);
         let size = m + r;
         let mut a = vec![c64::new(0.0, 0.0); size * size];
         let mut at = vec![c64::new(0.0, 0.0); size * size];
@@ -731,14 +839,15 @@ impl Bordered {
         Bordered {
             delta,
             near,
-            u_re,
-            u_im,
+            u_lambda,
             lu: SmallLu::new(size, a),
             lu_t: SmallLu::new(size, at),
         }
     }
 
-    /// Solves `T x = b` or, with `adjoint`, `Tᴴ x = b` (as `Tᵀ x̄ = b̄`, `Tᵀ = Δ + V Uᵀ`).
+    /// Solves `T x = b` or, with `adjoint`, `Tᴴ x = b` (as `Tᵀ x̄ = b̄`, `Tᵀ = Δ + V Uᵀ`). The
+    /// sums over the modes run along the columns of `U` and `V` (contiguous), each in the
+    /// order of the modes.
     fn solve(&self, lr: &LinearizedBrake, c: &Coupling, b: &[c64], adjoint: bool) -> Vec<c64> {
         let (n, r) = (lr.size(), c.rank);
         let b: Vec<c64> = if adjoint {
@@ -746,40 +855,46 @@ impl Bordered {
         } else {
             b.to_vec()
         };
-        let u_at = |i: usize| c64::new(self.u_re[i], self.u_im.get(i).copied().unwrap_or(0.0));
-        let v_at = |i: usize| c64::new(c.v[i], 0.0);
-        // (Δ + L Rᵀ) x = b with (L, R) = (U, V), or (V, U) for the transpose.
-        let (left, right): (&dyn Fn(usize) -> c64, &dyn Fn(usize) -> c64) = if adjoint {
-            (&v_at, &u_at)
-        } else {
-            (&u_at, &v_at)
+        let (u_re, u_im): (&[f64], &[f64]) = match &self.u_lambda {
+            Some((re, im)) => (re, im),
+            None => (&c.u0, &[]),
         };
-        let lu = if adjoint { &self.lu_t } else { &self.lu };
+        // (Δ + L Rᵀ) x = b with (L, R) = (U, V), or (V, U) for the transpose.
+        let u_col = |p: usize| column(u_re, u_im, p, n);
+        let v_col = |p: usize| column(&c.v, &[], p, n);
+        let (left, right): (&dyn Fn(usize) -> _, &dyn Fn(usize) -> _) = if adjoint {
+            (&v_col, &u_col)
+        } else {
+            (&u_col, &v_col)
+        };
         let m = self.near.len();
+        // b_j / δ_j off the near modes, 0 on them (which adds nothing to the sums below).
+        let mut inv_b: Vec<c64> = b.iter().zip(&self.delta).map(|(bj, d)| bj / d).collect();
         let mut rhs = vec![c64::new(0.0, 0.0); m + r];
         for (i, &j) in self.near.iter().enumerate() {
             rhs[i] = b[j];
+            inv_b[j] = c64::new(0.0, 0.0);
         }
-        let mut inv_b = vec![c64::new(0.0, 0.0); n];
-        for j in 0..n {
-            if self.near.contains(&j) {
-                continue;
-            }
-            inv_b[j] = b[j] / self.delta[j];
-            for p in 0..r {
-                rhs[m + p] += inv_b[j] * right(p * n + j);
-            }
+        for p in 0..r {
+            rhs[m + p] = dot_column(&inv_b, right(p));
         }
-        lu.solve(&mut rhs);
-        let z = &rhs[m..];
-        let mut x = vec![c64::new(0.0, 0.0); n];
-        for j in 0..n {
-            if let Some(i) = self.near.iter().position(|&k| k == j) {
-                x[j] = rhs[i];
-            } else {
-                let lz: c64 = (0..r).map(|p| z[p] * left(p * n + j)).sum();
-                x[j] = inv_b[j] - lz / self.delta[j];
-            }
+        if adjoint {
+            self.lu_t.solve(&mut rhs);
+        } else {
+            self.lu.solve(&mut rhs);
+        }
+        let mut lz = vec![c64::new(0.0, 0.0); n];
+        for (p, &zp) in rhs[m..].iter().enumerate() {
+            add_column(&mut lz, zp, left(p));
+        }
+        let mut x: Vec<c64> = inv_b
+            .iter()
+            .zip(&lz)
+            .zip(&self.delta)
+            .map(|((ib, l), d)| ib - l / d)
+            .collect();
+        for (i, &j) in self.near.iter().enumerate() {
+            x[j] = rhs[i];
         }
         if adjoint {
             for v in &mut x {

@@ -15,12 +15,23 @@
 //! The crossing's parameter is interpolated linearly in the crossing exponent's real part
 //! between the two points; the continuation's own fold location ([`crate::branch::Fold`]) is
 //! the accurate one for folds.
+//!
+//! **Overlap.** The continuation is sequential (each point is predicted from the one before)
+//! while the points' Floquet analyses are independent. [`follow_from_hopf_with_hill`] hands
+//! each point to a task of the thread pool as soon as the continuation accepts it, so that
+//! Hill's method runs on the other threads during the continuation instead of after it; the
+//! exponents are those of [`hill_along`] on the finished branch, bit for bit.
 
-use crate::branch::{BranchPoint, LimitCycleBranch, Parameter};
+use crate::branch::follow_from_hopf_observed;
+use crate::branch::{BranchOptions, BranchPoint, LimitCycleBranch, Parameter};
 use crate::floquet::{CycleRef, Exponent, FloquetError, HillFloquet, HillOptions, hill};
+use crate::solve::ChbmError;
 use rayon::prelude::*;
+use squeal_brake::criticality::NormalForm;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_hbm::HarmonicLayout;
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
 
 /// How a Floquet multiplier crosses the unit circle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -95,14 +106,84 @@ pub fn hill_along(
     branch
         .points
         .par_iter()
-        .map(|p| {
-            let mut mbp = mb.clone();
-            if branch.parameter == Parameter::Friction {
-                mbp.mu = p.parameter;
-            }
-            hill(&mbp, &cycle_of(mb, p, samples)?, opts)
-        })
+        .map(|p| hill_at(mb, branch.parameter, p, samples, opts))
         .collect()
+}
+
+/// Hill's exponents at one point of a branch in `parameter` (see [`hill_along`]).
+fn hill_at(
+    mb: &ModalBrake,
+    parameter: Parameter,
+    p: &BranchPoint,
+    samples: Option<usize>,
+    opts: &HillOptions,
+) -> Result<HillFloquet, FloquetError> {
+    let mut mbp = mb.clone();
+    if parameter == Parameter::Friction {
+        mbp.mu = p.parameter;
+    }
+    hill(&mbp, &cycle_of(mb, p, samples)?, opts)
+}
+
+/// A branch from [`follow_from_hopf_with_hill`] with its exponents.
+pub struct BranchWithHill {
+    /// The branch, as [`crate::branch::follow_from_hopf`] returns it.
+    pub branch: LimitCycleBranch,
+    /// Hill's exponents at each point, as [`hill_along`] returns them.
+    pub floquet: Vec<Result<HillFloquet, FloquetError>>,
+    /// Wall time from the continuation's end to the last exponents: what the Floquet analyses
+    /// add to the continuation's own time.
+    pub floquet_tail: Duration,
+}
+
+/// [`crate::branch::follow_from_hopf`] and [`hill_along`] overlapped (module docs): inside a
+/// [`rayon::scope`], the continuation runs on one thread and each point it accepts is a task
+/// for the others; the points it kept without telling (see
+/// [`follow_from_hopf_observed`]) are analysed after it. With one thread the tasks run
+/// after the continuation.
+pub fn follow_from_hopf_with_hill(
+    mb: &ModalBrake,
+    nf: &NormalForm,
+    opts: &BranchOptions,
+    hill_opts: &HillOptions,
+) -> Result<BranchWithHill, ChbmError> {
+    type Done = (usize, BranchPoint, Result<HillFloquet, FloquetError>);
+    let (tx, rx) = mpsc::channel::<Done>();
+    let (branch, end) = rayon::scope(|scope| {
+        let mut told = 0;
+        let branch = follow_from_hopf_observed(mb, nf, opts, &mut |p| {
+            let (i, p, tx) = (told, p.clone(), tx.clone());
+            told += 1;
+            scope.spawn(move |_| {
+                let f = hill_at(mb, Parameter::Friction, &p, opts.samples, hill_opts);
+                // The receiver outlives the scope: sending cannot fail.
+                let _ = tx.send((i, p, f));
+            });
+        });
+        (branch, Instant::now())
+    });
+    let branch = branch?;
+    drop(tx);
+    let mut floquet: Vec<Option<Result<HillFloquet, FloquetError>>> =
+        branch.points.iter().map(|_| None).collect();
+    for (i, p, f) in rx.try_iter() {
+        // Only a task's own point: a told point is the branch's point of the same index.
+        if branch.points.get(i) == Some(&p) {
+            floquet[i] = Some(f);
+        }
+    }
+    let floquet = floquet
+        .into_par_iter()
+        .zip(&branch.points)
+        .map(|(f, p)| {
+            f.unwrap_or_else(|| hill_at(mb, Parameter::Friction, p, opts.samples, hill_opts))
+        })
+        .collect();
+    Ok(BranchWithHill {
+        branch,
+        floquet,
+        floquet_tail: end.elapsed(),
+    })
 }
 
 /// The non-trivial exponents of `f` whose real part is beyond its error.

@@ -429,6 +429,18 @@ pub fn follow_from_hopf(
     nf: &NormalForm,
     opts: &BranchOptions,
 ) -> Result<LimitCycleBranch, ChbmError> {
+    follow_from_hopf_observed(mb, nf, opts, &mut |_| {})
+}
+
+/// [`follow_from_hopf`], telling `on_point` each point as the continuation accepts it (in
+/// order: the `i`-th call is `points[i]` of the result, except that a last point left by a
+/// failed correction after a change of harmonics is not told).
+pub fn follow_from_hopf_observed(
+    mb: &ModalBrake,
+    nf: &NormalForm,
+    opts: &BranchOptions,
+    on_point: &mut dyn FnMut(&BranchPoint),
+) -> Result<LimitCycleBranch, ChbmError> {
     let t0 = Instant::now();
     let nn = mb.nl();
     let h = opts.harmonics.start();
@@ -495,6 +507,7 @@ pub fn follow_from_hopf(
         &copts,
         opts,
         Parameter::Friction,
+        on_point,
     )?;
     branch.hopf = Some(HopfStart {
         mu0,
@@ -507,7 +520,8 @@ pub fn follow_from_hopf(
 }
 
 /// The continuation with the observer that adapts the harmonics and ends at the closure
-/// limit, then the folds located.
+/// limit (each accepted point told to `on_point`), then the folds located.
+#[allow(clippy::too_many_arguments)]
 fn run<F: Family>(
     mb: &ModalBrake,
     family: &mut F,
@@ -516,6 +530,7 @@ fn run<F: Family>(
     copts: &ContinuationOptions,
     opts: &BranchOptions,
     parameter: Parameter,
+    on_point: &mut dyn FnMut(&BranchPoint),
 ) -> Result<LimitCycleBranch, ChbmError> {
     let mut failure: Option<HbmError> = None;
     let raw = continuation::continue_from(family, start, wf, copts, |p| {
@@ -533,6 +548,8 @@ fn run<F: Family>(
             return Control::Harmonics(p.harmonics + 2);
         }
         let closure = s.loudest().1;
+        // Continue or stop: either way the continuation keeps this point.
+        on_point(&s);
         match opts.max_closure {
             Some(m) if closure > m => Control::Stop(format!(
                 "a pair's peak-to-peak closure {closure:.3e} m passed the limit {m:.3e} m"
@@ -696,7 +713,16 @@ pub fn follow_from_point(
     let start =
         continuation::correct_point(&mut hb_family, &z0, &row, p0, &wf(&layout), &along, &copts)?
             .ok_or(ChbmError::BranchStart)?;
-    let mut branch = run(&mbp, &mut hb_family, start, &wf, &copts, opts, parameter)?;
+    let mut branch = run(
+        &mbp,
+        &mut hb_family,
+        start,
+        &wf,
+        &copts,
+        opts,
+        parameter,
+        &mut |_| {},
+    )?;
     branch.phase_dof = phase_dof;
     branch.time = t0.elapsed();
     Ok(branch)

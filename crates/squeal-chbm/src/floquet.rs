@@ -36,23 +36,30 @@
 //! nonlinear dofs). Each solve with `Q(σ_c) = B + U Ĉ V` (`B` block diagonal of
 //! `Δ(σ_c + ikω)`, diagonal for modal damping; `U = Φ̂ᵀ Q̂_E`, `V = Q̂_Rᵀ Φ̂`) is then a solve with
 //! `B` and the Woodbury correction `Q⁻¹ = B⁻¹ - B⁻¹ U Ĉ (I + V B⁻¹ U Ĉ)⁻¹ V B⁻¹`, whose
-//! capacitance of size `q_R (2H + 1)` is factored once per shift. The Ritz values converged in a
-//! disk around each shift cover the cell of the strip around it; the region where *every*
-//! exponent was found is reported ([`HillFloquet::coverage`]).
+//! capacitance of size `q_R (2H + 1)` is factored once per shift. Its blocks `V B⁻¹ U` are the
+//! receptances `Φ_R Δ_k⁻¹ Φ_Eᵀ = Σ_j φ_R,j φ_E,jᵀ / Δ_jj(σ_c + ikω)` (`Φ_R = Q_Rᵀ Φ_n`,
+//! `Φ_E = Q_Eᵀ Φ_n`): with modal damping, those of every harmonic are one product of the
+//! modes' pair products `φ_R,j φ_E,jᵀ` with the table of `1/Δ_jj`. With the blocks of a Krylov
+//! vector as the columns of an `n × (2H + 1)` matrix, `V y` and `U c` are one matrix product
+//! each. The Ritz values converged in a disk around each shift cover the cell of the strip
+//! around it; the region where *every* exponent was found is reported
+//! ([`HillFloquet::coverage`]).
 //!
 //! **Monodromy.** The `2n` columns of the identity are integrated over one period through the
 //! variational equations (first-order form, `J` evaluated on the cycle's Fourier series at
 //! each time) by the BDF integrator of [`squeal_ode`]; the multipliers are the eigenvalues of
 //! the resulting monodromy matrix: all `2n`, independent of Hill's truncation and sorting.
 
+use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::{PartialPivLu, Solve};
-use faer::{Mat, c64};
+use faer::{Accum, Mat, MatMut, MatRef, Par, c64};
 use rayon::prelude::*;
 use squeal_brake::dynamics::state_jacobian;
 use squeal_brake::harmonic::ModalSolver;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_hbm::{HarmonicLayout, HbmError, Part};
 use squeal_ode::{Atol, Bdf, BdfOptions, OdeSystem};
+use std::borrow::Cow;
 use std::f64::consts::PI;
 use std::time::{Duration, Instant};
 
@@ -299,27 +306,39 @@ fn harmonics_of(samples: &[Mat<f64>], h: usize) -> Vec<Mat<c64>> {
         .collect()
 }
 
+/// A real matrix as a complex one.
+fn complex(m: &Mat<f64>) -> Mat<c64> {
+    Mat::from_fn(m.nrows(), m.ncols(), |i, j| c64::new(m[(i, j)], 0.0))
+}
+
 /// Hill's operator of a cycle: the pieces of `Q(σ)`, with the contact coupling in its low-rank
 /// form `Φ̂ᵀ Q̂_E Ĉ(σ) Q̂_Rᵀ Φ̂`.
 struct Hill<'a> {
     mb: &'a ModalBrake,
     h: usize,
     omega: f64,
-    /// `Q_Eᵀ Φ_n` (`q_E × n`) and `Q_Rᵀ Φ_n` (`q_R × n`).
-    phi_e: Mat<f64>,
-    phi_r: Mat<f64>,
+    /// `Q_Eᵀ Φ_n` (`q_E × n`), `Q_Rᵀ Φ_n` (`q_R × n`) and `Φ_n` (`n_nl × n`), as complex
+    /// matrices for the products with the Krylov vectors.
+    phi_e: Mat<c64>,
+    phi_r: Mat<c64>,
+    phi_n: Mat<c64>,
     /// `Ĉx_m`, `Ĉv_m` (`q_E × q_R`) for `m = -2H..=2H`.
     cx: Vec<Mat<c64>>,
     cv: Option<Vec<Mat<c64>>>,
+    /// `Ĉ`, when it does not depend on σ (no `Ĉv`): the same for every shift.
+    fixed_core: Option<Mat<c64>>,
+    /// Row `i + q_R l` holds `(Q_Rᵀ Φ_n)_ij (Q_Eᵀ Φ_n)_lj` over the modes `j`: with a diagonal
+    /// `Δ_k⁻¹`, the receptance `Φ_R Δ_k⁻¹ Φ_Eᵀ` of every harmonic is one product with it.
+    pair_products: Mat<c64>,
 }
 
 /// `Q(σ_s)⁻¹` by Woodbury, for one shift.
-struct ShiftSolver {
+struct ShiftSolver<'h> {
     sigma: c64,
     /// `Δ(σ_s + ikω)` per harmonic `k = -H..=H`.
     modal: Vec<ModalSolver>,
-    /// `Ĉ(σ_s)` (`q_E (2H+1) × q_R (2H+1)`).
-    core: Mat<c64>,
+    /// `Ĉ(σ_s)` (`q_E (2H+1) × q_R (2H+1)`): [`Hill`]'s own when it does not depend on σ.
+    core: Cow<'h, Mat<c64>>,
     /// LU of `I + V B⁻¹ U Ĉ` (`q_R (2H+1)` square).
     capacitance: PartialPivLu<c64>,
 }
@@ -365,15 +384,28 @@ impl<'a> Hill<'a> {
             .iter()
             .map(|(_, b)| b.as_ref().map(core))
             .collect::<Option<Vec<_>>>();
-        Ok(Self {
+        let phi_e = complex(&(qe.transpose() * &mb.phi_n));
+        let phi_r = complex(&(qr.transpose() * &mb.phi_n));
+        let (nqe, nqr) = (phi_e.nrows(), phi_r.nrows());
+        let pair_products = Mat::from_fn(nqr * nqe, mb.modes(), |row, j| {
+            phi_r[(row % nqr, j)] * phi_e[(row / nqr, j)]
+        });
+        let mut hill = Self {
             mb,
             h,
             omega: cycle.omega,
-            phi_e: qe.transpose() * &mb.phi_n,
-            phi_r: qr.transpose() * &mb.phi_n,
+            phi_e,
+            phi_r,
+            phi_n: complex(&mb.phi_n),
             cx: harmonics_of(&cx, h),
             cv: cv.map(|v| harmonics_of(&v, h)),
-        })
+            fixed_core: None,
+            pair_products,
+        };
+        if hill.cv.is_none() {
+            hill.fixed_core = Some(hill.core(c64::new(0.0, 0.0)));
+        }
+        Ok(hill)
     }
 
     fn blocks(&self) -> usize {
@@ -412,8 +444,8 @@ impl<'a> Hill<'a> {
         out
     }
 
-    fn shift(&self, sigma: c64) -> ShiftSolver {
-        let (n, nb) = (self.n(), self.blocks());
+    fn shift(&self, sigma: c64) -> ShiftSolver<'_> {
+        let nb = self.blocks();
         let (qe, qr) = (self.phi_e.nrows(), self.phi_r.nrows());
         let modal: Vec<ModalSolver> = (0..nb)
             .map(|b| {
@@ -424,19 +456,41 @@ impl<'a> Hill<'a> {
                 )
             })
             .collect();
-        let phi_e_t = Mat::<c64>::from_fn(n, qe, |i, j| c64::new(self.phi_e[(j, i)], 0.0));
-        let phi_r = Mat::<c64>::from_fn(qr, n, |i, j| c64::new(self.phi_r[(i, j)], 0.0));
-        // V B⁻¹ U, block diagonal: Φ_R Δ_k⁻¹ Φ_Eᵀ.
-        let receptances: Vec<Mat<c64>> = modal
+        // V B⁻¹ U, block diagonal: Φ_R Δ_k⁻¹ Φ_Eᵀ (q_R × q_E, column-major), column k of
+        // `receptances`.
+        let n = self.n();
+        let inverses: Option<Vec<&[c64]>> = modal
             .iter()
-            .map(|s| &phi_r * s.solve(phi_e_t.as_ref()))
+            .map(|s| match s {
+                ModalSolver::Diagonal(d) => Some(&d[..]),
+                ModalSolver::Full(_) => None,
+            })
             .collect();
-        let core = self.core(sigma);
+        let receptances = match inverses {
+            Some(d) => &self.pair_products * Mat::from_fn(n, nb, |j, k| d[k][j]),
+            None => {
+                let mut out = Mat::<c64>::zeros(qr * qe, nb);
+                for (k, s) in modal.iter().enumerate() {
+                    let rk = &self.phi_r * s.solve(self.phi_e.transpose());
+                    for l in 0..qe {
+                        for i in 0..qr {
+                            out[(i + qr * l, k)] = rk[(i, l)];
+                        }
+                    }
+                }
+                out
+            }
+        };
+        let core = match &self.fixed_core {
+            Some(c) => Cow::Borrowed(c),
+            None => Cow::Owned(self.core(sigma)),
+        };
         let r = qr * nb;
         let mut c = Mat::<c64>::identity(r, r);
-        for (bk, rk) in receptances.iter().enumerate() {
+        for bk in 0..nb {
+            let rk = Mat::<c64>::from_fn(qr, qe, |i, l| receptances[(i + qr * l, bk)]);
             let rows = core.subrows(bk * qe, qe);
-            let prod = rk * rows;
+            let prod = &rk * rows;
             for i in 0..qr {
                 for j in 0..r {
                     c[(bk * qr + i, j)] += prod[(i, j)];
@@ -451,60 +505,73 @@ impl<'a> Hill<'a> {
         }
     }
 
-    /// `(I ⊗ M) y` blockwise for a `q × n` real matrix `m`.
-    fn reduce(&self, m: &Mat<f64>, y: &[c64]) -> Vec<c64> {
-        let (q, n) = (m.nrows(), self.n());
-        let mut out = vec![c64::new(0.0, 0.0); q * self.blocks()];
-        for b in 0..self.blocks() {
-            for i in 0..q {
-                out[b * q + i] = (0..n).map(|j| y[b * n + j] * m[(i, j)]).sum();
-            }
-        }
+    /// `(I ⊗ M) y` blockwise for a `q × n` matrix `m`: with the blocks of `y` as the columns of
+    /// an `n × (2H+1)` matrix `Y`, the columns of `M Y`.
+    fn reduce(&self, m: &Mat<c64>, y: &[c64]) -> Vec<c64> {
+        let (q, nb) = (m.nrows(), self.blocks());
+        let mut out = vec![c64::new(0.0, 0.0); q * nb];
+        matmul(
+            MatMut::from_column_major_slice_mut(&mut out, q, nb),
+            Accum::Replace,
+            m,
+            MatRef::from_column_major_slice(y, self.n(), nb),
+            c64::new(1.0, 0.0),
+            Par::Seq,
+        );
         out
     }
 
-    /// `(I ⊗ Mᵀ) c` blockwise.
-    fn expand(&self, m: &Mat<f64>, c: &[c64]) -> Vec<c64> {
-        let (q, n) = (m.nrows(), self.n());
-        let mut out = vec![c64::new(0.0, 0.0); n * self.blocks()];
-        for b in 0..self.blocks() {
-            for j in 0..n {
-                out[b * n + j] = (0..q).map(|i| c[b * q + i] * m[(i, j)]).sum();
-            }
-        }
+    /// `(I ⊗ Mᵀ) c` blockwise: the columns of `Mᵀ C`.
+    fn expand(&self, m: &Mat<c64>, c: &[c64]) -> Vec<c64> {
+        let (q, n, nb) = (m.nrows(), self.n(), self.blocks());
+        let mut out = vec![c64::new(0.0, 0.0); n * nb];
+        matmul(
+            MatMut::from_column_major_slice_mut(&mut out, n, nb),
+            Accum::Replace,
+            m.transpose(),
+            MatRef::from_column_major_slice(c, q, nb),
+            c64::new(1.0, 0.0),
+            Par::Seq,
+        );
         out
     }
 
     /// The nonlinear dofs of each block, `Φ̂ y`.
     fn to_nl(&self, y: &[c64]) -> Vec<c64> {
-        self.reduce(&self.mb.phi_n, y)
+        self.reduce(&self.phi_n, y)
     }
 
-    fn modal_solve(&self, s: &ShiftSolver, r: &[c64]) -> Vec<c64> {
-        let n = self.n();
-        let mut out = Vec::with_capacity(r.len());
-        for (b, solver) in s.modal.iter().enumerate() {
-            out.extend(solver.solve_vec(&r[b * n..(b + 1) * n]));
+    /// `x ← B⁻¹ x`, block by block.
+    fn modal_solve(&self, s: &ShiftSolver, x: &mut [c64]) {
+        for (xb, solver) in x.chunks_exact_mut(self.n()).zip(&s.modal) {
+            solver.solve_in_place(xb);
         }
-        out
     }
 
-    fn matvec(m: &Mat<c64>, v: &[c64]) -> Vec<c64> {
-        (0..m.nrows())
-            .map(|i| (0..m.ncols()).map(|j| m[(i, j)] * v[j]).sum())
-            .collect()
-    }
-
-    /// `Q(σ_s)⁻¹ r = y - B⁻¹ U Ĉ (I + V B⁻¹ U Ĉ)⁻¹ V y`, `y = B⁻¹ r`.
+    /// `Q(σ_s)⁻¹ r = y - B⁻¹ U Ĉ (I + V B⁻¹ U Ĉ)⁻¹ V y`, `y = B⁻¹ r` (Woodbury).
     fn solve_q(&self, s: &ShiftSolver, r: &[c64]) -> Vec<c64> {
-        let y = self.modal_solve(s, r);
-        let t = self.reduce(&self.phi_r, &y);
+        let mut y = r.to_vec();
+        self.modal_solve(s, &mut y);
+        let mut t = self.reduce(&self.phi_r, &y);
         let rr = t.len();
-        let c = s.capacitance.solve(Mat::<c64>::from_fn(rr, 1, |i, _| t[i]));
-        let c: Vec<c64> = (0..rr).map(|i| c[(i, 0)]).collect();
-        let e = self.expand(&self.phi_e, &Self::matvec(&s.core, &c));
-        let be = self.modal_solve(s, &e);
-        y.iter().zip(&be).map(|(a, b)| a - b).collect()
+        s.capacitance
+            .solve_in_place(MatMut::from_column_major_slice_mut(&mut t, rr, 1));
+        let core = &*s.core;
+        let mut c = vec![c64::new(0.0, 0.0); core.nrows()];
+        matmul(
+            MatMut::from_column_major_slice_mut(&mut c, core.nrows(), 1),
+            Accum::Replace,
+            core,
+            MatRef::from_column_major_slice(&t, rr, 1),
+            c64::new(1.0, 0.0),
+            Par::Seq,
+        );
+        let mut be = self.expand(&self.phi_e, &c);
+        self.modal_solve(s, &mut be);
+        for (a, b) in y.iter_mut().zip(&be) {
+            *a -= b;
+        }
+        y
     }
 
     /// `M1 b` (`M1 = blockdiag(2ikω I + D) + Φ̂ᵀ Ĵv Φ̂`).
@@ -579,8 +646,10 @@ fn start_vector(len: usize) -> Vec<c64> {
 /// An Arnoldi factorization `op V_m = V_{m+1} H_m`, grown a step at a time (orthogonalized
 /// twice by classical Gram–Schmidt with matrix–vector products).
 struct Arnoldi {
-    /// Basis, `len × (m + 1)` columns used.
-    v: Mat<c64>,
+    /// Basis, column-major, `m + 1` columns of `len` (grown as the steps go: most shifts
+    /// converge long before the largest dimension, so its storage is never allocated whole).
+    v: Vec<c64>,
+    len: usize,
     /// Hessenberg, `(max + 1) × max`.
     h: Mat<c64>,
     /// Steps taken.
@@ -591,35 +660,57 @@ struct Arnoldi {
 
 impl Arnoldi {
     fn new(len: usize, max: usize) -> Self {
-        let mut v = Mat::<c64>::zeros(len, max + 1);
-        let q = start_vector(len);
-        let nq = q.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
-        for (i, x) in q.iter().enumerate() {
-            v[(i, 0)] = x / nq;
-        }
-        Self {
-            v,
+        let mut a = Self {
+            v: Vec::new(),
+            len,
             h: Mat::zeros(max + 1, max),
             m: 0,
             invariant: false,
-        }
+        };
+        a.restart();
+        a
+    }
+
+    /// Starts again from the start vector, keeping the storage of the basis.
+    fn restart(&mut self) {
+        let q = start_vector(self.len);
+        let nq = q.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
+        self.v.clear();
+        self.v.extend(q.iter().map(|x| x / nq));
+        self.h.fill(c64::new(0.0, 0.0));
+        self.m = 0;
+        self.invariant = false;
     }
 
     fn step(&mut self, op: &dyn Fn(&[c64]) -> Vec<c64>) {
         let j = self.m;
-        let len = self.v.nrows();
-        let vj: Vec<c64> = (0..len).map(|i| self.v[(i, j)]).collect();
-        let w = op(&vj);
-        let mut w = Mat::<c64>::from_fn(len, 1, |i, _| w[i]);
-        let basis = self.v.subcols(0, j + 1);
+        let len = self.len;
+        let mut w = op(&self.v[j * len..(j + 1) * len]);
+        let basis = MatRef::from_column_major_slice(&self.v[..(j + 1) * len], len, j + 1);
+        let mut c = vec![c64::new(0.0, 0.0); j + 1];
         for _ in 0..2 {
-            let c = basis.adjoint() * &w;
-            w -= basis * &c;
-            for i in 0..=j {
-                self.h[(i, j)] += c[(i, 0)];
+            // c = Vᴴ w, w ← w - V c.
+            matmul(
+                MatMut::from_column_major_slice_mut(&mut c, j + 1, 1),
+                Accum::Replace,
+                basis.adjoint(),
+                MatRef::from_column_major_slice(&w, len, 1),
+                c64::new(1.0, 0.0),
+                Par::Seq,
+            );
+            matmul(
+                MatMut::from_column_major_slice_mut(&mut w, len, 1),
+                Accum::Add,
+                basis,
+                MatRef::from_column_major_slice(&c, j + 1, 1),
+                c64::new(-1.0, 0.0),
+                Par::Seq,
+            );
+            for (i, ci) in c.iter().enumerate() {
+                self.h[(i, j)] += ci;
             }
         }
-        let nw = w.norm_l2();
+        let nw = faer::ColRef::from_slice(&w).norm_l2();
         self.h[(j + 1, j)] = c64::new(nw, 0.0);
         self.m += 1;
         let scale = (0..=j).map(|i| self.h[(i, j)].norm()).fold(nw, f64::max);
@@ -628,9 +719,7 @@ impl Arnoldi {
             self.invariant = true;
             return;
         }
-        for i in 0..len {
-            self.v[(i, j + 1)] = w[(i, 0)] / nw;
-        }
+        self.v.extend(w.iter().map(|x| x / nw));
     }
 
     /// Ritz values with residual estimates, and the coefficients of their vectors.
@@ -658,11 +747,10 @@ impl Arnoldi {
 
     /// The Ritz vector of coefficients `y`.
     fn vector(&self, y: &[c64]) -> Vec<c64> {
-        let len = self.v.nrows();
-        let mut x = vec![c64::new(0.0, 0.0); len];
-        for (j, c) in y.iter().enumerate() {
-            for (i, xi) in x.iter_mut().enumerate() {
-                *xi += c * self.v[(i, j)];
+        let mut x = vec![c64::new(0.0, 0.0); self.len];
+        for (c, v) in y.iter().zip(self.v.chunks_exact(self.len)) {
+            for (xi, vi) in x.iter_mut().zip(v) {
+                *xi += c * vi;
             }
         }
         x
@@ -727,6 +815,7 @@ pub fn hill(
     };
     // (σ, MAC with the cycle's velocity)
     let mut found: Vec<(c64, f64)> = Vec::new();
+    let mut arnoldi = Arnoldi::new(len, max_krylov);
     let mut coverage = f64::INFINITY;
     let mut solves = 0;
     for c in 0..shifts {
@@ -737,7 +826,12 @@ pub fn hill(
             2.0 * c as f64 * half_height,
             2.0 * (c + 1) as f64 * half_height,
         );
-        let mut arnoldi = Arnoldi::new(len, max_krylov);
+        arnoldi.restart();
+        // The Ritz values are checked after 12 steps and every 4 more (a check, an
+        // eigendecomposition of the small Hessenberg matrix, costs far less than the steps a
+        // coarser schedule would take beyond convergence). Not before 12: with 8 the disk test
+        // passed in cells where an exponent had not yet entered the Krylov space (medium brake,
+        // coverage 0.005: 12 of 102 verdicts wrong).
         let mut check = 12.min(max_krylov);
         loop {
             while arnoldi.m < check && !arnoldi.invariant {
@@ -784,7 +878,7 @@ pub fn hill(
                 found.extend(cell);
                 break;
             }
-            check = (check + check / 2).min(max_krylov);
+            check = (check + 4).min(max_krylov);
         }
         solves += arnoldi.m;
     }

@@ -12,7 +12,9 @@ use faer::c64;
 use squeal_brake::criticality::NormalForm;
 use squeal_brake::dynamics::BrakeDynamics;
 use squeal_brake::modal_brake::ModalBrake;
-use squeal_chbm::bifurcation::{BifurcationKind, bifurcations, cycle_of, hill_along};
+use squeal_chbm::bifurcation::{
+    BifurcationKind, bifurcations, cycle_of, follow_from_hopf_with_hill, hill_along,
+};
 use squeal_chbm::branch::{
     BranchOptions, BranchPoint, Harmonics, LimitCycleBranch, cycles_at, follow_from_hopf,
     full_cycle,
@@ -178,6 +180,34 @@ fn hill_finds_the_fold_and_the_stable_part_of_the_branch() {
             bi[k],
             b.folds[k]
         );
+    }
+}
+
+#[test]
+fn hill_alongside_the_continuation_gives_the_same_bits_as_after_it() {
+    // The overlapped analysis hands each point to another thread as the continuation accepts
+    // it: the same branch and exponents as the continuation then `hill_along`, with one thread
+    // (the tasks wait for the continuation) and with two.
+    let m = subcritical();
+    let (nf, mb, b) = branch(&m, BranchOptions::default().harmonics);
+    let opts = BranchOptions {
+        range: (0.3, 1.5),
+        ..Default::default()
+    };
+    let hill = HillOptions::default();
+    let after = hill_along(&mb, &b, None, &hill);
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let o = pool.install(|| follow_from_hopf_with_hill(&mb, &nf, &opts, &hill).unwrap());
+        assert_eq!(o.branch.points, b.points, "{threads} threads");
+        assert_eq!(o.floquet.len(), after.len());
+        for (i, (a, c)) in o.floquet.iter().zip(&after).enumerate() {
+            let (a, c) = (a.as_ref().unwrap(), c.as_ref().unwrap());
+            assert_eq!(a.exponents, c.exponents, "point {i}, {threads} threads");
+        }
     }
 }
 

@@ -1,10 +1,13 @@
 //! The branch of limit cycles with its Floquet stability (issue 10) on the bundled brake: the
-//! continuation and Hill's method timed separately, with one and with all threads, for the
-//! default step and for a finer one that gives about 100 cycles.
+//! continuation and Hill's method timed separately, with one and with all threads, then both
+//! overlapped as `squeal branch` runs them (`follow_from_hopf_with_hill`: each cycle's Hill
+//! analysis on another thread while the continuation goes on), for the default step and for a
+//! finer one that gives about 100 cycles.
 //!
 //! `cargo bench -p squeal-pipeline --bench branch` (options after `--`: `level=coarse` or
-//! `medium`, `reps=N` (1), `coverage=c` (Hill's strip coverage, default 0.01) and `tolerance=t`
-//! (its Ritz acceptance, default 1e-10): with other values each cycle's verdict and largest
+//! `medium`, `reps=N` (1), `step=s` (the finer maximum step, default 0.035: 102 cycles on the
+//! medium brake), `coverage=c` (Hill's strip coverage, default 0.01) and `tolerance=t` (its
+//! Ritz acceptance, default 1e-10): with other values each cycle's verdict and largest
 //! multiplier are compared with the defaults').
 
 #[path = "../tests/common/mod.rs"]
@@ -13,7 +16,7 @@ mod common;
 use common::best;
 
 use squeal_brake::modal_brake::ModalBrake;
-use squeal_chbm::bifurcation::hill_along;
+use squeal_chbm::bifurcation::{follow_from_hopf_with_hill, hill_along};
 use squeal_chbm::branch::{BranchOptions, follow_from_hopf};
 use squeal_chbm::floquet::HillOptions;
 use squeal_pipeline::{Pipeline, model::quiet, stability};
@@ -42,10 +45,11 @@ fn main() {
         nf.mu0
     );
     println!(
-        "| max step | cycles | harmonics | continuation (s) | Hill, 1 thread (s) | Hill, {threads} threads (s) | per cycle (ms, {threads} threads) |"
+        "| max step | cycles | harmonics | continuation (s) | Hill, 1 thread (s) | Hill, {threads} threads (s) | per cycle (ms, {threads} threads) | both overlapped, {threads} threads (s) |"
     );
-    println!("|---|---|---|---|---|---|---|");
-    for max_step in [0.1, 0.04] {
+    println!("|---|---|---|---|---|---|---|---|");
+    let fine: f64 = arg("step").map_or(0.035, |s| s.parse().unwrap());
+    for max_step in [0.1, fine] {
         let mut opts = BranchOptions::default();
         opts.continuation.max_step = max_step;
         let (tc, b) = best(reps, || follow_from_hopf(&mb, &nf, &opts).unwrap());
@@ -87,11 +91,22 @@ fn main() {
                 h.coverage, h.tolerance
             );
         }
+        // The continuation and Hill's method overlapped: the same branch and exponents.
+        let (to, o) = best(reps, || {
+            follow_from_hopf_with_hill(&mb, &nf, &opts, &h).unwrap()
+        });
+        assert_eq!(o.branch.points, b.points, "the overlapped branch differs");
+        let same = o
+            .floquet
+            .iter()
+            .zip(&fnn)
+            .all(|(a, c)| a.as_ref().unwrap().exponents == c.as_ref().unwrap().exponents);
+        assert!(same, "the overlapped exponents differ from hill_along's");
         let (hmin, hmax) = b.points.iter().fold((usize::MAX, 0), |(lo, hi), p| {
             (lo.min(p.harmonics), hi.max(p.harmonics))
         });
         println!(
-            "| {max_step} | {} | {hmin}-{hmax} | {tc:.2} | {t1:.2} | {tn:.2} | {:.0} |",
+            "| {max_step} | {} | {hmin}-{hmax} | {tc:.2} | {t1:.2} | {tn:.2} | {:.0} | {to:.2} |",
             b.points.len(),
             1e3 * tn / b.points.len() as f64
         );

@@ -15,10 +15,11 @@ use crate::stability;
 use squeal_brake::analysis::Stability as LinearStability;
 use squeal_brake::criticality::NormalForm;
 use squeal_brake::modal_brake::ModalBrake;
-use squeal_chbm::bifurcation::{Bifurcation, BifurcationKind, bifurcations, cycle_of, hill_along};
-use squeal_chbm::branch::{
-    BranchOptions, BranchPoint, LimitCycleBranch, cycles_at, follow_from_hopf,
+use squeal_chbm::bifurcation::{
+    Bifurcation, BifurcationKind, BranchWithHill, bifurcations, cycle_of,
+    follow_from_hopf_with_hill,
 };
+use squeal_chbm::branch::{BranchOptions, BranchPoint, LimitCycleBranch, cycles_at};
 use squeal_chbm::floquet::hill as hill_exponents;
 use squeal_chbm::floquet::{FloquetError, HillFloquet, HillOptions, Stability};
 use squeal_report::format::fmt_sig;
@@ -27,7 +28,7 @@ use squeal_report::{
 };
 use std::fmt::Write as _;
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// A branch with the stability of each of its cycles.
 pub struct BranchAnalysis {
@@ -39,7 +40,8 @@ pub struct BranchAnalysis {
     pub floquet: Vec<std::result::Result<HillFloquet, FloquetError>>,
     /// Stability changes between consecutive points.
     pub bifurcations: Vec<Bifurcation>,
-    /// Wall time of the Floquet analyses (all points).
+    /// Wall time the Floquet analyses took after the continuation ended (they run alongside
+    /// it, on the other threads: [`follow_from_hopf_with_hill`]).
     pub floquet_time: Duration,
     /// The cycles at the friction values asked for ([`analyse`]'s `at`).
     pub at: Vec<CycleAt>,
@@ -123,8 +125,9 @@ impl BranchAnalysis {
 }
 
 /// Follows the branch of `m` from its Hopf point and computes each cycle's Floquet exponents
-/// (in parallel), and the cycles at each friction value of `at` (every crossing of the
-/// branch). `Ok(None)` when the sweep found no Hopf point.
+/// (on the other threads while the continuation goes on), and the cycles at each friction
+/// value of `at` (every crossing of the branch). `Ok(None)` when the sweep found no Hopf
+/// point.
 pub fn analyse(
     m: &Model,
     st: &LinearStability,
@@ -137,16 +140,19 @@ pub fn analyse(
         return Ok(None);
     };
     let mb = ModalBrake::new(&m.brake, &st.reference, nf.mu0);
-    let branch = follow_from_hopf(&mb, &nf, opts)?;
+    let BranchWithHill {
+        branch,
+        floquet,
+        floquet_tail: floquet_time,
+    } = follow_from_hopf_with_hill(&mb, &nf, opts, hill)?;
     log(&format!(
-        "branch: {} cycles in {:.2} s ({}); Floquet exponents by Hill's method ...",
+        "branch: {} cycles in {:.2} s ({}), Floquet exponents by Hill's method alongside, \
+         done {:.2} s after it",
         branch.points.len(),
         branch.time.as_secs_f64(),
-        branch.stop
+        branch.stop,
+        floquet_time.as_secs_f64()
     ));
-    let t = Instant::now();
-    let floquet = hill_along(&mb, &branch, opts.samples, hill);
-    let floquet_time = t.elapsed();
     let bifurcations = bifurcations(&branch, &floquet);
     let mut cycles = Vec::new();
     for &mu in at {
@@ -194,7 +200,7 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
     let failed = a.floquet.iter().filter(|f| f.is_err()).count();
     let _ = writeln!(
         out,
-        "branch: {} cycles in {:.2} s, Floquet exponents in {:.2} s{}; it ended because {}",
+        "branch: {} cycles in {:.2} s, Floquet exponents alongside, done {:.2} s after it{}; it ended because {}",
         b.points.len(),
         b.time.as_secs_f64(),
         a.floquet_time.as_secs_f64(),
@@ -408,7 +414,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
         },
         "stop": b.stop.to_string(),
         "continuation_seconds": b.time.as_secs_f64(),
-        "floquet_seconds": a.floquet_time.as_secs_f64(),
+        "floquet_seconds_after_continuation": a.floquet_time.as_secs_f64(),
         "floquet_method": "Hill's method on the harmonic balance Jacobian; hill_error is the trivial exponent's distance from zero",
         "folds": b.folds.iter().map(|f| serde_json::json!({
             "mu": f.parameter,

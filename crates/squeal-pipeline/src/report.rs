@@ -931,8 +931,8 @@ fn branch_section(branch: Option<&crate::branch::BranchAnalysis>) -> Section {
             "Every periodic vibration born at the Hopf point, followed in μ through its folds by \
              pseudo-arclength continuation of the harmonic balance (harmonics adapted along the \
              branch), each with its Floquet multipliers by Hill's method: a cycle is stable when \
-             every multiplier lies inside the unit circle. {} cycles in {:.1} s, multipliers in \
-             {:.1} s; the branch ended because {}. Files: [branch/branch.csv](branch/branch.csv), \
+             every multiplier lies inside the unit circle. {} cycles in {:.1} s, multipliers \
+             alongside, done {:.1} s after them; the branch ended because {}. Files: [branch/branch.csv](branch/branch.csv), \
              [branch/branch.json](branch/branch.json).",
             n,
             b.time.as_secs_f64(),
