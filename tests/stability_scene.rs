@@ -192,31 +192,7 @@ fn the_bundled_brake_squeals_in_band_on_the_coarse_meshes() {
 #[test]
 fn the_two_pad_brake_presses_both_pads_with_the_clamp_force_and_squeals() {
     // meshes/two_pad/brake.toml on the coarse meshes (absolute paths), a 41-point sweep.
-    let two = common::root().join("meshes/two_pad");
-    let text = std::fs::read_to_string(two.join("brake.toml"))
-        .unwrap()
-        .replace("_medium", "_coarse")
-        .replace(
-            "\"disc_coarse.inp\"",
-            &format!("{:?}", two.join("disc_coarse.inp").display().to_string()),
-        )
-        .replace(
-            "\"../pad_coarse.inp\"",
-            &format!(
-                "{:?}",
-                common::root()
-                    .join("meshes/pad_coarse.inp")
-                    .display()
-                    .to_string()
-            ),
-        )
-        .replace(
-            "\"outboard_coarse.inp\"",
-            &format!(
-                "{:?}",
-                two.join("outboard_coarse.inp").display().to_string()
-            ),
-        );
+    let text = common::two_pad_scene("coarse");
     let dir = temp_dir("two-pad");
     let scene = dir.join("two_pad_coarse.toml");
     std::fs::write(&scene, text).unwrap();
@@ -276,26 +252,12 @@ fn reduce_with_a_scene_writes_the_model_the_scene_caches() {
     // `squeal reduce --scene` on the coarse two-pad scene (8 modes) writes a model with one
     // part per pad, and `squeal stability` on the same scene, pointed at that file by
     // `[model] rom`, takes it as up to date instead of reducing again.
-    let two = common::root().join("meshes/two_pad");
-    let abs = |p: std::path::PathBuf| format!("{:?}", p.display().to_string());
     let dir = temp_dir("reduce-scene");
     let rom = dir.join("two.rom");
-    let text = std::fs::read_to_string(two.join("brake.toml"))
-        .unwrap()
-        .replace("_medium", "_coarse")
-        .replace(
-            "modes = 50",
-            &format!("modes = 8\nrom = {}", abs(rom.clone())),
-        )
-        .replace("\"disc_coarse.inp\"", &abs(two.join("disc_coarse.inp")))
-        .replace(
-            "\"../pad_coarse.inp\"",
-            &abs(common::root().join("meshes/pad_coarse.inp")),
-        )
-        .replace(
-            "\"outboard_coarse.inp\"",
-            &abs(two.join("outboard_coarse.inp")),
-        );
+    let text = common::two_pad_scene("coarse").replace(
+        "modes = 50",
+        &format!("modes = 8\nrom = {:?}", rom.display().to_string()),
+    );
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, text).unwrap();
     let out = common::run_ok(&[

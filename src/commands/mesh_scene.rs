@@ -15,15 +15,8 @@ pub fn info(path: &Path, vtu: Option<&Path>) -> Result<ExitCode> {
     let scene = Scene::read(path)?;
     if let Some(v) = vtu {
         squeal_io::require_extension(v, "vtu", "VTK XML unstructured grids (.vtu)")?;
-        let m = &scene.file.model;
-        let disc = scene.resolve(&m.disc);
-        let pads: Vec<_> = scene
-            .pads()?
-            .iter()
-            .map(|(_, p)| scene.resolve(p))
-            .collect();
-        let mut inputs = vec![(path, "scene file"), (disc.as_path(), "disc mesh")];
-        inputs.extend(pads.iter().map(|p| (p.as_path(), "pad mesh")));
+        let files = scene.input_files()?;
+        let inputs: Vec<(&Path, &str)> = files.iter().map(|(p, w)| (p.as_path(), *w)).collect();
         squeal_io::refuse_inputs(v, &inputs)?;
     }
     let parts = load_parts(&scene, &|m: &str| eprintln!("{m}"))?;

@@ -106,15 +106,15 @@ pub fn run(args: ReduceArgs) -> Result<ExitCode> {
     // and do not. So the .rom is the same bits for any --threads.
     faer::set_global_parallelism(faer::Par::Seq);
     squeal_io::require_extension(&args.output, "rom", "the reduced model (.rom)")?;
-    let scene = args.scene.as_deref().map(scene_parts).transpose()?;
-    let inputs = match &scene {
-        Some((_, inputs, _)) => {
-            let mut inputs = inputs.clone();
+    // A scene's meshes are read here, to choose their sets; the others by the reduction.
+    let (inputs, loaded) = match args.scene.as_deref() {
+        Some(path) => {
+            let (mut inputs, parts) = scene_parts(path)?;
             inputs.backend = backend(args.backend);
             inputs.keep_basis = !args.no_basis;
-            inputs
+            (inputs, Some(parts))
         }
-        None => inputs(&args)?,
+        None => (inputs(&args)?, None),
     };
     let mut read: Vec<(&Path, &str)> = vec![(inputs.disc.mesh.as_path(), "disc mesh")];
     read.extend(
@@ -132,8 +132,8 @@ pub fn run(args: ReduceArgs) -> Result<ExitCode> {
     }
     let mut bars = StageBars::default();
     let mut tell = |part: &str, stage: Stage| bars.start(part, stage.label());
-    let (model, report) = match scene {
-        Some((_, _, parts)) => reduce_brake_loaded(
+    let (model, report) = match loaded {
+        Some(parts) => reduce_brake_loaded(
             &inputs,
             parts.disc,
             parts.pads.into_iter().map(|p| p.1).collect(),
@@ -171,11 +171,11 @@ pub fn run(args: ReduceArgs) -> Result<ExitCode> {
 }
 
 /// A scene's parts (read, sets chosen) and reduction inputs.
-fn scene_parts(path: &Path) -> Result<(Scene, BrakeInputs, SceneParts)> {
+fn scene_parts(path: &Path) -> Result<(BrakeInputs, SceneParts)> {
     let scene = Scene::read(path)?;
     let parts = load_parts(&scene, &|m: &str| eprintln!("{m}"))?;
     let inputs = brake_inputs(&scene, &parts)?;
-    Ok((scene, inputs, parts))
+    Ok((inputs, parts))
 }
 
 fn backend(b: EigBackend) -> Backend {

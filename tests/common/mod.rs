@@ -62,3 +62,29 @@ pub fn bundled_scene(level: &str) -> String {
     assert_eq!(replaced, 2, "meshes/brake.toml lost its disc/pad lines");
     out.join("\n") + "\n"
 }
+
+/// The text of `meshes/two_pad/brake.toml` with its meshes at `level`, as absolute paths.
+pub fn two_pad_scene(level: &str) -> String {
+    let two = root().join("meshes/two_pad");
+    let abs = |p: PathBuf| format!("{:?}", p.display().to_string());
+    let text = std::fs::read_to_string(two.join("brake.toml")).unwrap();
+    let out = text
+        .replace(
+            "\"disc_medium.inp\"",
+            &abs(two.join(format!("disc_{level}.inp"))),
+        )
+        .replace(
+            "\"../pad_medium.inp\"",
+            &abs(root().join(format!("meshes/pad_{level}.inp"))),
+        )
+        .replace(
+            "\"outboard_medium.inp\"",
+            &abs(two.join(format!("outboard_{level}.inp"))),
+        );
+    // A test must not silently run the scene's own (medium) meshes.
+    assert!(
+        !out.contains("_medium.inp"),
+        "meshes/two_pad/brake.toml lost its mesh lines"
+    );
+    out
+}

@@ -41,7 +41,7 @@ use crate::model::{Brake, ContactPair, SparseVec};
 use faer::Mat;
 use squeal_fe::frames::RotationAxis;
 use squeal_reduce::brake::{PairingTolerance, pair_contact_points};
-use squeal_reduce::rom::{DofLabel, PartRole, PointRole, ReducedModel, ReducedPart};
+use squeal_reduce::rom::{DofLabel, PointRole, ReducedModel, ReducedPart};
 use std::sync::Arc;
 
 /// Largest angle (degrees) between the disc face's normal at a pair and a normal the scene
@@ -164,21 +164,31 @@ pub struct Pairing {
 pub struct Layout {
     /// The disc's dofs, `0..n_disc`.
     pub disc: std::ops::Range<usize>,
-    /// The first pad's dofs, after the disc's.
-    pub pad: std::ops::Range<usize>,
-    /// Every pad's name and dofs (the first is `pad`'s).
+    /// Every pad's name and dofs, after the disc's (at least one pad).
     pub pads: Vec<(String, std::ops::Range<usize>)>,
 }
 
 impl Layout {
-    /// All the pads' dofs: from the first pad's first to the last pad's last.
+    /// The first pad's dofs.
+    pub fn pad(&self) -> std::ops::Range<usize> {
+        self.pads
+            .first()
+            .map_or(self.disc.end..self.disc.end, |p| p.1.clone())
+    }
+
+    /// All the pads' dofs: from the disc's end to the last pad's last.
     pub fn all_pads(&self) -> std::ops::Range<usize> {
-        self.pad.start..self.pads.last().map_or(self.pad.end, |p| p.1.end)
+        self.disc.end..self.pads.last().map_or(self.disc.end, |p| p.1.end)
     }
 }
 
 fn part<'a>(rom: &'a ReducedModel, name: &str) -> Result<&'a ReducedPart, BrakeError> {
-    rom.part(name).ok_or_else(|| BrakeError::NoPart {
+    rom.part(name).ok_or_else(|| no_part(rom, name))
+}
+
+/// The error of a model without part `name`, listing the parts it has.
+fn no_part(rom: &ReducedModel, name: &str) -> BrakeError {
+    BrakeError::NoPart {
         name: name.into(),
         have: rom
             .parts
@@ -186,7 +196,7 @@ fn part<'a>(rom: &'a ReducedModel, name: &str) -> Result<&'a ReducedPart, BrakeE
             .map(|p| format!("'{}'", p.info.name))
             .collect::<Vec<_>>()
             .join(", "),
-    })
+    }
 }
 
 /// `v / |v|`; [`BrakeError::BadDirection`] naming `what` if `v` is zero or not finite.
@@ -372,14 +382,6 @@ fn element(stiffness: &Stiffness, area: Option<f64>, pair: usize) -> Result<Law,
     Ok(Arc::new(PenaltyCoulomb { k_linear, k_cubic }))
 }
 
-/// The model's pads in file order: every part but the disc.
-fn pads_of(rom: &ReducedModel) -> Vec<&ReducedPart> {
-    rom.parts
-        .iter()
-        .filter(|p| p.info.role() == PartRole::Pad)
-        .collect()
-}
-
 /// Builds the brake; returns it with its dof layout and the pairing report. The disc's dofs
 /// come first, then each pad's, in the model's order; each pad's contact points pair with the
 /// disc's points of the surface facing it (all of the disc's in a one-pad brake), and each
@@ -390,14 +392,13 @@ pub fn assemble(
     params: &BrakeParams,
 ) -> Result<(Brake, Layout, Vec<Pairing>), BrakeError> {
     let disc = part(rom, "disc")?;
-    let pads = pads_of(rom);
+    let pads = rom.pads();
     if pads.is_empty() {
-        return Err(part(rom, "pad").err().unwrap_or(BrakeError::NoPistons));
+        return Err(no_part(rom, "pad"));
     }
     let nd = disc.size();
     let mut layout = Layout {
         disc: 0..nd,
-        pad: 0..0,
         pads: Vec::with_capacity(pads.len()),
     };
     let mut start = nd;
@@ -407,7 +408,6 @@ pub fn assemble(
             .push((p.info.name.clone(), start..start + p.size()));
         start += p.size();
     }
-    layout.pad = layout.pads[0].1.clone();
     let n = start;
     let scene_normal = params
         .normal

@@ -395,13 +395,7 @@ impl LinearizedBrake {
         let z = self.project(&c.v, x);
         let (mut num, mut den) = (c64::new(0.0, 0.0), c64::new(0.0, 0.0));
         for j in 0..n {
-            let mut uz = c64::new(0.0, 0.0);
-            for (p, zp) in z.iter().enumerate() {
-                uz += zp * c.u0[p * n + j];
-                if let Some(u1) = &c.u1 {
-                    uz += l * zp * u1[p * n + j];
-                }
-            }
+            let uz = coupled_entry(c, l, &z, j, n);
             let dx = x[j] * d[j];
             let tx = (l * l + self.omega[j] * self.omega[j]) * x[j] + l * dx + uz;
             let mut dtx = dx + l * 2.0 * x[j];
@@ -438,13 +432,7 @@ impl LinearizedBrake {
         }
         let (mut rx, mut ry) = (0.0, 0.0);
         for j in 0..n {
-            let mut uz = c64::new(0.0, 0.0);
-            for (p, zp) in z.iter().enumerate() {
-                uz += zp * c.u0[p * n + j];
-                if let Some(u1) = &c.u1 {
-                    uz += l * zp * u1[p * n + j];
-                }
-            }
+            let uz = coupled_entry(c, l, &z, j, n);
             let w2 = self.omega[j] * self.omega[j];
             let tx = (l * l + w2) * x[j] + l * (x[j] * d[j]) + uz;
             let vw: c64 = (0..c.rank).map(|p| w[p] * c.v[p * n + j]).sum();
@@ -588,6 +576,19 @@ impl LinearizedBrake {
             None => Factor::Dense(DenseFactor::new(self, c, l)),
         }
     }
+}
+
+/// Entry `j` of the coupling's `Σ_p z_p (U₀ + λ U₁)_{p j}` (`n` dofs), with the sums in the
+/// order `apply` takes them.
+fn coupled_entry(c: &Coupling, l: c64, z: &[c64], j: usize, n: usize) -> c64 {
+    let mut uz = c64::new(0.0, 0.0);
+    for (p, zp) in z.iter().enumerate() {
+        uz += zp * c.u0[p * n + j];
+        if let Some(u1) = &c.u1 {
+            uz += l * zp * u1[p * n + j];
+        }
+    }
+    uz
 }
 
 /// Whether `reference.kt0` is `K + Σ k0_p g_p g_pᵀ` to round-off (a few ulps of the largest

@@ -74,14 +74,8 @@ pub fn quiet(_: &str) {}
 pub fn brake_inputs(scene: &Scene) -> Result<BrakeInputs> {
     let m = &scene.file.model;
     let normal = scene.normal()?;
-    let (point, direction) = match scene.rotation()? {
-        Some(r) => (r.point, r.axis),
-        None => ([0.0; 3], normal.unwrap_or([0.0, 0.0, 1.0])),
-    };
-    let axis = squeal_reduce::interface::Axis {
-        origin: point,
-        direction,
-    };
+    let axis = scene_axis(scene)?;
+    let direction = axis.direction;
     let pads = scene.pads()?;
     let mut inputs = BrakeInputs::bundled(scene.resolve(&m.disc), scene.resolve(&pads[0].1));
     inputs.pads = pads
@@ -101,6 +95,16 @@ pub fn brake_inputs(scene: &Scene) -> Result<BrakeInputs> {
     Ok(inputs)
 }
 
+/// The disc's axis of a scene: `[rotation]`'s, else the line along `[contact] normal` (or z)
+/// through the origin.
+pub fn scene_axis(scene: &Scene) -> Result<squeal_reduce::interface::Axis> {
+    let (origin, direction) = match scene.rotation()? {
+        Some(r) => (r.point, r.axis),
+        None => ([0.0; 3], scene.normal()?.unwrap_or([0.0, 0.0, 1.0])),
+    };
+    Ok(squeal_reduce::interface::Axis { origin, direction })
+}
+
 /// Where the scene's reduced model is kept: its `[model] rom`, else `<out>/brake.rom`.
 pub fn rom_path(scene: &Scene, out: &Path) -> PathBuf {
     match &scene.file.model.rom {
@@ -116,18 +120,8 @@ pub fn check_outputs(scene: &Scene, out: &Path) -> Result<()> {
     squeal_io::require_folder(out)?;
     let rom = rom_path(scene, out);
     squeal_io::require_extension(&rom, "rom", "the reduced model (.rom)")?;
-    let m = &scene.file.model;
-    let disc = scene.resolve(&m.disc);
-    let pads: Vec<PathBuf> = scene
-        .pads()?
-        .iter()
-        .map(|(_, p)| scene.resolve(p))
-        .collect();
-    let mut inputs = vec![
-        (scene.path.as_path(), "scene file"),
-        (disc.as_path(), "disc mesh"),
-    ];
-    inputs.extend(pads.iter().map(|p| (p.as_path(), "pad mesh")));
+    let files = scene.input_files()?;
+    let inputs: Vec<(&Path, &str)> = files.iter().map(|(p, w)| (p.as_path(), *w)).collect();
     squeal_io::refuse_inputs(&rom, &inputs)?;
     squeal_io::check_writable(out)?;
     if let Some(dir) = rom.parent().filter(|d| !d.as_os_str().is_empty()) {

@@ -706,20 +706,7 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
     let count = inputs.pads.len();
     inputs.disc.extra_surfaces.clear();
     for (i, pad) in inputs.pads.iter_mut().enumerate() {
-        let chosen = |k: usize| {
-            parts
-                .sets
-                .iter()
-                .filter(|c| c.part == pad.name || (k == 3 && c.part == "disc"))
-                .find(|c| {
-                    c.key == pad_key(k, &pad.name, count)
-                        || c.key
-                            .starts_with(&format!("pads.{}.{}", pad.name, PAD_SETS[k].1))
-                        // The shared keys: [sets.pad] for every pad, [sets.disc]
-                        // contact_face for the first pad's disc face only.
-                        || (c.key == PAD_SETS[k].0 && (k < 3 || i == 0))
-                })
-        };
+        let chosen = |k: usize| pad_set(&parts.sets, &pad.name, k, i, count);
         let key = |k: usize| chosen(k).map(|c| c.name.clone()).unwrap_or_default();
         let p = &mut pad.part;
         p.contact_face_set = key(0);
@@ -747,29 +734,56 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
         }
         p.units = parts.units;
         let disc_face = key(3);
-        let disc_contact = scene
-            .file
-            .pads
-            .get(&pad.name)
-            .and_then(|t| t.disc_contact.as_ref())
-            .map(|c| c.get_ref().clone());
+        let disc_contact = disc_contact_set(scene, &pad.name, i);
         if i == 0 {
             inputs.disc.contact_face_set = disc_face;
-            if let Some(c) = disc_contact {
-                inputs.disc.contact_set = c;
-            }
+            inputs.disc.contact_set = disc_contact;
             inputs.disc.facing = (count > 1).then(|| pad.name.clone());
         } else {
             inputs.disc.extra_surfaces.push(ContactSurface {
                 facing: Some(pad.name.clone()),
-                contact_set: disc_contact
-                    .unwrap_or_else(|| format!("CONTACT_{}", pad.name.to_uppercase())),
+                contact_set: disc_contact,
                 contact_face_set: disc_face,
             });
         }
     }
     inputs.grid = scene.patch_grid()?;
     Ok(inputs)
+}
+
+/// The chosen set `k` of [`PAD_SETS`] of pad `pad`, the `index`-th of `count`: chosen under
+/// its own key (`pad_key`, or its `[pads.<pad>]` key), or under the shared key ([sets.pad] for
+/// every pad; [sets.disc] contact_face for the first pad's disc face only).
+fn pad_set<'a>(
+    sets: &'a [ChosenSet],
+    pad: &str,
+    k: usize,
+    index: usize,
+    count: usize,
+) -> Option<&'a ChosenSet> {
+    let part = if k == 3 { "disc" } else { pad };
+    let own = format!("pads.{pad}.{}", PAD_SETS[k].1);
+    sets.iter().filter(|c| c.part == part).find(|c| {
+        c.key == pad_key(k, pad, count)
+            || c.key == own
+            || (c.key == PAD_SETS[k].0 && (k < 3 || index == 0))
+    })
+}
+
+/// The disc's node set of contact points under pad `pad`, the `index`-th (node interface):
+/// its `[pads.<pad>] disc_contact`, else `CONTACT` for the first pad and `CONTACT_<PAD>` for
+/// the others.
+fn disc_contact_set(scene: &Scene, pad: &str, index: usize) -> String {
+    match scene
+        .file
+        .pads
+        .get(pad)
+        .and_then(|t| t.disc_contact.as_ref())
+    {
+        Some(c) => c.get_ref().clone(),
+        None if index == 0 => "CONTACT".into(),
+        None => format!("CONTACT_{}", pad.to_uppercase()),
+    }
 }
 
 /// Holds node set `set` of `part` in the directions `hold` instead of its present restraints:
@@ -825,32 +839,15 @@ fn contact_points_by_geometry(
     disc: &mut Mesh,
     pads: &mut [(&str, &mut Mesh)],
 ) -> Result<Vec<ChosenSet>> {
-    let axis = crate::model::brake_inputs(scene)?.axis;
+    let axis = crate::model::scene_axis(scene)?;
     let grid = scene.patch_grid()?;
     let count = pads.len();
     let mut out = Vec::new();
     for i in 0..count {
         let name = pads[i].0.to_string();
-        let face = |k: usize| {
-            sets.iter()
-                .find(|c| c.key == pad_key(k, &name, count))
-                .map(|c| c.name.clone())
-        };
-        let disc_contact = scene
-            .file
-            .pads
-            .get(&name)
-            .and_then(|t| t.disc_contact.as_ref())
-            .map(|c| c.get_ref().clone())
-            .unwrap_or_else(|| {
-                if i == 0 {
-                    "CONTACT".into()
-                } else {
-                    format!("CONTACT_{}", name.to_uppercase())
-                }
-            });
+        let face = |k: usize| pad_set(sets, &name, k, i, count).map(|c| c.name.clone());
         let jobs: [(&str, Option<String>, String); 2] = [
-            ("disc", face(3), disc_contact),
+            ("disc", face(3), disc_contact_set(scene, &name, i)),
             (name.as_str(), face(0), "CONTACT".into()),
         ];
         for (part, face, contact) in jobs {

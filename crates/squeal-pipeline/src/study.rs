@@ -159,10 +159,7 @@ fn identity(scene: &Scene, kind: Kind, mus: &[f64], levels: &[String]) -> Result
     if kind == Kind::Mesh {
         return Identity::of(scene, &level_meshes(scene, levels)?, mus, levels);
     }
-    let m = &scene.file.model;
-    let mut meshes = vec![scene.resolve(&m.disc)];
-    meshes.extend(scene.pads()?.iter().map(|(_, p)| scene.resolve(p)));
-    Identity::of(scene, &meshes, mus, &[])
+    Identity::of(scene, &scene.mesh_files()?, mus, &[])
 }
 
 /// Computes the units of the study that `shard` owns (all of them for [`Shard::WHOLE`]).
@@ -1038,19 +1035,15 @@ fn face_set<'a>(part: &ReducedPart, mesh: &'a Mesh) -> Result<&'a [u32]> {
     })
 }
 
-/// The model's first pad (the pistons' in a two-pad brake, whose shape the study measures).
-fn first_pad(rom: &ReducedModel) -> Result<&squeal_reduce::rom::ReducedPart> {
-    rom.parts
-        .iter()
-        .find(|p| p.info.role() == squeal_reduce::rom::PartRole::Pad)
-        .ok_or(PipelineError::NoPart { part: "pad" })
-}
-
 fn rings(rom: &ReducedModel, disc: &Mesh, pad: &Mesh) -> Result<Rings> {
     let dp = rom
         .part("disc")
         .ok_or(PipelineError::NoPart { part: "disc" })?;
-    let pp = first_pad(rom)?;
+    let pp = rom
+        .pads()
+        .first()
+        .copied()
+        .ok_or(PipelineError::NoPart { part: "pad" })?;
     let axis = dp
         .info
         .build
@@ -1111,7 +1104,12 @@ fn summarize(
         .rom
         .part("disc")
         .ok_or(PipelineError::NoPart { part: "disc" })?;
-    let pp = first_pad(&s.rom)?;
+    let pp = s
+        .rom
+        .pads()
+        .first()
+        .copied()
+        .ok_or(PipelineError::NoPart { part: "pad" })?;
     let e = unit(r.axis.direction);
     let ud = expand_complex(dp, meshes.0, &s.disc_mesh, &x[s.layout.disc.clone()])?;
     let pad_path = s
@@ -1119,7 +1117,7 @@ fn summarize(
         .first()
         .map(|p| p.1.as_path())
         .unwrap_or(Path::new(""));
-    let up = expand_complex(pp, meshes.1, pad_path, &x[s.layout.pad.clone()])?;
+    let up = expand_complex(pp, meshes.1, pad_path, &x[s.layout.pad()])?;
     let axial = |u: &[c64], i: usize| u[3 * i] * e[0] + u[3 * i + 1] * e[1] + u[3 * i + 2] * e[2];
     let w: Vec<c64> = r.disc.iter().map(|&(i, _)| axial(&ud, i)).collect();
     let angles: Vec<f64> = r.disc.iter().map(|&(_, t)| t).collect();
@@ -1278,12 +1276,11 @@ fn level_meshes(scene: &Scene, levels: &[String]) -> Result<Vec<PathBuf>> {
             "give at least one mesh level",
         ));
     }
-    let m = &scene.file.model;
+    let files = scene.mesh_files()?;
     let mut meshes = Vec::new();
     for level in levels {
-        meshes.push(level_path(&scene.resolve(&m.disc), level)?);
-        for (_, p) in scene.pads()? {
-            meshes.push(level_path(&scene.resolve(&p), level)?);
+        for p in &files {
+            meshes.push(level_path(p, level)?);
         }
     }
     let missing: Vec<String> = meshes

@@ -98,18 +98,23 @@ fn moved(path: &str, m: &Motion) -> LoadedPart {
     part
 }
 
-/// Reduces the moved coarse meshes and runs the stability analysis of the moved scene; also
-/// says whether the pad's piston dofs are skew (`DofLabel::Along`).
-fn stability(m: &Motion) -> (Stability, bool) {
-    let scene = scene(m);
-    let inputs = brake_inputs(&scene).unwrap();
-    let (rom, _) = reduce_brake_loaded(
-        &inputs,
+/// The coarse brake of `scene` on the coarse meshes moved by `m`.
+fn reduce_moved(scene: &Scene, m: &Motion) -> squeal_reduce::rom::ReducedModel {
+    reduce_brake_loaded(
+        &brake_inputs(scene).unwrap(),
         moved("disc_coarse.inp", m),
         vec![moved("pad_coarse.inp", m)],
         &mut |_, _| {},
     )
-    .unwrap();
+    .unwrap()
+    .0
+}
+
+/// Reduces the moved coarse meshes and runs the stability analysis of the moved scene; also
+/// says whether the pad's piston dofs are skew (`DofLabel::Along`).
+fn stability(m: &Motion) -> (Stability, bool) {
+    let scene = scene(m);
+    let rom = reduce_moved(&scene, m);
     let skew = rom.parts.iter().any(|p| {
         p.info
             .dofs
@@ -221,13 +226,7 @@ fn a_scene_that_contradicts_the_mesh_is_refused() {
         .replacen("disc_medium.inp", "disc_coarse.inp", 1)
         .replacen("pad_medium.inp", "pad_coarse.inp", 1);
     let scene = Scene::parse(&path, base.clone()).unwrap();
-    let (rom, _) = reduce_brake_loaded(
-        &brake_inputs(&scene).unwrap(),
-        moved("disc_coarse.inp", &IDENTITY),
-        vec![moved("pad_coarse.inp", &IDENTITY)],
-        &mut |_, _| {},
-    )
-    .unwrap();
+    let rom = reduce_moved(&scene, &IDENTITY);
     let build = |text: String| {
         let scene = Scene::parse(&path, text).unwrap();
         model_on(&scene, rom.clone(), PathBuf::from("in-memory.rom")).map(|_| ())
@@ -273,13 +272,7 @@ fn a_normal_a_few_degrees_off_the_mesh_builds() {
             1,
         );
     let scene = Scene::parse(&path, text).unwrap();
-    let (rom, _) = reduce_brake_loaded(
-        &brake_inputs(&scene).unwrap(),
-        moved("disc_coarse.inp", &IDENTITY),
-        vec![moved("pad_coarse.inp", &IDENTITY)],
-        &mut |_, _| {},
-    )
-    .unwrap();
+    let rom = reduce_moved(&scene, &IDENTITY);
     let m = model_on(&scene, rom, PathBuf::from("in-memory.rom")).unwrap();
     // Each of the 4 pistons pushes its share of the clamp force along its own (tilted) dof,
     // towards the disc: the generalized forces add up to the clamp force (to round-off).

@@ -153,23 +153,23 @@ impl PartInput {
 impl PartInput {
     /// The part's contact surfaces: its own sets first, then the further ones.
     pub fn surfaces(&self) -> Vec<ContactSurface> {
-        std::iter::once(ContactSurface {
-            facing: self.facing.clone(),
-            contact_set: self.contact_set.clone(),
-            contact_face_set: self.contact_face_set.clone(),
-        })
-        .chain(self.extra_surfaces.iter().cloned())
-        .collect()
+        ContactSurface::list(
+            &self.facing,
+            &self.contact_set,
+            &self.contact_face_set,
+            &self.extra_surfaces,
+        )
     }
 
-    /// The surface facing pad `pad` of a brake with `pads` pads: the one named after it, or
-    /// the only one when the brake has one pad and the part one surface.
-    pub fn surface_facing(&self, pad: &str, pads: usize) -> Option<ContactSurface> {
+    /// The index in [`PartInput::surfaces`] of the surface facing pad `pad` of a brake with
+    /// `pads` pads: the one named after it, or the only one when the brake has one pad and
+    /// the part one surface.
+    pub fn surface_index(&self, pad: &str, pads: usize) -> Option<usize> {
         let all = self.surfaces();
         if pads == 1 && all.len() == 1 {
-            return all.into_iter().next();
+            return Some(0);
         }
-        all.into_iter().find(|s| s.facing.as_deref() == Some(pad))
+        all.iter().position(|s| s.facing.as_deref() == Some(pad))
     }
 }
 
@@ -359,7 +359,7 @@ impl BrakeInputs {
             if self.pads[..i].iter().any(|q| q.name == p.name) {
                 return bad(format!("two pads are named '{}'", p.name));
             }
-            if self.disc.surface_facing(&p.name, self.pads.len()).is_none() {
+            if self.disc.surface_index(&p.name, self.pads.len()).is_none() {
                 return bad(format!(
                     "the disc has no contact surface facing pad '{}' (a disc braked by {} pads needs one surface per pad, named after it)",
                     p.name,
@@ -433,7 +433,9 @@ impl BrakeInputs {
         }
     }
 
-    fn spec(&self, name: &str, input: &PartInput, mesh: MeshInfo) -> PartSpec {
+    /// The [`PartSpec`] [`reduce_brake`] reduces part `input`, named `name`, with (read from the
+    /// mesh described by `mesh`).
+    pub fn spec(&self, name: &str, input: &PartInput, mesh: MeshInfo) -> PartSpec {
         PartSpec {
             name: name.into(),
             role: if name == "disc" {
@@ -641,9 +643,9 @@ pub fn reduce_brake_loaded(
     let mut pairs = Vec::new();
     let mut tolerance = 0.0;
     for (pad, part) in inputs.pads.iter().zip(&loaded[1..]) {
-        let k = surfaces
-            .iter()
-            .position(|s| inputs.pads.len() == 1 || s.facing.as_deref() == Some(&pad.name))
+        let k = inputs
+            .disc
+            .surface_index(&pad.name, inputs.pads.len())
             .ok_or_else(|| ReduceError::Options(format!("no disc surface faces {}", pad.name)))?;
         let offset: usize = disc_points[..k].iter().map(Vec::len).sum();
         let pad_surface = pad.part.surfaces().swap_remove(0);

@@ -260,13 +260,12 @@ pub struct PartSpec {
 impl PartSpec {
     /// The part's contact surfaces: its own sets first, then the further ones.
     pub fn surfaces(&self) -> Vec<ContactSurface> {
-        std::iter::once(ContactSurface {
-            facing: self.facing.clone(),
-            contact_set: self.contact_set.clone(),
-            contact_face_set: self.contact_face_set.clone(),
-        })
-        .chain(self.extra_surfaces.iter().cloned())
-        .collect()
+        ContactSurface::list(
+            &self.facing,
+            &self.contact_set,
+            &self.contact_face_set,
+            &self.extra_surfaces,
+        )
     }
 }
 

@@ -192,18 +192,7 @@ pub fn patches(
     angular: usize,
     axis: &Axis,
 ) -> Result<Vec<Patch>, InterfaceError> {
-    let nodes = mesh
-        .node_set(face_set)
-        .ok_or_else(|| InterfaceError::MissingSet(face_set.into()))?;
-    if nodes.is_empty() {
-        return Err(InterfaceError::EmptySet(face_set.into()));
-    }
-    let triangles = boundary_triangles(mesh, nodes);
-    if triangles.is_empty() {
-        return Err(InterfaceError::NoFaces {
-            set: face_set.into(),
-        });
-    }
+    let (nodes, triangles) = face_triangles(mesh, face_set)?;
     let mean = mean_point(nodes.iter().map(|&n| mesh.nodes[n as usize]));
     let frame = Frame::new(axis, sub(mean, axis.origin))?;
     let grid = PolarGrid::spanning(
@@ -264,18 +253,7 @@ pub fn patches(
 /// `r = Σ_k w_k u_k`, `w_k = (1/A) ∫ N_k dA` (the RBE3 idea): a force `F` on `r` is the
 /// consistent nodal load of the pressure `F / A` over the footprint, `F w_k` at node `k`.
 pub fn footprint(mesh: &Mesh, face_set: &str) -> Result<Patch, InterfaceError> {
-    let nodes = mesh
-        .node_set(face_set)
-        .ok_or_else(|| InterfaceError::MissingSet(face_set.into()))?;
-    if nodes.is_empty() {
-        return Err(InterfaceError::EmptySet(face_set.into()));
-    }
-    let triangles = boundary_triangles(mesh, nodes);
-    if triangles.is_empty() {
-        return Err(InterfaceError::NoFaces {
-            set: face_set.into(),
-        });
-    }
+    let (_, triangles) = face_triangles(mesh, face_set)?;
     let mut sums = PatchSums::default();
     for tri in &triangles {
         let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
@@ -425,18 +403,7 @@ pub fn tributary_areas(
     face_set: &str,
     nodes: &[u32],
 ) -> Result<Vec<(f64, [f64; 3])>, InterfaceError> {
-    let face = mesh
-        .node_set(face_set)
-        .ok_or_else(|| InterfaceError::MissingSet(face_set.into()))?;
-    if face.is_empty() {
-        return Err(InterfaceError::EmptySet(face_set.into()));
-    }
-    let triangles = boundary_triangles(mesh, face);
-    if triangles.is_empty() {
-        return Err(InterfaceError::NoFaces {
-            set: face_set.into(),
-        });
-    }
+    let (_, triangles) = face_triangles(mesh, face_set)?;
     let centres: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.nodes[n as usize]).collect();
     let mut areas = vec![0.0; nodes.len()];
     let mut normals = vec![[0.0; 3]; nodes.len()];
@@ -648,6 +615,27 @@ fn triangle_centroid(x: &[[f64; 3]; 6]) -> [f64; 3] {
         }
     }
     c
+}
+
+/// The nodes of face set `face_set` and its boundary triangles; an error when the set is
+/// missing, empty or holds no boundary face.
+fn face_triangles<'m>(
+    mesh: &'m Mesh,
+    face_set: &str,
+) -> Result<(&'m [u32], Vec<[u32; 6]>), InterfaceError> {
+    let nodes = mesh
+        .node_set(face_set)
+        .ok_or_else(|| InterfaceError::MissingSet(face_set.into()))?;
+    if nodes.is_empty() {
+        return Err(InterfaceError::EmptySet(face_set.into()));
+    }
+    let triangles = boundary_triangles(mesh, nodes);
+    if triangles.is_empty() {
+        return Err(InterfaceError::NoFaces {
+            set: face_set.into(),
+        });
+    }
+    Ok((nodes, triangles))
 }
 
 /// Element faces (6-node triangles, tet10::FACES order) whose six nodes are all in `set` and

@@ -249,6 +249,25 @@ pub struct ContactSurface {
     pub contact_face_set: String,
 }
 
+impl ContactSurface {
+    /// A part's contact surfaces: its own sets (`contact_set`, `contact_face_set`, facing
+    /// `facing`) first, then the further ones, `extra`.
+    pub fn list(
+        facing: &Option<String>,
+        contact_set: &str,
+        contact_face_set: &str,
+        extra: &[ContactSurface],
+    ) -> Vec<ContactSurface> {
+        std::iter::once(ContactSurface {
+            facing: facing.clone(),
+            contact_set: contact_set.to_string(),
+            contact_face_set: contact_face_set.to_string(),
+        })
+        .chain(extra.iter().cloned())
+        .collect()
+    }
+}
+
 /// The options a part was reduced with, as given (before reading the mesh).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BuildRecord {
@@ -364,6 +383,14 @@ impl ReducedModel {
     /// The part called `name`.
     pub fn part(&self, name: &str) -> Option<&ReducedPart> {
         self.parts.iter().find(|p| p.info.name == name)
+    }
+
+    /// The pads, in the order of their dofs (every part but the disc).
+    pub fn pads(&self) -> Vec<&ReducedPart> {
+        self.parts
+            .iter()
+            .filter(|p| p.info.role() == PartRole::Pad)
+            .collect()
     }
 
     /// Total reduced dofs.

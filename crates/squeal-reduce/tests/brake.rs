@@ -157,24 +157,8 @@ fn automatic_choice_keeps_exactly_the_modes_below_the_cutoff() {
     let materials = MaterialTable::from_mesh(&loaded.mesh, &[]).unwrap();
     let inputs = coarse_inputs(InterfaceKind::Patch);
     let spec = PartSpec {
-        name: "pad".into(),
-        role: squeal_reduce::rom::PartRole::Pad,
-        mesh: loaded.info.clone(),
-        restraints: inputs.pad().restraints.clone(),
-        skew_restraints: Vec::new(),
-        axis_restraints: Vec::new(),
-        interface: InterfaceKind::Patch,
-        contact_set: "CONTACT".into(),
-        contact_face_set: "CONTACT_FACE".into(),
-        facing: None,
-        extra_surfaces: Vec::new(),
-        grid: [3, 3],
-        axis: inputs.axis,
-        piston_set: Some("PISTON".into()),
-        piston_footprints: Vec::new(),
-        normal_direction: 2,
-        piston_direction: None,
         modes: 100,
+        ..inputs.spec("pad", inputs.pad(), loaded.info.clone())
     };
     let opts = ReduceOptions {
         modes_below_hz: Some(cutoff),

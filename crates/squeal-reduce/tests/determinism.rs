@@ -10,15 +10,20 @@ use squeal_reduce::brake::reduce_brake_loaded;
 use squeal_reduce::craig_bampton::Stage;
 use squeal_reduce::rom::InterfaceKind;
 
+/// Runs `f` in a rayon pool of `threads` threads.
+fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
 #[test]
 fn rom_bytes_do_not_depend_on_the_thread_count() {
     faer::set_global_parallelism(faer::Par::Seq);
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        on_threads(threads, || {
             // Inputs made inside the pool: their factorization parallelism is its size.
             let inputs = coarse_inputs(InterfaceKind::Patch);
             let mut stages = Vec::new();
@@ -67,35 +72,14 @@ fn rom_bytes_do_not_depend_on_the_thread_count() {
 fn pistons_as_footprints_reduce_to_the_same_bits_for_any_thread_count() {
     // The coarse brake with the pad's pistons as two 40 mm footprints on its back face (the
     // footprint rows and the springs added to the factored stiffness).
-    use squeal_mesh::select::{Circle, Rule, boundary_faces};
     faer::set_global_parallelism(faer::Par::Seq);
     let pad = || {
         let mut pad = coarse("pad");
-        let boundary = boundary_faces(&pad.mesh);
-        for (k, deg) in [77.5f64, 102.5].into_iter().enumerate() {
-            let t = deg.to_radians();
-            let rule = Rule {
-                facing: Some(([0.0, 0.0, 1.0], 1.0)),
-                circle: Some(Circle {
-                    centre: [0.11 * t.cos(), 0.11 * t.sin(), 0.035],
-                    diameter: 0.04,
-                }),
-                tolerance: 1e-7,
-                ..Rule::default()
-            };
-            let s = rule.apply(&pad.mesh, &boundary).unwrap();
-            pad.mesh
-                .node_sets
-                .insert(format!("FOOT_{}", k + 1), s.nodes);
-        }
+        common::add_footprints(&mut pad.mesh);
         pad
     };
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        on_threads(threads, || {
             let mut inputs = coarse_inputs(InterfaceKind::Patch);
             inputs.pads[0].part.piston_footprints = vec!["FOOT_1".into(), "FOOT_2".into()];
             let (model, _) =

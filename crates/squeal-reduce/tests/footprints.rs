@@ -4,68 +4,37 @@
 //! the full finite-element model of the pad (frequencies on springs are a Ritz projection's;
 //! a static load on a footprint's coordinate is its force spread over the footprint).
 
+mod common;
+
 use faer::Mat;
 use faer::prelude::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use squeal_eigs::{EigOptions, SparseCholesky, lowest_modes};
 use squeal_fe::{DofMap, MaterialTable, Restraint};
 use squeal_mesh::Mesh;
-use squeal_mesh::select::{Circle, Rule, boundary_faces};
 use squeal_reduce::craig_bampton::{PartSpec, ReduceOptions, reduce_part};
 use squeal_reduce::interface::{Axis, footprint, patches};
-use squeal_reduce::rom::{InterfaceKind, MeshInfo, PartRole, ReducedPart};
-use std::path::PathBuf;
+use squeal_reduce::rom::{InterfaceKind, MeshInfo, ReducedPart};
 
-/// The coarse pad with its two 40 mm piston footprints on the back face (z = 35 mm, centres
-/// at r = 110 mm, 77.5 and 102.5 degrees, the bundled pistons'), as node sets `FOOT_1`,
-/// `FOOT_2` (faces facing +z whose corner centroid is inside the circle).
+/// The coarse pad with its two 40 mm piston footprints as node sets `FOOT_1`, `FOOT_2`.
 fn pad() -> Mesh {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes/pad_coarse.inp");
-    let mut mesh = squeal_mesh::read(&path).unwrap().mesh;
-    let boundary = boundary_faces(&mesh);
-    for (k, deg) in [77.5f64, 102.5].into_iter().enumerate() {
-        let t = deg.to_radians();
-        let rule = Rule {
-            facing: Some(([0.0, 0.0, 1.0], 1.0)),
-            circle: Some(Circle {
-                centre: [0.11 * t.cos(), 0.11 * t.sin(), 0.035],
-                diameter: 0.04,
-            }),
-            tolerance: 1e-7,
-            ..Rule::default()
-        };
-        let s = rule.apply(&mesh, &boundary).unwrap();
-        assert!(s.nodes.len() > 1);
-        mesh.node_sets.insert(format!("FOOT_{}", k + 1), s.nodes);
-    }
+    let mut mesh = common::coarse("pad").mesh;
+    common::add_footprints(&mut mesh);
     mesh
 }
 
 fn spec(mesh: &Mesh, footprints: Vec<String>, modes: usize) -> PartSpec {
+    let inputs = common::coarse_inputs(InterfaceKind::Patch);
+    let info = MeshInfo {
+        path: "pad_coarse.inp".into(),
+        sha256: String::new(),
+        nodes: mesh.num_nodes(),
+        elements: mesh.num_elements(),
+    };
     PartSpec {
-        name: "pad".into(),
-        role: PartRole::Pad,
-        mesh: MeshInfo {
-            path: "pad_coarse.inp".into(),
-            sha256: String::new(),
-            nodes: mesh.num_nodes(),
-            elements: mesh.num_elements(),
-        },
-        restraints: vec![Restraint::set("ABUTMENT", [true, true, false])],
-        skew_restraints: Vec::new(),
-        axis_restraints: Vec::new(),
-        interface: InterfaceKind::Patch,
-        contact_set: "CONTACT".into(),
-        contact_face_set: "CONTACT_FACE".into(),
-        facing: None,
-        extra_surfaces: Vec::new(),
-        grid: [3, 3],
-        axis: Axis::default(),
-        piston_set: Some("PISTON".into()),
         piston_footprints: footprints,
-        normal_direction: 2,
-        piston_direction: None,
         modes,
+        ..inputs.spec("pad", inputs.pad(), info)
     }
 }
 

@@ -511,6 +511,27 @@ impl Scene {
         }
     }
 
+    /// The mesh files the scene reads, resolved: the disc's, then each pad's.
+    pub fn mesh_files(&self) -> Result<Vec<PathBuf>> {
+        let mut files = vec![self.resolve(&self.file.model.disc)];
+        files.extend(self.pads()?.iter().map(|(_, p)| self.resolve(p)));
+        Ok(files)
+    }
+
+    /// The files the scene reads with what each is (`scene file`, `disc mesh`, `pad mesh`):
+    /// what an output must not overwrite.
+    pub fn input_files(&self) -> Result<Vec<(PathBuf, &'static str)>> {
+        let meshes = self.mesh_files()?;
+        Ok(std::iter::once((self.path.clone(), "scene file"))
+            .chain(
+                meshes
+                    .into_iter()
+                    .enumerate()
+                    .map(|(i, p)| (p, if i == 0 { "disc mesh" } else { "pad mesh" })),
+            )
+            .collect())
+    }
+
     fn validate(&self) -> Result<()> {
         let f = &self.file;
         self.pads()?;

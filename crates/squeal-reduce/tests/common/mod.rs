@@ -45,3 +45,26 @@ pub fn coarse_brake(interface: InterfaceKind) -> &'static ReducedModel {
     };
     cell.get_or_init(|| reduce(&coarse_inputs(interface)))
 }
+
+/// Adds the two 40 mm piston footprints on the coarse pad's back face (z = 35 mm, centres at
+/// r = 110 mm, 77.5 and 102.5 degrees, the bundled pistons') to `mesh` as node sets `FOOT_1`,
+/// `FOOT_2` (faces facing +z whose corner centroid is inside the circle).
+pub fn add_footprints(mesh: &mut squeal_mesh::Mesh) {
+    use squeal_mesh::select::{Circle, Rule, boundary_faces};
+    let boundary = boundary_faces(mesh);
+    for (k, deg) in [77.5f64, 102.5].into_iter().enumerate() {
+        let t = deg.to_radians();
+        let rule = Rule {
+            facing: Some(([0.0, 0.0, 1.0], 1.0)),
+            circle: Some(Circle {
+                centre: [0.11 * t.cos(), 0.11 * t.sin(), 0.035],
+                diameter: 0.04,
+            }),
+            tolerance: 1e-7,
+            ..Rule::default()
+        };
+        let s = rule.apply(mesh, &boundary).unwrap();
+        assert!(s.nodes.len() > 1);
+        mesh.node_sets.insert(format!("FOOT_{}", k + 1), s.nodes);
+    }
+}
