@@ -8,7 +8,7 @@ use crate::block::{BlockParams, block_lanczos};
 use crate::cholesky::{CholeskyOptions, FactorAnalysis, FactorStats, SparseCholesky};
 use crate::constraint::{ConstrainedFactor, Constraints};
 use crate::inertia::count_below_unchecked;
-use crate::lanczos::{GUARD_TOL, LanczosParams, Locked, ShiftInvert, Watch, thick_restart_lanczos};
+use crate::lanczos::{LanczosParams, Locked, ShiftInvert, Watch, thick_restart_lanczos};
 use crate::sparse::{check_pair, dot, norm1, sym_matmul, sym_matvec};
 use faer::sparse::SparseColMatRef;
 use faer::{Col, Mat, Par};
@@ -536,16 +536,24 @@ fn solve_checked(
 }
 
 /// Largest residual estimate of a Ritz pair trusted to place the Sturm
-/// bound beside the iteration: its Ritz value is then accurate to about the
-/// square of it, far inside the gap of [`SAME_EIGENVALUE`] the bound needs
-/// (the guards' tolerance).
-const EARLY_ESTIMATE: f64 = GUARD_TOL;
+/// bound beside the iteration. A Ritz value theta with relative residual
+/// estimate e is within e |theta| of an eigenvalue of OP (Bauer-Fike for a
+/// self-adjoint operator; about e^2 once converged), so its
+/// lambda = sigma + 1 / theta is within about e |lambda - sigma| of one:
+/// [`early_bound`] asks the bound to stand twice that far from every Ritz
+/// value it separates. The count itself is compared with the converged
+/// values ([`separated`], [`compare_count`]), so a looser estimate only
+/// risks a second count after the iteration, never a wrong verdict; 1e-3
+/// starts the count about a second earlier on the fine disc than the
+/// guards' tolerance 1e-6 did (docs/benchmarks.md).
+const EARLY_ESTIMATE: f64 = 1e-3;
 
 /// A Sturm bound from Ritz values theta (descending, of OP = (K - sigma
 /// M)^-1 M) during the iteration: the bound [`sturm_bound`] places in the
 /// eigenvalues lambda = sigma + 1 / theta, if it falls in a gap between two
-/// Ritz values and every Ritz pair up to the first above it has a residual
-/// estimate of at most [`EARLY_ESTIMATE`].
+/// Ritz values, every Ritz pair up to the first above it has a residual
+/// estimate of at most [`EARLY_ESTIMATE`], and the bound is further from each
+/// of these Ritz values than twice its error bound.
 fn early_bound(theta: &[f64], estimates: &[f64], nev: usize, shift: f64) -> Option<f64> {
     let count = theta.iter().take_while(|&&t| t > 0.0).count();
     let lambda: Vec<f64> = theta[..count].iter().map(|t| shift + 1.0 / t).collect();
@@ -553,10 +561,11 @@ fn early_bound(theta: &[f64], estimates: &[f64], nev: usize, shift: f64) -> Opti
         return None;
     }
     let (bound, below) = sturm_bound(&lambda, nev);
-    let accurate = estimates
-        .get(..=below)?
+    let trusted = estimates.get(..=below)?;
+    let accurate = trusted
         .iter()
-        .all(|&e| e <= EARLY_ESTIMATE);
+        .zip(&lambda)
+        .all(|(&e, &l)| e <= EARLY_ESTIMATE && (l - bound).abs() > 2.0 * e * (l - shift).abs());
     (below < lambda.len() && accurate).then_some(bound)
 }
 
@@ -611,7 +620,7 @@ pub(crate) fn default_ncv(nwant: usize, opts: &EigOptions) -> usize {
 const MAX_ROUNDS: usize = 4;
 
 /// Runs the chosen backend for `nwant` eigenpairs, the first `nsharp` of them
-/// to the tolerance and the rest as guards (see [`GUARD_TOL`]; ARPACK takes
+/// to the tolerance and the rest as guards (see [`GUARD_TOL`](crate::lanczos::GUARD_TOL); ARPACK takes
 /// all to the tolerance).
 fn run_backend(
     op: &ShiftInvert<'_>,
@@ -852,4 +861,39 @@ pub(crate) fn sturm_bound(values: &[f64], nev: usize) -> (f64, usize) {
     let last = values[values.len() - 1];
     let bump = SAME_EIGENVALUE * vmax.max(f64::MIN_POSITIVE);
     (last + bump, values.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Ritz values theta of OP = (K - sigma M)^-1 M for eigenvalues `lambda` (shift 0).
+    fn thetas(lambda: &[f64]) -> Vec<f64> {
+        lambda.iter().map(|l| 1.0 / l).collect()
+    }
+
+    #[test]
+    fn early_bound_needs_accurate_ritz_values_clear_of_it() {
+        // Two wanted eigenvalues, a gap of 50 % above: the bound goes halfway, at 2.5.
+        let lambda = [1.0, 2.0, 3.0, 4.0];
+        let theta = thetas(&lambda);
+        assert_eq!(early_bound(&theta, &[1e-8; 4], 2, 0.0), Some(2.5));
+        // Residual estimates up to EARLY_ESTIMATE are trusted: 2.5 is 0.5 from 2 and 3,
+        // far beyond 2 e |lambda| = 6e-3.
+        assert_eq!(early_bound(&theta, &[1e-3; 4], 2, 0.0), Some(2.5));
+        // Above it, the Ritz values are not trusted yet (the guard pairs may still move).
+        assert_eq!(early_bound(&theta, &[1e-8, 1e-8, 2e-3, 1e-8], 2, 0.0), None);
+        // Only the pairs up to the first above the bound matter.
+        assert_eq!(
+            early_bound(&theta, &[1e-8, 1e-8, 1e-8, 1.0], 2, 0.0),
+            Some(2.5)
+        );
+        // A narrow gap (1e-4 relative, above SAME_EIGENVALUE) that the Ritz values' error
+        // bounds (2 e |lambda| = 4e-3) do not resolve: no early bound...
+        let close = [1.0, 2.0, 2.0002, 4.0];
+        assert_eq!(early_bound(&thetas(&close), &[1e-3; 4], 2, 0.0), None);
+        // ...but one once they have converged (the bound sits halfway in the gap).
+        let bound = early_bound(&thetas(&close), &[1e-9; 4], 2, 0.0).unwrap();
+        assert!((bound - 2.0001).abs() < 1e-12, "bound {bound}");
+    }
 }
