@@ -337,46 +337,77 @@ pub fn inner(v: MatRef<'_, f64>, w: MatRef<'_, f64>) -> Mat<f64> {
 pub fn sym_matmul(a: SparseColMatRef<'_, usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
     let n = a.ncols();
     let b = x.ncols();
-    if b == 0 {
-        return Mat::zeros(n, 0);
+    let mut y = Mat::zeros(n, b);
+    if b == 0 || n == 0 {
+        return y;
     }
+    // X row by row (a row of A X then sums contiguous rows of X), rows in parallel.
     let mut xt = vec![0.0; n * b];
-    for c in 0..b {
-        for (r, v) in x.col(c).iter().enumerate() {
-            xt[r * b + c] = *v;
-        }
-    }
-    let mut yt = vec![0.0; n * b];
-    yt.par_chunks_mut(CHUNK * b)
+    xt.par_chunks_mut(CHUNK * b)
         .enumerate()
-        .for_each(|(chunk, out)| match b {
-            4 => gather_rows::<4>(a, &xt, chunk * CHUNK, out),
-            8 => gather_rows::<8>(a, &xt, chunk * CHUNK, out),
-            16 => gather_rows::<16>(a, &xt, chunk * CHUNK, out),
-            _ => {
-                for (o, row) in out.chunks_mut(b).enumerate() {
-                    let i = chunk * CHUNK + o;
-                    for (r, v) in a.row_idx_of_col(i).zip(a.val_of_col(i)) {
-                        let xr = &xt[r * b..r * b + b];
-                        for (y, xv) in row.iter_mut().zip(xr) {
-                            *y += v * xv;
-                        }
-                    }
+        .for_each(|(chunk, rows)| {
+            for (o, row) in rows.chunks_exact_mut(b).enumerate() {
+                for (c, v) in row.iter_mut().enumerate() {
+                    *v = x[(chunk * CHUNK + o, c)];
                 }
             }
         });
-    Mat::from_fn(n, b, |i, c| yt[i * b + c])
+    let xt = &xt;
+    row_blocks(y.as_mut(), CHUNK)
+        .into_par_iter()
+        .enumerate()
+        .for_each(|(chunk, out)| match b {
+            4 => gather_rows::<4>(a, xt, chunk * CHUNK, out),
+            8 => gather_rows::<8>(a, xt, chunk * CHUNK, out),
+            16 => gather_rows::<16>(a, xt, chunk * CHUNK, out),
+            _ => gather_rows_any(a, xt, chunk * CHUNK, out),
+        });
+    y
 }
 
-/// Rows `first..` of Y = A X into `out` (row-major, B values per row) from
+/// `m` cut into blocks of `rows` rows (the last may be shorter), in order.
+fn row_blocks(mut m: MatMut<'_, f64>, rows: usize) -> Vec<MatMut<'_, f64>> {
+    let mut blocks = Vec::with_capacity(m.nrows().div_ceil(rows.max(1)));
+    while m.nrows() > 0 {
+        let len = rows.min(m.nrows());
+        let (top, bottom) = m.split_at_row_mut(len);
+        blocks.push(top);
+        m = bottom;
+    }
+    blocks
+}
+
+/// [`gather_rows`] for any number of columns.
+fn gather_rows_any(
+    a: SparseColMatRef<'_, usize, f64>,
+    xt: &[f64],
+    first: usize,
+    mut out: MatMut<'_, f64>,
+) {
+    let b = out.ncols();
+    let mut acc = vec![0.0; b];
+    for o in 0..out.nrows() {
+        acc.fill(0.0);
+        for (r, v) in a.row_idx_of_col(first + o).zip(a.val_of_col(first + o)) {
+            for (y, xv) in acc.iter_mut().zip(&xt[r * b..r * b + b]) {
+                *y += v * xv;
+            }
+        }
+        for (c, &v) in acc.iter().enumerate() {
+            out[(o, c)] = v;
+        }
+    }
+}
+
+/// Rows `first..` of Y = A X into the block `out` of Y from
 /// X in row-major `xt`: a fixed-width accumulator the compiler vectorizes.
 fn gather_rows<const B: usize>(
     a: SparseColMatRef<'_, usize, f64>,
     xt: &[f64],
     first: usize,
-    out: &mut [f64],
+    mut out: MatMut<'_, f64>,
 ) {
-    for (o, row) in out.chunks_exact_mut(B).enumerate() {
+    for o in 0..out.nrows() {
         let i = first + o;
         let mut acc = [0.0f64; B];
         for (r, &v) in a.row_idx_of_col(i).zip(a.val_of_col(i)) {
@@ -387,6 +418,8 @@ fn gather_rows<const B: usize>(
                 *y += v * x;
             }
         }
-        row.copy_from_slice(&acc);
+        for (c, &v) in acc.iter().enumerate() {
+            out[(o, c)] = v;
+        }
     }
 }
