@@ -18,9 +18,10 @@
 //! Reading from Python with numpy alone is shown in `docs/rom-format.md`.
 
 use faer::Mat;
-use safetensors::tensor::{Dtype, SafeTensors, TensorView};
+use safetensors::tensor::{Dtype, Metadata, SafeTensors, TensorInfo};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Name of the format in the header.
@@ -398,15 +399,28 @@ impl ReducedModel {
         self.parts.iter().map(ReducedPart::size).sum()
     }
 
-    /// Writes the model to `path` atomically.
+    /// Writes the model to `path` atomically, each array streamed into the file as it is
+    /// converted (no copy of the whole file in memory).
     pub fn write(&self, path: &Path) -> Result<(), RomError> {
-        let bytes = self.to_bytes()?;
-        squeal_io::atomic_write_bytes(path, &bytes)?;
+        let (header, arrays) = self.layout()?;
+        squeal_io::atomic_write(path, |w| write_file(w, &header, &arrays))?;
         Ok(())
     }
 
-    /// Serializes the model.
+    /// Serializes the model: the bytes [`ReducedModel::write`] writes.
     pub fn to_bytes(&self) -> Result<Vec<u8>, RomError> {
+        let (header, arrays) = self.layout()?;
+        let mut bytes =
+            Vec::with_capacity(header.len() + arrays.iter().map(|(_, a)| a.len()).sum::<usize>());
+        write_file(&mut bytes, &header, &arrays).map_err(|e| RomError::Serialize(e.to_string()))?;
+        Ok(bytes)
+    }
+
+    /// The file's arrays in the order safetensors stores them and its header: the header's
+    /// length (8 bytes, little-endian), then the JSON that names every array's type, shape and
+    /// byte range, padded with spaces to a multiple of 8 bytes (what `safetensors::serialize`
+    /// writes, bit for bit: tested).
+    fn layout(&self) -> Result<(Vec<u8>, Vec<Named<'_>>), RomError> {
         let header = RomHeader {
             format: FORMAT.into(),
             version: VERSION,
@@ -422,37 +436,42 @@ impl ReducedModel {
         };
         let json =
             serde_json::to_string(&header).map_err(|e| RomError::Serialize(e.to_string()))?;
-        let mut arrays: Vec<(String, Array)> = Vec::new();
+        let mut arrays: Vec<Named> = Vec::new();
         for p in &self.parts {
             let name = &p.info.name;
-            arrays.push((format!("{name}.K"), Array::from_mat(&p.k)));
-            arrays.push((format!("{name}.M"), Array::from_mat(&p.m)));
+            arrays.push((format!("{name}.K"), Array::Mat(&p.k)));
+            arrays.push((format!("{name}.M"), Array::Mat(&p.m)));
             if let Some(b) = &p.basis {
-                arrays.push((format!("{name}.basis"), Array::from_mat(&b.values)));
-                arrays.push((
-                    format!("{name}.dof_node"),
-                    Array::new(
-                        Dtype::U64,
-                        vec![b.dof_node.len()],
-                        b.dof_node.iter().flat_map(|v| v.to_le_bytes()).collect(),
-                    ),
-                ));
-                arrays.push((
-                    format!("{name}.dof_dir"),
-                    Array::new(Dtype::U8, vec![b.dof_dir.len()], b.dof_dir.clone()),
-                ));
+                arrays.push((format!("{name}.basis"), Array::Mat(&b.values)));
+                let dof_node = b.dof_node.iter().flat_map(|v| v.to_le_bytes()).collect();
+                arrays.push((format!("{name}.dof_node"), Array::U64(dof_node)));
+                arrays.push((format!("{name}.dof_dir"), Array::U8(&b.dof_dir)));
             }
         }
-        let views: Vec<(String, TensorView)> = arrays
+        // safetensors' order: by type, widest first, then by name.
+        arrays.sort_by(|(a, x), (b, y)| y.dtype().cmp(&x.dtype()).then(a.cmp(b)));
+        let mut offset = 0;
+        let infos = arrays
             .iter()
-            .map(|(n, a)| {
-                TensorView::new(a.dtype, a.shape.clone(), &a.bytes)
-                    .map(|v| (n.clone(), v))
-                    .map_err(|e| RomError::Serialize(e.to_string()))
+            .map(|(name, a)| {
+                let info = TensorInfo {
+                    dtype: a.dtype(),
+                    shape: a.shape(),
+                    data_offsets: (offset, offset + a.len()),
+                };
+                offset += a.len();
+                (name.clone(), info)
             })
-            .collect::<Result<_, _>>()?;
+            .collect();
         let meta = HashMap::from([("squeal".to_string(), json)]);
-        safetensors::serialize(views, Some(meta)).map_err(|e| RomError::Serialize(e.to_string()))
+        let metadata =
+            Metadata::new(Some(meta), infos).map_err(|e| RomError::Serialize(e.to_string()))?;
+        let mut json =
+            serde_json::to_vec(&metadata).map_err(|e| RomError::Serialize(e.to_string()))?;
+        json.resize(json.len().next_multiple_of(8), b' ');
+        let mut header = (json.len() as u64).to_le_bytes().to_vec();
+        header.extend(json);
+        Ok((header, arrays))
     }
 
     /// Reads a model written by [`ReducedModel::write`].
@@ -590,31 +609,70 @@ fn parse_header(json: &str, path: &Path) -> Result<RomHeader, RomError> {
     Ok(header)
 }
 
-/// An array ready for serialization: row-major little-endian bytes.
-struct Array {
-    dtype: Dtype,
-    shape: Vec<usize>,
-    bytes: Vec<u8>,
+/// An array of the file with its name.
+type Named<'a> = (String, Array<'a>);
+
+/// An array of the file: a matrix (written row by row, little-endian) or raw bytes.
+enum Array<'a> {
+    Mat(&'a Mat<f64>),
+    U64(Vec<u8>),
+    U8(&'a [u8]),
 }
 
-impl Array {
-    fn new(dtype: Dtype, shape: Vec<usize>, bytes: Vec<u8>) -> Self {
-        Self {
-            dtype,
-            shape,
-            bytes,
+impl Array<'_> {
+    fn dtype(&self) -> Dtype {
+        match self {
+            Array::Mat(_) => Dtype::F64,
+            Array::U64(_) => Dtype::U64,
+            Array::U8(_) => Dtype::U8,
         }
     }
 
-    fn from_mat(m: &Mat<f64>) -> Self {
-        let mut bytes = Vec::with_capacity(m.nrows() * m.ncols() * 8);
-        for i in 0..m.nrows() {
-            for j in 0..m.ncols() {
-                bytes.extend_from_slice(&m[(i, j)].to_le_bytes());
-            }
+    fn shape(&self) -> Vec<usize> {
+        match self {
+            Array::Mat(m) => vec![m.nrows(), m.ncols()],
+            Array::U64(b) => vec![b.len() / 8],
+            Array::U8(b) => vec![b.len()],
         }
-        Self::new(Dtype::F64, vec![m.nrows(), m.ncols()], bytes)
     }
+
+    /// Bytes in the file.
+    fn len(&self) -> usize {
+        match self {
+            Array::Mat(m) => m.nrows() * m.ncols() * 8,
+            Array::U64(b) => b.len(),
+            Array::U8(b) => b.len(),
+        }
+    }
+
+    /// Writes the bytes; a matrix [`ROWS_PER_WRITE`] rows at a time.
+    fn write(&self, w: &mut dyn Write) -> std::io::Result<()> {
+        let m = match self {
+            Array::Mat(m) => m,
+            Array::U64(b) => return w.write_all(b),
+            Array::U8(b) => return w.write_all(b),
+        };
+        let mut buf = Vec::with_capacity(ROWS_PER_WRITE.min(m.nrows()) * m.ncols() * 8);
+        for first in (0..m.nrows()).step_by(ROWS_PER_WRITE) {
+            buf.clear();
+            for i in first..(first + ROWS_PER_WRITE).min(m.nrows()) {
+                for j in 0..m.ncols() {
+                    buf.extend_from_slice(&m[(i, j)].to_le_bytes());
+                }
+            }
+            w.write_all(&buf)?;
+        }
+        Ok(())
+    }
+}
+
+/// Rows of a matrix converted per write by [`Array::write`].
+const ROWS_PER_WRITE: usize = 4096;
+
+/// The file: its header, then the arrays in order.
+fn write_file(w: &mut dyn Write, header: &[u8], arrays: &[Named]) -> std::io::Result<()> {
+    w.write_all(header)?;
+    arrays.iter().try_for_each(|(_, a)| a.write(w))
 }
 
 fn read_mat(
@@ -735,6 +793,51 @@ mod tests {
                 basis: Some(basis),
             }],
         }
+    }
+
+    /// The file as `safetensors::serialize` writes it from the arrays' bytes (how `to_bytes`
+    /// made it before the arrays were streamed).
+    fn safetensors_bytes(model: &ReducedModel) -> Vec<u8> {
+        use safetensors::tensor::TensorView;
+        let (header, arrays) = model.layout().unwrap();
+        let n = u64::from_le_bytes(header[..8].try_into().unwrap()) as usize;
+        let json: serde_json::Value = serde_json::from_slice(&header[8..8 + n]).unwrap();
+        let meta: HashMap<String, String> =
+            serde_json::from_value(json["__metadata__"].clone()).unwrap();
+        let owned: Vec<(String, Dtype, Vec<usize>, Vec<u8>)> = arrays
+            .iter()
+            .map(|(name, a)| {
+                let mut bytes = Vec::new();
+                a.write(&mut bytes).unwrap();
+                (name.clone(), a.dtype(), a.shape(), bytes)
+            })
+            .collect();
+        // Given in the parts' order, not the file's: serialize sorts them itself.
+        let views: Vec<(String, TensorView)> = owned
+            .iter()
+            .rev()
+            .map(|(n, d, s, b)| (n.clone(), TensorView::new(*d, s.clone(), b).unwrap()))
+            .collect();
+        safetensors::serialize(views, Some(meta)).unwrap()
+    }
+
+    #[test]
+    fn streamed_file_is_what_safetensors_writes() {
+        // Two parts, one without a basis: arrays of three types and names out of order.
+        let mut model = sample();
+        let mut disc = model.parts[0].clone();
+        disc.info.name = "disc".into();
+        disc.basis = None;
+        disc.info.has_basis = false;
+        model.parts.insert(0, disc);
+        let bytes = model.to_bytes().unwrap();
+        assert_eq!(bytes, safetensors_bytes(&model));
+        let dir = std::env::temp_dir().join(format!("squeal-rom-stream-{}", std::process::id()));
+        let path = dir.join("m.rom");
+        model.write(&path).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), bytes);
+        std::fs::remove_dir_all(&dir).ok();
+        assert_eq!(ReducedModel::from_bytes(&bytes, &path).unwrap(), model);
     }
 
     #[test]
