@@ -142,6 +142,29 @@ fn json_number(v: &serde_json::Value, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("{key} missing in {v}"))
 }
 
+/// `squeal stability <scene> --mu 0..1/41 --out <out> --no-vtu` (41 points: the Hopf point is
+/// refined to 1e-8 in mu afterwards); fails the test, with both outputs, when it exits
+/// non-zero.
+fn sweep_41(scene: &Path, out: &Path) -> std::process::Output {
+    let args = [
+        "stability",
+        scene.to_str().unwrap(),
+        "--mu",
+        "0..1/41",
+        "--out",
+        out.to_str().unwrap(),
+        "--no-vtu",
+    ];
+    let run = squeal(&args);
+    assert!(
+        run.status.success(),
+        "squeal {args:?} failed:\n{}\n{}",
+        String::from_utf8_lossy(&run.stdout),
+        String::from_utf8_lossy(&run.stderr)
+    );
+    run
+}
+
 #[test]
 fn the_bundled_brake_squeals_in_band_on_the_coarse_meshes() {
     // Issue #5: a Hopf point with 0.2 < mu0 < 0.8 and the unstable frequency in 1..15 kHz.
@@ -150,20 +173,7 @@ fn the_bundled_brake_squeals_in_band_on_the_coarse_meshes() {
     let scene = dir.join("brake_coarse.toml");
     std::fs::write(&scene, bundled_scene("coarse")).unwrap();
     let out_dir = dir.join("out");
-    let out = squeal(&[
-        "stability",
-        scene.to_str().unwrap(),
-        "--mu",
-        "0..1/41",
-        "--out",
-        out_dir.to_str().unwrap(),
-        "--no-vtu",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = sweep_41(&scene, &out_dir);
     let summary: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(out_dir.join("stability/summary.json")).unwrap(),
     )
@@ -197,21 +207,8 @@ fn the_two_pad_brake_presses_both_pads_with_the_clamp_force_and_squeals() {
     let scene = dir.join("two_pad_coarse.toml");
     std::fs::write(&scene, text).unwrap();
     let out_dir = dir.join("out");
-    let out = squeal(&[
-        "stability",
-        scene.to_str().unwrap(),
-        "--mu",
-        "0..1/41",
-        "--out",
-        out_dir.to_str().unwrap(),
-        "--no-vtu",
-    ]);
+    let out = sweep_41(&scene, &out_dir);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}\n{stdout}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     // Each pad carries the clamp force (printed to 1 mN; the equilibrium balances it to
     // 1e-13 relative, crates/squeal-pipeline/tests/two_pad.rs).
     let line = stdout
@@ -271,21 +268,12 @@ fn reduce_with_a_scene_writes_the_model_the_scene_caches() {
     let model = squeal_reduce::rom::ReducedModel::read(&rom).unwrap();
     let names: Vec<&str> = model.parts.iter().map(|p| p.info.name.as_str()).collect();
     assert_eq!(names, ["disc", "inboard", "outboard"]);
-    let out = squeal(&[
-        "stability",
-        scene.to_str().unwrap(),
-        "--mu",
-        "0..1/41",
-        "--out",
-        dir.join("out").to_str().unwrap(),
-        "--no-vtu",
-    ]);
+    let out = sweep_41(&scene, &dir.join("out"));
     let text = format!(
         "{}{}",
         String::from_utf8_lossy(&out.stdout),
         String::from_utf8_lossy(&out.stderr)
     );
-    assert!(out.status.success(), "{text}");
     assert!(text.contains("(up to date)"), "{text}");
     let _ = std::fs::remove_dir_all(Path::new(&dir));
 }
