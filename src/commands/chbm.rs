@@ -4,8 +4,10 @@
 use crate::commands::stability::pipeline;
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use squeal_chbm::{ChbmOptions, ChbmSolution, Outcome, RESTART_AMPLITUDES};
+use squeal_chbm::{ChbmSolution, Outcome, RESTART_AMPLITUDES};
+use squeal_pipeline::cycle::{CyclePlan, CycleStart, LimitCycle};
 use squeal_pipeline::{Pipeline, chbm};
+use squeal_scene::CycleFriction;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -13,15 +15,16 @@ use std::process::ExitCode;
 pub struct ChbmArgs {
     /// Scene file (TOML), e.g. meshes/brake.toml
     pub scene: PathBuf,
-    /// Friction coefficient (default: the scene's [friction] mu)
+    /// Friction coefficient (default: the scene's limit cycle, [chbm] mu or mu_ratio, else
+    /// 1.02 mu0)
     #[arg(long, conflicts_with = "mu_ratio")]
     pub mu: Option<f64>,
     /// Friction as a multiple of the Hopf point mu0
     #[arg(long)]
     pub mu_ratio: Option<f64>,
-    /// Harmonics of the Fourier series (eq 23)
-    #[arg(long, default_value_t = 3)]
-    pub harmonics: usize,
+    /// Harmonics of the Fourier series (eq 23) (default: the scene's [chbm] harmonics, else 3)
+    #[arg(long)]
+    pub harmonics: Option<usize>,
     /// AFT time samples per period (default grows with the harmonics)
     #[arg(long)]
     pub samples: Option<usize>,
@@ -45,21 +48,35 @@ pub struct ChbmArgs {
     pub no_vtu: bool,
 }
 
-/// CHBM's options from the command line, checked.
-pub fn options(harmonics: usize, samples: Option<usize>, plain: bool) -> Result<ChbmOptions> {
-    if harmonics == 0 || harmonics > 50 {
-        bail!("--harmonics must be between 1 and 50");
+/// The limit cycle the command line asks for: the scene's ([`CyclePlan::of_scene`]) with the
+/// flags given put in its place, checked before any work.
+pub fn plan(p: &Pipeline, args: &ChbmArgs) -> Result<CyclePlan> {
+    let mut plan = CyclePlan::of_scene(&p.scene)?;
+    match (args.mu, args.mu_ratio) {
+        (Some(m), _) => plan.at = CycleFriction::Mu(m),
+        (None, Some(r)) => plan.at = CycleFriction::Ratio(r),
+        (None, None) => {}
     }
-    Ok(ChbmOptions {
-        harmonics,
-        samples,
-        ladder: !plain,
-        ..ChbmOptions::default()
-    })
+    if let Some(h) = args.harmonics {
+        if h == 0 || h > 50 {
+            bail!("--harmonics must be between 1 and 50");
+        }
+        plan.options.harmonics = h;
+    }
+    plan.options.samples = args.samples;
+    plan.options.ladder = !args.plain;
+    if args.guessed_start || args.amplitude.is_some() {
+        let amplitudes = args
+            .amplitude
+            .map_or(RESTART_AMPLITUDES.to_vec(), |a| vec![a]);
+        plan.start = CycleStart::Guessed { amplitudes };
+    }
+    check_guessed(&plan, args.mu_ratio.is_some())?;
+    Ok(plan)
 }
 
 /// Checks the friction arguments before any work.
-pub fn check_friction(mu: Option<f64>, mu_ratio: Option<f64>, guessed: bool) -> Result<()> {
+pub fn check_friction(mu: Option<f64>, mu_ratio: Option<f64>) -> Result<()> {
     if let Some(m) = mu
         && !(m.is_finite() && m >= 0.0)
     {
@@ -70,89 +87,121 @@ pub fn check_friction(mu: Option<f64>, mu_ratio: Option<f64>, guessed: bool) -> 
     {
         bail!("--mu-ratio {r}: must be a positive multiple of the Hopf point mu0");
     }
-    if let Some(r) = mu_ratio
-        && guessed
+    Ok(())
+}
+
+/// A guessed start needs a friction above the Hopf point (`flag`: the ratio is the command
+/// line's, else the scene's).
+fn check_guessed(plan: &CyclePlan, flag: bool) -> Result<()> {
+    if let (CycleStart::Guessed { .. }, CycleFriction::Ratio(r)) = (&plan.start, plan.at)
         && r <= 1.0
     {
+        let given = if flag {
+            format!("--mu-ratio {r}")
+        } else {
+            format!("[chbm] mu_ratio = {r} (the scene's)")
+        };
         bail!(
-            "--mu-ratio {r}: a guessed start must be above 1 (it starts from the mode that is unstable above the Hopf point mu0); without --guessed-start CHBM starts from the branch of limit cycles, below mu0 too"
+            "{given}: a guessed start must be above 1 (it starts from the mode that is unstable above the Hopf point mu0); without --guessed-start CHBM starts from the branch of limit cycles, below mu0 too"
         );
     }
     Ok(())
 }
 
 pub fn run(args: ChbmArgs) -> Result<ExitCode> {
-    let opts = options(args.harmonics, args.samples, args.plain)?;
-    let guessed = args.guessed_start || args.amplitude.is_some();
-    check_friction(args.mu, args.mu_ratio, guessed)?;
+    check_friction(args.mu, args.mu_ratio)?;
     if let Some(a) = args.amplitude
         && !(a.is_finite() && a > 0.0)
     {
         bail!("--amplitude {a}: must be a positive number");
     }
     let p = pipeline(&args.scene, &args.out, &None)?;
-    let sol = if guessed {
-        let amplitudes: Vec<f64> = args
-            .amplitude
-            .map_or(RESTART_AMPLITUDES.to_vec(), |a| vec![a]);
-        Some(solve(
-            &p,
-            args.mu,
-            args.mu_ratio,
-            &opts,
-            &amplitudes,
-            !args.no_vtu,
-        )?)
+    let plan = plan(&p, &args)?;
+    let lc = solve(&p, &plan, !args.no_vtu)?;
+    Ok(if lc.cycle().is_some() {
+        ExitCode::SUCCESS
     } else {
-        solve_on_branch(&p, args.mu, args.mu_ratio, &opts, !args.no_vtu)?
-    };
-    Ok(match sol {
-        Some(s) if s.outcome == Outcome::LimitCycle => ExitCode::SUCCESS,
-        _ => ExitCode::from(3),
+        ExitCode::from(3)
     })
 }
 
-/// CHBM at the friction asked for, started from the branch of limit cycles there (every
-/// crossing listed with its stability; the first stable one chosen); `None` when the branch
-/// does not reach that friction.
-pub fn solve_on_branch(
-    p: &Pipeline,
-    mu: Option<f64>,
-    mu_ratio: Option<f64>,
-    opts: &ChbmOptions,
-    vtu: bool,
-) -> Result<Option<ChbmSolution>> {
-    let mu = friction(p, mu, mu_ratio)?;
-    let m = p.model()?;
-    let st = p.stability()?;
-    let mu0 = p
-        .mu0()
-        .context("the branch of limit cycles starts at the Hopf point")?;
-    println!(
-        "Hopf point mu0 = {mu0:.6}; limit cycle at mu = {mu:.6} ({:.4} mu0), along the branch from the Hopf point",
-        mu / mu0
-    );
-    let t = std::time::Instant::now();
-    let (crossings, chosen) = chbm::solve_along_branch(m, st, mu, opts, p.log())?;
-    p.record("CHBM along the branch", t.elapsed().as_secs_f64());
-    if crossings.is_empty() {
-        println!(
-            "the branch of limit cycles ({} harmonics) does not reach mu = {mu:.6}: the brake has no limit cycle of this branch there (see squeal branch for where it has)",
-            opts.harmonics
-        );
-        return Ok(None);
-    }
-    print!("{}", chbm::crossings_text(mu, &crossings));
-    let Some((i, start, sol)) = chosen else {
-        return Ok(None);
+/// Computes the limit cycle of `plan`, prints how it was reached and what it is, and writes it
+/// to `<out>/chbm` (the command's output; `squeal run` calls it too).
+pub fn solve(p: &Pipeline, plan: &CyclePlan, vtu: bool) -> Result<LimitCycle> {
+    let what = match plan.start {
+        CycleStart::Branch => "the branch of limit cycles starts at the Hopf point",
+        CycleStart::Guessed { .. } => "the limit cycle's friction",
     };
-    println!(
-        "CHBM starts from cycle {} ({})",
-        i + 1,
-        crossings[i].verdict()
-    );
-    write_solution(p, mu, &start, &sol, vtu)?;
-    Ok(Some(sol))
+    let mu = match plan.at {
+        CycleFriction::Mu(m) => m,
+        CycleFriction::Ratio(_) => p.cycle_mu(plan.at).context(what)?,
+    };
+    if plan.start == CycleStart::Branch {
+        let mu0 = p.mu0().context(what)?;
+        println!(
+            "Hopf point mu0 = {mu0:.6}; limit cycle at mu = {mu:.6} ({:.4} mu0), along the branch from the Hopf point",
+            mu / mu0
+        );
+    } else if let Some(h) = &p.stability()?.sweep.hopf {
+        println!(
+            "Hopf point mu0 = {:.6}; limit cycle at mu = {mu:.6} ({:.4} mu0)",
+            h.mu0,
+            mu / h.mu0
+        );
+    }
+    let lc = p
+        .limit_cycle(plan)
+        .context(if plan.start == CycleStart::Branch {
+            "the branch of limit cycles"
+        } else {
+            "the start at mu"
+        })?;
+    print!("{}", how_reached(&lc, plan));
+    if let Some((start, sol)) = &lc.solved {
+        write_solution(p, lc.mu, start, sol, vtu)?;
+    }
+    Ok(lc)
+}
+
+/// How CHBM reached the cycle: the branch's crossings of μ and the one it started from, or
+/// the unstable mode and the initial amplitude of the guessed start.
+fn how_reached(lc: &LimitCycle, plan: &CyclePlan) -> String {
+    let mu = lc.mu;
+    match (&plan.start, &lc.solved) {
+        (CycleStart::Branch, _) if lc.crossings.is_empty() => format!(
+            "the branch of limit cycles ({} harmonics) does not reach mu = {mu:.6}: the brake has no limit cycle of this branch there (see squeal branch for where it has)\n",
+            plan.options.harmonics
+        ),
+        (CycleStart::Branch, _) => {
+            let mut s = chbm::crossings_text(mu, &lc.crossings);
+            if let Some(i) = lc.chosen {
+                s += &format!(
+                    "CHBM starts from cycle {} ({})\n",
+                    i + 1,
+                    lc.crossings[i].verdict()
+                );
+            }
+            s
+        }
+        (CycleStart::Guessed { amplitudes }, Some((start, sol))) => {
+            let l = start.lambda;
+            let mut s = format!(
+                "unstable mode at mu: lambda = {:.3} + {:.3}i (growth {:.3} 1/s, {:.2} Hz)\n",
+                l.re,
+                l.im,
+                l.re,
+                l.im / std::f64::consts::TAU
+            );
+            if sol.outcome == Outcome::LimitCycle
+                && amplitudes.len() > 1
+                && let Some(a) = lc.amplitude
+            {
+                s += &format!("(initial amplitude p = {a} of the smallest static penetration)\n");
+            }
+            s
+        }
+        (CycleStart::Guessed { .. }, None) => String::new(),
+    }
 }
 
 /// Prints a solution and writes it to `<out>/chbm`.
@@ -178,57 +227,4 @@ fn write_solution(
     }
     println!("results in {}", dir.display());
     Ok(())
-}
-
-/// The friction of the limit cycle: `mu`, else `mu_ratio` × μ0, else the scene's.
-fn friction(p: &Pipeline, mu: Option<f64>, mu_ratio: Option<f64>) -> Result<f64> {
-    Ok(match (mu, mu_ratio) {
-        (Some(m), _) => m,
-        (None, Some(r)) => r * p.mu0().context("--mu-ratio")?,
-        (None, None) => *p
-            .scene
-            .file
-            .friction
-            .mu
-            .as_ref()
-            .context("give --mu, --mu-ratio, or [friction] mu in the scene")?
-            .get_ref(),
-    })
-}
-
-/// Solves CHBM on the pipeline's brake at the friction asked and writes the results to
-/// `<out>/chbm`.
-pub fn solve(
-    p: &Pipeline,
-    mu: Option<f64>,
-    mu_ratio: Option<f64>,
-    opts: &ChbmOptions,
-    amplitudes: &[f64],
-    vtu: bool,
-) -> Result<ChbmSolution> {
-    let mu = friction(p, mu, mu_ratio)?;
-    p.model()?;
-    if let Some(h) = &p.stability()?.sweep.hopf {
-        println!(
-            "Hopf point mu0 = {:.6}; limit cycle at mu = {mu:.6} ({:.4} mu0)",
-            h.mu0,
-            mu / h.mu0
-        );
-    }
-    let (start, modal) = p.chbm_start(mu).context("the start at mu")?;
-    println!(
-        "unstable mode at mu: lambda = {:.3} + {:.3}i (growth {:.3} 1/s, {:.2} Hz)",
-        start.lambda.re,
-        start.lambda.im,
-        start.lambda.re,
-        start.lambda.im / std::f64::consts::TAU
-    );
-    let t = std::time::Instant::now();
-    let (sol, a) = chbm::solve_with_restarts(&modal, &start, opts, amplitudes, p.log())?;
-    p.record("CHBM", t.elapsed().as_secs_f64());
-    if sol.outcome == Outcome::LimitCycle && amplitudes.len() > 1 {
-        println!("(initial amplitude p = {a} of the smallest static penetration)");
-    }
-    write_solution(p, mu, &start, &sol, vtu)?;
-    Ok(sol)
 }

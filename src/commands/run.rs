@@ -6,8 +6,8 @@
 use crate::commands::{branch, chbm, compare, stability};
 use anyhow::{Context, Result};
 use clap::Args;
-use squeal_chbm::{Outcome, RESTART_AMPLITUDES};
 use squeal_pipeline::compare::CompareSettings;
+use squeal_pipeline::cycle::CyclePlan;
 use squeal_pipeline::report::{RunResults, build};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -41,8 +41,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     };
     settings.validate()?;
     let p = stability::pipeline(&args.scene, &args.out, &None)?;
-    let c = &p.scene.file.chbm;
-    let opts = chbm::options(*c.harmonics.get_ref(), None, false)?;
+    let plan = CyclePlan::of_scene(&p.scene)?;
 
     println!("== 1. reduced model");
     p.model()?;
@@ -54,9 +53,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     let branch = branch::write(&p, &squeal_chbm::branch::BranchOptions::default(), &[])?;
 
     println!("\n== 4. limit cycle (CHBM)");
-    let mu_ratio = *c.mu_ratio.get_ref();
-    let sol = chbm::solve(&p, None, Some(mu_ratio), &opts, &RESTART_AMPLITUDES, true)?;
-    let mu = mu_ratio * p.mu0()?;
+    let cycle = chbm::solve(&p, &plan, true)?;
 
     let mut summary = None;
     if !args.no_compare {
@@ -71,7 +68,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         model: p.model()?,
         stability: p.stability()?,
         branch: branch.as_ref(),
-        chbm: Some((mu, &sol)),
+        chbm: Some(&cycle),
         compare: summary.as_ref(),
         timings: &timings,
     };
@@ -87,7 +84,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         p.out.join("index.html").display(),
         t0.elapsed().as_secs_f64()
     );
-    Ok(if sol.outcome == Outcome::LimitCycle {
+    Ok(if cycle.cycle().is_some() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(3)

@@ -29,6 +29,7 @@
 pub mod branch;
 pub mod chbm;
 pub mod compare;
+pub mod cycle;
 mod error;
 pub mod mesh_info;
 pub mod model;

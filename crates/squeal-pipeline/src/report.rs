@@ -28,8 +28,9 @@ pub struct RunResults<'a> {
     pub stability: &'a Stability,
     /// The branch of limit cycles with their stability, when it was followed.
     pub branch: Option<&'a crate::branch::BranchAnalysis>,
-    /// The friction and the CHBM solution, when a limit cycle was computed.
-    pub chbm: Option<(f64, &'a ChbmSolution)>,
+    /// The scene's limit cycle, when the run computed it (shown as a result only when CHBM
+    /// converged to a limit cycle).
+    pub chbm: Option<&'a crate::cycle::LimitCycle>,
     /// The comparison with time integration, when it ran.
     pub compare: Option<&'a CompareSummary>,
     /// Wall time of each stage (s).
@@ -302,7 +303,15 @@ fn summary_section(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]
                 .join("; ")
         },
     ]);
-    if let Some((mu, s)) = r.chbm {
+    if let Some(lc) = r.chbm
+        && lc.cycle().is_none()
+    {
+        key.push_row([
+            "limit cycle (CHBM)".to_string(),
+            format!("none at μ = {}: {}", fmt_sig(lc.mu, 5), no_cycle_reason(lc)),
+        ]);
+    }
+    if let Some((mu, s)) = r.chbm.and_then(|lc| lc.cycle().map(|s| (lc.mu, s))) {
         let f = s.omega / std::f64::consts::TAU;
         let hopf_f = sw.hopf.as_ref().map(|h| h.frequency_hz);
         key.push_row([
@@ -763,17 +772,27 @@ fn chbm_section(
     pics: &Path,
     log: Log,
 ) -> Result<Option<Section>> {
-    let Some((mu, s)) = r.chbm else {
+    let Some(lc) = r.chbm else {
         return Ok(None);
     };
+    let heading = "Limit cycle (CHBM, sections 4-5)".to_string();
+    let Some(s) = lc.cycle() else {
+        return Ok(Some(Section {
+            heading,
+            text: format!(
+                "No limit cycle at the scene's friction μ = {}: {}.",
+                fmt_sig(lc.mu, 6),
+                no_cycle_reason(lc)
+            ),
+            figures: Vec::new(),
+            tables: Vec::new(),
+            after: String::new(),
+        }));
+    };
+    let mu = lc.mu;
     let m = r.model;
     let mut figures = Vec::new();
-    let mut after = String::new();
-    let has_cycle = matches!(
-        s.outcome,
-        Outcome::LimitCycle | Outcome::LimitCycleUnconstrained
-    );
-    if has_cycle && let Some(meshes) = meshes {
+    if let Some(meshes) = meshes {
         match write_cycle_animation(pics, "cycle", m, meshes, s, 20) {
             Ok((file, scale)) => figures.push((
                 PathBuf::from(PICTURES).join(file),
@@ -820,18 +839,21 @@ fn chbm_section(
             format!("{:.1}", 100.0 * open),
         ]);
     }
-    if !has_cycle {
-        after = format!("CHBM did not converge to a limit cycle: {}.", s.outcome);
-    }
+    let stability = lc.chosen.map_or(String::new(), |i| {
+        format!(
+            " It was reached along the branch of limit cycles from the Hopf point; its Floquet stability (Hill's method): {}.",
+            lc.crossings[i].verdict()
+        )
+    });
     Ok(Some(Section {
-        heading: "Limit cycle (CHBM, sections 4-5)".into(),
-        text: "The periodic self-excited vibration just above μ0, by the Constrained Harmonic \
-               Balance Method (whether the brake settles into it is what the comparison with time \
-               integration checks; its stability is not computed here). Amplitudes are half the peak-to-peak relative \
-               motion of the pad and disc points of each pair (normal: closure; tangential: \
-               sliding velocity). Files: [chbm/coefficients.csv](chbm/coefficients.csv) (Fourier \
-               coefficients of every dof), [chbm/chbm.json](chbm/chbm.json)."
-            .into(),
+        heading,
+        text: format!(
+            "The periodic self-excited vibration at the scene's friction ([chbm] in the scene), by the Constrained Harmonic \
+             Balance Method.{stability} Amplitudes are half the peak-to-peak relative \
+             motion of the pad and disc points of each pair (normal: closure; tangential: \
+             sliding velocity). Files: [chbm/coefficients.csv](chbm/coefficients.csv) (Fourier \
+             coefficients of every dof), [chbm/chbm.json](chbm/chbm.json)."
+        ),
         figures,
         tables: vec![
             (
@@ -840,7 +862,7 @@ fn chbm_section(
             ),
             (t, "CHBM solution".into()),
         ],
-        after,
+        after: String::new(),
     }))
 }
 
@@ -1241,5 +1263,13 @@ mod tests {
         let none = compare_section(None);
         assert!(none.text.starts_with("Not run (`squeal run --no-compare`)"));
         assert!(none.tables.is_empty() && none.figures.is_empty());
+    }
+}
+
+/// Why the run has no limit cycle to show: the branch does not reach μ, or what CHBM ended on.
+fn no_cycle_reason(lc: &crate::cycle::LimitCycle) -> String {
+    match &lc.solved {
+        None => "the branch of limit cycles from the Hopf point does not reach it (squeal branch shows where it goes)".into(),
+        Some((_, s)) => format!("CHBM ended on {} (not shown as a result)", s.outcome),
     }
 }

@@ -537,7 +537,7 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
         "instability_threshold_per_s": tau,
         "instability_threshold": "a mode is unstable when Re(lambda) > this threshold, 64 eps omega_max: the eigensolver's round-off relative to the largest |lambda| of the spectrum",
         "user_band_hz": s.sweep.band.user.map(|(a, b)| [a, b]),
-        "equilibrium_mu0": {
+        "equilibrium_frictionless": {
             "mu": st.reference.equilibrium.mu,
             "iterations": st.reference.equilibrium.iterations,
             "load_steps": st.reference.equilibrium.load_steps,
@@ -667,7 +667,7 @@ pub fn write_figures(dir: &Path, st: &Stability, s: &Model) -> Result<()> {
 pub fn write_shapes(dir: &Path, s: &Model, st: &Stability, log: Log) -> Result<PathBuf> {
     let meshes = Meshes::read(s, log)?;
     let mut fields = vec![PartFields {
-        name: "equilibrium_mu0",
+        name: "equilibrium_frictionless",
         brake: st.reference.equilibrium.x.clone(),
     }];
     if let Some(h) = &st.sweep.hopf {

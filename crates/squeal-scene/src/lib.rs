@@ -191,13 +191,15 @@ pub struct DiscSection {
     pub axis_origin: Option<Spanned<[f64; 3]>>,
 }
 
-/// `[chbm]`: the limit cycle `squeal run` computes.
+/// `[chbm]`: the scene's limit cycle, the one every command computes (read it through
+/// [`Scene::cycle`]).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ChbmSection {
-    /// Friction as a multiple of the Hopf point μ0.
-    #[serde(default = "default_mu_ratio")]
-    pub mu_ratio: Spanned<f64>,
+    /// Friction of the limit cycle as a multiple of the Hopf point μ0.
+    pub mu_ratio: Option<Spanned<f64>>,
+    /// Friction of the limit cycle itself.
+    pub mu: Option<Spanned<f64>>,
     #[serde(default = "default_harmonics")]
     pub harmonics: Spanned<usize>,
 }
@@ -205,15 +207,46 @@ pub struct ChbmSection {
 impl Default for ChbmSection {
     fn default() -> Self {
         Self {
-            mu_ratio: default_mu_ratio(),
+            mu_ratio: None,
+            mu: None,
             harmonics: default_harmonics(),
         }
     }
 }
 
-fn default_mu_ratio() -> Spanned<f64> {
-    Spanned::new(0..0, 1.02)
+/// The friction of a scene's limit cycle when the scene gives none: just above the Hopf
+/// point, the paper's choice for its Table 1.
+pub const DEFAULT_CYCLE_MU_RATIO: f64 = 1.02;
+
+/// Where a scene's limit cycle is computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CycleFriction {
+    /// At this friction coefficient.
+    Mu(f64),
+    /// At this multiple of the Hopf point μ0.
+    Ratio(f64),
 }
+
+impl CycleFriction {
+    /// The friction coefficient, given the Hopf point `mu0` (asked for only by a ratio).
+    pub fn mu<E>(
+        self,
+        mu0: impl FnOnce() -> std::result::Result<f64, E>,
+    ) -> std::result::Result<f64, E> {
+        match self {
+            CycleFriction::Mu(m) => Ok(m),
+            CycleFriction::Ratio(r) => Ok(r * mu0()?),
+        }
+    }
+}
+
+/// The scene's limit cycle: where, and with how many harmonics (eq 23).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CycleSpec {
+    pub at: CycleFriction,
+    pub harmonics: usize,
+}
+
 fn default_harmonics() -> Spanned<usize> {
     Spanned::new(0..0, 3)
 }
@@ -304,7 +337,7 @@ pub struct CompressionCurve {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionSection {
-    /// Friction coefficient for single-point analyses.
+    /// The older place of `[chbm] mu`: the friction of the scene's limit cycle.
     pub mu: Option<Spanned<f64>>,
     /// `"tangent"` (the default: the tangent of the rotation at each contact point) or a
     /// global direction `[x, y, z]`.
@@ -613,9 +646,6 @@ impl Scene {
             }
         }
         self.initial_gaps()?;
-        if let Some(mu) = &f.friction.mu {
-            self.non_negative("friction.mu", mu)?;
-        }
         self.positive("piston.line_pressure_bar", &f.piston.line_pressure_bar)?;
         self.positive("piston.area", &f.piston.area)?;
         self.non_negative("damping.global_ratio", &f.damping.global_ratio)?;
@@ -636,28 +666,65 @@ impl Scene {
             }
         }
         self.mu_values()?;
-        let r = &f.chbm.mu_ratio;
-        if !(r.get_ref().is_finite() && *r.get_ref() > 1.0) {
-            return Err(self.error_at(
-                "chbm.mu_ratio",
-                r,
-                "must be above 1 (a limit cycle exists above the Hopf point)",
-            ));
-        }
-        let h = *f.chbm.harmonics.get_ref();
-        if h == 0 || h > 50 {
-            return Err(self.error_at(
-                "chbm.harmonics",
-                &f.chbm.harmonics,
-                "must be between 1 and 50",
-            ));
-        }
+        self.cycle()?;
         self.disc_angular_speed()?;
         self.units()?;
         self.set_rules()?;
         self.patch_grid()?;
         self.materials()?;
         Ok(())
+    }
+
+    /// The scene's limit cycle, the one `squeal chbm`, `squeal run` and the report compute:
+    /// at `[chbm] mu` or at `[chbm] mu_ratio` × μ0 (one of the two; `[friction] mu` is the
+    /// older spelling of `[chbm] mu`), else at [`DEFAULT_CYCLE_MU_RATIO`] × μ0, with
+    /// `[chbm] harmonics` harmonics.
+    pub fn cycle(&self) -> Result<CycleSpec> {
+        let c = &self.file.chbm;
+        let h = *c.harmonics.get_ref();
+        if h == 0 || h > 50 {
+            return Err(self.error_at("chbm.harmonics", &c.harmonics, "must be between 1 and 50"));
+        }
+        for (key, v) in [
+            ("chbm.mu", &c.mu),
+            ("friction.mu", &self.file.friction.mu),
+            ("chbm.mu_ratio", &c.mu_ratio),
+        ] {
+            if let Some(v) = v {
+                self.positive(key, v)?;
+            }
+        }
+        let mu = match (&c.mu, &self.file.friction.mu) {
+            (Some(m), Some(old)) => {
+                return Err(self.error_at(
+                    "friction.mu",
+                    old,
+                    format!(
+                        "gives the limit cycle's friction a second time ([chbm] mu = {} is the place for it): remove one",
+                        m.get_ref()
+                    ),
+                ));
+            }
+            (Some(m), None) => Some(("chbm.mu", m)),
+            (None, Some(old)) => Some(("friction.mu", old)),
+            (None, None) => None,
+        };
+        let at = match (mu, &c.mu_ratio) {
+            (Some((key, m)), Some(r)) => {
+                return Err(self.error_at(
+                    key,
+                    m,
+                    format!(
+                        "is given with chbm.mu_ratio = {}: both say where the limit cycle is; give one (mu for a friction coefficient, mu_ratio for a multiple of the Hopf point mu0)",
+                        r.get_ref()
+                    ),
+                ));
+            }
+            (Some((_, m)), None) => CycleFriction::Mu(*m.get_ref()),
+            (None, Some(r)) => CycleFriction::Ratio(*r.get_ref()),
+            (None, None) => CycleFriction::Ratio(DEFAULT_CYCLE_MU_RATIO),
+        };
+        Ok(CycleSpec { at, harmonics: h })
     }
 
     /// The disc's angular speed (rad/s) from `[rotation]` (or the older `[disc]`), `None`
