@@ -32,7 +32,11 @@ fn chbm_and_run_give_the_same_cycle_bit_for_bit() {
     );
     let harmonics = |j: &str| {
         let v: serde_json::Value = serde_json::from_str(j).unwrap();
-        (v["harmonics"].as_u64(), v["mu"].as_f64(), v["converged"].as_bool())
+        (
+            v["harmonics"].as_u64(),
+            v["mu"].as_f64(),
+            v["converged"].as_bool(),
+        )
     };
     let json_chbm = std::fs::read_to_string(out.join("chbm/chbm.json")).unwrap();
     assert_eq!(harmonics(&json_run), harmonics(&json_chbm));

@@ -27,6 +27,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod branch;
+pub mod caveats;
 pub mod chbm;
 pub mod compare;
 pub mod cycle;

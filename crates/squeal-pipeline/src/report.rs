@@ -13,7 +13,7 @@ use crate::model::{Log, Model};
 use crate::pictures::{ModePicture, write_cycle_animation, write_mode_picture};
 use crate::shapes::Meshes;
 use squeal_brake::analysis::Stability;
-use squeal_chbm::{ChbmSolution, Outcome};
+use squeal_chbm::ChbmSolution;
 use squeal_report::format::fmt_sig;
 use squeal_report::{
     Annotation, Dash, Figure, Panel, Report, Section, Series, Table, write_svg_and_png,

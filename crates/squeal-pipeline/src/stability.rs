@@ -2,6 +2,7 @@
 //! (Figure 2), the Hopf point μ0 and the unstable mode shape; the tables, figures and shapes
 //! `squeal stability` writes.
 
+use crate::caveats::{caveats, caveats_text, undamped};
 use crate::error::{Result, json_text};
 use crate::model::{Log, Model};
 use crate::shapes::{Meshes, PartFields, normalize_mode, write_brake_vtu};
@@ -58,16 +59,19 @@ pub fn loudest_closure(
 /// The normal form's lines: the verdict, `l1`, and the branch's asymptote.
 pub fn criticality_text(m: &Model, st: &Stability, nf: &NormalForm) -> String {
     let mut out = String::new();
-    let (s1, w1) = (nf.dlambda_dmu.re, nf.dlambda_dmu.im);
+    // Undamped, μ0 is a coalescence: Re λ goes like √(μ − μ0), with no finite slope.
+    let slope = if undamped(st) {
+        "no finite dRe(lambda)/dmu (undamped coalescence)".to_string()
+    } else {
+        format!("dRe(lambda)/dmu = {:.4e} 1/s", nf.dlambda_dmu.re)
+    };
     let _ = writeln!(
         out,
-        "Hopf point is {}: first Lyapunov coefficient l1 = {:.4e} (Re c1 = {:.4e} 1/s), dRe(lambda)/dmu = {:.4e} 1/s",
+        "Hopf point is {}: first Lyapunov coefficient l1 = {:.4e} (Re c1 = {:.4e} 1/s), {slope}",
         nf.criticality(),
         nf.l1,
         nf.c1.re,
-        s1
     );
-    let _ = w1;
     // The asymptote: closure amplitude of the loudest pair per square root of |μ/μ0 - 1|.
     let eps = 1e-3;
     let side = if nf.radius_squared(nf.mu0 * (1.0 + eps)).is_some() {
@@ -343,19 +347,11 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
         ))
     );
     let outside: Vec<_> = sw.crossings.iter().filter(|c| !c.in_band).collect();
-    for c in &sw.crossings {
+    for c in sw.crossings.iter().filter(|c| c.in_band) {
         let _ = writeln!(
             out,
-            "  crossing: branch {} unstable from mu in [{:.4}, {:.4}] at {:.0} Hz{}",
-            c.branch,
-            c.mu_lo,
-            c.mu_hi,
-            c.frequency_hz,
-            if c.in_band {
-                ""
-            } else {
-                "  (outside the band: not physical for this model)"
-            }
+            "  crossing: branch {} unstable from mu in [{:.4}, {:.4}] at {:.0} Hz",
+            c.branch, c.mu_lo, c.mu_hi, c.frequency_hz,
         );
     }
     match &sw.hopf {
@@ -380,9 +376,15 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
                         .map(|i| faer::c64::new(phi[(i, m)], 0.0))
                         .collect()
                 };
+                // Undamped, the two modes of a coalescence grow and decay alike.
+                let (stays, goes) = if undamped(st) {
+                    ("", " (undamped: which of the two grows is not defined)")
+                } else {
+                    (" (stays stable)", " (goes unstable)")
+                };
                 let _ = writeln!(
                     out,
-                    "coalescing pair (frictionless modes): Mode 1 = #{} at {:.1} Hz (stays stable){}, Mode 2 = #{} at {:.1} Hz (goes unstable){}",
+                    "coalescing pair (frictionless modes): Mode 1 = #{} at {:.1} Hz{stays}{}, Mode 2 = #{} at {:.1} Hz{goes}{}",
                     m1 + 1,
                     f(m1),
                     shares_text(s, &mode(m1)),
@@ -399,10 +401,11 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
     if !outside.is_empty() {
         let _ = writeln!(
             out,
-            "{} crossing(s) outside the band are reported above but do not define mu0",
+            "{} crossing(s) above the valid band are not physical for this model and do not define mu0 (listed in summary.json)",
             outside.len()
         );
     }
+    out.push_str(&caveats_text(&caveats(s, st)));
     out
 }
 
@@ -537,6 +540,9 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
         "instability_threshold_per_s": tau,
         "instability_threshold": "a mode is unstable when Re(lambda) > this threshold, 64 eps omega_max: the eigensolver's round-off relative to the largest |lambda| of the spectrum",
         "user_band_hz": s.sweep.band.user.map(|(a, b)| [a, b]),
+        "caveats": caveats(s, st).iter().map(|c| serde_json::json!({
+            "kind": c.key(), "message": c.to_string()
+        })).collect::<Vec<_>>(),
         "equilibrium_frictionless": {
             "mu": st.reference.equilibrium.mu,
             "iterations": st.reference.equilibrium.iterations,

@@ -3,9 +3,9 @@
 //! process so that the peak memory (VmHWM) is that configuration's:
 //!
 //! ```text
-//! nice cargo bench -p squeal-eigs --bench brake -- --mesh=disc
-//! nice cargo bench -p squeal-eigs --bench brake -- --mesh=pad
-//! nice cargo bench -p squeal-eigs --bench brake -- --mesh=disc --ordering=amd --block=1
+//! nice cargo bench -p squeal-reduce --bench eigs_brake -- --mesh=disc
+//! nice cargo bench -p squeal-reduce --bench eigs_brake -- --mesh=pad
+//! nice cargo bench -p squeal-reduce --bench eigs_brake -- --mesh=disc --ordering=amd --block=1
 //! options: --mesh=disc|pad|PATH.inp  --level=fine|medium|coarse  --nev=N (50)
 //!          --ordering=nd|amd  --block=B (8; 1 = single-vector Lanczos)  --ncv=N
 //!          --no-sturm  --no-table (skip the multi-RHS solve table)  --no-eig
@@ -28,6 +28,8 @@ use squeal_fe::{DofMap, MaterialTable, Restraint, assemble};
 use std::path::PathBuf;
 use std::time::Instant;
 
+// The printing helpers of the squeal-eigs benchmarks, shared as a file.
+#[path = "../../squeal-eigs/benches/common/mod.rs"]
 mod common;
 
 fn arg<'a>(args: &'a [String], key: &str) -> Option<&'a str> {
