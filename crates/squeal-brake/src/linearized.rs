@@ -105,6 +105,11 @@ impl Coupling {
         self.rank
     }
 
+    /// `V`, `U₀` and `U₁` (when not zero), column-major `n × r`.
+    pub fn columns(&self) -> (&[f64], &[f64], Option<&[f64]>) {
+        (&self.v, &self.u0, self.u1.as_deref())
+    }
+
     /// Whether `U₁ ≠ 0` (the state has damping terms: velocity-dependent elements, or the
     /// damping part of a describing function).
     pub fn has_damping(&self) -> bool {
@@ -185,6 +190,12 @@ impl LinearizedBrake {
         self.omega.len()
     }
 
+    /// `Φᵀ g_p` and `Φᵀ h_p` of every pair, column-major `n × P`: the directions the contact
+    /// forces act along, in modal coordinates.
+    pub fn contact_columns(&self) -> (&[f64], &[f64]) {
+        (&self.vg, &self.vh)
+    }
+
     /// Number of contact pairs `P`.
     pub fn pairs(&self) -> usize {
         self.k0.len()
@@ -243,9 +254,16 @@ impl LinearizedBrake {
     /// `ΔK = U₀ Vᵀ` and `ΔC = U₁ Vᵀ` as dense `n × n` matrices (for the dense
     /// eigen-decomposition of the state matrix).
     pub fn dense_change(&self, c: &Coupling) -> (Mat<f64>, Option<Mat<f64>>) {
+        self.leading_change(c, self.size())
+    }
+
+    /// The leading `m × m` blocks of `ΔK` and `ΔC` (the coupling among the first `m`
+    /// frictionless modes, for a projection on them: [`crate::projected`]), each entry the
+    /// same sum as in [`LinearizedBrake::dense_change`].
+    pub fn leading_change(&self, c: &Coupling, m: usize) -> (Mat<f64>, Option<Mat<f64>>) {
         let n = self.size();
         let product = |u: &[f64]| {
-            Mat::from_fn(n, n, |i, j| {
+            Mat::from_fn(m, m, |i, j| {
                 (0..c.rank).map(|p| u[p * n + i] * c.v[p * n + j]).sum()
             })
         };
