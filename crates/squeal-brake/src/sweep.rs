@@ -32,7 +32,7 @@ use crate::modal::{Damping, modal_basis};
 use crate::model::Brake;
 use crate::projected::{Projection, ProjectionOptions};
 use crate::spectrum::{Reference, Spectrum, eigenvalues_of, spectrum, spectrum_of};
-use crate::tracking::{mac, match_modes};
+use crate::tracking::match_modes;
 use faer::{Mat, c64};
 use rayon::prelude::*;
 
@@ -267,7 +267,7 @@ pub fn sweep_with(
 
 /// [`sweep`] up to the first in-band crossing only: with continuation the points end at the
 /// first one past it (the same points as the whole sweep's up to there), which is all the Hopf
-/// point and its coalescing partner need; the dense method sweeps all of `mus`.
+/// point and its coalescing partner need; the dense and projected methods sweep all of `mus`.
 pub fn sweep_to_hopf(
     brake: &Brake,
     reference: &Reference,
@@ -341,7 +341,14 @@ fn sweep_until(
         };
         sweep.hopf = match continued {
             Some(h) => Some(h),
-            None => Some(refine(brake, &spectrum_at, &sweep, &first, opts, tau)?),
+            None => Some(crate::hopf::regula_falsi(
+                brake,
+                &spectrum_at,
+                &sweep,
+                &first,
+                opts,
+                tau,
+            )?),
         };
     }
     sweep.projection = projection;
@@ -702,135 +709,6 @@ fn crossings(
             .then(a.frequency_hz.total_cmp(&b.frequency_hz))
     });
     out
-}
-
-/// Finds, in a new spectrum, the mode continuing a tracked one (best eigenvector correlation,
-/// ties broken by eigenvalue distance).
-fn follow(from: &Spectrum, j: usize, to: &Spectrum) -> usize {
-    let l = from.values[j];
-    let mut best = (f64::INFINITY, 0);
-    for i in 0..to.values.len() {
-        let d = (to.values[i] - l).norm() / (0.05 * l.norm()).max(f64::MIN_POSITIVE);
-        let c = (1.0 - mac(from, j, to, i)) + d.min(1.0);
-        if c < best.0 {
-            best = (c, i);
-        }
-    }
-    best.1
-}
-
-/// Refines a crossing by the Illinois variant of regula falsi on the larger real part of the
-/// crossing branch and its partner (as [`crate::hopf`] does, for the same reason: where two
-/// modes coalesce, either may carry the instability), keeping a bracket. Both are followed by
-/// correlation from the lower end of the bracket.
-fn refine(
-    brake: &Brake,
-    spectrum_at: &dyn Fn(&Equilibrium) -> Result<Spectrum, BrakeError>,
-    sweep: &Sweep,
-    c: &Crossing,
-    opts: &SweepOptions,
-    tau: f64,
-) -> Result<Hopf, BrakeError> {
-    let mut branches = vec![c.branch];
-    branches.extend(partner(sweep, c));
-    // One end: μ, the point, the followed modes' indices in it, the larger real part - τ and
-    // which of them has it.
-    struct End {
-        mu: f64,
-        point: SweepPoint,
-        modes: Vec<usize>,
-        f: f64,
-        top: usize,
-    }
-    let end = |mu: f64, point: SweepPoint, modes: Vec<usize>| {
-        let top = (0..modes.len())
-            .max_by(|&a, &b| {
-                let v = &point.spectrum.values;
-                v[modes[a]].re.total_cmp(&v[modes[b]].re).then(b.cmp(&a))
-            })
-            .unwrap_or(0);
-        let f = point.spectrum.values[modes[top]].re - tau;
-        End {
-            mu,
-            point,
-            modes,
-            f,
-            top,
-        }
-    };
-    let follow_all = |from: &End, to: &Spectrum| -> Vec<usize> {
-        from.modes
-            .iter()
-            .map(|&j| follow(&from.point.spectrum, j, to))
-            .collect()
-    };
-    let lo_point = sweep.points[c.k].clone();
-    let mut lo = end(
-        c.mu_lo,
-        lo_point,
-        branches.iter().map(|&b| sweep.branches[b][c.k]).collect(),
-    );
-    let hi_point = sweep.points[c.k + 1].clone();
-    let modes = follow_all(&lo, &hi_point.spectrum);
-    let mut hi = end(c.mu_hi, hi_point, modes);
-    let (mut f_lo, mut f_hi) = (lo.f, hi.f);
-    let mut side = 0i8;
-    let mut evaluations = 0;
-    while hi.mu - lo.mu > opts.mu_tolerance && evaluations < opts.max_refinements {
-        let mut mu = (lo.mu * f_hi - hi.mu * f_lo) / (f_hi - f_lo);
-        // Keep well inside the bracket; fall back to bisection when regula falsi stalls.
-        let width = hi.mu - lo.mu;
-        if !mu.is_finite() || mu <= lo.mu + 0.01 * width || mu >= hi.mu - 0.01 * width {
-            mu = 0.5 * (lo.mu + hi.mu);
-        }
-        let eq = static_equilibrium(brake, mu, Some(&lo.point.equilibrium.x), &opts.newton)?;
-        let sp = spectrum_at(&eq)?;
-        let modes = follow_all(&lo, &sp);
-        let e = end(
-            mu,
-            SweepPoint {
-                equilibrium: eq,
-                spectrum: sp,
-            },
-            modes,
-        );
-        evaluations += 1;
-        if e.f > 0.0 {
-            f_hi = e.f;
-            hi = e;
-            if side == 1 {
-                f_lo *= 0.5;
-            }
-            side = 1;
-        } else {
-            f_lo = e.f;
-            lo = e;
-            if side == -1 {
-                f_hi *= 0.5;
-            }
-            side = -1;
-        }
-    }
-    if !(lo.f <= 0.0 && hi.f > 0.0)
-        || hi.f - lo.f > 1e-6 * hi.point.spectrum.values[hi.modes[hi.top]].norm()
-    {
-        return Err(BrakeError::HopfNotResolved {
-            bracket: (lo.mu, hi.mu),
-            real_parts: (lo.f + tau, hi.f + tau),
-        });
-    }
-    let index = hi.modes[hi.top];
-    Ok(Hopf {
-        mu0: 0.5 * (lo.mu + hi.mu),
-        frequency_hz: hi.point.spectrum.frequency_hz(index),
-        branch: branches[hi.top],
-        partner: branches.iter().copied().find(|&b| b != branches[hi.top]),
-        bracket: (lo.mu, hi.mu),
-        real_part_at_bracket: (lo.f, hi.f),
-        evaluations,
-        index,
-        point: hi.point,
-    })
 }
 
 /// The branch a crossing's branch coalesces with: the other branch nearest in frequency at the
