@@ -254,16 +254,9 @@ impl LinearizedBrake {
     /// `ΔK = U₀ Vᵀ` and `ΔC = U₁ Vᵀ` as dense `n × n` matrices (for the dense
     /// eigen-decomposition of the state matrix).
     pub fn dense_change(&self, c: &Coupling) -> (Mat<f64>, Option<Mat<f64>>) {
-        self.leading_change(c, self.size())
-    }
-
-    /// The leading `m × m` blocks of `ΔK` and `ΔC` (the coupling among the first `m`
-    /// frictionless modes, for a projection on them: [`crate::projected`]), each entry the
-    /// same sum as in [`LinearizedBrake::dense_change`].
-    pub fn leading_change(&self, c: &Coupling, m: usize) -> (Mat<f64>, Option<Mat<f64>>) {
         let n = self.size();
         let product = |u: &[f64]| {
-            Mat::from_fn(m, m, |i, j| {
+            Mat::from_fn(n, n, |i, j| {
                 (0..c.rank).map(|p| u[p * n + i] * c.v[p * n + j]).sum()
             })
         };

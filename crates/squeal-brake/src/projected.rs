@@ -9,11 +9,13 @@
 //! band, and the static correction of the dropped ones (`t`), the vectors
 //! `Ω_t⁻² [v_p, w_p]_t` (the dropped modes' static response to the contact forces:
 //! "residual flexibility", without which the local contact stiffness converges slowly, as the
-//! frequency ratio squared), orthonormalized and turned to diagonalize `Qᵀ Ω² Q` (a small
+//! frequency ratio squared), with the next terms of the dropped modes' dynamic response
+//! `(Ω_t² + λ²)⁻¹ = Ω_t⁻² - λ² Ω_t⁻⁴ + …` ([`ProjectionOptions::correction_terms`]: `Ω_t⁻⁴ [v_p,
+//! w_p]_t`, …), orthonormalized and turned to diagonalize `Qᵀ Ω² Q` (a small
 //! symmetric eigenproblem, `Θ²`). The projected problem is then of the same form, with
 //! frequencies `[Ω_m, Θ]`, damping `Qᵀ D Q` and coupling `(Qᵀ U)(Qᵀ V)ᵀ`, and is solved densely
 //! through the scaled state matrix of [`crate::spectrum`] at `O(k³)` per friction value
-//! (`k = m + 2P` at most). The equilibrium of eq (14) at each μ is not projected: it is the
+//! (`k = m + 2P` per correction term at most). The equilibrium of eq (14) at each μ is not projected: it is the
 //! brake's own, as in the other methods.
 //!
 //! The equilibria of a large brake are found by the Newton iteration of
@@ -63,6 +65,10 @@ pub struct ProjectionOptions {
     /// Friction values of the sweep the truncation is checked at (evenly spread over it, its
     /// ends included).
     pub checks: usize,
+    /// Terms of the dropped modes' response kept per contact direction: `Ω_t⁻² a`,
+    /// `Ω_t⁻⁴ a`, ... (the static correction and the first terms of `(Ω_t² + λ²)⁻¹ a` in
+    /// powers of `λ²`, module documentation).
+    pub correction_terms: usize,
 }
 
 impl Default for ProjectionOptions {
@@ -75,6 +81,7 @@ impl Default for ProjectionOptions {
             first_cutoff: 1.5,
             growth: 1.25,
             checks: 3,
+            correction_terms: 2,
         }
     }
 }
@@ -98,7 +105,7 @@ pub struct Trial {
 pub struct Projection {
     /// Frictionless modes kept (the lowest ones).
     pub kept_modes: usize,
-    /// Static-correction vectors added (at most two per contact pair).
+    /// Correction vectors added (at most two per contact pair and correction term).
     pub residual_vectors: usize,
     /// Dofs of the brake (the modes there are).
     pub modes: usize,
@@ -175,7 +182,7 @@ pub(crate) fn choose(
         deviation: 0.0,
         tolerance: opts.projection.tolerance,
         trials: Vec::new(),
-        basis: basis(lr, reference, n)?,
+        basis: basis(lr, reference, n, 0)?,
     };
     if !top.is_finite() {
         return Ok(out);
@@ -192,7 +199,7 @@ pub(crate) fn choose(
     let mut cutoff = opts.projection.first_cutoff * top;
     loop {
         let m = modes_below(omega, cutoff).min(n);
-        let b = basis(lr, reference, m)?;
+        let b = basis(lr, reference, m, opts.projection.correction_terms)?;
         let (deviation, count) = deviation(lr, &b, &couplings, opts)?;
         let s = b.ritz.residual.ncols();
         out.trials.push(Trial {
@@ -219,16 +226,21 @@ const DEPENDENT: f64 = 1e-8;
 
 /// The basis of the `m` lowest modes and the static correction of the others (module
 /// documentation).
-fn basis(lr: &LinearizedBrake, reference: &Reference, m: usize) -> Result<Basis, BrakeError> {
+fn basis(
+    lr: &LinearizedBrake,
+    reference: &Reference,
+    m: usize,
+    terms: usize,
+) -> Result<Basis, BrakeError> {
     let (n, np) = (lr.size(), lr.pairs());
     let t = n - m;
     let (vg, vh) = lr.contact_columns();
-    // Ω_t⁻² [v_p, w_p]_t, orthonormalized (modified Gram-Schmidt, twice).
+    // Ω_t⁻²ᵏ [v_p, w_p]_t, k = 1..terms, orthonormalized (modified Gram-Schmidt, twice).
     let mut cols: Vec<Vec<f64>> = Vec::new();
-    for p in 0..np {
+    for (k, p) in (1..=terms).flat_map(|k| (0..np).map(move |p| (k, p))) {
         for src in [vg, vh] {
             let mut a: Vec<f64> = (0..t)
-                .map(|i| src[p * n + m + i] / (lr.omega[m + i] * lr.omega[m + i]))
+                .map(|i| src[p * n + m + i] / (lr.omega[m + i] * lr.omega[m + i]).powi(k as i32))
                 .collect();
             let before = a.iter().map(|x| x * x).sum::<f64>().sqrt();
             for _ in 0..2 {

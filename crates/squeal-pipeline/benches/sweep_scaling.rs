@@ -2,9 +2,12 @@
 //! (`meshes/brake.toml`) on its coarse meshes, reduced with a given interface and number of
 //! fixed-interface modes per part, swept over 201 friction values by each method asked for.
 //!
-//! `cargo bench -p squeal-pipeline --bench sweep_scaling -- [INTERFACE:MODES[:METHODS]]...`
-//! with INTERFACE `patch` or `node`, MODES the fixed-interface modes per part and METHODS a
-//! `+`-separated list of `projected`, `continuation`, `dense` (default `projected`).
+//! `cargo bench -p squeal-pipeline --bench sweep_scaling -- [GRID:MODES[:METHODS]]...`
+//! with GRID the contact patches `RxA` (radial x angular; the scene's is 3x3: 9 pairs), MODES
+//! the fixed-interface modes per part and METHODS a `+`-separated list of `projected`,
+//! `continuation`, `dense`, `auto` (default `projected`). More modes grow the reduced brake
+//! with the number of eigenvalues in the band nearly fixed; a finer grid grows it with the
+//! contact (three interface dofs per patch and part, one pair per patch).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -16,8 +19,8 @@ use squeal_pipeline::model::{build, quiet};
 use squeal_scene::Scene;
 use std::time::Instant;
 
-/// The bundled scene on the coarse meshes with `interface` and `modes` per part.
-fn scene(interface: &str, modes: usize) -> Scene {
+/// The bundled scene on the coarse meshes with a `grid` of patches and `modes` per part.
+fn scene(grid: (usize, usize), modes: usize) -> Scene {
     let path = common::meshes().join("brake.toml");
     let text = std::fs::read_to_string(&path).expect("meshes/brake.toml");
     let text: String = text
@@ -27,8 +30,6 @@ fn scene(interface: &str, modes: usize) -> Scene {
                 "disc = \"disc_coarse.inp\"".to_string()
             } else if l.starts_with("pad = ") {
                 "pad = \"pad_coarse.inp\"".to_string()
-            } else if l.starts_with("interface = ") {
-                format!("interface = \"{interface}\"")
             } else if l.starts_with("modes = ") {
                 format!("modes = {modes}")
             } else {
@@ -36,8 +37,9 @@ fn scene(interface: &str, modes: usize) -> Scene {
             };
             l + "\n"
         })
-        .collect();
-    let name = format!("brake_coarse_{interface}_{modes}.toml");
+        .collect::<String>()
+        + &format!("\n[sets]\npatch_grid = [{}, {}]\n", grid.0, grid.1);
+    let name = format!("brake_coarse_{}x{}_{modes}.toml", grid.0, grid.1);
     Scene::parse(&common::meshes().join(name), text).expect("the edited scene parses")
 }
 
@@ -47,22 +49,29 @@ fn main() {
         .filter(|a| !a.starts_with('-'))
         .collect();
     let cases: Vec<String> = if args.is_empty() {
-        vec!["patch:50:projected+continuation".into()]
+        vec!["3x3:50:projected+continuation".into()]
     } else {
         args
     };
     println!(
-        "| interface | modes/part | reduced dofs | pairs | method | sweep (s) | reference (s) | in band | kept | mu0 | f0 (Hz) |"
+        "| patches | modes/part | reduced dofs | pairs | method | sweep (s) | reference (s) | in band | kept | mu0 | f0 (Hz) |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for case in cases {
         let mut it = case.split(':');
-        let interface = it.next().unwrap_or("patch");
+        let grid = it
+            .next()
+            .and_then(|g| g.split_once('x'))
+            .and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?)))
+            .unwrap_or((3, 3));
         let modes: usize = it.next().and_then(|m| m.parse().ok()).unwrap_or(50);
         let methods = it.next().unwrap_or("projected");
-        let out = std::env::temp_dir().join(format!("squeal-sweep-scaling-{interface}-{modes}"));
+        let out = std::env::temp_dir().join(format!(
+            "squeal-sweep-scaling-{}x{}-{modes}",
+            grid.0, grid.1
+        ));
         let t = Instant::now();
-        let model = build(&scene(interface, modes), &out, &quiet).expect("the model builds");
+        let model = build(&scene(grid, modes), &out, &quiet).expect("the model builds");
         eprintln!("{case}: model built in {:.1?}", t.elapsed());
         let brake = &model.brake;
         let t = Instant::now();
@@ -77,6 +86,7 @@ fn main() {
             let m = match method {
                 "dense" => SweepMethod::Dense,
                 "continuation" => SweepMethod::Continuation,
+                "auto" => SweepMethod::Auto,
                 _ => SweepMethod::Projected,
             };
             let opts = SweepOptions {
@@ -100,7 +110,9 @@ fn main() {
                 .as_ref()
                 .map_or((f64::NAN, f64::NAN), |h| (h.mu0, h.frequency_hz));
             println!(
-                "| {interface} | {modes} | {} | {} | {method} | {ts:.2} | {t_ref:.2} | {in_band} | {kept} | {mu0:.8} | {f0:.3} |",
+                "| {}x{} | {modes} | {} | {} | {method} | {ts:.2} | {t_ref:.2} | {in_band} | {kept} | {mu0:.8} | {f0:.3} |",
+                grid.0,
+                grid.1,
                 brake.size(),
                 brake.pairs.len()
             );
