@@ -208,9 +208,16 @@ mod tests {
         let line = bars.plain_line("40/201 mu values").unwrap();
         assert!(line.starts_with("sweep: 40/201 mu values, "), "{line}");
         assert!(line.ends_with(" s"), "{line}");
-        assert_eq!(bars.plain_line("41/201 mu values"), None, "printed just now");
+        assert_eq!(
+            bars.plain_line("41/201 mu values"),
+            None,
+            "printed just now"
+        );
         bars.end();
-        assert!(bars.plain.lock().unwrap().is_none(), "an ended step prints no more");
+        assert!(
+            bars.plain.lock().unwrap().is_none(),
+            "an ended step prints no more"
+        );
     }
 
     #[test]

@@ -26,8 +26,8 @@ use crate::error::BrakeError;
 use crate::linearized::{Coupling, LinearizedBrake};
 use crate::model::Brake;
 use crate::spectrum::{Reference, Spectrum};
-use crate::tracking::mac;
 use crate::sweep::{Crossing, Hopf, State, Sweep, SweepOptions, SweepPoint, Walker, partner};
+use crate::tracking::mac;
 use faer::c64;
 use rayon::prelude::*;
 

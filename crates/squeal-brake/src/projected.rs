@@ -23,16 +23,17 @@
 //! U₀ Vᵀ`, so `K_t⁻¹ b = Φ T(0)⁻¹ Φᵀ b`, a diagonal plus rank-`P` solve ([`crate::linearized`])
 //! and two products with `Φ`, `O(n² + n P²)` instead of the `O(n³)` of a dense LU.
 //!
-//! The truncation neglects the dynamics of the dropped modes beyond their static response
-//! (`T_tt(λ)⁻¹` against `Ω_t⁻²`, a relative `ω²/ω_t²`); it is small when they lie well above
-//! the band, but how small depends on the contact. So the cut-off is chosen
-//! by convergence ([`choose`]): starting at `f_c = first_cutoff · f_top` (`f_top` the top of
-//! the band), each in-band eigenvalue of the projection at a few friction values of the sweep
-//! is carried to the unprojected brake by the exact Rayleigh iteration of
-//! [`crate::continuation`] (started from the projected eigenvector, zero on the dropped modes);
-//! the largest relative distance `|λ_m - λ| / |λ|` must be below
-//! [`ProjectionOptions::tolerance`], else `f_c` grows by [`ProjectionOptions::growth`] and the
-//! check is repeated (at worst up to every mode: the projection is then the brake itself).
+//! The truncation neglects the dynamics of the dropped modes beyond the terms kept (with one,
+//! `T_tt(λ)⁻¹` against `Ω_t⁻²`, a relative `ω²/ω_t²`); it is small when they lie well above
+//! the band, but how small depends on the contact. So the basis is chosen by convergence
+//! (`choose`): starting at `f_c = first_cutoff · f_top` (`f_top` the top of the band) with one
+//! correction term, each in-band eigenvalue of the projection at a few friction values of the
+//! sweep is carried to the unprojected brake by the exact Rayleigh iteration of
+//! [`crate::continuation`] (started from the projected eigenvector lifted to the modal
+//! coordinates); the largest relative distance `|λ_k - λ| / |λ|` must be below
+//! [`ProjectionOptions::tolerance`], else a correction term is added, then `f_c` grows by
+//! [`ProjectionOptions::growth`], and the check is repeated (at worst up to every mode: the
+//! projection is then the brake itself).
 //! What was kept and checked is reported in [`Projection`].
 //!
 //! A projection cannot hold an eigenvalue of the unprojected brake that is absent from it; one
@@ -41,16 +42,16 @@
 //! not exclude.
 
 use crate::continuation::{Eigenpair, converge};
+use crate::damping::ModalDamping;
 use crate::equilibrium::{Equilibrium, static_equilibrium, static_equilibrium_with};
 use crate::error::BrakeError;
 use crate::linearized::{Coupling, LinearizedBrake};
 use crate::model::Brake;
-use crate::damping::ModalDamping;
 use crate::spectrum::{Reference, Ritz, Spectrum, modal_spectrum};
 use crate::sweep::{SweepOptions, SweepPoint, SweepProgress, SweepStats, SweptPoints, track};
 use faer::{Mat, Side, c64};
-use std::sync::Arc;
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// Controls of the projected sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,9 +66,10 @@ pub struct ProjectionOptions {
     /// Friction values of the sweep the truncation is checked at (evenly spread over it, its
     /// ends included).
     pub checks: usize,
-    /// Terms of the dropped modes' response kept per contact direction: `Ω_t⁻² a`,
+    /// Most terms of the dropped modes' response kept per contact direction: `Ω_t⁻² a`,
     /// `Ω_t⁻⁴ a`, ... (the static correction and the first terms of `(Ω_t² + λ²)⁻¹ a` in
-    /// powers of `λ²`, module documentation).
+    /// powers of `λ²`, module documentation). The first projection tried has one; a failed
+    /// check adds the next before the cut-off grows.
     pub correction_terms: usize,
 }
 
@@ -138,7 +140,8 @@ struct Basis {
 /// The top of the band (Hz): the lower of the valid band's top and the user band's.
 fn band_top(opts: &SweepOptions) -> f64 {
     let b = &opts.band;
-    b.user.map_or(b.valid_max_hz, |(_, hi)| hi.min(b.valid_max_hz))
+    b.user
+        .map_or(b.valid_max_hz, |(_, hi)| hi.min(b.valid_max_hz))
 }
 
 /// Modes with `ω_j <= 2π f` (the basis is ascending), at least one.
@@ -153,7 +156,13 @@ fn modes_below(omega: &[f64], f: f64) -> usize {
 fn check_indices(len: usize, checks: usize) -> Vec<usize> {
     let k = checks.max(1).min(len);
     let mut out: Vec<usize> = (0..k)
-        .map(|i| if k == 1 { len - 1 } else { i * (len - 1) / (k - 1) })
+        .map(|i| {
+            if k == 1 {
+                len - 1
+            } else {
+                i * (len - 1) / (k - 1)
+            }
+        })
         .collect();
     out.dedup();
     out
@@ -197,9 +206,11 @@ pub(crate) fn choose(
         start = Some(eq);
     }
     let mut cutoff = opts.projection.first_cutoff * top;
+    let most = opts.projection.correction_terms;
+    let mut terms = most.min(1);
     loop {
         let m = modes_below(omega, cutoff).min(n);
-        let b = basis(lr, reference, m, opts.projection.correction_terms)?;
+        let b = basis(lr, reference, m, terms)?;
         let (deviation, count) = deviation(lr, &b, &couplings, opts)?;
         let s = b.ritz.residual.ncols();
         out.trials.push(Trial {
@@ -213,7 +224,13 @@ pub(crate) fn choose(
         if deviation <= opts.projection.tolerance || m == n {
             return Ok(out);
         }
-        // Grow the cut-off until it takes in at least one more mode.
+        // One more correction term first (4P more vectors at most: cheaper than the modes a
+        // higher cut-off takes in, on the brakes measured); then a higher cut-off, until it
+        // takes in at least one more mode.
+        if terms < most {
+            terms += 1;
+            continue;
+        }
         while modes_below(omega, cutoff) <= m {
             cutoff *= opts.projection.growth.max(1.01);
         }
@@ -339,9 +356,8 @@ fn project(b: &Basis, c: &Coupling, n: usize) -> Result<Spectrum, BrakeError> {
             .collect()
     };
     let vq = on(v);
-    let product = |uq: &[Vec<f64>]| {
-        Mat::from_fn(k, k, |i, j| (0..r).map(|p| uq[p][i] * vq[p][j]).sum())
-    };
+    let product =
+        |uq: &[Vec<f64>]| Mat::from_fn(k, k, |i, j| (0..r).map(|p| uq[p][i] * vq[p][j]).sum());
     let dk = product(&on(u0));
     let dc = u1.map(|u1| product(&on(u1)));
     let mut sp = modal_spectrum(&b.omega, &b.damping, &dk, dc.as_ref(), c.mu)?;
@@ -476,7 +492,11 @@ fn modal_tangent_solve(
     b: &[f64],
 ) -> Option<Vec<f64>> {
     let n = b.len();
-    let responses = brake.pairs.iter().map(|p| p.response(x, None, mu)).collect();
+    let responses = brake
+        .pairs
+        .iter()
+        .map(|p| p.response(x, None, mu))
+        .collect();
     let c = lr.coupling_of(mu, responses, Vec::new());
     let q: Vec<c64> = (0..n)
         .map(|j| {

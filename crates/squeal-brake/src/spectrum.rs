@@ -91,7 +91,9 @@ impl Spectrum {
     pub fn modal(&self, j: usize) -> Vec<c64> {
         match &self.ritz {
             Some(r) => r.lift(|i| self.modes[(i, j)]),
-            None => (0..self.modes.nrows()).map(|i| self.modes[(i, j)]).collect(),
+            None => (0..self.modes.nrows())
+                .map(|i| self.modes[(i, j)])
+                .collect(),
         }
     }
 

@@ -302,18 +302,17 @@ fn sweep_until(
     let method = opts.method.resolve(brake.size());
     // Continuation needs the diagonal-plus-low-rank form (diagonal damping); a full modal
     // damping matrix is swept densely.
-    let low_rank = (method == SweepMethod::Continuation
-        && reference.damping.diagonal().is_some())
-    .then_some(&lin);
+    let low_rank = (method == SweepMethod::Continuation && reference.damping.diagonal().is_some())
+        .then_some(&lin);
     let tau = opts
         .threshold
         .unwrap_or_else(|| default_threshold(reference));
     let stop = to_hopf.then_some(tau);
     progress(0, mus.len());
     let projection = match method {
-        SweepMethod::Projected => Some(crate::projected::choose(
-            brake, reference, &lin, mus, opts,
-        )?),
+        SweepMethod::Projected => {
+            Some(crate::projected::choose(brake, reference, &lin, mus, opts)?)
+        }
         _ => None,
     };
     let (points, branches, stats) = match (&projection, low_rank) {

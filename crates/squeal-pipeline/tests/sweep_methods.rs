@@ -89,13 +89,19 @@ fn the_projected_sweep_agrees_with_continuation_within_its_checked_tolerance() {
     };
     let se = sweep(&c.model.brake, &c.reference, &mus, &exact).unwrap();
     let sp = sweep(&c.model.brake, &c.reference, &mus, &projected).unwrap();
-    let p = sp.projection.as_ref().expect("a projected sweep reports its projection");
+    let p = sp
+        .projection
+        .as_ref()
+        .expect("a projected sweep reports its projection");
     assert!(se.projection.is_none());
     eprintln!(
         "kept {} modes + {} vectors, deviation {:.2e} at {:?}",
         p.kept_modes, p.residual_vectors, p.deviation, p.checked_mus
     );
-    assert!(p.kept_modes < c.model.brake.size(), "the projection truncates");
+    assert!(
+        p.kept_modes < c.model.brake.size(),
+        "the projection truncates"
+    );
     assert!(p.deviation <= 1e-5, "{:e}", p.deviation);
     // Each in-band projected eigenvalue against the nearest exact one at the same point.
     let mut worst = 0.0f64;
@@ -119,7 +125,10 @@ fn the_projected_sweep_agrees_with_continuation_within_its_checked_tolerance() {
     // exceed the tolerance the projection was accepted at.
     assert!(worst <= 1e-5, "{worst:e}");
     let (hp, he) = (sp.hopf.unwrap(), se.hopf.unwrap());
-    eprintln!("mu0 {} vs {}, {} vs {} Hz", hp.mu0, he.mu0, hp.frequency_hz, he.frequency_hz);
+    eprintln!(
+        "mu0 {} vs {}, {} vs {} Hz",
+        hp.mu0, he.mu0, hp.frequency_hz, he.frequency_hz
+    );
     // Measured: mu0 1.4e-7 apart, frequencies 3e-10 relative. A relative error of 1e-5 on
     // frequencies that approach at ~1e4 rad/s per unit mu bounds mu0's shift by ~3e-5.
     assert!((hp.mu0 - he.mu0).abs() < 3e-5, "{} vs {}", hp.mu0, he.mu0);
