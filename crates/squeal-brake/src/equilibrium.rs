@@ -138,7 +138,7 @@ fn approach_length(brake: &Brake, x: &[f64], end: &[f64]) -> f64 {
 }
 
 /// Solves the Newton step's `K_t(x) dx = b` with the tangent of the pairs' own stiffness
-/// (not the closing one of [`newton_at`]'s first iteration): `None` to use the dense LU of
+/// (not the closing one of the first iteration from rest): `None` to use the dense LU of
 /// `K + K_NL`. [`static_equilibrium_with`] takes one (e.g. a low-rank update of the
 /// frictionless reference's modes, [`crate::projected`]); the step is the same to round-off.
 pub type TangentSolve<'a> = &'a (dyn Fn(&[f64], &[f64]) -> Option<Vec<f64>> + Sync);

@@ -18,7 +18,7 @@
 //!
 //! Without continued eigenpairs (the dense and projected sweeps, or a continuation that fails)
 //! the crossing is refined by the Illinois variant of regula falsi on the same function, the
-//! branches followed by correlation ([`regula_falsi`]).
+//! branches followed by correlation (`regula_falsi`).
 
 use crate::continuation::{Eigenpair, converge, seed};
 use crate::equilibrium::{Equilibrium, static_equilibrium};
