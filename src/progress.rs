@@ -1,18 +1,31 @@
 //! Progress on the terminal for the long steps: one line per stage with its elapsed time
 //! ([`StageBars`]), and a counting bar with the running item and an ETA for the pipeline's
-//! long steps ([`BARS`]). Everything goes to stderr and is hidden when stderr is not a
-//! terminal (indicatif's default), so piped output and logs stay clean; text printed while a
-//! bar is drawn goes through [`say`], which lifts the bar for it.
+//! long steps ([`BARS`]). Everything goes to stderr; when stderr is not a terminal (a log, a
+//! pipe) the bars are hidden (indicatif's default) and a long step prints a plain line every
+//! [`PLAIN_EVERY`] instead (`sweep: 40/201 mu values, 3.1 s`), so a long run is never silent;
+//! text printed while a bar is drawn goes through [`say`], which lifts the bar for it.
 
 use indicatif::{ProgressBar, ProgressStyle};
 use squeal_pipeline::progress::Progress;
+use std::io::IsTerminal;
 use std::sync::{Mutex, PoisonError};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// The bar of the pipeline's current long step, if one is running.
 pub static BARS: Bars = Bars {
     bar: Mutex::new(None),
+    plain: Mutex::new(None),
 };
+
+/// How often a long step prints its line when stderr is not a terminal.
+pub const PLAIN_EVERY: Duration = Duration::from_secs(3);
+
+/// A long step told in plain lines: its name, when it began, when it last printed.
+struct Plain {
+    step: String,
+    began: Instant,
+    printed: Instant,
+}
 
 /// Prints a line to stdout without tearing the bar being drawn.
 pub fn say(text: &str) {
@@ -25,6 +38,7 @@ pub fn say(text: &str) {
 /// A counting bar per long step of the pipeline (see [`Progress`]).
 pub struct Bars {
     bar: Mutex<Option<(ProgressBar, bool)>>,
+    plain: Mutex<Option<Plain>>,
 }
 
 impl Bars {
@@ -34,8 +48,32 @@ impl Bars {
     }
 }
 
+impl Bars {
+    /// The plain line of an item, when stderr is not a terminal and the last line is
+    /// [`PLAIN_EVERY`] old.
+    fn plain_line(&self, what: &str) -> Option<String> {
+        let mut guard = self.plain.lock().unwrap_or_else(PoisonError::into_inner);
+        let p = guard.as_mut()?;
+        let now = Instant::now();
+        if now.duration_since(p.printed) < PLAIN_EVERY {
+            return None;
+        }
+        p.printed = now;
+        let t = now.duration_since(p.began).as_secs_f64();
+        Some(format!("{}: {what}, {t:.1} s", p.step))
+    }
+}
+
 impl Progress for Bars {
     fn begin(&self, step: &str, total: usize) {
+        if !std::io::stderr().is_terminal() {
+            let now = Instant::now();
+            *self.plain.lock().unwrap_or_else(PoisonError::into_inner) = Some(Plain {
+                step: step.to_string(),
+                began: now,
+                printed: now,
+            });
+        }
         let bar = ProgressBar::new(total as u64);
         bar.set_style(style(
             "  {prefix} {pos}/{len} [{bar:20}] {elapsed}{wide_msg}",
@@ -49,6 +87,9 @@ impl Progress for Bars {
     }
 
     fn item(&self, what: &str) {
+        if let Some(line) = self.plain_line(what) {
+            eprintln!("{line}");
+        }
         let mut guard = self.bar.lock().unwrap_or_else(PoisonError::into_inner);
         if let Some((bar, started)) = guard.as_mut() {
             if *started {
@@ -67,6 +108,7 @@ impl Progress for Bars {
     }
 
     fn end(&self) {
+        *self.plain.lock().unwrap_or_else(PoisonError::into_inner) = None;
         let mut guard = self.bar.lock().unwrap_or_else(PoisonError::into_inner);
         if let Some((bar, _)) = guard.take() {
             bar.set_position(bar.length().unwrap_or(0));
@@ -135,6 +177,7 @@ mod tests {
     fn an_item_counts_once_the_next_one_starts() {
         let bars = Bars {
             bar: Mutex::new(None),
+            plain: Mutex::new(None),
         };
         bars.begin("runs", 3);
         bars.item("first");
@@ -147,6 +190,34 @@ mod tests {
         bars.end();
         assert_eq!(bar.position(), 3, "an ended step is complete");
         assert!(bars.current().is_none());
+    }
+
+    #[test]
+    fn a_plain_line_comes_at_most_every_few_seconds() {
+        let bars = Bars {
+            bar: Mutex::new(None),
+            plain: Mutex::new(None),
+        };
+        assert_eq!(bars.plain_line("1/9"), None, "no plain step: a terminal");
+        let began = Instant::now() - 2 * PLAIN_EVERY;
+        *bars.plain.lock().unwrap() = Some(Plain {
+            step: "sweep".into(),
+            began,
+            printed: began,
+        });
+        let line = bars.plain_line("40/201 mu values").unwrap();
+        assert!(line.starts_with("sweep: 40/201 mu values, "), "{line}");
+        assert!(line.ends_with(" s"), "{line}");
+        assert_eq!(
+            bars.plain_line("41/201 mu values"),
+            None,
+            "printed just now"
+        );
+        bars.end();
+        assert!(
+            bars.plain.lock().unwrap().is_none(),
+            "an ended step prints no more"
+        );
     }
 
     #[test]

@@ -6,7 +6,7 @@ use crate::error::BrakeError;
 use crate::modal::Damping;
 use crate::model::Brake;
 use crate::spectrum::Reference;
-use crate::sweep::{Sweep, SweepOptions, reference, sweep, sweep_to_hopf};
+use crate::sweep::{Sweep, SweepOptions, SweepProgress, reference, sweep_to_hopf_with, sweep_with};
 
 /// Which two modes of the frictionless basis get eq (13)'s `D1`, `D2`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,10 +48,10 @@ pub struct Stability {
 /// vector at the first sweep point.
 pub fn basis_mode_of_branch(s: &Sweep, branch: usize) -> usize {
     let j = s.branches[branch][0];
-    let q = &s.points[0].spectrum.modes;
+    let q = s.points[0].spectrum.modal(j);
     let mut best = (0.0, 0);
-    for i in 0..q.nrows() {
-        let v = q[(i, j)].norm_sqr();
+    for (i, qi) in q.iter().enumerate() {
+        let v = qi.norm_sqr();
         if v > best.0 {
             best = (v, i);
         }
@@ -67,6 +67,17 @@ pub fn stability(
     mus: &[f64],
     opts: &SweepOptions,
 ) -> Result<Stability, BrakeError> {
+    stability_with(brake, spec, mus, opts, &|_, _| {})
+}
+
+/// [`stability`], telling `progress` how far each sweep is.
+pub fn stability_with(
+    brake: &Brake,
+    spec: &DampingSpec,
+    mus: &[f64],
+    opts: &SweepOptions,
+    progress: SweepProgress,
+) -> Result<Stability, BrakeError> {
     let newton: NewtonOptions = opts.newton;
     let global = Damping {
         global_ratio: spec.global_ratio,
@@ -79,9 +90,9 @@ pub fn stability(
             let r = reference(brake, &global, &newton)?;
             // With pair damping this sweep only names the pair: it may stop at the Hopf point.
             let s = if has_pair_damping {
-                sweep_to_hopf(brake, &r, mus, opts)?
+                sweep_to_hopf_with(brake, &r, mus, opts, progress)?
             } else {
-                sweep(brake, &r, mus, opts)?
+                sweep_with(brake, &r, mus, opts, progress)?
             };
             let pair = s.hopf.as_ref().and_then(|h| {
                 h.partner.map(|p| {
@@ -140,7 +151,7 @@ pub fn stability(
             })
             .unwrap_or_default(),
     };
-    let sweep = sweep(brake, &reference, mus, opts)?;
+    let sweep = sweep_with(brake, &reference, mus, opts, progress)?;
     Ok(Stability {
         damping,
         pair,

@@ -87,6 +87,14 @@ impl ModalDamping {
         out
     }
 
+    /// The leading `m × m` block of `D` (the damping among the first `m` modes).
+    pub fn leading(&self, m: usize) -> ModalDamping {
+        match self {
+            ModalDamping::Diagonal(d) => ModalDamping::Diagonal(d[..m].to_vec()),
+            ModalDamping::Full(d) => ModalDamping::Full(d.subrows(0, m).subcols(0, m).to_owned()),
+        }
+    }
+
     /// Sum of the diagonal (`tr D`).
     pub fn trace(&self) -> f64 {
         (0..self.size()).map(|j| self.diagonal_entry(j)).sum()

@@ -137,6 +137,12 @@ fn approach_length(brake: &Brake, x: &[f64], end: &[f64]) -> f64 {
     }
 }
 
+/// Solves the Newton step's `K_t(x) dx = b` with the tangent of the pairs' own stiffness
+/// (not the closing one of the first iteration from rest): `None` to use the dense LU of
+/// `K + K_NL`. [`static_equilibrium_with`] takes one (e.g. a low-rank update of the
+/// frictionless reference's modes, [`crate::projected`]); the step is the same to round-off.
+pub type TangentSolve<'a> = &'a (dyn Fn(&[f64], &[f64]) -> Option<Vec<f64>> + Sync);
+
 /// A Newton solution at one load.
 struct Solved {
     x: Vec<f64>,
@@ -153,6 +159,7 @@ fn newton_at(
     mut x: Vec<f64>,
     fresh: bool,
     opts: &NewtonOptions,
+    tangent: Option<TangentSolve>,
 ) -> (Result<Solved, BrakeError>, usize) {
     let n = brake.size();
     let force_scale = |x: &[f64]| {
@@ -185,9 +192,16 @@ fn newton_at(
         };
         let mut accepted = false;
         for &closed in closings {
-            let jac = &brake.k + brake.nonlinear_jacobian(&x, mu, closed).0;
-            let rhs = Mat::from_fn(n, 1, |i, _| -r[i]);
-            let dx = jac.partial_piv_lu().solve(&rhs);
+            let minus_r: Vec<f64> = r.iter().map(|v| -v).collect();
+            let fast = tangent.filter(|_| !closed).and_then(|t| t(&x, &minus_r));
+            let dx = match fast {
+                Some(dx) => Mat::from_fn(n, 1, |i, _| dx[i]),
+                None => {
+                    let jac = &brake.k + brake.nonlinear_jacobian(&x, mu, closed).0;
+                    let rhs = Mat::from_fn(n, 1, |i, _| minus_r[i]);
+                    jac.partial_piv_lu().solve(&rhs)
+                }
+            };
             if (0..n).any(|i| !dx[(i, 0)].is_finite()) {
                 if closed {
                     return (Err(BrakeError::SingularTangent), it + 1);
@@ -263,9 +277,21 @@ pub fn static_equilibrium(
     start: Option<&[f64]>,
     opts: &NewtonOptions,
 ) -> Result<Equilibrium, BrakeError> {
+    static_equilibrium_with(brake, mu, start, opts, None)
+}
+
+/// [`static_equilibrium`] with the Newton steps from `start` solved by `tangent` where it
+/// gives one ([`TangentSolve`]).
+pub fn static_equilibrium_with(
+    brake: &Brake,
+    mu: f64,
+    start: Option<&[f64]>,
+    opts: &NewtonOptions,
+    tangent: Option<TangentSolve>,
+) -> Result<Equilibrium, BrakeError> {
     let (solved, iterations, load_steps, rejected) = match start {
         Some(x0) => {
-            let (s, it) = newton_at(brake, mu, 1.0, x0.to_vec(), false, opts);
+            let (s, it) = newton_at(brake, mu, 1.0, x0.to_vec(), false, opts, tangent);
             (s?, it, 1, 0)
         }
         None => load_ramp(brake, mu, opts)?,
@@ -304,7 +330,7 @@ fn load_ramp(
     let (mut iterations, mut steps, mut rejected) = (0, 0, 0);
     loop {
         let target = if load + step >= 1.0 { 1.0 } else { load + step };
-        let (outcome, it) = newton_at(brake, mu, target, x.clone(), steps == 0, opts);
+        let (outcome, it) = newton_at(brake, mu, target, x.clone(), steps == 0, opts, None);
         iterations += it;
         match outcome {
             Ok(s) => {

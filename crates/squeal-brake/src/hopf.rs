@@ -15,14 +15,19 @@
 //! elements' responses along the equilibrium path ([`LinearizedBrake::mu_rates`]). Each Newton point is
 //! moved past the root by a quarter of the tolerance, so that once Newton has converged the
 //! next evaluation lands on the other side and closes the bracket.
+//!
+//! Without continued eigenpairs (the dense and projected sweeps, or a continuation that fails)
+//! the crossing is refined by the Illinois variant of regula falsi on the same function, the
+//! branches followed by correlation (`regula_falsi`).
 
 use crate::continuation::{Eigenpair, converge, seed};
-use crate::equilibrium::Equilibrium;
+use crate::equilibrium::{Equilibrium, static_equilibrium};
 use crate::error::BrakeError;
 use crate::linearized::{Coupling, LinearizedBrake};
 use crate::model::Brake;
-use crate::spectrum::Reference;
+use crate::spectrum::{Reference, Spectrum};
 use crate::sweep::{Crossing, Hopf, State, Sweep, SweepOptions, SweepPoint, Walker, partner};
+use crate::tracking::mac;
 use faer::c64;
 use rayon::prelude::*;
 
@@ -285,4 +290,133 @@ fn upper_point(
     state.pairs[found] = hi.pair().clone();
     let (point, position) = crate::sweep::sweep_point(&state);
     Ok(Some((point, position[found], found)))
+}
+
+/// Finds, in a new spectrum, the mode continuing a tracked one (best eigenvector correlation,
+/// ties broken by eigenvalue distance).
+fn follow(from: &Spectrum, j: usize, to: &Spectrum) -> usize {
+    let l = from.values[j];
+    let mut best = (f64::INFINITY, 0);
+    for i in 0..to.values.len() {
+        let d = (to.values[i] - l).norm() / (0.05 * l.norm()).max(f64::MIN_POSITIVE);
+        let c = (1.0 - mac(from, j, to, i)) + d.min(1.0);
+        if c < best.0 {
+            best = (c, i);
+        }
+    }
+    best.1
+}
+
+/// Refines a crossing by the Illinois variant of regula falsi on the larger real part of the
+/// crossing branch and its partner (as [`crate::hopf`] does, for the same reason: where two
+/// modes coalesce, either may carry the instability), keeping a bracket. Both are followed by
+/// correlation from the lower end of the bracket.
+pub(crate) fn regula_falsi(
+    brake: &Brake,
+    spectrum_at: &dyn Fn(&Equilibrium) -> Result<Spectrum, BrakeError>,
+    sweep: &Sweep,
+    c: &Crossing,
+    opts: &SweepOptions,
+    tau: f64,
+) -> Result<Hopf, BrakeError> {
+    let mut branches = vec![c.branch];
+    branches.extend(partner(sweep, c));
+    // One end: μ, the point, the followed modes' indices in it, the larger real part - τ and
+    // which of them has it.
+    struct End {
+        mu: f64,
+        point: SweepPoint,
+        modes: Vec<usize>,
+        f: f64,
+        top: usize,
+    }
+    let end = |mu: f64, point: SweepPoint, modes: Vec<usize>| {
+        let top = (0..modes.len())
+            .max_by(|&a, &b| {
+                let v = &point.spectrum.values;
+                v[modes[a]].re.total_cmp(&v[modes[b]].re).then(b.cmp(&a))
+            })
+            .unwrap_or(0);
+        let f = point.spectrum.values[modes[top]].re - tau;
+        End {
+            mu,
+            point,
+            modes,
+            f,
+            top,
+        }
+    };
+    let follow_all = |from: &End, to: &Spectrum| -> Vec<usize> {
+        from.modes
+            .iter()
+            .map(|&j| follow(&from.point.spectrum, j, to))
+            .collect()
+    };
+    let lo_point = sweep.points[c.k].clone();
+    let mut lo = end(
+        c.mu_lo,
+        lo_point,
+        branches.iter().map(|&b| sweep.branches[b][c.k]).collect(),
+    );
+    let hi_point = sweep.points[c.k + 1].clone();
+    let modes = follow_all(&lo, &hi_point.spectrum);
+    let mut hi = end(c.mu_hi, hi_point, modes);
+    let (mut f_lo, mut f_hi) = (lo.f, hi.f);
+    let mut side = 0i8;
+    let mut evaluations = 0;
+    while hi.mu - lo.mu > opts.mu_tolerance && evaluations < opts.max_refinements {
+        let mut mu = (lo.mu * f_hi - hi.mu * f_lo) / (f_hi - f_lo);
+        // Keep well inside the bracket; fall back to bisection when regula falsi stalls.
+        let width = hi.mu - lo.mu;
+        if !mu.is_finite() || mu <= lo.mu + 0.01 * width || mu >= hi.mu - 0.01 * width {
+            mu = 0.5 * (lo.mu + hi.mu);
+        }
+        let eq = static_equilibrium(brake, mu, Some(&lo.point.equilibrium.x), &opts.newton)?;
+        let sp = spectrum_at(&eq)?;
+        let modes = follow_all(&lo, &sp);
+        let e = end(
+            mu,
+            SweepPoint {
+                equilibrium: eq,
+                spectrum: sp,
+            },
+            modes,
+        );
+        evaluations += 1;
+        if e.f > 0.0 {
+            f_hi = e.f;
+            hi = e;
+            if side == 1 {
+                f_lo *= 0.5;
+            }
+            side = 1;
+        } else {
+            f_lo = e.f;
+            lo = e;
+            if side == -1 {
+                f_hi *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    if !(lo.f <= 0.0 && hi.f > 0.0)
+        || hi.f - lo.f > 1e-6 * hi.point.spectrum.values[hi.modes[hi.top]].norm()
+    {
+        return Err(BrakeError::HopfNotResolved {
+            bracket: (lo.mu, hi.mu),
+            real_parts: (lo.f + tau, hi.f + tau),
+        });
+    }
+    let index = hi.modes[hi.top];
+    Ok(Hopf {
+        mu0: 0.5 * (lo.mu + hi.mu),
+        frequency_hz: hi.point.spectrum.frequency_hz(index),
+        branch: branches[hi.top],
+        partner: branches.iter().copied().find(|&b| b != branches[hi.top]),
+        bracket: (lo.mu, hi.mu),
+        real_part_at_bracket: (lo.f, hi.f),
+        evaluations,
+        index,
+        point: hi.point,
+    })
 }

@@ -12,6 +12,7 @@
 //! - [`spectrum`]: the complex eigenvalues of the linearized brake (eqs 20–22).
 //! - [`tracking`]: following modes across a parameter sweep by eigenvector correlation.
 //! - [`sweep`]: friction sweeps, the Hopf point `mu0` and its refinement.
+//! - [`projected`]: the sweep on the frictionless modes below a converged cut-off.
 //! - [`linearized`]: the one linearized brake, a quadratic eigenproblem with a low-rank
 //!   coupling (dense when the damping is full).
 //! - [`continuation`]: exact continuation of its eigenpairs from one friction value to the next.
@@ -42,6 +43,7 @@ pub mod linearized;
 pub mod modal;
 pub mod modal_brake;
 pub mod model;
+pub mod projected;
 pub mod spectrum;
 pub mod studies;
 pub mod sweep;

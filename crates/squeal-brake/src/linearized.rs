@@ -105,6 +105,11 @@ impl Coupling {
         self.rank
     }
 
+    /// `V`, `U₀` and `U₁` (when not zero), column-major `n × r`.
+    pub fn columns(&self) -> (&[f64], &[f64], Option<&[f64]>) {
+        (&self.v, &self.u0, self.u1.as_deref())
+    }
+
     /// Whether `U₁ ≠ 0` (the state has damping terms: velocity-dependent elements, or the
     /// damping part of a describing function).
     pub fn has_damping(&self) -> bool {
@@ -183,6 +188,12 @@ impl LinearizedBrake {
     /// Number of modes `n`.
     pub fn size(&self) -> usize {
         self.omega.len()
+    }
+
+    /// `Φᵀ g_p` and `Φᵀ h_p` of every pair, column-major `n × P`: the directions the contact
+    /// forces act along, in modal coordinates.
+    pub fn contact_columns(&self) -> (&[f64], &[f64]) {
+        (&self.vg, &self.vh)
     }
 
     /// Number of contact pairs `P`.

@@ -294,9 +294,16 @@ impl Brake {
     /// `K x + F_nl(x) - load F_piston` (the load continuation's; `load = 1` is eq (14)).
     pub fn static_residual_at(&self, x: &[f64], mu: f64, load: f64) -> Vec<f64> {
         let n = self.size();
-        let mut r: Vec<f64> = (0..n)
-            .map(|i| (0..n).map(|j| self.k[(i, j)] * x[j]).sum::<f64>())
-            .collect();
+        // `(K x)_i = Σ_j K_ij x_j` summed in the order of j from the neutral element of
+        // `f64::sum`, as a row's `sum()` would, but column by column (contiguous in `K`).
+        let zero: f64 = std::iter::empty::<f64>().sum();
+        let mut r = vec![zero; n];
+        for (j, xj) in x.iter().enumerate().take(n) {
+            let col = self.k.col(j);
+            for (i, ri) in r.iter_mut().enumerate() {
+                *ri += col[i] * xj;
+            }
+        }
         self.add_nonlinear_force(x, None, mu, &mut r);
         for i in 0..n {
             r[i] -= load * self.f_piston[i];

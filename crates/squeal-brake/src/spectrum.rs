@@ -23,6 +23,7 @@ use faer::diag::Diag;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::evd::{ComputeEigenvectors, evd_real, evd_scratch};
 use faer::{Mat, Par, c64};
+use std::sync::Arc;
 
 /// The frictionless reference: equilibrium at μ = 0, its tangent stiffness, modal basis and
 /// the modal damping `D` of eq (12).
@@ -46,8 +47,38 @@ pub struct Spectrum {
     /// `λ = a + iω` (eq 22), ascending in `ω`.
     pub values: Vec<c64>,
     /// Modal coordinates `q` of each mode (column `j` for `values[j]`), with `Σ|q|² = 1`; the
-    /// physical shape is `x = Φ q`, mass-normalized.
+    /// physical shape is `x = Φ q`, mass-normalized. A projected sweep
+    /// ([`crate::projected`]) gives the coordinates on its basis instead ([`Spectrum::ritz`]).
     pub modes: Mat<c64>,
+    /// The basis of a projection `modes` are coordinates on (`None`: the modal basis itself).
+    pub ritz: Option<Arc<Ritz>>,
+}
+
+/// The basis of a projection in modal coordinates: the first `kept` frictionless modes, then
+/// `residual` (`(n - kept) × s`, orthonormal columns) on the others.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ritz {
+    /// Frictionless modes kept as they are (the lowest ones).
+    pub kept: usize,
+    /// The static-correction vectors on the dropped modes, column by column.
+    pub residual: Mat<f64>,
+}
+
+impl Ritz {
+    /// Modal coordinates `[q_kept; R q_res]` of coordinates `q` on the basis.
+    pub fn lift(&self, q: impl Fn(usize) -> c64) -> Vec<c64> {
+        let (m, t, s) = (self.kept, self.residual.nrows(), self.residual.ncols());
+        let mut out: Vec<c64> = (0..m).map(&q).collect();
+        out.resize(m + t, c64::new(0.0, 0.0));
+        for k in 0..s {
+            let a = q(m + k);
+            let col = self.residual.col(k);
+            for i in 0..t {
+                out[m + i] += a * col[i];
+            }
+        }
+        out
+    }
 }
 
 impl Spectrum {
@@ -56,14 +87,25 @@ impl Spectrum {
         self.values[j].im / (2.0 * std::f64::consts::PI)
     }
 
+    /// Modal coordinates `q` of mode `j` (lifted from a projection's basis).
+    pub fn modal(&self, j: usize) -> Vec<c64> {
+        match &self.ritz {
+            Some(r) => r.lift(|i| self.modes[(i, j)]),
+            None => (0..self.modes.nrows())
+                .map(|i| self.modes[(i, j)])
+                .collect(),
+        }
+    }
+
     /// Physical shape `x = Φ q` of mode `j`.
     pub fn shape(&self, basis: &ModalBasis, j: usize) -> Vec<c64> {
         let n = basis.phi.nrows();
+        let q = self.modal(j);
         (0..n)
             .map(|i| {
                 let mut s = c64::new(0.0, 0.0);
                 for k in 0..n {
-                    s += self.modes[(k, j)] * basis.phi[(i, k)];
+                    s += q[k] * basis.phi[(i, k)];
                 }
                 s
             })
@@ -78,8 +120,18 @@ pub fn state_matrix(
     dk: &Mat<f64>,
     dc: Option<&Mat<f64>>,
 ) -> Mat<f64> {
-    let n = basis.omega.len();
-    let w = &basis.omega;
+    state_matrix_of(&basis.omega, damping, dk, dc)
+}
+
+/// [`state_matrix`] for given frequencies `ω_j` (all of the basis, or the leading ones of a
+/// projection).
+fn state_matrix_of(
+    w: &[f64],
+    damping: &ModalDamping,
+    dk: &Mat<f64>,
+    dc: Option<&Mat<f64>>,
+) -> Mat<f64> {
+    let n = w.len();
     Mat::from_fn(2 * n, 2 * n, |i, j| match (i < n, j < n) {
         (true, true) => 0.0,
         (true, false) => {
@@ -126,8 +178,20 @@ pub fn spectrum_of(
     dc: Option<&Mat<f64>>,
     mu: f64,
 ) -> Result<Spectrum, BrakeError> {
-    let n = basis.omega.len();
-    let a = state_matrix(basis, damping, dk, dc);
+    modal_spectrum(&basis.omega, damping, dk, dc, mu)
+}
+
+/// [`spectrum_of`] for given frequencies `ω_j`: the leading modes of a projection
+/// ([`crate::projected`]) with `D`, `ΔK`, `ΔC` restricted to them.
+pub fn modal_spectrum(
+    omega: &[f64],
+    damping: &ModalDamping,
+    dk: &Mat<f64>,
+    dc: Option<&Mat<f64>>,
+    mu: f64,
+) -> Result<Spectrum, BrakeError> {
+    let n = omega.len();
+    let a = state_matrix_of(omega, damping, dk, dc);
     let (s, u) = real_eigen(&a, true)?;
     let u = u.ok_or(BrakeError::EigenNoConvergence)?;
     let order = upper_half(&s, n);
@@ -138,7 +202,7 @@ pub fn spectrum_of(
         // q = Ω⁻¹ z₁, normalized.
         let mut norm2 = 0.0;
         for i in 0..n {
-            let q = u[(i, k)] / basis.omega[i];
+            let q = u[(i, k)] / omega[i];
             modes[(i, col)] = q;
             norm2 += q.norm_sqr();
         }
@@ -147,7 +211,12 @@ pub fn spectrum_of(
             modes[(i, col)] *= inv;
         }
     }
-    Ok(Spectrum { mu, values, modes })
+    Ok(Spectrum {
+        mu,
+        values,
+        modes,
+        ritz: None,
+    })
 }
 
 /// The eigenvalues of the state matrix with `Im λ >= 0` (one of each conjugate pair), as

@@ -15,6 +15,12 @@
 //! - [`SweepMethod::Dense`]: a dense eigen-decomposition at every point (in parallel), modes
 //!   tracked by correlation and assignment ([`crate::tracking`]), the Hopf point by the
 //!   Illinois variant of regula falsi.
+//! - [`SweepMethod::Projected`]: the brake projected on its frictionless modes up to a cut-off
+//!   above the band, the cut-off chosen by convergence against the unprojected eigenvalues
+//!   ([`crate::projected`]); then as the dense method on the small projected problem. Its
+//!   cost grows as the cube of the number of kept modes, not of the reduced size.
+//! - [`SweepMethod::Auto`] (the default): continuation up to [`PROJECT_ABOVE`] dofs, the
+//!   projection above, where continuing every eigenpair costs `O(n⁴)` per sweep.
 
 use crate::continuation::{
     ContinuationOptions, Eigenpair, agrees_with, continue_all, seed, validate,
@@ -24,8 +30,9 @@ use crate::error::BrakeError;
 use crate::linearized::{Coupling, LinearizedBrake};
 use crate::modal::{Damping, modal_basis};
 use crate::model::Brake;
+use crate::projected::{Projection, ProjectionOptions};
 use crate::spectrum::{Reference, Spectrum, eigenvalues_of, spectrum, spectrum_of};
-use crate::tracking::{mac, match_modes};
+use crate::tracking::match_modes;
 use faer::{Mat, c64};
 use rayon::prelude::*;
 
@@ -53,8 +60,31 @@ pub enum SweepMethod {
     /// Dense eigen-decomposition at every point, tracking by correlation.
     Dense,
     /// Exact continuation of every eigenpair, dense solves only to start and to check.
-    #[default]
     Continuation,
+    /// Projection on the frictionless modes below a converged cut-off, dense solves of the
+    /// projected problem ([`crate::projected`]).
+    Projected,
+    /// [`SweepMethod::Continuation`] for brakes of up to [`PROJECT_ABOVE`] dofs (the bundled
+    /// brakes: their pinned numbers are the continuation's), [`SweepMethod::Projected`]
+    /// above.
+    #[default]
+    Auto,
+}
+
+/// Reduced size (dofs) above which [`SweepMethod::Auto`] projects. The bundled brakes have
+/// 158 (one pad) and 266 (two pads) dofs; continuing every eigenpair of a 482-dof brake took
+/// 12-14 minutes (issue 20), projecting it seconds (docs/benchmarks.md).
+pub const PROJECT_ABOVE: usize = 300;
+
+impl SweepMethod {
+    /// The method used on a brake of `n` dofs ([`SweepMethod::Auto`] resolved).
+    pub fn resolve(self, n: usize) -> SweepMethod {
+        match self {
+            SweepMethod::Auto if n > PROJECT_ABOVE => SweepMethod::Projected,
+            SweepMethod::Auto => SweepMethod::Continuation,
+            m => m,
+        }
+    }
 }
 
 /// Controls of a sweep.
@@ -77,6 +107,8 @@ pub struct SweepOptions {
     pub method: SweepMethod,
     /// Controls of [`SweepMethod::Continuation`].
     pub continuation: ContinuationOptions,
+    /// Controls of [`SweepMethod::Projected`].
+    pub projection: ProjectionOptions,
 }
 
 impl Default for SweepOptions {
@@ -92,6 +124,7 @@ impl Default for SweepOptions {
             threshold: None,
             method: SweepMethod::default(),
             continuation: ContinuationOptions::default(),
+            projection: ProjectionOptions::default(),
         }
     }
 }
@@ -178,6 +211,8 @@ pub struct Sweep {
     pub hopf: Option<Hopf>,
     /// What the spectra cost.
     pub stats: SweepStats,
+    /// With [`SweepMethod::Projected`]: the modes kept and how the truncation was checked.
+    pub projection: Option<Projection>,
 }
 
 impl Sweep {
@@ -205,6 +240,9 @@ pub fn reference(
     })
 }
 
+/// Told `(points done, points in all)` as a sweep goes (from the sweeping thread).
+pub type SweepProgress<'a> = &'a (dyn Fn(usize, usize) + Sync);
+
 /// Sweeps `mus` (ascending): equilibria by continuation, spectra by the method of `opts`,
 /// branches, crossings, and the refined Hopf point.
 pub fn sweep(
@@ -213,19 +251,41 @@ pub fn sweep(
     mus: &[f64],
     opts: &SweepOptions,
 ) -> Result<Sweep, BrakeError> {
-    sweep_until(brake, reference, mus, opts, false)
+    sweep_until(brake, reference, mus, opts, false, &|_, _| {})
+}
+
+/// [`sweep`], telling `progress` how far it is.
+pub fn sweep_with(
+    brake: &Brake,
+    reference: &Reference,
+    mus: &[f64],
+    opts: &SweepOptions,
+    progress: SweepProgress,
+) -> Result<Sweep, BrakeError> {
+    sweep_until(brake, reference, mus, opts, false, progress)
 }
 
 /// [`sweep`] up to the first in-band crossing only: with continuation the points end at the
 /// first one past it (the same points as the whole sweep's up to there), which is all the Hopf
-/// point and its coalescing partner need; the dense method sweeps all of `mus`.
+/// point and its coalescing partner need; the dense and projected methods sweep all of `mus`.
 pub fn sweep_to_hopf(
     brake: &Brake,
     reference: &Reference,
     mus: &[f64],
     opts: &SweepOptions,
 ) -> Result<Sweep, BrakeError> {
-    sweep_until(brake, reference, mus, opts, true)
+    sweep_until(brake, reference, mus, opts, true, &|_, _| {})
+}
+
+/// [`sweep_to_hopf`], telling `progress` how far it is.
+pub fn sweep_to_hopf_with(
+    brake: &Brake,
+    reference: &Reference,
+    mus: &[f64],
+    opts: &SweepOptions,
+    progress: SweepProgress,
+) -> Result<Sweep, BrakeError> {
+    sweep_until(brake, reference, mus, opts, true, progress)
 }
 
 fn sweep_until(
@@ -234,22 +294,31 @@ fn sweep_until(
     mus: &[f64],
     opts: &SweepOptions,
     to_hopf: bool,
+    progress: SweepProgress,
 ) -> Result<Sweep, BrakeError> {
     check_ascending(mus)?;
     brake.validate()?;
     let lin = LinearizedBrake::new(brake, reference)?;
+    let method = opts.method.resolve(brake.size());
     // Continuation needs the diagonal-plus-low-rank form (diagonal damping); a full modal
     // damping matrix is swept densely.
-    let low_rank = (opts.method == SweepMethod::Continuation
-        && reference.damping.diagonal().is_some())
-    .then_some(&lin);
+    let low_rank = (method == SweepMethod::Continuation && reference.damping.diagonal().is_some())
+        .then_some(&lin);
     let tau = opts
         .threshold
         .unwrap_or_else(|| default_threshold(reference));
     let stop = to_hopf.then_some(tau);
-    let (points, branches, stats) = match low_rank {
-        Some(lr) => continued_points(brake, reference, lr, mus, opts, stop)?,
-        None => dense_points(brake, reference, mus, opts)?,
+    progress(0, mus.len());
+    let projection = match method {
+        SweepMethod::Projected => {
+            Some(crate::projected::choose(brake, reference, &lin, mus, opts)?)
+        }
+        _ => None,
+    };
+    let (points, branches, stats) = match (&projection, low_rank) {
+        (Some(p), _) => crate::projected::points(brake, reference, &lin, p, mus, opts, progress)?,
+        (None, Some(lr)) => continued_points(brake, reference, lr, mus, opts, stop, progress)?,
+        (None, None) => dense_points(brake, reference, mus, opts, progress)?,
     };
     let crossings = crossings(&points, &branches, opts, tau);
     let mut sweep = Sweep {
@@ -258,17 +327,30 @@ fn sweep_until(
         crossings,
         hopf: None,
         stats,
+        projection: None,
     };
     if let Some(first) = sweep.crossings.iter().find(|c| c.in_band).copied() {
         let continued = match low_rank {
             Some(lr) => crate::hopf::refine(brake, reference, lr, &sweep, &first, opts, tau)?,
             None => None,
         };
+        let spectrum_at = |eq: &Equilibrium| match &projection {
+            Some(p) => crate::projected::spectrum(&lin, p, &lin.coupling(brake, eq)),
+            None => spectrum(brake, reference, eq),
+        };
         sweep.hopf = match continued {
             Some(h) => Some(h),
-            None => Some(refine(brake, reference, &sweep, &first, opts, tau)?),
+            None => Some(crate::hopf::regula_falsi(
+                brake,
+                &spectrum_at,
+                &sweep,
+                &first,
+                opts,
+                tau,
+            )?),
         };
     }
+    sweep.projection = projection;
     Ok(sweep)
 }
 
@@ -294,14 +376,15 @@ pub fn check_ascending(mus: &[f64]) -> Result<(), BrakeError> {
 
 /// Points of a sweep, the branches tracked through them (pair index per point) and the
 /// work counts.
-type SweptPoints = (Vec<SweepPoint>, Vec<Vec<usize>>, SweepStats);
+pub(crate) type SweptPoints = (Vec<SweepPoint>, Vec<Vec<usize>>, SweepStats);
 
 /// Points and branches with [`SweepMethod::Dense`].
-fn dense_points(
+pub(crate) fn dense_points(
     brake: &Brake,
     reference: &Reference,
     mus: &[f64],
     opts: &SweepOptions,
+    progress: SweepProgress,
 ) -> Result<SweptPoints, BrakeError> {
     let mut equilibria = Vec::with_capacity(mus.len());
     let mut start: Option<Vec<f64>> = None;
@@ -310,10 +393,12 @@ fn dense_points(
         start = Some(eq.x.clone());
         equilibria.push(eq);
     }
+    // The equilibria are a small part of the work: the count moves once the spectra are done.
     let spectra: Vec<Spectrum> = equilibria
         .par_iter()
         .map(|eq| spectrum(brake, reference, eq))
         .collect::<Result<_, _>>()?;
+    progress(mus.len(), mus.len());
     let points: Vec<SweepPoint> = equilibria
         .into_iter()
         .zip(spectra)
@@ -340,6 +425,7 @@ fn continued_points(
     mus: &[f64],
     opts: &SweepOptions,
     stop_at: Option<f64>,
+    progress: SweepProgress,
 ) -> Result<SweptPoints, BrakeError> {
     let mut walker = Walker {
         brake,
@@ -365,6 +451,7 @@ fn continued_points(
             br.push(position[b]);
         }
         points.push(point);
+        progress(points.len(), mus.len());
         if let Some(tau) = stop_at
             && crossed_in_band(&points, &branches, opts, tau)
         {
@@ -422,6 +509,7 @@ pub(crate) fn sweep_point(state: &State) -> (SweepPoint, Vec<usize>) {
         mu: state.eq.mu,
         values: order.iter().map(|&b| pairs[b].lambda).collect(),
         modes: Mat::from_fn(rows, n, |i, j| pairs[order[j]].right[i]),
+        ritz: None,
     };
     let point = SweepPoint {
         equilibrium: state.eq.clone(),
@@ -437,6 +525,7 @@ fn branch_spectrum(mu: f64, pairs: &[Eigenpair]) -> Spectrum {
         mu,
         values: pairs.iter().map(|p| p.lambda).collect(),
         modes: Mat::from_fn(rows, pairs.len(), |i, j| pairs[j].right[i]),
+        ritz: None,
     }
 }
 
@@ -567,7 +656,7 @@ impl Walker<'_> {
 }
 
 /// Branch indices: branch `b` starts as mode `b` of the first spectrum.
-fn track(points: &[SweepPoint]) -> Vec<Vec<usize>> {
+pub(crate) fn track(points: &[SweepPoint]) -> Vec<Vec<usize>> {
     let n = points[0].spectrum.values.len();
     let mut branches: Vec<Vec<usize>> = (0..n).map(|b| vec![b]).collect();
     for k in 1..points.len() {
@@ -619,135 +708,6 @@ fn crossings(
             .then(a.frequency_hz.total_cmp(&b.frequency_hz))
     });
     out
-}
-
-/// Finds, in a new spectrum, the mode continuing a tracked one (best eigenvector correlation,
-/// ties broken by eigenvalue distance).
-fn follow(from: &Spectrum, j: usize, to: &Spectrum) -> usize {
-    let l = from.values[j];
-    let mut best = (f64::INFINITY, 0);
-    for i in 0..to.values.len() {
-        let d = (to.values[i] - l).norm() / (0.05 * l.norm()).max(f64::MIN_POSITIVE);
-        let c = (1.0 - mac(from, j, to, i)) + d.min(1.0);
-        if c < best.0 {
-            best = (c, i);
-        }
-    }
-    best.1
-}
-
-/// Refines a crossing by the Illinois variant of regula falsi on the larger real part of the
-/// crossing branch and its partner (as [`crate::hopf`] does, for the same reason: where two
-/// modes coalesce, either may carry the instability), keeping a bracket. Both are followed by
-/// correlation from the lower end of the bracket.
-fn refine(
-    brake: &Brake,
-    reference: &Reference,
-    sweep: &Sweep,
-    c: &Crossing,
-    opts: &SweepOptions,
-    tau: f64,
-) -> Result<Hopf, BrakeError> {
-    let mut branches = vec![c.branch];
-    branches.extend(partner(sweep, c));
-    // One end: μ, the point, the followed modes' indices in it, the larger real part - τ and
-    // which of them has it.
-    struct End {
-        mu: f64,
-        point: SweepPoint,
-        modes: Vec<usize>,
-        f: f64,
-        top: usize,
-    }
-    let end = |mu: f64, point: SweepPoint, modes: Vec<usize>| {
-        let top = (0..modes.len())
-            .max_by(|&a, &b| {
-                let v = &point.spectrum.values;
-                v[modes[a]].re.total_cmp(&v[modes[b]].re).then(b.cmp(&a))
-            })
-            .unwrap_or(0);
-        let f = point.spectrum.values[modes[top]].re - tau;
-        End {
-            mu,
-            point,
-            modes,
-            f,
-            top,
-        }
-    };
-    let follow_all = |from: &End, to: &Spectrum| -> Vec<usize> {
-        from.modes
-            .iter()
-            .map(|&j| follow(&from.point.spectrum, j, to))
-            .collect()
-    };
-    let lo_point = sweep.points[c.k].clone();
-    let mut lo = end(
-        c.mu_lo,
-        lo_point,
-        branches.iter().map(|&b| sweep.branches[b][c.k]).collect(),
-    );
-    let hi_point = sweep.points[c.k + 1].clone();
-    let modes = follow_all(&lo, &hi_point.spectrum);
-    let mut hi = end(c.mu_hi, hi_point, modes);
-    let (mut f_lo, mut f_hi) = (lo.f, hi.f);
-    let mut side = 0i8;
-    let mut evaluations = 0;
-    while hi.mu - lo.mu > opts.mu_tolerance && evaluations < opts.max_refinements {
-        let mut mu = (lo.mu * f_hi - hi.mu * f_lo) / (f_hi - f_lo);
-        // Keep well inside the bracket; fall back to bisection when regula falsi stalls.
-        let width = hi.mu - lo.mu;
-        if !mu.is_finite() || mu <= lo.mu + 0.01 * width || mu >= hi.mu - 0.01 * width {
-            mu = 0.5 * (lo.mu + hi.mu);
-        }
-        let eq = static_equilibrium(brake, mu, Some(&lo.point.equilibrium.x), &opts.newton)?;
-        let sp = spectrum(brake, reference, &eq)?;
-        let modes = follow_all(&lo, &sp);
-        let e = end(
-            mu,
-            SweepPoint {
-                equilibrium: eq,
-                spectrum: sp,
-            },
-            modes,
-        );
-        evaluations += 1;
-        if e.f > 0.0 {
-            f_hi = e.f;
-            hi = e;
-            if side == 1 {
-                f_lo *= 0.5;
-            }
-            side = 1;
-        } else {
-            f_lo = e.f;
-            lo = e;
-            if side == -1 {
-                f_hi *= 0.5;
-            }
-            side = -1;
-        }
-    }
-    if !(lo.f <= 0.0 && hi.f > 0.0)
-        || hi.f - lo.f > 1e-6 * hi.point.spectrum.values[hi.modes[hi.top]].norm()
-    {
-        return Err(BrakeError::HopfNotResolved {
-            bracket: (lo.mu, hi.mu),
-            real_parts: (lo.f + tau, hi.f + tau),
-        });
-    }
-    let index = hi.modes[hi.top];
-    Ok(Hopf {
-        mu0: 0.5 * (lo.mu + hi.mu),
-        frequency_hz: hi.point.spectrum.frequency_hz(index),
-        branch: branches[hi.top],
-        partner: branches.iter().copied().find(|&b| b != branches[hi.top]),
-        bracket: (lo.mu, hi.mu),
-        real_part_at_bracket: (lo.f, hi.f),
-        evaluations,
-        index,
-        point: hi.point,
-    })
 }
 
 /// The branch a crossing's branch coalesces with: the other branch nearest in frequency at the

@@ -146,7 +146,9 @@ impl<'a> Pipeline<'a> {
             return Ok(s);
         }
         let m = self.model()?;
-        let st = self.timed("stability sweep", || stability::analyse(m, &self.mus))?;
+        let st = self.timed("stability sweep", || {
+            stability::analyse_with(m, &self.mus, self.progress)
+        })?;
         Ok(self.stability.get_or_init(|| st))
     }
 

@@ -5,6 +5,7 @@
 use crate::caveats::{caveats, caveats_text, undamped};
 use crate::error::{Result, json_text};
 use crate::model::{Log, Model};
+use crate::progress::Progress;
 use crate::shapes::{Meshes, PartFields, normalize_mode, write_brake_vtu};
 use squeal_brake::analysis::Stability;
 use squeal_brake::assemble::InitialGaps;
@@ -18,9 +19,29 @@ use std::path::{Path, PathBuf};
 /// The stability analysis of the model over `mus`: the damping of eqs (12)–(13) with the
 /// coalescing pair picked as the scene asks, the sweep and the Hopf point.
 pub fn analyse(m: &Model, mus: &[f64]) -> Result<Stability> {
-    Ok(squeal_brake::analysis::stability(
-        &m.brake, &m.damping, mus, &m.sweep,
-    )?)
+    analyse_with(m, mus, &crate::progress::Silent)
+}
+
+/// [`analyse`], each sweep a step of `progress` with one item per friction value.
+pub fn analyse_with(m: &Model, mus: &[f64], progress: &dyn Progress) -> Result<Stability> {
+    // One item per friction value, whatever the sweep reports at once.
+    let last = std::sync::atomic::AtomicUsize::new(0);
+    let tell = |done: usize, total: usize| {
+        if done == 0 {
+            progress.begin("sweep", total);
+            progress.item(&format!("0/{total} mu values"));
+        }
+        let before = last.swap(done, std::sync::atomic::Ordering::Relaxed);
+        for k in before.min(done) + 1..=done {
+            progress.item(&format!("{k}/{total} mu values"));
+        }
+        if done == total {
+            progress.end();
+        }
+    };
+    let st = squeal_brake::analysis::stability_with(&m.brake, &m.damping, mus, &m.sweep, &tell);
+    progress.end();
+    Ok(st?)
 }
 
 /// The Hopf normal form at μ0 (criticality and the branch's asymptote), when there is a Hopf

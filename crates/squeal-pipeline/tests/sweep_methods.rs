@@ -1,7 +1,8 @@
-//! The two sweep methods against each other on the coarse bundled brake (158 dofs, 316
-//! eigenvalues per friction value): continuation of eigenpairs (the default) must give the
-//! dense eigen-decomposition's eigenvalues, branch by branch, the same crossings and the same
-//! Hopf point.
+//! The sweep methods against each other on the coarse bundled brake (158 dofs, 316
+//! eigenvalues per friction value): continuation of eigenpairs (the default for brakes of this
+//! size) must give the dense eigen-decomposition's eigenvalues, branch by branch, the same
+//! crossings and the same Hopf point; the projected sweep (the default for large brakes) must
+//! stay within the tolerance its truncation was checked to.
 
 mod common;
 
@@ -65,4 +66,87 @@ fn the_sweep_to_the_hopf_point_is_the_whole_sweeps_beginning() {
     let (he, hw) = (early.hopf.unwrap(), whole.hopf.unwrap());
     assert_eq!(he.mu0.to_bits(), hw.mu0.to_bits());
     assert_eq!((he.branch, he.partner), (hw.branch, hw.partner));
+}
+
+#[test]
+fn the_projected_sweep_agrees_with_continuation_within_its_checked_tolerance() {
+    // The coarse brake projected on its modes below 1.5 x 16 kHz plus the static correction
+    // of the others (105 + 18 vectors of 158 dofs): its check against the unprojected brake
+    // at mu = 0, 0.5, 1 measured 3.3e-6, so a tolerance of 1e-5 keeps that projection. Every
+    // in-band eigenvalue at every one of the 101 points is then compared with the exact
+    // continuation's (the reference: converged to round-off, 3.4e-14 from dense solves).
+    use squeal_brake::projected::ProjectionOptions;
+    let c = common::coarse();
+    let mus = common::mus(0.0, 1.0, 101);
+    let exact = common::options(c);
+    let projected = SweepOptions {
+        method: SweepMethod::Projected,
+        projection: ProjectionOptions {
+            tolerance: 1e-5,
+            ..ProjectionOptions::default()
+        },
+        ..exact
+    };
+    let se = sweep(&c.model.brake, &c.reference, &mus, &exact).unwrap();
+    let sp = sweep(&c.model.brake, &c.reference, &mus, &projected).unwrap();
+    let p = sp
+        .projection
+        .as_ref()
+        .expect("a projected sweep reports its projection");
+    assert!(se.projection.is_none());
+    eprintln!(
+        "kept {} modes + {} vectors, deviation {:.2e} at {:?}",
+        p.kept_modes, p.residual_vectors, p.deviation, p.checked_mus
+    );
+    assert!(
+        p.kept_modes < c.model.brake.size(),
+        "the projection truncates"
+    );
+    assert!(p.deviation <= 1e-5, "{:e}", p.deviation);
+    // Each in-band projected eigenvalue against the nearest exact one at the same point.
+    let mut worst = 0.0f64;
+    for (a, b) in sp.points.iter().zip(&se.points) {
+        for (j, l) in a.spectrum.values.iter().enumerate() {
+            if !exact.band.contains(a.spectrum.frequency_hz(j)) {
+                continue;
+            }
+            let d = b
+                .spectrum
+                .values
+                .iter()
+                .map(|e| (e - l).norm() / e.norm())
+                .fold(f64::INFINITY, f64::min);
+            worst = worst.max(d);
+        }
+    }
+    eprintln!("largest in-band relative eigenvalue difference over the sweep: {worst:.2e}");
+    // Measured 3.27e-6, the checked deviation itself: the check at three friction values
+    // saw the worst point. A truncation worse between the checked values than at them would
+    // exceed the tolerance the projection was accepted at.
+    assert!(worst <= 1e-5, "{worst:e}");
+    let (hp, he) = (sp.hopf.unwrap(), se.hopf.unwrap());
+    eprintln!(
+        "mu0 {} vs {}, {} vs {} Hz",
+        hp.mu0, he.mu0, hp.frequency_hz, he.frequency_hz
+    );
+    // Measured: mu0 1.4e-7 apart, frequencies 3e-10 relative. A relative error of 1e-5 on
+    // frequencies that approach at ~1e4 rad/s per unit mu bounds mu0's shift by ~3e-5.
+    assert!((hp.mu0 - he.mu0).abs() < 3e-5, "{} vs {}", hp.mu0, he.mu0);
+    assert!((hp.frequency_hz / he.frequency_hz - 1.0).abs() < 1e-5);
+}
+
+#[test]
+fn auto_continues_the_bundled_brakes_and_projects_larger_ones() {
+    // The bundled brakes (158 and 266 dofs) keep the continuation their pinned numbers come
+    // from (tests/regression.rs); above PROJECT_ABOVE the sweep projects.
+    use squeal_brake::sweep::PROJECT_ABOVE;
+    assert_eq!(SweepMethod::default(), SweepMethod::Auto);
+    for n in [158, 266, PROJECT_ABOVE] {
+        assert_eq!(SweepMethod::Auto.resolve(n), SweepMethod::Continuation);
+    }
+    assert_eq!(
+        SweepMethod::Auto.resolve(PROJECT_ABOVE + 1),
+        SweepMethod::Projected
+    );
+    assert_eq!(SweepMethod::Dense.resolve(5000), SweepMethod::Dense);
 }

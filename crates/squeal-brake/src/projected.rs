@@ -1,0 +1,516 @@
+//! The friction sweep on a projection of the linearized brake: the standard reduction of
+//! commercial complex-eigenvalue analysis, with its truncation checked.
+//!
+//! In the frictionless modal coordinates of [`crate::modal`] the brake linearized at a state is
+//! `T(λ) q = (λ² I + λ (D + ΔC) + Ω² + ΔK) q = 0` (eqs 20–21, [`crate::linearized`]), with
+//! `ΔK = U₀ Vᵀ`, `ΔC = U₁ Vᵀ` acting through the contact directions `v_p = Φᵀ g_p`,
+//! `w_p = Φᵀ h_p`. It is projected (Galerkin, `q = Q a`, `Qᵀ T(λ) Q a = 0`) on a basis `Q`
+//! with orthonormal columns: the `m` lowest modes, those below a cut-off `f_c` above the
+//! band, and the static correction of the dropped ones (`t`), the vectors
+//! `Ω_t⁻² [v_p, w_p]_t` (the dropped modes' static response to the contact forces:
+//! "residual flexibility", without which the local contact stiffness converges slowly, as the
+//! frequency ratio squared), with the next terms of the dropped modes' dynamic response
+//! `(Ω_t² + λ²)⁻¹ = Ω_t⁻² - λ² Ω_t⁻⁴ + …` ([`ProjectionOptions::correction_terms`]: `Ω_t⁻⁴ [v_p,
+//! w_p]_t`, …), orthonormalized and turned to diagonalize `Qᵀ Ω² Q` (a small
+//! symmetric eigenproblem, `Θ²`). The projected problem is then of the same form, with
+//! frequencies `[Ω_m, Θ]`, damping `Qᵀ D Q` and coupling `(Qᵀ U)(Qᵀ V)ᵀ`, and is solved densely
+//! through the scaled state matrix of [`crate::spectrum`] at `O(k³)` per friction value
+//! (`k = m + 2P` per correction term at most). The equilibrium of eq (14) at each μ is not projected: it is the
+//! brake's own, as in the other methods.
+//!
+//! The equilibria of a large brake are found by the Newton iteration of
+//! [`crate::equilibrium`] with its steps solved in the modal basis: `Φᵀ K_t Φ = T(0) = Ω² +
+//! U₀ Vᵀ`, so `K_t⁻¹ b = Φ T(0)⁻¹ Φᵀ b`, a diagonal plus rank-`P` solve ([`crate::linearized`])
+//! and two products with `Φ`, `O(n² + n P²)` instead of the `O(n³)` of a dense LU.
+//!
+//! The truncation neglects the dynamics of the dropped modes beyond the terms kept (with one,
+//! `T_tt(λ)⁻¹` against `Ω_t⁻²`, a relative `ω²/ω_t²`); it is small when they lie well above
+//! the band, but how small depends on the contact. So the basis is chosen by convergence
+//! (`choose`): starting at `f_c = first_cutoff · f_top` (`f_top` the top of the band) with one
+//! correction term, each in-band eigenvalue of the projection at a few friction values of the
+//! sweep is carried to the unprojected brake by the exact Rayleigh iteration of
+//! [`crate::continuation`] (started from the projected eigenvector lifted to the modal
+//! coordinates); the largest relative distance `|λ_k - λ| / |λ|` must be below
+//! [`ProjectionOptions::tolerance`], else a correction term is added, then `f_c` grows by
+//! [`ProjectionOptions::growth`], and the check is repeated (at worst up to every mode: the
+//! projection is then the brake itself).
+//! What was kept and checked is reported in [`Projection`].
+//!
+//! A projection cannot hold an eigenvalue of the unprojected brake that is absent from it; one
+//! would have to come from a mode above the cut-off pulled into the band by the contact, which
+//! the growth of the cut-off until convergence makes ever less likely, and which the check does
+//! not exclude.
+
+use crate::continuation::{Eigenpair, converge};
+use crate::damping::ModalDamping;
+use crate::equilibrium::{Equilibrium, static_equilibrium, static_equilibrium_with};
+use crate::error::BrakeError;
+use crate::linearized::{Coupling, LinearizedBrake};
+use crate::model::Brake;
+use crate::spectrum::{Reference, Ritz, Spectrum, modal_spectrum};
+use crate::sweep::{SweepOptions, SweepPoint, SweepProgress, SweepStats, SweptPoints, track};
+use faer::{Mat, Side, c64};
+use rayon::prelude::*;
+use std::sync::Arc;
+
+/// Controls of the projected sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProjectionOptions {
+    /// Largest relative distance `|λ_k - λ| / |λ|` allowed between an in-band eigenvalue of
+    /// the projection and the unprojected brake's at the checked friction values.
+    pub tolerance: f64,
+    /// The first cut-off, as a multiple of the top of the band.
+    pub first_cutoff: f64,
+    /// Factor on the cut-off after a failed check.
+    pub growth: f64,
+    /// Friction values of the sweep the truncation is checked at (evenly spread over it, its
+    /// ends included).
+    pub checks: usize,
+    /// Most terms of the dropped modes' response kept per contact direction: `Ω_t⁻² a`,
+    /// `Ω_t⁻⁴ a`, ... (the static correction and the first terms of `(Ω_t² + λ²)⁻¹ a` in
+    /// powers of `λ²`, module documentation). The first projection tried has one; a failed
+    /// check adds the next before the cut-off grows.
+    pub correction_terms: usize,
+}
+
+impl Default for ProjectionOptions {
+    fn default() -> Self {
+        Self {
+            // A relative 1e-5 of |λ| ~ 2.5e4 rad/s (4 kHz) is 0.25 rad/s, on frequencies that
+            // approach each other at some 1e3-1e4 rad/s per unit μ before they coalesce: μ0
+            // within about 1e-4 (measured: tests/sweep_methods.rs in squeal-pipeline).
+            tolerance: 1e-5,
+            first_cutoff: 1.5,
+            growth: 1.25,
+            checks: 3,
+            correction_terms: 2,
+        }
+    }
+}
+
+/// A projection tried: the modes kept and the largest relative eigenvalue distance found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Trial {
+    /// Frictionless modes kept.
+    pub kept_modes: usize,
+    /// Static-correction vectors added.
+    pub residual_vectors: usize,
+    /// The highest kept frictionless frequency (Hz).
+    pub cutoff_hz: f64,
+    /// Largest `|λ_k - λ| / |λ|` over the in-band eigenvalues at the checked friction values
+    /// (infinite when one did not converge on the unprojected brake).
+    pub deviation: f64,
+}
+
+/// The projection a sweep used, and how its truncation was checked.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Projection {
+    /// Frictionless modes kept (the lowest ones).
+    pub kept_modes: usize,
+    /// Correction vectors added (at most two per contact pair and correction term).
+    pub residual_vectors: usize,
+    /// Dofs of the brake (the modes there are).
+    pub modes: usize,
+    /// The highest kept frictionless frequency (Hz).
+    pub cutoff_hz: f64,
+    /// The top of the band the projection serves (Hz; infinite: no band, every mode kept).
+    pub band_top_hz: f64,
+    /// Friction values the truncation was checked at.
+    pub checked_mus: Vec<f64>,
+    /// In-band eigenvalues compared there, over all checked values.
+    pub checked_values: usize,
+    /// Largest `|λ_k - λ| / |λ|` of the kept projection.
+    pub deviation: f64,
+    /// [`ProjectionOptions::tolerance`].
+    pub tolerance: f64,
+    /// Every projection tried, the kept one last.
+    pub trials: Vec<Trial>,
+    /// The basis, its frequencies `[Ω_m, Θ]` and damping `Qᵀ D Q`.
+    basis: Basis,
+}
+
+/// A projection basis with what the projected problem needs of it.
+#[derive(Clone, Debug, PartialEq)]
+struct Basis {
+    ritz: Arc<Ritz>,
+    omega: Vec<f64>,
+    damping: ModalDamping,
+}
+
+/// The top of the band (Hz): the lower of the valid band's top and the user band's.
+fn band_top(opts: &SweepOptions) -> f64 {
+    let b = &opts.band;
+    b.user
+        .map_or(b.valid_max_hz, |(_, hi)| hi.min(b.valid_max_hz))
+}
+
+/// Modes with `ω_j <= 2π f` (the basis is ascending), at least one.
+fn modes_below(omega: &[f64], f: f64) -> usize {
+    omega
+        .partition_point(|&w| w <= std::f64::consts::TAU * f)
+        .max(1)
+}
+
+/// Indices of `mus` the truncation is checked at: `checks` of them evenly spread, ends
+/// included.
+fn check_indices(len: usize, checks: usize) -> Vec<usize> {
+    let k = checks.max(1).min(len);
+    let mut out: Vec<usize> = (0..k)
+        .map(|i| {
+            if k == 1 {
+                len - 1
+            } else {
+                i * (len - 1) / (k - 1)
+            }
+        })
+        .collect();
+    out.dedup();
+    out
+}
+
+/// Chooses the modes to keep by convergence (module documentation).
+pub(crate) fn choose(
+    brake: &Brake,
+    reference: &Reference,
+    lr: &LinearizedBrake,
+    mus: &[f64],
+    opts: &SweepOptions,
+) -> Result<Projection, BrakeError> {
+    let omega = &lr.omega;
+    let n = omega.len();
+    let top = band_top(opts);
+    let hz = |m: usize| omega[m - 1] / std::f64::consts::TAU;
+    let mut out = Projection {
+        kept_modes: n,
+        residual_vectors: 0,
+        modes: n,
+        cutoff_hz: hz(n),
+        band_top_hz: top,
+        checked_mus: Vec::new(),
+        checked_values: 0,
+        deviation: 0.0,
+        tolerance: opts.projection.tolerance,
+        trials: Vec::new(),
+        basis: basis(lr, reference, n, 0)?,
+    };
+    if !top.is_finite() {
+        return Ok(out);
+    }
+    let mut couplings = Vec::new();
+    let mut start: Option<Equilibrium> = None;
+    for k in check_indices(mus.len(), opts.projection.checks) {
+        let from = start.as_ref().map(|e| e.x.as_slice());
+        let eq = equilibrium(brake, reference, lr, mus[k], from, opts)?;
+        couplings.push(lr.coupling(brake, &eq));
+        out.checked_mus.push(mus[k]);
+        start = Some(eq);
+    }
+    let mut cutoff = opts.projection.first_cutoff * top;
+    let most = opts.projection.correction_terms;
+    let mut terms = most.min(1);
+    loop {
+        let m = modes_below(omega, cutoff).min(n);
+        let b = basis(lr, reference, m, terms)?;
+        let (deviation, count) = deviation(lr, &b, &couplings, opts)?;
+        let s = b.ritz.residual.ncols();
+        out.trials.push(Trial {
+            kept_modes: m,
+            residual_vectors: s,
+            cutoff_hz: hz(m),
+            deviation,
+        });
+        (out.kept_modes, out.residual_vectors, out.cutoff_hz) = (m, s, hz(m));
+        (out.deviation, out.checked_values, out.basis) = (deviation, count, b);
+        if deviation <= opts.projection.tolerance || m == n {
+            return Ok(out);
+        }
+        // One more correction term first (4P more vectors at most: cheaper than the modes a
+        // higher cut-off takes in, on the brakes measured); then a higher cut-off, until it
+        // takes in at least one more mode.
+        if terms < most {
+            terms += 1;
+            continue;
+        }
+        while modes_below(omega, cutoff) <= m {
+            cutoff *= opts.projection.growth.max(1.01);
+        }
+    }
+}
+
+/// Vectors whose norm falls below this fraction of their own in the orthogonalization are
+/// dependent on the others and dropped.
+const DEPENDENT: f64 = 1e-8;
+
+/// The basis of the `m` lowest modes and the static correction of the others (module
+/// documentation).
+fn basis(
+    lr: &LinearizedBrake,
+    reference: &Reference,
+    m: usize,
+    terms: usize,
+) -> Result<Basis, BrakeError> {
+    let (n, np) = (lr.size(), lr.pairs());
+    let t = n - m;
+    let (vg, vh) = lr.contact_columns();
+    // Ω_t⁻²ᵏ [v_p, w_p]_t, k = 1..terms, orthonormalized (modified Gram-Schmidt, twice).
+    let mut cols: Vec<Vec<f64>> = Vec::new();
+    for (k, p) in (1..=terms).flat_map(|k| (0..np).map(move |p| (k, p))) {
+        for src in [vg, vh] {
+            let mut a: Vec<f64> = (0..t)
+                .map(|i| src[p * n + m + i] / (lr.omega[m + i] * lr.omega[m + i]).powi(k as i32))
+                .collect();
+            let before = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+            for _ in 0..2 {
+                for c in &cols {
+                    let d: f64 = c.iter().zip(&a).map(|(x, y)| x * y).sum();
+                    a.iter_mut().zip(c).for_each(|(y, x)| *y -= d * x);
+                }
+            }
+            let after = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if after > DEPENDENT * before && after > 0.0 {
+                a.iter_mut().for_each(|y| *y /= after);
+                cols.push(a);
+            }
+        }
+    }
+    let s = cols.len();
+    let r_hat = Mat::from_fn(t, s, |i, k| cols[k][i]);
+    // Qᵀ Ω² Q on the residual block, scaled to unit norm for the eigensolver (as in
+    // crate::modal), diagonalized: R = R̂ Z, Θ² its eigenvalues.
+    let k_rr = Mat::from_fn(s, s, |a, b| {
+        (0..t)
+            .map(|i| r_hat[(i, a)] * lr.omega[m + i] * lr.omega[m + i] * r_hat[(i, b)])
+            .sum::<f64>()
+    });
+    let scale = k_rr.norm_max().max(f64::MIN_POSITIVE);
+    let sym = Mat::from_fn(s, s, |a, b| 0.5 * (k_rr[(a, b)] + k_rr[(b, a)]) / scale);
+    let evd = sym
+        .self_adjoint_eigen(Side::Lower)
+        .map_err(|_| BrakeError::EigenNoConvergence)?;
+    let residual = &r_hat * evd.U();
+    let mut omega: Vec<f64> = lr.omega[..m].to_vec();
+    omega.extend((0..s).map(|k| (evd.S()[k] * scale).max(0.0).sqrt()));
+    let ritz = Arc::new(Ritz { kept: m, residual });
+    let damping = project_damping(&reference.damping, &ritz);
+    Ok(Basis {
+        ritz,
+        omega,
+        damping,
+    })
+}
+
+/// `Qᵀ D Q` (diagonal when nothing is added to the kept modes, or nothing is damped there).
+fn project_damping(d: &ModalDamping, ritz: &Ritz) -> ModalDamping {
+    let (m, r) = (ritz.kept, &ritz.residual);
+    let s = r.ncols();
+    let lifted = |k: usize| -> Vec<f64> {
+        // Column k of Q in modal coordinates.
+        let n = m + r.nrows();
+        let mut q = vec![0.0; n];
+        if k < m {
+            q[k] = 1.0;
+        } else {
+            for i in 0..r.nrows() {
+                q[m + i] = r[(i, k - m)];
+            }
+        }
+        q
+    };
+    if s == 0 {
+        return d.leading(m);
+    }
+    let n = m + r.nrows();
+    let cols: Vec<Vec<f64>> = (0..m + s).map(lifted).collect();
+    let mut dq = vec![0.0; n];
+    let dcols: Vec<Vec<f64>> = cols
+        .iter()
+        .map(|c| {
+            d.apply(c, &mut dq);
+            dq.clone()
+        })
+        .collect();
+    ModalDamping::Full(Mat::from_fn(m + s, m + s, |a, b| {
+        cols[a].iter().zip(&dcols[b]).map(|(x, y)| x * y).sum()
+    }))
+}
+
+/// Column `a` (modal coordinates, `n` entries) on the basis: `[a_m; Rᵀ a_t]`.
+fn on_basis(ritz: &Ritz, a: &[f64]) -> Vec<f64> {
+    let (m, r) = (ritz.kept, &ritz.residual);
+    let mut out = a[..m].to_vec();
+    out.extend((0..r.ncols()).map(|k| {
+        let col = r.col(k);
+        (0..r.nrows()).map(|i| col[i] * a[m + i]).sum::<f64>()
+    }));
+    out
+}
+
+/// The spectrum of the projection on `b` at the coupling `c`.
+fn project(b: &Basis, c: &Coupling, n: usize) -> Result<Spectrum, BrakeError> {
+    let (v, u0, u1) = c.columns();
+    let r = c.rank();
+    let k = b.omega.len();
+    let on = |m: &[f64]| -> Vec<Vec<f64>> {
+        (0..r)
+            .map(|p| on_basis(&b.ritz, &m[p * n..(p + 1) * n]))
+            .collect()
+    };
+    let vq = on(v);
+    let product =
+        |uq: &[Vec<f64>]| Mat::from_fn(k, k, |i, j| (0..r).map(|p| uq[p][i] * vq[p][j]).sum());
+    let dk = product(&on(u0));
+    let dc = u1.map(|u1| product(&on(u1)));
+    let mut sp = modal_spectrum(&b.omega, &b.damping, &dk, dc.as_ref(), c.mu)?;
+    sp.ritz = Some(b.ritz.clone());
+    Ok(sp)
+}
+
+/// The largest relative distance between the in-band eigenvalues of the projection on `b`
+/// and the unprojected brake's at `couplings`, and how many were compared.
+fn deviation(
+    lr: &LinearizedBrake,
+    b: &Basis,
+    couplings: &[Coupling],
+    opts: &SweepOptions,
+) -> Result<(f64, usize), BrakeError> {
+    let n = lr.size();
+    let mut worst = 0.0f64;
+    let mut count = 0;
+    for c in couplings {
+        let sp = project(b, c, n)?;
+        let starts: Vec<Eigenpair> = (0..sp.values.len())
+            .filter(|&j| opts.band.contains(sp.frequency_hz(j)))
+            .map(|j| {
+                let right = sp.modal(j);
+                let left = right.iter().map(|v| v.conj()).collect();
+                Eigenpair {
+                    lambda: sp.values[j],
+                    right,
+                    left,
+                }
+            })
+            .collect();
+        count += starts.len();
+        let distances: Vec<f64> = starts
+            .par_iter()
+            .map(|p| match converge(lr, c, p, &opts.continuation) {
+                Some((exact, _)) => (exact.lambda - p.lambda).norm() / exact.lambda.norm(),
+                None => f64::INFINITY,
+            })
+            .collect();
+        worst = distances.into_iter().fold(worst, f64::max);
+    }
+    Ok((worst, count))
+}
+
+/// The spectrum of the projection `p` at the coupling `c`.
+pub(crate) fn spectrum(
+    lr: &LinearizedBrake,
+    p: &Projection,
+    c: &Coupling,
+) -> Result<Spectrum, BrakeError> {
+    project(&p.basis, c, lr.size())
+}
+
+/// Friction values whose equilibria are found in turn before their spectra are computed in
+/// parallel: the progress count moves once per chunk.
+const CHUNK: usize = 8;
+
+/// Points and branches of the projected sweep: equilibria in turn, projected spectra (in
+/// parallel, each alone: the bits do not depend on the thread count), branches by correlation.
+pub(crate) fn points(
+    brake: &Brake,
+    reference: &Reference,
+    lr: &LinearizedBrake,
+    p: &Projection,
+    mus: &[f64],
+    opts: &SweepOptions,
+    progress: SweepProgress,
+) -> Result<SweptPoints, BrakeError> {
+    let mut points: Vec<SweepPoint> = Vec::with_capacity(mus.len());
+    for chunk in mus.chunks(CHUNK) {
+        let mut equilibria: Vec<Equilibrium> = Vec::with_capacity(chunk.len());
+        for &mu in chunk {
+            let from = equilibria
+                .last()
+                .or(points.last().map(|p| &p.equilibrium))
+                .map(|e| e.x.as_slice());
+            equilibria.push(equilibrium(brake, reference, lr, mu, from, opts)?);
+        }
+        let spectra: Vec<Spectrum> = equilibria
+            .par_iter()
+            .map(|eq| spectrum(lr, p, &lr.coupling(brake, eq)))
+            .collect::<Result<_, _>>()?;
+        points.extend(
+            equilibria
+                .into_iter()
+                .zip(spectra)
+                .map(|(equilibrium, spectrum)| SweepPoint {
+                    equilibrium,
+                    spectrum,
+                }),
+        );
+        progress(points.len(), mus.len());
+    }
+    let branches = track(&points);
+    let stats = SweepStats {
+        dense: points.len(),
+        ..SweepStats::default()
+    };
+    Ok((points, branches, stats))
+}
+
+/// The equilibrium at `mu` from `from` (from scratch without), its Newton steps solved in the
+/// modal basis (module documentation); the dense steps of [`static_equilibrium`] when that
+/// fails.
+fn equilibrium(
+    brake: &Brake,
+    reference: &Reference,
+    lr: &LinearizedBrake,
+    mu: f64,
+    from: Option<&[f64]>,
+    opts: &SweepOptions,
+) -> Result<Equilibrium, BrakeError> {
+    // The frictionless equilibrium is a start as good as any for the first friction value,
+    // and spares the load ramp's dense steps.
+    let from = from.or(Some(reference.equilibrium.x.as_slice()));
+    let phi = &reference.basis.phi;
+    let solve = |x: &[f64], b: &[f64]| modal_tangent_solve(brake, lr, phi, mu, x, b);
+    match static_equilibrium_with(brake, mu, from, &opts.newton, Some(&solve)) {
+        Ok(eq) => Ok(eq),
+        Err(_) => static_equilibrium(brake, mu, from, &opts.newton),
+    }
+}
+
+/// `K_t(x)⁻¹ b = Φ T(0)⁻¹ Φᵀ b`, `None` when not finite.
+fn modal_tangent_solve(
+    brake: &Brake,
+    lr: &LinearizedBrake,
+    phi: &Mat<f64>,
+    mu: f64,
+    x: &[f64],
+    b: &[f64],
+) -> Option<Vec<f64>> {
+    let n = b.len();
+    let responses = brake
+        .pairs
+        .iter()
+        .map(|p| p.response(x, None, mu))
+        .collect();
+    let c = lr.coupling_of(mu, responses, Vec::new());
+    let q: Vec<c64> = (0..n)
+        .map(|j| {
+            let col = phi.col(j);
+            c64::new((0..n).map(|i| col[i] * b[i]).sum(), 0.0)
+        })
+        .collect();
+    let y = lr.factor(&c, c64::new(0.0, 0.0)).solve(lr, &c, &q);
+    let mut dx = vec![0.0; n];
+    for (j, yj) in y.iter().enumerate() {
+        let col = phi.col(j);
+        for (i, d) in dx.iter_mut().enumerate() {
+            *d += col[i] * yj.re;
+        }
+    }
+    dx.iter().all(|v| v.is_finite()).then_some(dx)
+}
