@@ -30,9 +30,10 @@ pub struct DampingSpec {
     pub pair_ratios: [f64; 2],
 }
 
-/// A stability analysis: the damping used, the pair, the sweep.
+/// A linear stability analysis (complex eigenvalues against friction): the damping used, the
+/// pair, the sweep. The stability of a limit cycle is `squeal_chbm::floquet::CycleStability`.
 #[derive(Clone, Debug)]
-pub struct Stability {
+pub struct LinearStability {
     /// The damping of the final sweep, its extras as `D_jj` values (s⁻¹) on the pair.
     pub damping: Damping,
     /// Frictionless mode numbers (0-based) of Mode 1 (stays stable) and Mode 2 (goes
@@ -66,7 +67,7 @@ pub fn stability(
     spec: &DampingSpec,
     mus: &[f64],
     opts: &SweepOptions,
-) -> Result<Stability, BrakeError> {
+) -> Result<LinearStability, BrakeError> {
     let newton: NewtonOptions = opts.newton;
     let global = Damping {
         global_ratio: spec.global_ratio,
@@ -105,7 +106,7 @@ pub fn stability(
         _ => global.clone(),
     };
     if let (Some((r, s)), false) = (&preliminary, has_pair_damping) {
-        return Ok(Stability {
+        return Ok(LinearStability {
             damping,
             pair,
             reference: r.clone(),
@@ -141,7 +142,7 @@ pub fn stability(
             .unwrap_or_default(),
     };
     let sweep = sweep(brake, &reference, mus, opts)?;
-    Ok(Stability {
+    Ok(LinearStability {
         damping,
         pair,
         reference,
