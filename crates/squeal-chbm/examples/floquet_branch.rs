@@ -99,10 +99,19 @@ mod tests {
         }
         // After it, up to the next fold (where a multiplier leaves through +1 again), no
         // multiplier is outside the circle beyond Hill's error (marginal at worst).
-        let next = b.branch.folds.get(1).map_or(b.branch.points.len(), |f| f.after_point);
+        let next = b
+            .branch
+            .folds
+            .get(1)
+            .map_or(b.branch.points.len(), |f| f.after_point);
         for i in first + 2..next {
             let f = b.floquet[i].as_ref().unwrap();
-            assert_ne!(f.stability(), CycleStability::Unstable, "point {i}: {:?}", f.leading());
+            assert_ne!(
+                f.stability(),
+                CycleStability::Unstable,
+                "point {i}: {:?}",
+                f.leading()
+            );
         }
         // The first stability change is a fold (a real multiplier through +1), found by the
         // multipliers independently of the continuation's tangent: in the same step of the

@@ -31,9 +31,11 @@ fn rom() -> &'static (squeal_reduce::rom::ReducedModel, std::path::PathBuf) {
 /// The coarse bundled scene turning at 60 rpm with `law` (a TOML value) as `[contact] law`.
 fn scene(law: &str) -> Scene {
     let base = common::bundled_scene_with("coarse", &format!("law = {law}"));
-    let text = base
-        .text
-        .replacen("sense = \"clockwise\"", "sense = \"clockwise\"\nrpm = 60.0", 1);
+    let text = base.text.replacen(
+        "sense = \"clockwise\"",
+        "sense = \"clockwise\"\nrpm = 60.0",
+        1,
+    );
     assert_ne!(text, base.text, "meshes/brake.toml lost its rotation sense");
     Scene::parse(&base.path, text).unwrap()
 }
@@ -44,7 +46,9 @@ fn model(law: &str) -> Model {
 }
 
 fn velocity_dependent(r: f64, v0: f64) -> String {
-    format!("{{ kind = \"velocity-dependent\", static_ratio = {r:?}, decay_speed_m_per_s = {v0:?} }}")
+    format!(
+        "{{ kind = \"velocity-dependent\", static_ratio = {r:?}, decay_speed_m_per_s = {v0:?} }}"
+    )
 }
 
 /// A law evaluated at a fixed slip velocity: the same forces in steady sliding, no slope.
