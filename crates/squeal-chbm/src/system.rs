@@ -27,7 +27,7 @@
 //! - [`FrictionSystem::hopf`]: the friction sweep and its refined Hopf point μ0 (section 3,
 //!   eqs 20–22) — [`squeal_brake::sweep`];
 //! - [`FrictionSystem::limit_cycle`]: CHBM at μ from the unstable mode there (section 4, eqs
-//!   46–48) — [`crate::solve`];
+//!   46–48) — [`crate::solve`](mod@crate::solve);
 //! - [`FrictionSystem::branch`]: the branch of limit cycles born at μ0, from the Hopf normal
 //!   form, with each cycle's Floquet multipliers by Hill's method and the bifurcations they
 //!   show — [`crate::branch`], [`crate::floquet`], [`crate::bifurcation`].

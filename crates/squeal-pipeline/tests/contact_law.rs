@@ -137,3 +137,33 @@ fn the_scene_chooses_the_law_and_a_falling_friction_curve_destabilizes() {
         }
     }
 }
+
+#[test]
+fn a_law_the_scene_cannot_read_is_refused_with_its_key_and_line() {
+    // A misspelt kind, a missing parameter, a non-positive one, an unknown key: all name
+    // `contact.law` at its line and say what it takes.
+    for law in [
+        "\"coulomb\"",
+        "{ kind = \"velocity-dependent\", static_ratio = 1.2 }",
+        "{ kind = \"velocity-dependent\", static_ratio = -1.0, decay_speed_m_per_s = 0.1 }",
+        "{ kind = \"velocity-dependent\", static_ratio = 1.2, decay_speed_m_per_s = 0.1, v1 = 2 }",
+    ] {
+        let s = scene(law);
+        let line = s
+            .text
+            .lines()
+            .position(|l| l.starts_with("law = "))
+            .unwrap()
+            + 1;
+        let e = s.contact_law().unwrap_err().to_string();
+        assert!(
+            e.contains(&format!(":{line}: contact.law: must be")),
+            "{law}: {e}"
+        );
+    }
+    // Velocity-dependent friction without the disc's speed: told where to give it.
+    let s =
+        common::bundled_scene_with("coarse", &format!("law = {}", velocity_dependent(1.2, 0.1)));
+    let e = s.contact_law().unwrap_err().to_string();
+    assert!(e.contains("[rotation] rpm"), "{e}");
+}
