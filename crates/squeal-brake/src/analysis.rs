@@ -30,9 +30,10 @@ pub struct DampingSpec {
     pub pair_ratios: [f64; 2],
 }
 
-/// A stability analysis: the damping used, the pair, the sweep.
+/// A linear stability analysis (complex eigenvalues against friction): the damping used, the
+/// pair, the sweep. The stability of a limit cycle is `squeal_chbm::floquet::CycleStability`.
 #[derive(Clone, Debug)]
-pub struct Stability {
+pub struct LinearStability {
     /// The damping of the final sweep, its extras as `D_jj` values (s⁻¹) on the pair.
     pub damping: Damping,
     /// Frictionless mode numbers (0-based) of Mode 1 (stays stable) and Mode 2 (goes
@@ -66,7 +67,7 @@ pub fn stability(
     spec: &DampingSpec,
     mus: &[f64],
     opts: &SweepOptions,
-) -> Result<Stability, BrakeError> {
+) -> Result<LinearStability, BrakeError> {
     stability_with(brake, spec, mus, opts, &|_, _| {})
 }
 
@@ -77,7 +78,7 @@ pub fn stability_with(
     mus: &[f64],
     opts: &SweepOptions,
     progress: SweepProgress,
-) -> Result<Stability, BrakeError> {
+) -> Result<LinearStability, BrakeError> {
     let newton: NewtonOptions = opts.newton;
     let global = Damping {
         global_ratio: spec.global_ratio,
@@ -116,7 +117,7 @@ pub fn stability_with(
         _ => global.clone(),
     };
     if let (Some((r, s)), false) = (&preliminary, has_pair_damping) {
-        return Ok(Stability {
+        return Ok(LinearStability {
             damping,
             pair,
             reference: r.clone(),
@@ -152,7 +153,7 @@ pub fn stability_with(
             .unwrap_or_default(),
     };
     let sweep = sweep_with(brake, &reference, mus, opts, progress)?;
-    Ok(Stability {
+    Ok(LinearStability {
         damping,
         pair,
         reference,

@@ -35,14 +35,13 @@
 //! Abaqus' contact adjustment and Ansys' contact offset do); [`Pairing`] keeps both the
 //! geometric and the gap used.
 
-use crate::contact::{Law, PenaltyCoulomb};
+use crate::contact::{Law, LawSpec};
 use crate::error::BrakeError;
 use crate::model::{Brake, ContactPair, SparseVec};
 use faer::Mat;
 use squeal_fe::frames::RotationAxis;
 use squeal_reduce::brake::{PairingTolerance, pair_contact_points};
 use squeal_reduce::rom::{DofLabel, PointRole, ReducedModel, ReducedPart};
-use std::sync::Arc;
 
 /// Largest angle (degrees) between the disc face's normal at a pair and a normal the scene
 /// gives: beyond it the scene and the mesh disagree (a wrong axis, a reversed normal). Disc
@@ -122,8 +121,10 @@ pub struct BrakeParams {
     pub sliding: SlidingRule,
     /// The disc's rotation, when known (needed by [`SlidingRule::Tangent`]).
     pub rotation: Option<DiscRotation>,
-    /// Contact stiffness of every pair's element.
+    /// Contact stiffness of every pair's element (its normal part, eq 8).
     pub stiffness: Stiffness,
+    /// Which contact law every pair gets (its friction part).
+    pub law: LawSpec,
     /// How close paired contact points must be.
     pub pairing_tolerance: PairingTolerance,
     /// Total piston force (N) pressing the pad on the disc, shared equally by the pad's piston
@@ -366,8 +367,14 @@ fn pair_sliding(
     Ok((s, speed))
 }
 
-/// The pair's contact stiffnesses from the scene's stiffness and the pair's area.
-fn element(stiffness: &Stiffness, area: Option<f64>, pair: usize) -> Result<Law, BrakeError> {
+/// The pair's contact element: the law `spec` with the stiffnesses from the scene's stiffness
+/// and the pair's area.
+fn element(
+    stiffness: &Stiffness,
+    spec: &LawSpec,
+    area: Option<f64>,
+    pair: usize,
+) -> Result<Law, BrakeError> {
     let (k_linear, k_cubic) = match *stiffness {
         Stiffness::PerPoint { linear, cubic } => (linear, cubic),
         Stiffness::PerArea {
@@ -379,7 +386,7 @@ fn element(stiffness: &Stiffness, area: Option<f64>, pair: usize) -> Result<Law,
             (linear * a, cubic * a)
         }
     };
-    Ok(Arc::new(PenaltyCoulomb { k_linear, k_cubic }))
+    Ok(spec.element(k_linear, k_cubic))
 }
 
 /// Builds the brake; returns it with its dof layout and the pairing report. The disc's dofs
@@ -446,7 +453,7 @@ pub fn assemble(
                 (Some(a), Some(b)) => Some(0.5 * (a + b)),
                 (a, b) => a.or(b),
             };
-            let law = element(&params.stiffness, area, k + 1)?;
+            let law = element(&params.stiffness, &params.law, area, k + 1)?;
             let xi = position(disc, i);
             let normal = pair_normal(
                 disc.info.points[i].normal,
@@ -487,7 +494,7 @@ pub fn assemble(
                 sliding_direction: sliding,
                 normal: g,
                 tangent: h,
-                gap: 0.0,
+                initial_gap: 0.0,
                 surface_speed,
                 law,
             });
@@ -510,7 +517,7 @@ pub fn assemble(
             InitialGaps::PerPair(g) => g[k],
             InitialGaps::Closed => 0.0,
         };
-        pair.gap = -r.initial_gap;
+        pair.initial_gap = r.initial_gap;
     }
     let blocks: Vec<&ReducedPart> = std::iter::once(disc).chain(pads.iter().copied()).collect();
     let brake = Brake {

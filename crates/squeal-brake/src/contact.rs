@@ -17,12 +17,24 @@
 //! `∂F_p/∂x' = (F_n,δ' g + F_t,δ' h) gᵀ + (F_n,v g + F_t,v h) hᵀ`.
 //!
 //! Everything else — equilibrium, linearization, harmonic balance, time integration — calls
-//! the element through [`ContactLaw`], so a new law is one new type implementing it. The first
-//! element is the paper's ([`PenaltyCoulomb`], eqs 8–10): cubic penalty contact with Coulomb
-//! friction in permanent sliding. A velocity-dependent friction coefficient or a regularized
-//! stick–slip law depends on `v` (and then the linearization gains a damping part, see
-//! [`crate::linearized`]); `crates/squeal-brake/tests/friction_law.rs` adds one such element
+//! the element through [`ContactLaw`], so a new law is one new type implementing it, in a file
+//! of its own:
+//!
+//! - [`penalty_coulomb`]: the paper's element ([`PenaltyCoulomb`], eqs 8–10), cubic penalty
+//!   contact with Coulomb friction in permanent sliding;
+//! - [`velocity_dependent`]: the same penalty with a friction coefficient that changes with the
+//!   sliding speed ([`VelocityDependent`]); it depends on `v`, so the linearization gains a
+//!   damping part (see [`crate::linearized`]).
+//!
+//! A scene chooses one for every pair by a [`LawSpec`] (`[contact] law`); a law written
+//! outside the crate (`crates/squeal-chbm/examples/user_contact_law.rs`) plugs in the same way
 //! without touching any other file.
+
+pub mod penalty_coulomb;
+pub mod velocity_dependent;
+
+pub use penalty_coulomb::{PenaltyCoulomb, cubic_penalty};
+pub use velocity_dependent::VelocityDependent;
 
 use std::fmt::Debug;
 use std::sync::Arc;
@@ -93,50 +105,48 @@ pub trait ContactLaw: Debug + Send + Sync {
 /// A shared contact element (pairs are cloned with the brake; laws are not).
 pub type Law = Arc<dyn ContactLaw>;
 
-/// Eq (8): `F_c = k_l δ + k_nl δ³` for `δ > 0`, else 0, with its tangent `dF_c/dδ`.
-pub fn cubic_penalty(delta: f64, k_linear: f64, k_cubic: f64) -> (f64, f64) {
-    if delta > 0.0 {
-        (
-            k_linear * delta + k_cubic * delta.powi(3),
-            k_linear + 3.0 * k_cubic * delta * delta,
-        )
-    } else {
-        (0.0, 0.0)
-    }
+/// The contact law every pair gets, as a scene chooses it (`[contact] law`): its normal part
+/// is always eq (8)'s cubic penalty with the pair's stiffnesses `k_l`, `k_nl`
+/// ([`crate::assemble::Stiffness`]); the variants differ in the friction force.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum LawSpec {
+    /// The paper's element, eqs (8)–(10): Coulomb friction `F_t = μ F_n` ([`PenaltyCoulomb`]).
+    #[default]
+    PenaltyCoulomb,
+    /// Friction that changes with the sliding speed `v` ([`VelocityDependent`]):
+    /// `F_t = μ s(v) F_n` with `s(v) = r + (1 - r)(1 - e^(-v/v0))`.
+    VelocityDependent {
+        /// `r = μ_s / μ_d`, the coefficient at rest over the one at high speed: above 1 the
+        /// coefficient falls with speed (destabilizing), below 1 it rises.
+        static_ratio: f64,
+        /// `v0` (m/s): the speed over which the coefficient moves from `μ_s` to `μ_d`.
+        decay_speed: f64,
+    },
 }
 
-/// The paper's contact element, eqs (8)–(10): cubic penalty contact `F_n = k_l δ + k_nl δ³`
-/// (zero when open) and Coulomb friction in permanent sliding `F_t = μ F_n`, independent of
-/// the velocities.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PenaltyCoulomb {
-    /// `k_l` (N/m).
-    pub k_linear: f64,
-    /// `k_nl` (N/m³).
-    pub k_cubic: f64,
-}
-
-impl ContactLaw for PenaltyCoulomb {
-    fn response(&self, mu: f64, k: &Kinematics) -> Response {
-        let (f, kt) = cubic_penalty(k.penetration, self.k_linear, self.k_cubic);
-        Response {
-            normal: f,
-            tangential: mu * f,
-            normal_derivatives: [kt, 0.0, 0.0],
-            tangential_derivatives: [mu * kt, 0.0, 0.0],
-            tangential_mu: f,
+impl LawSpec {
+    /// The element of a pair with penalty stiffnesses `k_linear` (N/m), `k_cubic` (N/m³).
+    pub fn element(&self, k_linear: f64, k_cubic: f64) -> Law {
+        match *self {
+            LawSpec::PenaltyCoulomb => Arc::new(PenaltyCoulomb { k_linear, k_cubic }),
+            LawSpec::VelocityDependent {
+                static_ratio,
+                decay_speed,
+            } => Arc::new(VelocityDependent {
+                k_linear,
+                k_cubic,
+                static_ratio,
+                decay_speed,
+            }),
         }
     }
 
-    fn name(&self) -> String {
-        "cubic penalty contact (eq 8), Coulomb friction in permanent sliding (eq 9)".into()
-    }
-
-    fn parameters(&self) -> Vec<Parameter> {
-        vec![
-            ("k_l", self.k_linear, "N/m"),
-            ("k_nl", self.k_cubic, "N/m^3"),
-        ]
+    /// Its name in a scene: `penalty-coulomb` or `velocity-dependent`.
+    pub fn scene_name(&self) -> &'static str {
+        match self {
+            LawSpec::PenaltyCoulomb => "penalty-coulomb",
+            LawSpec::VelocityDependent { .. } => "velocity-dependent",
+        }
     }
 }
 
@@ -198,49 +208,6 @@ pub fn scaled(law: &Law, factor: f64) -> Law {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn open_contact_carries_no_force() {
-        assert_eq!(cubic_penalty(-1e-9, 1e6, 1e15), (0.0, 0.0));
-        assert_eq!(cubic_penalty(0.0, 1e6, 1e15), (0.0, 0.0));
-        let (f, k) = cubic_penalty(1e-5, 1e6, 1e15);
-        assert!((f - (10.0 + 1e-15 * 1e15)).abs() < 1e-12 && (k - (1e6 + 3e5)).abs() < 1e-6);
-    }
-
-    #[test]
-    fn penalty_coulomb_derivatives_match_finite_differences() {
-        let law = PenaltyCoulomb {
-            k_linear: 2e6,
-            k_cubic: 3e15,
-        };
-        let (mu, d) = (0.4, 1.3e-5);
-        let at = |delta: f64, mu: f64| {
-            law.response(
-                mu,
-                &Kinematics {
-                    penetration: delta,
-                    ..Kinematics::default()
-                },
-            )
-        };
-        let r = at(d, mu);
-        let h = 1e-10;
-        let (p, m) = (at(d + h, mu), at(d - h, mu));
-        // Central differences of a cubic: truncation k_nl h² ≈ 3e-5 N/m against k ≈ 2.5e6 N/m.
-        for (fd, an) in [
-            ((p.normal - m.normal) / (2.0 * h), r.normal_derivatives[0]),
-            (
-                (p.tangential - m.tangential) / (2.0 * h),
-                r.tangential_derivatives[0],
-            ),
-        ] {
-            assert!((fd - an).abs() < 1e-6 * an.abs(), "{fd} vs {an}");
-        }
-        // F_t is linear in μ: the difference quotient is exact up to round-off.
-        let dmu = (at(d, mu + 1e-3).tangential - at(d, mu - 1e-3).tangential) / 2e-3;
-        assert!((dmu - r.tangential_mu).abs() < 1e-9 * r.tangential_mu);
-        assert!(!r.has_velocity_terms());
-    }
 
     #[test]
     fn scaling_multiplies_every_force_and_derivative() {

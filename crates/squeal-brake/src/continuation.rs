@@ -33,9 +33,12 @@ pub struct Eigenpair {
     pub left: Vec<c64>,
 }
 
-/// Controls of the continuation.
+/// Controls of the continuation of eigenpairs in friction (not to be confused with
+/// `squeal_hbm::continuation::ContinuationOptions`, the arclength continuation of periodic
+/// solutions).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ContinuationOptions {
+#[non_exhaustive]
+pub struct EigenContinuationOptions {
     /// Converged when `||T(λ) x|| <= residual_tolerance · ||T(λ)||` (and the same for `y`).
     pub residual_tolerance: f64,
     /// Inverse-iteration steps allowed per eigenpair and friction step.
@@ -51,7 +54,7 @@ pub struct ContinuationOptions {
     pub check_tolerance: f64,
 }
 
-impl Default for ContinuationOptions {
+impl Default for EigenContinuationOptions {
     fn default() -> Self {
         Self {
             residual_tolerance: 1e-12,
@@ -104,7 +107,7 @@ pub fn converge(
     lr: &LinearizedBrake,
     c: &Coupling,
     start: &Eigenpair,
-    opts: &ContinuationOptions,
+    opts: &EigenContinuationOptions,
 ) -> Option<(Eigenpair, usize)> {
     let mut l = start.lambda;
     let mut x = start.right.clone();
@@ -149,7 +152,7 @@ pub fn seed(
     c: &Coupling,
     lambda: c64,
     right: Vec<c64>,
-    opts: &ContinuationOptions,
+    opts: &EigenContinuationOptions,
 ) -> Eigenpair {
     let left: Vec<c64> = right.iter().map(|v| v.conj()).collect();
     let start = Eigenpair {
@@ -170,7 +173,7 @@ pub fn continue_all(
     lr: &LinearizedBrake,
     c: &Coupling,
     from: &[Eigenpair],
-    opts: &ContinuationOptions,
+    opts: &EigenContinuationOptions,
 ) -> Option<(Vec<Eigenpair>, usize)> {
     let out: Vec<Option<(Eigenpair, usize)>> = from
         .par_iter()
@@ -200,7 +203,7 @@ pub enum Rejection {
         /// The branch (0-based).
         branch: usize,
         /// Its MAC with the previous vector, below
-        /// [`ContinuationOptions::min_correlation`].
+        /// [`EigenContinuationOptions::min_correlation`].
         mac: f64,
     },
     /// Two branches hold the same eigenpair.
@@ -231,7 +234,7 @@ pub fn validate(
     c: &Coupling,
     prev: &[Eigenpair],
     next: &[Eigenpair],
-    opts: &ContinuationOptions,
+    opts: &EigenContinuationOptions,
 ) -> Result<(), Rejection> {
     for (b, p) in next.iter().enumerate() {
         if p.lambda.im <= 0.0 {

@@ -32,7 +32,7 @@
 //! `y ≈ y0 + 2 Re(z q e^{iωt})` and `ω ≈ ω0 + (ω' - σ' Im c1 / Re c1)(μ - μ0)`.
 
 use crate::contact::{Kinematics, Response};
-use crate::continuation::{ContinuationOptions, seed};
+use crate::continuation::{EigenContinuationOptions, seed};
 use crate::equilibrium::{Equilibrium, NewtonOptions, static_equilibrium};
 use crate::error::BrakeError;
 use crate::linearized::{Coupling, LinearizedBrake};
@@ -307,7 +307,7 @@ pub fn normal_form(
         &c,
         sp.values[j],
         right,
-        &ContinuationOptions::default(),
+        &EigenContinuationOptions::default(),
     );
     let l = pair.lambda;
     let omega0 = l.im;

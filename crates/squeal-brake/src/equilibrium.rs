@@ -366,7 +366,7 @@ fn open_at_full_load(brake: &Brake, x: &[f64]) -> BrakeError {
         .enumerate()
         .map(|(p, pair)| OpenPair {
             pair: p + 1,
-            initial_gap: pair.initial_gap(),
+            initial_gap: pair.initial_gap,
             opening: -pair.penetration(x),
         })
         .collect();
@@ -399,7 +399,7 @@ mod tests {
             sliding_direction: [1.0, 0.0, 0.0],
             normal: vec![(0, 1.0), (1, -1.0)],
             tangent: vec![(3, 1.0), (2, -1.0)],
-            gap: 0.0,
+            initial_gap: 0.0,
             surface_speed: None,
             law: Arc::new(PenaltyCoulomb {
                 k_linear: 1e7,
@@ -471,7 +471,7 @@ mod tests {
                 sliding_direction: [1.0, 0.0, 0.0],
                 normal: vec![(0, -1.0)],
                 tangent: vec![],
-                gap: -g0,
+                initial_gap: g0,
                 surface_speed: None,
                 law: Arc::new(PenaltyCoulomb {
                     k_linear: KL,
@@ -599,7 +599,7 @@ mod tests {
         // 0.1 mm and 10 mm: the approach steps go to the first touch, whatever the gap.
         for (g0, step) in [(1e-4, 1.0), (1e-4, 0.1), (1e-2, 1.0), (1e-2, 0.01)] {
             let mut b = pad_on_disc(force);
-            b.pairs[0].gap = -g0;
+            b.pairs[0].initial_gap = g0;
             let eq = static_equilibrium(&b, 0.4, None, &ramped(step)).unwrap();
             // Both converged to 1e-10 of 300 N: δ (≈ 1.8e-5 m) to ~3e-15 m; 1e-9 relative.
             let d = eq.penetrations[0];

@@ -22,7 +22,7 @@
 //! `q_k = Δ(ikω)⁻¹ (Φᵀ F_piston δ_k0 - Φ_nᵀ G_k)`, `x = Φ q`, with `G` the harmonics of the
 //! nonlinear force, which also returns the nonlinear dofs themselves (a check).
 
-use crate::continuation::{ContinuationOptions, Eigenpair, converge, seed};
+use crate::continuation::{EigenContinuationOptions, Eigenpair, converge, seed};
 use crate::damping::ModalDamping;
 use crate::linearized::{Coupling, LinearizedBrake};
 use crate::modal::ModalBasis;
@@ -589,7 +589,7 @@ pub struct BrakeEigen {
     pub iterations: usize,
     /// Times the continuation failed and the eigenvalue was taken from a dense decomposition.
     pub dense_restarts: usize,
-    options: ContinuationOptions,
+    options: EigenContinuationOptions,
 }
 
 impl BrakeEigen {
@@ -608,7 +608,7 @@ impl BrakeEigen {
             reference: None,
             iterations: 0,
             dense_restarts: 0,
-            options: ContinuationOptions::default(),
+            options: EigenContinuationOptions::default(),
         }
     }
 

@@ -4,8 +4,8 @@
 //! unit normal `n_p` from the disc into the pad and the unit sliding direction `s_p` in which
 //! the disc surface moves under the pad, as sparse vectors over the brake's dofs: `g_p` holds
 //! `+n_p` on the disc point's dofs and `-n_p` on the pad point's, `h_p` holds `+s_p` and `-s_p`.
-//! The penetration is `δ_p = g_p · x + gap_p` (eq (8)'s `U_i - U_j` along the normal, positive
-//! when closed), the slip velocity `v_p = V_p + h_p · x'` with `V_p` the disc's surface speed
+//! The penetration is `δ_p = g_p · x - g0_p` (eq (8)'s `U_i - U_j` along the normal less the
+//! pair's initial gap `g0_p`, positive when closed), the slip velocity `v_p = V_p + h_p · x'` with `V_p` the disc's surface speed
 //! there. A contact element ([`crate::contact::ContactLaw`]) gives the normal force `F_n` and
 //! the friction force `F_t` of the pair; as internal forces on the left of eq (11) (the way
 //! `K x` enters), eq (10) reads
@@ -42,14 +42,15 @@ pub struct ContactPair {
     pub normal_direction: [f64; 3],
     /// Unit sliding direction `s` of the disc surface under the pad.
     pub sliding_direction: [f64; 3],
-    /// `g_p`: `δ_p = g_p · x + gap`.
+    /// `g_p`: `δ_p = g_p · x - g0`.
     pub normal: SparseVec,
     /// `h_p`: the friction force acts along `h_p`, the slip velocity is `V + h_p · x'`.
     pub tangent: SparseVec,
-    /// Penetration (m) at `x = 0`, positive when the pad point starts inside the disc; 0 when
-    /// the points coincide. It is minus the pair's initial gap `g0`
-    /// ([`ContactPair::initial_gap`]): a pair that starts open by `g0` has `gap = -g0`.
-    pub gap: f64,
+    /// The initial gap `g0` (m): how far the pair is open at `x = 0`, positive when open,
+    /// negative for an initial interference, 0 when the points coincide. The closure is
+    /// `δ = g · x - g0 = n · (u_disc - u_pad) - g0`: the relative normal approach of the pad
+    /// towards the disc less the initial gap.
+    pub initial_gap: f64,
     /// `V_p`: the disc's surface speed at the pair along `s` (m/s), when known.
     pub surface_speed: Option<f64>,
     /// The contact element.
@@ -57,17 +58,10 @@ pub struct ContactPair {
 }
 
 impl ContactPair {
-    /// Penetration `δ = g · x + gap`.
+    /// Penetration `δ = g · x - g0`.
     pub fn penetration(&self, x: &[f64]) -> f64 {
-        self.gap + dot_sparse(&self.normal, x)
-    }
-
-    /// The initial gap `g0 = -gap` (m): how far the pair is open at `x = 0`, positive when
-    /// open, negative for an initial interference. With it the closure is
-    /// `δ = g · x - g0 = n · (u_disc - u_pad) - g0`: the relative normal approach of the pad
-    /// towards the disc less the initial gap.
-    pub fn initial_gap(&self) -> f64 {
-        -self.gap
+        // The same bits as `-g0 + g · x`: negation and subtraction are exact, addition commutes.
+        dot_sparse(&self.normal, x) - self.initial_gap
     }
 
     /// The pair's state at displacements `x` and velocities `v` (`None`: at rest).
@@ -332,7 +326,7 @@ mod tests {
     use crate::contact::PenaltyCoulomb;
     use std::sync::Arc;
 
-    pub(crate) fn one_pair(gap: f64) -> ContactPair {
+    pub(crate) fn one_pair(initial_gap: f64) -> ContactPair {
         // dofs: 0 disc x, 1 disc z, 2 pad x, 3 pad z; normal +z, sliding +x.
         ContactPair {
             disc_point: 0,
@@ -342,7 +336,7 @@ mod tests {
             sliding_direction: [1.0, 0.0, 0.0],
             normal: vec![(1, 1.0), (3, -1.0)],
             tangent: vec![(0, 1.0), (2, -1.0)],
-            gap,
+            initial_gap,
             surface_speed: None,
             law: Arc::new(PenaltyCoulomb {
                 k_linear: 2e6,
@@ -356,7 +350,7 @@ mod tests {
             m: Mat::identity(4, 4),
             k: Mat::identity(4, 4),
             f_piston: vec![0.0; 4],
-            pairs: vec![one_pair(1e-5)],
+            pairs: vec![one_pair(-1e-5)],
         }
     }
 
@@ -392,7 +386,7 @@ mod tests {
     #[test]
     fn a_closed_start_gives_an_open_pair_its_closing_stiffness() {
         let b = Brake {
-            pairs: vec![one_pair(-1e-5)],
+            pairs: vec![one_pair(1e-5)],
             ..brake()
         };
         let x = [0.0; 4];

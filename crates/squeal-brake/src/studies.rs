@@ -14,7 +14,7 @@
 //!   pad's out-of-plane profile along its length ([`pad_profile`]), and the kinetic-energy
 //!   share of a set of dofs ([`energy_share`]).
 
-use crate::analysis::{DampingSpec, PairChoice, Stability, basis_mode_of_branch, stability};
+use crate::analysis::{DampingSpec, LinearStability, PairChoice, basis_mode_of_branch, stability};
 use crate::error::BrakeError;
 use crate::linearized::LinearizedBrake;
 use crate::model::Brake;
@@ -192,7 +192,7 @@ pub struct CaseOutcome {
 
 /// Branches of Mode 2 and Mode 1: the Hopf point's branch and partner, or else the branches
 /// that start from the pair's frictionless modes.
-pub fn pair_branches(st: &Stability) -> (Option<usize>, Option<usize>) {
+pub fn pair_branches(st: &LinearStability) -> (Option<usize>, Option<usize>) {
     let sw = &st.sweep;
     if let Some(h) = &sw.hopf {
         return (Some(h.branch), h.partner);
@@ -205,7 +205,7 @@ pub fn pair_branches(st: &Stability) -> (Option<usize>, Option<usize>) {
 }
 
 /// Extracts a case's outcome from its stability analysis.
-pub fn outcome(case: &Case, st: &Stability) -> CaseOutcome {
+pub fn outcome(case: &Case, st: &LinearStability) -> CaseOutcome {
     let sw = &st.sweep;
     let (unstable, partner) = pair_branches(st);
     let hz = |m: usize| st.reference.basis.omega[m] / (2.0 * PI);
@@ -313,7 +313,7 @@ pub struct GrowthRow {
 /// with the second-order prediction for that mode.
 pub fn other_mode_growth(
     brake: &Brake,
-    st: &Stability,
+    st: &LinearStability,
     opts: &SweepOptions,
 ) -> Result<Vec<GrowthRow>, BrakeError> {
     let sw = &st.sweep;
@@ -819,7 +819,7 @@ mod tests {
                 sliding_direction: [1.0, 0.0, 0.0],
                 normal: vec![(1, 1.0)],
                 tangent: vec![(0, 1.0)],
-                gap: 0.0,
+                initial_gap: 0.0,
                 surface_speed: None,
                 law: std::sync::Arc::new(crate::contact::PenaltyCoulomb {
                     k_linear: 2e6,

@@ -7,9 +7,9 @@
 //!   only; from there every eigenpair is continued exactly to the next μ
 //!   ([`crate::continuation`], `O(n² P)` per point instead of `O(n³)`), so each branch is
 //!   followed by construction. A continued spectrum that fails its checks makes the step be
-//!   halved, and after [`ContinuationOptions::max_halvings`] halvings the point is computed by
+//!   halved, and after [`EigenContinuationOptions::max_halvings`] halvings the point is computed by
 //!   the dense solver and matched by correlation. Every
-//!   [`ContinuationOptions::check_every`] points the continued eigenvalues are compared with a
+//!   [`EigenContinuationOptions::check_every`] points the continued eigenvalues are compared with a
 //!   dense solve. The Hopf point is refined by Newton's method on `Re λ(μ)` with the exact
 //!   derivative from the left and right eigenvectors ([`crate::hopf`]).
 //! - [`SweepMethod::Dense`]: a dense eigen-decomposition at every point (in parallel), modes
@@ -23,7 +23,7 @@
 //!   projection above, where continuing every eigenpair costs `O(n⁴)` per sweep.
 
 use crate::continuation::{
-    ContinuationOptions, Eigenpair, agrees_with, continue_all, seed, validate,
+    EigenContinuationOptions, Eigenpair, agrees_with, continue_all, seed, validate,
 };
 use crate::equilibrium::{Equilibrium, NewtonOptions, static_equilibrium};
 use crate::error::BrakeError;
@@ -106,7 +106,7 @@ pub struct SweepOptions {
     /// How the spectra are computed.
     pub method: SweepMethod,
     /// Controls of [`SweepMethod::Continuation`].
-    pub continuation: ContinuationOptions,
+    pub continuation: EigenContinuationOptions,
     /// Controls of [`SweepMethod::Projected`].
     pub projection: ProjectionOptions,
 }
@@ -123,7 +123,7 @@ impl Default for SweepOptions {
             max_refinements: 80,
             threshold: None,
             method: SweepMethod::default(),
-            continuation: ContinuationOptions::default(),
+            continuation: EigenContinuationOptions::default(),
             projection: ProjectionOptions::default(),
         }
     }
@@ -604,7 +604,7 @@ impl Walker<'_> {
     }
 
     /// Continues `from` to `(eq, c)`, halving the step while the result is rejected; `None`
-    /// after [`ContinuationOptions::max_halvings`] halvings.
+    /// after [`EigenContinuationOptions::max_halvings`] halvings.
     fn advance(
         &mut self,
         from: &State,

@@ -1,13 +1,13 @@
-//! A second contact element, written entirely in this file: penalty contact with a friction
+//! The library's second contact element, [`VelocityDependent`]: penalty contact with a friction
 //! coefficient that falls with the sliding speed (Stribeck's velocity weakening),
 //!
 //! `μ(v) = μ (r + (1 - r)(1 - e^(-v/v0)))`,
 //!
 //! i.e. `μ_s + (μ_d - μ_s)(1 - e^(-v/v0))` with the swept friction level `μ = μ_d` (the
-//! coefficient at high sliding speed) and `μ_s = r μ_d` at rest. Nothing outside this file
-//! changes: the equilibrium, the linearization (which gains a damping part, `∂F_t/∂v`), the
-//! sweep, the Hopf refinement, harmonic balance and time integration all go through
-//! [`ContactLaw`].
+//! coefficient at high sliding speed) and `μ_s = r μ_d` at rest. The equilibrium, the
+//! linearization (which gains a damping part, `∂F_t/∂v`), the sweep, the Hopf refinement,
+//! harmonic balance and time integration all reach it through `ContactLaw`; it was written in
+//! this file first and moved into `squeal_brake::contact::velocity_dependent` unchanged.
 //!
 //! The model has a closed-form answer. Two dofs of a pad on a rigid disc, `x0` tangential
 //! (spring `k_t`, damper `c`) and `x1` normal (spring `k_n`), a pair with normal `+e1` and
@@ -22,63 +22,13 @@
 //! `μ* = c v0 e^(V/v0) / ((1 - r) N)`, at the frequency `sqrt(k_t / m) / 2π`.
 
 use faer::Mat;
-use squeal_brake::contact::{ContactLaw, Kinematics, Parameter, Response, cubic_penalty};
+use squeal_brake::contact::VelocityDependent;
 use squeal_brake::equilibrium::{NewtonOptions, static_equilibrium};
 use squeal_brake::modal::Damping;
 use squeal_brake::spectrum::spectrum;
 use squeal_brake::sweep::{Band, SweepOptions, reference, sweep};
 use squeal_brake::{Brake, BrakeError, ContactPair};
 use std::sync::Arc;
-
-/// Penalty contact (eq 8) with velocity-weakening friction.
-#[derive(Debug)]
-struct VelocityWeakening {
-    k_linear: f64,
-    k_cubic: f64,
-    /// `μ_s / μ_d`.
-    static_ratio: f64,
-    /// `v0` (m/s).
-    v0: f64,
-}
-
-impl VelocityWeakening {
-    /// `μ(v) / μ` and its derivative in `v`.
-    fn shape(&self, v: f64) -> (f64, f64) {
-        let e = (-v / self.v0).exp();
-        let r = self.static_ratio;
-        (r + (1.0 - r) * (1.0 - e), (1.0 - r) * e / self.v0)
-    }
-}
-
-impl ContactLaw for VelocityWeakening {
-    fn response(&self, mu: f64, k: &Kinematics) -> Response {
-        let (f, kt) = cubic_penalty(k.penetration, self.k_linear, self.k_cubic);
-        let (s, ds) = self.shape(k.slip_velocity);
-        Response {
-            normal: f,
-            tangential: mu * s * f,
-            normal_derivatives: [kt, 0.0, 0.0],
-            tangential_derivatives: [mu * s * kt, 0.0, mu * ds * f],
-            tangential_mu: s * f,
-        }
-    }
-
-    fn uses_slip_velocity(&self) -> bool {
-        true
-    }
-
-    fn name(&self) -> String {
-        "penalty contact with velocity-weakening friction".into()
-    }
-
-    fn parameters(&self) -> Vec<Parameter> {
-        vec![
-            ("k_l", self.k_linear, "N/m"),
-            ("mu_s/mu_d", self.static_ratio, "-"),
-            ("v0", self.v0, "m/s"),
-        ]
-    }
-}
 
 const M: f64 = 1.0;
 const C: f64 = 4.0;
@@ -89,11 +39,11 @@ const RATIO: f64 = 1.6;
 const V0: f64 = 0.5;
 
 fn brake(speed: Option<f64>) -> Brake {
-    let law = VelocityWeakening {
+    let law = VelocityDependent {
         k_linear: KL,
         k_cubic: 0.0,
         static_ratio: RATIO,
-        v0: V0,
+        decay_speed: V0,
     };
     Brake {
         m: Mat::from_fn(2, 2, |i, j| if i == j { M } else { 0.0 }),
@@ -109,7 +59,7 @@ fn brake(speed: Option<f64>) -> Brake {
             // The "disc" is ground: only the pad's dofs appear, with the pad's signs.
             normal: vec![(1, -1.0)],
             tangent: vec![(0, 1.0)],
-            gap: 0.0,
+            initial_gap: 0.0,
             surface_speed: speed,
             law: Arc::new(law),
         }],

@@ -45,7 +45,7 @@ impl Case {
             sliding_direction: [-1.0, 0.0, 0.0],
             normal: vec![(1, 1.0)],
             tangent: vec![(0, -1.0)],
-            gap: 1e-3,
+            initial_gap: -1e-3,
             surface_speed: None,
             law: Arc::new(PenaltyCoulomb {
                 k_linear: self.kh,

@@ -171,14 +171,14 @@ impl HillFloquet {
 
     /// Stable, unstable, or marginal when the leading exponent is within the method's error
     /// ([`HillFloquet::trivial_error`]) of zero.
-    pub fn stability(&self) -> Stability {
+    pub fn stability(&self) -> CycleStability {
         classify(self.leading().map(|e| e.sigma.re), self.trivial_error)
     }
 }
 
 /// The verdict on a cycle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stability {
+pub enum CycleStability {
     /// Every non-trivial exponent has a negative real part beyond the error.
     Stable,
     /// One has a positive real part beyond the error.
@@ -187,22 +187,22 @@ pub enum Stability {
     Marginal,
 }
 
-impl std::fmt::Display for Stability {
+impl std::fmt::Display for CycleStability {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
-            Stability::Stable => "stable",
-            Stability::Unstable => "unstable",
-            Stability::Marginal => "marginal",
+            CycleStability::Stable => "stable",
+            CycleStability::Unstable => "unstable",
+            CycleStability::Marginal => "marginal",
         })
     }
 }
 
-fn classify(leading: Option<f64>, error: f64) -> Stability {
+fn classify(leading: Option<f64>, error: f64) -> CycleStability {
     match leading {
-        None => Stability::Stable,
-        Some(re) if re > error => Stability::Unstable,
-        Some(re) if re < -error => Stability::Stable,
-        Some(_) => Stability::Marginal,
+        None => CycleStability::Stable,
+        Some(re) if re > error => CycleStability::Unstable,
+        Some(re) if re < -error => CycleStability::Stable,
+        Some(_) => CycleStability::Marginal,
     }
 }
 

@@ -5,6 +5,8 @@
 //! nonlinear force, the constraint `f2 = Re λ`); the brake's condensed linear part, contact
 //! force and eigenvalue tracking are in [`squeal_brake::harmonic`]. This crate adds:
 //!
+//! - [`system`]: the researcher's front door: a friction system from `M`, `C`, `K` and its
+//!   contact pairs, its Hopf point, a limit cycle, the branch with Floquet multipliers.
 //! - [`solve`](mod@solve): the start from the unstable mode (eq 48), the harmonic ladder and restarts,
 //!   recovery of all dofs (eq 35) and diagnostics.
 //! - [`timeint`]: the reference of issue #6, BDF time integration of the full brake from the
@@ -30,9 +32,11 @@ pub mod floquet;
 pub mod physics;
 pub mod solve;
 pub mod start;
+pub mod system;
 pub mod timeint;
 
 pub use solve::{
     ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Guess, Outcome, RESTART_AMPLITUDES,
     check_jacobian, solve, solve_from_guess, solve_with_restarts,
 };
+pub use system::{Contact, FrictionSystem, Settings, SystemError};

@@ -1,6 +1,6 @@
 //! Issue #10, item 8: the physical checks a limit cycle of the model takes for granted.
 //!
-//! **Open fractions.** A pair is open where its penetration `δ(θ) = gap + g · x(θ)` is not
+//! **Open fractions.** A pair is open where its penetration `δ(θ) = g · x(θ) - g0` (`g0` the pair's initial gap) is not
 //! positive. On a cycle `δ` is a trigonometric polynomial of the cycle's degree `H`, so its
 //! open set is bounded by its roots: [`open_fractions`] brackets them on a grid of
 //! `16 (2H + 1)` phases (a polynomial of degree `H` has at most `2H` roots per period) and
@@ -20,12 +20,11 @@ use std::f64::consts::PI;
 
 /// Penetration of `pair` at phase θ of `nl`, the cycle restricted to the nonlinear dofs.
 fn penetration_at(pair: &ContactPair, nl: &Cycle, theta: f64) -> f64 {
-    pair.gap
-        + pair
-            .normal
-            .iter()
-            .map(|&(k, a)| a * nl.value_at(k, theta, false))
-            .sum::<f64>()
+    pair.normal
+        .iter()
+        .map(|&(k, a)| a * nl.value_at(k, theta, false))
+        .sum::<f64>()
+        - pair.initial_gap
 }
 
 /// Tangential velocity `h_p · x'(θ)` of `pair`.
@@ -218,8 +217,9 @@ mod tests {
     use squeal_brake::contact::PenaltyCoulomb;
     use std::sync::Arc;
 
-    /// A pair closing on dof 0 (`δ = gap + x0`) and sliding along dof 1, 0.1 m from the z axis.
-    fn pair(gap: f64) -> ContactPair {
+    /// A pair closing on dof 0 (`δ = x0 + closure`, initial gap `-closure`) and sliding along
+    /// dof 1, 0.1 m from the z axis.
+    fn pair(closure: f64) -> ContactPair {
         ContactPair {
             disc_point: 0,
             pad_point: 0,
@@ -228,7 +228,7 @@ mod tests {
             sliding_direction: [1.0, 0.0, 0.0],
             normal: vec![(0, 1.0)],
             tangent: vec![(1, 1.0)],
-            gap,
+            initial_gap: -closure,
             surface_speed: None,
             law: Arc::new(PenaltyCoulomb {
                 k_linear: 1.0,

@@ -1,12 +1,12 @@
 //! Branches of limit cycles and their Floquet stability on the 2-dof friction oscillator
-//! (`examples/friction_oscillator.rs`), each checked against something independent: the
+//! (`tests/common/oscillator.rs`), each checked against something independent: the
 //! normal form at the Hopf point, CHBM at a branch point's friction, BDF time integration of the
 //! full equations on either side of the fold, and two Floquet methods (Hill's and the monodromy
 //! matrix) against each other and against Liouville's formula.
 
 mod common;
 
-use common::example::{KL, KNL};
+use common::oscillator::{KL, KNL};
 use common::{Model, model, normal_form_of, subcritical};
 use faer::c64;
 use squeal_brake::criticality::NormalForm;
@@ -19,7 +19,7 @@ use squeal_chbm::branch::{
     BranchOptions, BranchPoint, Harmonics, LimitCycleBranch, cycles_at, follow_from_hopf,
     full_cycle,
 };
-use squeal_chbm::floquet::{HillOptions, MonodromyOptions, Stability, hill, monodromy};
+use squeal_chbm::floquet::{CycleStability, HillOptions, MonodromyOptions, hill, monodromy};
 use squeal_hbm::HarmonicLayout;
 
 fn branch(m: &Model, harmonics: Harmonics) -> (NormalForm, ModalBrake, LimitCycleBranch) {
@@ -157,13 +157,13 @@ fn hill_finds_the_fold_and_the_stable_part_of_the_branch() {
     for (i, f) in fl.iter().enumerate().take(b.folds[1].after_point) {
         let f = f.as_ref().unwrap();
         let expected = if i <= first {
-            Stability::Unstable
+            CycleStability::Unstable
         } else {
-            Stability::Stable
+            CycleStability::Stable
         };
         // Marginal: within Hill's own error of zero (with few harmonics and open contact).
         assert!(
-            f.stability() == expected || f.stability() == Stability::Marginal,
+            f.stability() == expected || f.stability() == CycleStability::Marginal,
             "point {i}: {} ({:?})",
             f.stability(),
             f.leading()

@@ -1,7 +1,7 @@
 //! Independent checks of CHBM and of the time-integration reference on the 2-dof
-//! mode-coupling friction oscillator of `examples/friction_oscillator.rs` (issue #6, item 9;
-//! the example itself runs here): a pair whose normal is dof 1 (eq 8's
-//! `F = k_l δ + k_nl δ³`, δ = x1 + gap) and whose friction acts along `-e0` (coupling
+//! mode-coupling friction oscillator (`tests/common/oscillator.rs`, the path of
+//! `examples/friction_oscillator.rs` by hand; issue #6, item 9): a pair whose normal is dof 1 (eq 8's
+//! `F = k_l δ + k_nl δ³`, δ = x1 - g0) and whose friction acts along `-e0` (coupling
 //! `-μ k_t` in `K[0][1]`). The cubic term hardens the contact as the vibration grows; with
 //! the stiffnesses chosen a stiffer contact raises the flutter threshold, so the Hopf point
 //! is supercritical and, near it, the limit cycle's amplitude squared grows linearly with
@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::example::{self as example, KL, KNL};
+use common::oscillator::{self as example, KL, KNL};
 use common::{Model, growth, hopf, model, normal_form_of, start, subcritical};
 use faer::c64;
 use squeal_brake::equilibrium::{NewtonOptions, static_equilibrium};
@@ -31,6 +31,41 @@ fn the_example_runs_and_agrees_with_the_bisected_hopf_point() {
     assert!((mu0 / hopf(&m) - 1.0).abs() < 1e-7, "{mu0} vs {}", hopf(&m));
     let s = example::limit_cycle(&m.brake, &m.reference, 1.001 * mu0, 3).unwrap();
     assert_eq!(s.outcome, Outcome::LimitCycle);
+}
+
+#[test]
+fn the_facade_gives_the_hand_built_numbers() {
+    // `squeal_chbm::system` from M, C = 20 I, K and the pair against the hand-built path: the
+    // same pieces, except that the facade's modal damping is Φᵀ C Φ (20 to round-off, kept
+    // diagonal) where the hand-built one is exactly 20; μ0 to the sweep's 1e-8 bracket, the
+    // cycle to LM's 1e-9 of the force scale (plus what μ0's 1e-8 moves).
+    use squeal_chbm::{Contact, FrictionSystem};
+    let m = model(KL, KNL);
+    let c = faer::Mat::from_fn(2, 2, |i, j| if i == j { example::C } else { 0.0 });
+    let pair =
+        Contact::penalty_coulomb(&[(1, 1.0)], &[(0, -1.0)], KL, KNL).initial_gap(-example::GAP);
+    let sys = FrictionSystem::builder(m.brake.m.clone(), c, m.brake.k.clone())
+        .contact(pair)
+        .build()
+        .unwrap();
+    let d = sys
+        .reference()
+        .damping
+        .diagonal()
+        .expect("C = 20 I stays diagonal");
+    assert!(
+        d.iter().all(|x| (x / example::C - 1.0).abs() < 1e-14),
+        "{d:?}"
+    );
+    let mu0 = example::hopf(&m.brake, &m.reference);
+    let h = sys.hopf().unwrap();
+    assert!((h.mu0 - mu0).abs() < 2e-8, "{} vs {mu0}", h.mu0);
+    let by_hand = example::limit_cycle(&m.brake, &m.reference, 1.001 * mu0, 3).unwrap();
+    let facade = sys.limit_cycle(1.001 * mu0).unwrap();
+    assert_eq!(facade.outcome, Outcome::LimitCycle);
+    let (a, b) = (facade.amplitude(1, 1), by_hand.amplitude(1, 1));
+    assert!((a / b - 1.0).abs() < 1e-7, "{a:e} vs {b:e}");
+    assert!((facade.omega / by_hand.omega - 1.0).abs() < 1e-10);
 }
 
 /// First-harmonic amplitude of the normal dof, CHBM with `h` harmonics.

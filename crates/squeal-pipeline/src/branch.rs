@@ -12,7 +12,7 @@
 use crate::error::{Result, json_text};
 use crate::model::{Log, Model};
 use crate::stability;
-use squeal_brake::analysis::Stability as LinearStability;
+use squeal_brake::analysis::LinearStability;
 use squeal_brake::criticality::NormalForm;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::bifurcation::{
@@ -21,7 +21,7 @@ use squeal_chbm::bifurcation::{
 };
 use squeal_chbm::branch::{BranchOptions, BranchPoint, LimitCycleBranch, cycles_at};
 use squeal_chbm::floquet::hill as hill_exponents;
-use squeal_chbm::floquet::{FloquetError, HillFloquet, HillOptions, Stability};
+use squeal_chbm::floquet::{CycleStability as Stability, FloquetError, HillFloquet, HillOptions};
 use squeal_report::format::fmt_sig;
 use squeal_report::{
     Annotation, Dash, Figure, Layout, Marker, Panel, Rgb, Series, Table, write_svg_and_png,

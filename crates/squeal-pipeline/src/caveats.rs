@@ -16,7 +16,7 @@
 //!   [`BAND_TOP_FRACTION`] of it rests on the modes that the truncation treats worst.
 
 use crate::model::Model;
-use squeal_brake::analysis::Stability;
+use squeal_brake::analysis::LinearStability as Stability;
 use std::fmt;
 
 /// Relative split `|f2 − f1| / ((f1 + f2)/2)` of the coalescing pair below which its coupling

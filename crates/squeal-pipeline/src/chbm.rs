@@ -4,7 +4,7 @@
 use crate::error::{PipelineError, Result, json_text};
 use crate::model::{Log, Model};
 use crate::shapes::{Meshes, PartFields, write_brake_vtu};
-use squeal_brake::analysis::Stability;
+use squeal_brake::analysis::LinearStability as Stability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::physics::{SlidingMargin, sliding_margin_of};
 use squeal_chbm::start::start_at;
@@ -64,7 +64,7 @@ pub struct BranchCycle {
     /// The cycle (nonlinear dofs).
     pub cycle: squeal_chbm::branch::BranchPoint,
     /// Its stability by Hill's method (`None`: not computed, with the reason logged).
-    pub stability: Option<squeal_chbm::floquet::Stability>,
+    pub stability: Option<squeal_chbm::floquet::CycleStability>,
     /// Its largest Floquet multiplier modulus.
     pub largest_multiplier: Option<f64>,
 }
@@ -121,7 +121,7 @@ pub fn solve_along_branch(
 ) -> Result<AlongBranch> {
     use squeal_chbm::bifurcation::cycle_of;
     use squeal_chbm::branch::{BranchOptions, Harmonics, cycles_at, follow_from_hopf};
-    use squeal_chbm::floquet::{HillOptions, Stability as Verdict, hill};
+    use squeal_chbm::floquet::{CycleStability as Verdict, HillOptions, hill};
     let Some(nf) = crate::stability::normal_form(m, st)? else {
         let sw = &st.sweep.points;
         return Err(PipelineError::NoHopfPoint {

@@ -12,7 +12,7 @@ use crate::Pipeline;
 use crate::chbm::point_dof;
 use crate::error::{PipelineError, Result, json_text};
 use crate::model::{Log, Model};
-use squeal_brake::analysis::Stability;
+use squeal_brake::analysis::LinearStability as Stability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::compare::{
     CellOutcome, CompareOptions, Comparison, GridCell, GridModel, GridOptions, TiCell, TiRow,

@@ -46,7 +46,7 @@ pub use error::{PipelineError, Result};
 
 use model::{Log, Model};
 use progress::{Progress, Silent};
-use squeal_brake::analysis::Stability;
+use squeal_brake::analysis::LinearStability as Stability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::ChbmStart;
 use squeal_scene::Scene;

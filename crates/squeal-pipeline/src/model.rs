@@ -13,6 +13,7 @@ use squeal_brake::analysis::{DampingSpec, PairChoice};
 use squeal_brake::assemble::{
     BrakeParams, DiscRotation, InitialGaps, Layout, Pairing, SlidingRule, Stiffness, assemble,
 };
+use squeal_brake::contact::LawSpec;
 use squeal_brake::sweep::{Band, SweepOptions};
 use squeal_chbm::physics::DiscSpeed;
 use squeal_fe::frames::RotationAxis;
@@ -24,7 +25,7 @@ use squeal_reduce::brake::{
 };
 use squeal_reduce::craig_bampton::Stage;
 use squeal_reduce::rom::{InterfaceKind, ReducedModel};
-use squeal_scene::{GapSetting, Scene, Sliding};
+use squeal_scene::{ContactLawSetting, GapSetting, Scene, Sliding};
 use std::path::{Path, PathBuf};
 
 /// Everything an analysis of the scene needs.
@@ -202,8 +203,8 @@ pub fn disc_rotation(scene: &Scene) -> Result<Option<DiscRotation>> {
 }
 
 /// The brake's parameters from the scene: the normal it gives (a check on the mesh's), how
-/// the disc slides, its rotation, the contact stiffness per unit area (eq 8), pairing
-/// tolerance, piston force and the pairs' initial gaps.
+/// the disc slides, its rotation, the contact stiffness per unit area (eq 8), the contact law,
+/// pairing tolerance, piston force and the pairs' initial gaps.
 pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
     let (kl, knl, _) = scene.stiffness()?;
     Ok(BrakeParams {
@@ -217,6 +218,16 @@ pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
             linear: kl,
             cubic: knl,
             point_area: scene.point_area()?,
+        },
+        law: match scene.contact_law()? {
+            ContactLawSetting::PenaltyCoulomb => LawSpec::PenaltyCoulomb,
+            ContactLawSetting::VelocityDependent {
+                static_ratio,
+                decay_speed,
+            } => LawSpec::VelocityDependent {
+                static_ratio,
+                decay_speed,
+            },
         },
         pairing_tolerance: PairingTolerance::Absolute(scene.pairing_tolerance()?),
         piston_force: scene.piston_force()?,

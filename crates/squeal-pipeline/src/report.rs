@@ -12,7 +12,7 @@ use crate::error::Result;
 use crate::model::{Log, Model};
 use crate::pictures::{ModePicture, write_cycle_animation, write_mode_picture};
 use crate::shapes::Meshes;
-use squeal_brake::analysis::Stability;
+use squeal_brake::analysis::LinearStability as Stability;
 use squeal_chbm::ChbmSolution;
 use squeal_report::format::fmt_sig;
 use squeal_report::{

@@ -7,7 +7,7 @@ use crate::error::{Result, json_text};
 use crate::model::{Log, Model};
 use crate::progress::Progress;
 use crate::shapes::{Meshes, PartFields, normalize_mode, write_brake_vtu};
-use squeal_brake::analysis::Stability;
+use squeal_brake::analysis::LinearStability as Stability;
 use squeal_brake::assemble::InitialGaps;
 use squeal_brake::criticality::{Criticality, NormalForm, pair_closure};
 use squeal_brake::equilibrium::Equilibrium;

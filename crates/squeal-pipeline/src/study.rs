@@ -28,7 +28,9 @@ use record::{
 };
 use shard::{Collected, Identity, ShardFile, Unit, UnitEntry};
 use squeal_brake::Brake;
-use squeal_brake::analysis::{DampingSpec, PairChoice, Stability, basis_mode_of_branch, stability};
+use squeal_brake::analysis::{
+    DampingSpec, LinearStability as Stability, PairChoice, basis_mode_of_branch, stability,
+};
 use squeal_brake::assemble::{Stiffness, assemble};
 use squeal_brake::studies::{
     BranchCurve, Case, CaseOutcome, GrowthRow, ShapeSummary, circumferential_orders, coupling,

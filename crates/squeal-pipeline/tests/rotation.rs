@@ -6,7 +6,7 @@
 //! axis (node frames, `squeal_fe::frames`), the piston dofs along a skew normal
 //! (`DofLabel::Along`), each pair's normal from the disc face and its tangent from the axis.
 
-use squeal_brake::analysis::Stability;
+use squeal_brake::analysis::LinearStability as Stability;
 use squeal_pipeline::model::{brake_inputs, model_on};
 use squeal_reduce::brake::{LoadedPart, load_part, reduce_brake_loaded};
 use squeal_reduce::rom::DofLabel;

@@ -531,9 +531,10 @@ pub fn load_part_in(path: &Path, units: &UnitSystem) -> Result<LoadedPart, Reduc
     Ok(part)
 }
 
-/// A disc contact point and the pad contact point it faces.
+/// A disc contact point and the pad contact point it faces (the brake's contact pair, with its
+/// geometry and element, is `squeal_brake::ContactPair`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ContactPair {
+pub struct PointPair {
     /// Index among the disc's contact points (0-based, the order of its `dofs`).
     pub disc_point: usize,
     /// Index among the pad's contact points.
@@ -548,7 +549,7 @@ pub struct BrakeReport {
     /// Disc, then pad.
     pub parts: Vec<PartReport>,
     /// The disc's contact points paired with the pad's.
-    pub pairs: Vec<ContactPair>,
+    pub pairs: Vec<PointPair>,
     /// Pairing tolerance in metres.
     pub pairing_tolerance: f64,
     /// Wall time of the whole reduction, reading the meshes included.
@@ -884,7 +885,7 @@ pub fn pair_contact_points(
     disc: &[[f64; 3]],
     pad: &[[f64; 3]],
     tolerance: PairingTolerance,
-) -> Result<(Vec<ContactPair>, f64), ReduceError> {
+) -> Result<(Vec<PointPair>, f64), ReduceError> {
     if disc.len() != pad.len() || disc.is_empty() {
         return Err(ReduceError::ContactCountMismatch {
             disc: disc.len(),
@@ -913,7 +914,7 @@ pub fn pair_contact_points(
         match nearest {
             Some((j, d)) if d <= tolerance => {
                 taken[j] = true;
-                pairs.push(ContactPair {
+                pairs.push(PointPair {
                     disc_point: i,
                     pad_point: j,
                     distance: d,

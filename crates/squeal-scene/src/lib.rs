@@ -303,6 +303,23 @@ pub struct ContactSection {
     /// `true`: every initial gap is closed (set to zero), as Abaqus' contact adjustment and
     /// Ansys' contact offset do; the geometric gaps are reported as the adjustment.
     pub close_initial_gaps: Option<Spanned<bool>>,
+    /// The contact law ([`Scene::contact_law`]): `"penalty-coulomb"` (the default) or a table
+    /// `{ kind = "velocity-dependent", static_ratio, decay_speed_m_per_s }`.
+    pub law: Option<Spanned<toml::Value>>,
+}
+
+/// The contact law a scene asks for (`[contact] law`); both use eq (8)'s penalty.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ContactLawSetting {
+    /// Coulomb friction, eqs (8)–(10).
+    PenaltyCoulomb,
+    /// `μ(v) = μ (r + (1 - r)(1 - e^(-v/v0)))` of the sliding speed `v`.
+    VelocityDependent {
+        /// `r = μ_s / μ_d`.
+        static_ratio: f64,
+        /// `v0` (m/s).
+        decay_speed: f64,
+    },
 }
 
 /// The pairs' initial gaps a scene asks for (`[contact] initial_gap`, `close_initial_gaps`).
@@ -955,6 +972,53 @@ impl Scene {
                 Some(g) if g.is_finite() => Ok(GapSetting::Uniform(g)),
                 _ => Err(bad()),
             },
+        }
+    }
+
+    /// The contact law of `[contact] law`: `"penalty-coulomb"` (also the default), or
+    /// `{ kind = "velocity-dependent", static_ratio = r, decay_speed_m_per_s = v0 }` (`r > 0`,
+    /// `v0 > 0` in m/s whatever the `[units]`), which needs the disc's speed (`[rotation] rpm`
+    /// or `vehicle_speed_kmh`).
+    pub fn contact_law(&self) -> Result<ContactLawSetting> {
+        let Some(v) = &self.file.contact.law else {
+            return Ok(ContactLawSetting::PenaltyCoulomb);
+        };
+        let usage = "must be \"penalty-coulomb\" or { kind = \"velocity-dependent\", static_ratio = 1.2, decay_speed_m_per_s = 0.5 } (r = mu_static/mu_dynamic > 0, v0 > 0 in m/s)";
+        let table = match v.get_ref() {
+            toml::Value::String(s) if s == "penalty-coulomb" => {
+                return Ok(ContactLawSetting::PenaltyCoulomb);
+            }
+            toml::Value::Table(t) => t,
+            _ => return Err(self.error_at("contact.law", v, usage)),
+        };
+        let number = |key: &str| {
+            table
+                .get(key)
+                .and_then(|x| x.as_float().or(x.as_integer().map(|i| i as f64)))
+                .filter(|x| x.is_finite() && *x > 0.0)
+        };
+        let kind = table.get("kind").and_then(toml::Value::as_str);
+        let known = ["kind", "static_ratio", "decay_speed_m_per_s"];
+        match (kind, number("static_ratio"), number("decay_speed_m_per_s")) {
+            (Some("penalty-coulomb"), ..) if table.len() == 1 => {
+                Ok(ContactLawSetting::PenaltyCoulomb)
+            }
+            (Some("velocity-dependent"), Some(r), Some(v0))
+                if table.keys().all(|k| known.contains(&k.as_str())) =>
+            {
+                if self.disc_angular_speed()?.is_none() {
+                    return Err(self.error_at(
+                        "contact.law",
+                        v,
+                        "velocity-dependent friction needs the disc's speed: give [rotation] rpm (or vehicle_speed_kmh and rolling_radius)",
+                    ));
+                }
+                Ok(ContactLawSetting::VelocityDependent {
+                    static_ratio: r,
+                    decay_speed: v0,
+                })
+            }
+            _ => Err(self.error_at("contact.law", v, usage)),
         }
     }
 

@@ -1,11 +1,10 @@
-//! The 2-dof friction oscillator of `examples/friction_oscillator.rs` and the independent
+//! The 2-dof friction oscillator built by hand (`oscillator.rs`) and the independent
 //! references the tests share (Hopf point by bisection, normal form, the subcritical variant).
 #![allow(dead_code)]
 
-#[path = "../../examples/friction_oscillator.rs"]
-pub mod example;
+pub mod oscillator;
 
-use example::{KL, KNL, band, brake, frictionless};
+use oscillator::{KL, KNL, band, brake, frictionless};
 use squeal_brake::Brake;
 use squeal_brake::equilibrium::{NewtonOptions, static_equilibrium};
 use squeal_brake::spectrum::{Reference, spectrum};
