@@ -53,7 +53,7 @@ fn linear_field_passes_the_patch_test() {
     let rule = Quadrature::fourteen_point();
     for e in 0..mesh.num_elements() {
         let x = mesh.element_coords(e);
-        let ue: [[f64; 3]; 10] = std::array::from_fn(|a| field[mesh.elements[e][a] as usize]);
+        let ue: [[f64; 3]; 10] = std::array::from_fn(|a| field[mesh.blocks.tet10[e][a] as usize]);
         for p in &rule.points {
             let s = strain_at(&x, &ue, *p).unwrap();
             for k in 0..6 {

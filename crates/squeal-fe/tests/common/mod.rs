@@ -47,7 +47,7 @@ pub fn on_box_boundary(mesh: &Mesh) -> Vec<bool> {
 /// Whether each node is a vertex (local index < 4) of some element.
 pub fn is_vertex(mesh: &Mesh) -> Vec<bool> {
     let mut v = vec![false; mesh.num_nodes()];
-    for el in &mesh.elements {
+    for el in &mesh.blocks.tet10 {
         for &n in &el[..4] {
             v[n as usize] = true;
         }
@@ -68,7 +68,7 @@ pub fn distort_vertices(mesh: &mut Mesh, amp: f64, seed: u64) {
             }
         }
     }
-    for el in mesh.elements.clone() {
+    for el in mesh.blocks.tet10.clone() {
         for (k, [a, b]) in squeal_mesh::tet10::EDGES.iter().enumerate() {
             let (pa, pb) = (mesh.nodes[el[*a] as usize], mesh.nodes[el[*b] as usize]);
             mesh.nodes[el[4 + k] as usize] = std::array::from_fn(|d| 0.5 * (pa[d] + pb[d]));
@@ -235,4 +235,38 @@ pub fn lowest_eigenvalues(k: &Sparse, m: &Sparse, count: usize, shift: f64) -> V
 /// Frequency in Hz of an eigenvalue `ω²`.
 pub fn hz(lambda: f64) -> f64 {
     lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
+}
+
+/// Moves interior vertices of a mesh of any element kinds by up to `amp` in each direction,
+/// then puts every midside node back at its edge midpoint: a distorted mesh with straight
+/// edges.
+pub fn distort_solid(mesh: &mut Mesh, amp: f64, seed: u64) {
+    let boundary = on_box_boundary(mesh);
+    let mut vertex = vec![false; mesh.num_nodes()];
+    for (kind, range) in mesh.blocks.kinds() {
+        for e in range {
+            let (_, c) = mesh.blocks.get(e).unwrap();
+            for &n in &c[..kind.vertices()] {
+                vertex[n as usize] = true;
+            }
+        }
+    }
+    let mut rng = Rng(seed);
+    for n in 0..mesh.num_nodes() {
+        if vertex[n] && !boundary[n] {
+            for d in 0..3 {
+                mesh.nodes[n][d] += amp * rng.next();
+            }
+        }
+    }
+    for (kind, range) in mesh.blocks.kinds() {
+        for e in range {
+            let c = mesh.blocks.get(e).unwrap().1.to_vec();
+            for (k, [a, b]) in kind.edges().iter().enumerate() {
+                let (pa, pb) = (mesh.nodes[c[*a] as usize], mesh.nodes[c[*b] as usize]);
+                mesh.nodes[c[kind.vertices() + k] as usize] =
+                    std::array::from_fn(|d| 0.5 * (pa[d] + pb[d]));
+            }
+        }
+    }
 }
