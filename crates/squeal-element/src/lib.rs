@@ -1,7 +1,7 @@
 //! Reference solid elements for squeal: the quadratic tetrahedron, hexahedron, wedge and
 //! pyramid on their reference domains, with their quadrature rules.
 //!
-//! - [`reference`]: the [`ReferenceElement`] trait (nodes, shape functions and gradients,
+//! - [`mod@reference`]: the [`ReferenceElement`] trait (nodes, shape functions and gradients,
 //!   faces, quadrature, VTK and Gmsh node orders), [`ElementKind`] for run-time dispatch,
 //!   and the generic Jacobian, volume and quality measures.
 //! - [`tet10`], [`hex20`], [`wedge15`], [`pyramid13`]: the elements.

@@ -148,7 +148,7 @@ impl Quadrature {
     /// orbit `(a, a, b, 1 - 2a - b)` of 12 points. Constants re-derived to 25 digits by Newton's
     /// method on the 84 moment equations of the monomials of degree ≤ 6 (residual 1e-41),
     /// rounded to f64; the last weight is 9/1120. For the stiffness of curved tet10 elements
-    /// (see [`crate::element`]).
+    /// (see `squeal_fe::element`).
     pub fn twenty_four_point() -> Self {
         const A: [f64; 3] = [
             0.214_602_871_259_152_03,

@@ -1,6 +1,9 @@
 //! Every element against the properties its shape functions, faces, rules and node orders
 //! must have, checked the same way for each.
 
+// Index loops mirror the formulas (coordinates, Voigt pairs).
+#![allow(clippy::needless_range_loop)]
+
 use squeal_element::reference::{jacobian_range, volume};
 use squeal_element::{
     Face, Hex20, Pyramid13, Quadrature, ReferenceElement, Tet10, Wedge15, det3, with_element,

@@ -2,11 +2,17 @@
 //! meshes, exact consistent mass, the hex20's zero-energy modes under reduced integration,
 //! and hex20 and tet10 meshes of one block converging to the same frequencies.
 
+// Index loops mirror the formulas (coordinates, Voigt pairs).
+#![allow(clippy::needless_range_loop)]
+
 mod common;
-use common::{distort_solid, dot, lowest_eigenvalues, matvec, on_box_boundary, steel};
+use common::{
+    PATCH_A as A, distort_solid, dot, linear_field, lining, lowest_eigenvalues, matvec,
+    on_box_boundary, steel,
+};
 use squeal_fe::{
-    AssemblyOptions, DofMap, ElasticMaterial, ElementKind, MaterialTable, ReferenceElement,
-    assemble, assemble_with, strain_of,
+    AssemblyOptions, DofMap, ElementKind, MaterialTable, ReferenceElement, assemble, assemble_with,
+    strain_of,
 };
 use squeal_mesh::generate::box_solid;
 use squeal_mesh::{BlockVisitor, Mesh};
@@ -17,25 +23,6 @@ const KINDS: [ElementKind; 3] = [
     ElementKind::Pyramid13,
 ];
 
-/// An anisotropic material, so that every entry of C takes part (as in patch.rs).
-fn lining() -> ElasticMaterial {
-    ElasticMaterial::TransverselyIsotropic {
-        young_plane: 6.0e9,
-        poisson_plane: 0.25,
-        young_axial: 2.0e9,
-        poisson_plane_axial: 0.12,
-        shear_axial: 1.1e9,
-        axis: [0.2, 0.5, 1.0],
-        density: 2500.0,
-    }
-}
-
-const A: [[f64; 3]; 3] = [
-    [1.0e-3, 2.0e-4, -3.0e-4],
-    [-1.0e-4, -5.0e-4, 4.0e-4],
-    [2.5e-4, 1.5e-4, 7.0e-4],
-];
-const B: [f64; 3] = [1e-3, -2e-3, 5e-4];
 const EPS: [f64; 6] = [
     A[0][0],
     A[1][1],
@@ -44,10 +31,6 @@ const EPS: [f64; 6] = [
     A[0][2] + A[2][0],
     A[1][2] + A[2][1],
 ];
-
-fn linear_field(x: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|i| B[i] + (0..3).map(|j| A[i][j] * x[j]).sum::<f64>())
-}
 
 /// The largest strain error at the stiffness rule's points over every element.
 struct StrainCheck<'a> {

@@ -175,20 +175,20 @@ impl Blocks {
 
     /// The kind of element `e` and its node indices; `None` past the last element.
     pub fn get(&self, e: usize) -> Option<(ElementKind, &[u32])> {
-        let mut e = e;
-        macro_rules! pick {
-            ($block:expr, $kind:expr) => {
-                if e < $block.len() {
-                    return Some(($kind, &$block[e][..]));
-                }
-                e -= $block.len();
-            };
+        let mut i = e;
+        for kind in ElementKind::ALL {
+            let n = self.count(kind);
+            if i < n {
+                let conn: &[u32] = match kind {
+                    ElementKind::Tet10 => &self.tet10[i],
+                    ElementKind::Hex20 => &self.hex20[i],
+                    ElementKind::Wedge15 => &self.wedge15[i],
+                    ElementKind::Pyramid13 => &self.pyramid13[i],
+                };
+                return Some((kind, conn));
+            }
+            i -= n;
         }
-        pick!(self.tet10, ElementKind::Tet10);
-        pick!(self.hex20, ElementKind::Hex20);
-        pick!(self.wedge15, ElementKind::Wedge15);
-        pick!(self.pyramid13, ElementKind::Pyramid13);
-        let _ = e;
         None
     }
 

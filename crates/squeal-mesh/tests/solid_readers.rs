@@ -4,6 +4,9 @@
 //! the Abaqus, Gmsh and VTK manuals, not from squeal's permutations), so a node read into
 //! the wrong place shows as a coordinate mismatch.
 
+// Index loops mirror the formulas (coordinates, Voigt pairs).
+#![allow(clippy::needless_range_loop)]
+
 use squeal_mesh::generate::box_solid;
 use squeal_mesh::{ElementKind, MeshBuilder, inp, msh, vtu};
 use std::path::Path;
@@ -358,4 +361,31 @@ fn builder_orders_blocks_by_kind() {
     assert_eq!(m.element_set("S"), Some(&[1u32, 2][..]));
     let err = m.only_tet10("the test").unwrap_err().to_string();
     assert!(err.contains("20-node hexahedron (element 5)"), "{err}");
+}
+
+/// Code that reads triangles refuses a surface of quadrilaterals with a message that says
+/// so, and accepts triangles of any kind.
+#[test]
+fn quadrilateral_faces_are_refused_where_triangles_are_read() {
+    use squeal_mesh::select::{boundary_faces, boundary_quads, triangles_only};
+    let hex = box_solid(ElementKind::Hex20, [1.0, 1.0, 1.0], [2, 2, 2]);
+    assert_eq!(boundary_quads(&hex).len(), 24);
+    assert!(boundary_faces(&hex).is_empty());
+    let err = triangles_only(&hex, None, "the contact interface")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.starts_with("the contact interface reads 6-node triangle faces; this mesh's face")
+            && err.ends_with("is an 8-node quadrilateral: not yet supported"),
+        "{err}"
+    );
+    // A wedge box's top is made of triangles: accepted; its sides are quadrilaterals.
+    let wedge = box_solid(ElementKind::Wedge15, [1.0, 1.0, 1.0], [2, 2, 1]);
+    let top = wedge.node_set("ZMAX").unwrap();
+    assert!(triangles_only(&wedge, Some(top), "the contact interface").is_ok());
+    assert!(triangles_only(&wedge, wedge.node_set("XMIN"), "the contact interface").is_err());
+    // 2 x 2 cells, two wedges each: 8 triangles on the bottom, 8 on the top.
+    assert_eq!(boundary_faces(&wedge).len(), 16);
+    let tet = box_solid(ElementKind::Tet10, [1.0, 1.0, 1.0], [1, 1, 1]);
+    assert!(triangles_only(&tet, None, "the contact interface").is_ok());
 }

@@ -16,7 +16,6 @@ use squeal_report::raster::{
     Surface, View, colour_bar_with_scale, render, screen_bounds, side_by_side, write_apng,
     write_rgb_png,
 };
-use std::collections::HashMap;
 use std::path::Path;
 
 /// The boundary of a mesh as linear triangles: every element face that no other element

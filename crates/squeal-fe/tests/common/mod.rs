@@ -270,3 +270,31 @@ pub fn distort_solid(mesh: &mut Mesh, amp: f64, seed: u64) {
         }
     }
 }
+
+/// An anisotropic material, so that every entry of C takes part (the patch tests).
+pub fn lining() -> squeal_fe::ElasticMaterial {
+    squeal_fe::ElasticMaterial::TransverselyIsotropic {
+        young_plane: 6.0e9,
+        poisson_plane: 0.25,
+        young_axial: 2.0e9,
+        poisson_plane_axial: 0.12,
+        shear_axial: 1.1e9,
+        axis: [0.2, 0.5, 1.0],
+        density: 2500.0,
+    }
+}
+
+/// The gradient of the patch tests' linear field.
+pub const PATCH_A: [[f64; 3]; 3] = [
+    [1.0e-3, 2.0e-4, -3.0e-4],
+    [-1.0e-4, -5.0e-4, 4.0e-4],
+    [2.5e-4, 1.5e-4, 7.0e-4],
+];
+
+/// The offset of the patch tests' linear field.
+pub const PATCH_B: [f64; 3] = [1e-3, -2e-3, 5e-4];
+
+/// The patch tests' linear field `B + A x`.
+pub fn linear_field(x: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| PATCH_B[i] + (0..3).map(|j| PATCH_A[i][j] * x[j]).sum::<f64>())
+}
