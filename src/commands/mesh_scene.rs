@@ -139,18 +139,33 @@ fn describe(m: &squeal_fe::ElasticMaterial) -> String {
 /// set (`disc`, `pad`), each chosen set a node set `<part>:<key>` (pistons also per piece).
 fn merged(parts: &SceneParts) -> Mesh {
     let mut out = Mesh::default();
-    for (name, loaded) in parts.all() {
-        let (n0, e0) = (out.nodes.len() as u32, out.elements.len() as u32);
-        let m = &loaded.mesh;
-        out.nodes.extend(&m.nodes);
-        out.node_ids.extend(&m.node_ids);
-        out.elements
-            .extend(m.elements.iter().map(|el| el.map(|n| n + n0)));
-        out.element_ids.extend(&m.element_ids);
-        out.element_sets.insert(
-            name.to_string(),
-            (e0..e0 + m.num_elements() as u32).collect(),
-        );
+    let all = parts.all();
+    let mut n0s = Vec::with_capacity(all.len());
+    for (_, loaded) in &all {
+        n0s.push(out.nodes.len() as u32);
+        out.nodes.extend(&loaded.mesh.nodes);
+        out.node_ids.extend(&loaded.mesh.node_ids);
+    }
+    // Elements block by block (the mesh's index order), each part's in turn within a block.
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); all.len()];
+    for kind in squeal_mesh::ElementKind::ALL {
+        for (p, (_, loaded)) in all.iter().enumerate() {
+            let m = &loaded.mesh;
+            let first = m.blocks.first(kind);
+            for e in first..first + m.blocks.count(kind) {
+                if let Some((_, conn)) = m.blocks.get(e) {
+                    let shifted: Vec<u32> = conn.iter().map(|n| n + n0s[p]).collect();
+                    members[p].push(out.element_ids.len() as u32);
+                    out.blocks.push(kind, &shifted);
+                    out.element_ids.push(m.element_ids[e]);
+                }
+            }
+        }
+    }
+    for (p, (name, _)) in all.iter().enumerate() {
+        let (name, n0) = (*name, n0s[p]);
+        out.element_sets
+            .insert(name.to_string(), std::mem::take(&mut members[p]));
         for c in parts.sets.iter().filter(|c| c.part == name) {
             // `sets.disc.clamp` -> clamp; `pads.outboard.load` -> outboard.load.
             let key = match c.key.strip_prefix("pads.") {

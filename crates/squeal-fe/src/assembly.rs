@@ -9,20 +9,28 @@
 //! entry is therefore the same sum in the same order whatever the thread count, and `K`, `M`
 //! are symmetric bit for bit. Memory is proportional to the number of nonzeros.
 //!
-//! Each element's stiffness rule depends on its own coordinates only
+//! The element matrices are computed block by block ([`squeal_mesh::Blocks::visit`]) by the
+//! generic local assembly of [`crate::element`], sized per element type (`3N × 3N` and
+//! `N × N`); blocks follow each other in element index order, so the sums are the same
+//! whatever the mix of kinds.
+//!
+//! Each tet10 element's stiffness rule depends on its own coordinates only
 //! ([`AssemblyOptions::stiffness_rule_for`]): the 4-point rule for straight-sided elements
 //! (the same bits as before curved elements had their own rule), the 24-point rule for curved
 //! ones (see [`crate::element`] for why and how accurate). The choice does not depend on the
-//! thread count either.
+//! thread count either. The other kinds use their own full rules
+//! ([`squeal_element::ReferenceElement::stiffness_rule`], `mass_rule`), or the reduced one
+//! where [`AssemblyOptions::reduced_integration`] asks for it.
 
 use crate::dofmap::DofMap;
-use crate::element::{ElementCoords, element_mass_scalar, element_stiffness, element_volume};
+use crate::element::{ElementCoords, mass_scalar_of, stiffness_of, volume_of};
 use crate::error::FeError;
 use crate::material::MaterialTable;
 use crate::quadrature::Quadrature;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
-use squeal_mesh::Mesh;
+use squeal_element::{ElementKind, ReferenceElement};
+use squeal_mesh::{BlockVisitor, Mesh};
 
 /// Quadrature rules used by [`assemble_with`], and which elements count as curved.
 #[derive(Clone, Debug, PartialEq)]
@@ -40,6 +48,10 @@ pub struct AssemblyOptions {
     pub straight_tolerance: f64,
     /// Default: [`Quadrature::fourteen_point`], exact for straight-sided elements.
     pub mass_rule: Quadrature,
+    /// Integrate the stiffness of the element kinds that have a reduced rule (the 20-node
+    /// hexahedron's 2×2×2) with it. Default `false`: see [`squeal_element::hex20`] for its
+    /// hourglass modes.
+    pub reduced_integration: bool,
 }
 
 /// Default [`AssemblyOptions::straight_tolerance`]: 1e-8.
@@ -60,6 +72,7 @@ impl Default for AssemblyOptions {
             curved_stiffness_rule: Quadrature::twenty_four_point(),
             straight_tolerance: STRAIGHT_TOLERANCE,
             mass_rule: Quadrature::fourteen_point(),
+            reduced_integration: false,
         }
     }
 }
@@ -74,6 +87,19 @@ impl AssemblyOptions {
         } else {
             &self.curved_stiffness_rule
         }
+    }
+
+    /// The stiffness and mass rules of the other element kinds: `None` for tet10 (whose
+    /// rules are the fields above, chosen per element).
+    fn rules_of<E: ReferenceElement<N>, const N: usize>(&self) -> Option<(Quadrature, Quadrature)> {
+        if E::KIND == ElementKind::Tet10 {
+            return None;
+        }
+        let reduced = self
+            .reduced_integration
+            .then(E::reduced_stiffness_rule)
+            .flatten();
+        Some((reduced.unwrap_or_else(E::stiffness_rule), E::mass_rule()))
     }
 }
 
@@ -101,8 +127,8 @@ impl System {
     }
 }
 
-/// Elements processed per chunk: the element-matrix buffer (about 2 MB) stays in cache
-/// while the chunk's nodes gather from it. The result does not depend on it.
+/// Elements processed per chunk: the element-matrix buffer (about 2 MB for tet10) stays in
+/// cache while the chunk's nodes gather from it. The result does not depend on it.
 const CHUNK: usize = 256;
 
 /// [`assemble_with`] with the default rules.
@@ -136,8 +162,9 @@ pub fn assemble_with(
     })
 }
 
-/// The values of `K` and `M` in the layout of `pattern`: chunk by chunk, the element matrices
-/// in parallel, then every node of the chunk adds them to its own columns in parallel.
+/// The values of `K` and `M` in the layout of `pattern`: block by block and chunk by chunk,
+/// the element matrices in parallel, then every node of the chunk adds them to its own
+/// columns in parallel.
 fn fill_values(
     mesh: &Mesh,
     materials: &MaterialTable,
@@ -150,43 +177,90 @@ fn fill_values(
     let mut m_val = vec![0.0; pattern.m_rows.len()];
     let k_start: Vec<usize> = pattern.layout.iter().map(|l| l.k_start).collect();
     let m_start: Vec<usize> = pattern.layout.iter().map(|l| l.m_start).collect();
-    let mut k_slices = split_by_start(&mut k_val, &k_start);
-    let mut m_slices = split_by_start(&mut m_val, &m_start);
-    let mut cursor = vec![0usize; mesh.num_nodes()];
-    let mut k_buf = vec![[[0.0; 30]; 30]; CHUNK.min(mesh.num_elements())];
-    let mut m_buf = vec![[[0.0; 10]; 10]; CHUNK.min(mesh.num_elements())];
-    for c0 in (0..mesh.num_elements()).step_by(CHUNK) {
-        let c1 = (c0 + CHUNK).min(mesh.num_elements());
-        let statuses: Vec<Result<(), FeError>> = k_buf[..c1 - c0]
-            .par_iter_mut()
-            .zip(m_buf[..c1 - c0].par_iter_mut())
-            .enumerate()
-            .map(|(i, (ke, me))| element_matrices(mesh, materials, options, c0 + i, ke, me))
-            .collect();
-        // The first error in element order.
-        statuses.into_iter().collect::<Result<(), FeError>>()?;
-        let ctx = ScatterContext {
-            mesh,
-            dofmap,
-            graph,
-            pattern,
-            k_buf: &k_buf,
-            m_buf: &m_buf,
-        };
-        // Only the nodes of this chunk's elements have anything to add.
-        let (lo, hi) = node_range(&mesh.elements[c0..c1]);
-        k_slices[lo..hi]
-            .par_iter_mut()
-            .zip(m_slices[lo..hi].par_iter_mut())
-            .zip(cursor[lo..hi].par_iter_mut())
-            .enumerate()
-            .for_each(|(i, ((ks, ms), cur))| ctx.scatter_node(lo + i, c0, c1, cur, ks, ms));
-    }
+    let mut filler = Filler {
+        mesh,
+        materials,
+        dofmap,
+        options,
+        graph,
+        pattern,
+        k_slices: split_by_start(&mut k_val, &k_start),
+        m_slices: split_by_start(&mut m_val, &m_start),
+        cursor: vec![0usize; mesh.num_nodes()],
+    };
+    mesh.blocks.visit(&mut filler)?;
+    drop(filler);
     Ok((k_val, m_val))
 }
 
+/// The state of [`fill_values`] carried from block to block.
+struct Filler<'a, 'v> {
+    mesh: &'a Mesh,
+    materials: &'a MaterialTable,
+    dofmap: &'a DofMap,
+    options: &'a AssemblyOptions,
+    graph: &'a NodeGraph,
+    pattern: &'a Pattern,
+    k_slices: Vec<&'v mut [f64]>,
+    m_slices: Vec<&'v mut [f64]>,
+    /// Per node, the position in its incidence list reached so far.
+    cursor: Vec<usize>,
+}
+
+impl BlockVisitor for Filler<'_, '_> {
+    type Error = FeError;
+
+    fn block<E: ReferenceElement<N>, const N: usize>(
+        &mut self,
+        first: usize,
+        conn: &[[u32; N]],
+    ) -> Result<(), FeError> {
+        if conn.is_empty() {
+            return Ok(());
+        }
+        let rules = self.options.rules_of::<E, N>();
+        let (kn, mn) = (9 * N * N, N * N);
+        let chunk = CHUNK.min(conn.len());
+        let mut k_buf = vec![0.0; chunk * kn];
+        let mut m_buf = vec![0.0; chunk * mn];
+        for c0 in (0..conn.len()).step_by(CHUNK) {
+            let c1 = (c0 + CHUNK).min(conn.len());
+            let statuses: Vec<Result<(), FeError>> = k_buf[..(c1 - c0) * kn]
+                .par_chunks_mut(kn)
+                .zip(m_buf[..(c1 - c0) * mn].par_chunks_mut(mn))
+                .enumerate()
+                .map(|(i, (ke, me))| {
+                    let e = c0 + i;
+                    element_matrices::<E, N>(self, rules.as_ref(), &conn[e], first + e, ke, me)
+                })
+                .collect();
+            // The first error in element order.
+            statuses.into_iter().collect::<Result<(), FeError>>()?;
+            let ctx = ScatterContext {
+                dofmap: self.dofmap,
+                graph: self.graph,
+                pattern: self.pattern,
+                conn: &conn[c0..c1],
+                k_buf: &k_buf,
+                m_buf: &m_buf,
+            };
+            // Only the nodes of this chunk's elements have anything to add.
+            let (lo, hi) = node_range(&conn[c0..c1]);
+            self.k_slices[lo..hi]
+                .par_iter_mut()
+                .zip(self.m_slices[lo..hi].par_iter_mut())
+                .zip(self.cursor[lo..hi].par_iter_mut())
+                .enumerate()
+                .for_each(|(i, ((ks, ms), cur))| {
+                    ctx.scatter_node(lo + i, first + c0, first + c1, cur, ks, ms)
+                });
+        }
+        Ok(())
+    }
+}
+
 /// The range `lo..hi` of node indices used by `elements`.
-fn node_range(elements: &[[u32; 10]]) -> (usize, usize) {
+fn node_range<const N: usize>(elements: &[[u32; N]]) -> (usize, usize) {
     let nodes = elements.iter().flatten().map(|&v| v as usize);
     let lo = nodes.clone().min().unwrap_or(0);
     let hi = nodes.max().map_or(0, |v| v + 1);
@@ -202,7 +276,7 @@ fn check_inputs(mesh: &Mesh, materials: &MaterialTable, dofmap: &DofMap) -> Resu
         });
     }
     let n = mesh.num_nodes();
-    for (e, el) in mesh.elements.iter().enumerate() {
+    for (e, el) in mesh.blocks.iter().enumerate() {
         if let Some(&node) = el.iter().find(|&&v| v as usize >= n) {
             return Err(FeError::BadConnectivity {
                 element: mesh.element_ids[e],
@@ -237,21 +311,28 @@ fn check_materials(mesh: &Mesh, materials: &MaterialTable) -> Result<(), FeError
     }
 }
 
-/// Stiffness and scalar mass of element `e` into the buffers.
-fn element_matrices(
-    mesh: &Mesh,
-    materials: &MaterialTable,
-    options: &AssemblyOptions,
+/// Stiffness and scalar mass of element `e` (nodes `conn`) into the buffers; `rules` are
+/// the element kind's (`None` for tet10, whose rules are chosen per element).
+fn element_matrices<E: ReferenceElement<N>, const N: usize>(
+    f: &Filler<'_, '_>,
+    rules: Option<&(Quadrature, Quadrature)>,
+    conn: &[u32; N],
     e: usize,
-    ke: &mut [[f64; 30]; 30],
-    me: &mut [[f64; 10]; 10],
+    ke: &mut [f64],
+    me: &mut [f64],
 ) -> Result<(), FeError> {
-    let x = mesh.element_coords(e);
-    let entry = &materials.entries[materials.element_entry[e] as usize];
-    let wrap = FeError::in_element(mesh.element_ids[e]);
-    let rule = options.stiffness_rule_for(&x);
-    *ke = element_stiffness(&x, &entry.elasticity, rule).map_err(wrap)?;
-    *me = element_mass_scalar(&x, entry.material.density(), &options.mass_rule).map_err(wrap)?;
+    let x = f.mesh.coords(conn);
+    let entry = &f.materials.entries[f.materials.element_entry[e] as usize];
+    let wrap = FeError::in_element(f.mesh.element_ids[e]);
+    let (k_rule, m_rule) = match rules {
+        Some((k, m)) => (k, m),
+        None => {
+            let tet: [[f64; 3]; 10] = std::array::from_fn(|i| x[i]);
+            (f.options.stiffness_rule_for(&tet), &f.options.mass_rule)
+        }
+    };
+    stiffness_of::<E, N>(&x, &entry.elasticity, k_rule, ke).map_err(wrap)?;
+    mass_scalar_of::<E, N>(&x, entry.material.density(), m_rule, me).map_err(wrap)?;
     Ok(())
 }
 
@@ -268,7 +349,7 @@ impl NodeGraph {
         let n = mesh.num_nodes();
         // Counting sort of (node, element) pairs by node; elements stay ascending.
         let mut elem_ptr = vec![0usize; n + 1];
-        for el in &mesh.elements {
+        for el in mesh.blocks.iter() {
             for (a, &v) in el.iter().enumerate() {
                 if !el[..a].contains(&v) {
                     elem_ptr[v as usize + 1] += 1;
@@ -280,7 +361,7 @@ impl NodeGraph {
         }
         let mut fill = elem_ptr.clone();
         let mut elems = vec![0u32; elem_ptr[n]];
-        for (e, el) in mesh.elements.iter().enumerate() {
+        for (e, el) in mesh.blocks.iter().enumerate() {
             for (a, &v) in el.iter().enumerate() {
                 if !el[..a].contains(&v) {
                     elems[fill[v as usize]] = e as u32;
@@ -293,7 +374,8 @@ impl NodeGraph {
             .map(|node| {
                 let mut v: Vec<u32> = elems[elem_ptr[node]..elem_ptr[node + 1]]
                     .iter()
-                    .flat_map(|&e| mesh.elements[e as usize])
+                    .flat_map(|&e| mesh.blocks.get(e as usize).map_or(&[][..], |(_, c)| c))
+                    .copied()
                     .collect();
                 v.sort_unstable();
                 v.dedup();
@@ -429,20 +511,21 @@ fn split_by_start<'a, T>(mut data: &'a mut [T], start: &[usize]) -> Vec<&'a mut 
     out
 }
 
-/// What a node needs to add its elements' contributions to its own columns.
-struct ScatterContext<'a> {
-    mesh: &'a Mesh,
+/// What a node needs to add its elements' contributions to its own columns: the chunk's
+/// connectivity and element matrices (row-major `3N × 3N` and `N × N`, one after the other).
+struct ScatterContext<'a, const N: usize> {
     dofmap: &'a DofMap,
     graph: &'a NodeGraph,
     pattern: &'a Pattern,
-    k_buf: &'a [[[f64; 30]; 30]],
-    m_buf: &'a [[[f64; 10]; 10]],
+    conn: &'a [[u32; N]],
+    k_buf: &'a [f64],
+    m_buf: &'a [f64],
 }
 
-impl ScatterContext<'_> {
+impl<const N: usize> ScatterContext<'_, N> {
     /// Adds, in ascending element order, the contributions of the node's elements in
-    /// `c0..c1` to the node's columns `ks` (of `K`) and `ms` (of `M`). `cursor` is the
-    /// position in the node's incidence list reached so far.
+    /// `c0..c1` (element indices of the chunk) to the node's columns `ks` (of `K`) and `ms`
+    /// (of `M`). `cursor` is the position in the node's incidence list reached so far.
     fn scatter_node(
         &self,
         node: usize,
@@ -453,6 +536,7 @@ impl ScatterContext<'_> {
         ms: &mut [f64],
     ) {
         let incident = self.graph.incident(node);
+        let (kn, mn) = (9 * N * N, N * N);
         while let Some(&e) = incident.get(*cursor) {
             let e = e as usize;
             if e >= c1 {
@@ -460,7 +544,10 @@ impl ScatterContext<'_> {
             }
             *cursor += 1;
             if !ks.is_empty() {
-                self.scatter_element(node, e, &self.k_buf[e - c0], &self.m_buf[e - c0], ks, ms);
+                let i = e - c0;
+                let ke = &self.k_buf[i * kn..(i + 1) * kn];
+                let me = &self.m_buf[i * mn..(i + 1) * mn];
+                self.scatter_element(node, &self.conn[i], ke, me, ks, ms);
             }
         }
     }
@@ -468,16 +555,16 @@ impl ScatterContext<'_> {
     fn scatter_element(
         &self,
         node: usize,
-        e: usize,
-        ke: &[[f64; 30]; 30],
-        me: &[[f64; 10]; 10],
+        conn: &[u32; N],
+        ke: &[f64],
+        me: &[f64],
         ks: &mut [f64],
         ms: &mut [f64],
     ) {
-        let conn = &self.mesh.elements[e];
         let Some(a) = conn.iter().position(|&v| v as usize == node) else {
             return;
         };
+        let n3 = 3 * N;
         let lay = &self.pattern.layout[node];
         // Element matrices are symmetric bit for bit: row `3a + d` is column `3a + d`.
         if lay.regular {
@@ -486,12 +573,13 @@ impl ScatterContext<'_> {
             for (b, &other) in conn.iter().enumerate() {
                 let j = nbrs.partition_point(|&w| w < other);
                 for d in 0..3 {
-                    let row = &ke[3 * a + d][3 * b..3 * b + 3];
+                    let start = (3 * a + d) * n3 + 3 * b;
+                    let row = &ke[start..start + 3];
                     let base = d * lay.k_count + 3 * j;
                     for (t, v) in row.iter().enumerate() {
                         ks[base + t] += v;
                     }
-                    ms[d * n + j] += me[a][b];
+                    ms[d * n + j] += me[a * N + b];
                 }
             }
             return;
@@ -509,13 +597,13 @@ impl ScatterContext<'_> {
             for (col, d) in (0..3).filter(|&d| dofs_n[d].is_some()).enumerate() {
                 let base = col * lay.k_count + o;
                 for (j, d2) in (0..3).filter(|&d2| dofs_m[d2].is_some()).enumerate() {
-                    ks[base + j] += ke[3 * a + d][3 * b + d2];
+                    ks[base + j] += ke[(3 * a + d) * n3 + 3 * b + d2];
                 }
                 if let Some(r) = dofs_m[d] {
                     let s = lay.m_start + m_col_start;
                     let pos =
                         self.pattern.m_rows[s..s + lay.m_count[d]].partition_point(|&x| x < r);
-                    ms[m_col_start + pos] += me[a][b];
+                    ms[m_col_start + pos] += me[a * N + b];
                 }
                 m_col_start += lay.m_count[d];
             }
@@ -523,13 +611,48 @@ impl ScatterContext<'_> {
     }
 }
 
-/// Volume of the mesh, `Σ_e ∫ det J` with `rule` (summed in element order).
+/// Per element, `f(e, volume)` in element order, each with the element kind's own volume
+/// `Σ_q w_q det J_q`: tet10 with `tet10_rule`, the others with their mass rules (exact for
+/// elements with straight edges).
+struct Volumes<'a, F> {
+    mesh: &'a Mesh,
+    tet10_rule: &'a Quadrature,
+    f: F,
+}
+
+impl<F: FnMut(usize, f64)> BlockVisitor for Volumes<'_, F> {
+    type Error = FeError;
+
+    fn block<E: ReferenceElement<N>, const N: usize>(
+        &mut self,
+        first: usize,
+        conn: &[[u32; N]],
+    ) -> Result<(), FeError> {
+        let own = E::mass_rule();
+        let rule = if E::KIND == ElementKind::Tet10 {
+            self.tet10_rule
+        } else {
+            &own
+        };
+        for (i, c) in conn.iter().enumerate() {
+            let e = first + i;
+            let v = volume_of::<E, N>(&self.mesh.coords(c), rule)
+                .map_err(FeError::in_element(self.mesh.element_ids[e]))?;
+            (self.f)(e, v);
+        }
+        Ok(())
+    }
+}
+
+/// Volume of the mesh, `Σ_e ∫ det J` with `rule` for tet10 elements and each other kind's
+/// mass rule (summed in element order).
 pub fn mesh_volume(mesh: &Mesh, rule: &Quadrature) -> Result<f64, FeError> {
     let mut v = 0.0;
-    for e in 0..mesh.num_elements() {
-        v += element_volume(&mesh.element_coords(e), rule)
-            .map_err(FeError::in_element(mesh.element_ids[e]))?;
-    }
+    mesh.blocks.visit(&mut Volumes {
+        mesh,
+        tet10_rule: rule,
+        f: |_, ve| v += ve,
+    })?;
     Ok(v)
 }
 
@@ -541,14 +664,16 @@ pub fn total_mass(
 ) -> Result<f64, FeError> {
     check_materials(mesh, materials)?;
     let mut m = 0.0;
-    for e in 0..mesh.num_elements() {
-        let rho = materials.entries[materials.element_entry[e] as usize]
-            .material
-            .density();
-        let v = element_volume(&mesh.element_coords(e), rule)
-            .map_err(FeError::in_element(mesh.element_ids[e]))?;
-        m += rho * v;
-    }
+    mesh.blocks.visit(&mut Volumes {
+        mesh,
+        tet10_rule: rule,
+        f: |e, v| {
+            let rho = materials.entries[materials.element_entry[e] as usize]
+                .material
+                .density();
+            m += rho * v;
+        },
+    })?;
     Ok(m)
 }
 

@@ -101,7 +101,7 @@ impl DofMap {
             });
         }
         let mut state = vec![UNUSED; 3 * n];
-        for (e, el) in mesh.elements.iter().enumerate() {
+        for (e, el) in mesh.blocks.iter().enumerate() {
             for &node in el {
                 let i = node as usize;
                 if i >= n {

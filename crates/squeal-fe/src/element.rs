@@ -1,5 +1,14 @@
-//! Element matrices of the isoparametric 10-node tetrahedron (canonical node ordering of
-//! [`squeal_mesh::tet10`]; midside nodes may be off the edge midpoints).
+//! Element matrices of the isoparametric quadratic solids, written once for any
+//! [`ReferenceElement`] (the `*_of` functions, which fill caller-provided buffers sized by
+//! the element's node count `N`: `3N × 3N` stiffness, `N × N` scalar mass, row-major), and
+//! their fixed-size forms for the 10-node tetrahedron (canonical node ordering of
+//! [`squeal_mesh::tet10`]; midside nodes may be off the edge midpoints). The tet10 forms
+//! are the generic code with `N = 10`: the same operations in the same order.
+//!
+//! Each element's quadrature rules are its own ([`ReferenceElement::stiffness_rule`],
+//! [`ReferenceElement::mass_rule`]; for the 20-node hexahedron's reduced rule and its
+//! hourglass modes see [`squeal_element::hex20`]). The rest of this documentation is about
+//! the tet10, whose curved elements need a rule of their own.
 //!
 //! Local dof `3 a + d` is direction `d` (0 = x, 1 = y, 2 = z) of node `a`, as in the global
 //! node-major numbering. With `B` the strain–displacement matrix (Voigt order
@@ -48,19 +57,29 @@
 use crate::error::ElementError;
 use crate::material::Voigt6;
 use crate::quadrature::Quadrature;
-use squeal_mesh::tet10;
+use squeal_element::{ReferenceElement, Tet10};
 
-/// Node coordinates of one element in canonical order.
+/// Node coordinates of one tet10 element in canonical order.
 pub type ElementCoords = [[f64; 3]; 10];
 
-/// Shape function gradients with respect to `x` (`g[a][j] = ∂N_a/∂x_j`) and `det J` at the
-/// reference point `xi`; an error if `det J ≤ 0` (`point` names the quadrature point).
+/// Shape function gradients of a tet10 with respect to `x` and `det J` (see
+/// [`physical_gradients_of`]).
 pub fn physical_gradients(
     x: &ElementCoords,
     xi: [f64; 3],
     point: usize,
 ) -> Result<([[f64; 3]; 10], f64), ElementError> {
-    let g_ref = tet10::shape_gradients(xi);
+    physical_gradients_of::<Tet10, 10>(x, xi, point)
+}
+
+/// Shape function gradients with respect to `x` (`g[a][j] = ∂N_a/∂x_j`) and `det J` at the
+/// reference point `xi`; an error if `det J ≤ 0` (`point` names the quadrature point).
+pub fn physical_gradients_of<E: ReferenceElement<N>, const N: usize>(
+    x: &[[f64; 3]; N],
+    xi: [f64; 3],
+    point: usize,
+) -> Result<([[f64; 3]; N], f64), ElementError> {
+    let g_ref = E::shape_gradients(xi);
     let mut j = [[0.0; 3]; 3];
     for (xn, gn) in x.iter().zip(&g_ref) {
         for r in 0..3 {
@@ -69,7 +88,7 @@ pub fn physical_gradients(
             }
         }
     }
-    let det = tet10::det3(&j);
+    let det = squeal_element::det3(&j);
     if !(det > 0.0 && det.is_finite()) {
         return Err(ElementError::NonPositiveJacobian { point, det });
     }
@@ -112,18 +131,35 @@ fn c_times_b(c: &Voigt6, g: [f64; 3], scale: f64) -> [[f64; 3]; 6] {
 }
 
 /// Element stiffness `K_e = Σ_q w_q det J_q B_qᵀ C B_q` (Zienkiewicz & Taylor, The Finite
-/// Element Method vol. 1, eq. 6.9). The 4-point rule ([`Quadrature::four_point`]) is exact for
-/// straight-sided elements; for curved ones see the module documentation.
+/// Element Method vol. 1, eq. 6.9) of a tet10. The 4-point rule ([`Quadrature::four_point`])
+/// is exact for straight-sided elements; for curved ones see the module documentation.
 pub fn element_stiffness(
     x: &ElementCoords,
     c: &Voigt6,
     rule: &Quadrature,
 ) -> Result<[[f64; 30]; 30], ElementError> {
-    let mut k = [[0.0; 30]; 30];
+    let mut flat = vec![0.0; 900];
+    stiffness_of::<Tet10, 10>(x, c, rule, &mut flat)?;
+    Ok(std::array::from_fn(|i| {
+        std::array::from_fn(|j| flat[30 * i + j])
+    }))
+}
+
+/// Element stiffness `K_e = Σ_q w_q det J_q B_qᵀ C B_q` into `k`, row-major `3N × 3N`
+/// (local dof `3 a + d`); `k` is overwritten. Computed on the upper triangle and mirrored.
+pub fn stiffness_of<E: ReferenceElement<N>, const N: usize>(
+    x: &[[f64; 3]; N],
+    c: &Voigt6,
+    rule: &Quadrature,
+    k: &mut [f64],
+) -> Result<(), ElementError> {
+    let n3 = 3 * N;
+    let k = &mut k[..n3 * n3];
+    k.fill(0.0);
     for (q, (xi, w)) in rule.points.iter().zip(&rule.weights).enumerate() {
-        let (g, det) = physical_gradients(x, *xi, q)?;
-        let cb: [[[f64; 3]; 6]; 10] = std::array::from_fn(|b| c_times_b(c, g[b], w * det));
-        for a in 0..10 {
+        let (g, det) = physical_gradients_of::<E, N>(x, *xi, q)?;
+        let cb: [[[f64; 3]; 6]; N] = std::array::from_fn(|b| c_times_b(c, g[b], w * det));
+        for a in 0..N {
             let [gx, gy, gz] = g[a];
             for (b, cbb) in cb.iter().enumerate().skip(a) {
                 for d in 0..3 {
@@ -134,41 +170,57 @@ pub fn element_stiffness(
                         gz * cbb[2][d] + gx * cbb[4][d] + gy * cbb[5][d],
                     ];
                     for (p, v) in row.iter().enumerate() {
-                        k[3 * a + p][3 * b + d] += v;
+                        k[(3 * a + p) * n3 + 3 * b + d] += v;
                     }
                 }
             }
         }
     }
-    mirror_upper(&mut k);
-    Ok(k)
+    mirror_upper(k, n3);
+    Ok(())
 }
 
-/// The scalar consistent mass `m_ab = ρ Σ_q w_q det J_q N_a N_b` (the element mass matrix is
-/// `m_ab I₃`). The 14-point rule ([`Quadrature::fourteen_point`]) is exact for straight-sided
-/// elements.
+/// The scalar consistent mass `m_ab = ρ Σ_q w_q det J_q N_a N_b` of a tet10 (the element
+/// mass matrix is `m_ab I₃`). The 14-point rule ([`Quadrature::fourteen_point`]) is exact
+/// for straight-sided elements.
 pub fn element_mass_scalar(
     x: &ElementCoords,
     density: f64,
     rule: &Quadrature,
 ) -> Result<[[f64; 10]; 10], ElementError> {
-    let mut m = [[0.0; 10]; 10];
+    let mut flat = [0.0; 100];
+    mass_scalar_of::<Tet10, 10>(x, density, rule, &mut flat)?;
+    Ok(std::array::from_fn(|i| {
+        std::array::from_fn(|j| flat[10 * i + j])
+    }))
+}
+
+/// The scalar consistent mass `m_ab = ρ Σ_q w_q det J_q N_a N_b` into `m`, row-major `N × N`;
+/// `m` is overwritten. The element mass matrix is `m_ab I₃`.
+pub fn mass_scalar_of<E: ReferenceElement<N>, const N: usize>(
+    x: &[[f64; 3]; N],
+    density: f64,
+    rule: &Quadrature,
+    m: &mut [f64],
+) -> Result<(), ElementError> {
+    let m = &mut m[..N * N];
+    m.fill(0.0);
     for (q, (xi, w)) in rule.points.iter().zip(&rule.weights).enumerate() {
-        let (_, det) = physical_gradients(x, *xi, q)?;
-        let n = tet10::shape(*xi);
+        let (_, det) = physical_gradients_of::<E, N>(x, *xi, q)?;
+        let n = E::shape(*xi);
         let s = density * w * det;
-        for a in 0..10 {
+        for a in 0..N {
             let sa = s * n[a];
-            for b in a..10 {
-                m[a][b] += sa * n[b];
+            for b in a..N {
+                m[a * N + b] += sa * n[b];
             }
         }
     }
-    mirror_upper(&mut m);
-    Ok(m)
+    mirror_upper(m, N);
+    Ok(())
 }
 
-/// Consistent element mass `M_e = ∫ ρ Nᵀ N dV` as a 30×30 matrix (see
+/// Consistent element mass `M_e = ∫ ρ Nᵀ N dV` of a tet10 as a 30×30 matrix (see
 /// [`element_mass_scalar`]).
 pub fn element_mass(
     x: &ElementCoords,
@@ -187,24 +239,41 @@ pub fn element_mass(
     Ok(m)
 }
 
-/// Element volume `Σ_q w_q det J_q` (exact for straight-sided elements with any rule, for
+/// Volume `Σ_q w_q det J_q` of a tet10 (exact for straight-sided elements with any rule, for
 /// curved ones with a rule of degree 3 or more).
 pub fn element_volume(x: &ElementCoords, rule: &Quadrature) -> Result<f64, ElementError> {
+    volume_of::<Tet10, 10>(x, rule)
+}
+
+/// Volume `Σ_q w_q det J_q` of an element; an error if `det J ≤ 0` at a point.
+pub fn volume_of<E: ReferenceElement<N>, const N: usize>(
+    x: &[[f64; 3]; N],
+    rule: &Quadrature,
+) -> Result<f64, ElementError> {
     let mut v = 0.0;
     for (q, (xi, w)) in rule.points.iter().zip(&rule.weights).enumerate() {
-        v += w * physical_gradients(x, *xi, q)?.1;
+        v += w * physical_gradients_of::<E, N>(x, *xi, q)?.1;
     }
     Ok(v)
 }
 
-/// Strain `ε = B u` (Voigt order `11, 22, 33, 12, 13, 23`, engineering shear) at reference
-/// point `xi`, for nodal displacements `u`.
+/// Strain `ε = B u` of a tet10 (see [`strain_of`]).
 pub fn strain_at(
     x: &ElementCoords,
     u: &[[f64; 3]; 10],
     xi: [f64; 3],
 ) -> Result<[f64; 6], ElementError> {
-    let (g, _) = physical_gradients(x, xi, 0)?;
+    strain_of::<Tet10, 10>(x, u, xi)
+}
+
+/// Strain `ε = B u` (Voigt order `11, 22, 33, 12, 13, 23`, engineering shear) at reference
+/// point `xi`, for nodal displacements `u`.
+pub fn strain_of<E: ReferenceElement<N>, const N: usize>(
+    x: &[[f64; 3]; N],
+    u: &[[f64; 3]; N],
+    xi: [f64; 3],
+) -> Result<[f64; 6], ElementError> {
+    let (g, _) = physical_gradients_of::<E, N>(x, xi, 0)?;
     // Displacement gradient h[i][j] = ∂u_i/∂x_j.
     let mut h = [[0.0; 3]; 3];
     for (ua, ga) in u.iter().zip(&g) {
@@ -224,11 +293,11 @@ pub fn strain_at(
     ])
 }
 
-/// Copies the strict upper triangle onto the lower one.
-fn mirror_upper<const N: usize>(m: &mut [[f64; N]; N]) {
-    for i in 0..N {
-        for j in i + 1..N {
-            m[j][i] = m[i][j];
+/// Copies the strict upper triangle of the row-major `n × n` matrix `m` onto the lower one.
+fn mirror_upper(m: &mut [f64], n: usize) {
+    for i in 0..n {
+        for j in i + 1..n {
+            m[j * n + i] = m[i * n + j];
         }
     }
 }

@@ -87,8 +87,8 @@ pub enum FeError {
     DofMapMismatch { map: usize, mesh: usize },
     #[error("element {element}: {error}")]
     Element { element: u64, error: ElementError },
-    #[error("quadrature with {0} Gauss points per axis is not supported (1..=32)")]
-    QuadratureOrder(usize),
+    #[error(transparent)]
+    Quadrature(#[from] squeal_element::QuadratureError),
     #[error(transparent)]
     Io(#[from] squeal_io::IoError),
 }

@@ -36,7 +36,8 @@ pub mod error;
 pub mod export;
 pub mod frames;
 pub mod material;
-pub mod quadrature;
+/// Quadrature rules on the reference elements (in `squeal-element`).
+pub use squeal_element::quadrature;
 
 pub use assembly::{
     AssemblyOptions, STRAIGHT_TOLERANCE, Summary, System, assemble, assemble_with, mesh_volume,
@@ -44,9 +45,11 @@ pub use assembly::{
 };
 pub use dofmap::{DofMap, DofStatus, NodeSelection, Restraint};
 pub use element::{
-    element_mass, element_mass_scalar, element_stiffness, element_volume, strain_at,
+    element_mass, element_mass_scalar, element_stiffness, element_volume, mass_scalar_of,
+    stiffness_of, strain_at, strain_of, volume_of,
 };
 pub use error::{ElementError, FeError, MaterialError};
 pub use export::write_matrix_market;
 pub use material::{ElasticMaterial, MaterialEntry, MaterialTable, Voigt6};
 pub use quadrature::Quadrature;
+pub use squeal_element::{ElementKind, Hex20, Pyramid13, ReferenceElement, Tet10, Wedge15};

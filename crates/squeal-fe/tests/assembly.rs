@@ -26,7 +26,7 @@ fn dense_reference(
         let ke = element_stiffness(&x, &mat.elasticity, rule).unwrap();
         let me = element_mass(&x, mat.material.density(), &Quadrature::fourteen_point()).unwrap();
         let map: Vec<Option<usize>> = (0..30)
-            .map(|i| dofs.free_dof(mesh.elements[e][i / 3], i % 3))
+            .map(|i| dofs.free_dof(mesh.blocks.tet10[e][i / 3], i % 3))
             .collect();
         for i in 0..30 {
             for j in 0..30 {
@@ -89,7 +89,7 @@ fn sparse_assembly_equals_naive_dense_assembly() {
     // The patterns are exactly the free (node, dir) pairs of nodes sharing an element, all
     // direction pairs for K, equal directions for M (counted here from the connectivity).
     let mut pairs = std::collections::BTreeSet::new();
-    for el in &mesh.elements {
+    for el in &mesh.blocks.tet10 {
         for &a in el {
             for &b in el {
                 pairs.insert((a, b));
@@ -188,7 +188,7 @@ fn bad_inputs_are_errors() {
     ));
     // An inverted element is named by its file id.
     let mut inverted = mesh.clone();
-    let el = &mut inverted.elements[3];
+    let el = &mut inverted.blocks.tet10[3];
     el.swap(1, 2);
     el.swap(4, 6);
     el.swap(8, 9);

@@ -19,7 +19,10 @@ fn read(name: &str) -> Mesh {
 fn subset(mesh: &Mesh, set: &str) -> Mesh {
     let mut m = mesh.clone();
     let keep = mesh.element_set(set).unwrap();
-    m.elements = keep.iter().map(|&e| mesh.elements[e as usize]).collect();
+    m.blocks.tet10 = keep
+        .iter()
+        .map(|&e| mesh.blocks.tet10[e as usize])
+        .collect();
     m.element_ids = keep.iter().map(|&e| mesh.element_ids[e as usize]).collect();
     m.element_sets.clear();
     m.sections.clear();

@@ -1,11 +1,12 @@
 //! Clamped solid steel cantilever, 1.0 × 0.1 × 0.1 m, clamped at x = 0: the first bending
 //! frequency converges at the P2 rate (eigenvalue error ~ h⁴) and lands near Timoshenko beam
-//! theory.
+//! theory; with tet10 and with hex20 elements.
 
 mod common;
 use common::{dense, dense_eigenvalues, hz, lowest_eigenvalues, steel};
+use squeal_fe::ElementKind;
 use squeal_fe::{DofMap, MaterialTable, Restraint, System, assemble};
-use squeal_mesh::generate::box_tet10;
+use squeal_mesh::generate::box_solid;
 use std::f64::consts::TAU;
 
 const E: f64 = 210e9;
@@ -126,9 +127,9 @@ fn timoshenko_solver_reduces_to_euler_bernoulli() {
     }
 }
 
-/// The beam meshed with `10k × k × k` cubes of side `0.1/k`.
-fn beam(k: usize, restraints: &[Restraint]) -> System {
-    let mesh = box_tet10([LEN, H, H], [10 * k, k, k]);
+/// The beam meshed with `10k × k × k` cubes of side `0.1/k`, six tet10 or one hex20 each.
+fn beam_of(kind: ElementKind, k: usize, restraints: &[Restraint]) -> System {
+    let mesh = box_solid(kind, [LEN, H, H], [10 * k, k, k]);
     let materials = MaterialTable::uniform(&mesh, steel()).unwrap();
     let dofs = DofMap::new(&mesh, restraints).unwrap();
     assemble(&mesh, &materials, &dofs).unwrap()
@@ -162,12 +163,21 @@ fn richardson(ks: [usize; 3], lambda: [f64; 3]) -> (f64, f64) {
 
 #[test]
 fn free_free_bending_converges_at_the_p2_rate_to_timoshenko() {
+    free_free(ElementKind::Tet10);
+}
+
+#[test]
+fn hex20_free_free_bending_converges_at_the_p2_rate_to_timoshenko() {
+    free_free(ElementKind::Hex20);
+}
+
+fn free_free(kind: ElementKind) {
     // A free beam has no singular points (its edges are convex and traction free), so the
     // smooth P2 rate shows: eigenvalue error ~ h^4. Six rigid modes come first; shift below.
     let ks = [1, 2, 3];
     let mut lambda = [0.0; 3];
     for (i, &k) in ks.iter().enumerate() {
-        let sys = beam(k, &[]);
+        let sys = beam_of(kind, k, &[]);
         let l = lowest_eigenvalues(&sys.k, &sys.m, 8, -1e5);
         // Rigid modes: round-off of ~1e-16 λ_max ≈ 1e-2 absolute, against λ_7 ≈ 1e7.
         assert!(
@@ -177,7 +187,7 @@ fn free_free_bending_converges_at_the_p2_rate_to_timoshenko() {
         );
         lambda[i] = l[6];
         eprintln!(
-            "free-free k = {k}: {} dofs, first bending {:.4} Hz",
+            "{kind} free-free k = {k}: {} dofs, first bending {:.4} Hz",
             sys.num_dofs(),
             hz(l[6])
         );
@@ -186,7 +196,7 @@ fn free_free_bending_converges_at_the_p2_rate_to_timoshenko() {
     let f_t =
         timoshenko_first_omega(Ends::FreeFree, kappa_square(NU) * shear_modulus(), true) / TAU;
     eprintln!(
-        "free-free: rate p = {p:.3}; extrapolated {:.4} Hz; Timoshenko {f_t:.4} Hz",
+        "{kind} free-free: rate p = {p:.3}; extrapolated {:.4} Hz; Timoshenko {f_t:.4} Hz",
         hz(limit)
     );
     // P2: p = 4 asymptotically; these coarse meshes are pre-asymptotic, hence 3..5.
@@ -202,9 +212,18 @@ fn free_free_bending_converges_at_the_p2_rate_to_timoshenko() {
 
 #[test]
 fn clamped_cantilever_lands_near_timoshenko() {
+    clamped(ElementKind::Tet10);
+}
+
+#[test]
+fn hex20_clamped_cantilever_lands_near_timoshenko() {
+    clamped(ElementKind::Hex20);
+}
+
+fn clamped(kind: ElementKind) {
     let clamp = [Restraint::clamp("XMIN")];
     // The sparse solver agrees with the dense one on the coarsest mesh.
-    let coarse = beam(1, &clamp);
+    let coarse = beam_of(kind, 1, &clamp);
     let d = dense_eigenvalues(&dense(&coarse.k), &dense(&coarse.m));
     let s = lowest_eigenvalues(&coarse.k, &coarse.m, 2, 0.0);
     // The dense path errs by ~ε λ_max absolute, and λ_max / λ_1 ~ 4e7 here: ~1e-8 relative.
@@ -218,10 +237,10 @@ fn clamped_cantilever_lands_near_timoshenko() {
     let ks = [1, 2, 3];
     let mut lambda = [0.0; 3];
     for (i, &k) in ks.iter().enumerate() {
-        let sys = beam(k, &clamp);
+        let sys = beam_of(kind, k, &clamp);
         lambda[i] = lowest_eigenvalues(&sys.k, &sys.m, 2, 0.0)[0];
         eprintln!(
-            "clamped k = {k}: {} dofs, first bending {:.4} Hz",
+            "{kind} clamped k = {k}: {} dofs, first bending {:.4} Hz",
             sys.num_dofs(),
             hz(lambda[i])
         );
@@ -231,7 +250,7 @@ fn clamped_cantilever_lands_near_timoshenko() {
         timoshenko_first_omega(Ends::ClampedFree, kappa_square(NU) * shear_modulus(), true) / TAU;
     let f_fe = hz(lambda[2]);
     eprintln!(
-        "clamped: rate p = {p:.3}; extrapolated {:.4} Hz; Timoshenko {f_t:.4} Hz; finest / Timoshenko - 1 = {:.3e}",
+        "{kind} clamped: rate p = {p:.3}; extrapolated {:.4} Hz; Timoshenko {f_t:.4} Hz; finest / Timoshenko - 1 = {:.3e}",
         hz(limit),
         f_fe / f_t - 1.0
     );

@@ -15,8 +15,9 @@
 mod common;
 use common::{dense_eigenvalues, hz, lowest_eigenvalues};
 use faer::Mat;
+use squeal_fe::ElementKind;
 use squeal_fe::{DofMap, ElasticMaterial, MaterialTable, Restraint, assemble};
-use squeal_mesh::generate::box_tet10;
+use squeal_mesh::generate::{box_solid, box_tet10};
 
 const E: f64 = 200e9;
 const NU: f64 = 0.3;
@@ -73,12 +74,49 @@ fn bottom_edges(mesh: &squeal_mesh::Mesh) -> Restraint {
 
 #[test]
 fn nafems_fv52_as_specified() {
+    as_specified(ElementKind::Tet10, &[[6, 6, 1], [8, 8, 2]]);
+}
+
+/// The same benchmark with 20-node hexahedra (one per cell). The line support is singular
+/// and softens every mesh's bending modes without bound, so the published frequencies are
+/// met at the benchmark's mesh size (6×6×1, the coarse meshes of the published runs): there
+/// hex20 is within 3.5%. On 8×8×2 the bending modes soften further (mode 7 to −5.7%, past
+/// the 5% that tet10 keeps there) and only the in-plane mode 8 and the softening are
+/// asserted.
+#[test]
+fn nafems_fv52_as_specified_with_hex20() {
+    as_specified(ElementKind::Hex20, &[[6, 6, 1]]);
+    let reference = reference();
+    let mut bending = Vec::new();
+    for cells in [[6, 6, 1], [8, 8, 2]] {
+        let mesh = box_solid(ElementKind::Hex20, [SIDE, SIDE, THICK], cells);
+        let (l, _) = frequencies(&mesh, &[bottom_edges(&mesh)], -1e3);
+        let f: Vec<f64> = l.iter().map(|&v| hz(v)).collect();
+        let f8 = reference
+            .iter()
+            .find(|(m, _)| *m == 8)
+            .map(|r| r.1)
+            .unwrap();
+        assert!(
+            (f[7] / f8 - 1.0).abs() < 0.01,
+            "{cells:?} mode 8: {} Hz",
+            f[7]
+        );
+        bending.push([f[3], f[4], f[6]]);
+    }
+    assert!(
+        (0..3).all(|i| bending[1][i] < bending[0][i]),
+        "bending modes {bending:?}"
+    );
+}
+
+fn as_specified(kind: ElementKind, meshes: &[[usize; 3]]) {
     let reference = reference();
     // 6×6×1 cells: elements of 1.67 m, the size of the published parabolic-tet runs of this
     // benchmark; then 8×8×2.
     let mut bending = Vec::new();
-    for cells in [[6, 6, 1], [8, 8, 2]] {
-        let mesh = plate(cells);
+    for &cells in meshes {
+        let mesh = box_solid(kind, [SIDE, SIDE, THICK], cells);
         let (l, dofs) = frequencies(&mesh, &[bottom_edges(&mesh)], -1e3);
         // Three in-plane rigid motions at round-off (~1e-16 λ_max ≈ 1e-3) against λ_4 ≈ 8e4.
         assert!(
@@ -90,7 +128,7 @@ fn nafems_fv52_as_specified() {
         for &(mode, f_ref) in &reference {
             let err = f[mode - 1] / f_ref - 1.0;
             eprintln!(
-                "FV52 {cells:?} ({dofs} dofs): mode {mode}: {:.3} Hz, reference {f_ref} Hz, {:+.2}%",
+                "FV52 {kind} {cells:?} ({dofs} dofs): mode {mode}: {:.3} Hz, reference {f_ref} Hz, {:+.2}%",
                 f[mode - 1],
                 100.0 * err
             );
@@ -108,7 +146,9 @@ fn nafems_fv52_as_specified() {
     }
     // The line support weakens under refinement: bending modes 4, 5 and 7 drop.
     assert!(
-        (0..3).all(|i| bending[1][i] < bending[0][i]),
+        bending
+            .windows(2)
+            .all(|w| (0..3).all(|i| w[1][i] < w[0][i])),
         "bending modes {bending:?}"
     );
 }
@@ -289,5 +329,34 @@ fn hard_supported_plate_converges_at_the_p2_rate() {
     }
     // On the 12×12×3 mesh all ten modes are within 1%.
     let worst = errors[2].iter().fold(0.0_f64, |a, &e| a.max(e));
+    assert!(worst < 0.01, "worst error {:.3}%", 100.0 * worst);
+}
+
+/// The hard-supported plate with hex20 on 8×8×2 cells: upper bounds of the semi-analytical
+/// frequencies, all ten within 1%.
+#[test]
+fn hex20_hard_supported_plate_is_an_upper_bound_within_one_percent() {
+    let exact = srinivas_spectrum(10, 40);
+    let mesh = box_solid(ElementKind::Hex20, [SIDE, SIDE, THICK], [8, 8, 2]);
+    let (l, dofs) = frequencies(&mesh, &hard_support(), 0.0);
+    let errs: Vec<f64> = l
+        .iter()
+        .zip(&exact)
+        .map(|(&v, f)| hz(v) / f - 1.0)
+        .collect();
+    eprintln!(
+        "hex20 hard support [8, 8, 2] ({dofs} dofs): {:?}",
+        l.iter()
+            .zip(&errs)
+            .map(|(&v, e)| format!("{:.3} Hz {:+.4}%", hz(v), 100.0 * e))
+            .collect::<Vec<_>>()
+    );
+    // Conforming elements and consistent mass: Rayleigh–Ritz upper bounds (1e-9 allows for
+    // the eigensolver's round-off).
+    assert!(
+        errs.iter().all(|&e| e > -1e-9),
+        "below the exact value: {errs:?}"
+    );
+    let worst = errs.iter().fold(0.0_f64, |a, &e| a.max(e));
     assert!(worst < 0.01, "worst error {:.3}%", 100.0 * worst);
 }

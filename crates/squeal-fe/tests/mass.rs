@@ -92,7 +92,7 @@ fn curved_interior_elements_keep_the_box_mass() {
 /// triangle (exact for the degree-4 integrand `x · (x_s × x_t)`).
 fn surface_volume(mesh: &Mesh) -> f64 {
     let mut faces: BTreeMap<[u32; 3], (usize, [u32; 6])> = BTreeMap::new();
-    for el in &mesh.elements {
+    for el in &mesh.blocks.tet10 {
         for f in tet10::FACES {
             let nodes: [u32; 6] = f.map(|i| el[i]);
             let mut key = [nodes[0], nodes[1], nodes[2]];

@@ -2,33 +2,9 @@
 //! in every element, zero residual `K u` at interior nodes, and strain energy `V εᵀ C ε / 2`.
 
 mod common;
-use common::{distort_vertices, on_box_boundary};
-use squeal_fe::{DofMap, ElasticMaterial, MaterialTable, Quadrature, assemble, strain_at};
+use common::{PATCH_A as A, distort_vertices, linear_field, lining, on_box_boundary};
+use squeal_fe::{DofMap, MaterialTable, Quadrature, assemble, strain_at};
 use squeal_mesh::generate::box_tet10;
-
-/// An anisotropic material, so that every entry of C takes part.
-fn lining() -> ElasticMaterial {
-    ElasticMaterial::TransverselyIsotropic {
-        young_plane: 6.0e9,
-        poisson_plane: 0.25,
-        young_axial: 2.0e9,
-        poisson_plane_axial: 0.12,
-        shear_axial: 1.1e9,
-        axis: [0.2, 0.5, 1.0],
-        density: 2500.0,
-    }
-}
-
-const A: [[f64; 3]; 3] = [
-    [1.0e-3, 2.0e-4, -3.0e-4],
-    [-1.0e-4, -5.0e-4, 4.0e-4],
-    [2.5e-4, 1.5e-4, 7.0e-4],
-];
-const B: [f64; 3] = [1e-3, -2e-3, 5e-4];
-
-fn linear_field(x: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|i| B[i] + (0..3).map(|j| A[i][j] * x[j]).sum::<f64>())
-}
 
 #[test]
 fn linear_field_passes_the_patch_test() {
@@ -53,7 +29,7 @@ fn linear_field_passes_the_patch_test() {
     let rule = Quadrature::fourteen_point();
     for e in 0..mesh.num_elements() {
         let x = mesh.element_coords(e);
-        let ue: [[f64; 3]; 10] = std::array::from_fn(|a| field[mesh.elements[e][a] as usize]);
+        let ue: [[f64; 3]; 10] = std::array::from_fn(|a| field[mesh.blocks.tet10[e][a] as usize]);
         for p in &rule.points {
             let s = strain_at(&x, &ue, *p).unwrap();
             for k in 0..6 {

@@ -46,7 +46,7 @@ fn generated_box(dir: &Path) -> PathBuf {
         let _ = writeln!(s, "{id}, {:.17e}, {:.17e}, {:.17e}", x[0], x[1], x[2]);
     }
     s.push_str("*ELEMENT, TYPE=C3D10, ELSET=ALL\n");
-    for (id, el) in m.element_ids.iter().zip(&m.elements) {
+    for (id, el) in m.element_ids.iter().zip(&m.blocks.tet10) {
         let _ = write!(s, "{id}");
         for &n in el {
             let _ = write!(s, ", {}", m.node_ids[n as usize]);

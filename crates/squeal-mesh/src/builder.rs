@@ -4,7 +4,8 @@
 //! where references to ids never defined become [`Dangling`] entries (reported by the quality
 //! checks) rather than errors, so that one bad reference does not hide the rest of the file.
 
-use crate::model::{Dangling, Material, Mesh, Section};
+use crate::model::{Blocks, Dangling, Material, Mesh, Section};
+use squeal_element::ElementKind;
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 /// Collects nodes, elements, sets and materials by file id.
@@ -15,6 +16,10 @@ pub struct MeshBuilder {
     node_index: HashMap<u64, u32>,
     elements: Vec<(u64, [u64; 10])>,
     element_index: HashMap<u64, u32>,
+    /// Elements of the other kinds, in file order (tet10 elements are kept apart, as fixed-size
+    /// records, because meshes are mostly tet10).
+    others: Vec<(u64, ElementKind, Vec<u64>)>,
+    other_ids: HashSet<u64>,
     skipped_elements: HashSet<u64>,
     node_sets: BTreeMap<String, Vec<u64>>,
     element_sets: BTreeMap<String, Vec<u64>>,
@@ -42,11 +47,34 @@ impl MeshBuilder {
 
     /// Adds a tet10 element whose nodes (file ids) are already in canonical order.
     pub fn add_element(&mut self, id: u64, nodes: [u64; 10]) -> Result<(), String> {
-        if self.element_index.contains_key(&id) || self.skipped_elements.contains(&id) {
+        if self.has_element(id) {
             return Err(format!("element {id} is defined twice"));
         }
         self.element_index.insert(id, self.elements.len() as u32);
         self.elements.push((id, nodes));
+        Ok(())
+    }
+
+    /// Adds an element of any kind whose nodes (file ids) are already in that kind's canonical
+    /// order; an error if the id is taken or the node count is not the kind's.
+    pub fn add_typed(&mut self, id: u64, kind: ElementKind, nodes: &[u64]) -> Result<(), String> {
+        if nodes.len() != kind.nodes() {
+            return Err(format!(
+                "element {id} has {} nodes; a {kind} has {}",
+                nodes.len(),
+                kind.nodes()
+            ));
+        }
+        if kind == ElementKind::Tet10 {
+            let mut n = [0u64; 10];
+            n.copy_from_slice(nodes);
+            return self.add_element(id, n);
+        }
+        if self.has_element(id) {
+            return Err(format!("element {id} is defined twice"));
+        }
+        self.other_ids.insert(id);
+        self.others.push((id, kind, nodes.to_vec()));
         Ok(())
     }
 
@@ -61,9 +89,11 @@ impl MeshBuilder {
         self.node_index.contains_key(&id)
     }
 
-    /// Whether an element id was defined (as a tet10 or as a skipped element).
+    /// Whether an element id was defined (as an element of any kind or as a skipped one).
     pub fn has_element(&self, id: u64) -> bool {
-        self.element_index.contains_key(&id) || self.skipped_elements.contains(&id)
+        self.element_index.contains_key(&id)
+            || self.other_ids.contains(&id)
+            || self.skipped_elements.contains(&id)
     }
 
     /// Members (file element ids, as added, unsorted and possibly repeated) of an element set
@@ -78,7 +108,7 @@ impl MeshBuilder {
         self.node_sets.get(name).map(Vec::as_slice)
     }
 
-    /// Connectivity (file ids) of an element defined so far.
+    /// Connectivity (file ids) of a tet10 element defined so far.
     pub fn element_nodes(&self, id: u64) -> Option<&[u64; 10]> {
         self.element_index
             .get(&id)
@@ -125,37 +155,45 @@ impl MeshBuilder {
         self.nodes.len()
     }
 
-    /// Number of elements added so far.
+    /// Number of elements (of all kinds) added so far.
     pub fn num_elements(&self) -> usize {
-        self.elements.len()
+        self.elements.len() + self.others.len()
     }
 
     /// Resolves ids to indices. Elements naming a missing node are dropped and listed in
     /// [`Mesh::dangling`], as are set members naming missing ids.
     pub fn finish(self) -> Mesh {
         let mut dangling = Vec::new();
-        let mut elements = Vec::with_capacity(self.elements.len());
-        let mut element_ids = Vec::with_capacity(self.elements.len());
-        let mut kept_index = HashMap::with_capacity(self.elements.len());
-        for (id, nodes) in &self.elements {
-            let mut conn = [0u32; 10];
-            let mut ok = true;
-            for (k, n) in nodes.iter().enumerate() {
+        let mut blocks = Blocks::default();
+        let total = self.num_elements();
+        let mut element_ids = Vec::with_capacity(total);
+        let mut kept_index = HashMap::with_capacity(total);
+        let mut conn = Vec::with_capacity(20);
+        let tets = self
+            .elements
+            .iter()
+            .map(|(id, n)| (*id, ElementKind::Tet10, &n[..]));
+        // Block order: tet10 first, then each other kind in turn, file order within a kind.
+        let others = ElementKind::ALL[1..].iter().flat_map(|&kind| {
+            self.others
+                .iter()
+                .filter(move |(_, k, _)| *k == kind)
+                .map(|(id, k, n)| (*id, *k, &n[..]))
+        });
+        for (id, kind, nodes) in tets.chain(others) {
+            conn.clear();
+            for n in nodes {
                 match self.node_index.get(n) {
-                    Some(&i) => conn[k] = i,
-                    None => {
-                        ok = false;
-                        dangling.push(Dangling::ElementNode {
-                            element: *id,
-                            node: *n,
-                        });
-                    }
+                    Some(&i) => conn.push(i),
+                    None => dangling.push(Dangling::ElementNode {
+                        element: id,
+                        node: *n,
+                    }),
                 }
             }
-            if ok {
-                kept_index.insert(*id, elements.len() as u32);
-                elements.push(conn);
-                element_ids.push(*id);
+            if conn.len() == nodes.len() && blocks.push(kind, &conn) {
+                kept_index.insert(id, element_ids.len() as u32);
+                element_ids.push(id);
             }
         }
         let mut node_sets = BTreeMap::new();
@@ -183,7 +221,8 @@ impl MeshBuilder {
                     // Skipped (non-tet) elements and elements dropped for a missing node are
                     // already accounted for.
                     None if self.skipped_elements.contains(&id)
-                        || self.element_index.contains_key(&id) => {}
+                        || self.element_index.contains_key(&id)
+                        || self.other_ids.contains(&id) => {}
                     None => dangling.push(Dangling::ElementSetMember {
                         set: name.clone(),
                         element: id,
@@ -197,7 +236,7 @@ impl MeshBuilder {
         Mesh {
             nodes: self.nodes,
             node_ids: self.node_ids,
-            elements,
+            blocks,
             element_ids,
             node_sets,
             element_sets,
@@ -231,7 +270,7 @@ mod tests {
         b.add_to_element_set("E", [7, 8, 9, 11]);
         b.add_to_node_set("EMPTY", []);
         let m = b.finish();
-        assert_eq!(m.elements.len(), 1);
+        assert_eq!(m.blocks.tet10.len(), 1);
         assert_eq!(m.element_ids, vec![7]);
         assert_eq!(m.node_sets["A"], vec![0, 2]);
         assert_eq!(m.element_sets["E"], vec![0]);

@@ -34,13 +34,15 @@ pub mod model;
 pub mod msh;
 pub mod quality;
 pub mod select;
-pub mod tet10;
 pub mod units;
 pub mod vtu;
 
 pub use builder::MeshBuilder;
 pub use error::{Location, MeshError, Warning};
-pub use model::{Dangling, Elastic, Material, Mesh, Section};
+pub use model::{BlockVisitor, Blocks, Dangling, Elastic, Material, Mesh, NotTet10, Section};
+pub use squeal_element::ElementKind;
+/// The 10-node tetrahedron (its reference element lives in `squeal-element`).
+pub use squeal_element::tet10;
 
 use std::path::Path;
 
@@ -56,7 +58,7 @@ pub struct ReadMesh {
 }
 
 /// The warning of a parse that found no tet10 element, and the start of [`read`]'s error.
-pub(crate) const NO_TET10: &str = "no 10-node tetrahedron (Abaqus C3D10, Gmsh type 11) in the file";
+pub(crate) const NO_TET10: &str = "no quadratic solid element (Abaqus C3D10, C3D20, C3D20R, C3D15; Gmsh types 11, 17, 18, 19) in the file";
 
 /// A mesh file must hold tet10 elements (see the module documentation): the error names the
 /// file and repeats the warnings about skipped element types.
@@ -77,7 +79,7 @@ pub(crate) fn require_tet10(read: ReadMesh) -> Result<ReadMesh, MeshError> {
         empty.file.clone(),
         Location::File,
         format!(
-            "{NO_TET10}, which has {} nodes{skipped}. squeal analyses tet10 meshes only; \
+            "{NO_TET10}, which has {} nodes{skipped}. squeal analyses meshes of quadratic solids only; \
              a file cut off before its elements also reads like this: check that it is complete",
             read.mesh.num_nodes()
         ),

@@ -16,10 +16,12 @@
 //! # What becomes what
 //! - Nodes: every node of `$Nodes` (MSH 4.1: all entity blocks; parametric coordinates are
 //!   read and dropped).
-//! - Elements: type 11 (10-node tetrahedron) only, permuted into the canonical ordering with
-//!   [`GMSH_TO_CANONICAL`]. Elements of lower dimension (points 15, lines 1 and 8, triangles 2
-//!   and 9, quadrangles, ...) only feed node sets. Other 3D types (4-node tetrahedra, hexahedra,
-//!   ...) are skipped, with one warning per type.
+//! - Elements: the quadratic solids, types 11 (10-node tetrahedron), 17 (20-node hexahedron),
+//!   18 (15-node prism) and 19 (13-node pyramid), each permuted into its canonical ordering
+//!   with its `GMSH_TO_CANONICAL` ([`squeal_element::ReferenceElement`]). Elements of lower
+//!   dimension (points 15, lines 1 and 8, triangles 2 and 9, quadrangles, ...) only feed node
+//!   sets. Other 3D types (4-node tetrahedra, 8-node hexahedra, 27-node hexahedra, ...) are
+//!   skipped, with one warning per type.
 //! - Sets, from physical groups: a group of dimension 3 becomes an element set (its tet10); a
 //!   group of dimension 0, 1 or 2 becomes a node set holding every node of the group's
 //!   *elements* (in MSH 4.1 this includes the nodes on the entity's boundary, which the entity's
@@ -31,7 +33,7 @@
 //!   (with a warning); a volume and a surface both named `pad` give an element set `pad` and a
 //!   node set `pad`, which do not clash.
 //! - MSH 2 writes an element once per physical group it belongs to, each time under a new
-//!   number. A tet10 record whose nodes repeat an earlier one's is therefore the same element:
+//!   number. A solid record whose nodes repeat an earlier one's is therefore the same element:
 //!   it joins the new group under its first number instead of being added twice (one warning
 //!   counts them).
 //! - Other sections (`$NodeData`, `$ElementData`, `$Periodic`, `$Parametrizations`,
@@ -58,6 +60,7 @@ mod v4;
 use crate::tet10::GMSH_TO_CANONICAL;
 use crate::{Location, MeshBuilder, MeshError, ReadMesh, Warning};
 use cursor::{Cursor, Line, quote};
+use squeal_element::ElementKind;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 use types::{ElementType, TET10};
@@ -192,6 +195,8 @@ struct Reader<'a> {
     skipped: BTreeMap<i32, Skipped>,
     /// MSH 2: canonical connectivity of each tet10 read, to its id (see the module doc).
     tets_seen: HashMap<[u64; 10], u64>,
+    /// MSH 2: the same for the other solid kinds.
+    others_seen: HashMap<Vec<u64>, u64>,
     repeated_tets: Option<Skipped>,
     seen_nodes: bool,
     seen_elements: bool,
@@ -209,6 +214,7 @@ impl<'a> Reader<'a> {
             members: BTreeMap::new(),
             skipped: BTreeMap::new(),
             tets_seen: HashMap::new(),
+            others_seen: HashMap::new(),
             repeated_tets: None,
             seen_nodes: false,
             seen_elements: false,
@@ -331,6 +337,9 @@ impl<'a> Reader<'a> {
         if kind.code == TET10 {
             return self.tet10(id, owner, nodes, at);
         }
+        if let Some(solid) = ElementKind::from_gmsh_type(kind.code) {
+            return self.solid(id, solid, owner, nodes, at);
+        }
         if self.builder.has_element(id) {
             return Err(self.cur.error(at, format!("element {id} is defined twice")));
         }
@@ -359,34 +368,73 @@ impl<'a> Reader<'a> {
         at: Location,
     ) -> Result<(), MeshError> {
         let canonical: [u64; 10] = std::array::from_fn(|i| nodes[GMSH_TO_CANONICAL[i]]);
-        let mut id = id;
-        let first = if self.version == Version::V2 {
-            self.tets_seen.get(&canonical).copied()
-        } else {
-            None
-        };
-        match first {
+        let first = (self.version == Version::V2)
+            .then(|| self.tets_seen.get(&canonical).copied())
+            .flatten();
+        self.settle(id, first, owner, at, |r| {
+            r.builder.add_element(id, canonical)?;
+            if r.version == Version::V2 {
+                r.tets_seen.insert(canonical, id);
+            }
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    /// A hex20, wedge15 or pyramid13 record: as [`Reader::tet10`], through the builder's
+    /// typed elements.
+    fn solid(
+        &mut self,
+        id: u64,
+        kind: ElementKind,
+        owner: Option<Owner>,
+        nodes: &[u64],
+        at: Location,
+    ) -> Result<(), MeshError> {
+        let canonical: Vec<u64> = kind.gmsh_to_canonical().iter().map(|&i| nodes[i]).collect();
+        let first = (self.version == Version::V2)
+            .then(|| self.others_seen.get(&canonical).copied())
+            .flatten();
+        self.settle(id, first, owner, at, |r| {
+            r.builder.add_typed(id, kind, &canonical)?;
+            if r.version == Version::V2 {
+                r.others_seen.insert(canonical, id);
+            }
+            Ok(())
+        })?;
+        Ok(())
+    }
+
+    /// A solid record read under number `id`: a repeat of element `first` (MSH 2, counted
+    /// once in a warning) joins the owner's groups under that number, a new one is added by
+    /// `add`. Returns the number the element goes by.
+    fn settle(
+        &mut self,
+        id: u64,
+        first: Option<u64>,
+        owner: Option<Owner>,
+        at: Location,
+        add: impl FnOnce(&mut Self) -> Result<(), String>,
+    ) -> Result<u64, MeshError> {
+        let id = match first {
             Some(first) => {
-                id = first;
-                let entry = self.repeated_tets.get_or_insert(Skipped {
-                    count: 0,
-                    first: at,
-                });
-                entry.count += 1;
+                self.repeated_tets
+                    .get_or_insert(Skipped {
+                        count: 0,
+                        first: at,
+                    })
+                    .count += 1;
+                first
             }
             None => {
-                self.builder
-                    .add_element(id, canonical)
-                    .map_err(|m| self.cur.error(at, m))?;
-                if self.version == Version::V2 {
-                    self.tets_seen.insert(canonical, id);
-                }
+                add(self).map_err(|m| self.cur.error(at, m))?;
+                id
             }
-        }
+        };
         if let Some(owner) = owner {
             self.members.entry(owner).or_default().elements.push(id);
         }
-        Ok(())
+        Ok(id)
     }
 
     /// The physical tags of an owner's elements.
@@ -502,7 +550,7 @@ impl<'a> Reader<'a> {
             self.warn(
                 s.first,
                 format!(
-                    "skipped {} elements of type {code} ({name}): squeal reads only 10-node tetrahedra (type 11){hint}",
+                    "skipped {} elements of type {code} ({name}): squeal reads only quadratic solids (types 11, 17, 18, 19){hint}",
                     s.count
                 ),
             );
@@ -511,7 +559,7 @@ impl<'a> Reader<'a> {
             self.warn(
                 r.first,
                 format!(
-                    "{} tet10 records repeat the nodes of an earlier element (MSH 2 writes an element once per \
+                    "{} solid element records repeat the nodes of an earlier element (MSH 2 writes an element once per \
                      physical group): each was read once, under the number of its first record",
                     r.count
                 ),

@@ -12,10 +12,14 @@
 //!
 //! The Jacobian determinant of a 10-node tetrahedron is a cubic polynomial; it is sampled at the
 //! ten nodes, the centroid and the four points of the degree-2 Gauss rule. A straight-sided
-//! element has a constant determinant (ratio 1).
+//! element has a constant determinant (ratio 1). The other kinds are sampled at their nodes
+//! (the pyramid's apex excepted) and at the points of their stiffness rule
+//! ([`squeal_element::ReferenceElement::jacobian_samples`]); there a ratio below 1 also
+//! comes from a non-affine shape (a hexahedron that is not a parallelepiped), not only from
+//! curved edges.
 
-use crate::model::{Dangling, Mesh};
-use crate::tet10;
+use crate::model::{BlockVisitor, Dangling, Mesh};
+use squeal_element::{ReferenceElement, Tet10};
 
 /// How serious a finding is: errors make the mesh unusable for analysis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -118,27 +122,10 @@ impl QualityReport {
     }
 }
 
-/// Reference points where the Jacobian determinant is sampled: the nodes, the centroid and the
-/// four Gauss points of the degree-2 rule.
-fn sample_points() -> Vec<[f64; 3]> {
-    let a = 0.585_410_196_624_968_5;
-    let b = 0.138_196_601_125_010_5;
-    let mut p: Vec<[f64; 3]> = tet10::NODES_REF.to_vec();
-    p.push([0.25, 0.25, 0.25]);
-    p.extend([[b, b, b], [a, b, b], [b, a, b], [b, b, a]]);
-    p
-}
-
-/// Min and max of the Jacobian determinant over the sample points of one element.
+/// Min and max of the Jacobian determinant over the sample points of one tet10 element: the
+/// ten nodes, the centroid and the four Gauss points of the degree-2 rule.
 pub fn jacobian_range(x: &[[f64; 3]; 10]) -> (f64, f64) {
-    let mut lo = f64::INFINITY;
-    let mut hi = f64::NEG_INFINITY;
-    for p in sample_points() {
-        let d = tet10::det3(&tet10::jacobian(x, p));
-        lo = lo.min(d);
-        hi = hi.max(d);
-    }
-    (lo, hi)
+    squeal_element::reference::jacobian_range::<Tet10, 10>(x)
 }
 
 /// Runs every check.
@@ -157,26 +144,61 @@ pub fn check(mesh: &Mesh, opts: &QualityOptions) -> QualityReport {
     }
 }
 
-fn check_elements(mesh: &Mesh, opts: &QualityOptions, findings: &mut Vec<Finding>) -> (f64, f64) {
-    let mut inverted = Vec::new();
-    let mut curved = Vec::new();
-    let mut volume = 0.0;
-    let mut worst: f64 = 1.0;
-    for e in 0..mesh.num_elements() {
-        let x = mesh.element_coords(e);
-        volume += tet10::volume(&x);
-        let (lo, hi) = jacobian_range(&x);
-        if lo.is_nan() || lo <= 0.0 {
-            inverted.push(mesh.element_ids[e]);
-            worst = worst.min(0.0);
-        } else {
-            let ratio = lo / hi;
-            worst = worst.min(ratio);
-            if ratio < opts.min_jacobian_ratio {
-                curved.push(mesh.element_ids[e]);
+/// Inverted and badly curved elements, volume and worst ratio, block by block.
+struct ElementCheck<'a> {
+    mesh: &'a Mesh,
+    opts: &'a QualityOptions,
+    inverted: Vec<u64>,
+    curved: Vec<u64>,
+    volume: f64,
+    worst: f64,
+}
+
+impl BlockVisitor for ElementCheck<'_> {
+    type Error = std::convert::Infallible;
+
+    fn block<E: ReferenceElement<N>, const N: usize>(
+        &mut self,
+        first: usize,
+        conn: &[[u32; N]],
+    ) -> Result<(), Self::Error> {
+        for (i, c) in conn.iter().enumerate() {
+            let x = self.mesh.coords(c);
+            self.volume += E::volume(&x);
+            let (lo, hi) = squeal_element::reference::jacobian_range::<E, N>(&x);
+            let id = self.mesh.element_ids[first + i];
+            if lo.is_nan() || lo <= 0.0 {
+                self.inverted.push(id);
+                self.worst = self.worst.min(0.0);
+            } else {
+                let ratio = lo / hi;
+                self.worst = self.worst.min(ratio);
+                if ratio < self.opts.min_jacobian_ratio {
+                    self.curved.push(id);
+                }
             }
         }
+        Ok(())
     }
+}
+
+fn check_elements(mesh: &Mesh, opts: &QualityOptions, findings: &mut Vec<Finding>) -> (f64, f64) {
+    let mut check = ElementCheck {
+        mesh,
+        opts,
+        inverted: Vec::new(),
+        curved: Vec::new(),
+        volume: 0.0,
+        worst: 1.0,
+    };
+    let Ok(()) = mesh.blocks.visit(&mut check);
+    let ElementCheck {
+        inverted,
+        curved,
+        volume,
+        worst,
+        ..
+    } = check;
     if !inverted.is_empty() {
         findings.push(Finding {
             severity: Severity::Error,
@@ -365,10 +387,10 @@ mod tests {
     fn detects_inverted_curved_duplicate_unused_missing_and_empty() {
         let mut m = box_tet10([1.0, 1.0, 1.0], [1, 1, 1]);
         // Invert element 0 by swapping two vertices (and their edges) of its connectivity.
-        let c = m.elements[0];
-        m.elements[0] = [c[0], c[2], c[1], c[3], c[6], c[5], c[4], c[7], c[9], c[8]];
+        let c = m.blocks.tet10[0];
+        m.blocks.tet10[0] = [c[0], c[2], c[1], c[3], c[6], c[5], c[4], c[7], c[9], c[8]];
         // Curve element 1: move a midside node from 1/2 to 3/10 of its edge (1/4 would make det J vanish at the vertex; along the edge det J then ranges 0.2..2.0).
-        let e1 = m.elements[1];
+        let e1 = m.blocks.tet10[1];
         let (mid, v) = (e1[4] as usize, e1[0] as usize);
         for d in 0..3 {
             m.nodes[mid][d] += (m.nodes[v][d] - m.nodes[mid][d]) * 0.4;

@@ -7,6 +7,12 @@
 //! nodes of a mesh with straight edges sit inside a curved surface by the edge's sagitta. The
 //! nodes of a face selection are all six nodes of its faces.
 //!
+//! Hexahedra, wedges and pyramids have 8-node quadrilateral faces: they count in the
+//! boundary test (a triangle shared with a pyramid is interior), but the selections here
+//! read triangles only. [`boundary_quads`] lists the quadrilaterals on the boundary and
+//! [`triangles_only`] refuses, with an [`UnsupportedFace`] error, a node set that covers one,
+//! so that code built on triangles says so instead of missing part of a surface.
+//!
 //! Every description of a selection a user writes (a surface, a box, an angle, a tolerance)
 //! is checked before use; a description that cannot select anything sensible (an axis of
 //! zero length, a negative radius, a box whose minimum exceeds its maximum, a tolerance that
@@ -14,8 +20,23 @@
 //! selection.
 
 use crate::model::Mesh;
-use crate::tet10;
+use squeal_element::{Face as ElementFace, FaceKind};
 use std::collections::HashMap;
+
+/// Code that reads 6-node triangle faces met a quadrilateral face.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "{reader} reads 6-node triangle faces; this mesh's face with corner nodes {corners} is an \
+     {kind}: not yet supported"
+)]
+pub struct UnsupportedFace {
+    /// What reads the faces ("the contact interface", ...).
+    pub reader: String,
+    /// The face's shape.
+    pub kind: FaceKind,
+    /// The file ids of its corners, comma-separated.
+    pub corners: String,
+}
 
 /// Why a geometric selection cannot be made.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -184,25 +205,100 @@ impl Surface {
     }
 }
 
-/// All boundary faces of a mesh (element faces that belong to one element only), outward,
-/// in a fixed order (by their sorted corner indices).
-pub fn boundary_faces(mesh: &Mesh) -> Vec<Face> {
-    let mut seen: HashMap<[u32; 3], (usize, Face)> = HashMap::new();
-    for el in &mesh.elements {
-        for f in tet10::FACES {
-            let tri: Face = f.map(|i| el[i]);
-            let mut key = [tri[0], tri[1], tri[2]];
-            key.sort_unstable();
-            seen.entry(key).and_modify(|e| e.0 += 1).or_insert((1, tri));
+/// A boundary face of any shape: its sorted corners (the last `u32::MAX` for a triangle)
+/// and its nodes in the element's face order.
+type Keyed = ([u32; 4], (usize, ElementFace, [u32; 8]));
+
+/// Every face of every element, counted by its sorted corners.
+fn face_counts(mesh: &Mesh) -> HashMap<[u32; 4], (usize, ElementFace, [u32; 8])> {
+    let mut seen: HashMap<[u32; 4], (usize, ElementFace, [u32; 8])> = HashMap::new();
+    for (kind, range) in mesh.blocks.kinds() {
+        let faces = kind.faces();
+        for e in range {
+            let Some((_, el)) = mesh.blocks.get(e) else {
+                continue;
+            };
+            for f in faces {
+                let local = f.nodes();
+                let mut nodes = [0u32; 8];
+                for (k, &a) in local.iter().enumerate() {
+                    nodes[k] = el[a];
+                }
+                let mut key = [u32::MAX; 4];
+                key[..f.corners()].copy_from_slice(&nodes[..f.corners()]);
+                key.sort_unstable();
+                seen.entry(key)
+                    .and_modify(|e| e.0 += 1)
+                    .or_insert((1, *f, nodes));
+            }
         }
     }
-    let mut out: Vec<([u32; 3], Face)> = seen
+    seen
+}
+
+/// The faces met once, in a fixed order (by their sorted corners).
+fn once(mesh: &Mesh) -> Vec<Keyed> {
+    let mut out: Vec<Keyed> = face_counts(mesh)
         .into_iter()
-        .filter(|(_, (count, _))| *count == 1)
-        .map(|(k, (_, t))| (k, t))
+        .filter(|(_, (count, _, _))| *count == 1)
         .collect();
     out.sort_unstable_by_key(|(k, _)| *k);
-    out.into_iter().map(|(_, t)| t).collect()
+    out
+}
+
+/// All 6-node triangle boundary faces of a mesh (element faces that belong to one element
+/// only), outward, in a fixed order (by their sorted corners). Quadrilateral faces are left
+/// out: see [`boundary_quads`].
+pub fn boundary_faces(mesh: &Mesh) -> Vec<Face> {
+    once(mesh)
+        .into_iter()
+        .filter(|(_, (_, f, _))| f.kind() == FaceKind::Tri6)
+        .map(|(_, (_, _, n))| [n[0], n[1], n[2], n[3], n[4], n[5]])
+        .collect()
+}
+
+/// All 8-node quadrilateral boundary faces of a mesh (of hexahedra, wedges, pyramids),
+/// outward (`[v0, v1, v2, v3, m01, m12, m23, m30]`), in a fixed order.
+pub fn boundary_quads(mesh: &Mesh) -> Vec<[u32; 8]> {
+    once(mesh)
+        .into_iter()
+        .filter(|(_, (_, f, _))| f.kind() == FaceKind::Quad8)
+        .map(|(_, (_, _, n))| n)
+        .collect()
+}
+
+/// An [`UnsupportedFace`] error naming `reader` if a quadrilateral boundary face has all its
+/// nodes in the node set `nodes` (any order), or, with `nodes == None`, if the mesh has any
+/// quadrilateral boundary face.
+pub fn triangles_only(
+    mesh: &Mesh,
+    nodes: Option<&[u32]>,
+    reader: &str,
+) -> Result<(), UnsupportedFace> {
+    if mesh.blocks.len() == mesh.blocks.tet10.len() {
+        return Ok(());
+    }
+    let mut member = vec![nodes.is_none(); mesh.num_nodes()];
+    for &n in nodes.unwrap_or(&[]) {
+        if let Some(m) = member.get_mut(n as usize) {
+            *m = true;
+        }
+    }
+    let quad = boundary_quads(mesh)
+        .into_iter()
+        .find(|q| q.iter().all(|&n| member.get(n as usize) == Some(&true)));
+    match quad {
+        None => Ok(()),
+        Some(q) => Err(UnsupportedFace {
+            reader: reader.to_string(),
+            kind: FaceKind::Quad8,
+            corners: q[..4]
+                .iter()
+                .map(|&n| mesh.node_ids[n as usize].to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+        }),
+    }
 }
 
 /// The centroid of a face's corners.

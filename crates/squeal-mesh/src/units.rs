@@ -264,7 +264,8 @@ mod tests {
             },
         );
         let volume = |m: &Mesh| -> f64 {
-            m.elements
+            m.blocks
+                .tet10
                 .iter()
                 .map(|e| crate::tet10::volume(&e.map(|n| m.nodes[n as usize])))
                 .sum()

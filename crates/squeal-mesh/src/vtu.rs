@@ -1,7 +1,10 @@
 //! VTK XML unstructured grids (`.vtu`) for ParaView, and `.pvd` collections for time series.
 //!
-//! Cells are quadratic tetrahedra (VTK cell type 24), whose node ordering is squeal's canonical
-//! one, so connectivity is written as is. Data arrays are "binary" (base64 of little-endian
+//! Cells are the quadratic solids: tetrahedra (VTK cell type 24), hexahedra (25,
+//! `VTK_QUADRATIC_HEXAHEDRON`), wedges (26, `VTK_QUADRATIC_WEDGE`) and pyramids (27,
+//! `VTK_QUADRATIC_PYRAMID`), each written in VTK's node order
+//! ([`squeal_element::ReferenceElement::VTK_ORDER`]: the canonical order but for the wedge,
+//! which VTK orients the other way). Data arrays are "binary" (base64 of little-endian
 //! values with a UInt64 byte-count header, `header_type="UInt64"`), which ParaView reads
 //! without any extra library.
 //!
@@ -127,18 +130,20 @@ fn write_document(
     writeln!(w, "</Points>")?;
 
     writeln!(w, "<Cells>")?;
-    let conn: Vec<u8> = mesh
-        .elements
-        .iter()
-        .flatten()
-        .flat_map(|&i| i64::from(i).to_le_bytes())
-        .collect();
+    let (mut conn, mut offsets, mut types) = (Vec::new(), Vec::new(), Vec::with_capacity(e));
+    let mut end = 0i64;
+    for (kind, range) in mesh.blocks.kinds() {
+        let order = kind.vtk_order();
+        for el in range.filter_map(|i| mesh.blocks.get(i)).map(|(_, c)| c) {
+            conn.extend(order.iter().flat_map(|&a| i64::from(el[a]).to_le_bytes()));
+            end += order.len() as i64;
+            offsets.extend(end.to_le_bytes());
+            types.push(kind.vtk_cell_type());
+        }
+    }
     data_array(w, "Int64", "connectivity", 1, &conn)?;
-    let offsets: Vec<u8> = (1..=e as i64)
-        .flat_map(|k| (10 * k).to_le_bytes())
-        .collect();
     data_array(w, "Int64", "offsets", 1, &offsets)?;
-    data_array(w, "UInt8", "types", 1, &vec![VTK_QUADRATIC_TETRA; e])?;
+    data_array(w, "UInt8", "types", 1, &types)?;
     writeln!(w, "</Cells>")?;
 
     writeln!(w, "</Piece>")?;

@@ -128,7 +128,7 @@ fn curved_sphere_volume() {
         "volume {v}, sphere {exact}"
     );
     let mut swapped = m.clone();
-    for el in &mut swapped.elements {
+    for el in &mut swapped.blocks.tet10 {
         el.swap(8, 9);
     }
     let vs = total_volume(&swapped);
@@ -204,7 +204,7 @@ fn box_formats_read_into_the_same_mesh() {
             "{file}: relative coordinate difference {worst}"
         );
         assert_eq!(m.node_ids, reference.node_ids, "{file}");
-        assert_eq!(m.elements, reference.elements, "{file}");
+        assert_eq!(m.blocks.tet10, reference.blocks.tet10, "{file}");
         assert_eq!(m.node_sets, reference.node_sets, "{file}");
         assert_eq!(m.element_sets, reference.element_sets, "{file}");
         assert!(m.dangling.is_empty(), "{file}");
@@ -256,7 +256,7 @@ fn msh2_repeated_elements_are_read_once() {
             .collect();
         assert_eq!(repeats.len(), 1, "{file}: {:?}", r.warnings);
         assert!(
-            repeats[0].message.starts_with("310 tet10 records"),
+            repeats[0].message.starts_with("310 solid element records"),
             "{}",
             repeats[0].message
         );
@@ -286,7 +286,7 @@ fn midside_nodes_sit_at_edge_midpoints() {
     }
     // The check can fail: undoing the permutation puts nodes 8 and 9 on the wrong edges.
     let mut m = read_ok("msh/one_tet_v22.msh").mesh;
-    m.elements[0].swap(8, 9);
+    m.blocks.tet10[0].swap(8, 9);
     assert!(worst_midside_offset(&m) > 0.1);
 }
 
@@ -299,7 +299,7 @@ fn one_tet_in_canonical_order() {
         // Gmsh's order has node 9 (1-based) on edge (2,3) and node 10 on edge (1,3) (0-based
         // vertices); canonical has (1,3) before (2,3): ids 10 then 9.
         assert_eq!(m.element_ids, vec![2]);
-        let ids: Vec<u64> = m.elements[0]
+        let ids: Vec<u64> = m.blocks.tet10[0]
             .iter()
             .map(|&i| m.node_ids[i as usize])
             .collect();
@@ -494,9 +494,9 @@ fn broken_files_fail_with_located_errors() {
         (
             "no_tet10.msh",
             Location::File,
-            "no 10-node tetrahedron (Abaqus C3D10, Gmsh type 11) in the file, which has 4 nodes; \
-             skipped 1 elements of type 4 (Tetrahedron 4): squeal reads only 10-node tetrahedra \
-             (type 11); mesh with Mesh.ElementOrder = 2",
+            "no quadratic solid element (Abaqus C3D10, C3D20, C3D20R, C3D15; Gmsh types 11, 17, \
+             18, 19) in the file, which has 4 nodes; skipped 1 elements of type 4 (Tetrahedron 4): \
+             squeal reads only quadratic solids (types 11, 17, 18, 19); mesh with Mesh.ElementOrder = 2",
         ),
         (
             "node_total_mismatch.msh",

@@ -44,6 +44,8 @@ pub enum PipelineError {
     #[error(transparent)]
     Vtu(#[from] squeal_mesh::vtu::VtuError),
     #[error(transparent)]
+    Face(#[from] squeal_mesh::select::UnsupportedFace),
+    #[error(transparent)]
     Report(#[from] squeal_report::ReportError),
     #[error("writing {what}: {error}")]
     Json {

@@ -49,9 +49,20 @@ fn summary(
         ),
     );
     line(s, format_args!("  nodes     {:>10}", m.num_nodes()));
+    // A tet10 mesh keeps its line as it was; a mesh with other kinds counts each.
+    let kinds = if m.blocks.len() == m.blocks.tet10.len() {
+        "10-node tetrahedra".to_string()
+    } else {
+        m.blocks
+            .kinds()
+            .into_iter()
+            .map(|(kind, range)| format!("{} {}", range.len(), plural(kind)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     line(
         s,
-        format_args!("  elements  {:>10}  (10-node tetrahedra)", m.num_elements()),
+        format_args!("  elements  {:>10}  ({kinds})", m.num_elements()),
     );
     if let Some((lo, hi)) = m.bounding_box() {
         line(
@@ -253,4 +264,14 @@ fn format_ids(ids: &[u64], all: bool) -> String {
         String::new()
     };
     format!("{}{more}", shown.join(" "))
+}
+
+/// The plural of an element kind's name, for the summary line.
+fn plural(kind: squeal_mesh::ElementKind) -> &'static str {
+    match kind {
+        squeal_mesh::ElementKind::Tet10 => "10-node tetrahedra",
+        squeal_mesh::ElementKind::Hex20 => "20-node hexahedra",
+        squeal_mesh::ElementKind::Wedge15 => "15-node wedges",
+        squeal_mesh::ElementKind::Pyramid13 => "13-node pyramids",
+    }
 }

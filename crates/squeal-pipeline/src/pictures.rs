@@ -12,36 +12,32 @@ use crate::shapes::{Meshes, PartMesh, expand};
 use faer::c64;
 use squeal_chbm::ChbmSolution;
 use squeal_mesh::Mesh;
-use squeal_mesh::tet10::FACES;
 use squeal_report::raster::{
     Surface, View, colour_bar_with_scale, render, screen_bounds, side_by_side, write_apng,
     write_rgb_png,
 };
-use std::collections::HashMap;
 use std::path::Path;
 
-/// The boundary of a tet10 mesh as linear triangles: every element face that no other element
-/// shares, its 6-node triangle split into four.
+/// The boundary of a mesh as linear triangles: every element face that no other element
+/// shares ([`squeal_mesh::select::boundary_faces`] and `boundary_quads`), a 6-node triangle
+/// split into four, an 8-node quadrilateral into six (four at the corners, two across the
+/// midside nodes).
 pub fn boundary_triangles(mesh: &Mesh) -> Vec<[u32; 3]> {
-    let mut count: HashMap<[u32; 3], (usize, [u32; 6])> = HashMap::new();
-    for e in &mesh.elements {
-        for f in FACES {
-            let nodes = f.map(|i| e[i]);
-            let mut key = [nodes[0], nodes[1], nodes[2]];
-            key.sort_unstable();
-            count.entry(key).or_insert((0, nodes)).0 += 1;
-        }
-    }
-    let mut faces: Vec<([u32; 3], [u32; 6])> = count
-        .into_iter()
-        .filter(|(_, (n, _))| *n == 1)
-        .map(|(k, (_, f))| (k, f))
-        .collect();
-    // A fixed order: the picture must not depend on the hash map's.
-    faces.sort_unstable_by_key(|(k, _)| *k);
+    use squeal_mesh::select::{boundary_faces, boundary_quads};
+    let faces = boundary_faces(mesh);
     let mut out = Vec::with_capacity(4 * faces.len());
-    for (_, [a, b, c, ab, bc, ca]) in faces {
+    for [a, b, c, ab, bc, ca] in faces {
         out.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+    }
+    for [a, b, c, d, ab, bc, cd, da] in boundary_quads(mesh) {
+        out.extend([
+            [a, ab, da],
+            [ab, b, bc],
+            [bc, c, cd],
+            [cd, d, da],
+            [ab, bc, cd],
+            [ab, cd, da],
+        ]);
     }
     out
 }

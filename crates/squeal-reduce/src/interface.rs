@@ -69,6 +69,10 @@ pub enum InterfaceError {
         /// Patches around the axis.
         angular: usize,
     },
+    /// The contact face covers an element face that is not a 6-node triangle (a hexahedron's
+    /// quadrilateral): not yet supported.
+    #[error(transparent)]
+    Face(#[from] squeal_mesh::select::UnsupportedFace),
     /// The axis direction given is the zero vector.
     #[error("the disc axis has zero length")]
     BadAxis,
@@ -629,6 +633,7 @@ fn face_triangles<'m>(
     if nodes.is_empty() {
         return Err(InterfaceError::EmptySet(face_set.into()));
     }
+    squeal_mesh::select::triangles_only(mesh, Some(nodes), "the contact interface")?;
     let triangles = boundary_triangles(mesh, nodes);
     if triangles.is_empty() {
         return Err(InterfaceError::NoFaces {

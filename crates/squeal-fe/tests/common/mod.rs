@@ -47,7 +47,7 @@ pub fn on_box_boundary(mesh: &Mesh) -> Vec<bool> {
 /// Whether each node is a vertex (local index < 4) of some element.
 pub fn is_vertex(mesh: &Mesh) -> Vec<bool> {
     let mut v = vec![false; mesh.num_nodes()];
-    for el in &mesh.elements {
+    for el in &mesh.blocks.tet10 {
         for &n in &el[..4] {
             v[n as usize] = true;
         }
@@ -68,7 +68,7 @@ pub fn distort_vertices(mesh: &mut Mesh, amp: f64, seed: u64) {
             }
         }
     }
-    for el in mesh.elements.clone() {
+    for el in mesh.blocks.tet10.clone() {
         for (k, [a, b]) in squeal_mesh::tet10::EDGES.iter().enumerate() {
             let (pa, pb) = (mesh.nodes[el[*a] as usize], mesh.nodes[el[*b] as usize]);
             mesh.nodes[el[4 + k] as usize] = std::array::from_fn(|d| 0.5 * (pa[d] + pb[d]));
@@ -235,4 +235,66 @@ pub fn lowest_eigenvalues(k: &Sparse, m: &Sparse, count: usize, shift: f64) -> V
 /// Frequency in Hz of an eigenvalue `ω²`.
 pub fn hz(lambda: f64) -> f64 {
     lambda.max(0.0).sqrt() / (2.0 * std::f64::consts::PI)
+}
+
+/// Moves interior vertices of a mesh of any element kinds by up to `amp` in each direction,
+/// then puts every midside node back at its edge midpoint: a distorted mesh with straight
+/// edges.
+pub fn distort_solid(mesh: &mut Mesh, amp: f64, seed: u64) {
+    let boundary = on_box_boundary(mesh);
+    let mut vertex = vec![false; mesh.num_nodes()];
+    for (kind, range) in mesh.blocks.kinds() {
+        for e in range {
+            let (_, c) = mesh.blocks.get(e).unwrap();
+            for &n in &c[..kind.vertices()] {
+                vertex[n as usize] = true;
+            }
+        }
+    }
+    let mut rng = Rng(seed);
+    for n in 0..mesh.num_nodes() {
+        if vertex[n] && !boundary[n] {
+            for d in 0..3 {
+                mesh.nodes[n][d] += amp * rng.next();
+            }
+        }
+    }
+    for (kind, range) in mesh.blocks.kinds() {
+        for e in range {
+            let c = mesh.blocks.get(e).unwrap().1.to_vec();
+            for (k, [a, b]) in kind.edges().iter().enumerate() {
+                let (pa, pb) = (mesh.nodes[c[*a] as usize], mesh.nodes[c[*b] as usize]);
+                mesh.nodes[c[kind.vertices() + k] as usize] =
+                    std::array::from_fn(|d| 0.5 * (pa[d] + pb[d]));
+            }
+        }
+    }
+}
+
+/// An anisotropic material, so that every entry of C takes part (the patch tests).
+pub fn lining() -> squeal_fe::ElasticMaterial {
+    squeal_fe::ElasticMaterial::TransverselyIsotropic {
+        young_plane: 6.0e9,
+        poisson_plane: 0.25,
+        young_axial: 2.0e9,
+        poisson_plane_axial: 0.12,
+        shear_axial: 1.1e9,
+        axis: [0.2, 0.5, 1.0],
+        density: 2500.0,
+    }
+}
+
+/// The gradient of the patch tests' linear field.
+pub const PATCH_A: [[f64; 3]; 3] = [
+    [1.0e-3, 2.0e-4, -3.0e-4],
+    [-1.0e-4, -5.0e-4, 4.0e-4],
+    [2.5e-4, 1.5e-4, 7.0e-4],
+];
+
+/// The offset of the patch tests' linear field.
+pub const PATCH_B: [f64; 3] = [1e-3, -2e-3, 5e-4];
+
+/// The patch tests' linear field `B + A x`.
+pub fn linear_field(x: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| PATCH_B[i] + (0..3).map(|j| PATCH_A[i][j] * x[j]).sum::<f64>())
 }

@@ -7,6 +7,7 @@ use super::lex::{DataLine, Item, Keyword, Lexed, Loc, excerpt};
 use super::store::{Kind, SectionRef, Store};
 use super::transform::{Placement, Rotation};
 use crate::{Elastic, Location, Material, MeshBuilder, MeshError, ReadMesh, Warning};
+use squeal_element::ElementKind;
 use std::collections::{BTreeSet, HashMap};
 
 /// Most members one `GENERATE` range may name: more than a mesh can index (`u32`).
@@ -52,8 +53,8 @@ struct MaterialDef {
 /// One element record (possibly continued over several lines).
 struct Record {
     id: u64,
-    nodes: [u64; 10],
-    /// Number of node ids in the record (only the first 10 are kept).
+    nodes: [u64; 20],
+    /// Number of node ids in the record (only the first 20 are kept).
     count: usize,
     first: Loc,
     last: Loc,
@@ -84,9 +85,29 @@ pub(super) struct Reader<'a> {
 
 /// Whether an element type is a 10-node tetrahedron: `C3D10` and its variants (`C3D10M`,
 /// `C3D10H`, `C3D10HS`, `C3D10I`, ...), which share its geometry and node order.
+#[cfg(test)]
 fn is_tet10(ty: &str) -> bool {
-    ty.strip_prefix("C3D10")
-        .is_some_and(|rest| rest.chars().all(|c| c.is_ascii_alphabetic()))
+    solid_kind(ty) == Some(ElementKind::Tet10)
+}
+
+/// The solid kind of an element type: `C3D10` and its variants (`C3D10M`, `C3D10H`,
+/// `C3D10HS`, `C3D10I`, ...), `C3D20` and `C3D20R` and their variants (`C3D20H`,
+/// `C3D20RH`, ...), `C3D15` and its variants but the variable-node `C3D15V`: each shares its
+/// base element's geometry and node order (Abaqus's order is the canonical one).
+fn solid_kind(ty: &str) -> Option<ElementKind> {
+    let variant = |base: &str| {
+        ty.strip_prefix(base)
+            .is_some_and(|rest| rest.chars().all(|c| c.is_ascii_alphabetic()))
+    };
+    if variant("C3D10") {
+        Some(ElementKind::Tet10)
+    } else if variant("C3D20") {
+        Some(ElementKind::Hex20)
+    } else if variant("C3D15") && !ty.contains('V') {
+        Some(ElementKind::Wedge15)
+    } else {
+        None
+    }
 }
 
 /// Node count of common element types squeal skips, so that their records can be delimited
@@ -470,7 +491,8 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    /// `*ELEMENT`: C3D10 (and variants) kept, other types skipped with one warning.
+    /// `*ELEMENT`: C3D10, C3D20(R) and C3D15 (and variants) kept, other types skipped with
+    /// one warning.
     fn element(&mut self, kw: &'a Keyword) -> Result<(), MeshError> {
         self.check_params(kw, &["TYPE", "ELSET", "INPUT"]);
         let ty: String = self
@@ -479,17 +501,21 @@ impl<'a> Reader<'a> {
             .collect::<String>()
             .to_ascii_uppercase();
         let elset = self.name_param(kw, "ELSET")?;
-        let tet = is_tet10(&ty);
-        let needed = if tet { Some(10) } else { other_node_count(&ty) };
+        let solid = solid_kind(&ty);
+        let tet = solid.is_some();
+        let needed = solid
+            .map(ElementKind::nodes)
+            .or_else(|| other_node_count(&ty));
         let target = self.target();
         let mut ids = Vec::new();
         let mut skipped = 0usize;
         while let Some(d) = self.next_data() {
             let r = self.record(d, needed, tet, &ty)?;
             self.check_label(r.id, r.first)?;
-            let nodes = if tet {
-                if r.count != 10 {
-                    let hint = if r.count < 10 {
+            let nodes = if let Some(kind) = solid {
+                let k = kind.nodes();
+                if r.count != k {
+                    let hint = if r.count < k {
                         " (a record continued on the next line must end with a comma)"
                     } else {
                         ""
@@ -497,15 +523,15 @@ impl<'a> Reader<'a> {
                     return Err(self.err(
                         r.last,
                         format!(
-                            "element {} has {} node ids; {ty} needs 10{hint}",
+                            "element {} has {} node ids; {ty} needs {k}{hint}",
                             r.id, r.count
                         ),
                     ));
                 }
-                for &n in &r.nodes {
+                for &n in &r.nodes[..k] {
                     self.check_label(n, r.last)?;
                 }
-                Some(r.nodes)
+                Some((kind, r.nodes))
             } else {
                 skipped += 1;
                 None
@@ -522,7 +548,7 @@ impl<'a> Reader<'a> {
             self.warn(
                 kw.loc,
                 format!(
-                    "skipped {skipped} element{s} of type {ty} (squeal uses only C3D10 tetrahedra)"
+                    "skipped {skipped} element{s} of type {ty} (squeal uses only C3D10, C3D20, C3D20R and C3D15 elements)"
                 ),
             );
         }
@@ -545,7 +571,7 @@ impl<'a> Reader<'a> {
         parse_nodes: bool,
         ty: &str,
     ) -> Result<Record, MeshError> {
-        let mut vals = [0u64; 11];
+        let mut vals = [0u64; 21];
         let mut n = 0usize;
         let mut line = *first;
         loop {
@@ -588,7 +614,7 @@ impl<'a> Reader<'a> {
                 }
             }
         }
-        let mut nodes = [0u64; 10];
+        let mut nodes = [0u64; 20];
         nodes.copy_from_slice(&vals[1..]);
         Ok(Record {
             id: vals[0],
@@ -1267,6 +1293,10 @@ impl<'a> Reader<'a> {
         for (id, nodes) in &store.elements {
             b.add_element(id + offset, nodes.map(|n| n + offset))
                 .map_err(clash)?;
+        }
+        for (id, kind, nodes) in &store.others {
+            let moved: Vec<u64> = nodes.iter().map(|n| n + offset).collect();
+            b.add_typed(id + offset, *kind, &moved).map_err(clash)?;
         }
         for &id in &store.skipped {
             b.skip_element(id + offset);

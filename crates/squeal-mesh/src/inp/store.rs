@@ -2,6 +2,7 @@
 //! what its `*INSTANCE` block adds), or the model and assembly level.
 
 use super::lex::Loc;
+use squeal_element::ElementKind;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 /// A named set: the spelling first seen and its members.
@@ -68,6 +69,8 @@ pub(super) struct Store {
     node_loc: HashMap<u64, Loc>,
     /// Tet10 elements, nodes in canonical (= C3D10) order.
     pub elements: Vec<(u64, [u64; 10])>,
+    /// Elements of the other solid kinds, nodes in canonical (= Abaqus) order.
+    pub others: Vec<(u64, ElementKind, Vec<u64>)>,
     /// Labels of tet10 and skipped elements, in definition order.
     element_labels: Vec<u64>,
     element_loc: HashMap<u64, Loc>,
@@ -89,15 +92,26 @@ impl Store {
         Ok(())
     }
 
-    /// Adds a tet10 element (or, with `nodes == None`, records a skipped one).
-    pub fn add_element(&mut self, id: u64, nodes: Option<[u64; 10]>, loc: Loc) -> Result<(), Loc> {
+    /// Adds a solid element of a kind (its first `kind.nodes()` node ids), or, with
+    /// `nodes == None`, records a skipped one.
+    pub fn add_element(
+        &mut self,
+        id: u64,
+        nodes: Option<(ElementKind, [u64; 20])>,
+        loc: Loc,
+    ) -> Result<(), Loc> {
         if let Some(first) = self.element_loc.get(&id) {
             return Err(*first);
         }
         self.element_loc.insert(id, loc);
         self.element_labels.push(id);
         match nodes {
-            Some(n) => self.elements.push((id, n)),
+            Some((ElementKind::Tet10, n)) => {
+                let mut tet = [0u64; 10];
+                tet.copy_from_slice(&n[..10]);
+                self.elements.push((id, tet));
+            }
+            Some((kind, n)) => self.others.push((id, kind, n[..kind.nodes()].to_vec())),
             None => self.skipped.push(id),
         }
         Ok(())

@@ -9,6 +9,68 @@
 //! Reference coordinates `(ξ, η, ζ)` with barycentric `L = (1-ξ-η-ζ, ξ, η, ζ)`; vertex `i` sits
 //! at `L_i = 1`. Shape functions: `N_i = L_i (2 L_i - 1)` at the vertices and `4 L_a L_b` at
 //! the midside node of edge `(a, b)`.
+//!
+//! Quadrature ([`Tet10`]'s [`ReferenceElement`] rules): stiffness by the 4-point rule of
+//! degree 2, exact for straight-sided elements (`det J` constant, integrand of degree 2);
+//! consistent mass by the 14-point rule of degree 5 (integrand of degree 4). The finite
+//! element crate integrates curved elements' stiffness with the 24-point rule of degree 6
+//! (see `squeal_fe::element`).
+
+use crate::quadrature::Quadrature;
+pub use crate::reference::det3;
+use crate::reference::{ElementKind, Face, ReferenceElement};
+
+/// The 10-node tetrahedron (Abaqus C3D10, VTK 24, Gmsh 11).
+#[derive(Clone, Copy, Debug)]
+pub struct Tet10;
+
+impl ReferenceElement<10> for Tet10 {
+    const KIND: ElementKind = ElementKind::Tet10;
+    const VERTICES: usize = 4;
+    const NODES_REF: [[f64; 3]; 10] = NODES_REF;
+    const EDGES: &'static [[usize; 2]] = &EDGES;
+    const FACES: &'static [Face] = &[
+        Face::Tri6(FACES[0]),
+        Face::Tri6(FACES[1]),
+        Face::Tri6(FACES[2]),
+        Face::Tri6(FACES[3]),
+    ];
+    const VTK_CELL_TYPE: u8 = 24;
+    const VTK_ORDER: [usize; 10] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9];
+    const GMSH_TYPE: i32 = 11;
+    const GMSH_TO_CANONICAL: [usize; 10] = GMSH_TO_CANONICAL;
+
+    fn shape(xi: [f64; 3]) -> [f64; 10] {
+        shape(xi)
+    }
+
+    fn shape_gradients(xi: [f64; 3]) -> [[f64; 3]; 10] {
+        shape_gradients(xi)
+    }
+
+    fn stiffness_rule() -> Quadrature {
+        Quadrature::four_point()
+    }
+
+    fn mass_rule() -> Quadrature {
+        Quadrature::fourteen_point()
+    }
+
+    /// [`volume`]: Keast's 5-point rule, exact for curved elements too.
+    fn volume(x: &[[f64; 3]; 10]) -> f64 {
+        volume(x)
+    }
+
+    /// The ten nodes, the centroid and the four points of the degree-2 rule.
+    fn jacobian_samples() -> Vec<[f64; 3]> {
+        let a = 0.585_410_196_624_968_5;
+        let b = 0.138_196_601_125_010_5;
+        let mut p: Vec<[f64; 3]> = NODES_REF.to_vec();
+        p.push([0.25, 0.25, 0.25]);
+        p.extend([[b, b, b], [a, b, b], [b, a, b], [b, b, a]]);
+        p
+    }
+}
 
 /// Vertex pairs of the edges carrying midside nodes 4..10, in canonical order.
 pub const EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
@@ -83,23 +145,7 @@ pub fn shape_gradients(xi: [f64; 3]) -> [[f64; 3]; 10] {
 
 /// Jacobian `J[i][j] = ∂x_i/∂ξ_j` of the isoparametric map at `xi`.
 pub fn jacobian(x: &[[f64; 3]; 10], xi: [f64; 3]) -> [[f64; 3]; 3] {
-    let g = shape_gradients(xi);
-    let mut j = [[0.0; 3]; 3];
-    for (n, gn) in g.iter().enumerate() {
-        for r in 0..3 {
-            for c in 0..3 {
-                j[r][c] += x[n][r] * gn[c];
-            }
-        }
-    }
-    j
-}
-
-/// Determinant of a 3×3 matrix.
-pub fn det3(m: &[[f64; 3]; 3]) -> f64 {
-    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    crate::reference::jacobian::<Tet10, 10>(x, xi)
 }
 
 /// Volume of an element from its nodes' coordinates in canonical order: the integral of the
@@ -128,15 +174,7 @@ pub fn volume(x: &[[f64; 3]; 10]) -> f64 {
 /// the midpoint of its edge, relative to that edge's length (0 for a straight-sided element,
 /// whose map from the reference element is affine; infinite for an edge of zero length).
 pub fn midside_offset(x: &[[f64; 3]; 10]) -> f64 {
-    let mut worst = 0.0_f64;
-    for (k, &[a, b]) in EDGES.iter().enumerate() {
-        let sq = |f: &dyn Fn(usize) -> f64| (0..3).map(|d| f(d).powi(2)).sum::<f64>();
-        let off = sq(&|d| x[4 + k][d] - 0.5 * (x[a][d] + x[b][d]));
-        let len = sq(&|d| x[b][d] - x[a][d]);
-        let r = (off / len).sqrt();
-        worst = worst.max(if r.is_nan() { f64::INFINITY } else { r });
-    }
-    worst
+    crate::reference::midside_offset::<Tet10, 10>(x)
 }
 
 #[cfg(test)]
