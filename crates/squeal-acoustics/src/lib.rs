@@ -21,8 +21,9 @@
 //!    as a plane wave, i.e. a **radiation efficiency σ = 1**. The true power is `σ` times
 //!    it; σ < 1 for a source small against the wavelength: a pulsating sphere of radius a has
 //!    σ = (ka)²/(1 + (ka)²) (the tests show ERP overestimating it by 1/σ ≈ 101 at ka = 0.1),
-//!    and a bending plate below its coincidence frequency radiates far less than its ERP. ERP
-//!    is an upper bound of the kind used to rank designs, not a prediction of a level.
+//!    and a bending plate below its coincidence frequency radiates far less than its ERP. σ
+//!    can also exceed 1 slightly (a baffled piston near ka = 2: by 3%), so ERP is a measure
+//!    used to rank designs and find what radiates, not a bound nor a prediction of a level.
 //! 2. **The Rayleigh integral** ([`rayleigh`]): `p(x) = (i ω ρ / 2π) ∫_S v_n(y) e^{−ikR}/R dA`,
 //!    `R = |x − y|`. It is exact for a flat surface set in an infinite rigid baffle (the
 //!    baffled piston of the tests, near and far field alike). Applied to a brake it assumes

@@ -124,11 +124,7 @@ pub fn monopoles(
                 y[d] += p.area * p.position[d];
             }
         }
-        let d = [
-            x[0] - y[0] / area,
-            x[1] - y[1] / area,
-            x[2] - y[2] / area,
-        ];
+        let d = [x[0] - y[0] / area, x[1] - y[1] / area, x[2] - y[2] / area];
         s += q * green(k, distance(d, x)?);
     }
     Ok(Complex64::new(0.0, omega * air.density / (4.0 * PI)) * s)

@@ -243,9 +243,7 @@ mod tests {
                     let got: f64 = rule
                         .points
                         .iter()
-                        .map(|p| {
-                            p.weight * p.xi[0].powi(a as i32) * p.xi[1].powi(b as i32)
-                        })
+                        .map(|p| p.weight * p.xi[0].powi(a as i32) * p.xi[1].powi(b as i32))
                         .sum();
                     assert!(
                         (got - exact).abs() < 1e-14,

@@ -94,7 +94,7 @@ impl RadiatingSurface {
                 }
                 let c = cross(a, b);
                 let jac = dot(c, c).sqrt();
-                if !(jac.is_finite() && jac > 0.0) || !y.iter().all(|v| v.is_finite()) {
+                if !(jac.is_finite() && jac > 0.0 && y.iter().all(|v| v.is_finite())) {
                     return Err(AcousticsError::DegenerateFace {
                         face: f,
                         point: q,
@@ -158,7 +158,8 @@ impl RadiatingSurface {
                         let mut s = Complex64::new(0.0, 0.0);
                         for i in 0..npf {
                             let ui = &u[self.faces[f * npf + i] as usize];
-                            let un = ui[0] * p.normal[0] + ui[1] * p.normal[1] + ui[2] * p.normal[2];
+                            let un =
+                                ui[0] * p.normal[0] + ui[1] * p.normal[1] + ui[2] * p.normal[2];
                             s += un * n[i];
                         }
                         s
