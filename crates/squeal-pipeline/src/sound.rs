@@ -82,6 +82,8 @@ pub struct BrakeSurface {
     pub faces_per_part: Vec<(String, usize)>,
     /// The default microphone.
     pub microphone: [f64; 3],
+    /// Each surface node's part (0 the disc, then the pads) and node index in that part's mesh.
+    pub mesh_nodes: Vec<(usize, u32)>,
     parts: Vec<SurfacePart>,
 }
 
@@ -95,6 +97,7 @@ impl BrakeSurface {
         let mut faces: Vec<u32> = Vec::new();
         let mut parts = Vec::new();
         let mut faces_per_part = Vec::new();
+        let mut mesh_nodes = Vec::new();
         let npads = sp.pads.len();
         let mut names = vec![("disc".to_string(), m.layout.disc.clone())];
         names.extend(m.layout.pads.iter().cloned());
@@ -108,6 +111,7 @@ impl BrakeSurface {
             let first_node = nodes.len();
             let (local, part_faces) = renumber(&radiating, first_node);
             nodes.extend(local.iter().map(|&n| mesh.nodes[n as usize]));
+            mesh_nodes.extend(local.iter().map(|&n| (parts.len(), n)));
             faces.extend(part_faces);
             parts.push(SurfacePart {
                 rows: basis_rows(rp, mesh, &local)?,
@@ -122,6 +126,7 @@ impl BrakeSurface {
             surface,
             faces_per_part,
             microphone,
+            mesh_nodes,
             parts,
         })
     }
