@@ -96,9 +96,13 @@ fn main() {
     // One cycle, timed: the last point of the branch.
     let pt = branch.points.last().unwrap();
     let (t_full, c) = best(reps, || full_cycle(&mb, pt, opts.samples).unwrap());
-    let (t_vel, _) = best(reps, || surface.velocities(&c, pt.harmonics, pt.omega).unwrap());
+    let (t_vel, _) = best(reps, || {
+        surface.velocities(&c, pt.harmonics, pt.omega).unwrap()
+    });
     let (t_sound, _) = best(reps, || {
-        surface.cycle_sound(&c, pt.harmonics, pt.omega, &so).unwrap()
+        surface
+            .cycle_sound(&c, pt.harmonics, pt.omega, &so)
+            .unwrap()
     });
     println!(
         "one cycle ({} harmonics), best of {reps}: full-field coefficients {:.2} ms, surface velocities {:.2} ms, velocities + sound {:.2} ms, total {:.2} ms",

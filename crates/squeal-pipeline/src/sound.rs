@@ -106,7 +106,10 @@ impl BrakeSurface {
                 .part(&name)
                 .ok_or_else(|| PipelineError::input("the radiating surface", missing(&name)))?
                 .mesh;
-            let rp = m.rom.part(&name).ok_or(PipelineError::NoPart { part: "pad" })?;
+            let rp = m
+                .rom
+                .part(&name)
+                .ok_or(PipelineError::NoPart { part: "pad" })?;
             let radiating = radiating_faces(&sp, mesh, &name, npads);
             let first_node = nodes.len();
             let (local, part_faces) = renumber(&radiating, first_node);
@@ -249,9 +252,7 @@ fn renumber(faces: &[Face], first: usize) -> (Vec<u32>, Vec<u32>) {
     let local = select::face_nodes(faces);
     let faces = faces
         .iter()
-        .flat_map(|f| {
-            f.map(|n| (first + local.binary_search(&n).unwrap_or(0)) as u32)
-        })
+        .flat_map(|f| f.map(|n| (first + local.binary_search(&n).unwrap_or(0)) as u32))
         .collect();
     (local, faces)
 }
@@ -338,4 +339,99 @@ pub fn sound_text(s: &Sound, surface: &BrakeSurface, mic: [f64; 3]) -> String {
         per.join(", "),
         surface.surface.face_count()
     )
+}
+
+/// The A-weighted level (Rayleigh integral, default microphone, dB(A)) of every cycle of a
+/// branch: each cycle's coefficients of all dofs recovered by eq (35) at its own μ
+/// ([`squeal_chbm::branch::full_cycle`] on `samples` AFT samples), then
+/// [`BrakeSurface::cycle_sound`].
+pub fn branch_levels(
+    surface: &BrakeSurface,
+    m: &Model,
+    st: &squeal_brake::analysis::Stability,
+    a: &crate::branch::BranchAnalysis,
+    samples: Option<usize>,
+) -> Result<Vec<f64>> {
+    let mb = squeal_brake::modal_brake::ModalBrake::new(&m.brake, &st.reference, a.mu0());
+    let opts = SoundOptions::default();
+    a.branch
+        .points
+        .iter()
+        .map(|p| {
+            let c = squeal_chbm::branch::full_cycle(&mb, p, samples)?;
+            let s = surface.cycle_sound(&c, p.harmonics, p.omega, &opts)?;
+            Ok(s.rayleigh_dba[0])
+        })
+        .collect()
+}
+
+/// Where the branch's stable cycles reach SAE J2521's 70 dB(A) at the microphone: one line.
+pub fn squeal_level_text(a: &crate::branch::BranchAnalysis, levels: &[f64]) -> String {
+    use squeal_chbm::floquet::Stability;
+    let loud: Vec<f64> = a
+        .branch
+        .points
+        .iter()
+        .zip(levels)
+        .enumerate()
+        .filter(|(i, (_, l))| **l >= SQUEAL_DBA && a.stability(*i) == Some(Stability::Stable))
+        .map(|(_, (p, _))| p.parameter)
+        .collect();
+    let top = levels
+        .iter()
+        .enumerate()
+        .max_by(|x, y| x.1.total_cmp(y.1))
+        .map(|(i, l)| (a.branch.points[i].parameter, *l));
+    let range = match (
+        loud.iter().copied().reduce(f64::min),
+        loud.iter().copied().reduce(f64::max),
+    ) {
+        (Some(lo), Some(hi)) => format!(
+            "above {SQUEAL_DBA} dB(A) from mu = {lo:.6} to {hi:.6} (stable cycles of the computed branch)"
+        ),
+        _ => format!("no stable cycle of the computed branch reaches {SQUEAL_DBA} dB(A)"),
+    };
+    let top = top.map_or(String::new(), |(mu, l)| {
+        format!("; loudest {l:.1} dB(A) at mu = {mu:.6}")
+    });
+    format!(
+        "sound at the microphone (Rayleigh integral, SAE J2521 squeal from {SQUEAL_DBA} dB(A)): {range}{top}\n"
+    )
+}
+
+/// The line `squeal chbm` prints on a CHBM solution's sound (or why it was not computed).
+pub fn solution_sound_text(
+    scene: &Scene,
+    m: &Model,
+    sol: &squeal_chbm::ChbmSolution,
+    log: Log,
+) -> String {
+    let text = BrakeSurface::new(scene, m, log).and_then(|s| {
+        let snd = s.cycle_sound(
+            &sol.coeffs,
+            sol.harmonics,
+            sol.omega,
+            &SoundOptions::default(),
+        )?;
+        Ok(sound_text(&snd, &s, s.microphone))
+    });
+    text.unwrap_or_else(|e| format!("  sound: not computed: {e}\n"))
+}
+
+/// [`branch_levels`] on the scene's radiating surface; empty (with the reason logged) when
+/// it cannot be computed, e.g. a reduced model kept without its bases.
+pub fn branch_levels_or_log(
+    scene: &Scene,
+    m: &Model,
+    st: &squeal_brake::analysis::Stability,
+    a: &crate::branch::BranchAnalysis,
+    samples: Option<usize>,
+    log: Log,
+) -> Vec<f64> {
+    BrakeSurface::new(scene, m, log)
+        .and_then(|s| branch_levels(&s, m, st, a, samples))
+        .unwrap_or_else(|e| {
+            log(&format!("sound of the branch's cycles not computed: {e}"));
+            Vec::new()
+        })
 }

@@ -70,7 +70,10 @@ fn surface_velocity_is_the_derivative_of_the_expanded_cycle() {
         }
     }
     println!("largest surface speed {largest:.3e} m/s, worst difference {worst:.2e}");
-    assert!(largest > 0.0 && worst < 1e-5 * largest, "{worst} of {largest}");
+    assert!(
+        largest > 0.0 && worst < 1e-5 * largest,
+        "{worst} of {largest}"
+    );
     // The pad radiates without its friction face; the disc with all its boundary.
     let pad_faces = surface.faces_per_part[1].1;
     let all = squeal_mesh::select::boundary_faces(&meshes.pads[0]).len();
