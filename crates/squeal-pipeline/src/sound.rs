@@ -106,10 +106,9 @@ impl BrakeSurface {
                 .part(&name)
                 .ok_or_else(|| PipelineError::input("the radiating surface", missing(&name)))?
                 .mesh;
-            let rp = m
-                .rom
-                .part(&name)
-                .ok_or(PipelineError::NoPart { part: "pad" })?;
+            let rp = m.rom.part(&name).ok_or(PipelineError::NoPart {
+                part: if name == "disc" { "disc" } else { "pad" },
+            })?;
             let radiating = radiating_faces(&sp, mesh, &name, npads);
             let first_node = nodes.len();
             let (local, part_faces) = renumber(&radiating, first_node);
@@ -252,6 +251,7 @@ fn renumber(faces: &[Face], first: usize) -> (Vec<u32>, Vec<u32>) {
     let local = select::face_nodes(faces);
     let faces = faces
         .iter()
+        // Every node of a face is in `local`, made from the same faces.
         .flat_map(|f| f.map(|n| (first + local.binary_search(&n).unwrap_or(0)) as u32))
         .collect();
     (local, faces)
