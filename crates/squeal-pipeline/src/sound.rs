@@ -232,7 +232,7 @@ fn radiating_faces(sp: &SceneParts, mesh: &Mesh, name: &str, npads: usize) -> Ve
         .set(&pad_key(0, name, npads))
         .map(|s| select::faces_of_set(mesh, &boundary, &s.nodes()))
         .unwrap_or_default();
-    let mut skip: Vec<[u32; 3]> = friction.iter().map(|f| sorted(f)).collect();
+    let mut skip: Vec<[u32; 3]> = friction.iter().map(sorted).collect();
     skip.sort_unstable();
     boundary
         .into_iter()
