@@ -99,11 +99,15 @@ pub fn write(
         Some(h) => at.iter().map(|r| r * h.mu0).collect(),
         None => Vec::new(),
     };
-    let Some(a) = branch::analyse(m, st, opts, &HillOptions::default(), &mus, p.log())? else {
+    let Some(mut a) = branch::analyse(m, st, opts, &HillOptions::default(), &mus, p.log())? else {
         println!("no Hopf point in the band of the friction sweep: no branch of limit cycles");
         return Ok(None);
     };
     p.record("branch and its stability", t.elapsed().as_secs_f64());
+    let t = std::time::Instant::now();
+    a.levels =
+        squeal_pipeline::sound::branch_levels_or_log(&p.scene, m, st, &a, opts.samples, p.log());
+    p.record("sound of the branch's cycles", t.elapsed().as_secs_f64());
     print!("{}", branch::summary_text(&a));
     let dir = p.out.join("branch");
     branch::write(&dir, &a)?;

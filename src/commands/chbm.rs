@@ -214,6 +214,12 @@ fn write_solution(
 ) -> Result<()> {
     let m = p.model()?;
     print!("{}", chbm::solution_text(m, start, sol));
+    if sol.outcome == Outcome::LimitCycle {
+        print!(
+            "{}",
+            squeal_pipeline::sound::solution_sound_text(&p.scene, m, sol, p.log())
+        );
+    }
     let dir = p.out.join("chbm");
     chbm::write_solution(&dir, m, mu, sol)?;
     if vtu

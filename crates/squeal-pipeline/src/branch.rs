@@ -45,6 +45,9 @@ pub struct BranchAnalysis {
     pub floquet_time: Duration,
     /// The cycles at the friction values asked for ([`analyse`]'s `at`).
     pub at: Vec<CycleAt>,
+    /// Each point's A-weighted level at the microphone (dB(A), [`crate::sound::branch_levels`]);
+    /// empty when not computed.
+    pub levels: Vec<f64>,
 }
 
 /// A cycle of the branch at a friction value asked for.
@@ -176,6 +179,7 @@ pub fn analyse(
         bifurcations,
         floquet_time,
         at: cycles,
+        levels: Vec::new(),
     }))
 }
 
@@ -318,8 +322,21 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
             verdict,
         ]);
     }
+    if !a.levels.is_empty() {
+        t = with_levels(t, a, &shown_points(b.points.len(), 20).collect::<Vec<_>>());
+        out.push_str(&crate::sound::squeal_level_text(a, &a.levels));
+    }
     out.push_str(&t.to_text());
     out
+}
+
+/// `t` with a column of the levels of `points` (its rows in order).
+fn with_levels(mut t: Table, a: &BranchAnalysis, points: &[usize]) -> Table {
+    t.header.push("dB(A)".to_string());
+    for (row, &i) in t.rows.iter_mut().zip(points) {
+        row.push(a.levels.get(i).map_or("-".into(), |l| format!("{l:.1}")));
+    }
+    t
 }
 
 /// About `rows` evenly spread indices of `n` points for a table, always with the last one.
@@ -356,6 +373,9 @@ pub fn table(a: &BranchAnalysis) -> Table {
         header.push(format!("pair{}_closure_p2p_m", k + 1));
         header.push(format!("pair{}_open_fraction", k + 1));
     }
+    if !a.levels.is_empty() {
+        header.push("level_dba_rayleigh".into());
+    }
     let mut t = Table::new(header);
     for (i, p) in b.points.iter().enumerate() {
         let (i_loud, c_loud) = p.loudest();
@@ -389,6 +409,9 @@ pub fn table(a: &BranchAnalysis) -> Table {
         for c in &p.pairs {
             row.push(format!("{:e}", c.peak_to_peak()));
             row.push(format!("{}", c.open_fraction));
+        }
+        if !a.levels.is_empty() {
+            row.push(a.levels.get(i).map_or(String::new(), |l| format!("{l}")));
         }
         t.push_row(row);
     }
@@ -462,6 +485,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
                 "stability": f.map_or("not computed".to_string(), |f| f.stability().to_string()),
                 "truncation": p.truncation,
                 "residual": p.residual,
+                "level_dba_rayleigh": a.levels.get(i),
             })
         }).collect::<Vec<_>>(),
     })

@@ -21,6 +21,7 @@
 //!   outputs.
 //! - [`shapes`]: reduced vectors expanded onto the meshes (VTU); [`pictures`]: the same as
 //!   images for the report.
+//! - [`sound`]: how loud a limit cycle is (ERP, dB(A) at a microphone).
 //! - [`report`]: the report of a run.
 
 // Index loops over dofs read like the formulas they implement.
@@ -39,6 +40,7 @@ pub mod pictures;
 pub mod progress;
 pub mod report;
 pub mod shapes;
+pub mod sound;
 pub mod stability;
 pub mod study;
 

@@ -1,0 +1,195 @@
+//! The radiating surface as the integrals see it: every quadrature point of every face with
+//! its position `y_q`, outward unit normal `n_q` and area weight `dA_q = w_q |∂x/∂ξ × ∂x/∂η|`,
+//! computed once from the nodes, the faces and a [`FaceRule`]; and the normal velocity at those
+//! points from nodal data, `v_n(y_q) = Σ_i N_i(q) v_n,i` (per face node) or
+//! `v_n(y_q) = n_q · Σ_i N_i(q) v_i` (3-D nodal velocity).
+
+use crate::error::{AcousticsError, Result};
+use crate::rule::FaceRule;
+use num_complex::Complex64;
+
+/// One quadrature point of the surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    /// Its face (0-based).
+    pub face: u32,
+    /// Position `y_q` (m).
+    pub position: [f64; 3],
+    /// Outward unit normal.
+    pub normal: [f64; 3],
+    /// Area weight `dA_q` (m²).
+    pub area: f64,
+}
+
+/// The velocity of the surface at one angular frequency, as nodal data.
+#[derive(Clone, Copy, Debug)]
+pub enum Velocity<'a> {
+    /// The complex normal velocity (m/s, along the face's outward normal) at each node of each
+    /// face, face by face in the faces' node order (`faces × nodes per face` values).
+    FaceNodes(&'a [Complex64]),
+    /// The complex 3-D velocity (m/s) of each node of the surface's node list.
+    Nodal(&'a [[Complex64; 3]]),
+}
+
+/// Faces of `N` nodes over a node list, with their quadrature points.
+#[derive(Clone, Debug)]
+pub struct RadiatingSurface {
+    /// Nodes per face.
+    pub nodes_per_face: usize,
+    /// Node indices of each face, face after face.
+    pub faces: Vec<u32>,
+    /// Number of nodes of the node list the faces index.
+    pub node_count: usize,
+    /// The face rule's shape values, one row of `nodes_per_face` per rule point.
+    pub shape: Vec<f64>,
+    /// Rule points per face.
+    pub points_per_face: usize,
+    /// Every quadrature point, face after face.
+    pub points: Vec<SurfacePoint>,
+}
+
+impl RadiatingSurface {
+    /// The surface of `faces` (`rule.nodes` node indices per face, face after face) over
+    /// `nodes`, integrated with `rule`.
+    pub fn new(nodes: &[[f64; 3]], faces: &[u32], rule: &FaceRule) -> Result<Self> {
+        let npf = rule.nodes;
+        if npf == 0 || !faces.len().is_multiple_of(npf) {
+            return Err(AcousticsError::Length {
+                what: "face node list",
+                expected: faces.len().div_ceil(npf.max(1)) * npf.max(1),
+                got: faces.len(),
+            });
+        }
+        for p in &rule.points {
+            if p.shape.len() != npf || p.gradient.len() != npf {
+                return Err(AcousticsError::Rule(format!(
+                    "a point has {} shape values for {npf}-node faces",
+                    p.shape.len()
+                )));
+            }
+        }
+        let n_faces = faces.len() / npf;
+        let mut points = Vec::with_capacity(n_faces * rule.points.len());
+        for f in 0..n_faces {
+            let face = &faces[f * npf..(f + 1) * npf];
+            let mut x = Vec::with_capacity(npf);
+            for &n in face {
+                let p = nodes
+                    .get(n as usize)
+                    .ok_or(AcousticsError::NodeOutOfRange {
+                        face: f,
+                        node: n,
+                        nodes: nodes.len(),
+                    })?;
+                x.push(*p);
+            }
+            for (q, rp) in rule.points.iter().enumerate() {
+                let (mut y, mut a, mut b) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+                for i in 0..npf {
+                    for d in 0..3 {
+                        y[d] += rp.shape[i] * x[i][d];
+                        a[d] += rp.gradient[i][0] * x[i][d];
+                        b[d] += rp.gradient[i][1] * x[i][d];
+                    }
+                }
+                let c = cross(a, b);
+                let jac = dot(c, c).sqrt();
+                if !(jac.is_finite() && jac > 0.0 && y.iter().all(|v| v.is_finite())) {
+                    return Err(AcousticsError::DegenerateFace {
+                        face: f,
+                        point: q,
+                        jacobian: jac,
+                    });
+                }
+                points.push(SurfacePoint {
+                    face: f as u32,
+                    position: y,
+                    normal: c.map(|v| v / jac),
+                    area: rp.weight * jac,
+                });
+            }
+        }
+        Ok(Self {
+            nodes_per_face: npf,
+            faces: faces.to_vec(),
+            node_count: nodes.len(),
+            shape: rule.points.iter().flat_map(|p| p.shape.clone()).collect(),
+            points_per_face: rule.points.len(),
+            points,
+        })
+    }
+
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.faces.len() / self.nodes_per_face
+    }
+
+    /// Total area (m²).
+    pub fn area(&self) -> f64 {
+        self.points.iter().map(|p| p.area).sum()
+    }
+
+    /// The normal velocity at every quadrature point (m/s).
+    pub fn normal_velocity(&self, v: Velocity) -> Result<Vec<Complex64>> {
+        let (npf, nq) = (self.nodes_per_face, self.points_per_face);
+        match v {
+            Velocity::FaceNodes(vn) => {
+                check_len("face-node normal velocities", self.faces.len(), vn.len())?;
+                Ok(self
+                    .points
+                    .iter()
+                    .enumerate()
+                    .map(|(k, p)| {
+                        let (f, q) = (p.face as usize, k % nq);
+                        let n = &self.shape[q * npf..(q + 1) * npf];
+                        (0..npf).map(|i| vn[f * npf + i] * n[i]).sum()
+                    })
+                    .collect())
+            }
+            Velocity::Nodal(u) => {
+                check_len("nodal velocities", self.node_count, u.len())?;
+                Ok(self
+                    .points
+                    .iter()
+                    .enumerate()
+                    .map(|(k, p)| {
+                        let (f, q) = (p.face as usize, k % nq);
+                        let n = &self.shape[q * npf..(q + 1) * npf];
+                        let mut s = Complex64::new(0.0, 0.0);
+                        for i in 0..npf {
+                            let ui = &u[self.faces[f * npf + i] as usize];
+                            let un =
+                                ui[0] * p.normal[0] + ui[1] * p.normal[1] + ui[2] * p.normal[2];
+                            s += un * n[i];
+                        }
+                        s
+                    })
+                    .collect())
+            }
+        }
+    }
+}
+
+fn check_len(what: &'static str, expected: usize, got: usize) -> Result<()> {
+    if expected == got {
+        Ok(())
+    } else {
+        Err(AcousticsError::Length {
+            what,
+            expected,
+            got,
+        })
+    }
+}
+
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
