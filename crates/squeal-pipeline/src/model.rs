@@ -36,6 +36,9 @@ pub struct Model {
     pub pairs: Vec<Pairing>,
     pub params: BrakeParams,
     pub damping: DampingSpec,
+    /// Where the modal damping ratio comes from: `file:line` of `[damping] global_ratio`, or
+    /// that it is the default (the scene leaves it out).
+    pub damping_from: String,
     pub sweep: SweepOptions,
     /// Meshes of the parts, as files.
     pub disc_mesh: PathBuf,
@@ -258,6 +261,23 @@ pub fn damping_spec(scene: &Scene) -> Result<DampingSpec> {
     })
 }
 
+/// Where the scene's modal damping ratio comes from, for outputs: `file:line` of `[damping]
+/// global_ratio`, or the default's note.
+pub fn damping_from(scene: &Scene) -> String {
+    let g = &scene.file.damping.global_ratio;
+    if g.span() == (0..0) {
+        return format!(
+            "the default: {} gives no [damping] global_ratio",
+            scene.path.display()
+        );
+    }
+    let line = scene.text[..g.span().start.min(scene.text.len())]
+        .matches('\n')
+        .count()
+        + 1;
+    format!("{}:{line}", scene.path.display())
+}
+
 /// The highest frequency the reduced model speaks for: the lower of the parts' highest kept
 /// fixed-interface frequencies.
 pub fn valid_max_hz(rom: &ReducedModel) -> f64 {
@@ -291,6 +311,7 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
     Ok(Model {
         sweep: sweep_options(scene, &rom),
         damping: damping_spec(scene)?,
+        damping_from: damping_from(scene),
         rom,
         rom_path,
         brake,

@@ -88,6 +88,31 @@ pub enum ReduceError {
     /// The inputs of the brake's reduction are inconsistent or out of range.
     #[error("invalid option: {0}")]
     Options(String),
+    /// The mesh has what `squeal mesh info` calls an ERROR (inverted elements, elements
+    /// naming a node the file never defines, which the reader leaves out): reduced as read,
+    /// the part would be another part.
+    #[error(
+        "{finding} (element ids {ids}): the reduction refuses a mesh with errors; correct the file (`squeal mesh info` lists every finding)"
+    )]
+    MeshErrors {
+        /// The first error finding's message.
+        finding: String,
+        /// Its first element ids, blank-separated.
+        ids: String,
+    },
+    /// A node set the reduction uses names nodes the file never defines: the reader drops
+    /// them, and a mistyped piston id would silently leave a piston out.
+    #[error(
+        "node set {set} names {count} node id(s) the file never defines ({ids}): without them it is another set; correct the ids in the mesh"
+    )]
+    ShortenedSet {
+        /// The set's name.
+        set: String,
+        /// How many members are missing.
+        count: usize,
+        /// The missing ids, blank-separated.
+        ids: String,
+    },
     /// The disc and the pad have different numbers of contact points, so they cannot be
     /// paired one to one.
     #[error(
