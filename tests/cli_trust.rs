@@ -496,5 +496,48 @@ fn damping_is_said_damaged_models_rebuilt_and_degenerate_points_named() {
         "{}",
         stderr(&o)
     );
+
+    // A list of initial gaps that does not match the pairs: the error names the key's line.
+    let gaps = text.replace(
+        "normal = [0.0, 0.0, 1.0]",
+        "normal = [0.0, 0.0, 1.0]\ninitial_gap = [1.0e-6, 1.0e-6]",
+    );
+    let gap_line = gaps
+        .lines()
+        .position(|l| l.starts_with("initial_gap"))
+        .unwrap()
+        + 1;
+    std::fs::write(&scene, &gaps).unwrap();
+    let o = squeal(&["stability", s, "-o", o_s, "--no-vtu"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let says = format!(
+        "{s}:{gap_line}: contact.initial_gap: 2 initial gaps are given for 9 contact pairs"
+    );
+    assert!(stderr(&o).contains(&says), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 22: a part left free says its restraints as the scene wrote them, not a Rust debug
+/// dump (`Restraint { nodes: Set(...) }`). The disc clamped axially only turns and slides
+/// in its plane.
+#[test]
+fn a_free_part_names_its_restraints_as_written() {
+    let dir = temp_dir("trust", "free-part");
+    let scene = dir.join("scene.toml");
+    let text = bundled_scene("coarse") + "\n[sets.disc]\nclamp_hold = [\"axial\"]\n";
+    std::fs::write(&scene, text).unwrap();
+    let rom = dir.join("b.rom");
+    let o = squeal(&[
+        "reduce",
+        "--scene",
+        scene.to_str().unwrap(),
+        "-o",
+        rom.to_str().unwrap(),
+    ]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("K_II is singular"), "{e}");
+    assert!(e.contains("node set CLAMP held axial"), "{e}");
+    assert!(!e.contains("Restraint {") && !e.contains("Set("), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
 }

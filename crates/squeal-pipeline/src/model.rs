@@ -306,7 +306,7 @@ pub fn sweep_options(scene: &Scene, rom: &ReducedModel) -> SweepOptions {
 /// The brake of a scene on a reduced model.
 pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<Model> {
     let params = brake_params(scene)?;
-    let (brake, layout, pairs) = assemble(&rom, &params)?;
+    let (brake, layout, pairs) = assemble(&rom, &params).map_err(|e| at_scene_key(scene, e))?;
     let m = &scene.file.model;
     Ok(Model {
         sweep: sweep_options(scene, &rom),
@@ -327,6 +327,22 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
         disc: disc_speed(scene)?,
         units: scene.units()?,
     })
+}
+
+/// A brake error that a scene key caused, at the key's file and line: the initial gaps'
+/// count (`[contact] initial_gap`) and a normal the mesh disagrees with (`[contact] normal`).
+fn at_scene_key(scene: &Scene, e: squeal_brake::BrakeError) -> PipelineError {
+    use squeal_brake::BrakeError;
+    let c = &scene.file.contact;
+    match (&e, &c.initial_gap, &c.normal) {
+        (BrakeError::GapCount { .. }, Some(v), _) => {
+            scene.error_at("contact.initial_gap", v, &e).into()
+        }
+        (BrakeError::NormalDisagrees { .. }, _, Some(v)) => {
+            scene.error_at("contact.normal", v, &e).into()
+        }
+        _ => e.into(),
+    }
 }
 
 /// The reduced model (cached) and the brake of a scene.

@@ -577,7 +577,7 @@ pub fn reduce_part(
     let factor = SparseCholesky::factorize_with(k_vv.as_ref(), &chol).map_err(|e| match e {
         EigError::NotPositiveDefinite { .. } => ReduceError::NotHeld {
             part: part.clone(),
-            restraints: describe(&spec.restraints),
+            restraints: describe(spec),
         },
         other => eigen(other),
     })?;
@@ -932,15 +932,61 @@ fn try_zeros(rows: usize, cols: usize, part: &str) -> Result<Mat<f64>, ReduceErr
     Ok(Mat::zeros(rows, cols))
 }
 
-fn describe(restraints: &[Restraint]) -> String {
-    if restraints.is_empty() {
-        return "none".into();
-    }
-    restraints
+/// A part's restraints as the scene or the options give them (`node set CLAMP held along x,
+/// y, z`, `node set ABUTMENT held axial, radial`), and the global translations none of the
+/// set restraints holds when there are no skew or axis restraints (those the part is then
+/// free to move along).
+fn describe(spec: &PartSpec) -> String {
+    use squeal_fe::NodeSelection;
+    let axes = |d: &[bool; 3]| -> Vec<String> {
+        (0..3)
+            .filter(|&i| d[i])
+            .map(|i| AXES[i].to_string())
+            .collect()
+    };
+    let mut out: Vec<String> = spec
+        .restraints
         .iter()
-        .map(|r| format!("{r:?}"))
-        .collect::<Vec<_>>()
-        .join(", ")
+        .map(|r| {
+            let nodes = match &r.nodes {
+                NodeSelection::Set(s) => format!("node set {s}"),
+                NodeSelection::Indices(v) => format!("{} nodes given by index", v.len()),
+            };
+            format!("{nodes} held along {}", axes(&r.directions).join(", "))
+        })
+        .collect();
+    for (set, dirs) in &spec.skew_restraints {
+        out.push(format!(
+            "node set {set} held along {} direction(s)",
+            dirs.len()
+        ));
+    }
+    for (set, dirs) in &spec.axis_restraints {
+        let names: Vec<&str> = dirs
+            .iter()
+            .map(|d| match d {
+                AxisDirection::Axial => "axial",
+                AxisDirection::Radial => "radial",
+                AxisDirection::Tangential => "tangential",
+            })
+            .collect();
+        out.push(format!("node set {set} held {}", names.join(", ")));
+    }
+    if out.is_empty() {
+        return "none: the part can move freely".into();
+    }
+    let mut held = [false; 3];
+    for r in &spec.restraints {
+        (0..3).for_each(|d| held[d] |= r.directions[d]);
+    }
+    let free = axes(&held.map(|h| !h));
+    if spec.skew_restraints.is_empty() && spec.axis_restraints.is_empty() && !free.is_empty() {
+        out.push(format!(
+            "nothing holds translation along {}",
+            free.join(", ")
+        ));
+    }
+    out.join("; ")
 }
 
 /// Boundary points and rows: contact points (3 rows each), then piston nodes (1 row each).
