@@ -514,6 +514,22 @@ fn damping_is_said_damaged_models_rebuilt_and_degenerate_points_named() {
         "{s}:{gap_line}: contact.initial_gap: 2 initial gaps are given for 9 contact pairs"
     );
     assert!(stderr(&o).contains(&says), "{}", stderr(&o));
+
+    // A damping pair beyond the brake's 158 modes: the error names the key's line.
+    let pair = text.replace("pair = \"auto\"", "pair = [200, 201]");
+    let pair_line = pair
+        .lines()
+        .position(|l| l.starts_with("pair = ["))
+        .unwrap()
+        + 1;
+    std::fs::write(&scene, &pair).unwrap();
+    let o = squeal(&["stability", s, "-o", o_s, "--no-vtu"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(&format!("{s}:{pair_line}: damping.pair: ")),
+        "{}",
+        stderr(&o)
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -144,7 +144,9 @@ impl<'a> Pipeline<'a> {
             return Ok(s);
         }
         let m = self.model()?;
-        let st = self.timed("stability sweep", || stability::analyse(m, &self.mus))?;
+        let st = self
+            .timed("stability sweep", || stability::analyse(m, &self.mus))
+            .map_err(|e| model::at_damping_key(&self.scene, e))?;
         Ok(self.stability.get_or_init(|| st))
     }
 

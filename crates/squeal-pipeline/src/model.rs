@@ -345,6 +345,20 @@ fn at_scene_key(scene: &Scene, e: squeal_brake::BrakeError) -> PipelineError {
     }
 }
 
+/// A stability error that `[damping] pair` caused (modes the brake does not have), at the
+/// key's file and line.
+pub fn at_damping_key(scene: &Scene, e: PipelineError) -> PipelineError {
+    use squeal_brake::BrakeError;
+    match e {
+        PipelineError::Brake(
+            b @ (BrakeError::ModeOutOfRange { .. } | BrakeError::PairOutOfRange { .. }),
+        ) => scene
+            .error_at("damping.pair", &scene.file.damping.pair, b)
+            .into(),
+        other => other,
+    }
+}
+
 /// The reduced model (cached) and the brake of a scene.
 pub fn build(scene: &Scene, out: &Path, log: Log) -> Result<Model> {
     let (rom, rom_path) = reduced_model(scene, out, log)?;
