@@ -29,8 +29,9 @@ const EXIT_CODES: &str = "Exit codes:
     after_help = EXIT_CODES
 )]
 struct Cli {
-    /// Worker threads (default: all cores). Results are bit-identical for any count.
-    #[arg(long, global = true)]
+    /// Worker threads (default, or 0: all cores; at most 4 per core). Results are
+    /// bit-identical for any count.
+    #[arg(long, global = true, value_parser = thread_count)]
     threads: Option<usize>,
     #[command(subcommand)]
     command: Command,
@@ -61,6 +62,24 @@ enum Command {
     Run(commands::run::RunArgs),
 }
 
+/// `--threads N`: 0 (all cores) up to 4 threads per core (at least 4, at most 1024). More
+/// threads than that only add memory and switching, and a mistyped count (100000) would start
+/// them all.
+fn thread_count(s: &str) -> Result<usize, String> {
+    let n: usize = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a thread count (a whole number, 0 for all cores)"))?;
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    let most = (4 * cores).clamp(4, 1024);
+    if n > most {
+        return Err(format!(
+            "{n} threads on {cores} core(s): at most {most} (4 per core); 0 or leaving --threads out uses all cores"
+        ));
+    }
+    Ok(n)
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     // Dense kernels run sequentially: their results would otherwise depend on the thread
@@ -68,8 +87,9 @@ fn main() -> ExitCode {
     faer::set_global_parallelism(faer::Par::Seq);
     if let Some(n) = cli.threads {
         // A second initialisation cannot happen here: this is the only call.
+        // 0 is rayon's default: one thread per core.
         let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(n.max(1))
+            .num_threads(n)
             .build_global();
     }
     let result = match cli.command {

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{bundled_scene, root, squeal, temp_dir};
+use common::{bundled_scene, root, run_ok, squeal, temp_dir};
 use std::path::Path;
 use std::process::Output;
 
@@ -119,6 +119,11 @@ fn bad_arguments_fail_before_any_work() {
         (
             vec!["stability", s, "--mu", "0:0.5:100", "-o", o_s],
             "ambiguous",
+        ),
+        // Issue 22: a negative friction sweep named one mode twice as the pair.
+        (
+            vec!["stability", s, "--mu=-1..1/201", "-o", o_s],
+            "friction -1 is negative",
         ),
         (
             vec!["stability", s, "-o", unwritable.to_str().unwrap()],
@@ -286,5 +291,269 @@ fn mesh_info_lists_what_a_scene_selects() {
         "{}",
         stderr(&o)
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 22: a mistake in a mesh gives an error, never a plausible wrong mu0. A piston id
+/// mistyped in the PISTON set (the reader drops the member: 3 pistons, mu0 0.7018 instead of
+/// 0.4618 on these meshes) and an element naming an undefined node (the reader drops the
+/// element) are refused by `reduce` and by a scene's run, before any reduction, naming the
+/// file, the set or finding and what to do.
+#[test]
+fn mesh_mistakes_are_refused_not_analysed() {
+    let dir = temp_dir("trust", "mesh-mistakes");
+    let disc = copy_mesh(&dir, "disc_coarse.inp");
+    let text = std::fs::read_to_string(root().join("meshes/pad_coarse.inp")).unwrap();
+    let piston = dir.join("pad_piston.inp");
+    std::fs::write(
+        &piston,
+        text.replace(
+            "*NSET, NSET=PISTON\n34, 35, 36, 37",
+            "*NSET, NSET=PISTON\n34, 35, 36, 99937",
+        ),
+    )
+    .unwrap();
+    let element = dir.join("pad_element.inp");
+    std::fs::write(
+        &element,
+        text.replace(
+            "198, 157, 465, 437, 639, 984, 985, 986, 654, 988, 987",
+            "198, 999157, 465, 437, 639, 984, 985, 986, 654, 988, 987",
+        ),
+    )
+    .unwrap();
+    let d = disc.to_str().unwrap();
+    for (pad, says) in [
+        (
+            &piston,
+            "node set PISTON names 1 node id(s) the file never defines (99937)",
+        ),
+        (
+            &element,
+            "1 element(s) reference 1 node id(s) that are not defined (e.g. node 999157); they were left out (element ids 198)",
+        ),
+    ] {
+        let file = pad.file_name().unwrap().to_str().unwrap();
+        let rom = dir.join("b.rom");
+        let o = squeal(&[
+            "reduce",
+            d,
+            pad.to_str().unwrap(),
+            "-o",
+            rom.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains(&format!("{file}: {says}")),
+            "{}",
+            stderr(&o)
+        );
+        assert!(!rom.exists());
+        let scene = dir.join("scene.toml");
+        let bundled = bundled_scene("coarse");
+        let pad_line = bundled.lines().find(|l| l.starts_with("pad = ")).unwrap();
+        let text = bundled.replace(pad_line, &format!("pad = {:?}", pad.display().to_string()));
+        std::fs::write(&scene, text).unwrap();
+        let out = dir.join("out");
+        let t = std::time::Instant::now();
+        let o = squeal(&[
+            "stability",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains(file) && stderr(&o).contains(says),
+            "{}",
+            stderr(&o)
+        );
+        // Refused on reading, not after a reduction (over a second on these meshes).
+        assert!(t.elapsed().as_secs_f64() < 1.0);
+        assert!(!out.join("brake.rom").exists());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 22: a thread count far above the cores is refused (it would start that many
+/// threads); 0 is all cores. A mesh file's material no material has is an ERROR of `mesh
+/// info` (exit 4), not "no findings".
+#[test]
+fn thread_counts_and_file_materials_are_checked() {
+    let pad = root().join("meshes/pad_coarse.inp");
+    let p = pad.to_str().unwrap();
+    let o = squeal(&["--threads", "100000", "mesh", "info", p]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("100000 threads on"), "{}", stderr(&o));
+    let o = squeal(&["--threads", "0", "mesh", "info", p]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let dir = temp_dir("trust", "materials");
+    let text = std::fs::read_to_string(&pad).unwrap();
+    for (from, to, says) in [
+        (
+            "*ELASTIC\n2e+09, 0.25",
+            "*ELASTIC\n-2e+09, 0.25",
+            "not positive definite",
+        ),
+        (
+            "*ELASTIC\n2e+09, 0.25",
+            "*ELASTIC\n2e+09, 0.5",
+            "not positive definite",
+        ),
+        (
+            "*DENSITY\n2500",
+            "*DENSITY\n0",
+            "density 0 kg/m^3 is not positive",
+        ),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let bad = dir.join("pad.inp");
+        std::fs::write(&bad, text.replacen(from, to, 1)).unwrap();
+        let o = squeal(&["mesh", "info", bad.to_str().unwrap()]);
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(o.status.code(), Some(4), "{to}: {out}");
+        assert!(
+            out.contains("ERROR: material FRICTION_LINING") && out.contains(says),
+            "{out}"
+        );
+        assert!(!out.contains("no findings"), "{out}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 22 on the coarse brake, one reduction for four runs: the damping used is said with
+/// where it comes from (the scene's line, or the default); a cached `.rom` with one flipped
+/// bit is rebuilt, saying so, and gives the same mu0 as before; a linear contact law gives
+/// l1 = 0, called degenerate (not subcritical), and `branch` says what to add.
+#[test]
+fn damping_is_said_damaged_models_rebuilt_and_degenerate_points_named() {
+    let dir = temp_dir("trust", "rom-damping");
+    let scene = dir.join("scene.toml");
+    let text = bundled_scene("coarse").replace("mu = \"0..1/201\"", "mu = \"0.40..0.50/11\"");
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("global_ratio"))
+        .unwrap()
+        + 1;
+    std::fs::write(&scene, &text).unwrap();
+    let (s, out) = (scene.to_str().unwrap(), dir.join("out"));
+    let o_s = out.to_str().unwrap();
+    let first = run_ok(&["stability", s, "-o", o_s, "--no-vtu"]);
+    let said = format!(
+        "damping: modal ratio 0.01 (1 %) on every mode ({s}:{line}), plus 0.001 and 0.001 on the pair"
+    );
+    assert!(first.contains(&said), "{first}");
+    let mu0 = |t: &str| {
+        t.lines()
+            .find(|l| l.starts_with("Hopf point mu0 = "))
+            .map(|l| l.split_whitespace().nth(4).unwrap().to_string())
+            .unwrap()
+    };
+    let summary = std::fs::read_to_string(out.join("stability/summary.json")).unwrap();
+    assert!(summary.contains("\"global_ratio_from\""), "{summary}");
+
+    // One bit of the arrays (past the header, in the middle of the file) flipped.
+    let rom = out.join("brake.rom");
+    let mut bytes = std::fs::read(&rom).unwrap();
+    let at = bytes.len() / 2;
+    bytes[at] ^= 0x04;
+    std::fs::write(&rom, &bytes).unwrap();
+    let default = text.replace("global_ratio = 0.01\n", "");
+    std::fs::write(&scene, &default).unwrap();
+    let o = squeal(&["stability", s, "-o", o_s, "--no-vtu"]);
+    let (second, log) = (String::from_utf8_lossy(&o.stdout), stderr(&o));
+    assert!(o.status.success(), "{log}");
+    let all = format!("{log}{second}");
+    assert!(
+        all.contains("damaged reduced-model file") && all.contains("reducing again"),
+        "{all}"
+    );
+    assert!(!all.contains("(up to date)"), "{all}");
+    assert_eq!(mu0(&second), mu0(&first), "{second}");
+    assert!(
+        second.contains(&format!(
+            "(the default: {s} gives no [damping] global_ratio)"
+        )),
+        "{second}"
+    );
+
+    // Eq (8) without its cubic term, stiffer than the curve's linear part so that the
+    // sweep finds a Hopf point (mu0 = 0.5461 at 4842 Hz over mu = 0..1/101).
+    let linear = text
+        .replace(
+            "compression_curve = {",
+            "k_linear_per_area = 5.0e10\nk_cubic_per_area = 0.0\n# compression_curve = {",
+        )
+        .replace("0.40..0.50/11", "0.50..0.60/11");
+    std::fs::write(&scene, &linear).unwrap();
+    let third = run_ok(&["stability", s, "-o", o_s, "--no-vtu"]);
+    assert!(third.contains("Hopf point is degenerate"), "{third}");
+    assert!(third.contains("add a cubic contact stiffness"), "{third}");
+    let o = squeal(&["branch", s, "-o", o_s]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("l1 = 0: the normal form is degenerate"),
+        "{}",
+        stderr(&o)
+    );
+
+    // A list of initial gaps that does not match the pairs: the error names the key's line.
+    let gaps = text.replace(
+        "normal = [0.0, 0.0, 1.0]",
+        "normal = [0.0, 0.0, 1.0]\ninitial_gap = [1.0e-6, 1.0e-6]",
+    );
+    let gap_line = gaps
+        .lines()
+        .position(|l| l.starts_with("initial_gap"))
+        .unwrap()
+        + 1;
+    std::fs::write(&scene, &gaps).unwrap();
+    let o = squeal(&["stability", s, "-o", o_s, "--no-vtu"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let says = format!(
+        "{s}:{gap_line}: contact.initial_gap: 2 initial gaps are given for 9 contact pairs"
+    );
+    assert!(stderr(&o).contains(&says), "{}", stderr(&o));
+
+    // A damping pair beyond the brake's 158 modes: the error names the key's line.
+    let pair = text.replace("pair = \"auto\"", "pair = [200, 201]");
+    let pair_line = pair
+        .lines()
+        .position(|l| l.starts_with("pair = ["))
+        .unwrap()
+        + 1;
+    std::fs::write(&scene, &pair).unwrap();
+    let o = squeal(&["stability", s, "-o", o_s, "--no-vtu"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(&format!("{s}:{pair_line}: damping.pair: ")),
+        "{}",
+        stderr(&o)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 22: a part left free says its restraints as the scene wrote them, not a Rust debug
+/// dump (`Restraint { nodes: Set(...) }`). The disc clamped axially only turns and slides
+/// in its plane.
+#[test]
+fn a_free_part_names_its_restraints_as_written() {
+    let dir = temp_dir("trust", "free-part");
+    let scene = dir.join("scene.toml");
+    let text = bundled_scene("coarse") + "\n[sets.disc]\nclamp_hold = [\"axial\"]\n";
+    std::fs::write(&scene, text).unwrap();
+    let rom = dir.join("b.rom");
+    let o = squeal(&[
+        "reduce",
+        "--scene",
+        scene.to_str().unwrap(),
+        "-o",
+        rom.to_str().unwrap(),
+    ]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("K_II is singular"), "{e}");
+    assert!(e.contains("node set CLAMP held axial"), "{e}");
+    assert!(!e.contains("Restraint {") && !e.contains("Set("), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -48,13 +48,23 @@ pub enum Criticality {
     /// `l1 > 0`: an unstable cycle exists on the side where the equilibrium is stable; squeal
     /// can start there after a large enough disturbance.
     Subcritical,
+    /// `l1 = 0` (or not a number): the cubic normal form does not decide. A contact law
+    /// without a cubic term whose contact stays closed (a linear law, `k_nl = 0`) makes the
+    /// forces of eq (11) linear near the equilibrium, so `c1 = 0`; the cycles' side is then
+    /// set by higher orders than this analysis computes.
+    Degenerate,
 }
+
+/// What a degenerate Hopf point ([`Criticality::Degenerate`]) means and what to add, for
+/// messages.
+pub const DEGENERATE_HINT: &str = "l1 = 0: the normal form is degenerate and says nothing about the limit cycles (a linear contact law, k_nl = 0, gives this); add a cubic contact stiffness (k_cubic_per_area > 0, or a compression curve that stiffens with closure) to get a branch of limit cycles";
 
 impl std::fmt::Display for Criticality {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
             Criticality::Supercritical => "supercritical",
             Criticality::Subcritical => "subcritical",
+            Criticality::Degenerate => "degenerate",
         })
     }
 }
@@ -80,12 +90,15 @@ pub struct NormalForm {
 
 impl NormalForm {
     /// Super- or subcritical (from the sign of `l1` and of `σ'`: the side of μ0 where the
-    /// cycle exists against the side where the equilibrium is unstable).
+    /// cycle exists against the side where the equilibrium is unstable); degenerate when
+    /// `l1` is zero or not a number.
     pub fn criticality(&self) -> Criticality {
         if self.l1 < 0.0 {
             Criticality::Supercritical
-        } else {
+        } else if self.l1 > 0.0 {
             Criticality::Subcritical
+        } else {
+            Criticality::Degenerate
         }
     }
 

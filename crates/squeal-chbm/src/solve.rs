@@ -60,7 +60,9 @@ pub enum ChbmError {
     #[error("no initial amplitude to try")]
     NoAmplitudes,
     /// The normal form has no cycle on either side of μ0 (its `Re c1` or `dRe λ/dμ` is zero).
-    #[error("the Hopf point's normal form gives no branch of limit cycles")]
+    #[error(
+        "the Hopf point's normal form gives no branch of limit cycles (Re c1 or dRe(lambda)/dmu is zero; a linear contact law, k_nl = 0, gives Re c1 = 0: add a cubic contact stiffness)"
+    )]
     NoBranch,
     /// The first cycle of a branch, near the Hopf point, could not be converged.
     #[error(

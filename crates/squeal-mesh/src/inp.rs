@@ -102,7 +102,7 @@ pub struct FileSystem;
 
 impl IncludeResolver for FileSystem {
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
-        std::fs::read(path)
+        crate::file::read_limited(path)
     }
 }
 
@@ -122,10 +122,7 @@ impl IncludeResolver for NoIncludes {
 /// Reads an Abaqus / CalculiX `.inp` file and the files it includes: a mesh file, so a file
 /// without C3D10 elements is an error (see [`crate`]).
 pub fn read(path: &Path) -> Result<ReadMesh, MeshError> {
-    let bytes = std::fs::read(path).map_err(|error| MeshError::Io {
-        file: path.to_path_buf(),
-        error,
-    })?;
+    let bytes = crate::file::read_bytes(path)?;
     crate::require_tet10(parse(&bytes, path, &FileSystem)?)
 }
 

@@ -28,6 +28,7 @@
 
 pub mod builder;
 pub mod error;
+pub mod file;
 pub mod generate;
 pub mod inp;
 pub mod model;

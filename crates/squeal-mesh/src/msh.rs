@@ -68,10 +68,7 @@ use types::{ElementType, TET10};
 /// Reads a Gmsh `.msh` file (MSH 2.2 or 4.1, ASCII or binary): a mesh file, so a file without
 /// 10-node tetrahedra is an error (see [`crate`]).
 pub fn read(path: &Path) -> Result<ReadMesh, MeshError> {
-    let bytes = std::fs::read(path).map_err(|error| MeshError::Io {
-        file: path.to_path_buf(),
-        error,
-    })?;
+    let bytes = crate::file::read_bytes(path)?;
     crate::require_tet10(parse(&bytes, path)?)
 }
 

@@ -9,11 +9,11 @@
 //! friction with a stable cycle, normally the fold μ_fold. Between μ_fold and μ0 the unstable
 //! cycles of the branch are the threshold between the two.
 
-use crate::error::{Result, json_text};
+use crate::error::{PipelineError, Result, json_text};
 use crate::model::{Log, Model};
 use crate::stability;
 use squeal_brake::analysis::LinearStability;
-use squeal_brake::criticality::NormalForm;
+use squeal_brake::criticality::{Criticality, DEGENERATE_HINT, NormalForm};
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::bifurcation::{
     Bifurcation, BifurcationKind, BranchWithHill, bifurcations, cycle_of,
@@ -142,6 +142,9 @@ pub fn analyse(
     let Some(nf) = stability::normal_form(m, st)? else {
         return Ok(None);
     };
+    if nf.criticality() == Criticality::Degenerate {
+        return Err(PipelineError::input("the Hopf point", DEGENERATE_HINT));
+    }
     let mb = ModalBrake::new(&m.brake, &st.reference, nf.mu0);
     let BranchWithHill {
         branch,
@@ -195,10 +198,11 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
         mu0,
         a.normal_form.omega0 / std::f64::consts::TAU,
         a.normal_form.l1,
-        if a.normal_form.l1 > 0.0 {
-            "subcritical (the cycles born at mu0 exist below it and are unstable there)"
-        } else {
-            "supercritical (small stable cycles grow from mu0)"
+        match a.normal_form.criticality() {
+            Criticality::Subcritical =>
+                "subcritical (the cycles born at mu0 exist below it and are unstable there)",
+            Criticality::Supercritical => "supercritical (small stable cycles grow from mu0)",
+            Criticality::Degenerate => DEGENERATE_HINT,
         }
     );
     let failed = a.floquet.iter().filter(|f| f.is_err()).count();
@@ -428,7 +432,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
             "mu0": a.mu0(),
             "frequency_hz": a.normal_form.omega0 / std::f64::consts::TAU,
             "first_lyapunov_coefficient": a.normal_form.l1,
-            "criticality": if a.normal_form.l1 > 0.0 { "subcritical" } else { "supercritical" },
+            "criticality": a.normal_form.criticality().to_string(),
         },
         "squeal_range": {
             "spontaneous_from_mu": r.spontaneous_from,

@@ -77,6 +77,10 @@ pub enum PipelineError {
     },
     #[error("{what}: {message}")]
     Input { what: &'static str, message: String },
+    /// A mesh the analysis refuses: what `squeal mesh info` calls an ERROR, or a set the
+    /// reduction uses naming ids the file never defined.
+    #[error("{}: {message}", path.display())]
+    MeshFindings { path: PathBuf, message: String },
     /// An error with what was being done when it happened (the inner error is a field, not a
     /// `source()`: its text is in this message already, and a `{:#}` chain would repeat it).
     #[error("{context}: {error}")]

@@ -148,9 +148,11 @@ impl<'a> Pipeline<'a> {
             return Ok(s);
         }
         let m = self.model()?;
-        let st = self.timed("stability sweep", || {
-            stability::analyse_with(m, &self.mus, self.progress)
-        })?;
+        let st = self
+            .timed("stability sweep", || {
+                stability::analyse_with(m, &self.mus, self.progress)
+            })
+            .map_err(|e| model::at_damping_key(&self.scene, e))?;
         Ok(self.stability.get_or_init(|| st))
     }
 

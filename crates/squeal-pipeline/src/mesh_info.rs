@@ -84,11 +84,15 @@ fn summary(
             report.worst_jacobian_ratio
         ),
     );
-    if !report.has_errors() {
+    let bad_materials = material_errors(m);
+    if !report.has_errors() && bad_materials.is_empty() {
         fe(s, m, overrides)?;
     }
-    if report.findings.is_empty() {
+    if report.findings.is_empty() && bad_materials.is_empty() {
         line(s, format_args!("  quality   no findings"));
+    }
+    for e in &bad_materials {
+        line(s, format_args!("  ERROR: {e}"));
     }
     for f in &report.findings {
         let tag = match f.severity {
@@ -103,7 +107,44 @@ fn summary(
             );
         }
     }
-    Ok(report.has_errors())
+    Ok(report.has_errors() || !bad_materials.is_empty())
+}
+
+/// The file's materials whose constants no material has (E <= 0, nu outside (-1, 0.5),
+/// density <= 0, a value not finite; what the finite-element stage refuses), one line each.
+fn material_errors(m: &Mesh) -> Vec<String> {
+    m.materials
+        .iter()
+        .filter_map(|(name, mat)| {
+            let material = ElasticMaterial::from_mesh_material(mat).ok()?;
+            let e = material.elasticity().err()?;
+            Some(format!(
+                "material {name} ({}): {e}",
+                describe_file_material(mat)
+            ))
+        })
+        .collect()
+}
+
+/// A file material's constants as `materials` lists them.
+fn describe_file_material(mat: &squeal_mesh::Material) -> String {
+    let elastic = match mat.elastic {
+        Some(Elastic::Isotropic { young, poisson }) => format!("E = {young:e} Pa, nu = {poisson}"),
+        Some(Elastic::EngineeringConstants { e, nu, g }) => {
+            let list = |v: [f64; 3]| v.map(|x| x.to_string()).join(", ");
+            format!(
+                "E1,E2,E3 = {} Pa, nu12,nu13,nu23 = {}, G12,G13,G23 = {} Pa",
+                list(e),
+                list(nu),
+                list(g)
+            )
+        }
+        None => "no elastic constants".into(),
+    };
+    match mat.density {
+        Some(rho) => format!("{elastic}, rho = {rho} kg/m^3"),
+        None => elastic,
+    }
 }
 
 /// Degrees of freedom, nonzeros of K and M (free part, no restraints) and the mass. A

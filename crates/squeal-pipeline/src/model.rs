@@ -37,6 +37,9 @@ pub struct Model {
     pub pairs: Vec<Pairing>,
     pub params: BrakeParams,
     pub damping: DampingSpec,
+    /// Where the modal damping ratio comes from: `file:line` of `[damping] global_ratio`, or
+    /// that it is the default (the scene leaves it out).
+    pub damping_from: String,
     pub sweep: SweepOptions,
     /// Meshes of the parts, as files.
     pub disc_mesh: PathBuf,
@@ -269,6 +272,23 @@ pub fn damping_spec(scene: &Scene) -> Result<DampingSpec> {
     })
 }
 
+/// Where the scene's modal damping ratio comes from, for outputs: `file:line` of `[damping]
+/// global_ratio`, or the default's note.
+pub fn damping_from(scene: &Scene) -> String {
+    let g = &scene.file.damping.global_ratio;
+    if g.span() == (0..0) {
+        return format!(
+            "the default: {} gives no [damping] global_ratio",
+            scene.path.display()
+        );
+    }
+    let line = scene.text[..g.span().start.min(scene.text.len())]
+        .matches('\n')
+        .count()
+        + 1;
+    format!("{}:{line}", scene.path.display())
+}
+
 /// The highest frequency the reduced model speaks for: the lower of the parts' highest kept
 /// fixed-interface frequencies.
 pub fn valid_max_hz(rom: &ReducedModel) -> f64 {
@@ -297,11 +317,12 @@ pub fn sweep_options(scene: &Scene, rom: &ReducedModel) -> SweepOptions {
 /// The brake of a scene on a reduced model.
 pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<Model> {
     let params = brake_params(scene)?;
-    let (brake, layout, pairs) = assemble(&rom, &params)?;
+    let (brake, layout, pairs) = assemble(&rom, &params).map_err(|e| at_scene_key(scene, e))?;
     let m = &scene.file.model;
     Ok(Model {
         sweep: sweep_options(scene, &rom),
         damping: damping_spec(scene)?,
+        damping_from: damping_from(scene),
         rom,
         rom_path,
         brake,
@@ -317,6 +338,36 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
         disc: disc_speed(scene)?,
         units: scene.units()?,
     })
+}
+
+/// A brake error that a scene key caused, at the key's file and line: the initial gaps'
+/// count (`[contact] initial_gap`) and a normal the mesh disagrees with (`[contact] normal`).
+fn at_scene_key(scene: &Scene, e: squeal_brake::BrakeError) -> PipelineError {
+    use squeal_brake::BrakeError;
+    let c = &scene.file.contact;
+    match (&e, &c.initial_gap, &c.normal) {
+        (BrakeError::GapCount { .. }, Some(v), _) => {
+            scene.error_at("contact.initial_gap", v, &e).into()
+        }
+        (BrakeError::NormalDisagrees { .. }, _, Some(v)) => {
+            scene.error_at("contact.normal", v, &e).into()
+        }
+        _ => e.into(),
+    }
+}
+
+/// A stability error that `[damping] pair` caused (modes the brake does not have), at the
+/// key's file and line.
+pub fn at_damping_key(scene: &Scene, e: PipelineError) -> PipelineError {
+    use squeal_brake::BrakeError;
+    match e {
+        PipelineError::Brake(
+            b @ (BrakeError::ModeOutOfRange { .. } | BrakeError::PairOutOfRange { .. }),
+        ) => scene
+            .error_at("damping.pair", &scene.file.damping.pair, b)
+            .into(),
+        other => other,
+    }
 }
 
 /// The reduced model (cached) and the brake of a scene.

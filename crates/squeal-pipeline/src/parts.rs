@@ -20,7 +20,7 @@ use squeal_mesh::Mesh;
 use squeal_mesh::select::{self, Face, Rule, Selection, Surface};
 use squeal_mesh::units::UnitSystem;
 use squeal_reduce::brake::PartInput;
-use squeal_reduce::brake::{BrakeInputs, LoadedPart, load_part_in};
+use squeal_reduce::brake::{BrakeInputs, LoadedPart, load_part_in, refuse_shortened_set};
 use squeal_reduce::rom::ContactSurface;
 use squeal_scene::Scene;
 use squeal_scene::sets::Hold;
@@ -384,6 +384,9 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
     {
         log(&format!("warning: {w}"));
     }
+    for w in scene.plausibility_warnings()? {
+        log(&format!("warning: {w}"));
+    }
     let sets = {
         let mut meshes: Vec<(&str, &mut Mesh)> = pads
             .iter_mut()
@@ -404,6 +407,7 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
         .chain(pads.iter().map(|(n, p)| (n.as_str(), &p.mesh)))
         .collect();
     check_materials(scene, &materials, &all)?;
+    refuse_shortened_sets(&sets, &disc, &pads)?;
     Ok(SceneParts {
         disc,
         pads,
@@ -411,6 +415,29 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
         sets,
         materials,
     })
+}
+
+/// Refuses a node set of a mesh that the reduction uses (a clamp, contact face, pistons or
+/// abutments chosen by name) when the file names in it a node it never defines: checked here,
+/// before the cached model's freshness, so that a model reduced from such a set is not
+/// called up to date. (A mesh with errors is refused on reading, [`load_part_in`].)
+fn refuse_shortened_sets(
+    sets: &[ChosenSet],
+    disc: &LoadedPart,
+    pads: &[(String, LoadedPart)],
+) -> Result<()> {
+    for c in sets.iter().filter(|c| !c.by_geometry) {
+        let part = std::iter::once(("disc", disc))
+            .chain(pads.iter().map(|(n, p)| (n.as_str(), p)))
+            .find(|p| p.0 == c.part);
+        if let Some((_, part)) = part {
+            refuse_shortened_set(&part.mesh, &c.name).map_err(|e| PipelineError::MeshFindings {
+                path: part.info.path.clone().into(),
+                message: format!("{}: {e}", c.key),
+            })?;
+        }
+    }
+    Ok(())
 }
 
 /// The direction from the disc into the pad that the geometric defaults use: `[contact]

@@ -111,6 +111,9 @@ pub fn criticality_text(m: &Model, st: &Stability, nf: &NormalForm) -> String {
             (nf.omega_at(nf.mu0 * 1.001) - nf.omega0) / std::f64::consts::TAU
         );
     }
+    if nf.criticality() == Criticality::Degenerate {
+        let _ = writeln!(out, "  ({})", squeal_brake::criticality::DEGENERATE_HINT);
+    }
     if nf.criticality() == Criticality::Subcritical {
         let _ = writeln!(
             out,
@@ -355,6 +358,7 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
     let mut out = String::new();
     let sw = &st.sweep;
     out.push_str(&equilibrium_text(s, &st.reference.equilibrium));
+    let _ = writeln!(out, "{}", damping_text(s, st));
     let _ = writeln!(
         out,
         "sweep: {} friction values {}..{} in {:.2} s; valid band up to {:.0} Hz{}",
@@ -489,6 +493,28 @@ pub fn other_instabilities(st: &Stability) -> Vec<squeal_brake::sweep::Crossing>
     out
 }
 
+/// The damping of eqs (12)-(13) the sweep used and where its ratio comes from (issue 22: a
+/// default is said, not applied silently).
+pub fn damping_text(s: &Model, st: &Stability) -> String {
+    let d = &s.damping;
+    let pair = match st.pair {
+        Some((a, b)) if d.pair_ratios.iter().any(|r| *r != 0.0) => format!(
+            ", plus {} and {} on the pair (modes {} and {})",
+            d.pair_ratios[0],
+            d.pair_ratios[1],
+            a + 1,
+            b + 1
+        ),
+        _ => String::new(),
+    };
+    format!(
+        "damping: modal ratio {} ({} %) on every mode ({}){pair}",
+        d.global_ratio,
+        d.global_ratio * 100.0,
+        s.damping_from
+    )
+}
+
 /// `branches.csv`, `stability.csv`, `equilibrium.csv` (the frictionless equilibrium pair by
 /// pair) and `summary.json`.
 pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
@@ -554,6 +580,12 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
         "bracket": sw.hopf.as_ref().map(|h| [h.bracket.0, h.bracket.1]),
         "refinements": sw.hopf.as_ref().map(|h| h.evaluations),
         "pair_modes_1based": st.pair.map(|(a, b)| [a + 1, b + 1]),
+        "damping": {
+            "global_ratio": s.damping.global_ratio,
+            "global_ratio_from": s.damping_from,
+            "pair_ratios": s.damping.pair_ratios,
+            "text": damping_text(s, st),
+        },
         "crossings": sw.crossings.iter().map(|c| serde_json::json!({
             "branch": c.branch, "mu_lo": c.mu_lo, "mu_hi": c.mu_hi, "frequency_hz": c.frequency_hz, "in_band": c.in_band
         })).collect::<Vec<_>>(),

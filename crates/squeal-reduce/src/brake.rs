@@ -497,10 +497,15 @@ pub struct LoadedPart {
     pub read_time: Duration,
 }
 
-/// Reads a mesh file and hashes it.
+/// Reads a mesh file and hashes it; a mesh with errors ([`refuse_mesh_errors`]) is refused,
+/// naming the file.
 pub fn load_part(path: &Path) -> Result<LoadedPart, ReduceError> {
     let t = Instant::now();
     let read = squeal_mesh::read(path)?;
+    refuse_mesh_errors(&read.mesh).map_err(|e| ReduceError::InMesh {
+        path: path.to_path_buf(),
+        error: Box::new(e),
+    })?;
     let sha256 = sha256_file(path)?;
     let mesh = read.mesh;
     let info = MeshInfo {
@@ -514,6 +519,50 @@ pub fn load_part(path: &Path) -> Result<LoadedPart, ReduceError> {
         warnings: read.warnings.iter().map(|w| w.to_string()).collect(),
         mesh,
         read_time: t.elapsed(),
+    })
+}
+
+/// Refuses a mesh with what [`squeal_mesh::quality::check`] reports as an error (inverted
+/// elements, elements naming a node the file never defines): what `squeal mesh info` calls
+/// an ERROR, the reduction refuses.
+pub fn refuse_mesh_errors(mesh: &Mesh) -> Result<(), ReduceError> {
+    use squeal_mesh::quality::{QualityOptions, check};
+    let report = check(mesh, &QualityOptions::default());
+    let Some(first) = report.errors().next() else {
+        return Ok(());
+    };
+    let mut ids: Vec<String> = first.ids.iter().take(12).map(u64::to_string).collect();
+    if first.ids.len() > 12 {
+        ids.push("...".into());
+    }
+    Err(ReduceError::MeshErrors {
+        finding: first.message.clone(),
+        ids: ids.join(" "),
+    })
+}
+
+/// Refuses node set `set` of `mesh` when the file names in it nodes it never defines (the
+/// reader drops such members).
+pub fn refuse_shortened_set(mesh: &Mesh, set: &str) -> Result<(), ReduceError> {
+    let missing: Vec<String> = mesh
+        .dangling
+        .iter()
+        .filter_map(|d| match d {
+            squeal_mesh::Dangling::NodeSetMember { set: s, node }
+                if s.eq_ignore_ascii_case(set) =>
+            {
+                Some(node.to_string())
+            }
+            _ => None,
+        })
+        .collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    Err(ReduceError::ShortenedSet {
+        set: set.into(),
+        count: missing.len(),
+        ids: missing.join(" "),
     })
 }
 
@@ -790,6 +839,7 @@ pub fn check_sets(
         if nodes.is_empty() {
             return Err(InterfaceError::EmptySet(s.into()).into());
         }
+        refuse_shortened_set(mesh, s)?;
         Ok(nodes)
     };
     let surfaces = input.surfaces();

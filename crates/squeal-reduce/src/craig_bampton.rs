@@ -88,6 +88,31 @@ pub enum ReduceError {
     /// The inputs of the brake's reduction are inconsistent or out of range.
     #[error("invalid option: {0}")]
     Options(String),
+    /// The mesh has what `squeal mesh info` calls an ERROR (inverted elements, elements
+    /// naming a node the file never defines, which the reader leaves out): reduced as read,
+    /// the part would be another part.
+    #[error(
+        "{finding} (element ids {ids}): the reduction refuses a mesh with errors; correct the file (`squeal mesh info` lists every finding)"
+    )]
+    MeshErrors {
+        /// The first error finding's message.
+        finding: String,
+        /// Its first element ids, blank-separated.
+        ids: String,
+    },
+    /// A node set the reduction uses names nodes the file never defines: the reader drops
+    /// them, and a mistyped piston id would silently leave a piston out.
+    #[error(
+        "node set {set} names {count} node id(s) the file never defines ({ids}): without them it is another set; correct the ids in the mesh"
+    )]
+    ShortenedSet {
+        /// The set's name.
+        set: String,
+        /// How many members are missing.
+        count: usize,
+        /// The missing ids, blank-separated.
+        ids: String,
+    },
     /// The disc and the pad have different numbers of contact points, so they cannot be
     /// paired one to one.
     #[error(
@@ -552,7 +577,7 @@ pub fn reduce_part(
     let factor = SparseCholesky::factorize_with(k_vv.as_ref(), &chol).map_err(|e| match e {
         EigError::NotPositiveDefinite { .. } => ReduceError::NotHeld {
             part: part.clone(),
-            restraints: describe(&spec.restraints),
+            restraints: describe(spec),
         },
         other => eigen(other),
     })?;
@@ -907,15 +932,61 @@ fn try_zeros(rows: usize, cols: usize, part: &str) -> Result<Mat<f64>, ReduceErr
     Ok(Mat::zeros(rows, cols))
 }
 
-fn describe(restraints: &[Restraint]) -> String {
-    if restraints.is_empty() {
-        return "none".into();
-    }
-    restraints
+/// A part's restraints as the scene or the options give them (`node set CLAMP held along x,
+/// y, z`, `node set ABUTMENT held axial, radial`), and the global translations none of the
+/// set restraints holds when there are no skew or axis restraints (those the part is then
+/// free to move along).
+fn describe(spec: &PartSpec) -> String {
+    use squeal_fe::NodeSelection;
+    let axes = |d: &[bool; 3]| -> Vec<String> {
+        (0..3)
+            .filter(|&i| d[i])
+            .map(|i| AXES[i].to_string())
+            .collect()
+    };
+    let mut out: Vec<String> = spec
+        .restraints
         .iter()
-        .map(|r| format!("{r:?}"))
-        .collect::<Vec<_>>()
-        .join(", ")
+        .map(|r| {
+            let nodes = match &r.nodes {
+                NodeSelection::Set(s) => format!("node set {s}"),
+                NodeSelection::Indices(v) => format!("{} nodes given by index", v.len()),
+            };
+            format!("{nodes} held along {}", axes(&r.directions).join(", "))
+        })
+        .collect();
+    for (set, dirs) in &spec.skew_restraints {
+        out.push(format!(
+            "node set {set} held along {} direction(s)",
+            dirs.len()
+        ));
+    }
+    for (set, dirs) in &spec.axis_restraints {
+        let names: Vec<&str> = dirs
+            .iter()
+            .map(|d| match d {
+                AxisDirection::Axial => "axial",
+                AxisDirection::Radial => "radial",
+                AxisDirection::Tangential => "tangential",
+            })
+            .collect();
+        out.push(format!("node set {set} held {}", names.join(", ")));
+    }
+    if out.is_empty() {
+        return "none: the part can move freely".into();
+    }
+    let mut held = [false; 3];
+    for r in &spec.restraints {
+        (0..3).for_each(|d| held[d] |= r.directions[d]);
+    }
+    let free = axes(&held.map(|h| !h));
+    if spec.skew_restraints.is_empty() && spec.axis_restraints.is_empty() && !free.is_empty() {
+        out.push(format!(
+            "nothing holds translation along {}",
+            free.join(", ")
+        ));
+    }
+    out.join("; ")
 }
 
 /// Boundary points and rows: contact points (3 rows each), then piston nodes (1 row each).

@@ -51,6 +51,18 @@ pub enum RomError {
     /// The file could not be written (it is written atomically, through a temporary file).
     #[error(transparent)]
     Write(#[from] squeal_io::IoError),
+    /// The arrays do not match the checksum the file records, or hold a value that is not
+    /// finite: the file changed after it was written.
+    #[error(
+        "{}: damaged reduced-model file: {message} (a scene's run reduces the meshes again; else delete the file and reduce again)",
+        path.display()
+    )]
+    Damaged {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
     /// The file is not a reduced-model file, or is truncated or damaged.
     #[error("{}: not a reduced-model file: {message}", path.display())]
     Format {
@@ -338,6 +350,12 @@ pub struct RomHeader {
     pub tool_version: String,
     /// The parts, in the order their dofs are stacked in the brake.
     pub parts: Vec<PartInfo>,
+    /// CRC-32 (IEEE, as zlib's `crc32`) of the arrays' bytes, everything after the JSON
+    /// table, as 8 lowercase hex digits: a reader refuses a file whose arrays changed after
+    /// writing (a flipped bit). Absent from files written before it was added, which read
+    /// without the check.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arrays_crc32: Option<String>,
 }
 
 /// The basis `[T_C T_phi]` on the part's free dofs, with each row's node id and direction.
@@ -421,21 +439,6 @@ impl ReducedModel {
     /// byte range, padded with spaces to a multiple of 8 bytes (what `safetensors::serialize`
     /// writes, bit for bit: tested).
     fn layout(&self) -> Result<(Vec<u8>, Vec<Named<'_>>), RomError> {
-        let header = RomHeader {
-            format: FORMAT.into(),
-            version: VERSION,
-            tool_version: self.tool_version.clone(),
-            parts: self
-                .parts
-                .iter()
-                .map(|p| PartInfo {
-                    has_basis: p.basis.is_some(),
-                    ..p.info.clone()
-                })
-                .collect(),
-        };
-        let json =
-            serde_json::to_string(&header).map_err(|e| RomError::Serialize(e.to_string()))?;
         let mut arrays: Vec<Named> = Vec::new();
         for p in &self.parts {
             let name = &p.info.name;
@@ -450,6 +453,28 @@ impl ReducedModel {
         }
         // safetensors' order: by type, widest first, then by name.
         arrays.sort_by(|(a, x), (b, y)| y.dtype().cmp(&x.dtype()).then(a.cmp(b)));
+        // The checksum of the bytes the arrays will be written as, in this order.
+        let mut crc = CrcWriter(crc32fast::Hasher::new());
+        arrays
+            .iter()
+            .try_for_each(|(_, a)| a.write(&mut crc))
+            .map_err(|e| RomError::Serialize(e.to_string()))?;
+        let header = RomHeader {
+            format: FORMAT.into(),
+            version: VERSION,
+            tool_version: self.tool_version.clone(),
+            parts: self
+                .parts
+                .iter()
+                .map(|p| PartInfo {
+                    has_basis: p.basis.is_some(),
+                    ..p.info.clone()
+                })
+                .collect(),
+            arrays_crc32: Some(format!("{:08x}", crc.0.finalize())),
+        };
+        let json =
+            serde_json::to_string(&header).map_err(|e| RomError::Serialize(e.to_string()))?;
         let mut offset = 0;
         let infos = arrays
             .iter()
@@ -490,13 +515,26 @@ impl ReducedModel {
             message,
         };
         let st = SafeTensors::deserialize(bytes).map_err(|e| bad(format!("{e}")))?;
-        let (_, meta) = SafeTensors::read_metadata(bytes).map_err(|e| bad(format!("{e}")))?;
+        let (n, meta) = SafeTensors::read_metadata(bytes).map_err(|e| bad(format!("{e}")))?;
         let json = meta
             .metadata()
             .as_ref()
             .and_then(|m| m.get("squeal"))
             .ok_or_else(|| bad("no squeal header in __metadata__".into()))?;
         let header = parse_header(json, path)?;
+        let damaged = |message: String| RomError::Damaged {
+            path: path.to_path_buf(),
+            message,
+        };
+        if let Some(recorded) = &header.arrays_crc32 {
+            let data = bytes.get(8 + n..).unwrap_or_default();
+            let found = format!("{:08x}", crc32fast::hash(data));
+            if !found.eq_ignore_ascii_case(recorded) {
+                return Err(damaged(format!(
+                    "the arrays' CRC-32 is {found}, the file records {recorded}"
+                )));
+            }
+        }
         let mut parts = Vec::with_capacity(header.parts.len());
         for info in header.parts {
             let n = info.dofs.len();
@@ -522,6 +560,19 @@ impl ReducedModel {
             } else {
                 None
             };
+            for (what, a) in [("K", &k), ("M", &m)]
+                .into_iter()
+                .chain(basis.as_ref().map(|b| ("basis", &b.values)))
+            {
+                if let Some((i, j)) = first_non_finite(a) {
+                    return Err(damaged(format!(
+                        "array {name}.{what} holds {} at row {}, column {}",
+                        a[(i, j)],
+                        i + 1,
+                        j + 1
+                    )));
+                }
+            }
             let info = PartInfo {
                 has_basis: basis.is_some(),
                 ..info
@@ -662,6 +713,28 @@ impl Array<'_> {
             }
             w.write_all(&buf)?;
         }
+        Ok(())
+    }
+}
+
+/// The position of a matrix's first value that is not finite (NaN or infinite), column by
+/// column.
+fn first_non_finite(a: &Mat<f64>) -> Option<(usize, usize)> {
+    (0..a.ncols())
+        .flat_map(|j| (0..a.nrows()).map(move |i| (i, j)))
+        .find(|&(i, j)| !a[(i, j)].is_finite())
+}
+
+/// Feeds what is written to a CRC-32.
+struct CrcWriter(crc32fast::Hasher);
+
+impl Write for CrcWriter {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0.update(buf);
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
         Ok(())
     }
 }
@@ -838,6 +911,46 @@ mod tests {
         assert_eq!(std::fs::read(&path).unwrap(), bytes);
         std::fs::remove_dir_all(&dir).ok();
         assert_eq!(ReducedModel::from_bytes(&bytes, &path).unwrap(), model);
+    }
+
+    /// Issue 22: one flipped bit in the arrays, or a NaN written with a matching checksum,
+    /// is refused as a damaged file naming it; a file without a checksum (written before
+    /// it was added) still reads.
+    #[test]
+    fn damaged_arrays_are_refused_and_files_without_a_checksum_read() {
+        let model = sample();
+        let bytes = model.to_bytes().unwrap();
+        let n = u64::from_le_bytes(bytes[..8].try_into().unwrap()) as usize;
+        let mut flipped = bytes.clone();
+        flipped[8 + n + 3] ^= 0x10;
+        let e = ReducedModel::from_bytes(&flipped, Path::new("b.rom")).unwrap_err();
+        assert!(matches!(e, RomError::Damaged { .. }), "{e}");
+        assert!(e.to_string().starts_with("b.rom: damaged"), "{e}");
+        let mut nan = model.clone();
+        nan.parts[0].k[(1, 2)] = f64::NAN;
+        let e = ReducedModel::from_bytes(&nan.to_bytes().unwrap(), Path::new("n.rom"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("array pad.K holds NaN at row 2, column 3"),
+            "{e}"
+        );
+        // The same file with the checksum taken out of its header: the layout of a file of
+        // an earlier squeal.
+        let json: serde_json::Value = serde_json::from_slice(&bytes[8..8 + n]).unwrap();
+        let mut squeal: serde_json::Value =
+            serde_json::from_str(json["__metadata__"]["squeal"].as_str().unwrap()).unwrap();
+        assert!(squeal["arrays_crc32"].is_string());
+        squeal.as_object_mut().unwrap().remove("arrays_crc32");
+        let mut table = json.clone();
+        table["__metadata__"]["squeal"] = squeal.to_string().into();
+        let mut text = serde_json::to_vec(&table).unwrap();
+        text.resize(text.len().next_multiple_of(8), b' ');
+        let mut old = (text.len() as u64).to_le_bytes().to_vec();
+        old.extend(text);
+        old.extend(&bytes[8 + n..]);
+        let back = ReducedModel::from_bytes(&old, Path::new("old.rom")).unwrap();
+        assert_eq!(back, model);
     }
 
     #[test]

@@ -24,7 +24,12 @@
 //! `axis_origin`, the axis along `contact.normal`, no sense) still reads; a scene with both is
 //! refused.
 
+mod checks;
 pub mod sets;
+
+pub use checks::{
+    HIGH_DAMPING_RATIO, HIGH_LINE_PRESSURE_BAR, HIGH_MU, LARGE_GAP_M, MAX_LINE_PRESSURE_BAR,
+};
 
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -437,7 +442,8 @@ fn location(path: &Path, text: &str, at: Option<usize>) -> String {
 impl Scene {
     /// Reads and validates a scene file.
     pub fn read(path: &Path) -> Result<Scene> {
-        let bytes = std::fs::read(path).map_err(|error| SceneError::Read {
+        // A regular file of bounded size: not an endless stream such as /dev/zero.
+        let bytes = squeal_mesh::file::read_limited(path).map_err(|error| SceneError::Read {
             path: path.to_path_buf(),
             error,
         })?;
@@ -683,6 +689,7 @@ impl Scene {
             }
         }
         self.mu_values()?;
+        self.check_plausible()?;
         self.cycle()?;
         self.disc_angular_speed()?;
         self.units()?;
@@ -1059,9 +1066,10 @@ impl Scene {
         if let (Some(kl), Some(kn)) = (&c.k_linear_per_area, &c.k_cubic_per_area) {
             let u = self.units()?;
             let (kl_si, kn_si) = (u.stress() / u.length, u.stress() / u.length.powi(3));
+            // `+ 0.0` turns a -0 into 0: a linear law either way, without a minus sign.
             return Ok((
                 kl.get_ref() * kl_si * scale,
-                kn.get_ref() * kn_si * scale,
+                kn.get_ref() * kn_si * scale + 0.0,
                 None,
             ));
         }
@@ -1078,6 +1086,7 @@ impl Scene {
                 "needs at least two (pressure, closure) points, as many of each",
             ));
         }
+        self.check_curve(curve)?;
         let fit = fit_cubic(
             &d.iter().map(|x| x * 1e-6).collect::<Vec<_>>(),
             &p.iter().map(|x| x * 1e6).collect::<Vec<_>>(),
@@ -1099,7 +1108,7 @@ impl Scene {
                 ),
             ));
         }
-        Ok((fit.linear * scale, fit.cubic * scale, Some(fit)))
+        Ok((fit.linear * scale, fit.cubic * scale + 0.0, Some(fit)))
     }
 
     /// The pair choice (0-based modes).
@@ -1138,6 +1147,8 @@ impl Scene {
                     if m.len() != a.len() || m.is_empty() || m.windows(2).any(|w| w[1] <= w[0]) {
                         return Err(self.error_at("stability.mu", v, "must be ascending numbers"));
                     }
+                    checks::non_negative_mus(&m)
+                        .map_err(|e| self.error_at("stability.mu", v, e))?;
                     Ok(m)
                 }
                 _ => Err(self.error_at(
@@ -1196,7 +1207,8 @@ pub fn fit_cubic(d: &[f64], p: &[f64]) -> Option<Fit> {
 }
 
 /// `"start..end/count"` → `count` evenly spaced values from `start` to `end`, both included
-/// (MATLAB's `linspace(start, end, count)`), e.g. `0..1/201`.
+/// (MATLAB's `linspace(start, end, count)`), e.g. `0..1/201`: friction coefficients, so a
+/// negative start is refused.
 ///
 /// The colon form `a:b:c` is refused with a message: it reads as `start:end:count` here but as
 /// `start:step:end` in MATLAB, so `0:0.5:100` would silently sweep 0–0.5.
@@ -1219,6 +1231,7 @@ pub fn parse_range(s: &str) -> std::result::Result<Vec<f64>, String> {
     if b <= a {
         return Err(format!("'{s}': start must be below end"));
     }
+    checks::non_negative_mus(&[a]).map_err(|e| format!("'{s}': {e}"))?;
     if !(2..=100_000).contains(&n) {
         return Err(format!("'{s}': count must be between 2 and 100000"));
     }

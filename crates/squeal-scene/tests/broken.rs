@@ -87,3 +87,65 @@ fn print_errors() {
         println!("{}: {:?}", f.display(), first_error(&f));
     }
 }
+
+/// Values possible but far from a brake read with a warning at their line (issue 22): the
+/// scene is `damping.toml` with its fault removed and one implausible value.
+#[test]
+fn implausible_values_warn_with_file_line_and_key() {
+    let path = data("damping.toml");
+    let base = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("global_ratio = -0.01", "global_ratio = 0.01");
+    let clean = Scene::parse(&path, base.clone()).unwrap();
+    assert_eq!(clean.plausibility_warnings().unwrap(), Vec::<String>::new());
+    for (old, new, line, says) in [
+        (
+            "line_pressure_bar = 11.94",
+            "line_pressure_bar = 400",
+            15,
+            "piston.line_pressure_bar: 400 bar is above",
+        ),
+        (
+            "global_ratio = 0.01",
+            "global_ratio = 0.5",
+            18,
+            "damping.global_ratio: 0.5 is 50 % modal damping",
+        ),
+        (
+            "normal = [0.0, 0.0, 1.0]",
+            "normal = [0.0, 0.0, 1.0]\ninitial_gap = 1.0",
+            9,
+            "contact.initial_gap: a gap of 1e0 m",
+        ),
+        (
+            "mu = \"0..1/201\"",
+            "mu = \"0..3/201\"",
+            22,
+            "stability.mu: the sweep reaches mu = 3",
+        ),
+    ] {
+        let text = base.replace(old, new);
+        let s = Scene::parse(&path, text).unwrap();
+        let w = s.plausibility_warnings().unwrap();
+        assert_eq!(w.len(), 1, "{new}: {w:?}");
+        let at = format!("{}:{line}: ", path.display());
+        assert!(w[0].starts_with(&at) && w[0].contains(says), "{new}: {w:?}");
+    }
+}
+
+/// A cubic stiffness of -0 is a linear law: it reaches the model as +0 (no minus sign that
+/// the positivity check let through).
+#[test]
+fn a_cubic_stiffness_of_minus_zero_is_zero() {
+    let path = data("damping.toml");
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("global_ratio = -0.01", "global_ratio = 0.01")
+        .replace(
+            "compression_curve = { closure_um = [5, 10, 15, 20, 25, 30, 35, 40], pressure_mpa = [0.065, 0.145, 0.255, 0.410, 0.625, 0.915, 1.295, 1.780] }",
+            "k_linear_per_area = 1.25e10\nk_cubic_per_area = -0.0",
+        );
+    let (kl, knl, _) = Scene::parse(&path, text).unwrap().stiffness().unwrap();
+    assert_eq!(kl, 1.25e10);
+    assert!(knl == 0.0 && knl.is_sign_positive(), "{knl}");
+}
