@@ -9,6 +9,7 @@
 //! MATLAB (`mmread`), SciPy (`scipy.io.mmread`) and Julia read.
 
 pub mod csv;
+pub mod folder;
 pub mod guard;
 pub mod host;
 pub mod mtx;
@@ -50,6 +51,17 @@ pub fn atomic_write<F>(path: &Path, fill: F) -> Result<(), IoError>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
+    write_replacing(path, fill, true)?;
+    folder::record_written(path);
+    Ok(())
+}
+
+/// [`atomic_write`] without telling the run folder ([`folder`]) about the file: for the
+/// folder's own manifest. `sync`: flush the file to the disk before the rename.
+pub(crate) fn write_replacing<F>(path: &Path, fill: F, sync: bool) -> Result<(), IoError>
+where
+    F: FnOnce(&mut dyn Write) -> io::Result<()>,
+{
     let wrap = |error| IoError::Write {
         path: path.to_path_buf(),
         error,
@@ -77,7 +89,9 @@ where
     let result = (|| {
         fill(&mut w)?;
         let file = w.into_inner().map_err(|e| e.into_error())?;
-        file.sync_all()?;
+        if sync {
+            file.sync_all()?;
+        }
         fs::rename(&tmp.path, path)
     })();
     // Renamed: nothing left to remove. Otherwise dropping `tmp` removes the temporary file.
@@ -109,7 +123,7 @@ pub const STALE_AGE: std::time::Duration = std::time::Duration::from_secs(24 * 3
 /// `.NAME.tmp-HOST-BOOT-PIDNS-PID-UNIQUE`, the writer's [`host::Identity`] and a part unique
 /// within the process (two threads writing one destination do not share a file). A long
 /// `NAME` is cut so that the whole stays within 255 bytes.
-fn temp_name(name: &str) -> String {
+pub(crate) fn temp_name(name: &str) -> String {
     use std::sync::atomic::{AtomicU64, Ordering};
     static NEXT: AtomicU64 = AtomicU64::new(0);
     let n = NEXT.fetch_add(1, Ordering::Relaxed);
@@ -133,14 +147,14 @@ fn temp_name_for(name: &str, who: &host::Identity, unique: &str) -> String {
 
 /// A temporary file of [`atomic_write`]'s schemes, by its name.
 #[derive(Debug, PartialEq, Eq)]
-enum Temp {
+pub(crate) enum Temp {
     /// `.NAME.tmp-HOST-BOOT-PIDNS-PID-UNIQUE`: its writer.
     Named(host::Identity),
     /// `.NAME.tmp-PID`, written by earlier versions: the pid of an unknown host.
     Legacy(u32),
 }
 
-fn parse_temp(file_name: &str) -> Option<Temp> {
+pub(crate) fn parse_temp(file_name: &str) -> Option<Temp> {
     let (stem, tail) = file_name.strip_prefix('.')?.rsplit_once(".tmp-")?;
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
     if stem.is_empty() {
