@@ -32,6 +32,10 @@ struct Cli {
     /// Worker threads (default: all cores). Results are bit-identical for any count.
     #[arg(long, global = true)]
     threads: Option<usize>,
+    /// stability, chbm, branch, compare, run: write into an output folder that holds files no
+    /// squeal run wrote (they may be replaced), or whose manifest does not read
+    #[arg(long, global = true)]
+    force: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -72,6 +76,7 @@ fn main() -> ExitCode {
             .num_threads(n.max(1))
             .build_global();
     }
+    commands::FORCE.store(cli.force, std::sync::atomic::Ordering::Relaxed);
     let result = match cli.command {
         Command::Mesh(cmd) => commands::mesh::run(cmd),
         Command::Fe(cmd) => commands::fe::run(cmd),
@@ -83,6 +88,12 @@ fn main() -> ExitCode {
         Command::Compare(args) => commands::compare::run(args),
         Command::Run(args) => commands::run::run(args),
     };
+    // The output folder's manifest records how the run ended, and its lock is released.
+    let status = match &result {
+        Ok(_) => "finished".to_string(),
+        Err(err) => format!("failed: {}", message(err)),
+    };
+    squeal_io::folder::finish(None, &status);
     match result {
         Ok(code) => code,
         Err(err) => {

@@ -534,6 +534,32 @@ pub fn earlier_files(dir: &Path) -> Vec<EarlierFile> {
         .collect()
 }
 
+/// Removes the files of `dir` that earlier runs wrote, this run has not rewritten and `which`
+/// picks (given their relative `/`-separated path): a report of an earlier run must not stay
+/// beside this run's files when this run stops before writing its own. Files no run wrote
+/// are never removed. Returns the paths removed.
+pub fn remove_earlier(dir: &Path, which: impl Fn(&str) -> bool) -> Vec<String> {
+    let earlier = earlier_files(dir);
+    let Ok(canon) = fs::canonicalize(dir) else {
+        return Vec::new();
+    };
+    let mut runs = active();
+    let Some(a) = runs.iter_mut().find(|a| a.dir == canon) else {
+        return Vec::new();
+    };
+    let mut removed = Vec::new();
+    for f in earlier.into_iter().filter(|f| which(&f.path)) {
+        if fs::remove_file(canon.join(&f.path)).is_ok() {
+            a.manifest.files.remove(&f.path);
+            removed.push(f.path);
+        }
+    }
+    if !removed.is_empty() {
+        let _ = a.manifest.write(&a.dir, false);
+    }
+    removed
+}
+
 /// Ends the run of `dir` (every run of this process with `None`): records `status`
 /// (`finished`, or `failed: ...`) and the time, and releases the lock.
 pub fn finish(dir: Option<&Path>, status: &str) {

@@ -66,10 +66,17 @@ fn files_of_an_earlier_run_are_told_apart() {
     assert_eq!(earlier.len(), 1, "{earlier:?}");
     assert_eq!(earlier[0].path, "compare/table1.csv");
     assert_eq!(earlier[0].run, 1);
+    // Removing picks only earlier runs' files: never this run's, never a user's.
+    fs::write(dir.join("mine.csv"), b"user").unwrap();
+    let removed = remove_earlier(&dir, |p| p.ends_with(".csv") || p == "index.md");
+    assert_eq!(removed, ["compare/table1.csv"]);
+    assert!(dir.join("mine.csv").is_file() && dir.join("index.md").is_file());
+    fs::remove_file(dir.join("mine.csv")).unwrap();
+    crate::atomic_write_bytes(&dir.join("compare/table1.csv"), b"run 2").unwrap();
     finish(Some(&dir), "finished");
     let m = Manifest::read(&dir).unwrap();
     assert_eq!(m.files["index.md"].run, 2);
-    assert_eq!(m.files["compare/table1.csv"].run, 1);
+    assert_eq!(m.files["compare/table1.csv"].run, 2);
     assert_eq!(m.runs[1].reused, ["brake.rom"]);
     assert!(earlier_files(&dir).is_empty(), "no run active");
     fs::remove_dir_all(&dir).unwrap();
