@@ -250,6 +250,10 @@ fn check_in_browser(out: &Path, images: usize) {
         .split(' ')
         .map(|x| x.parse().unwrap())
         .collect();
+    eprintln!(
+        "verdict from {} to {} px of a {} px wide window",
+        verdict[0], verdict[1], verdict[2]
+    );
     assert!(
         verdict[0] < verdict[1] && verdict[1] < 800.0,
         "the verdict spans {} to {} px (window {} px wide)",
