@@ -46,13 +46,13 @@ pub enum FolderError {
         "{}: another squeal run is writing into this folder (host {}, pid {}, since {}: {}); wait for it to end or choose another output folder",
         lock.display(), holder.host, holder.pid, holder.started, holder.command
     )]
-    Locked { lock: PathBuf, holder: Holder },
+    Locked { lock: PathBuf, holder: Box<Holder> },
     /// The lock file of a run on another machine (or an earlier boot of this one).
     #[error(
         "{}: a squeal run on host {} (pid {}, since {}: {}) holds this folder, and whether it still runs cannot be told from this machine; if it has ended, remove the lock file",
         lock.display(), holder.host, holder.pid, holder.started, holder.command
     )]
-    LockedElsewhere { lock: PathBuf, holder: Holder },
+    LockedElsewhere { lock: PathBuf, holder: Box<Holder> },
     /// The folder holds files no squeal run wrote.
     #[error(
         "{}: this folder holds {total} file(s) that no squeal run wrote ({}{}); this run could replace them: choose another output folder, or give --force to write here anyway",
@@ -268,7 +268,7 @@ fn take_lock(dir: &Path, command: &str) -> Result<(File, Option<String>), Folder
         if locked == Some(false) {
             return Err(FolderError::Locked {
                 lock: path,
-                holder: holder.unwrap_or_else(unknown),
+                holder: Box::new(holder.unwrap_or_else(unknown)),
             });
         }
         if !same_file(&file, &path) {
@@ -284,13 +284,13 @@ fn take_lock(dir: &Path, command: &str) -> Result<(File, Option<String>), Folder
             if h.boot != me.boot || me.boot == "0" {
                 return Err(FolderError::LockedElsewhere {
                     lock: path,
-                    holder: h,
+                    holder: Box::new(h),
                 });
             }
             if locked.is_none() && !h.identity().is_gone() {
                 return Err(FolderError::Locked {
                     lock: path,
-                    holder: h,
+                    holder: Box::new(h),
                 });
             }
             note = Some(format!(
