@@ -197,7 +197,7 @@ fn is_stale(temp: &Temp, age: Option<std::time::Duration>) -> bool {
 }
 
 /// Removes the temporary files of [`atomic_write`] in `dir` that are leftovers of a write
-/// that was killed ([`is_stale`]): on a folder shared by several hosts or containers, a file
+/// that was killed (`is_stale`): on a folder shared by several hosts or containers, a file
 /// whose writer cannot be looked up here is left alone, and so is everything else; errors are
 /// ignored (the cleanup is a courtesy, never a reason to fail a write).
 pub fn remove_stale_temps(dir: &Path) {
