@@ -33,6 +33,10 @@ struct Cli {
     /// bit-identical for any count.
     #[arg(long, global = true, value_parser = thread_count)]
     threads: Option<usize>,
+    /// stability, chbm, branch, compare, run: write into an output folder that holds files no
+    /// squeal run wrote (they may be replaced), or whose manifest does not read
+    #[arg(long, global = true)]
+    force: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -92,6 +96,7 @@ fn main() -> ExitCode {
             .num_threads(n)
             .build_global();
     }
+    commands::FORCE.store(cli.force, std::sync::atomic::Ordering::Relaxed);
     let result = match cli.command {
         Command::Mesh(cmd) => commands::mesh::run(cmd),
         Command::Fe(cmd) => commands::fe::run(cmd),
@@ -103,6 +108,12 @@ fn main() -> ExitCode {
         Command::Compare(args) => commands::compare::run(args),
         Command::Run(args) => commands::run::run(args),
     };
+    // The output folder's manifest records how the run ended, and its lock is released.
+    let status = match &result {
+        Ok(_) => "finished".to_string(),
+        Err(err) => format!("failed: {}", message(err)),
+    };
+    squeal_io::folder::finish(None, &status);
     match result {
         Ok(code) => code,
         Err(err) => {

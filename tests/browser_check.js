@@ -24,6 +24,18 @@ window.addEventListener('load', () => {
       out.push('BROKEN link ' + h);
     }
   }
+  // The verdict: from the top of its first paragraph to the bottom of the last one before
+  // "Made by", in CSS pixels from the top of the page.
+  const ps = [...document.querySelectorAll('main > p')];
+  const first = ps.findIndex(x => x.textContent.startsWith('Verdict'));
+  const made = ps.findIndex(x => x.textContent.startsWith('Made by'));
+  if (first >= 0 && made > first) {
+    const top = ps[first].getBoundingClientRect().top + window.scrollY;
+    const bottom = ps[made - 1].getBoundingClientRect().bottom + window.scrollY;
+    out.push('VERDICT ' + Math.round(top) + ' ' + Math.round(bottom) + ' ' + window.innerWidth);
+  } else {
+    out.push('BROKEN no verdict above the introduction');
+  }
   const p = document.createElement('pre');
   p.id = 'squeal-browser-check';
   p.textContent = 'CHECKED ' + imgs.length + ' images, ' + links + ' links\n' + out.join('\n');

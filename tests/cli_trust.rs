@@ -555,5 +555,165 @@ fn a_free_part_names_its_restraints_as_written() {
     assert!(e.contains("K_II is singular"), "{e}");
     assert!(e.contains("node set CLAMP held axial"), "{e}");
     assert!(!e.contains("Restraint {") && !e.contains("Set("), "{e}");
+// Issue 22: lost or mixed work.
+
+/// `squeal <args>` run in the folder `dir`.
+fn squeal_in(dir: &Path, args: &[&str]) -> Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_squeal"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// The two bundled scenes are both `brake.toml`: their default output folders differ (before,
+/// both were `out/brake`, and the second run replaced the first's reduced model and
+/// stability figures). Below μ0 (0.4618 for one pad, 0.1268 for two on the coarse meshes)
+/// the brake is stable, which is
+/// the answer, exit 0 and the verdict on the first line after the reduction's log (before,
+/// `pair = "auto"` with pair damping made it the error "the coalescing pair could not be
+/// picked automatically").
+#[test]
+fn scenes_of_one_name_get_their_own_folders_and_a_stable_brake_is_an_answer() {
+    let dir = temp_dir("trust", "default-out");
+    std::fs::create_dir_all(dir.join("meshes/two_pad")).unwrap();
+    std::fs::write(dir.join("meshes/brake.toml"), bundled_scene("coarse")).unwrap();
+    std::fs::write(
+        dir.join("meshes/two_pad/brake.toml"),
+        common::two_pad_scene("coarse"),
+    )
+    .unwrap();
+    for (scene, out) in [
+        ("meshes/brake.toml", "out/meshes/brake"),
+        ("meshes/two_pad/brake.toml", "out/meshes/two_pad/brake"),
+    ] {
+        let o = squeal_in(&dir, &["stability", scene, "--mu", "0..0.1/5", "--no-vtu"]);
+        assert!(o.status.success(), "{scene}: {}{}", stdout(&o), stderr(&o));
+        // The first line after the reduction's log.
+        let text = stdout(&o);
+        let first = text
+            .lines()
+            .find(|l| !l.starts_with("reduced model") && !l.starts_with("  "))
+            .unwrap_or_default();
+        assert!(
+            first.starts_with("stable for mu in [0, 0.1]: no mode in the band goes unstable"),
+            "{scene}: {text}"
+        );
+        let out = dir.join(out);
+        assert!(out.join("brake.rom").is_file(), "{}", out.display());
+        assert!(out.join("stability/stability.csv").is_file());
+    }
+    assert!(!dir.join("out/brake").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A folder holding a user's own files is refused before any work unless `--force`; a folder
+/// another run holds (the test holds its lock) is refused naming the holder's host and pid;
+/// another machine's lock is reported and left alone; a killed run's lock is taken over and
+/// the manifest says that run did not finish.
+#[cfg(target_os = "linux")]
+#[test]
+fn output_folders_are_locked_claimed_and_never_taken_from_a_user() {
+    let dir = temp_dir("trust", "folder");
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
+    let s = scene.to_str().unwrap();
+    let out = dir.join("out");
+    let o_s = out.to_str().unwrap();
+    let quick = ["stability", s, "--mu", "0..0.1/2", "--no-vtu", "-o", o_s];
+
+    // A user's own notes where the report would go (`-o .` in a project folder).
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("index.md"), b"my notes").unwrap();
+    let t = std::time::Instant::now();
+    let o = squeal(&quick);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("holds 1 file(s) that no squeal run wrote (index.md)")
+            && stderr(&o).contains("--force"),
+        "{}",
+        stderr(&o)
+    );
+    // Refused before the reduction (over a second on these meshes).
+    assert!(t.elapsed().as_secs_f64() < 1.0 && !out.join("brake.rom").exists());
+    let o = squeal(&[&quick[..], &["--force"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(out.join("index.md")).unwrap(), b"my notes");
+    std::fs::remove_file(out.join("index.md")).unwrap();
+    // The manifest claims what the run wrote: the next run needs no --force.
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("squeal-manifest.json")).unwrap())
+            .unwrap();
+    assert_eq!(manifest["runs"][0]["status"], "finished");
+    assert_eq!(manifest["files"]["stability/stability.csv"]["run"], 1);
+    assert_eq!(
+        manifest["runs"][0]["scene_sha256"].as_str().unwrap().len(),
+        64
+    );
+    assert!(squeal(&quick).status.success());
+
+    // A run holds the folder: the test takes the lock as a run would.
+    let lock_path = out.join(".squeal-lock");
+    let me = format!(
+        "{{\"host\":\"testhost\",\"boot\":\"0\",\"pid_ns\":\"0\",\"pid\":{},\"started\":\"now\",\"command\":\"squeal run held\"}}",
+        std::process::id()
+    );
+    std::fs::write(&lock_path, &me).unwrap();
+    let lock = std::fs::File::open(&lock_path).unwrap();
+    lock.try_lock().unwrap();
+    let o = squeal(&quick);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(&format!(
+            "another squeal run is writing into this folder (host testhost, pid {}",
+            std::process::id()
+        )),
+        "{}",
+        stderr(&o)
+    );
+    drop(lock);
+
+    // Another machine's lock: reported, not taken.
+    let other = "{\"host\":\"node_7\",\"boot\":\"0123456789ab\",\"pid_ns\":\"1\",\"pid\":4242,\"started\":\"then\",\"command\":\"squeal run there\"}";
+    std::fs::write(&lock_path, other).unwrap();
+    let o = squeal(&quick);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("on host node_7 (pid 4242"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read_to_string(&lock_path).unwrap(), other);
+    std::fs::remove_file(&lock_path).unwrap();
+
+    // A run killed mid-way (SIGKILL, as a lost node or an impatient kill -9).
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_squeal"))
+        .args(["stability", s, "--mu", "0..1/401", "-o", o_s])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let running = |m: &str| m.contains("\"status\": \"running\"");
+    let t = std::time::Instant::now();
+    while !std::fs::read_to_string(out.join("squeal-manifest.json")).is_ok_and(|m| running(&m)) {
+        assert!(t.elapsed().as_secs() < 60, "the run never started");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(lock_path.exists());
+    let o = squeal(&quick);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("took over the lock of a run that is gone")
+            && stderr(&o).contains("did not finish"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!lock_path.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }

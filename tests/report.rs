@@ -123,6 +123,57 @@ fn the_report_shows_both_instabilities_of_the_coarse_brake() {
     assert!(html.contains("closure amplitude (µm)"));
     assert!(html.contains("sliding-velocity amplitude (mm/s)"));
 
+    // The verdict first: squeal, from which μ, at what frequency, and the cycle computed.
+    assert!(
+        html.contains(
+            "<p><strong>Verdict: this brake squeals</strong> from μ0 = 0.46182 (the Hopf point) \
+             at 4061.5 Hz; other instabilities in the band: 2952 Hz from μ ≈ 0.772.</p>"
+        ),
+        "{html}"
+    );
+    assert!(
+        html.find("Verdict: this brake squeals") < html.find("<nav>"),
+        "the verdict is not above the contents"
+    );
+    assert!(
+        html.contains("Below μ0 a large enough disturbance can start squeal from μ = 0.46065"),
+        "{html}"
+    );
+    assert!(
+        html.contains("<p>Limit cycle at μ = 0.47106 = 1.020 μ0"),
+        "{html}"
+    );
+    check_in_browser(&out, html.matches("<img").count());
+
+    // Issue 22: a second run into the same folder, of a scene that is stable (the coarse brake
+    // below μ0): the earlier report is gone, this one says the brake is stable, and the
+    // earlier run's limit-cycle files are listed as not this run's.
+    let scene = dir.join("stable.toml");
+    let text = bundled_scene("coarse").replace("mu = \"0..1/201\"", "mu = \"0..0.3/31\"");
+    assert!(text.contains("0..0.3/31"));
+    std::fs::write(&scene, text).unwrap();
+    let said = run_ok(&["run", scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(
+        said.contains("removed the earlier run's report")
+            && said.contains("\nstable for mu in [0, 0.3]: no mode in the band goes unstable")
+            && said.contains("== 3-5. skipped"),
+        "{said}"
+    );
+    let html = read(&out.join("index.html"));
+    assert_no_debug_formatting(&html, "index.html");
+    assert!(
+        html.contains("<p><strong>Verdict: no squeal for μ in [0, 0.3].</strong>"),
+        "{html}"
+    );
+    assert!(
+        !out.join("report/mode_1.png").exists(),
+        "the earlier report's picture stayed"
+    );
+    let earlier = &html[html
+        .find("Not from this run")
+        .expect("no earlier files listed")..];
+    assert!(earlier.contains("chbm/coefficients.csv"), "{earlier}");
+    assert!(earlier.contains("(run 1, "), "{earlier}");
     check_in_browser(&out, html.matches("<img").count());
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -190,6 +241,26 @@ fn check_in_browser(out: &Path, images: usize) {
         "not every image was checked: {found}"
     );
     assert!(!found.contains("BROKEN"), "the report in Chromium: {found}");
+    // Issue 22: the verdict is on the first screen, above the fold of a laptop (800 px, at
+    // the browser's default 800 px wide window).
+    let verdict: Vec<f64> = found
+        .lines()
+        .find_map(|l| l.strip_prefix("VERDICT "))
+        .unwrap_or_else(|| panic!("no verdict position: {found}"))
+        .split(' ')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    eprintln!(
+        "verdict from {} to {} px of a {} px wide window",
+        verdict[0], verdict[1], verdict[2]
+    );
+    assert!(
+        verdict[0] < verdict[1] && verdict[1] < 800.0,
+        "the verdict spans {} to {} px (window {} px wide)",
+        verdict[0],
+        verdict[1],
+        verdict[2]
+    );
     std::fs::remove_file(&page).unwrap();
 
     let shot = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report-screenshot.png");

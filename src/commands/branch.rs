@@ -34,7 +34,8 @@ pub struct BranchArgs {
     /// every crossing, each with its stability
     #[arg(long, value_delimiter = ',')]
     pub at: Vec<f64>,
-    /// Output folder (default: out/<scene name>)
+    /// Output folder (default: out/ and the scene's path from the working directory without
+    /// .toml: out/meshes/brake for meshes/brake.toml)
     #[arg(long, short)]
     pub out: Option<PathBuf>,
 }

@@ -40,7 +40,8 @@ pub struct ChbmArgs {
     /// Start all harmonics from eq (48) directly instead of from the one-harmonic solution
     #[arg(long)]
     pub plain: bool,
-    /// Output folder (default: out/<scene name>)
+    /// Output folder (default: out/ and the scene's path from the working directory without
+    /// .toml: out/meshes/brake for meshes/brake.toml)
     #[arg(long, short)]
     pub out: Option<PathBuf>,
     /// Skip the VTU time series of the limit cycle

@@ -40,7 +40,8 @@ pub struct CompareArgs {
     /// integration over the same mu (slow: minutes)
     #[arg(long)]
     pub grid: bool,
-    /// Output folder (default: out/<scene name>)
+    /// Output folder (default: out/ and the scene's path from the working directory without
+    /// .toml: out/meshes/brake for meshes/brake.toml)
     #[arg(long, short)]
     pub out: Option<PathBuf>,
 }

@@ -8,3 +8,6 @@ pub mod reduce;
 pub mod run;
 pub mod stability;
 pub mod study;
+
+/// `--force`: write into an output folder holding files no squeal run wrote.
+pub static FORCE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);

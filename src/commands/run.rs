@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use squeal_pipeline::compare::CompareSettings;
 use squeal_pipeline::cycle::CyclePlan;
-use squeal_pipeline::report::{RunResults, build};
+use squeal_pipeline::report::{self, RunResults, build};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -17,7 +17,8 @@ use std::time::Instant;
 pub struct RunArgs {
     /// Scene file (TOML), e.g. meshes/brake.toml
     pub scene: PathBuf,
-    /// Output folder (default: out/<scene name>)
+    /// Output folder (default: out/ and the scene's path from the working directory without
+    /// .toml: out/meshes/brake for meshes/brake.toml)
     #[arg(long, short)]
     pub out: Option<PathBuf>,
     /// Skip the comparison with time integration (the slowest stage)
@@ -42,23 +43,37 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     settings.validate()?;
     let p = stability::pipeline(&args.scene, &args.out, &None)?;
     let plan = CyclePlan::of_scene(&p.scene)?;
+    // An earlier run's report must not describe this run's files if this run stops early.
+    let removed = squeal_io::folder::remove_earlier(&p.out, report::is_report_file);
+    if !removed.is_empty() {
+        println!(
+            "removed the earlier run's report ({} files); this run writes its own at the end",
+            removed.len()
+        );
+    }
 
     println!("== 1. reduced model");
     p.model()?;
 
     println!("\n== 2. stability");
-    stability::write(&p, true)?;
+    let verdict = stability::write(&p, true)?;
+    let (mut branch, mut cycle, mut summary) = (None, None, None);
+    if verdict.is_stable() {
+        println!(
+            "\n== 3-5. skipped: {verdict}; without a Hopf point there is no limit cycle to follow, \
+             solve or compare"
+        );
+    } else {
+        println!("\n== 3. branch of limit cycles and their stability");
+        branch = branch::write(&p, &squeal_chbm::branch::BranchOptions::default(), &[])?;
 
-    println!("\n== 3. branch of limit cycles and their stability");
-    let branch = branch::write(&p, &squeal_chbm::branch::BranchOptions::default(), &[])?;
+        println!("\n== 4. limit cycle (CHBM)");
+        cycle = Some(chbm::solve(&p, &plan, true)?);
 
-    println!("\n== 4. limit cycle (CHBM)");
-    let cycle = chbm::solve(&p, &plan, true)?;
-
-    let mut summary = None;
-    if !args.no_compare {
-        println!("\n== 5. CHBM against time integration");
-        summary = Some(compare::write(&p, &settings, None)?);
+        if !args.no_compare {
+            println!("\n== 5. CHBM against time integration");
+            summary = Some(compare::write(&p, &settings, None)?);
+        }
     }
 
     println!("\n== 6. report");
@@ -68,7 +83,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         model: p.model()?,
         stability: p.stability()?,
         branch: branch.as_ref(),
-        chbm: Some(&cycle),
+        chbm: cycle.as_ref(),
         compare: summary.as_ref(),
         timings: &timings,
     };
@@ -80,13 +95,12 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         eprintln!("report: {n}");
     }
     println!(
-        "\nreport: {} ({:.1} s in all)",
+        "\nreport: {} ({:.1} s in all)\n{verdict}",
         p.out.join("index.html").display(),
         t0.elapsed().as_secs_f64()
     );
-    Ok(if cycle.cycle().is_some() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(3)
+    Ok(match &cycle {
+        Some(c) if c.cycle().is_none() => ExitCode::from(3),
+        _ => ExitCode::SUCCESS,
     })
 }

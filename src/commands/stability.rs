@@ -19,7 +19,8 @@ pub struct StabilityArgs {
     /// (default: the scene's [stability] mu, else 0..1/201)
     #[arg(long)]
     pub mu: Option<String>,
-    /// Output folder (default: out/<scene name>)
+    /// Output folder (default: out/ and the scene's path from the working directory without
+    /// .toml: out/meshes/brake for meshes/brake.toml)
     #[arg(long, short)]
     pub out: Option<PathBuf>,
     /// Skip the VTU files of the equilibrium and mode shape
@@ -36,10 +37,29 @@ pub fn pipeline<'a>(
     let s = Scene::read(scene)?;
     let out = out.clone().unwrap_or_else(|| default_out(scene));
     let p = Pipeline::new(s, out, &say)?.with_progress(&BARS);
-    Ok(match mu {
+    let p = match mu {
         Some(r) => p.with_mus(parse_range(r).map_err(anyhow::Error::msg).context("--mu")?)?,
         None => p,
-    })
+    };
+    take_folder(&p)?;
+    Ok(p)
+}
+
+/// Takes the output folder of `p` for this command ([`squeal_io::folder::begin`]): its lock,
+/// the check that it holds no user's files (unless `--force`) and this run in its manifest.
+fn take_folder(p: &Pipeline) -> Result<()> {
+    let scene = &p.scene.path;
+    let sha =
+        squeal_reduce::rom::sha256_file(scene).with_context(|| scene.display().to_string())?;
+    let info = squeal_io::folder::RunInfo {
+        command: std::env::args().collect::<Vec<_>>().join(" "),
+        scene: Some((scene.clone(), sha)),
+    };
+    let force = crate::commands::FORCE.load(std::sync::atomic::Ordering::Relaxed);
+    for note in squeal_io::folder::begin(&p.out, &info, force)? {
+        eprintln!("note: {note}");
+    }
+    Ok(())
 }
 
 pub fn run(args: StabilityArgs) -> Result<ExitCode> {
@@ -49,11 +69,15 @@ pub fn run(args: StabilityArgs) -> Result<ExitCode> {
 }
 
 /// Runs the stability stage of `p` and writes its outputs to `<out>/stability`.
-pub fn write(p: &Pipeline, vtu: bool) -> Result<()> {
+/// The verdict comes first: a stable brake ("stable for mu in [a, b]") is an answer, not an
+/// error. Returns it.
+pub fn write(p: &Pipeline, vtu: bool) -> Result<stability::Verdict> {
     let m = p.model()?;
-    print!("{}", stability::pairs_text(m));
     let t = Instant::now();
     let st = p.stability().context("stability analysis")?;
+    let verdict = stability::verdict(m, st);
+    println!("{verdict}");
+    print!("{}", stability::pairs_text(m));
     let dir = p.out.join("stability");
     print!(
         "{}",
@@ -71,5 +95,5 @@ pub fn write(p: &Pipeline, vtu: bool) -> Result<()> {
         println!("mode shape and equilibria for ParaView: {}", vtm.display());
     }
     println!("results in {}", dir.display());
-    Ok(())
+    Ok(verdict)
 }

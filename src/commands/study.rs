@@ -38,7 +38,8 @@ pub struct StudyArgs {
     /// Which study
     #[arg(long, value_parser = kind_parser(), default_value = "all")]
     pub kind: String,
-    /// Output folder (default: out/<scene name>); results go to <out>/study
+    /// Output folder (default: out/ and the scene's path from the working directory without
+    /// .toml: out/meshes/brake for meshes/brake.toml); results go to <out>/study
     #[arg(long, short)]
     pub out: Option<PathBuf>,
     /// Friction values "start..end/count": count values from start to end, e.g. 0..1/201

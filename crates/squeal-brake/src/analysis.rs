@@ -107,7 +107,18 @@ pub fn stability_with(
         }
     };
     if has_pair_damping && pair.is_none() {
-        return Err(BrakeError::NoPairFound);
+        // No Hopf point in the band over the whole range with the global damping alone: no
+        // pair coalesces, so the pair damping names no modes and is not applied. That the
+        // brake is stable there is the answer, not an error.
+        return match preliminary {
+            Some((reference, sweep)) if sweep.hopf.is_none() => Ok(Stability {
+                damping: global,
+                pair: None,
+                reference,
+                sweep,
+            }),
+            _ => Err(BrakeError::NoPairFound),
+        };
     }
     let damping = match (pair, has_pair_damping) {
         (Some((m1, m2)), true) => Damping {

@@ -300,10 +300,11 @@ pub enum BrakeError {
     #[error("a sweep needs at least one friction value")]
     NoFrictionValues,
     /// [`stability`](crate::analysis::stability): pair damping is asked with
-    /// [`PairChoice::Auto`](crate::analysis::PairChoice::Auto), but the preliminary sweep found
-    /// no in-band Hopf point with a partner branch.
+    /// [`PairChoice::Auto`](crate::analysis::PairChoice::Auto), and the preliminary sweep found
+    /// an in-band Hopf point without a partner branch. (No Hopf point at all is no error: the
+    /// brake is stable over the range and the pair damping names no modes.)
     #[error(
-        "the coalescing pair could not be picked automatically (no Hopf point in the band with the global damping alone): give it by mode numbers"
+        "the coalescing pair could not be picked automatically (the Hopf point's mode has no partner branch with the global damping alone): give it by mode numbers"
     )]
     NoPairFound,
     /// A mode number of the damped pair is not below the number of modes

@@ -147,6 +147,8 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
                     "reduced model: {} (up to date)",
                     rom_path.display()
                 ));
+                // This run's model, though an earlier run wrote the file.
+                squeal_io::folder::record_reused(&rom_path);
                 return Ok((rom, rom_path));
             }
             // A header that matches over arrays that do not read: rebuilt, not an error the
@@ -376,13 +378,35 @@ pub fn build(scene: &Scene, out: &Path, log: Log) -> Result<Model> {
     model_on(scene, rom, rom_path)
 }
 
-/// The default output folder of a scene: `out/<scene stem>`.
+/// The default output folder of a scene: `out/` and the scene's path relative to the working
+/// directory without its extension, so that scenes of one name in different folders do not
+/// share a folder (`meshes/brake.toml` → `out/meshes/brake`, `meshes/two_pad/brake.toml` →
+/// `out/meshes/two_pad/brake`, `brake.toml` → `out/brake`). A scene outside the working
+/// directory: `out/<its folder's name>/<its stem>`.
 pub fn default_out(scene: &Path) -> PathBuf {
     let stem = scene
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "scene".into());
-    PathBuf::from("out").join(stem)
+    let canon = |p: &Path| std::fs::canonicalize(p).ok();
+    let inside = std::env::current_dir()
+        .ok()
+        .and_then(|d| canon(&d))
+        .zip(canon(scene))
+        .and_then(|(cwd, s)| s.strip_prefix(&cwd).ok().map(Path::to_path_buf));
+    let rel = match inside {
+        Some(rel) => rel.with_file_name(&stem),
+        None => {
+            let folder = canon(scene)
+                .as_deref()
+                .and_then(Path::parent)
+                .and_then(Path::file_name)
+                .map(PathBuf::from)
+                .unwrap_or_default();
+            folder.join(&stem)
+        }
+    };
+    PathBuf::from("out").join(rel)
 }
 
 /// A mesh read, its reader's warnings passed to `log`.

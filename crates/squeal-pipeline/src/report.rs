@@ -70,22 +70,119 @@ pub fn build(r: &RunResults<'_>, out: &Path, log: Log) -> Result<Report> {
     sections.push(modes_section(r, &modes));
     sections.push(equilibrium_section(r));
     sections.push(stability_section(r, &pics)?);
-    sections.push(branch_section(r.branch));
-    if let Some(s) = chbm_section(r, meshes.as_ref(), &pics, log)? {
-        sections.push(s);
+    if crate::stability::verdict(r.model, r.stability).is_stable() {
+        sections.push(Section {
+            heading: "Limit cycles".into(),
+            text: "Not computed: no mode goes unstable over the friction range swept, so there \
+                   is no Hopf point for a branch of limit cycles to start from, nor a limit \
+                   cycle for CHBM or time integration to find."
+                .into(),
+            ..Section::default()
+        });
+    } else {
+        sections.push(branch_section(r.branch));
+        if let Some(s) = chbm_section(r, meshes.as_ref(), &pics, log)? {
+            sections.push(s);
+        }
+        sections.push(compare_section(r.compare));
     }
-    sections.push(compare_section(r.compare));
     sections.push(files_section(out));
     sections.push(timings_section(r));
     Ok(Report {
         title,
         intro: format!(
-            "Made by `squeal run` from the scene `{}`, following Coudeyras, Sinou & Nacivet (2009), \
+            "{}\n\nMade by `squeal run` from the scene `{}`, following Coudeyras, Sinou & Nacivet (2009), \
              *The Constrained Harmonic Balance Method*. The same report as Markdown: [index.md](index.md).",
+            verdict_text(r, &modes),
             scene.path.display()
         ),
         sections,
     })
+}
+
+/// The verdict, first thing on the page (Markdown, one list): does the brake squeal, from
+/// which μ and at what frequency, what the branch of limit cycles adds, and the limit cycle
+/// at the scene's μ.
+fn verdict_text(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]) -> String {
+    use crate::stability::{Verdict, verdict};
+    let v = verdict(r.model, r.stability);
+    let mut lines = vec![match v {
+        Verdict::Stable { from, to } => format!(
+            "**Verdict: no squeal for μ in [{}, {}].** No mode in the band goes unstable over \
+             this friction range, so there is no limit cycle: the branch, CHBM and the \
+             comparison with time integration were not run.",
+            crate::stability::short(from),
+            crate::stability::short(to)
+        ),
+        Verdict::Squeals { mu0, frequency_hz } => format!(
+            "**Verdict: this brake squeals** from μ0 = {} (the Hopf point) at {:.1} Hz{}.",
+            fmt_sig(mu0, 5),
+            frequency_hz,
+            match modes.len() {
+                0 | 1 => String::new(),
+                _ => format!(
+                    "; other instabilities in the band: {}",
+                    modes[1..]
+                        .iter()
+                        .map(|(u, _)| format!(
+                            "{:.0} Hz from μ ≈ {}",
+                            u.frequency_hz,
+                            fmt_sig(u.onset_mu, 3)
+                        ))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            }
+        ),
+        Verdict::UnstableFromStart { mu, frequency_hz } => format!(
+            "**Verdict: unstable already at μ = {}** ({:.1} Hz): no Hopf point in the range \
+             swept; sweep from a lower μ to find where squeal starts.",
+            fmt_sig(mu, 4),
+            frequency_hz
+        ),
+    }];
+    if let Some(b) = r.branch
+        && let Some(m) = b.squeal_range().with_disturbance_from
+        && m < b.mu0()
+    {
+        lines.push(format!(
+            "Below μ0 a large enough disturbance can start squeal from μ = {} ({} μ0): the \
+             branch of limit cycles has stable cycles there.",
+            fmt_sig(m, 5),
+            fmt_sig(m / b.mu0(), 4)
+        ));
+    }
+    if let Some(lc) = r.chbm
+        && lc.cycle().is_none()
+    {
+        lines.push(format!(
+            "No limit cycle at the scene's μ = {}: {}.",
+            fmt_sig(lc.mu, 5),
+            no_cycle_reason(lc)
+        ));
+    }
+    if let Some((mu, s)) = r.chbm.and_then(|lc| lc.cycle().map(|s| (lc.mu, s))) {
+        let ratio = r.stability.sweep.hopf.as_ref().map_or(String::new(), |h| {
+            format!(" = {} μ0, the scene's `[chbm]`", fmt_sig(mu / h.mu0, 4))
+        });
+        let closure = pair_motion(r.model, s)
+            .into_iter()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map_or(String::new(), |(p, c, _, _)| {
+                format!(
+                    ", largest closure amplitude {:.2} µm (pair {})",
+                    c * 1e6,
+                    p + 1
+                )
+            });
+        lines.push(format!(
+            "Limit cycle at μ = {}{ratio}: {}, {:.1} Hz{closure}.",
+            fmt_sig(mu, 5),
+            s.outcome.label(),
+            s.omega / std::f64::consts::TAU
+        ));
+    }
+    lines.join("\n\n")
 }
 
 /// A mode that goes unstable in the band.
@@ -1058,12 +1155,17 @@ fn compare_section(compare: Option<&CompareSummary>) -> Section {
     }
 }
 
-/// Every file of the output folder, as links grouped by folder (the report's own files
-/// excepted: they are this page, its Markdown twin and the tables' CSV files linked from their
-/// captions).
-fn files_section(out: &Path) -> Section {
-    let mut files = Vec::new();
-    list_files(out, Path::new(""), &mut files);
+/// Whether `rel` (a `/`-separated path in the output folder) is a file of the report itself:
+/// `index.html`, `index.md`, the tables' `table-N.csv` and the pictures in `report/`.
+pub fn is_report_file(rel: &str) -> bool {
+    rel == "index.html"
+        || rel == "index.md"
+        || (rel.starts_with("table-") && rel.ends_with(".csv") && !rel.contains('/'))
+        || rel.starts_with(&format!("{PICTURES}/"))
+}
+
+/// Links to `files`, grouped by folder, one Markdown list item per folder.
+fn links_by_folder(mut files: Vec<String>, label: impl Fn(&str) -> String) -> String {
     // By folder, then name: a sub-folder's files must not split its parent's list.
     files.sort_by_key(|f| {
         let p = Path::new(f);
@@ -1092,7 +1194,7 @@ fn files_section(out: &Path) -> Section {
                     .file_name()
                     .map(|n| n.to_string_lossy().into_owned())
                     .unwrap_or_default();
-                format!("[{name}]({})", url_path(f))
+                format!("[{name}]({}){}", url_path(f), label(f))
             })
             .collect();
         let label = if folder.is_empty() {
@@ -1102,15 +1204,53 @@ fn files_section(out: &Path) -> Section {
         };
         text.push_str(&format!("- {label}: {}\n", links.join(", ")));
     }
+    text
+}
+
+/// Every file of the output folder, as links grouped by folder (the report's own files
+/// excepted: they are this page, its Markdown twin and the tables' CSV files linked from their
+/// captions). The files an earlier run wrote and this run did not (the output folder's
+/// manifest, [`squeal_io::folder`]) are listed apart, with their run: they are not this run's
+/// results.
+fn files_section(out: &Path) -> Section {
+    let mut files = Vec::new();
+    list_files(out, Path::new(""), &mut files);
+    let earlier = squeal_io::folder::earlier_files(out);
+    let is_earlier = |f: &String| earlier.iter().any(|e| e.path == url_like(f));
+    let (old, own): (Vec<String>, Vec<String>) = files.into_iter().partition(is_earlier);
+    let mut text = format!(
+        "Every file of this run, relative to this page (CSV opens in a spreadsheet, SVG and \
+         PNG in a browser, `.vtm`, `.vtu` and `.pvd` in ParaView, `.rom` with \
+         `tools/rom/read_rom.py`):\n\n{}",
+        links_by_folder(own, |_| String::new())
+    );
+    if !old.is_empty() {
+        let run_of = |f: &str| {
+            earlier
+                .iter()
+                .find(|e| e.path == url_like(f))
+                .map_or(String::new(), |e| {
+                    format!(" (run {}, {})", e.run, e.written)
+                })
+        };
+        text.push_str(&format!(
+            "\n**Not from this run:** these files were written by earlier runs into this folder \
+             and not rewritten by this one, so they may describe another scene or other \
+             settings (`{}` says which run wrote each):\n\n{}",
+            squeal_io::folder::MANIFEST,
+            links_by_folder(old, run_of)
+        ));
+    }
     Section {
         heading: "Files".into(),
-        text: format!(
-            "Every file of this run, relative to this page (CSV opens in a spreadsheet, SVG and \
-             PNG in a browser, `.vtm`, `.vtu` and `.pvd` in ParaView, `.rom` with \
-             `tools/rom/read_rom.py`):\n\n{text}"
-        ),
+        text,
         ..Section::default()
     }
+}
+
+/// A relative path with `/` separators, as the manifest keeps it.
+fn url_like(p: &str) -> String {
+    p.replace('\\', "/")
 }
 
 /// A relative path with `/` separators and unsafe bytes percent-encoded.
@@ -1139,10 +1279,7 @@ fn list_files(root: &Path, rel: &Path, out: &mut Vec<String>) {
         match e.file_type() {
             Ok(t) if t.is_dir() => list_files(root, &path, out),
             Ok(t) if t.is_file() => {
-                let own = rel.as_os_str().is_empty()
-                    && (name == "index.html"
-                        || name == "index.md"
-                        || (name.starts_with("table-") && name.ends_with(".csv")));
+                let own = rel.as_os_str().is_empty() && is_report_file(&name);
                 if !own {
                     out.push(path.display().to_string());
                 }

@@ -434,6 +434,90 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
     out
 }
 
+/// What the sweep says of squeal, in one line.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// No mode in the band is unstable at any friction value swept: no squeal in this range.
+    Stable { from: f64, to: f64 },
+    /// The equilibrium goes unstable at the Hopf point μ0, at this frequency.
+    Squeals { mu0: f64, frequency_hz: f64 },
+    /// A mode in the band is unstable already at the first friction value (no crossing: no
+    /// Hopf point in the range).
+    UnstableFromStart { mu: f64, frequency_hz: f64 },
+}
+
+impl Verdict {
+    /// Whether the brake is stable over the whole range.
+    pub fn is_stable(&self) -> bool {
+        matches!(self, Verdict::Stable { .. })
+    }
+}
+
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Verdict::Stable { from, to } => write!(
+                f,
+                "stable for mu in [{}, {}]: no mode in the band goes unstable, no squeal in this range",
+                short(from),
+                short(to)
+            ),
+            Verdict::Squeals { mu0, frequency_hz } => write!(
+                f,
+                "squeals from mu0 = {} at {:.1} Hz (the Hopf point)",
+                fmt_sig(mu0, 6),
+                frequency_hz
+            ),
+            Verdict::UnstableFromStart { mu, frequency_hz } => write!(
+                f,
+                "unstable already at mu = {} at {:.1} Hz (no Hopf point in this range: start the sweep lower)",
+                fmt_sig(mu, 4),
+                frequency_hz
+            ),
+        }
+    }
+}
+
+/// A friction value as the user wrote it: six significant digits, trailing zeros dropped
+/// (`0`, `0.2`, `0.46182`).
+pub fn short(x: f64) -> String {
+    let s = fmt_sig(x, 6);
+    if s.contains('.') && !s.contains('e') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// The verdict of a stability analysis: the Hopf point if there is one, else whether any
+/// in-band mode is unstable (`Re λ > τ`, [`threshold`]) at any friction value swept.
+pub fn verdict(m: &Model, st: &Stability) -> Verdict {
+    let sw = &st.sweep;
+    if let Some(h) = &sw.hopf {
+        return Verdict::Squeals {
+            mu0: h.mu0,
+            frequency_hz: h.frequency_hz,
+        };
+    }
+    let tau = threshold(m, st);
+    for p in &sw.points {
+        let unstable = (0..p.spectrum.values.len())
+            .filter(|&j| p.spectrum.values[j].re > tau)
+            .map(|j| p.spectrum.frequency_hz(j))
+            .find(|&f| m.sweep.band.contains(f));
+        if let Some(frequency_hz) = unstable {
+            return Verdict::UnstableFromStart {
+                mu: p.equilibrium.mu,
+                frequency_hz,
+            };
+        }
+    }
+    Verdict::Stable {
+        from: sw.points[0].equilibrium.mu,
+        to: sw.points[sw.points.len() - 1].equilibrium.mu,
+    }
+}
+
 /// The instability threshold of the sweep (s⁻¹): a mode counts as unstable when
 /// `Re λ > τ`. With no threshold in the options it is `64 ε ω_max`
 /// ([`squeal_brake::sweep::default_threshold`]), relative to the largest `|λ|` of the
