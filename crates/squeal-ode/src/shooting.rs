@@ -95,6 +95,9 @@ pub struct ShootingOptions {
     pub tol: f64,
     /// Newton iterations (each one period's integration).
     pub max_iterations: usize,
+    /// Newton steps always taken before the residual may stop the iteration (a start already
+    /// within [`ShootingOptions::tol`] still moves to the orbit of this tolerance's flow).
+    pub min_iterations: usize,
     /// Recompute the monodromy when one step divides the residual by less than `1 / refresh`.
     pub refresh: f64,
     /// Harmonics of the trajectory's Fourier series ([`PeriodicOrbit::trajectory`]).
@@ -114,6 +117,7 @@ impl Default for ShootingOptions {
             weights: Vec::new(),
             tol: 1e-9,
             max_iterations: 12,
+            min_iterations: 0,
             refresh: 0.1,
             harmonics: 20,
             samples: 128,
@@ -300,7 +304,7 @@ where
         }
         residuals.push(res);
         best = best.min(res);
-        if res <= opts.tol {
+        if res <= opts.tol && it >= opts.min_iterations {
             let (m, at) = current.unwrap_or_else(|| (Mat::zeros(0, 0), it));
             return Ok(PeriodicOrbit {
                 x0: x,

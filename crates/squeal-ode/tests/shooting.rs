@@ -159,7 +159,7 @@ fn the_van_der_pol_period_is_the_published_one_to_1e_10() {
     );
     // Chord iterations on the start's monodromy (it is not recomputed while the residual
     // falls fast enough): the start is 0.16 off the period, the residual falls by 3.3x to
-    // 65x per step (measured; 42x once near) down to 9e-13. Each step must at least halve it.
+    // 65x per step (measured; 42x once near) down to 1.4e-13. Each step must at least halve it.
     assert!(
         orbit.residuals.windows(2).all(|w| w[1] < 0.5 * w[0]),
         "{:?}",
