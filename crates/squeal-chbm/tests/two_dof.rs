@@ -398,15 +398,29 @@ fn the_shooting_reference_states_an_error_that_bounds_its_own() {
     );
     assert_eq!(c.chbm[2].solution.outcome, Outcome::LimitCycle);
     // The bound: CHBM 20H (exact here) is within the stated error of the reference, in
-    // displacement and velocity. MEASURED_2DOF_BOUND
+    // displacement, velocity and frequency; and the bound is sharp to a factor 10. Measured:
+    // actual 3.67e-7 (displacement and velocity), 1.65e-8 Hz; stated 1.73e-6, 5.3e-8 Hz (4.7x,
+    // 3.2x). (Stated before both solves had to take two Newton steps: 4.9e-8, below the
+    // actual error: the check had stopped at its start.)
     assert!(
         h20.displacement <= r.all.displacement,
         "{h20:?} vs {:?}",
         r.all
     );
     assert!(h20.velocity <= r.all.velocity, "{h20:?} vs {:?}", r.all);
-    // And the reference is more accurate than what it judges: a tenth of CHBM 3H's error.
-    assert!(r.all.displacement < 0.1 * h3.displacement, "{h3:?}");
+    assert!(
+        h20.frequency_hz.abs() <= r.all.frequency_hz.abs(),
+        "{h20:?} vs {:?}",
+        r.all
+    );
+    assert!(
+        r.all.displacement <= 10.0 * h20.displacement,
+        "{h20:?} vs {:?}",
+        r.all
+    );
+    // CHBM 3H is 2.6e-6 off (a nearly harmonic cycle): the reference's stated error is below
+    // it, but not by the factor 10 the brake shows (tests/compare_reference.rs).
+    assert!(r.all.displacement < h3.displacement, "{h3:?}");
     // Newton converged: periodicity residual below the asked 100 rtol = 1e-8.
     assert!(
         r.reference.residual() <= 1e-8,

@@ -418,7 +418,7 @@ fn variational<S: OdeSystem>(
     column_atol: f64,
 ) -> Result<Vec<f64>, OdeError> {
     let n = sys.dim();
-    if x0.len() != n || y0.len() % n.max(1) != 0 {
+    if x0.len() != n || !y0.len().is_multiple_of(n.max(1)) {
         return Err(OdeError::DimensionMismatch {
             what: "variational start",
             expected: n,
