@@ -37,14 +37,15 @@ fn the_coarse_brakes_reference_orbit_is_periodic_and_keeps_the_multiplier_one() 
     let c = &s["comparisons"][0];
     let r = &c["reference"];
     eprintln!("{r:#}");
-    // Newton stops at a relative periodicity residual of 100 rtol = 1e-8
-    // (ShootingReferenceOptions::tol_factor).
+    // Newton stops at a relative periodicity residual of 300 rtol = 3e-8
+    // (ShootingReferenceOptions::tol_factor; 9.9e-9 measured with 100 rtol).
     let residual = number(r, "periodicity_residual");
-    assert!(residual <= 1e-8, "periodicity residual {residual}");
+    assert!(residual <= 3e-8, "periodicity residual {residual}");
     // The multiplier 1: |M f - f| / |f| along the orbit, one column of the variational
     // equations at rtol 1e-10 over one period. It is about the periodicity residual times the
     // ratio of the stiff modes' rates to the cycle's (2e-6 measured on the medium brake for
-    // residuals of 2e-9 and 9e-9); 1e-4 allows the residual's 1e-8 bound times 1e4.
+    // residuals of 2e-9 and 9e-9; 1.3e-6 on the coarse one); 1e-4 allows the residual's 3e-8
+    // bound times 3e3.
     let tangent = number(r, "floquet_tangent_error");
     assert!(tangent < 1e-4, "M f - f: {tangent}");
     // The reference's stated own error (its difference from the orbit at rtol 1e-9) is far

@@ -293,13 +293,17 @@ impl CompareOptions {
     }
 }
 
+/// One CHBM solve before it is measured: harmonics, solution, the amplitude that converged,
+/// wall time and trial steps of all the attempts.
+type Solve = (usize, ChbmSolution, f64, Duration, usize);
+
 /// The CHBM solves, unaligned.
 fn chbm_solves(
     mb: &ModalBrake,
     start: &ChbmStart,
     opts: &CompareOptions,
     step: &mut dyn FnMut(CompareStep),
-) -> Result<Vec<(usize, ChbmSolution, f64, Duration, usize)>, CompareError> {
+) -> Result<Vec<Solve>, CompareError> {
     let mut out = Vec::new();
     for &h in &opts.harmonics {
         step(CompareStep::Chbm(h));
@@ -321,10 +325,7 @@ fn chbm_solves(
 
 /// The reference's start: the limit cycle of the CHBM solve with the most harmonics, else the
 /// steady cycle of the tightest integration that settled.
-fn reference_start(
-    chbm: &[(usize, ChbmSolution, f64, Duration, usize)],
-    ti: &[TiRow],
-) -> Result<(Cycle, ReferenceStart), CompareError> {
+fn reference_start(chbm: &[Solve], ti: &[TiRow]) -> Result<(Cycle, ReferenceStart), CompareError> {
     let best = chbm
         .iter()
         .filter(|c| c.1.outcome == Outcome::LimitCycle)

@@ -421,9 +421,9 @@ fn the_shooting_reference_states_an_error_that_bounds_its_own() {
     // CHBM 3H is 2.6e-6 off (a nearly harmonic cycle): the reference's stated error is below
     // it, but not by the factor 10 the brake shows (tests/compare_reference.rs).
     assert!(r.all.displacement < h3.displacement, "{h3:?}");
-    // Newton converged: periodicity residual below the asked 100 rtol = 1e-8.
+    // Newton converged: periodicity residual below the asked 300 rtol = 3e-8.
     assert!(
-        r.reference.residual() <= 1e-8,
+        r.reference.residual() <= 3e-8,
         "{:?}",
         r.reference.residuals
     );

@@ -98,9 +98,10 @@ pub struct ShootingOptions {
     /// Newton steps always taken before the residual may stop the iteration (a start already
     /// within [`ShootingOptions::tol`] still moves to the orbit of this tolerance's flow).
     pub min_iterations: usize,
-    /// Recompute the monodromy when one step divides the residual by less than `1 / refresh`.
+    /// Recompute the monodromy when one step divides the residual by less than `1 / refresh`
+    /// (not within 10 [`ShootingOptions::tol`], near the integration's noise floor).
     pub refresh: f64,
-    /// Harmonics of the trajectory's Fourier series ([`PeriodicOrbit::trajectory`]).
+    /// Harmonics of the trajectory's Fourier series ([`Flow::trajectory`]).
     pub harmonics: usize,
     /// Samples per period of that series (more than `2 harmonics`).
     pub samples: usize,
@@ -322,7 +323,12 @@ where
         // A fresh matrix at the first iterate; later only when convergence is slow and the
         // matrix is older than the previous iterate (a newer one would be about the same).
         let slow = residuals.len() >= 2 && res > opts.refresh * residuals[residuals.len() - 2];
-        let stale = current.as_ref().is_none_or(|c| slow && c.1 + 1 < it);
+        // Within 10 tol the residual is near the integration's noise floor, where no
+        // monodromy helps: the iteration goes on with the one it has.
+        let near = res <= 10.0 * opts.tol;
+        let stale = current
+            .as_ref()
+            .is_none_or(|c| slow && !near && c.1 + 1 < it);
         if stale {
             let m = monodromy(&x, t, &fl).map_err(|e| ShootingError::Monodromy(e.into()))?;
             if m.nrows() != n || m.ncols() != n {
