@@ -3,6 +3,9 @@
 //! multipliers `1` and `e^{-2μT}`, all exact) and the van der Pol oscillator at `μ = 1`, whose
 //! period is published to 29 digits.
 
+mod common;
+
+use common::VanDerPol;
 use faer::MatMut;
 use squeal_ode::{Atol, BdfOptions, OdeSystem, ShootingOptions, shoot, variational_monodromy};
 use std::f64::consts::PI;
@@ -29,27 +32,6 @@ impl OdeSystem for Hopf {
         jac[(0, 1)] = -self.omega - 2.0 * x * v;
         jac[(1, 0)] = self.omega - 2.0 * x * v;
         jac[(1, 1)] = self.mu - r2 - 2.0 * v * v;
-    }
-}
-
-/// `x'' - μ (1 - x²) x' + x = 0`.
-struct VanDerPol {
-    mu: f64,
-}
-
-impl OdeSystem for VanDerPol {
-    fn dim(&self) -> usize {
-        2
-    }
-    fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
-        dy[0] = y[1];
-        dy[1] = self.mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
-    }
-    fn jacobian(&self, _t: f64, y: &[f64], mut jac: MatMut<'_, f64>) {
-        jac[(0, 0)] = 0.0;
-        jac[(0, 1)] = 1.0;
-        jac[(1, 0)] = -2.0 * self.mu * y[0] * y[1] - 1.0;
-        jac[(1, 1)] = self.mu * (1.0 - y[0] * y[0]);
     }
 }
 
