@@ -113,9 +113,9 @@ fn the_hopf_normal_forms_cycle_is_its_circle_to_1e_10() {
     );
 }
 
-/// The period of the van der Pol cycle at μ = 1 (published to 29 digits, e.g. by M. Urabe's
-/// Galerkin method and later high-precision computations).
-const VDP_PERIOD: f64 = 6.663_286_859_323_130_189_699_682_030_5;
+/// The period of the van der Pol cycle at μ = 1, published to 29 digits
+/// (6.6632868593231301896996820305), here to the f64 nearest.
+const VDP_PERIOD: f64 = 6.663_286_859_323_13;
 /// Its largest `x` (published to 15 digits).
 const VDP_AMPLITUDE: f64 = 2.008_619_860_874_84;
 
