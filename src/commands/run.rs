@@ -27,9 +27,9 @@ pub struct RunArgs {
     /// Friction levels of the comparison, as multiples of mu0 (a comma-separated list)
     #[arg(long, value_delimiter = ',', default_value = "1.01,1.1")]
     pub compare_mu_ratio: Vec<f64>,
-    /// Tolerances of the comparison's time integrations besides the reference (a
-    /// comma-separated list)
-    #[arg(long, value_delimiter = ',', default_value = "1e-5,1e-6")]
+    /// Tolerances of the comparison's time integrations to the steady cycle (a
+    /// comma-separated list; the reference is the periodic orbit by shooting)
+    #[arg(long, value_delimiter = ',', default_value = "1e-5,1e-6,1e-7")]
     pub compare_rtol: Vec<f64>,
 }
 

@@ -6,17 +6,28 @@
 //! into tables and figures. Error measures are those of [`crate::cycle`]: phase-aligned on the
 //! reference's most moving contact dof, relative RMS over the cycle, on all physical dofs and
 //! on the nonlinear (contact) dofs.
+//!
+//! **The reference** (issue #22) is the periodic orbit of the reduced brake by shooting
+//! ([`crate::shooting`]), started from the CHBM cycle with the most harmonics (or, when no
+//! CHBM solve converged, from the steady cycle of the tightest time integration that settled),
+//! with its own error stated. The time integrations from the perturbed equilibrium to the
+//! steady cycle at the user's tolerances ([`CompareOptions::rtols`]) are the cost side of the
+//! paper's comparison; each is judged against the reference, and one that found no steady
+//! cycle is reported as failed, with no measures.
 
 use crate::cycle::{
     Cycle, EnergyBalance, RelativeErrors, energy_balance, harmonic_power, relative_errors,
 };
 use crate::physics::{DiscSpeed, SlidingMargin, sliding_margin};
+use crate::shooting::{
+    ShootingReference, ShootingReferenceError, ShootingReferenceOptions, shooting_reference,
+};
 use crate::solve::{
     ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Outcome, RESTART_AMPLITUDES, solve,
     solve_with_restarts,
 };
 use crate::start::start_at;
-use crate::timeint::{TiError, TiOptions, TiRun, integrate_from, integrate_to_limit_cycle};
+use crate::timeint::{TiError, TiOptions, TiRun, integrate_to_limit_cycle};
 use squeal_brake::Brake;
 use squeal_brake::equilibrium::NewtonOptions;
 use squeal_brake::modal_brake::ModalBrake;
@@ -31,9 +42,15 @@ pub enum CompareError {
     /// A time integration could not start.
     #[error("time integration: {0}")]
     Ti(#[from] TiError),
-    /// The reference integration ended without a steady cycle (why, in words).
-    #[error("the reference time integration found no steady cycle: {0}")]
-    NoReference(String),
+    /// No cycle to start the reference from: no CHBM solve converged to a limit cycle and no
+    /// time integration settled.
+    #[error(
+        "no start for the reference: no CHBM solve gave a limit cycle and no time integration reached a steady cycle"
+    )]
+    NoStart,
+    /// The shooting reference failed.
+    #[error("the reference limit cycle: {0}")]
+    Reference(#[from] ShootingReferenceError),
     /// A CHBM solve stopped with an error (not merely unconverged).
     #[error("CHBM with {harmonics} harmonics: {source}")]
     Chbm {
@@ -58,26 +75,10 @@ pub struct CompareOptions {
     pub amplitudes: Vec<f64>,
     /// Base time-integration options (`rtol` set per run).
     pub ti: TiOptions,
-    /// Tolerances of the time integrations placed on the speed–accuracy chart.
+    /// Tolerances of the time integrations from the perturbed equilibrium (the cost side).
     pub rtols: Vec<f64>,
-    /// Tolerance of the reference integration every error is measured against. The reference
-    /// is not integrated from the equilibrium at this tolerance: a run at
-    /// [`CompareOptions::seed_rtol`] reaches the steady cycle, a run at
-    /// `check_factor · reference_rtol` continues from its end, and the reference continues from
-    /// the end of that one ([`ReferenceEstimate`]).
-    pub reference_rtol: f64,
-    /// Tolerance of the run from the perturbed equilibrium to the steady cycle, where the
-    /// tighter runs of the reference start.
-    pub seed_rtol: f64,
-    /// The check run's tolerance is `check_factor · reference_rtol`; their difference estimates
-    /// the reference's own error ([`ReferenceEstimate`]).
-    pub check_factor: f64,
-    /// Largest relative change between two consecutive Fourier averages of the check and
-    /// reference runs ([`TiOptions::drift_tol`]); it must stay above their noise (about
-    /// `50 rtol`, from the periods measured on single cycles).
-    pub reference_drift_tol: f64,
-    /// Periods after which a check or reference run that has not settled gives up.
-    pub reference_max_cycles: f64,
+    /// The shooting reference every error is measured against.
+    pub reference: ShootingReferenceOptions,
     /// The disc's rotation, for the sliding margin of every cycle (none: not checked).
     pub disc: Option<DiscSpeed>,
 }
@@ -89,12 +90,8 @@ impl Default for CompareOptions {
             chbm: ChbmOptions::default(),
             amplitudes: RESTART_AMPLITUDES.to_vec(),
             ti: TiOptions::default(),
-            rtols: vec![1e-5, 1e-6],
-            reference_rtol: 1e-10,
-            seed_rtol: 1e-6,
-            check_factor: 10.0,
-            reference_drift_tol: 1e-7,
-            reference_max_cycles: 600.0,
+            rtols: vec![1e-5, 1e-6, 1e-7],
+            reference: ShootingReferenceOptions::default(),
             disc: None,
         }
     }
@@ -146,77 +143,25 @@ pub struct TiRow {
     pub run: TiRun,
     /// Its steady cycle aligned on the reference (`None` if no steady cycle).
     pub cycle: Option<Cycle>,
-    /// Its measures against the reference (`None` if no steady cycle).
+    /// Its measures against the reference (`None` if no steady cycle: a failed run).
     pub measures: Option<Measures>,
 }
 
-/// How the reference was reached and how far it is estimated to be from the exact cycle of
-/// the reduced model.
-///
-/// The global error of the order-2 BDF on a limit cycle is mostly a phase (frequency) error
-/// growing like `rtol^(2/3)` (local error `∝ h³ = rtol`, global `∝ h²`): measured on the
-/// coarse brake at 1.01 μ0, the frequency errors at rtol 1e-6 and 1e-7 against a 20-harmonic
-/// CHBM are in the ratio 4.66 = 10^0.67. With the check run at `f · rtol`, the reference's
-/// own error is then `|c_check - c_ref| / (f^(2/3) - 1)` (Richardson), which is what
-/// [`ReferenceEstimate::all`] and [`ReferenceEstimate::contact`] hold.
-#[derive(Clone, Debug)]
-pub struct ReferenceEstimate {
-    /// The run from the perturbed equilibrium to the steady cycle at
-    /// [`CompareOptions::seed_rtol`] (its history shows the growth of the oscillation).
-    pub seed: TiRow,
-    /// The run at `check_factor · reference_rtol` continued from the seed's end (the seed when
-    /// that one is the reference, see [`ReferenceEstimate::unsteady`]); its measures are its raw
-    /// difference from the reference (`None` when it found no steady cycle).
-    pub check: TiRow,
-    /// `1 / ((rtol_check / rtol_reference)^(2/3) - 1)`: the raw difference times this is the
-    /// estimate.
-    pub scale: f64,
-    /// The run at [`CompareOptions::reference_rtol`] when it found no steady cycle within
-    /// [`CompareOptions::reference_max_cycles`]: the reference is then the check run, checked
-    /// against the seed (or the seed itself, without an estimate, when the check found none
-    /// either).
-    pub unsteady: Option<TiRow>,
-    /// Estimated error of the reference on every physical dof (`None` without a steady check).
-    pub all: Option<RelativeErrors>,
-    /// Estimated error of the reference on the contact dofs.
-    pub contact: Option<RelativeErrors>,
+/// Where the shooting reference started.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ReferenceStart {
+    /// From the CHBM cycle with this many harmonics.
+    Chbm(usize),
+    /// From the steady cycle of the time integration at this tolerance.
+    Integration(f64),
 }
 
-impl ReferenceEstimate {
-    /// The distinct runs the reference took: seed, check, reference and the unsteady run at
-    /// the asked tolerance (each once, by tolerance).
-    fn runs<'a>(&'a self, reference: &'a TiRow) -> Vec<&'a TiRow> {
-        let mut out: Vec<&TiRow> = Vec::new();
-        let candidates = [Some(&self.seed), Some(&self.check), Some(reference)];
-        for r in candidates
-            .into_iter()
-            .chain([self.unsteady.as_ref()])
-            .flatten()
-        {
-            if out.iter().all(|o| o.rtol != r.rtol) {
-                out.push(r);
-            }
+impl std::fmt::Display for ReferenceStart {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Chbm(h) => write!(f, "the CHBM cycle with {h} harmonics"),
+            Self::Integration(r) => write!(f, "the steady cycle of BDF rtol {r:e}"),
         }
-        out
-    }
-
-    /// Wall time of all the runs the reference took.
-    pub fn wall(&self, reference: &TiRow) -> Duration {
-        self.runs(reference).iter().map(|r| r.run.wall).sum()
-    }
-
-    /// Accepted steps of all the runs the reference took.
-    pub fn steps(&self, reference: &TiRow) -> usize {
-        self.runs(reference).iter().map(|r| r.run.stats.steps).sum()
-    }
-}
-
-fn scaled(e: &RelativeErrors, s: f64) -> RelativeErrors {
-    RelativeErrors {
-        displacement: e.displacement * s,
-        velocity: e.velocity * s,
-        frequency_hz: e.frequency_hz * s,
-        frequency_relative: e.frequency_relative * s,
     }
 }
 
@@ -225,11 +170,13 @@ fn scaled(e: &RelativeErrors, s: f64) -> RelativeErrors {
 pub struct Comparison {
     /// Friction coefficient of the modal brake.
     pub mu: f64,
-    /// The reference integration at [`CompareOptions::reference_rtol`] (continued from the
-    /// check run's end), measured against itself.
-    pub reference: TiRow,
-    /// The runs before the reference and its estimated own error.
-    pub estimate: ReferenceEstimate,
+    /// The shooting reference and its stated own error.
+    pub reference: ShootingReference,
+    /// Where the reference's Newton iteration started.
+    pub reference_start: ReferenceStart,
+    /// The reference cycle's own measures (errors zero; power, energy, open fractions,
+    /// sliding margin).
+    pub reference_measures: Measures,
     /// The integrations at each of [`CompareOptions::rtols`], in that order.
     pub ti: Vec<TiRow>,
     /// The CHBM solves with each of [`CompareOptions::harmonics`], in that order.
@@ -301,31 +248,8 @@ fn ti_row(
     })
 }
 
-fn steady_cycle(run: &TiRun) -> Result<Cycle, CompareError> {
-    match (&run.steady, &run.failure) {
-        (Some(s), _) => Ok(s.cycle.clone()),
-        (None, f) => Err(CompareError::NoReference(
-            f.as_ref()
-                .map_or("no reason given".into(), |e| e.to_string()),
-        )),
-    }
-}
-
-/// The options of a run continued on a steady cycle at `rtol`.
-fn continued(opts: &CompareOptions, rtol: f64) -> TiOptions {
-    TiOptions {
-        rtol,
-        drift_tol: opts.reference_drift_tol,
-        max_cycles: opts.reference_max_cycles,
-        ..opts.ti.clone()
-    }
-}
-
 /// CHBM with each number of harmonics and the time integrations at each tolerance, all
-/// measured against the reference integration, at the friction of `mb`. The reference is
-/// reached in three runs ([`ReferenceEstimate`]): the seed from the perturbed equilibrium at
-/// [`CompareOptions::seed_rtol`], the check at `check_factor · reference_rtol` from the seed's
-/// end, the reference at [`CompareOptions::reference_rtol`] from the check's end.
+/// measured against the shooting reference, at the friction of `mb` (module docs).
 pub fn compare_at(
     mb: &ModalBrake,
     start: &ChbmStart,
@@ -337,26 +261,20 @@ pub fn compare_at(
 /// One run of a comparison, announced by [`compare_at_with`] as it starts.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CompareStep {
-    /// The reference's seed: BDF from the perturbed equilibrium at this tolerance.
-    Seed(f64),
-    /// The check run continued from the seed's steady cycle at this tolerance.
-    Check(f64),
-    /// The reference run continued from the check's steady cycle at this tolerance.
-    Reference(f64),
-    /// A BDF run from the perturbed equilibrium at this tolerance (Table 1).
-    Integration(f64),
     /// A CHBM solve with this many harmonics.
     Chbm(usize),
+    /// A BDF run from the perturbed equilibrium at this tolerance.
+    Integration(f64),
+    /// The shooting reference at this tolerance (and its check).
+    Reference(f64),
 }
 
 impl std::fmt::Display for CompareStep {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Self::Seed(r) => write!(f, "reference seed, BDF rtol {r:e}"),
-            Self::Check(r) => write!(f, "reference check, BDF rtol {r:e}"),
-            Self::Reference(r) => write!(f, "reference, BDF rtol {r:e}"),
-            Self::Integration(r) => write!(f, "BDF rtol {r:e}"),
             Self::Chbm(h) => write!(f, "CHBM, {h} harmonics"),
+            Self::Integration(r) => write!(f, "BDF rtol {r:e}"),
+            Self::Reference(r) => write!(f, "reference by shooting, BDF rtol {r:e}"),
         }
     }
 }
@@ -364,116 +282,29 @@ impl std::fmt::Display for CompareStep {
 impl CompareOptions {
     /// The runs [`compare_at_with`] announces, in order.
     pub fn steps(&self) -> Vec<CompareStep> {
-        let mut steps = vec![
-            CompareStep::Seed(self.seed_rtol),
-            CompareStep::Check(self.check_factor * self.reference_rtol),
-            CompareStep::Reference(self.reference_rtol),
-        ];
-        // A tolerance equal to the seed's reuses the seed's run.
-        let rtols = self.rtols.iter().filter(|&&r| r != self.seed_rtol);
-        steps.extend(rtols.map(|&r| CompareStep::Integration(r)));
-        steps.extend(self.harmonics.iter().map(|&h| CompareStep::Chbm(h)));
+        let mut steps: Vec<CompareStep> = self
+            .harmonics
+            .iter()
+            .map(|&h| CompareStep::Chbm(h))
+            .collect();
+        steps.extend(self.rtols.iter().map(|&r| CompareStep::Integration(r)));
+        steps.push(CompareStep::Reference(self.reference.rtol));
         steps
     }
 }
 
-/// [`compare_at`], telling `step` each run (of [`CompareOptions::steps`]) as it starts: for a
-/// progress display over runs that take up to minutes each.
-pub fn compare_at_with(
+/// One CHBM solve before it is measured: harmonics, solution, the amplitude that converged,
+/// wall time and trial steps of all the attempts.
+type Solve = (usize, ChbmSolution, f64, Duration, usize);
+
+/// The CHBM solves, unaligned.
+fn chbm_solves(
     mb: &ModalBrake,
     start: &ChbmStart,
     opts: &CompareOptions,
     step: &mut dyn FnMut(CompareStep),
-) -> Result<Comparison, CompareError> {
-    step(CompareStep::Seed(opts.seed_rtol));
-    let seed = ti_row(mb, start, &opts.ti, opts.seed_rtol)?;
-    steady_cycle(&seed.run)?;
-    let check_rtol = opts.check_factor * opts.reference_rtol;
-    step(CompareStep::Check(check_rtol));
-    let check_run = integrate_from(mb, &seed.run.continuation(), &continued(opts, check_rtol))?;
-    let from = if check_run.steady.is_some() {
-        check_run.continuation()
-    } else {
-        seed.run.continuation()
-    };
-    step(CompareStep::Reference(opts.reference_rtol));
-    let ref_run = integrate_from(mb, &from, &continued(opts, opts.reference_rtol))?;
-    let row = |rtol: f64, run: TiRun| TiRow {
-        rtol,
-        run,
-        cycle: None,
-        measures: None,
-    };
-    // The reference is the tightest run with a steady cycle, checked against the next looser
-    // one; a tight run that found none is kept to be reported.
-    let (mut reference, check, unsteady) = if ref_run.steady.is_some() {
-        (
-            row(opts.reference_rtol, ref_run),
-            row(check_rtol, check_run),
-            None,
-        )
-    } else if check_run.steady.is_some() {
-        (
-            row(check_rtol, check_run),
-            seed.clone(),
-            Some(row(opts.reference_rtol, ref_run)),
-        )
-    } else {
-        (
-            seed.clone(),
-            row(check_rtol, check_run),
-            Some(row(opts.reference_rtol, ref_run)),
-        )
-    };
-    let ref_cycle = steady_cycle(&reference.run)?;
-    let phase_dof = ref_cycle.strongest_dof(&mb.nl_dofs).unwrap_or(0);
-    reference.measures = Some(measures(mb, &ref_cycle, &ref_cycle, opts.disc.as_ref())?);
-    reference.cycle = Some(ref_cycle.clone());
-    let all: Vec<usize> = (0..mb.modes()).collect();
-    let power_reference: f64 = harmonic_power(&ref_cycle, &all).iter().sum();
-    let mut check = check;
-    if check.rtol == reference.rtol {
-        // Both the check and the reference are the seed: nothing to estimate from.
-        check.run.steady = None;
-    }
-    if let Some(s) = &check.run.steady {
-        let mut c = s.cycle.clone();
-        c.align_to(&ref_cycle, phase_dof);
-        check.measures = Some(measures(mb, &c, &ref_cycle, opts.disc.as_ref())?);
-        check.cycle = Some(c);
-    }
-    let scale = 1.0 / ((check.rtol / reference.rtol).powf(2.0 / 3.0) - 1.0);
-    let estimate = ReferenceEstimate {
-        unsteady,
-        all: check.measures.as_ref().map(|m| scaled(&m.all, scale)),
-        contact: check.measures.as_ref().map(|m| scaled(&m.contact, scale)),
-        seed,
-        check,
-        scale,
-    };
-    let mut ti = Vec::new();
-    for &rtol in &opts.rtols {
-        // The seed is the same run as one from the equilibrium at its tolerance.
-        let mut row = if rtol == opts.seed_rtol {
-            TiRow {
-                rtol,
-                run: estimate.seed.run.clone(),
-                cycle: None,
-                measures: None,
-            }
-        } else {
-            step(CompareStep::Integration(rtol));
-            ti_row(mb, start, &opts.ti, rtol)?
-        };
-        if let Some(s) = &row.run.steady {
-            let mut c = s.cycle.clone();
-            c.align_to(&ref_cycle, phase_dof);
-            row.measures = Some(measures(mb, &c, &ref_cycle, opts.disc.as_ref())?);
-            row.cycle = Some(c);
-        }
-        ti.push(row);
-    }
-    let mut chbm = Vec::new();
+) -> Result<Vec<Solve>, CompareError> {
+    let mut out = Vec::new();
     for &h in &opts.harmonics {
         step(CompareStep::Chbm(h));
         let o = ChbmOptions {
@@ -487,15 +318,73 @@ pub fn compare_at_with(
                     source,
                 }
             })?;
+        out.push((h, solution, amplitude, wall, iterations));
+    }
+    Ok(out)
+}
+
+/// The reference's start: the limit cycle of the CHBM solve with the most harmonics, else the
+/// steady cycle of the tightest integration that settled.
+fn reference_start(chbm: &[Solve], ti: &[TiRow]) -> Result<(Cycle, ReferenceStart), CompareError> {
+    let best = chbm
+        .iter()
+        .filter(|c| c.1.outcome == Outcome::LimitCycle)
+        .max_by_key(|c| c.0);
+    if let Some((h, s, ..)) = best {
+        return Ok((s.cycle()?, ReferenceStart::Chbm(*h)));
+    }
+    let tightest = ti
+        .iter()
+        .filter(|r| r.run.steady.is_some())
+        .min_by(|a, b| a.rtol.total_cmp(&b.rtol));
+    match tightest.and_then(|r| r.run.steady.as_ref().map(|s| (r.rtol, s))) {
+        Some((rtol, s)) => Ok((s.cycle.clone(), ReferenceStart::Integration(rtol))),
+        None => Err(CompareError::NoStart),
+    }
+}
+
+/// [`compare_at`], telling `step` each run (of [`CompareOptions::steps`]) as it starts: for a
+/// progress display over runs that take up to minutes each.
+pub fn compare_at_with(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &CompareOptions,
+    step: &mut dyn FnMut(CompareStep),
+) -> Result<Comparison, CompareError> {
+    let solves = chbm_solves(mb, start, opts, step)?;
+    let mut ti = Vec::new();
+    for &rtol in &opts.rtols {
+        step(CompareStep::Integration(rtol));
+        ti.push(ti_row(mb, start, &opts.ti, rtol)?);
+    }
+    step(CompareStep::Reference(opts.reference.rtol));
+    let (from, reference_start) = reference_start(&solves, &ti)?;
+    let phase_dof = from.strongest_dof(&mb.nl_dofs).unwrap_or(0);
+    let reference = shooting_reference(mb, &from, phase_dof, &opts.reference)?;
+    let ref_cycle = &reference.reference.cycle;
+    let disc = opts.disc.as_ref();
+    let reference_measures = measures(mb, ref_cycle, ref_cycle, disc)?;
+    let all: Vec<usize> = (0..mb.modes()).collect();
+    let power_reference: f64 = harmonic_power(ref_cycle, &all).iter().sum();
+    for row in &mut ti {
+        if let Some(s) = &row.run.steady {
+            let mut c = s.cycle.clone();
+            c.align_to(ref_cycle, phase_dof);
+            row.measures = Some(measures(mb, &c, ref_cycle, disc)?);
+            row.cycle = Some(c);
+        }
+    }
+    let mut chbm = Vec::new();
+    for (harmonics, solution, amplitude, wall, iterations) in solves {
         let mut cycle = solution.cycle()?;
-        cycle.align_to(&ref_cycle, phase_dof);
-        let m = measures(mb, &cycle, &ref_cycle, opts.disc.as_ref())?;
+        cycle.align_to(ref_cycle, phase_dof);
+        let measures = measures(mb, &cycle, ref_cycle, disc)?;
         chbm.push(ChbmRow {
-            harmonics: h,
+            harmonics,
             amplitude,
             solution,
             cycle,
-            measures: m,
+            measures,
             wall,
             iterations,
         });
@@ -503,7 +392,8 @@ pub fn compare_at_with(
     Ok(Comparison {
         mu: mb.mu,
         reference,
-        estimate,
+        reference_start,
+        reference_measures,
         ti,
         chbm,
         phase_dof,

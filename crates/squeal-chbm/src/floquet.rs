@@ -1042,15 +1042,14 @@ impl Default for MonodromyOptions {
     }
 }
 
-/// Floquet multipliers from the monodromy matrix of the variational equations, each of its
-/// `2n` columns integrated over one period by [`squeal_ode`]'s BDF (in parallel; the bits do
-/// not depend on the thread count).
-pub fn monodromy(
+/// The monodromy matrix of the variational equations along `cycle`, each of its `2n` columns
+/// integrated over one period by [`squeal_ode`]'s BDF (in parallel; the bits do not depend on
+/// the thread count), and the BDF steps over all columns.
+pub fn monodromy_matrix(
     mb: &ModalBrake,
     cycle: &CycleRef<'_>,
     opts: &MonodromyOptions,
-) -> Result<MonodromyFloquet, FloquetError> {
-    let t0 = Instant::now();
+) -> Result<(Mat<f64>, usize), FloquetError> {
     cycle
         .layout
         .check_len("cycle coefficients", cycle.u.len())?;
@@ -1088,6 +1087,20 @@ pub fn monodromy(
             m[(i, c)] = *v;
         }
     }
+    Ok((m, steps))
+}
+
+/// Floquet multipliers from the monodromy matrix of the variational equations
+/// ([`monodromy_matrix`]).
+pub fn monodromy(
+    mb: &ModalBrake,
+    cycle: &CycleRef<'_>,
+    opts: &MonodromyOptions,
+) -> Result<MonodromyFloquet, FloquetError> {
+    let t0 = Instant::now();
+    let (m, steps) = monodromy_matrix(mb, cycle, opts)?;
+    let dim = m.nrows();
+    let period = 2.0 * PI / cycle.omega;
     let evd = m.eigen().map_err(|_| FloquetError::Eigen {
         what: "monodromy matrix",
     })?;

@@ -30,6 +30,7 @@ pub mod compare;
 pub mod cycle;
 pub mod floquet;
 pub mod physics;
+pub mod shooting;
 pub mod solve;
 pub mod start;
 pub mod system;

@@ -294,8 +294,16 @@ fn take<S: squeal_ode::OdeSystem>(
 /// Physical displacement and velocity coefficients (`x = Φ q`, `x' = Φ v`) of the modal
 /// state's averaged Fourier coefficients.
 fn physical(mb: &ModalBrake, sums: &FourierSums) -> Result<Cycle, HbmError> {
-    let state = sums.periodic();
+    physical_cycle(mb, &sums.periodic())
+}
+
+/// Physical displacement and velocity coefficients (`x = Φ q`, `x' = Φ v`) of the Fourier
+/// series of a modal state `[q; v]`.
+pub(crate) fn physical_cycle(mb: &ModalBrake, state: &Periodic) -> Result<Cycle, HbmError> {
     let n = mb.modes();
+    state
+        .layout()
+        .check_len("modal state", 2 * n * state.layout().n_blocks())?;
     let layout = HarmonicLayout::new(n, state.harmonics())?;
     let (mut x, mut v) = (vec![0.0; layout.len()], vec![0.0; layout.len()]);
     for b in 0..layout.n_blocks() {

@@ -62,12 +62,17 @@
 mod bdf;
 mod error;
 mod options;
+pub mod shooting;
 mod solve;
 mod steady;
 
 pub use bdf::{Bdf, MAX_DIM, OdeSystem};
 pub use error::OdeError;
 pub use options::{Atol, BdfOptions, BdfStats, FixedStep, MAX_ORDER};
+pub use shooting::{
+    Flow, PeriodicOrbit, ShootingError, ShootingOptions, flow, shoot, tangent,
+    variational_monodromy,
+};
 pub use solve::{Solution, solve};
 pub use steady::{
     CycleRecord, MAX_HARMONICS, MAX_SAMPLES_PER_CYCLE, OscillationMonitor, SteadyOptions,

@@ -1098,7 +1098,7 @@ fn compare_section(compare: Option<&CompareSummary>) -> Section {
         figures.push((
             dir.join("limit_cycles"),
             format!(
-                "At {} μ0: CHBM's limit cycles over the reference time integration (the paper's Figure 4)",
+                "At {} μ0: CHBM's limit cycles over the reference limit cycle (the paper's Figure 4)",
                 fmt_sig(l.ratio, 4)
             ),
         ));
@@ -1109,7 +1109,7 @@ fn compare_section(compare: Option<&CompareSummary>) -> Section {
         tables.push((
             l.table1.clone(),
             format!(
-                "At {} μ0 (μ = {}): errors against the reference time integration (the paper's Table 1)",
+                "At {} μ0 (μ = {}): errors against the reference limit cycle (the paper's Table 1)",
                 fmt_sig(l.ratio, 4),
                 fmt_sig(l.mu, 6)
             ),
@@ -1145,8 +1145,10 @@ fn compare_section(compare: Option<&CompareSummary>) -> Section {
     Section {
         heading: "CHBM against time integration".into(),
         text: format!(
-            "CHBM checked against variable-step BDF time integration of the whole brake from the \
-             unstable equilibrium to its steady cycle. Errors: {}.",
+            "CHBM and variable-step BDF time integration of the whole brake (from the unstable \
+             equilibrium to its steady cycle, at the tolerances a user would choose) checked \
+             against the reference limit cycle, the brake's periodic orbit by shooting with its \
+             own error stated. Errors: {}.",
             c.error_definition
         ),
         figures,
@@ -1372,11 +1374,7 @@ mod tests {
             s.figures[0].0,
             PathBuf::from("compare/mu_1.100/limit_cycles")
         );
-        assert!(
-            s.figures[0]
-                .1
-                .contains("over the reference time integration")
-        );
+        assert!(s.figures[0].1.contains("over the reference limit cycle"));
         assert_eq!(s.tables.len(), 2);
         assert_eq!(s.tables[0].0, t1);
         assert!(
