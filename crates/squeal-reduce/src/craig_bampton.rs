@@ -1,8 +1,9 @@
 //! Craig–Bampton reduction of one part, eqs (1)–(7).
 //!
 //! The boundary coordinates `r` are given as rows of a constraint `r = C u` on the part's free
-//! dofs: one dof per row for the node interface and the piston nodes, the patch weights of
-//! [`crate::interface`] (a weighted mean of a few hundred face dofs) for the patch interface.
+//! dofs: one dof per row for the node interface, the nodal interface's face nodes and the
+//! piston nodes, the patch weights of [`crate::interface`] (a weighted mean of a few hundred
+//! face dofs) for the patch interface.
 //!
 //! - A row with one entry `r_b = c u_m` is the paper's partition: the dof `m` is a boundary dof,
 //!   `u_m = r_b / c`, and leaves the interior.

@@ -486,7 +486,7 @@ pub fn check_facing(
             disc_face: disc_face.into(),
             what: format!(
                 "only {:.1}% of the pad face's area projects onto the disc face (at least {:.0}% must); pad node {id} lies {outside:.3e} m beyond the disc face's edge: check that the disc face set is the face under this pad and that the pad sits over it",
-                100.0 * inside / total.max(f64::MIN_POSITIVE),
+                (100.0 * inside / total.max(f64::MIN_POSITIVE)).max(0.0),
                 100.0 * MIN_FACING_SHARE
             ),
         });
