@@ -318,7 +318,10 @@ fn projected_pairs(
     for (a, &i) in dc.iter().enumerate() {
         let p = disc.info.points[i].projected.as_ref()?;
         let b = pc.iter().position(|&j| j == p.pad_point)?;
-        let (x, y) = (disc.info.points[i].position, pad.info.points[pc[b]].position);
+        let (x, y) = (
+            disc.info.points[i].position,
+            pad.info.points[pc[b]].position,
+        );
         out.push(squeal_reduce::brake::ContactPair {
             disc_point: a,
             pad_point: b,

@@ -642,7 +642,11 @@ fn nodal_contact_frictionless_frequencies_match_the_full_model() {
         assert!(d50[j] >= -1e-9 && d100[j] >= -1e-9, "mode {}", j + 1);
         assert!(d100[j] <= d50[j] + 1e-9, "mode {}", j + 1);
     }
-    // The Craig–Bampton error (measured: see docs/verification.md); asserted at about 2.5x.
-    assert!(w50 < 3e-3, "50 modes: {w50:e}");
+    // The Craig–Bampton error. Measured (coarse meshes, 355 pairs, 2234 dofs with 50 modes
+    // per part): largest of the first 20 relative differences 2.82e-3 with 50 modes (mode 20,
+    // 6336 Hz, one of a close pair 1.6 Hz apart) and 6.93e-4 with 100 (mode 17, 4943 Hz);
+    // smallest 1.6e-5 and 1.2e-5, none negative. Asserted: 6e-3 and 1.5e-3, about 2x the
+    // largest measured.
+    assert!(w50 < 6e-3, "50 modes: {w50:e}");
     assert!(w100 < 1.5e-3, "100 modes: {w100:e}");
 }

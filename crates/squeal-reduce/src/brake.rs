@@ -970,7 +970,9 @@ fn attach_projections(
                 .iter()
                 .map(|&(n, w)| {
                     let id = proj.disc_ids[n as usize];
-                    face.get(&id).map(|&i| (i, w)).ok_or_else(|| lost("disc face", id))
+                    face.get(&id)
+                        .map(|&i| (i, w))
+                        .ok_or_else(|| lost("disc face", id))
                 })
                 .collect::<Result<Vec<_>, _>>()?;
             disc.info.points.push(InterfacePoint {

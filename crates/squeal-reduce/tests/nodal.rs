@@ -167,7 +167,9 @@ fn the_reduced_brake_keeps_every_face_node_and_pairs_each_pad_node() {
     let count = |p: &squeal_reduce::rom::ReducedPart, role: PointRole| {
         p.info.points.iter().filter(|q| q.role == role).count()
     };
-    let disc_face = face_nodes(&coarse("disc").mesh, "CONTACT_FACE").unwrap().len();
+    let disc_face = face_nodes(&coarse("disc").mesh, "CONTACT_FACE")
+        .unwrap()
+        .len();
     assert_eq!(count(pad, PointRole::Contact), 355);
     assert_eq!(count(disc, PointRole::Face), disc_face);
     assert_eq!(count(disc, PointRole::Contact), 355);
