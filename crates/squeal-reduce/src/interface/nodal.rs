@@ -324,7 +324,7 @@ fn interior_projection(x: &[[f64; 3]; 6], p: [f64; 3]) -> Option<[f64; 2]> {
         let (a, b, c) = (dot(xs, xs), dot(xs, xt), dot(xt, xt));
         let (f, g) = (dot(xs, r), dot(xt, r));
         let det = a * c - b * b;
-        if !(det > 0.0) {
+        if det.is_nan() || det <= 0.0 {
             return None;
         }
         let step = [(c * f - b * g) / det, (a * g - b * f) / det];
@@ -370,7 +370,7 @@ fn closest_on_edge(x: &[[f64; 3]; 6], p: [f64; 3], a: [f64; 2], b: [f64; 2]) -> 
         let d2: [f64; 3] =
             std::array::from_fn(|k| (xs1[k] - xs0[k]) * e[0] + (xt1[k] - xt0[k]) * e[1]);
         let h = dot(d1, d1) + dot(r, d2);
-        if !(h > 0.0) {
+        if h.is_nan() || h <= 0.0 {
             break;
         }
         let step = g / h;
@@ -476,7 +476,7 @@ pub fn check_facing(
             ),
         });
     }
-    if !(inside >= MIN_FACING_SHARE * total) {
+    if inside.is_nan() || inside < MIN_FACING_SHARE * total {
         let worst = pairs
             .iter()
             .max_by(|a, b| a.projection.outside.total_cmp(&b.projection.outside));
