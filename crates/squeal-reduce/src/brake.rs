@@ -550,7 +550,7 @@ pub struct BrakeReport {
     pub parts: Vec<PartReport>,
     /// The disc's contact points paired with the pad's.
     pub pairs: Vec<ContactPair>,
-    /// Pairing tolerance in metres.
+    /// Pairing tolerance in metres (0 for the nodal interface, which pairs by projection).
     pub pairing_tolerance: f64,
     /// Wall time of the whole reduction, reading the meshes included.
     pub total: Duration,

@@ -514,8 +514,8 @@ mod tests {
             assert!(n.area > 0.0);
             assert!((n.normal[2] - 1.0).abs() < 1e-14);
         }
-        // A midside node inside the face: on an edge shared by two triangles of area 1/16,
-        // so 2 × (1/16)/4 = 1/32.
+        // A midside node inside the face: on an edge shared by two triangles of area 1/8
+        // (each 0.5 x 0.5 cell is split in two), so 2 × (1/8)/4 = 1/16.
         let p = nodes
             .iter()
             .find(|n| {
@@ -523,7 +523,7 @@ mod tests {
                 (x[0] - 0.75).abs() < 1e-12 && (x[1] - 0.5).abs() < 1e-12
             })
             .unwrap();
-        assert!((p.area - 1.0 / 32.0).abs() < 1e-15, "{}", p.area);
+        assert!((p.area - 1.0 / 16.0).abs() < 1e-15, "{}", p.area);
     }
 
     #[test]
