@@ -169,7 +169,7 @@ pub struct Projection {
     /// The face's unit outward normal there.
     pub normal: [f64; 3],
     /// `(node, weight)`: the shape functions at the projected point (weights below
-    /// [`NEGLIGIBLE_WEIGHT`] dropped, the rest summing to 1), by node.
+    /// 1e-12 dropped, the rest summing to 1), by node.
     pub weights: Vec<(u32, f64)>,
     /// Distance from the projected point to the given point (m).
     pub distance: f64,
