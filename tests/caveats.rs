@@ -53,5 +53,8 @@ fn an_undamped_coalescence_is_flagged_and_the_damped_brake_is_not() {
     let mu0 = json["mu0"].as_f64().unwrap();
     // The bracket of the Hopf point is 7e-9 wide.
     assert!((mu0 - 0.263688).abs() < 1e-5, "mu0 = {mu0}");
-    assert!(text.contains("#8 (2953.1 Hz) and #7 (2930.2 Hz) are 0.777 % apart"), "{text}");
+    assert!(
+        text.contains("#8 (2953.1 Hz) and #7 (2930.2 Hz) are 0.777 % apart"),
+        "{text}"
+    );
 }

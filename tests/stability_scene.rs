@@ -114,7 +114,7 @@ fn a_misspelt_interface_is_reported_with_its_key_and_line() {
     let (err, line) = scene_error("interface", &text, "interface = \"pach\"");
     assert!(
         err.contains(&format!(
-            "scene.toml:{line}: model.interface: 'pach' is neither 'patch' nor 'node'"
+            "scene.toml:{line}: model.interface: 'pach' is not 'patch', 'node' or 'nodal'"
         )),
         "{err}"
     );

@@ -33,7 +33,8 @@ pub struct ReduceArgs {
     #[arg(short, long, default_value = "brake.rom")]
     pub output: PathBuf,
     /// Contact interface: "patch" (each contact point is the mean motion of a ninth of the
-    /// contact face) or "node" (one mesh node per contact point, as in the paper)
+    /// contact face), "node" (one mesh node per contact point, as in the paper) or "nodal"
+    /// (every node of the pad's contact face, paired with its projection on the disc's)
     #[arg(long, value_enum, default_value_t = Interface::Patch)]
     pub interface: Interface,
     /// Fixed-interface modes per part: a number, or "auto" with --fmax
@@ -87,6 +88,7 @@ pub struct ReduceArgs {
 pub enum Interface {
     Patch,
     Node,
+    Nodal,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -216,6 +218,7 @@ fn inputs(args: &ReduceArgs) -> Result<BrakeInputs> {
     inputs.interface = match args.interface {
         Interface::Patch => InterfaceKind::Patch,
         Interface::Node => InterfaceKind::Node,
+        Interface::Nodal => InterfaceKind::Nodal,
     };
     inputs.backend = backend(args.backend);
     inputs.keep_basis = !args.no_basis;

@@ -111,7 +111,7 @@ pub fn stability_with(
         // pair coalesces, so the pair damping names no modes and is not applied. That the
         // brake is stable there is the answer, not an error.
         return match preliminary {
-            Some((reference, sweep)) if sweep.hopf.is_none() => Ok(Stability {
+            Some((reference, sweep)) if sweep.hopf.is_none() => Ok(LinearStability {
                 damping: global,
                 pair: None,
                 reference,

@@ -1,6 +1,8 @@
 //! The reduced brake of eq (11) from a reduced model: disc and pad stacked, contact points
 //! paired by position ([`squeal_reduce::brake::pair_contact_points`], the one pairing of the
-//! workspace), a contact element per pair, the piston load.
+//! workspace; with the nodal interface each disc point is the projection of a pad node and
+//! pairs with it, its motion the disc face's shape functions there on the disc's face
+//! points), a contact element per pair, the piston load.
 //!
 //! Each pair's geometry comes from the model, not from a global frame:
 //!
@@ -285,6 +287,51 @@ fn along(
     Ok(v)
 }
 
+/// The motion along `w` of disc point `point`: [`along`] its own dofs, or for a projected
+/// point of the nodal interface `Σ_k c_k (w · u_k)` over the face points it combines
+/// ([`squeal_reduce::rom::Projected`]), entries of a dof summed in the order of the weights.
+fn disc_along(disc: &ReducedPart, point: usize, w: [f64; 3]) -> Result<SparseVec, BrakeError> {
+    let Some(p) = &disc.info.points[point].projected else {
+        return along(disc, "disc", point, w, 0, 1.0);
+    };
+    let mut v: SparseVec = Vec::new();
+    for &(k, c) in &p.weights {
+        for (dof, e) in along(disc, "disc", k, w, 0, 1.0)? {
+            match v.iter_mut().find(|x| x.0 == dof) {
+                Some(x) => x.1 += c * e,
+                None => v.push((dof, c * e)),
+            }
+        }
+    }
+    Ok(v)
+}
+
+/// The pairs of the nodal interface, where the disc's points `dc` (facing this pad) are
+/// projections of the pad's contact points `pc`: each with the pad point it was projected
+/// from, as indices into `dc` and `pc`. `None` when the disc's points are not projections.
+fn projected_pairs(
+    disc: &ReducedPart,
+    dc: &[usize],
+    pad: &ReducedPart,
+    pc: &[usize],
+) -> Option<Vec<squeal_reduce::brake::ContactPair>> {
+    let mut out = Vec::with_capacity(dc.len());
+    for (a, &i) in dc.iter().enumerate() {
+        let p = disc.info.points[i].projected.as_ref()?;
+        let b = pc.iter().position(|&j| j == p.pad_point)?;
+        let (x, y) = (
+            disc.info.points[i].position,
+            pad.info.points[pc[b]].position,
+        );
+        out.push(squeal_reduce::brake::ContactPair {
+            disc_point: a,
+            pad_point: b,
+            distance: (0..3).map(|d| (x[d] - y[d]).powi(2)).sum::<f64>().sqrt(),
+        });
+    }
+    Some(out)
+}
+
 fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
     dot(a, b).clamp(-1.0, 1.0).acos().to_degrees()
 }
@@ -439,11 +486,17 @@ pub fn assemble(
             })
             .collect();
         let pc = points_of(pad, PointRole::Contact);
-        let (matched, _) = pair_contact_points(
-            &dc.iter().map(|&i| position(disc, i)).collect::<Vec<_>>(),
-            &pc.iter().map(|&j| position(pad, j)).collect::<Vec<_>>(),
-            params.pairing_tolerance,
-        )?;
+        let matched = match projected_pairs(disc, &dc, pad, &pc) {
+            Some(m) => m,
+            None => {
+                pair_contact_points(
+                    &dc.iter().map(|&i| position(disc, i)).collect::<Vec<_>>(),
+                    &pc.iter().map(|&j| position(pad, j)).collect::<Vec<_>>(),
+                    params.pairing_tolerance,
+                )?
+                .0
+            }
+        };
         // Σ A_p n_p: this pad's mean normal, its load's direction.
         let mut pad_normal = [0.0; 3];
         for m in &matched {
@@ -462,9 +515,9 @@ pub fn assemble(
                 k + 1,
             )?;
             let (sliding, surface_speed) = pair_sliding(params, xi, normal, k + 1)?;
-            let mut g = along(disc, "disc", i, normal, 0, 1.0)?;
+            let mut g = disc_along(disc, i, normal)?;
             g.extend(along(pad, "pad", j, normal, np0, -1.0)?);
-            let mut h = along(disc, "disc", i, sliding, 0, 1.0)?;
+            let mut h = disc_along(disc, i, sliding)?;
             h.extend(along(pad, "pad", j, sliding, np0, -1.0)?);
             // A pad point below the disc surface (along n) starts in interference.
             let geometric_gap = (0..3)

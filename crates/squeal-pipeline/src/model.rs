@@ -90,10 +90,10 @@ pub fn brake_inputs(scene: &Scene) -> Result<BrakeInputs> {
         })
         .collect();
     let mut inputs = inputs.about(axis, normal.unwrap_or(direction))?;
-    inputs.interface = if m.interface.get_ref() == "node" {
-        InterfaceKind::Node
-    } else {
-        InterfaceKind::Patch
+    inputs.interface = match m.interface.get_ref().as_str() {
+        "node" => InterfaceKind::Node,
+        "nodal" => InterfaceKind::Nodal,
+        _ => InterfaceKind::Patch,
     };
     inputs.modes = ModeChoice::Fixed(*m.modes.get_ref());
     Ok(inputs)

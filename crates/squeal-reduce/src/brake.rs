@@ -14,11 +14,12 @@
 use crate::craig_bampton::{
     PartSpec, ReduceError, ReduceOptions, ReduceReport, Stage, reduce_part,
 };
+use crate::interface::nodal::{NodalPair, face_nodes, project_pad};
 use crate::interface::{Axis, InterfaceError, contact_nodes, patches};
 use crate::rom::ReducedPart;
 use crate::rom::{
-    BuildRecord, ContactSurface, InterfaceKind, MeshInfo, PartRole, ReducedModel, RomError,
-    RomHeader, VERSION, read_header, sha256_file,
+    BuildRecord, ContactSurface, InterfaceKind, InterfacePoint, MeshInfo, PartRole, PointRole,
+    Projected, ReducedModel, RomError, RomHeader, VERSION, read_header, sha256_file,
 };
 use faer::Par;
 use serde::{Deserialize, Serialize};
@@ -599,7 +600,7 @@ pub struct BrakeReport {
     pub parts: Vec<PartReport>,
     /// The disc's contact points paired with the pad's.
     pub pairs: Vec<PointPair>,
-    /// Pairing tolerance in metres.
+    /// Pairing tolerance in metres (0 for the nodal interface, which pairs by projection).
     pub pairing_tolerance: f64,
     /// Wall time of the whole reduction, reading the meshes included.
     pub total: Duration,
@@ -682,17 +683,29 @@ pub fn reduce_brake_loaded(
     for (part, (name, input)) in loaded.iter().zip(&parts) {
         check_sets(&part.mesh, name, input, inputs).map_err(in_mesh(input))?;
     }
+    let mut pairs = Vec::new();
+    let mut tolerance = 0.0;
+    // Nodal interface: each pad's face nodes projected onto the disc face under it, before
+    // any reduction (a pad that does not face the disc is refused here).
+    let projections = if inputs.interface == InterfaceKind::Nodal {
+        nodal_projections(inputs, &loaded).map_err(in_mesh(&inputs.disc))?
+    } else {
+        Vec::new()
+    };
     // The disc's contact points, surface by surface in the order of its reduced points.
     let surfaces = inputs.disc.surfaces();
     let mut disc_points = Vec::with_capacity(surfaces.len());
-    for surface in &surfaces {
+    for surface in surfaces.iter().filter(|_| projections.is_empty()) {
         disc_points.push(
             contact_positions(&loaded[0].mesh, surface, inputs).map_err(in_mesh(&inputs.disc))?,
         );
     }
-    let mut pairs = Vec::new();
-    let mut tolerance = 0.0;
-    for (pad, part) in inputs.pads.iter().zip(&loaded[1..]) {
+    for (pad, part) in inputs
+        .pads
+        .iter()
+        .zip(&loaded[1..])
+        .filter(|_| projections.is_empty())
+    {
         let k = inputs
             .disc
             .surface_index(&pad.name, inputs.pads.len())
@@ -745,6 +758,9 @@ pub fn reduce_brake_loaded(
             .map_err(in_mesh(input))?;
         reduced_parts.push(part);
         reports.push(report);
+    }
+    if !projections.is_empty() {
+        pairs = attach_projections(&mut reduced_parts, projections)?;
     }
     let model = ReducedModel {
         tool_version: TOOL_VERSION.into(),
@@ -847,7 +863,7 @@ pub fn check_sets(
     for s in &surfaces {
         let contact_set = match inputs.interface {
             InterfaceKind::Node => &s.contact_set,
-            InterfaceKind::Patch => &s.contact_face_set,
+            InterfaceKind::Patch | InterfaceKind::Nodal => &s.contact_face_set,
         };
         boundary.push((contact_set, set(contact_set)?, [true; 3]));
     }
@@ -892,8 +908,9 @@ pub fn check_sets(
 }
 
 /// Positions of the contact points of one contact surface of a part, in the order of its
-/// reduced dofs: the `CONTACT` nodes (node interface) or the patch centroids (patch
-/// interface).
+/// reduced dofs: the `CONTACT` nodes (node interface), the patch centroids (patch
+/// interface) or the contact face's nodes (nodal interface: the pad's contact points, the
+/// disc's face points).
 pub fn contact_positions(
     mesh: &Mesh,
     input: &ContactSurface,
@@ -903,6 +920,10 @@ pub fn contact_positions(
         InterfaceKind::Node => contact_nodes(mesh, &input.contact_set, &inputs.axis)?
             .into_iter()
             .map(|n| mesh.nodes[n as usize])
+            .collect(),
+        InterfaceKind::Nodal => face_nodes(mesh, &input.contact_face_set)?
+            .into_iter()
+            .map(|n| mesh.nodes[n.node as usize])
             .collect(),
         InterfaceKind::Patch => patches(
             mesh,
@@ -915,6 +936,120 @@ pub fn contact_positions(
         .map(|p| p.centroid)
         .collect(),
     })
+}
+
+/// One pad's nodal pairs, by node id, ready to be attached to the reduced parts.
+struct PadProjection {
+    /// The pad's name.
+    pad: String,
+    /// The disc surface it faces (`None`: the brake's only pad).
+    facing: Option<String>,
+    /// Each pad face node's id and its pair.
+    pairs: Vec<(u64, NodalPair)>,
+    /// The disc face's node ids by mesh index.
+    disc_ids: Vec<u64>,
+}
+
+/// The nodal interface's projections: every pad's face nodes onto the disc face under it
+/// ([`crate::interface::nodal::project_pad`]).
+fn nodal_projections(
+    inputs: &BrakeInputs,
+    loaded: &[LoadedPart],
+) -> Result<Vec<PadProjection>, ReduceError> {
+    let surfaces = inputs.disc.surfaces();
+    let disc = &loaded[0].mesh;
+    let mut out = Vec::with_capacity(inputs.pads.len());
+    for (pad, part) in inputs.pads.iter().zip(&loaded[1..]) {
+        let k = inputs
+            .disc
+            .surface_index(&pad.name, inputs.pads.len())
+            .ok_or_else(|| ReduceError::Options(format!("no disc surface faces {}", pad.name)))?;
+        let pad_face = &pad.part.contact_face_set;
+        let pairs = project_pad(disc, &surfaces[k].contact_face_set, &part.mesh, pad_face)?;
+        out.push(PadProjection {
+            pad: pad.name.clone(),
+            facing: surfaces[k].facing.clone(),
+            pairs: pairs
+                .into_iter()
+                .map(|p| (part.mesh.node_ids[p.pad.node as usize], p))
+                .collect(),
+            disc_ids: disc.node_ids.clone(),
+        });
+    }
+    Ok(out)
+}
+
+/// Adds to the reduced disc one contact point per pad face node, at its projection, moving
+/// as the disc face's shape functions there combine the disc's face points; returns the
+/// pairs (disc and pad contact point indices among each part's contact points).
+fn attach_projections(
+    parts: &mut [ReducedPart],
+    projections: Vec<PadProjection>,
+) -> Result<Vec<PointPair>, ReduceError> {
+    let invalid = |what: String| ReduceError::Invalid {
+        part: "brake".into(),
+        what,
+    };
+    let (disc, pads) = parts
+        .split_first_mut()
+        .ok_or_else(|| invalid("no disc".into()))?;
+    let mut pairs = Vec::new();
+    let mut disc_contacts = 0;
+    for (proj, pad) in projections.into_iter().zip(pads.iter()) {
+        let index = |part: &ReducedPart, role: PointRole, surface: &Option<String>| {
+            part.info
+                .points
+                .iter()
+                .enumerate()
+                .filter(|(_, p)| p.role == role && &p.surface == surface)
+                .filter_map(|(i, p)| p.node_id.map(|id| (id, i)))
+                .collect::<std::collections::HashMap<u64, usize>>()
+        };
+        let face = index(disc, PointRole::Face, &proj.facing);
+        let pad_points = index(pad, PointRole::Contact, &None);
+        let pad_contacts: Vec<usize> = (0..pad.info.points.len())
+            .filter(|&i| pad.info.points[i].role == PointRole::Contact)
+            .collect();
+        for (id, pair) in proj.pairs {
+            let lost = |what: &str, id: u64| invalid(format!("{what} node {id} was not kept"));
+            let pad_point = *pad_points
+                .get(&id)
+                .ok_or_else(|| lost(&format!("{} face", proj.pad), id))?;
+            let weights = pair
+                .projection
+                .weights
+                .iter()
+                .map(|&(n, w)| {
+                    let id = proj.disc_ids[n as usize];
+                    face.get(&id)
+                        .map(|&i| (i, w))
+                        .ok_or_else(|| lost("disc face", id))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            disc.info.points.push(InterfacePoint {
+                role: PointRole::Contact,
+                node_id: None,
+                patch: None,
+                position: pair.projection.point,
+                area: Some(pair.pad.area),
+                normal: Some(pair.projection.normal),
+                surface: proj.facing.clone(),
+                projected: Some(Projected {
+                    pad: proj.pad.clone(),
+                    pad_point,
+                    weights,
+                    outside: pair.projection.outside,
+                }),
+            });
+            pairs.push(PointPair {
+                disc_point: disc_contacts,
+                pad_point: pad_contacts.partition_point(|&i| i < pad_point),
+                distance: pair.projection.distance,
+            });
+            disc_contacts += 1;
+        }
+    }
+    Ok(pairs)
 }
 
 /// How close a disc contact point and a pad contact point must be to pair.

@@ -1,8 +1,9 @@
 //! Craig–Bampton reduction of one part, eqs (1)–(7).
 //!
 //! The boundary coordinates `r` are given as rows of a constraint `r = C u` on the part's free
-//! dofs: one dof per row for the node interface and the piston nodes, the patch weights of
-//! [`crate::interface`] (a weighted mean of a few hundred face dofs) for the patch interface.
+//! dofs: one dof per row for the node interface, the nodal interface's face nodes and the
+//! piston nodes, the patch weights of [`crate::interface`] (a weighted mean of a few hundred
+//! face dofs) for the patch interface.
 //!
 //! - A row with one entry `r_b = c u_m` is the paper's partition: the dof `m` is a boundary dof,
 //!   `u_m = r_b / c`, and leaves the interior.
@@ -46,6 +47,7 @@
 //! `u_k = (r_f − Σ_{i≠k} c_i u_i) / c_k`, spans the same space but changes `M_vv` as well and
 //! couples every footprint dof to every neighbour of the master in `K_vv`.)
 
+use crate::interface::nodal::face_nodes;
 use crate::interface::{Axis, InterfaceError, contact_nodes, footprint, patches, tributary_areas};
 use crate::rom::{
     Basis, ContactSurface, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, MeshInfo,
@@ -1029,11 +1031,45 @@ fn boundary_rows(
                         area: cell.map(|c| c.0),
                         normal: cell.map(|c| c.1),
                         surface: surface.facing.clone(),
+                        projected: None,
                     });
                     for d in 0..3 {
                         let dof = dofmap
                             .free_dof(node, d)
                             .ok_or_else(|| restrained(&surface.contact_set, node, d))?;
+                        rows.push(Row {
+                            point: p,
+                            label: point_label(p, d),
+                            entries: vec![(dof, 1.0)],
+                            footprint: false,
+                        });
+                    }
+                }
+            }
+            InterfaceKind::Nodal => {
+                // Every node of the face, its three dofs kept: the pad's contact points, the
+                // disc's face points that its projected contact points combine
+                // ([`crate::interface::nodal`]; the brake adds those).
+                let role = match spec.role {
+                    PartRole::Disc => PointRole::Face,
+                    PartRole::Pad => PointRole::Contact,
+                };
+                for node in face_nodes(mesh, &surface.contact_face_set)? {
+                    let p = points.len();
+                    points.push(InterfacePoint {
+                        role,
+                        node_id: Some(mesh.node_ids[node.node as usize]),
+                        patch: None,
+                        position: mesh.nodes[node.node as usize],
+                        area: Some(node.area),
+                        normal: Some(node.normal),
+                        surface: surface.facing.clone(),
+                        projected: None,
+                    });
+                    for d in 0..3 {
+                        let dof = dofmap
+                            .free_dof(node.node, d)
+                            .ok_or_else(|| restrained(&surface.contact_face_set, node.node, d))?;
                         rows.push(Row {
                             point: p,
                             label: point_label(p, d),
@@ -1061,6 +1097,7 @@ fn boundary_rows(
                         area: Some(patch.area),
                         normal: Some(patch.normal),
                         surface: surface.facing.clone(),
+                        projected: None,
                     });
                     for d in 0..3 {
                         // A restrained face node would pin the patch's mean motion: refuse it,
@@ -1128,6 +1165,7 @@ fn boundary_rows(
             area: None,
             normal,
             surface: None,
+            projected: None,
         });
         rows.push(Row {
             point: p,
@@ -1171,6 +1209,7 @@ fn boundary_rows(
                         area: Some(print.area),
                         normal: Some(direction),
                         surface: None,
+                        projected: None,
                     });
                     rows.push(Row {
                         point: p,

@@ -71,6 +71,7 @@ fn write_dof_labels(w: &mut dyn Write, part: &ReducedPart) -> std::io::Result<()
         let role = match p.role {
             crate::rom::PointRole::Contact => "contact",
             crate::rom::PointRole::Piston => "piston",
+            crate::rom::PointRole::Face => "face",
         };
         let axis = direction
             .iter()

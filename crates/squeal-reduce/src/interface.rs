@@ -1,7 +1,9 @@
-//! Interface models: how a part's nine contact points are tied to its mesh.
+//! Interface models: how a part's contact points are tied to its mesh.
 //!
 //! - **node** (the paper's model): each contact point is one mesh node of the `CONTACT` set,
 //!   with its three dofs kept as boundary dofs.
+//! - **nodal**: every node of the pad's friction face is a contact point, paired with the point
+//!   of the disc face it projects onto (node-to-surface contact, module [`nodal`]).
 //! - **patch**: the contact face (`CONTACT_FACE`) is split on a grid in radius and angle about
 //!   the disc axis (3 × 3 by default) and each contact point moves as the area-weighted mean of
 //!   its patch, `r = C u` with `C_pk = (1/A_p) ∫_{patch p} N_k dA` (the RBE3 idea); the point's
@@ -34,6 +36,7 @@
 //! that translation, and its centroid is where its mean motion is taken.
 
 mod clip;
+pub mod nodal;
 
 use squeal_mesh::Mesh;
 use std::collections::HashMap;
@@ -76,6 +79,17 @@ pub enum InterfaceError {
     /// The axis direction given is the zero vector.
     #[error("the disc axis has zero length")]
     BadAxis,
+    /// A pad's friction face does not face the disc face it is to be paired with (nodal
+    /// interface).
+    #[error("the pad face {pad_face} does not face the disc face {disc_face}: {what}")]
+    NotFacing {
+        /// The pad's contact-face set.
+        pad_face: String,
+        /// The disc's contact-face set.
+        disc_face: String,
+        /// How far off it is and what to check.
+        what: String,
+    },
 }
 
 /// The disc's axis of rotation: radii and angles are measured about it.

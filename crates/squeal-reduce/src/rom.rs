@@ -92,6 +92,10 @@ pub enum InterfaceKind {
     Node,
     /// Each contact point is the area-weighted mean motion of a patch of the contact face.
     Patch,
+    /// Every node of the pad's friction face is a contact point, paired with the point of the
+    /// disc face it projects onto, whose motion is the disc face's shape functions there
+    /// applied to the disc face's nodes ([`crate::interface::nodal`]).
+    Nodal,
 }
 
 /// What a part is in the brake.
@@ -113,6 +117,9 @@ pub enum PointRole {
     /// A piston point: where the piston load enters the pad (its dof along the normal is
     /// kept).
     Piston,
+    /// A node of the disc's contact face kept as a boundary point (nodal interface): the disc's
+    /// contact points are combinations of these ([`InterfacePoint::projected`]).
+    Face,
 }
 
 /// A retained interface point.
@@ -138,6 +145,31 @@ pub struct InterfacePoint {
     /// braked by two pads has one surface per pad). Absent on pads and in one-pad files.
     #[serde(default)]
     pub surface: Option<String>,
+    /// A disc contact point of the nodal interface: the pad node projected onto the disc face
+    /// here, and the disc face points whose combination is this point's motion. Such a point
+    /// has no dofs of its own. Absent for every other point (and so from the files of the
+    /// other interfaces).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub projected: Option<Projected>,
+}
+
+/// Where a pad node of the nodal interface lands on the disc face
+/// ([`crate::interface::nodal`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Projected {
+    /// The pad (its part name) and the index of its contact point projected here.
+    pub pad: String,
+    /// Index of the pad's contact point among the pad part's points.
+    pub pad_point: usize,
+    /// `(point index, weight)` over the disc's [`PointRole::Face`] points: the point moves as
+    /// `r = Σ w u`, the disc face's shape functions at the projected point (weights summing to
+    /// 1).
+    pub weights: Vec<(usize, f64)>,
+    /// How far (m) the pad node lies outside the disc face's triangles, measured in the face:
+    /// 0 when its projection falls inside them, else the distance from the foot of its
+    /// projection on the face's plane to the nearest point of the face boundary, where it is
+    /// put.
+    pub outside: f64,
 }
 
 /// The meaning of one reduced dof.
@@ -829,6 +861,7 @@ mod tests {
                 area: Some(1e-4),
                 normal: Some([0.0, 0.0, -1.0]),
                 surface: None,
+                projected: None,
             }],
             dofs: vec![
                 DofLabel::Point {

@@ -158,11 +158,16 @@ fn checks(s: &mut String, model: &ReducedModel, report: &BrakeReport) -> fmt::Re
         )?;
     }
     let worst = report.pairs.iter().map(|p| p.distance).fold(0.0, f64::max);
+    // The nodal interface pairs by projection, with no tolerance (recorded as 0).
+    let how = if report.pairing_tolerance > 0.0 {
+        format!("tolerance {:.2e} m", report.pairing_tolerance)
+    } else {
+        "each pad face node with its projection on the disc face".to_string()
+    };
     writeln!(
         s,
-        "  contact pairs: {} disc/pad points paired, farthest {:.2e} m apart (tolerance {:.2e} m)",
+        "  contact pairs: {} disc/pad points paired, farthest {:.2e} m apart ({how})",
         report.pairs.len(),
         worst,
-        report.pairing_tolerance
     )
 }

@@ -11,6 +11,7 @@ use squeal_fe::{DofMap, MaterialTable, Restraint, assemble};
 use squeal_reduce::brake::PartInput;
 use squeal_reduce::check::{Boundary, definiteness, dense_eigenvalues, reduced_frequencies};
 use squeal_reduce::craig_bampton::hz;
+use squeal_reduce::interface::nodal::face_nodes;
 use squeal_reduce::interface::{Axis, contact_nodes, patches};
 use squeal_reduce::rom::{DofLabel, InterfaceKind, ReducedPart};
 
@@ -214,9 +215,20 @@ fn static_block_is_the_guyan_condensation_computed_from_the_full_flexibility() {
     let dofmap = DofMap::new(&loaded.mesh, &restraints("disc")).unwrap();
     let system = assemble(&loaded.mesh, &materials, &dofmap).unwrap();
     let factor = SparseCholesky::factorize(system.k.as_ref()).unwrap();
-    for interface in [InterfaceKind::Patch, InterfaceKind::Node] {
+    for interface in [
+        InterfaceKind::Patch,
+        InterfaceKind::Node,
+        InterfaceKind::Nodal,
+    ] {
         let rows: Vec<Vec<(usize, f64)>> = match interface {
             InterfaceKind::Patch => patch_rows("disc", &dofmap),
+            // Every node of the contact face, three dofs each.
+            InterfaceKind::Nodal => face_nodes(&loaded.mesh, "CONTACT_FACE")
+                .unwrap()
+                .into_iter()
+                .flat_map(|f| (0..3).map(move |d| (f.node, d)))
+                .map(|(node, d)| vec![(dofmap.free_dof(node, d).unwrap(), 1.0)])
+                .collect(),
             InterfaceKind::Node => contact_nodes(&loaded.mesh, "CONTACT", &Axis::default())
                 .unwrap()
                 .into_iter()

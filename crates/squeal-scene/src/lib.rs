@@ -599,11 +599,11 @@ impl Scene {
             }
         }
         let iface = f.model.interface.get_ref().as_str();
-        if iface != "patch" && iface != "node" {
+        if !["patch", "node", "nodal"].contains(&iface) {
             return Err(self.error_at(
                 "model.interface",
                 &f.model.interface,
-                format!("'{iface}' is neither 'patch' nor 'node'"),
+                format!("'{iface}' is not 'patch', 'node' or 'nodal'"),
             ));
         }
         if *f.model.modes.get_ref() == 0 {

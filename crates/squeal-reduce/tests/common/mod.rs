@@ -39,9 +39,11 @@ pub fn reduce(inputs: &BrakeInputs) -> ReducedModel {
 pub fn coarse_brake(interface: InterfaceKind) -> &'static ReducedModel {
     static PATCH: OnceLock<ReducedModel> = OnceLock::new();
     static NODE: OnceLock<ReducedModel> = OnceLock::new();
+    static NODAL: OnceLock<ReducedModel> = OnceLock::new();
     let cell = match interface {
         InterfaceKind::Patch => &PATCH,
         InterfaceKind::Node => &NODE,
+        InterfaceKind::Nodal => &NODAL,
     };
     cell.get_or_init(|| reduce(&coarse_inputs(interface)))
 }
