@@ -555,6 +555,9 @@ fn a_free_part_names_its_restraints_as_written() {
     assert!(e.contains("K_II is singular"), "{e}");
     assert!(e.contains("node set CLAMP held axial"), "{e}");
     assert!(!e.contains("Restraint {") && !e.contains("Set("), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 // Issue 22: lost or mixed work.
 
 /// `squeal <args>` run in the folder `dir`.
