@@ -314,7 +314,7 @@ fn projected_pairs(
     dc: &[usize],
     pad: &ReducedPart,
     pc: &[usize],
-) -> Option<Vec<squeal_reduce::brake::ContactPair>> {
+) -> Option<Vec<squeal_reduce::brake::PointPair>> {
     let mut out = Vec::with_capacity(dc.len());
     for (a, &i) in dc.iter().enumerate() {
         let p = disc.info.points[i].projected.as_ref()?;
@@ -323,7 +323,7 @@ fn projected_pairs(
             disc.info.points[i].position,
             pad.info.points[pc[b]].position,
         );
-        out.push(squeal_reduce::brake::ContactPair {
+        out.push(squeal_reduce::brake::PointPair {
             disc_point: a,
             pad_point: b,
             distance: (0..3).map(|d| (x[d] - y[d]).powi(2)).sum::<f64>().sqrt(),
