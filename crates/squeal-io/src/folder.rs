@@ -359,6 +359,8 @@ fn unclaimed(dir: &Path, m: &Manifest) -> Vec<String> {
             let name = e.file_name().to_string_lossy().into_owned();
             let path = rel.join(&name);
             match e.file_type() {
+                // A study's shards write there at once from several machines, untracked.
+                Ok(t) if t.is_dir() && slash(&path) == "study/shards" => {}
                 Ok(t) if t.is_dir() => stack.push(path),
                 Ok(_) if rel.as_os_str().is_empty() && bookkeeping(&name) => {}
                 Ok(_) if crate::parse_temp(&name).is_some() => {}
