@@ -364,6 +364,9 @@ fn unclaimed(dir: &Path, m: &Manifest) -> Vec<String> {
                 Ok(t) if t.is_dir() => stack.push(path),
                 Ok(_) if rel.as_os_str().is_empty() && bookkeeping(&name) => {}
                 Ok(_) if crate::parse_temp(&name).is_some() => {}
+                // A reduced model copied in as a cache: read only if its hashes match the
+                // scene's, else rebuilt (squeal's own format, never a user's document).
+                Ok(_) if name.ends_with(".rom") => {}
                 Ok(_) => {
                     let key = slash(&path);
                     if !m.files.contains_key(&key) {
