@@ -41,22 +41,21 @@ pub fn pipeline<'a>(
         Some(r) => p.with_mus(parse_range(r).map_err(anyhow::Error::msg).context("--mu")?)?,
         None => p,
     };
-    take_folder(&p)?;
+    take_folder(&p.scene.path, &p.out)?;
     Ok(p)
 }
 
-/// Takes the output folder of `p` for this command ([`squeal_io::folder::begin`]): its lock,
+/// Takes the output folder `out` of `scene` for this command ([`squeal_io::folder::begin`]): its lock,
 /// the check that it holds no user's files (unless `--force`) and this run in its manifest.
-fn take_folder(p: &Pipeline) -> Result<()> {
-    let scene = &p.scene.path;
+pub fn take_folder(scene: &Path, out: &Path) -> Result<()> {
     let sha =
         squeal_reduce::rom::sha256_file(scene).with_context(|| scene.display().to_string())?;
     let info = squeal_io::folder::RunInfo {
         command: std::env::args().collect::<Vec<_>>().join(" "),
-        scene: Some((scene.clone(), sha)),
+        scene: Some((scene.to_path_buf(), sha)),
     };
     let force = crate::commands::FORCE.load(std::sync::atomic::Ordering::Relaxed);
-    for note in squeal_io::folder::begin(&p.out, &info, force)? {
+    for note in squeal_io::folder::begin(out, &info, force)? {
         eprintln!("note: {note}");
     }
     Ok(())

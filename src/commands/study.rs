@@ -64,6 +64,11 @@ pub fn run(args: StudyArgs) -> Result<ExitCode> {
     let scene = Scene::read(&args.scene)?;
     let out = args.out.clone().unwrap_or_else(|| default_out(&args.scene));
     squeal_pipeline::model::check_outputs(&scene, &out)?;
+    // The shards of one study write into one folder at once, by design, and the merge reads
+    // what they (or a copy) left there: neither takes the folder.
+    if args.shard.is_none() && !args.merge {
+        super::stability::take_folder(&args.scene, &out)?;
+    }
     let mus = match &args.mu {
         Some(r) => parse_range(r).map_err(anyhow::Error::msg).context("--mu")?,
         None => scene.mu_values()?,

@@ -359,9 +359,14 @@ fn unclaimed(dir: &Path, m: &Manifest) -> Vec<String> {
             let name = e.file_name().to_string_lossy().into_owned();
             let path = rel.join(&name);
             match e.file_type() {
+                // A study's shards write there at once from several machines, untracked.
+                Ok(t) if t.is_dir() && slash(&path) == "study/shards" => {}
                 Ok(t) if t.is_dir() => stack.push(path),
                 Ok(_) if rel.as_os_str().is_empty() && bookkeeping(&name) => {}
                 Ok(_) if crate::parse_temp(&name).is_some() => {}
+                // A reduced model copied in as a cache: read only if its hashes match the
+                // scene's, else rebuilt (squeal's own format, never a user's document).
+                Ok(_) if name.ends_with(".rom") => {}
                 Ok(_) => {
                     let key = slash(&path);
                     if !m.files.contains_key(&key) {
