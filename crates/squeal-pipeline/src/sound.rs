@@ -348,7 +348,7 @@ pub fn sound_text(s: &Sound, surface: &BrakeSurface, mic: [f64; 3]) -> String {
 pub fn branch_levels(
     surface: &BrakeSurface,
     m: &Model,
-    st: &squeal_brake::analysis::Stability,
+    st: &squeal_brake::analysis::LinearStability,
     a: &crate::branch::BranchAnalysis,
     samples: Option<usize>,
 ) -> Result<Vec<f64>> {
@@ -367,7 +367,7 @@ pub fn branch_levels(
 
 /// Where the branch's stable cycles reach SAE J2521's 70 dB(A) at the microphone: one line.
 pub fn squeal_level_text(a: &crate::branch::BranchAnalysis, levels: &[f64]) -> String {
-    use squeal_chbm::floquet::Stability;
+    use squeal_chbm::floquet::CycleStability as Stability;
     let loud: Vec<f64> = a
         .branch
         .points
@@ -423,7 +423,7 @@ pub fn solution_sound_text(
 pub fn branch_levels_or_log(
     scene: &Scene,
     m: &Model,
-    st: &squeal_brake::analysis::Stability,
+    st: &squeal_brake::analysis::LinearStability,
     a: &crate::branch::BranchAnalysis,
     samples: Option<usize>,
     log: Log,
