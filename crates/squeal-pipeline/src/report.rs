@@ -1303,6 +1303,14 @@ fn timings_section(r: &RunResults<'_>) -> Section {
     }
 }
 
+/// Why the run has no limit cycle to show: the branch does not reach μ, or what CHBM ended on.
+fn no_cycle_reason(lc: &crate::cycle::LimitCycle) -> String {
+    match &lc.solved {
+        None => "the branch of limit cycles from the Hopf point does not reach it (squeal branch shows where it goes)".into(),
+        Some((_, s)) => format!("CHBM ended on {} (not shown as a result)", s.outcome),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1398,13 +1406,5 @@ mod tests {
         let none = compare_section(None);
         assert!(none.text.starts_with("Not run (`squeal run --no-compare`)"));
         assert!(none.tables.is_empty() && none.figures.is_empty());
-    }
-}
-
-/// Why the run has no limit cycle to show: the branch does not reach μ, or what CHBM ended on.
-fn no_cycle_reason(lc: &crate::cycle::LimitCycle) -> String {
-    match &lc.solved {
-        None => "the branch of limit cycles from the Hopf point does not reach it (squeal branch shows where it goes)".into(),
-        Some((_, s)) => format!("CHBM ended on {} (not shown as a result)", s.outcome),
     }
 }
