@@ -158,51 +158,15 @@ fn quad8_point(xi: f64, eta: f64, weight: f64) -> RulePoint {
     }
 }
 
-/// Gauss–Legendre nodes and weights on `[0, 1]` (`n ≥ 1`): the roots of `P_n` by Newton from
-/// Tricomi's estimates, to machine precision.
+/// Gauss–Legendre nodes (ascending) and weights on `[0, 1]` (`1 ≤ n ≤ 200`): squeal-element's
+/// rule, the one the element quadratures use.
 pub fn gauss_legendre_01(n: usize) -> Result<(Vec<f64>, Vec<f64>)> {
     if n == 0 || n > 200 {
         return Err(AcousticsError::Rule(format!(
             "{n} Gauss-Legendre points: between 1 and 200 can be made"
         )));
     }
-    let (mut x, mut w) = (vec![0.0; n], vec![0.0; n]);
-    let nf = n as f64;
-    for i in 0..n {
-        let mut t = (std::f64::consts::PI * (i as f64 + 0.75) / (nf + 0.5)).cos();
-        let mut dp = 1.0;
-        for _ in 0..100 {
-            let (p, d) = legendre(n, t);
-            dp = d;
-            let step = p / d;
-            t -= step;
-            if step.abs() < 1e-16 {
-                break;
-            }
-        }
-        let (_, d) = legendre(n, t);
-        dp = if d.is_finite() { d } else { dp };
-        // Map [-1, 1] to [0, 1]; nodes ascending.
-        x[n - 1 - i] = 0.5 * (1.0 + t);
-        w[n - 1 - i] = 1.0 / ((1.0 - t * t) * dp * dp);
-    }
-    Ok((x, w))
-}
-
-/// `P_n(t)` and `P_n'(t)` by the three-term recurrence.
-fn legendre(n: usize, t: f64) -> (f64, f64) {
-    let (mut p0, mut p1) = (1.0, t);
-    if n == 0 {
-        return (1.0, 0.0);
-    }
-    for k in 2..=n {
-        let kf = k as f64;
-        let p2 = ((2.0 * kf - 1.0) * t * p1 - (kf - 1.0) * p0) / kf;
-        p0 = p1;
-        p1 = p2;
-    }
-    let nf = n as f64;
-    (p1, nf * (t * p1 - p0) / (t * t - 1.0))
+    Ok(squeal_element::quadrature::gauss_legendre_unit(n))
 }
 
 #[cfg(test)]

@@ -333,8 +333,9 @@ fn legendre_root(n: usize, i: usize) -> (f64, f64) {
     (t, legendre(n, t).1)
 }
 
-/// Gauss–Legendre points and weights on `[0, 1]`.
-fn gauss_legendre_unit(n: usize) -> (Vec<f64>, Vec<f64>) {
+/// Gauss–Legendre points (ascending) and weights on `[0, 1]`, the roots of `P_n` by Newton
+/// from Tricomi's estimates, to machine precision.
+pub fn gauss_legendre_unit(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut x = vec![0.0; n];
     let mut w = vec![0.0; n];
     for i in 0..n {
