@@ -8,6 +8,7 @@ use crate::progress::say;
 use anyhow::{Context, Result};
 use clap::Args;
 use squeal_pipeline::model::default_out;
+use squeal_pipeline::study::convergence::{self, Contact, Knob};
 use squeal_pipeline::study::{self, Kind as StudyKind, Shard};
 use squeal_scene::{Scene, parse_range};
 use std::path::PathBuf;
@@ -46,10 +47,30 @@ pub struct StudyArgs {
     /// (default: the scene's [stability] mu, else 0..1/201)
     #[arg(long)]
     pub mu: Option<String>,
-    /// Mesh levels of --kind mesh: the scene's mesh files must end in _<level> (e.g.
-    /// disc_medium.inp), the other levels are found by replacing it
-    #[arg(long, value_delimiter = ',', default_value = "coarse,medium,fine")]
+    /// Mesh levels of --kind mesh (default coarse,medium,fine) and of --kind convergence (the
+    /// first is the base of every knob; default: the scene's level, then each finer one on
+    /// disk): the scene's mesh files must end in _<level> (e.g. disc_medium.inp), the other
+    /// levels are found by replacing it
+    #[arg(long, value_delimiter = ',')]
     pub levels: Vec<String>,
+    /// --kind convergence: the knobs to refine, one at a time from the scene's settings
+    #[arg(long, value_delimiter = ',', default_value = "contact,modes,mesh", value_parser = Knob::parse)]
+    pub knobs: Vec<Knob>,
+    /// --kind convergence: the contact levels after the scene's own, patch grids RxA (radial x
+    /// angular) or nodal (default for a 3x3 scene: 3x5,5x5,nodal)
+    #[arg(long, value_delimiter = ',', value_parser = Contact::parse)]
+    pub grids: Vec<Contact>,
+    /// --kind convergence: factors on the scene's kept modes per part after x1
+    #[arg(long, value_delimiter = ',', default_value = "1.5,2")]
+    pub mode_factors: Vec<f64>,
+    /// --kind convergence: the friction of the growth-rate column (default: the scene's
+    /// [chbm] friction, a ratio of it taken on the base level's mu0)
+    #[arg(long)]
+    pub growth_mu: Option<f64>,
+    /// --kind convergence: the relative change of mu0 over the last refinement below which a
+    /// knob has converged
+    #[arg(long, default_value_t = squeal_pipeline::study::verdict::DEFAULT_TOLERANCE)]
+    pub tolerance: f64,
     /// Compute only shard i of n (1-based, e.g. 2/4) and write it to
     /// <out>/study/shards/<kind>-<i>-of-<n>.json, for a batch scheduler; merge with --merge
     #[arg(long, value_name = "I/N", value_parser = Shard::parse, conflicts_with = "merge")]
@@ -78,14 +99,33 @@ pub fn run(args: StudyArgs) -> Result<ExitCode> {
         .find(|c| c.1 == args.kind)
         .map(|c| c.0)
         .context("--kind")?;
+    let levels = if args.levels.is_empty() && kind != StudyKind::Convergence {
+        ["coarse", "medium", "fine"].map(String::from).to_vec()
+    } else {
+        args.levels.clone()
+    };
+    if kind == StudyKind::Convergence && args.shard.is_none() && !args.merge {
+        let opts = convergence::Options {
+            knobs: args.knobs.clone(),
+            contacts: (!args.grids.is_empty()).then(|| args.grids.clone()),
+            mode_factors: args.mode_factors.clone(),
+            levels,
+            growth_mu: args.growth_mu,
+            tolerance: args.tolerance,
+        };
+        let s = convergence::run(&scene, &out, &mus, &opts, &say)?;
+        println!("{}", s.overall.1);
+        println!("results in {}", out.join("study").display());
+        return Ok(ExitCode::SUCCESS);
+    }
     if args.merge {
-        let n = study::merge(&scene, &out, kind, &mus, &args.levels, &say)?;
+        let n = study::merge(&scene, &out, kind, &mus, &levels, &say)?;
         println!(
             "merged {n} shards: results in {}",
             out.join("study").display()
         );
     } else if let Some(shard) = args.shard {
-        let path = study::run_shard(&scene, &out, kind, &mus, &args.levels, shard, &say)?;
+        let path = study::run_shard(&scene, &out, kind, &mus, &levels, shard, &say)?;
         println!(
             "shard {shard} in {}; when all {} are done: squeal study {} --kind {} ... --merge",
             path.display(),
@@ -94,7 +134,7 @@ pub fn run(args: StudyArgs) -> Result<ExitCode> {
             args.kind
         );
     } else {
-        study::run(&scene, &out, kind, &mus, &args.levels, &say)?;
+        study::run(&scene, &out, kind, &mus, &levels, &say)?;
         println!("results in {}", out.join("study").display());
     }
     Ok(ExitCode::SUCCESS)

@@ -1,7 +1,8 @@
 //! The parametric stability studies of the paper's sections 6.2–6.4 (piston pressure, contact
 //! stiffness, modal damping: Tables 4–6, Figures 9–11 (a, b)), the damping-induced
-//! destabilization at vanishing friction, the mesh-convergence study, and the identification
-//! of the modes that couple at μ0.
+//! destabilization at vanishing friction, the mesh-convergence study ([`mesh`]), the
+//! identification of the modes that couple at μ0 ([`coupled`]), and the convergence study of
+//! μ0 under refinement of the contact, the kept modes and the mesh ([`convergence`]).
 //!
 //! Everything goes to `<out>/study/`: a CSV (and Markdown) table per study, the branches of
 //! every case as CSV, and the overlaid figures as SVG and PNG.
@@ -12,35 +13,29 @@
 //! stores the records in a JSON file; the merge ([`merge`]) reads the shards and calls the
 //! same writer, so both give the same files, bit for bit.
 
+mod coupled;
+pub mod convergence;
+mod mesh;
 pub mod record;
 pub mod shard;
+pub mod verdict;
 
 pub use shard::Shard;
 
-use crate::error::{Context, PipelineError, Result, json_text};
-use crate::model::{Log, Model, build, damping_spec, reduced_model, valid_max_hz};
-use crate::shapes::expand_complex;
+use crate::error::{Context, PipelineError, Result};
+use crate::model::{Log, Model, build, damping_spec};
 use faer::c64;
 use rayon::prelude::*;
-use record::{
-    CoupledModes, F, GrowthRecord, MeshOutcome, MeshRow, Nominal, OutcomeRecord, ParadoxRecord,
-    UnitResult,
-};
+use record::{F, GrowthRecord, Nominal, OutcomeRecord, ParadoxRecord, UnitResult};
 use shard::{Collected, Identity, ShardFile, Unit, UnitEntry};
 use squeal_brake::Brake;
 use squeal_brake::analysis::{
-    DampingSpec, LinearStability as Stability, PairChoice, basis_mode_of_branch, stability,
+    DampingSpec, PairChoice, basis_mode_of_branch, stability,
 };
-use squeal_brake::assemble::{Stiffness, assemble};
 use squeal_brake::studies::{
-    BranchCurve, Case, CaseOutcome, GrowthRow, ShapeSummary, circumferential_orders, coupling,
-    energy_share, log_slope, other_mode_growth, outcome, pad_profile, run_case,
+    BranchCurve, Case, CaseOutcome, GrowthRow, log_slope, other_mode_growth, outcome, run_case,
     small_friction_grid,
 };
-use squeal_brake::sweep::SweepOptions;
-use squeal_mesh::Mesh;
-use squeal_reduce::interface::Axis;
-use squeal_reduce::rom::{ReducedModel, ReducedPart};
 use squeal_report::format::{fmt_sci, fmt_sig};
 use squeal_report::{
     Annotation, Dash, Figure, Layout, Panel, Scale, Series, Table, palette_color, write_svg_and_png,
@@ -48,7 +43,6 @@ use squeal_report::{
 use squeal_scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use toml::Spanned;
 
 /// Which study to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -65,11 +59,13 @@ pub enum Kind {
     Mesh,
     /// pressure, stiffness, damping and paradox (not mesh)
     All,
+    /// mu0 under refinement of the contact, the kept modes and the mesh, with a verdict
+    Convergence,
 }
 
 impl Kind {
     /// Every study with its name and a line of help (the command line's choices).
-    pub const CHOICES: [(Kind, &'static str, &'static str); 6] = [
+    pub const CHOICES: [(Kind, &'static str, &'static str); 7] = [
         (
             Kind::Pressure,
             "pressure",
@@ -100,6 +96,11 @@ impl Kind {
             "all",
             "pressure, stiffness, damping and paradox (not mesh)",
         ),
+        (
+            Kind::Convergence,
+            "convergence",
+            "mu0 under refinement of the contact, the kept modes and the mesh, with a verdict (slow)",
+        ),
     ];
 }
 
@@ -113,6 +114,13 @@ pub fn run(
     levels: &[String],
     log: Log,
 ) -> Result<()> {
+    if kind == Kind::Convergence {
+        let opts = convergence::Options {
+            levels: levels.to_vec(),
+            ..Default::default()
+        };
+        return convergence::run(scene, out, mus, &opts, log).map(|_| ());
+    }
     let file = compute(scene, out, kind, mus, levels, Shard::WHOLE, log)?;
     let results = shard::collect(kind, levels, vec![file])?;
     write(kind, &results, &out.join("study"), log)
@@ -129,6 +137,7 @@ pub fn run_shard(
     shard: Shard,
     log: Log,
 ) -> Result<PathBuf> {
+    not_split(kind)?;
     let file = compute(scene, out, kind, mus, levels, shard, log)?;
     let path = shard::path(&out.join("study"), kind, shard);
     shard::write(&path, &file)?;
@@ -146,6 +155,7 @@ pub fn merge(
     levels: &[String],
     log: Log,
 ) -> Result<usize> {
+    not_split(kind)?;
     let dir = out.join("study");
     let id = identity(scene, kind, mus, levels)?;
     let files = shard::read_all(&dir, kind, &id)?;
@@ -156,10 +166,22 @@ pub fn merge(
     Ok(n)
 }
 
+/// The convergence study is not split into shards: each level's reduction is cached, and a
+/// rerun reuses them.
+fn not_split(kind: Kind) -> Result<()> {
+    if kind == Kind::Convergence {
+        return Err(PipelineError::input(
+            "--kind convergence",
+            "the convergence study is not split into shards: run it without --shard and --merge (its reduced models are cached in <out>/study/convergence, so a rerun reduces nothing again)",
+        ));
+    }
+    Ok(())
+}
+
 /// What the study's results depend on (the merge refuses shards computed from anything else).
 fn identity(scene: &Scene, kind: Kind, mus: &[f64], levels: &[String]) -> Result<Identity> {
     if kind == Kind::Mesh {
-        return Identity::of(scene, &level_meshes(scene, levels)?, mus, levels);
+        return Identity::of(scene, &mesh::level_meshes(scene, levels)?, mus, levels);
     }
     Identity::of(scene, &scene.mesh_files()?, mus, &[])
 }
@@ -196,7 +218,7 @@ fn compute(
     let (nominal, results) = if kind == Kind::Mesh {
         (
             None,
-            mesh_units(scene, &out.join("study/mesh"), mus, &mine, log)?,
+            mesh::mesh_units(scene, &out.join("study/mesh"), mus, &mine, log)?,
         )
     } else {
         let (n, r) = study_units(scene, out, mus, &mine, log)?;
@@ -271,7 +293,7 @@ fn study_units(
         .map(|u| -> Result<UnitResult> {
             let t = Instant::now();
             let r = match u {
-                Unit::CoupledModes => UnitResult::CoupledModes(coupled_modes(&s, &st, log)?),
+                Unit::CoupledModes => UnitResult::CoupledModes(coupled::coupled_modes(&s, &st, log)?),
                 Unit::Case(k, case) => {
                     // Table 6 damps the same two modes in every case: the nominal's pair.
                     let p = (*k == Kind::Damping).then_some(pair);
@@ -348,7 +370,7 @@ pub fn write(kind: Kind, results: &Collected, dir: &Path, log: Log) -> Result<()
                 _ => return Err(mismatch(u)),
             }
         }
-        return write_mesh(&levels, dir, log);
+        return mesh::write_mesh(&levels, dir, log);
     }
     let nominal = results
         .nominal
@@ -360,7 +382,7 @@ pub fn write(kind: Kind, results: &Collected, dir: &Path, log: Log) -> Result<()
         match (u, r) {
             (Unit::CoupledModes, UnitResult::CoupledModes(m)) => {
                 if let Some(m) = m {
-                    write_coupled_modes(m, dir, log)?;
+                    coupled::write_coupled_modes(m, dir, log)?;
                 }
             }
             (Unit::Case(k, _), UnitResult::Case(o)) => cases.push((*k, o)),
@@ -879,690 +901,6 @@ fn paradox_figure(cases: &[(&str, &[GrowthRow])], top: f64, stem: &Path) -> Resu
     );
     // Non-positive values (the damped cases) cannot be drawn on a log axis: expected.
     write_svg_and_png(&fig, stem)?;
-    Ok(())
-}
-
-// ---------------------------------------------------------------------------------------------
-// Coupled modes at mu0
-
-/// The geometry the shape measures need: the braking-face circle of the disc and the pad's
-/// line along its length, with each node's angle about the disc axis.
-struct Rings {
-    axis: Axis,
-    /// (node index, angle) on the disc's braking face at mid radius.
-    disc: Vec<(usize, f64)>,
-    /// (node index, arc length) on the pad's friction face at mid radius.
-    pad: Vec<(usize, f64)>,
-}
-
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    if n > 0.0 {
-        v.map(|x| x / n)
-    } else {
-        [0.0, 0.0, 1.0]
-    }
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Cylindrical coordinates (axial, radius, angle) about the axis; the angle is measured from
-/// the global x axis projected on the disc plane (from +x towards +y for the z axis).
-fn cylindrical(axis: &Axis, p: [f64; 3]) -> (f64, f64, f64) {
-    let e = unit(axis.direction);
-    let x = [1.0, 0.0, 0.0];
-    let ref_dir = if dot(x, e).abs() > 0.9 {
-        [0.0, 1.0, 0.0]
-    } else {
-        x
-    };
-    let e1 = unit([
-        ref_dir[0] - dot(ref_dir, e) * e[0],
-        ref_dir[1] - dot(ref_dir, e) * e[1],
-        ref_dir[2] - dot(ref_dir, e) * e[2],
-    ]);
-    let e2 = [
-        e[1] * e1[2] - e[2] * e1[1],
-        e[2] * e1[0] - e[0] * e1[2],
-        e[0] * e1[1] - e[1] * e1[0],
-    ];
-    let d = [
-        p[0] - axis.origin[0],
-        p[1] - axis.origin[1],
-        p[2] - axis.origin[2],
-    ];
-    let (a, u, v) = (dot(d, e), dot(d, e1), dot(d, e2));
-    (a, u.hypot(v), v.atan2(u))
-}
-
-/// Nodes of `mesh` on the plane `axial` (to 1e-6 of the radius) within the narrowest radial
-/// band around `r_mid` (1, 2, 4, 8, 15% of it) dense enough in angle, else the widest band:
-/// on a full circle (`closed`) the largest angular gap must be under 7.5° (orders up to 12
-/// resolved); on an arc (the pad) there must be 12 nodes at least and no gap over an eighth
-/// of the arc. Angles come back increasing (an arc is unwrapped where it has its largest gap).
-fn ring_nodes(
-    mesh: &Mesh,
-    axis: &Axis,
-    axial: f64,
-    r_mid: f64,
-    candidates: &[usize],
-    closed: bool,
-) -> Vec<(usize, f64)> {
-    let on_plane: Vec<(usize, f64, f64)> = candidates
-        .iter()
-        .map(|&i| (i, cylindrical(axis, mesh.nodes[i])))
-        .filter(|(_, c)| (c.0 - axial).abs() <= 1e-6 * r_mid)
-        .map(|(i, c)| (i, c.1, c.2))
-        .collect();
-    let mut best = Vec::new();
-    for frac in [0.01, 0.02, 0.04, 0.08, 0.15] {
-        let mut ring: Vec<(usize, f64)> = on_plane
-            .iter()
-            .filter(|(_, r, _)| (r - r_mid).abs() <= frac * r_mid)
-            .map(|(i, _, t)| (*i, *t))
-            .collect();
-        ring.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
-        let dense = if closed {
-            max_gap(&ring) < 7.5f64.to_radians()
-        } else {
-            ring = unwrap_arc(ring);
-            let span = ring.last().map_or(0.0, |l| l.1) - ring.first().map_or(0.0, |f| f.1);
-            ring.len() >= 12 && arc_gap(&ring) <= span / 8.0
-        };
-        best = ring;
-        if dense {
-            break;
-        }
-    }
-    best
-}
-
-/// Largest gap between consecutive angles, around the full circle.
-fn max_gap(ring: &[(usize, f64)]) -> f64 {
-    if ring.len() < 2 {
-        return std::f64::consts::TAU;
-    }
-    let mut g: f64 = ring[0].1 + std::f64::consts::TAU - ring[ring.len() - 1].1;
-    for w in ring.windows(2) {
-        g = g.max(w[1].1 - w[0].1);
-    }
-    g
-}
-
-/// Largest gap between consecutive angles of an arc (no wrap-around).
-fn arc_gap(ring: &[(usize, f64)]) -> f64 {
-    ring.windows(2).map(|w| w[1].1 - w[0].1).fold(0.0, f64::max)
-}
-
-/// An arc sorted by angle in (-π, π], restarted after its largest gap so that the angles
-/// increase along it (an arc across ±π stays in one piece).
-fn unwrap_arc(ring: Vec<(usize, f64)>) -> Vec<(usize, f64)> {
-    let n = ring.len();
-    if n < 2 {
-        return ring;
-    }
-    let tau = std::f64::consts::TAU;
-    let gap = |i: usize| {
-        if i + 1 < n {
-            ring[i + 1].1 - ring[i].1
-        } else {
-            ring[0].1 + tau - ring[n - 1].1
-        }
-    };
-    let widest = (0..n)
-        .max_by(|&a, &b| gap(a).total_cmp(&gap(b)))
-        .unwrap_or(n - 1);
-    let start = (widest + 1) % n;
-    (0..n)
-        .map(|k| {
-            let (i, t) = ring[(start + k) % n];
-            (i, if start + k >= n { t + tau } else { t })
-        })
-        .collect()
-}
-
-fn face_set<'a>(part: &ReducedPart, mesh: &'a Mesh) -> Result<&'a [u32]> {
-    let name = part
-        .info
-        .build
-        .as_ref()
-        .map_or("CONTACT_FACE", |b| b.contact_face_set.as_str());
-    mesh.node_set(name).ok_or_else(|| {
-        PipelineError::input(
-            "mode shapes",
-            format!("the {} mesh has no node set {name}", part.info.name),
-        )
-    })
-}
-
-fn rings(rom: &ReducedModel, disc: &Mesh, pad: &Mesh) -> Result<Rings> {
-    let dp = rom
-        .part("disc")
-        .ok_or(PipelineError::NoPart { part: "disc" })?;
-    let pp = rom
-        .pads()
-        .first()
-        .copied()
-        .ok_or(PipelineError::NoPart { part: "pad" })?;
-    let axis = dp
-        .info
-        .build
-        .as_ref()
-        .map_or_else(Axis::default, |b| b.axis);
-    let face = face_set(dp, disc)?;
-    if face.is_empty() {
-        return Err(PipelineError::input(
-            "mode shapes",
-            "the disc's contact face set is empty",
-        ));
-    }
-    let cyl: Vec<(f64, f64, f64)> = face
-        .iter()
-        .map(|&i| cylindrical(&axis, disc.nodes[i as usize]))
-        .collect();
-    let axial = cyl.iter().map(|c| c.0).sum::<f64>() / cyl.len() as f64;
-    let r_lo = cyl.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
-    let r_hi = cyl.iter().map(|c| c.1).fold(0.0, f64::max);
-    let r_mid = 0.5 * (r_lo + r_hi);
-    let all: Vec<usize> = (0..disc.num_nodes()).collect();
-    let disc_ring = ring_nodes(disc, &axis, axial, r_mid, &all, true);
-    let pad_face: Vec<usize> = face_set(pp, pad)?.iter().map(|&i| i as usize).collect();
-    let pad_axial = pad_face
-        .first()
-        .map(|&i| cylindrical(&axis, pad.nodes[i]).0)
-        .unwrap_or(axial);
-    let pad_ring: Vec<(usize, f64)> = ring_nodes(pad, &axis, pad_axial, r_mid, &pad_face, false)
-        .into_iter()
-        .map(|(i, t)| (i, t * r_mid))
-        .collect();
-    if disc_ring.len() < 8 || pad_ring.len() < 3 {
-        return Err(PipelineError::input(
-            "mode shapes",
-            format!(
-                "too few nodes on the braking-face circle at r = {r_mid:.4} m ({} on the disc, {} on the pad)",
-                disc_ring.len(),
-                pad_ring.len()
-            ),
-        ));
-    }
-    Ok(Rings {
-        axis,
-        disc: disc_ring,
-        pad: pad_ring,
-    })
-}
-
-/// The shape measures of a brake mode `x` (reduced coordinates, disc then pad).
-fn summarize(
-    s: &Model,
-    meshes: (&Mesh, &Mesh),
-    r: &Rings,
-    x: &[c64],
-    f_hz: f64,
-) -> Result<ShapeSummary> {
-    let dp = s
-        .rom
-        .part("disc")
-        .ok_or(PipelineError::NoPart { part: "disc" })?;
-    let pp = s
-        .rom
-        .pads()
-        .first()
-        .copied()
-        .ok_or(PipelineError::NoPart { part: "pad" })?;
-    let e = unit(r.axis.direction);
-    let ud = expand_complex(dp, meshes.0, &s.disc_mesh, &x[s.layout.disc.clone()])?;
-    let pad_path = s
-        .pad_meshes
-        .first()
-        .map(|p| p.1.as_path())
-        .unwrap_or(Path::new(""));
-    let up = expand_complex(pp, meshes.1, pad_path, &x[s.layout.pad()])?;
-    let axial = |u: &[c64], i: usize| u[3 * i] * e[0] + u[3 * i + 1] * e[1] + u[3 * i + 2] * e[2];
-    let w: Vec<c64> = r.disc.iter().map(|&(i, _)| axial(&ud, i)).collect();
-    let angles: Vec<f64> = r.disc.iter().map(|&(_, t)| t).collect();
-    let orders = circumferential_orders(&angles, &w, 12)?;
-    let total: f64 = r
-        .disc
-        .iter()
-        .map(|&(i, _)| (0..3).map(|d| ud[3 * i + d].norm_sqr()).sum::<f64>())
-        .sum();
-    let out: f64 = w.iter().map(|v| v.norm_sqr()).sum();
-    let wp: Vec<c64> = r.pad.iter().map(|&(i, _)| axial(&up, i)).collect();
-    let sp: Vec<f64> = r.pad.iter().map(|&(_, s)| s).collect();
-    Ok(ShapeSummary {
-        frequency_hz: f_hz,
-        disc_energy: energy_share(&s.brake.m, x, s.layout.disc.clone()),
-        orders,
-        out_of_plane: if total > 0.0 { out / total } else { 0.0 },
-        pad: pad_profile(&sp, &wp)?,
-    })
-}
-
-/// Which modes couple at μ0 (the text and JSON [`write_coupled_modes`] writes): the two
-/// frictionless modes of the pair and the unstable mode at μ0, expanded on the meshes. `None`
-/// when the sweep has no Hopf point or pair.
-fn coupled_modes(s: &Model, st: &Stability, log: Log) -> Result<Option<CoupledModes>> {
-    let (Some(h), Some((m1, m2))) = (&st.sweep.hopf, st.pair) else {
-        return Ok(None);
-    };
-    let disc = s.read_mesh(&s.disc_mesh, log)?;
-    let pad = match s.pad_meshes.first() {
-        Some((_, p)) => s.read_mesh(p, log)?,
-        None => return Err(PipelineError::NoPart { part: "pad" }),
-    };
-    let r = rings(&s.rom, &disc, &pad)?;
-    let basis = &st.reference.basis;
-    let real = |m: usize| -> Vec<c64> {
-        (0..basis.phi.nrows())
-            .map(|i| c64::new(basis.phi[(i, m)], 0.0))
-            .collect()
-    };
-    let hz = |m: usize| basis.omega[m] / (2.0 * std::f64::consts::PI);
-    let mode1 = summarize(s, (&disc, &pad), &r, &real(m1), hz(m1))?;
-    let mode2 = summarize(s, (&disc, &pad), &r, &real(m2), hz(m2))?;
-    let unstable = summarize(
-        s,
-        (&disc, &pad),
-        &r,
-        &h.point.spectrum.shape(basis, h.index),
-        h.frequency_hz,
-    )?;
-    let verdict = coupling(&mode1, &mode2);
-    let text = format!(
-        "Coupled modes at mu0 = {:.6} (shapes expanded on the meshes; disc: out-of-plane motion on the braking face's mid-radius circle, {} nodes, largest gap {:.1} deg; pad: {} friction-face nodes along its length):\n  Mode 1 (frictionless #{}, stays stable): {}\n  Mode 2 (frictionless #{}, goes unstable): {}\n  unstable mode at mu0: {}\n  => {}\n",
-        h.mu0,
-        r.disc.len(),
-        max_gap(&r.disc).to_degrees(),
-        r.pad.len(),
-        m1 + 1,
-        mode1.describe(),
-        m2 + 1,
-        mode2.describe(),
-        unstable.describe(),
-        verdict
-    );
-    let json = |name: &str, m: Option<usize>, v: &ShapeSummary| {
-        serde_json::json!({
-            "mode": name,
-            "frictionless_mode_1based": m.map(|m| m + 1),
-            "frequency_hz": v.frequency_hz,
-            "nodal_diameters": v.nodal_diameters(),
-            "order_shares": v.orders.shares,
-            "out_of_plane_share": v.out_of_plane,
-            "disc_kinetic_energy_share": v.disc_energy,
-            "pad": v.pad_kind(),
-            "pad_straight_line_share": v.pad.rigid_share,
-            "pad_sign_changes": v.pad.sign_changes,
-        })
-    };
-    let all = serde_json::json!({
-        "mu0": h.mu0,
-        "verdict": verdict,
-        "modes": [json("Mode 1", Some(m1), &mode1), json("Mode 2", Some(m2), &mode2), json("unstable at mu0", None, &unstable)],
-    });
-    Ok(Some(CoupledModes {
-        text,
-        json: json_text(&all, "the coupled modes")?,
-    }))
-}
-
-/// Prints and writes which modes couple at μ0 (`coupled_modes.txt`, `.json`).
-fn write_coupled_modes(m: &CoupledModes, dir: &Path, log: Log) -> Result<()> {
-    log(&format!("\n{}", m.text));
-    squeal_io::atomic_write_bytes(&dir.join("coupled_modes.txt"), m.text.as_bytes())?;
-    squeal_io::atomic_write_bytes(&dir.join("coupled_modes.json"), m.json.as_bytes())?;
-    Ok(())
-}
-
-// ---------------------------------------------------------------------------------------------
-// Mesh convergence
-
-/// `dir/disc_medium.inp` with level `coarse` -> `dir/disc_coarse.inp`.
-fn level_path(p: &Path, level: &str) -> Result<PathBuf> {
-    let stem = p
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let Some((base, _)) = stem.rsplit_once('_') else {
-        return Err(PipelineError::input(
-            "mesh study",
-            format!(
-                "{}: the mesh study needs mesh files named <name>_<level> (e.g. disc_medium.inp)",
-                p.display()
-            ),
-        ));
-    };
-    let ext = p
-        .extension()
-        .map(|e| format!(".{}", e.to_string_lossy()))
-        .unwrap_or_default();
-    Ok(p.with_file_name(format!("{base}_{level}{ext}")))
-}
-
-struct MeshModel {
-    level: String,
-    interface: &'static str,
-    nodes: usize,
-    brake: Brake,
-    damping: DampingSpec,
-    sweep: SweepOptions,
-}
-
-/// The scene with other meshes, interface and a cached .rom in the study folder.
-fn variant(scene: &Scene, level: &str, interface: &str, dir: &Path) -> Result<Scene> {
-    let mut v = Scene::read(&scene.path)?;
-    let abs = |p: PathBuf| std::path::absolute(&p).unwrap_or(p);
-    v.file.model.disc = abs(level_path(&scene.resolve(&scene.file.model.disc), level)?);
-    if let Some(p) = &scene.file.model.pad {
-        v.file.model.pad = Some(abs(level_path(&scene.resolve(p), level)?));
-    }
-    for (name, pad) in &mut v.file.pads {
-        if let Some(p) = scene.file.pads.get(name) {
-            pad.mesh = abs(level_path(&scene.resolve(&p.mesh), level)?);
-        }
-    }
-    v.file.model.interface = Spanned::new(0..0, interface.to_string());
-    v.file.model.rom = Some(abs(dir.join(format!("brake_{level}_{interface}.rom"))));
-    Ok(v)
-}
-
-/// The disc and pad mesh files of every level, checked to exist (before the first, slow,
-/// reduction starts).
-fn level_meshes(scene: &Scene, levels: &[String]) -> Result<Vec<PathBuf>> {
-    if levels.is_empty() {
-        return Err(PipelineError::input(
-            "--levels",
-            "give at least one mesh level",
-        ));
-    }
-    let files = scene.mesh_files()?;
-    let mut meshes = Vec::new();
-    for level in levels {
-        for p in &files {
-            meshes.push(level_path(p, level)?);
-        }
-    }
-    let missing: Vec<String> = meshes
-        .iter()
-        .filter(|p| !p.is_file())
-        .map(|p| p.display().to_string())
-        .collect();
-    if !missing.is_empty() {
-        return Err(PipelineError::input(
-            "--kind mesh",
-            format!(
-                "mesh files not found: {} (the scene's meshes must end in _<level>; --levels chooses the levels)",
-                missing.join(", ")
-            ),
-        ));
-    }
-    Ok(meshes)
-}
-
-fn total_nodes(rom: &ReducedModel) -> usize {
-    rom.parts.iter().map(|p| p.info.mesh.nodes).sum()
-}
-
-/// The node-contact brake of a level: each pair's stiffness per area times the area of the
-/// patch whose centre its node is (from the patch brake of the same meshes), so both contacts
-/// carry the same total stiffness.
-fn node_brake(rom: &ReducedModel, patch: &Model) -> Result<Brake> {
-    let params = squeal_brake::assemble::BrakeParams {
-        stiffness: match patch.params.stiffness {
-            Stiffness::PerArea { linear, cubic, .. } => Stiffness::PerArea {
-                linear,
-                cubic,
-                point_area: Some(1.0),
-            },
-            other => other,
-        },
-        ..patch.params.clone()
-    };
-    let (mut brake, _, _) =
-        assemble(rom, &params).with_context(|| "assembling the node-contact brake".into())?;
-    for p in &mut brake.pairs {
-        let near = patch
-            .brake
-            .pairs
-            .iter()
-            .min_by(|a, b| dist(a.position, p.position).total_cmp(&dist(b.position, p.position)))
-            .ok_or_else(|| {
-                PipelineError::input("mesh study", "the patch brake has no contact pairs")
-            })?;
-        let d = dist(near.position, p.position);
-        if d > 0.25 * min_spacing(&patch.brake) {
-            return Err(PipelineError::input(
-                "mesh study",
-                format!(
-                    "node contact point at ({:.4}, {:.4}, {:.4}) is {d:.2e} m from the nearest patch centre: the node and patch interfaces do not match",
-                    p.position[0], p.position[1], p.position[2]
-                ),
-            ));
-        }
-        p.law = near.law.clone();
-    }
-    Ok(brake)
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-fn min_spacing(b: &Brake) -> f64 {
-    let mut m = f64::INFINITY;
-    for (i, p) in b.pairs.iter().enumerate() {
-        for q in &b.pairs[i + 1..] {
-            m = m.min(dist(p.position, q.position));
-        }
-    }
-    m
-}
-
-/// Computes the mesh study's levels among `units`: each level's patch and node models
-/// (reduced one after the other, cached in `mdir`), then their sweeps in parallel.
-fn mesh_units(
-    scene: &Scene,
-    mdir: &Path,
-    mus: &[f64],
-    units: &[Unit],
-    log: Log,
-) -> Result<Vec<UnitResult>> {
-    create_dir(mdir)?;
-    let mut models = Vec::new();
-    for u in units {
-        let Unit::Level(level) = u else {
-            return Err(PipelineError::input(
-                "mesh study",
-                format!("unit {} is not a mesh level", u.key()),
-            ));
-        };
-        // Reductions one after the other (each is parallel inside and needs the memory).
-        let pv = variant(scene, level, "patch", mdir)?;
-        let ps = build(&pv, mdir, log).with_context(|| format!("{level} meshes, patch"))?;
-        let nv = variant(scene, level, "node", mdir)?;
-        let (nrom, _) =
-            reduced_model(&nv, mdir, log).with_context(|| format!("{level} meshes, node"))?;
-        let nb = node_brake(&nrom, &ps)?;
-        // The damping comes from the scene's [damping] alone: the same on every level.
-        models.push(MeshModel {
-            level: level.clone(),
-            interface: "node",
-            nodes: total_nodes(&nrom),
-            brake: nb,
-            damping: ps.damping,
-            sweep: SweepOptions {
-                band: squeal_brake::sweep::Band {
-                    valid_max_hz: valid_max_hz(&nrom),
-                    ..ps.sweep.band
-                },
-                ..ps.sweep
-            },
-        });
-        models.push(MeshModel {
-            level: level.clone(),
-            interface: "patch",
-            nodes: total_nodes(&ps.rom),
-            brake: ps.brake,
-            damping: ps.damping,
-            sweep: ps.sweep,
-        });
-    }
-    log(&format!(
-        "mesh study: {} stability analyses in parallel ...",
-        models.len()
-    ));
-    let rows: Vec<MeshRow> = models
-        .par_iter()
-        .map(|m| {
-            let r = stability(&m.brake, &m.damping, mus, &m.sweep)
-                .with_context(|| format!("{} meshes, {} contact", m.level, m.interface))
-                .map(|st| outcome(&Case::default(), &st));
-            MeshRow {
-                interface: m.interface.into(),
-                nodes: m.nodes,
-                outcome: match r {
-                    Ok(o) => MeshOutcome::Found {
-                        mu0: o.mu0.map(F),
-                        frequency_hz: o.frequency_hz.map(F),
-                        pair: o.pair,
-                        pair_hz: o.pair_hz.map(|(a, b)| (F(a), F(b))),
-                    },
-                    // A model without a Hopf point in the band is a result (node contact on
-                    // fine meshes), not a failure of the study: the row says so. Any other
-                    // error is a failure, and the row says that.
-                    Err(e) if no_hopf_point(&e) => MeshOutcome::NoHopfPoint(e.to_string()),
-                    Err(e) => MeshOutcome::Failed(e.to_string()),
-                },
-            }
-        })
-        .collect();
-    // Two models (node, patch) per level.
-    Ok(rows
-        .chunks(2)
-        .map(|c| UnitResult::Level(c.to_vec()))
-        .collect())
-}
-
-/// Writes the mesh study from its levels' models (in level order).
-fn write_mesh(levels: &[(&str, &Vec<MeshRow>)], dir: &Path, log: Log) -> Result<()> {
-    let mut t = Table::new([
-        "level",
-        "interface",
-        "nodes",
-        "mu0",
-        "frequency_hz",
-        "mode1",
-        "mode1_hz",
-        "mode2",
-        "mode2_hz",
-        "mu0_change_from_previous_level",
-        "frequency_change_from_previous_level",
-    ]);
-    // (interface, (dofs, mu0) points, (dofs, frequency) points)
-    #[allow(clippy::type_complexity)]
-    let mut points: Vec<(&'static str, Vec<(f64, f64)>, Vec<(f64, f64)>)> =
-        vec![("patch", vec![], vec![]), ("node", vec![], vec![])];
-    let mut failures = Vec::new();
-    for iface in ["patch", "node"] {
-        let mut prev: Option<(f64, f64)> = None;
-        for (level, rows) in levels {
-            let Some(m) = rows.iter().find(|r| r.interface == iface) else {
-                return Err(PipelineError::input(
-                    "mesh study",
-                    format!("no {iface}-contact result for the {level} meshes"),
-                ));
-            };
-            let (mu0, frequency_hz, pair, pair_hz) = match &m.outcome {
-                MeshOutcome::Found {
-                    mu0,
-                    frequency_hz,
-                    pair,
-                    pair_hz,
-                } => (
-                    mu0.map(|v| v.0),
-                    frequency_hz.map(|v| v.0),
-                    *pair,
-                    pair_hz.map(|(a, b)| (a.0, b.0)),
-                ),
-                MeshOutcome::NoHopfPoint(e) | MeshOutcome::Failed(e) => {
-                    let none = matches!(m.outcome, MeshOutcome::NoHopfPoint(_));
-                    failures.push(if none {
-                        format!("{level} meshes, {iface}: no Hopf point in the band ({e})")
-                    } else {
-                        format!("{level} meshes, {iface}: the analysis failed: {e}")
-                    });
-                    let mut row = vec![level.to_string(), iface.to_string(), m.nodes.to_string()];
-                    row.push(if none { "none" } else { "failed" }.into());
-                    row.extend(std::iter::repeat_n("-".to_string(), 7));
-                    t.push_row(row);
-                    prev = None;
-                    continue;
-                }
-            };
-            let change = |now: Option<f64>, before: Option<f64>| {
-                now.zip(before).map_or("-".into(), |(a, b)| {
-                    format!("{:+.2}%", 100.0 * (a / b - 1.0))
-                })
-            };
-            t.push_row([
-                level.to_string(),
-                iface.to_string(),
-                m.nodes.to_string(),
-                opt(mu0, 6),
-                opt(frequency_hz, 6),
-                pair.map_or("-".into(), |p| format!("#{}", p.0 + 1)),
-                opt(pair_hz.map(|p| p.0), 5),
-                pair.map_or("-".into(), |p| format!("#{}", p.1 + 1)),
-                opt(pair_hz.map(|p| p.1), 5),
-                change(mu0, prev.map(|p| p.0)),
-                change(frequency_hz, prev.map(|p| p.1)),
-            ]);
-            if let (Some(mu0), Some(f)) = (mu0, frequency_hz) {
-                prev = Some((mu0, f));
-                let k = usize::from(iface == "node");
-                points[k].1.push((m.nodes as f64, mu0));
-                points[k].2.push((m.nodes as f64, f));
-            } else {
-                prev = None;
-            }
-        }
-    }
-    let t = t.align_numbers_right();
-    log("\nMesh convergence of the Hopf point (patch and node contact):");
-    log(&t.to_text());
-    for f in &failures {
-        log(f);
-    }
-    t.write_csv(&dir.join("mesh.csv"))?;
-    squeal_io::atomic_write_bytes(&dir.join("mesh.md"), t.to_markdown().as_bytes())?;
-    let panel = |title: &str, y: &str, k: usize| Panel {
-        title: title.into(),
-        x_label: "nodes (disc + pad)".into(),
-        y_label: y.into(),
-        x_scale: Scale::Log,
-        series: points
-            .iter()
-            .map(|p| {
-                Series::line_markers(
-                    format!("{} contact", p.0),
-                    if k == 0 { p.1.clone() } else { p.2.clone() },
-                )
-            })
-            .collect(),
-        ..Panel::default()
-    };
-    let fig = Figure {
-        title: "Mesh convergence of the Hopf point".into(),
-        panels: vec![
-            panel("(a) mu0", "mu0", 0),
-            panel("(b) frequency at mu0", "frequency (Hz)", 1),
-        ],
-        ..Figure::default()
-    };
-    write_svg_and_png(&fig, &dir.join("mesh"))?;
     Ok(())
 }
 

@@ -26,6 +26,8 @@
 
 mod checks;
 pub mod sets;
+pub mod variant;
+pub use variant::{Interface, MESH_LEVELS, level_path};
 
 pub use checks::{
     HIGH_DAMPING_RATIO, HIGH_LINE_PRESSURE_BAR, HIGH_MU, LARGE_GAP_M, MAX_LINE_PRESSURE_BAR,
