@@ -25,7 +25,7 @@ use squeal_reduce::brake::{
 };
 use squeal_reduce::craig_bampton::Stage;
 use squeal_reduce::rom::{InterfaceKind, ReducedModel};
-use squeal_scene::{ContactLawSetting, GapSetting, Scene, Sliding};
+use squeal_scene::{ContactLawSetting, GapSetting, Interface, Key, Scene, Sliding};
 use std::path::{Path, PathBuf};
 
 /// Everything an analysis of the scene needs.
@@ -76,26 +76,25 @@ pub fn quiet(_: &str) {}
 /// axis_origin` or the origin); the pistons' direction is `[contact] normal`, else the axis.
 /// [`crate::parts::brake_inputs`] puts in the sets, materials and units of the scene.
 pub fn brake_inputs(scene: &Scene) -> Result<BrakeInputs> {
-    let m = &scene.file.model;
     let normal = scene.normal()?;
     let axis = scene_axis(scene)?;
     let direction = axis.direction;
-    let pads = scene.pads()?;
-    let mut inputs = BrakeInputs::bundled(scene.resolve(&m.disc), scene.resolve(&pads[0].1));
+    let pads = scene.pad_meshes()?;
+    let mut inputs = BrakeInputs::bundled(scene.disc_mesh(), pads[0].1.clone());
     inputs.pads = pads
         .iter()
         .map(|(name, path)| PadInput {
             name: name.clone(),
-            part: PartInput::pad(scene.resolve(path)),
+            part: PartInput::pad(path.clone()),
         })
         .collect();
     let mut inputs = inputs.about(axis, normal.unwrap_or(direction))?;
-    inputs.interface = match m.interface.get_ref().as_str() {
-        "node" => InterfaceKind::Node,
-        "nodal" => InterfaceKind::Nodal,
-        _ => InterfaceKind::Patch,
+    inputs.interface = match scene.interface()? {
+        Interface::Node => InterfaceKind::Node,
+        Interface::Nodal => InterfaceKind::Nodal,
+        Interface::Patch => InterfaceKind::Patch,
     };
-    inputs.modes = ModeChoice::Fixed(*m.modes.get_ref());
+    inputs.modes = ModeChoice::Fixed(scene.modes_per_part());
     Ok(inputs)
 }
 
@@ -111,10 +110,7 @@ pub fn scene_axis(scene: &Scene) -> Result<squeal_reduce::interface::Axis> {
 
 /// Where the scene's reduced model is kept: its `[model] rom`, else `<out>/brake.rom`.
 pub fn rom_path(scene: &Scene, out: &Path) -> PathBuf {
-    match &scene.file.model.rom {
-        Some(p) => scene.resolve(p),
-        None => out.join("brake.rom"),
-    }
+    scene.rom_file().unwrap_or_else(|| out.join("brake.rom"))
 }
 
 /// Checks the outputs of a scene before any work: `out` is a folder that can be written (made
@@ -259,36 +255,20 @@ pub fn disc_speed(scene: &Scene) -> Result<Option<DiscSpeed>> {
 
 /// The damping of eqs (12)–(13) the scene asks for.
 pub fn damping_spec(scene: &Scene) -> Result<DampingSpec> {
-    let f = &scene.file;
     Ok(DampingSpec {
-        global_ratio: *f.damping.global_ratio.get_ref(),
+        global_ratio: scene.damping_global_ratio(),
         pair: match scene.pair()? {
             None => PairChoice::Auto,
             Some((a, b)) => PairChoice::Modes(a, b),
         },
-        pair_ratios: f
-            .damping
-            .pair_ratios
-            .as_ref()
-            .map_or([0.0, 0.0], |r| *r.get_ref()),
+        pair_ratios: scene.damping_pair_ratios().unwrap_or([0.0, 0.0]),
     })
 }
 
 /// Where the scene's modal damping ratio comes from, for outputs: `file:line` of `[damping]
 /// global_ratio`, or the default's note.
 pub fn damping_from(scene: &Scene) -> String {
-    let g = &scene.file.damping.global_ratio;
-    if g.span() == (0..0) {
-        return format!(
-            "the default: {} gives no [damping] global_ratio",
-            scene.path.display()
-        );
-    }
-    let line = scene.text[..g.span().start.min(scene.text.len())]
-        .matches('\n')
-        .count()
-        + 1;
-    format!("{}:{line}", scene.path.display())
+    scene.origin(Key::DampingGlobalRatio)
 }
 
 /// The highest frequency the reduced model speaks for: the lower of the parts' highest kept
@@ -305,12 +285,7 @@ pub fn sweep_options(scene: &Scene, rom: &ReducedModel) -> SweepOptions {
     SweepOptions {
         band: Band {
             valid_max_hz: valid_max_hz(rom),
-            user: scene
-                .file
-                .stability
-                .band_hz
-                .as_ref()
-                .map(|b| (b.get_ref()[0], b.get_ref()[1])),
+            user: scene.band_hz(),
         },
         ..SweepOptions::default()
     }
@@ -320,7 +295,6 @@ pub fn sweep_options(scene: &Scene, rom: &ReducedModel) -> SweepOptions {
 pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<Model> {
     let params = brake_params(scene)?;
     let (brake, layout, pairs) = assemble(&rom, &params).map_err(|e| at_scene_key(scene, e))?;
-    let m = &scene.file.model;
     Ok(Model {
         sweep: sweep_options(scene, &rom),
         damping: damping_spec(scene)?,
@@ -331,12 +305,8 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
         layout,
         pairs,
         params,
-        disc_mesh: scene.resolve(&m.disc),
-        pad_meshes: scene
-            .pads()?
-            .iter()
-            .map(|(n, p)| (n.clone(), scene.resolve(p)))
-            .collect(),
+        disc_mesh: scene.disc_mesh(),
+        pad_meshes: scene.pad_meshes()?,
         disc: disc_speed(scene)?,
         units: scene.units()?,
     })
@@ -346,14 +316,9 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
 /// count (`[contact] initial_gap`) and a normal the mesh disagrees with (`[contact] normal`).
 fn at_scene_key(scene: &Scene, e: squeal_brake::BrakeError) -> PipelineError {
     use squeal_brake::BrakeError;
-    let c = &scene.file.contact;
-    match (&e, &c.initial_gap, &c.normal) {
-        (BrakeError::GapCount { .. }, Some(v), _) => {
-            scene.error_at("contact.initial_gap", v, &e).into()
-        }
-        (BrakeError::NormalDisagrees { .. }, _, Some(v)) => {
-            scene.error_at("contact.normal", v, &e).into()
-        }
+    match &e {
+        BrakeError::GapCount { .. } => scene.error_at_key(Key::InitialGap, &e).into(),
+        BrakeError::NormalDisagrees { .. } => scene.error_at_key(Key::ContactNormal, &e).into(),
         _ => e.into(),
     }
 }
@@ -365,9 +330,7 @@ pub fn at_damping_key(scene: &Scene, e: PipelineError) -> PipelineError {
     match e {
         PipelineError::Brake(
             b @ (BrakeError::ModeOutOfRange { .. } | BrakeError::PairOutOfRange { .. }),
-        ) => scene
-            .error_at("damping.pair", &scene.file.damping.pair, b)
-            .into(),
+        ) => scene.error_at_key(Key::DampingPair, b).into(),
         other => other,
     }
 }

@@ -371,11 +371,10 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
     for w in scene.material_warnings()? {
         log(&format!("warning: {w}"));
     }
-    let m = &scene.file.model;
-    let mut disc = load_part_in(&scene.resolve(&m.disc), &units)?;
+    let mut disc = load_part_in(&scene.disc_mesh(), &units)?;
     let mut pads = Vec::new();
-    for (name, path) in scene.pads()? {
-        pads.push((name, load_part_in(&scene.resolve(&path), &units)?));
+    for (name, path) in scene.pad_meshes()? {
+        pads.push((name, load_part_in(&path, &units)?));
     }
     for w in disc
         .warnings
@@ -393,7 +392,7 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
             .map(|(n, p)| (n.as_str(), &mut p.mesh))
             .collect();
         let mut sets = choose_sets(scene, &mut disc.mesh, &mut meshes)?;
-        if scene.file.model.interface.get_ref() == "node" {
+        if scene.interface()? == squeal_scene::Interface::Node {
             sets.extend(contact_points_by_geometry(
                 scene,
                 &sets,

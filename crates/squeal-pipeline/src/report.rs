@@ -494,14 +494,14 @@ fn summary_section(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]
             ]);
         }
     }
-    let f = &r.scene.file;
+    let (line_pressure_bar, piston_area) = r.scene.piston_pressure_and_area();
     inputs.push_row([
         "clamp force".to_string(),
         format!(
             "{:.0} N ({} bar on {} m² of piston)",
             m.params.piston_force,
-            fmt_sig(*f.piston.line_pressure_bar.get_ref(), 4),
-            fmt_sig(*f.piston.area.get_ref(), 4)
+            fmt_sig(line_pressure_bar, 4),
+            fmt_sig(piston_area, 4)
         ),
     ]);
     if let Ok((kl, knl, fit)) = r.scene.stiffness() {
@@ -524,7 +524,7 @@ fn summary_section(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]
         format!(
             "{} pairs, {} interface; friction along the sliding direction",
             m.pairs.len(),
-            f.model.interface.get_ref()
+            r.scene.interface().map_or("?", |i| i.name())
         ),
     ]);
     inputs.push_row([
@@ -549,7 +549,7 @@ fn summary_section(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]
         format!(
             "{} dofs (Craig–Bampton, {} fixed-interface modes per part), valid up to {:.0} Hz",
             m.brake.size(),
-            f.model.modes.get_ref(),
+            r.scene.modes_per_part(),
             m.sweep.band.valid_max_hz
         ),
     ]);
