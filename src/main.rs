@@ -113,7 +113,7 @@ fn main() -> ExitCode {
         Ok(_) => "finished".to_string(),
         Err(err) => format!("failed: {}", message(err)),
     };
-    squeal_io::folder::finish(None, &status);
+    squeal_pipeline::folder::release_all(&status);
     match result {
         Ok(code) => code,
         Err(err) => {

@@ -265,7 +265,7 @@ fn reduce_with_a_scene_writes_the_model_the_scene_caches() {
         rom.to_str().unwrap(),
     ]);
     assert!(out.contains("18 disc/pad points paired"), "{out}");
-    let model = squeal_reduce::rom::ReducedModel::read(&rom).unwrap();
+    let model = squeal_pipeline::reduce::ReducedModel::read(&rom).unwrap();
     let names: Vec<&str> = model.parts.iter().map(|p| p.info.name.as_str()).collect();
     assert_eq!(names, ["disc", "inboard", "outboard"]);
     let out = sweep_41(&scene, &dir.join("out"));

@@ -4,8 +4,7 @@
 use crate::commands::stability::pipeline;
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use squeal_chbm::branch::{BranchOptions, Harmonics};
-use squeal_chbm::floquet::HillOptions;
+use squeal_pipeline::branch::{BranchOptions, Harmonics, HillOptions};
 use squeal_pipeline::{Pipeline, branch};
 use std::path::PathBuf;
 use std::process::ExitCode;

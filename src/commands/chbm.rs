@@ -4,7 +4,7 @@
 use crate::commands::stability::pipeline;
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use squeal_chbm::{ChbmSolution, Outcome, RESTART_AMPLITUDES};
+use squeal_pipeline::chbm::{ChbmSolution, ChbmStart, Outcome, RESTART_AMPLITUDES};
 use squeal_pipeline::cycle::{CyclePlan, CycleStart, LimitCycle};
 use squeal_pipeline::{Pipeline, chbm};
 use squeal_scene::CycleFriction;
@@ -209,7 +209,7 @@ fn how_reached(lc: &LimitCycle, plan: &CyclePlan) -> String {
 fn write_solution(
     p: &Pipeline,
     mu: f64,
-    start: &squeal_chbm::ChbmStart,
+    start: &ChbmStart,
     sol: &ChbmSolution,
     vtu: bool,
 ) -> Result<()> {

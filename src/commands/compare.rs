@@ -71,23 +71,18 @@ pub fn run(args: CompareArgs) -> Result<ExitCode> {
     let settings = args.settings();
     settings.validate()?;
     let p = pipeline(&args.scene, &args.out, &None)?;
-    write(&p, &settings, None)?;
+    write(&p, &settings)?;
     Ok(ExitCode::SUCCESS)
 }
 
-/// Runs the comparison of `p` (reusing `first`, the start at the first level, when given) into
-/// `<out>/compare`; returns its summary.
+/// Runs the comparison of `p` into `<out>/compare`; returns its summary.
 pub fn write(
     p: &Pipeline,
     settings: &CompareSettings,
-    first: Option<(
-        squeal_chbm::ChbmStart,
-        squeal_brake::modal_brake::ModalBrake,
-    )>,
 ) -> Result<squeal_pipeline::compare::CompareSummary> {
     let dir = p.out.join("compare");
     let t = std::time::Instant::now();
-    let summary = compare::run(p, first, settings, &dir)?;
+    let summary = compare::run(p, None, settings, &dir)?;
     p.record("comparison", t.elapsed().as_secs_f64());
     println!("\nresults in {}", dir.display());
     Ok(summary)

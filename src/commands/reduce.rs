@@ -3,18 +3,12 @@
 use crate::progress::StageBars;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
-use squeal_eigs::Backend;
-use squeal_pipeline::parts::{SceneParts, brake_inputs, load_parts};
-use squeal_reduce::brake::{
-    BrakeInputs, DEFAULT_AUTO_FACTOR, ModeChoice, reduce_brake, reduce_brake_loaded,
+use squeal_pipeline::reduce::{
+    Backend, DEFAULT_AUTO_FACTOR, InterfaceKind, MeshPair, ModeChoice, ReduceRequest, ReduceSource,
+    Stage, reduce,
 };
-use squeal_reduce::craig_bampton::Stage;
-use squeal_reduce::rom::{InterfaceKind, ReducedModel};
-use squeal_reduce::summary::summary_text;
-use squeal_scene::Scene;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::Instant;
 
 #[derive(Args)]
 pub struct ReduceArgs {
@@ -107,84 +101,39 @@ pub fn run(args: ReduceArgs) -> Result<ExitCode> {
     // count; the large sparse factorizations get rayon's pool explicitly (BrakeInputs::par)
     // and do not. So the .rom is the same bits for any --threads.
     faer::set_global_parallelism(faer::Par::Seq);
-    squeal_io::require_extension(&args.output, "rom", "the reduced model (.rom)")?;
-    // A scene's meshes are read here, to choose their sets; the others by the reduction.
-    let (inputs, loaded) = match args.scene.as_deref() {
-        Some(path) => {
-            let (mut inputs, parts) = scene_parts(path)?;
-            inputs.backend = backend(args.backend);
-            inputs.keep_basis = !args.no_basis;
-            (inputs, Some(parts))
-        }
-        None => (inputs(&args)?, None),
+    let source = match &args.scene {
+        Some(path) => ReduceSource::Scene(path.clone()),
+        None => ReduceSource::Meshes(mesh_pair(&args)?),
     };
-    let mut read: Vec<(&Path, &str)> = vec![(inputs.disc.mesh.as_path(), "disc mesh")];
-    read.extend(
-        inputs
-            .pads
-            .iter()
-            .map(|p| (p.part.mesh.as_path(), "pad mesh")),
-    );
-    if let Some(path) = &args.scene {
-        read.push((path.as_path(), "scene file"));
-    }
-    squeal_io::refuse_inputs(&args.output, &read)?;
-    if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
-        squeal_io::check_writable(dir)?;
-    }
+    let request = ReduceRequest {
+        source,
+        output: args.output.clone(),
+        backend: match args.backend {
+            EigBackend::Lanczos => Backend::Lanczos,
+            EigBackend::Arpack => Backend::Arpack,
+        },
+        keep_basis: !args.no_basis,
+        export_mtx: args.export == Some(Export::Mtx),
+    };
     let mut bars = StageBars::default();
     let mut tell = |part: &str, stage: Stage| bars.start(part, stage.label());
-    let (model, report) = match loaded {
-        Some(parts) => reduce_brake_loaded(
-            &inputs,
-            parts.disc,
-            parts.pads.into_iter().map(|p| p.1).collect(),
-            &mut tell,
-        ),
-        None => reduce_brake(&inputs, &mut tell),
-    }
-    .context("reducing the brake")?;
-    bars.start("brake", Stage::Write.label());
-    let t = Instant::now();
-    model
-        .write(&args.output)
-        .with_context(|| format!("writing {}", args.output.display()))?;
-    let exported = match args.export {
-        Some(Export::Mtx) => export_mtx(&model, &args.output)?,
-        None => Vec::new(),
-    };
-    let write_time = t.elapsed();
+    let done =
+        reduce(&request, &|m: &str| eprintln!("{m}"), &mut tell).context("reducing the brake")?;
     bars.finish();
     println!();
-    print!("{}", summary_text(&model, &report, write_time));
-    let backend = model.parts.first().and_then(|p| p.info.build.as_ref());
-    let megabytes = std::fs::metadata(&args.output).map_or(0.0, |m| m.len() as f64 / 1e6);
+    print!("{}", done.summary);
     println!();
     println!(
-        "wrote {} ({} dofs, {} backend, {megabytes:.1} MB)",
-        args.output.display(),
-        model.size(),
-        backend.map_or("?", |b| b.backend.as_str()),
+        "wrote {} ({} dofs, {} backend, {:.1} MB)",
+        done.output.display(),
+        done.model.size(),
+        done.backend,
+        done.bytes as f64 / 1e6
     );
-    for path in exported {
+    for path in done.exported {
         println!("wrote {}", path.display());
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// A scene's parts (read, sets chosen) and reduction inputs.
-fn scene_parts(path: &Path) -> Result<(BrakeInputs, SceneParts)> {
-    let scene = Scene::read(path)?;
-    let parts = load_parts(&scene, &|m: &str| eprintln!("{m}"))?;
-    let inputs = brake_inputs(&scene, &parts)?;
-    Ok((inputs, parts))
-}
-
-fn backend(b: EigBackend) -> Backend {
-    match b {
-        EigBackend::Lanczos => Backend::Lanczos,
-        EigBackend::Arpack => Backend::Arpack,
-    }
 }
 
 /// `X,Y,Z` as three finite numbers.
@@ -200,29 +149,12 @@ fn parse_vector(option: &str, text: &str) -> Result<[f64; 3]> {
     }
 }
 
-/// The brake inputs from the command line: the bundled setup on the given meshes, turned to
-/// the given axis and normal.
-fn inputs(args: &ReduceArgs) -> Result<BrakeInputs> {
-    let direction = parse_vector("--axis", &args.axis)?;
-    let origin = parse_vector("--axis-point", &args.axis_point)?;
-    let normal = match &args.normal {
-        Some(n) => parse_vector("--normal", n)?,
-        None => direction,
-    };
+/// The two meshes and their layout from the command line.
+fn mesh_pair(args: &ReduceArgs) -> Result<MeshPair> {
     let (Some(disc), Some(pad)) = (&args.disc, &args.pad) else {
         bail!("give the disc and pad meshes, or --scene");
     };
-    let mut inputs = BrakeInputs::bundled(disc, pad)
-        .about(squeal_reduce::interface::Axis { origin, direction }, normal)
-        .map_err(|e| anyhow::anyhow!("--axis/--normal: {e}"))?;
-    inputs.interface = match args.interface {
-        Interface::Patch => InterfaceKind::Patch,
-        Interface::Node => InterfaceKind::Node,
-        Interface::Nodal => InterfaceKind::Nodal,
-    };
-    inputs.backend = backend(args.backend);
-    inputs.keep_basis = !args.no_basis;
-    inputs.modes = if args.modes.eq_ignore_ascii_case("auto") {
+    let modes = if args.modes.eq_ignore_ascii_case("auto") {
         let Some(fmax) = args.fmax else {
             bail!("--modes auto needs --fmax (the highest frequency of interest, Hz)");
         };
@@ -240,22 +172,25 @@ fn inputs(args: &ReduceArgs) -> Result<BrakeInputs> {
             .with_context(|| format!("--modes {}: expected a number or \"auto\"", args.modes))?;
         ModeChoice::Fixed(n)
     };
-    inputs.grid = parse_grid(&args.grid)?;
-    for (set, material) in args.materials.overrides()? {
-        let mut used = false;
-        let (disc_part, pads) = (&mut inputs.disc, &mut inputs.pads);
-        for (path, part) in [(disc, disc_part), (pad, &mut pads[0].part)] {
-            if mesh_has_element_set(path, &set)? {
-                part.material_overrides.push((set.clone(), material));
-                used = true;
-            }
-        }
-        if !used {
-            bail!("--material {set}=...: neither mesh has an element set named {set}");
-        }
-    }
-    inputs.validate()?;
-    Ok(inputs)
+    Ok(MeshPair {
+        disc: disc.clone(),
+        pad: pad.clone(),
+        axis_point: parse_vector("--axis-point", &args.axis_point)?,
+        axis_direction: parse_vector("--axis", &args.axis)?,
+        normal: args
+            .normal
+            .as_ref()
+            .map(|n| parse_vector("--normal", n))
+            .transpose()?,
+        interface: match args.interface {
+            Interface::Patch => InterfaceKind::Patch,
+            Interface::Node => InterfaceKind::Node,
+            Interface::Nodal => InterfaceKind::Nodal,
+        },
+        modes,
+        grid: parse_grid(&args.grid)?,
+        materials: args.materials.overrides()?,
+    })
 }
 
 fn parse_grid(text: &str) -> Result<[usize; 2]> {
@@ -264,21 +199,4 @@ fn parse_grid(text: &str) -> Result<[usize; 2]> {
         Some([a.trim().parse().ok()?, b.trim().parse().ok()?])
     };
     parse().with_context(|| format!("--grid {text}: expected RADIALxANGULAR, e.g. 3x3"))
-}
-
-/// Whether a mesh file has an element set (read only for `--material`).
-fn mesh_has_element_set(path: &Path, set: &str) -> Result<bool> {
-    let read =
-        squeal_mesh::read(path).with_context(|| format!("reading mesh {}", path.display()))?;
-    Ok(read.mesh.element_set(set).is_some())
-}
-
-/// The MatrixMarket files of `--export mtx`, beside the .rom and named after it.
-fn export_mtx(model: &ReducedModel, output: &Path) -> Result<Vec<PathBuf>> {
-    let dir = output.parent().unwrap_or(Path::new(""));
-    let stem = output
-        .file_stem()
-        .map_or("brake".into(), |s| s.to_string_lossy());
-    squeal_reduce::export::write_matrix_market(model, dir, &stem)
-        .with_context(|| format!("exporting {} as MatrixMarket", output.display()))
 }

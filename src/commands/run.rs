@@ -44,7 +44,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     let p = stability::pipeline(&args.scene, &args.out, &None)?;
     let plan = CyclePlan::of_scene(&p.scene)?;
     // An earlier run's report must not describe this run's files if this run stops early.
-    let removed = squeal_io::folder::remove_earlier(&p.out, report::is_report_file);
+    let removed = squeal_pipeline::folder::remove_earlier(&p.out, report::is_report_file);
     if !removed.is_empty() {
         println!(
             "removed the earlier run's report ({} files); this run writes its own at the end",
@@ -65,14 +65,14 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         );
     } else {
         println!("\n== 3. branch of limit cycles and their stability");
-        branch = branch::write(&p, &squeal_chbm::branch::BranchOptions::default(), &[])?;
+        branch = branch::write(&p, &squeal_pipeline::branch::BranchOptions::default(), &[])?;
 
         println!("\n== 4. limit cycle (CHBM)");
         cycle = Some(chbm::solve(&p, &plan, true)?);
 
         if !args.no_compare {
             println!("\n== 5. CHBM against time integration");
-            summary = Some(compare::write(&p, &settings, None)?);
+            summary = Some(compare::write(&p, &settings)?);
         }
     }
 

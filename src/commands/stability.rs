@@ -45,17 +45,12 @@ pub fn pipeline<'a>(
     Ok(p)
 }
 
-/// Takes the output folder `out` of `scene` for this command ([`squeal_io::folder::begin`]): its lock,
+/// Takes the output folder `out` of `scene` for this command ([`squeal_pipeline::folder::take`]): its lock,
 /// the check that it holds no user's files (unless `--force`) and this run in its manifest.
 pub fn take_folder(scene: &Path, out: &Path) -> Result<()> {
-    let sha =
-        squeal_reduce::rom::sha256_file(scene).with_context(|| scene.display().to_string())?;
-    let info = squeal_io::folder::RunInfo {
-        command: std::env::args().collect::<Vec<_>>().join(" "),
-        scene: Some((scene.to_path_buf(), sha)),
-    };
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
     let force = crate::commands::FORCE.load(std::sync::atomic::Ordering::Relaxed);
-    for note in squeal_io::folder::begin(out, &info, force)? {
+    for note in squeal_pipeline::folder::take(scene, out, command, force)? {
         eprintln!("note: {note}");
     }
     Ok(())

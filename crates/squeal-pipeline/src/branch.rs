@@ -19,9 +19,12 @@ use squeal_chbm::bifurcation::{
     Bifurcation, BifurcationKind, BranchWithHill, bifurcations, cycle_of,
     follow_from_hopf_with_hill,
 };
-use squeal_chbm::branch::{BranchOptions, BranchPoint, LimitCycleBranch, cycles_at};
+/// The branch's options, as the command line and researchers set them.
+pub use squeal_chbm::branch::{BranchOptions, Harmonics};
+use squeal_chbm::branch::{BranchPoint, LimitCycleBranch, cycles_at};
+pub use squeal_chbm::floquet::HillOptions;
 use squeal_chbm::floquet::hill as hill_exponents;
-use squeal_chbm::floquet::{CycleStability as Stability, FloquetError, HillFloquet, HillOptions};
+use squeal_chbm::floquet::{CycleStability as Stability, FloquetError, HillFloquet};
 use squeal_report::format::fmt_sig;
 use squeal_report::{
     Annotation, Dash, Figure, Layout, Marker, Panel, Rgb, Series, Table, write_svg_and_png,

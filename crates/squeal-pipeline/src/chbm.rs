@@ -6,9 +6,11 @@ use crate::model::{Log, Model};
 use crate::shapes::{Meshes, PartFields, write_brake_vtu};
 use squeal_brake::analysis::LinearStability as Stability;
 use squeal_brake::modal_brake::ModalBrake;
+use squeal_chbm::ChbmOptions;
 use squeal_chbm::physics::{SlidingMargin, sliding_margin_of};
 use squeal_chbm::start::start_at;
-use squeal_chbm::{ChbmOptions, ChbmSolution, ChbmStart, Outcome};
+/// The CHBM solution types the pipeline hands out.
+pub use squeal_chbm::{ChbmSolution, ChbmStart, Outcome, RESTART_AMPLITUDES};
 use squeal_report::{Annotation, Dash, Figure, Panel, Scale, Series, Table, write_svg_and_png};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

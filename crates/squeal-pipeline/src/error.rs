@@ -35,6 +35,8 @@ pub enum PipelineError {
     Io(#[from] squeal_io::IoError),
     #[error(transparent)]
     Output(#[from] squeal_io::OutputError),
+    #[error(transparent)]
+    Folder(#[from] squeal_io::folder::FolderError),
     #[error("{what} {}: {error}", path.display())]
     File {
         what: &'static str,
