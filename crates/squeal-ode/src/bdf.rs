@@ -30,6 +30,10 @@ use faer::{ColMut, Mat, MatMut, MatRef, Par};
 use crate::error::OdeError;
 use crate::options::{BdfOptions, BdfStats, MAX_ORDER};
 
+mod newton;
+#[allow(unused_imports)]
+use newton::*;
+
 /// Largest system dimension accepted (two dense `n x n` matrices are kept:
 /// 2 x 800 MB at this bound).
 pub const MAX_DIM: usize = 10_000;
@@ -70,137 +74,6 @@ impl<S: OdeSystem + ?Sized> OdeSystem for &S {
     fn jacobian(&self, t: f64, y: &[f64], jac: MatMut<'_, f64>) {
         (**self).jacobian(t, y, jac)
     }
-}
-
-/// NDF/BDF coefficients of S&R Table 1 / scipy (index = order).
-#[derive(Debug, Clone, Copy)]
-struct Coefficients {
-    /// `gamma_k = sum_{j=1..k} 1/j`.
-    gamma: [f64; MAX_ORDER + 1],
-    /// `alpha_k = (1 - kappa_k) gamma_k`.
-    alpha: [f64; MAX_ORDER + 1],
-    /// `kappa_k gamma_k + 1/(k+1)`: local error constant.
-    error_const: [f64; MAX_ORDER + 1],
-}
-
-impl Coefficients {
-    /// Klopfenstein-Shampine NDF `kappa` (S&R Table 1) or zero for BDF.
-    fn new(ndf: bool) -> Self {
-        let kappa_ndf = [0.0, -0.1850, -1.0 / 9.0, -0.0823, -0.0415, 0.0];
-        let mut c = Self {
-            gamma: [0.0; MAX_ORDER + 1],
-            alpha: [0.0; MAX_ORDER + 1],
-            error_const: [0.0; MAX_ORDER + 1],
-        };
-        for k in 0..=MAX_ORDER {
-            let kappa = if ndf { kappa_ndf[k] } else { 0.0 };
-            if k > 0 {
-                c.gamma[k] = c.gamma[k - 1] + 1.0 / k as f64;
-            }
-            c.alpha[k] = (1.0 - kappa) * c.gamma[k];
-            c.error_const[k] = kappa * c.gamma[k] + 1.0 / (k + 1) as f64;
-        }
-        c
-    }
-}
-
-/// S&R Sec. 2.3: matrix `R(rho)` with `R_ij = prod_{l=1..i} (l - 1 - rho j) / l`
-/// (row 0 all ones) that maps differences at spacing h to spacing `rho h`.
-fn compute_r(order: usize, factor: f64) -> [[f64; MAX_ORDER + 1]; MAX_ORDER + 1] {
-    let mut r = [[0.0; MAX_ORDER + 1]; MAX_ORDER + 1];
-    for j in 0..=order {
-        r[0][j] = 1.0;
-    }
-    for i in 1..=order {
-        for j in 0..=order {
-            let m = (i as f64 - 1.0 - factor * j as f64) / i as f64;
-            r[i][j] = r[i - 1][j] * m;
-        }
-    }
-    r
-}
-
-/// RMS norm of `x ./ scale` (Hairer-Norsett-Wanner weighted norm).
-fn rms_norm(x: &[f64], scale: &[f64]) -> f64 {
-    let n = x.len().max(1);
-    let s: f64 = x.iter().zip(scale).map(|(a, s)| (a / s) * (a / s)).sum();
-    (s / n as f64).sqrt()
-}
-
-/// Dense LU factors of the Newton matrix `I - c J` (faer, partial pivoting).
-struct NewtonMatrix {
-    lu: Mat<f64>,
-    perm: Vec<usize>,
-    perm_inv: Vec<usize>,
-    scratch: MemBuffer,
-    tmp: Vec<f64>,
-    /// `c` of the current factorization, `None` if there is none.
-    c: Option<f64>,
-    /// Newton contraction rate measured with this factorization (CVODE's
-    /// `crate`), used to accept a converged first iteration.
-    rate: Option<f64>,
-}
-
-impl NewtonMatrix {
-    fn new(n: usize) -> Self {
-        Self {
-            lu: Mat::zeros(n, n),
-            perm: vec![0; n],
-            perm_inv: vec![0; n],
-            scratch: MemBuffer::new(StackReq::new::<usize>(n)),
-            tmp: vec![0.0; n],
-            c: None,
-            rate: None,
-        }
-    }
-
-    /// Factor `I - c J` in place (sequential: same bits on any machine load).
-    fn factor(&mut self, jac: MatRef<'_, f64>, c: f64) {
-        let n = jac.nrows();
-        for j in 0..n {
-            for i in 0..n {
-                let delta = if i == j { 1.0 } else { 0.0 };
-                self.lu[(i, j)] = delta - c * jac[(i, j)];
-            }
-        }
-        lu_in_place(
-            self.lu.as_mut(),
-            &mut self.perm,
-            &mut self.perm_inv,
-            Par::Seq,
-            MemStack::new(&mut self.scratch),
-            Default::default(),
-        );
-        self.c = Some(c);
-        self.rate = None;
-    }
-
-    /// Solve `(I - c J) x = b` in place (`P A = L U`).
-    fn solve(&mut self, b: &mut [f64]) {
-        for (i, &p) in self.perm.iter().enumerate() {
-            self.tmp[i] = b[p];
-        }
-        let lu = self.lu.as_ref();
-        let mut x = ColMut::from_slice_mut(&mut self.tmp).as_mat_mut();
-        solve_unit_lower_triangular_in_place(lu, x.as_mut(), Par::Seq);
-        solve_upper_triangular_in_place(lu, x.as_mut(), Par::Seq);
-        b.copy_from_slice(&self.tmp);
-    }
-}
-
-/// Why the last attempt at the current step failed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Failure {
-    ErrorTest,
-    Newton,
-    NonFinite,
-}
-
-/// Outcome of one Newton solve.
-struct NewtonOutcome {
-    converged: bool,
-    iterations: usize,
-    non_finite: bool,
 }
 
 /// Variable-order (1..=5), variable-step BDF/NDF stepper with dense output.
@@ -840,63 +713,4 @@ fn all_finite(v: &[f64]) -> bool {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The LU wrapper solves a nonsymmetric system: residual at rounding level.
-    #[test]
-    fn newton_matrix_solves() {
-        let n = 7;
-        let jac = Mat::from_fn(n, n, |i, j| {
-            ((i * 7 + j * 3) % 5) as f64 - 2.0 + (i == j) as u8 as f64
-        });
-        let c = 0.37;
-        let mut nm = NewtonMatrix::new(n);
-        nm.factor(jac.as_ref(), c);
-        let x_true: Vec<f64> = (0..n).map(|i| (i as f64 + 1.0).sin()).collect();
-        let mut b = vec![0.0; n];
-        for i in 0..n {
-            b[i] = x_true[i] - c * (0..n).map(|j| jac[(i, j)] * x_true[j]).sum::<f64>();
-        }
-        nm.solve(&mut b);
-        for i in 0..n {
-            // Well-conditioned 7x7: 1e-12 is ~1e4 ulp of slack.
-            assert!(
-                (b[i] - x_true[i]).abs() < 1e-12,
-                "{i}: {} vs {}",
-                b[i],
-                x_true[i]
-            );
-        }
-    }
-
-    /// change_d with factor rho, then 1/rho, is the identity (the polynomial
-    /// is re-expressed exactly); tolerance: rounding of 6x6 products.
-    #[test]
-    fn change_d_round_trip() {
-        struct Zero;
-        impl OdeSystem for Zero {
-            fn dim(&self) -> usize {
-                2
-            }
-            fn rhs(&self, _t: f64, _y: &[f64], dy: &mut [f64]) {
-                dy.fill(0.0);
-            }
-            fn jacobian(&self, _t: f64, _y: &[f64], mut jac: MatMut<'_, f64>) {
-                jac.fill(0.0);
-            }
-        }
-        let opts = BdfOptions::default();
-        let mut b = Bdf::new(Zero, 0.0, &[1.0, 2.0], 1.0, &opts).unwrap();
-        b.order = 5;
-        for (i, v) in b.d.iter_mut().enumerate() {
-            *v = (i as f64 * 0.7).cos();
-        }
-        let before = b.d.clone();
-        b.change_d(0.37);
-        b.change_d(1.0 / 0.37);
-        for i in 0..12 {
-            assert!((b.d[i] - before[i]).abs() < 1e-11, "{i}");
-        }
-    }
-}
+mod tests;

@@ -1,0 +1,148 @@
+//! The file's arrays: matrices and raw bytes written with a CRC-32 of each, read back with their shape, type and checksum checked (docs/rom-format.md).
+
+use super::*;
+
+/// An array of the file: a matrix (written row by row, little-endian) or raw bytes.
+pub(super) enum Array<'a> {
+    Mat(&'a Mat<f64>),
+    U64(Vec<u8>),
+    U8(&'a [u8]),
+}
+
+impl Array<'_> {
+    pub(super) fn dtype(&self) -> Dtype {
+        match self {
+            Array::Mat(_) => Dtype::F64,
+            Array::U64(_) => Dtype::U64,
+            Array::U8(_) => Dtype::U8,
+        }
+    }
+
+    pub(super) fn shape(&self) -> Vec<usize> {
+        match self {
+            Array::Mat(m) => vec![m.nrows(), m.ncols()],
+            Array::U64(b) => vec![b.len() / 8],
+            Array::U8(b) => vec![b.len()],
+        }
+    }
+
+    /// Bytes in the file.
+    pub(super) fn len(&self) -> usize {
+        match self {
+            Array::Mat(m) => m.nrows() * m.ncols() * 8,
+            Array::U64(b) => b.len(),
+            Array::U8(b) => b.len(),
+        }
+    }
+
+    /// Writes the bytes; a matrix [`ROWS_PER_WRITE`] rows at a time.
+    pub(super) fn write(&self, w: &mut dyn Write) -> std::io::Result<()> {
+        let m = match self {
+            Array::Mat(m) => m,
+            Array::U64(b) => return w.write_all(b),
+            Array::U8(b) => return w.write_all(b),
+        };
+        let mut buf = Vec::with_capacity(ROWS_PER_WRITE.min(m.nrows()) * m.ncols() * 8);
+        for first in (0..m.nrows()).step_by(ROWS_PER_WRITE) {
+            buf.clear();
+            for i in first..(first + ROWS_PER_WRITE).min(m.nrows()) {
+                for j in 0..m.ncols() {
+                    buf.extend_from_slice(&m[(i, j)].to_le_bytes());
+                }
+            }
+            w.write_all(&buf)?;
+        }
+        Ok(())
+    }
+}
+
+/// The position of a matrix's first value that is not finite (NaN or infinite), column by
+/// column.
+pub(super) fn first_non_finite(a: &Mat<f64>) -> Option<(usize, usize)> {
+    (0..a.ncols())
+        .flat_map(|j| (0..a.nrows()).map(move |i| (i, j)))
+        .find(|&(i, j)| !a[(i, j)].is_finite())
+}
+
+/// Feeds what is written to a CRC-32.
+pub(super) struct CrcWriter(pub(super) crc32fast::Hasher);
+
+impl Write for CrcWriter {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0.update(buf);
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Rows of a matrix converted per write by [`Array::write`].
+pub(super) const ROWS_PER_WRITE: usize = 4096;
+
+/// The file: its header, then the arrays in order.
+pub(super) fn write_file(
+    w: &mut dyn Write,
+    header: &[u8],
+    arrays: &[Named],
+) -> std::io::Result<()> {
+    w.write_all(header)?;
+    arrays.iter().try_for_each(|(_, a)| a.write(w))
+}
+
+pub(super) fn read_mat(
+    st: &SafeTensors,
+    name: &str,
+    shape: Option<(usize, usize)>,
+) -> Result<Mat<f64>, String> {
+    let t = st.tensor(name).map_err(|e| format!("array {name}: {e}"))?;
+    if t.dtype() != Dtype::F64 || t.shape().len() != 2 {
+        return Err(format!(
+            "array {name}: expected a 2-D F64 array, found {:?} {:?}",
+            t.dtype(),
+            t.shape()
+        ));
+    }
+    let (r, c) = (t.shape()[0], t.shape()[1]);
+    if let Some(s) = shape
+        && s != (r, c)
+    {
+        return Err(format!(
+            "array {name}: expected shape {s:?}, found ({r}, {c})"
+        ));
+    }
+    let data = t.data();
+    Ok(Mat::from_fn(r, c, |i, j| {
+        let k = 8 * (i * c + j);
+        f64::from_le_bytes(data[k..k + 8].try_into().unwrap_or([0; 8]))
+    }))
+}
+
+pub(super) fn read_vec(
+    st: &SafeTensors,
+    name: &str,
+    dtype: Dtype,
+    len: usize,
+) -> Result<Vec<u8>, String> {
+    let t = st.tensor(name).map_err(|e| format!("array {name}: {e}"))?;
+    if t.dtype() != dtype || t.shape() != [len] {
+        return Err(format!(
+            "array {name}: expected {dtype:?} [{len}], found {:?} {:?}",
+            t.dtype(),
+            t.shape()
+        ));
+    }
+    Ok(t.data().to_vec())
+}
+
+/// SHA-256 of a file, as lowercase hex.
+pub fn sha256_file(path: &Path) -> Result<String, RomError> {
+    use sha2::{Digest, Sha256};
+    let bytes = std::fs::read(path).map_err(|error| RomError::Io {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    let digest = Sha256::digest(&bytes);
+    Ok(digest.iter().map(|b| format!("{b:02x}")).collect())
+}
