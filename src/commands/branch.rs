@@ -2,10 +2,10 @@
 //! Hopf point in μ, through its folds, with each cycle's Floquet stability (issue 10).
 
 use crate::commands::stability::pipeline;
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::Args;
-use squeal_pipeline::branch::{BranchOptions, Harmonics, HillOptions};
-use squeal_pipeline::{Pipeline, branch};
+use squeal_pipeline::branch::{BranchOptions, Harmonics};
+use squeal_pipeline::{Pipeline, branch, stages};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -85,32 +85,12 @@ pub fn run(args: BranchArgs) -> Result<ExitCode> {
     })
 }
 
-/// Follows the branch of `p` and writes `<out>/branch`, with the cycles at `at` × μ0; `None`
-/// when there is no Hopf point.
+/// Follows the branch of `p` and writes `<out>/branch`, with the cycles at `at` × μ0
+/// ([`stages::branch_stage`]); `None` when there is no Hopf point.
 pub fn write(
     p: &Pipeline,
     opts: &BranchOptions,
     at: &[f64],
 ) -> Result<Option<branch::BranchAnalysis>> {
-    let m = p.model()?;
-    let st = p.stability().context("stability analysis")?;
-    let t = std::time::Instant::now();
-    let mus: Vec<f64> = match &st.sweep.hopf {
-        Some(h) => at.iter().map(|r| r * h.mu0).collect(),
-        None => Vec::new(),
-    };
-    let Some(mut a) = branch::analyse(m, st, opts, &HillOptions::default(), &mus, p.log())? else {
-        println!("no Hopf point in the band of the friction sweep: no branch of limit cycles");
-        return Ok(None);
-    };
-    p.record("branch and its stability", t.elapsed().as_secs_f64());
-    let t = std::time::Instant::now();
-    a.levels =
-        squeal_pipeline::sound::branch_levels_or_log(&p.scene, m, st, &a, opts.samples, p.log());
-    p.record("sound of the branch's cycles", t.elapsed().as_secs_f64());
-    print!("{}", branch::summary_text(&a));
-    let dir = p.out.join("branch");
-    branch::write(&dir, &a)?;
-    println!("results in {}", dir.display());
-    Ok(Some(a))
+    Ok(stages::branch_stage(p, opts, at)?)
 }

@@ -2,11 +2,11 @@
 //! (sections 4–5 of the paper).
 
 use crate::commands::stability::pipeline;
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::Args;
-use squeal_pipeline::chbm::{ChbmSolution, ChbmStart, Outcome, RESTART_AMPLITUDES};
+use squeal_pipeline::chbm::RESTART_AMPLITUDES;
 use squeal_pipeline::cycle::{CyclePlan, CycleStart, LimitCycle};
-use squeal_pipeline::{Pipeline, chbm};
+use squeal_pipeline::{Pipeline, stages};
 use squeal_scene::CycleFriction;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -127,111 +127,7 @@ pub fn run(args: ChbmArgs) -> Result<ExitCode> {
 }
 
 /// Computes the limit cycle of `plan`, prints how it was reached and what it is, and writes it
-/// to `<out>/chbm` (the command's output; `squeal run` calls it too).
+/// to `<out>/chbm` ([`stages::cycle_stage`]).
 pub fn solve(p: &Pipeline, plan: &CyclePlan, vtu: bool) -> Result<LimitCycle> {
-    let what = match plan.start {
-        CycleStart::Branch => "the branch of limit cycles starts at the Hopf point",
-        CycleStart::Guessed { .. } => "the limit cycle's friction",
-    };
-    let mu = match plan.at {
-        CycleFriction::Mu(m) => m,
-        CycleFriction::Ratio(_) => p.cycle_mu(plan.at).context(what)?,
-    };
-    if plan.start == CycleStart::Branch {
-        let mu0 = p.mu0().context(what)?;
-        println!(
-            "Hopf point mu0 = {mu0:.6}; limit cycle at mu = {mu:.6} ({:.4} mu0), along the branch from the Hopf point",
-            mu / mu0
-        );
-    } else if let Some(h) = &p.stability()?.sweep.hopf {
-        println!(
-            "Hopf point mu0 = {:.6}; limit cycle at mu = {mu:.6} ({:.4} mu0)",
-            h.mu0,
-            mu / h.mu0
-        );
-    }
-    let lc = p
-        .limit_cycle(plan)
-        .context(if plan.start == CycleStart::Branch {
-            "the branch of limit cycles"
-        } else {
-            "the start at mu"
-        })?;
-    print!("{}", how_reached(&lc, plan));
-    if let Some((start, sol)) = &lc.solved {
-        write_solution(p, lc.mu, start, sol, vtu)?;
-    }
-    Ok(lc)
-}
-
-/// How CHBM reached the cycle: the branch's crossings of μ and the one it started from, or
-/// the unstable mode and the initial amplitude of the guessed start.
-fn how_reached(lc: &LimitCycle, plan: &CyclePlan) -> String {
-    let mu = lc.mu;
-    match (&plan.start, &lc.solved) {
-        (CycleStart::Branch, _) if lc.crossings.is_empty() => format!(
-            "the branch of limit cycles ({} harmonics) does not reach mu = {mu:.6}: the brake has no limit cycle of this branch there (see squeal branch for where it has)\n",
-            plan.options.harmonics
-        ),
-        (CycleStart::Branch, _) => {
-            let mut s = chbm::crossings_text(mu, &lc.crossings);
-            if let Some(i) = lc.chosen {
-                s += &format!(
-                    "CHBM starts from cycle {} ({})\n",
-                    i + 1,
-                    lc.crossings[i].verdict()
-                );
-            }
-            s
-        }
-        (CycleStart::Guessed { amplitudes }, Some((start, sol))) => {
-            let l = start.lambda;
-            let mut s = format!(
-                "unstable mode at mu: lambda = {:.3} + {:.3}i (growth {:.3} 1/s, {:.2} Hz)\n",
-                l.re,
-                l.im,
-                l.re,
-                l.im / std::f64::consts::TAU
-            );
-            if sol.outcome == Outcome::LimitCycle
-                && amplitudes.len() > 1
-                && let Some(a) = lc.amplitude
-            {
-                s += &format!("(initial amplitude p = {a} of the smallest static penetration)\n");
-            }
-            s
-        }
-        (CycleStart::Guessed { .. }, None) => String::new(),
-    }
-}
-
-/// Prints a solution and writes it to `<out>/chbm`.
-fn write_solution(
-    p: &Pipeline,
-    mu: f64,
-    start: &ChbmStart,
-    sol: &ChbmSolution,
-    vtu: bool,
-) -> Result<()> {
-    let m = p.model()?;
-    print!("{}", chbm::solution_text(m, start, sol));
-    if sol.outcome == Outcome::LimitCycle {
-        print!(
-            "{}",
-            squeal_pipeline::sound::solution_sound_text(&p.scene, m, sol, p.log())
-        );
-    }
-    let dir = p.out.join("chbm");
-    chbm::write_solution(&dir, m, mu, sol)?;
-    if vtu
-        && matches!(
-            sol.outcome,
-            Outcome::LimitCycle | Outcome::LimitCycleUnconstrained
-        )
-    {
-        let pvd = chbm::write_cycle_vtu(&dir, m, sol, 24, p.log())?;
-        println!("limit cycle for ParaView (24 frames): {}", pvd.display());
-    }
-    println!("results in {}", dir.display());
-    Ok(())
+    Ok(stages::cycle_stage(p, plan, vtu)?)
 }

@@ -8,7 +8,8 @@ use crate::commands::stability::pipeline;
 use anyhow::Result;
 use clap::Args;
 use squeal_pipeline::Pipeline;
-use squeal_pipeline::compare::{self, CompareSettings};
+use squeal_pipeline::compare::CompareSettings;
+use squeal_pipeline::stages;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -75,17 +76,13 @@ pub fn run(args: CompareArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Runs the comparison of `p` into `<out>/compare`; returns its summary.
+/// Runs the comparison of `p` into `<out>/compare` ([`stages::compare_stage`]); returns its
+/// summary.
 pub fn write(
     p: &Pipeline,
     settings: &CompareSettings,
 ) -> Result<squeal_pipeline::compare::CompareSummary> {
-    let dir = p.out.join("compare");
-    let t = std::time::Instant::now();
-    let summary = compare::run(p, None, settings, &dir)?;
-    p.record("comparison", t.elapsed().as_secs_f64());
-    println!("\nresults in {}", dir.display());
-    Ok(summary)
+    Ok(stages::compare_stage(p, settings)?)
 }
 
 #[cfg(test)]

@@ -5,11 +5,10 @@ use crate::progress::{BARS, say};
 use anyhow::{Context, Result};
 use clap::Args;
 use squeal_pipeline::model::default_out;
-use squeal_pipeline::{Pipeline, stability};
+use squeal_pipeline::{Pipeline, stability, stages};
 use squeal_scene::{Scene, parse_range};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
 
 #[derive(Args)]
 pub struct StabilityArgs {
@@ -62,32 +61,8 @@ pub fn run(args: StabilityArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Runs the stability stage of `p` and writes its outputs to `<out>/stability`.
-/// The verdict comes first: a stable brake ("stable for mu in [a, b]") is an answer, not an
-/// error. Returns it.
+/// Runs the stability stage of `p` into `<out>/stability` ([`stages::stability_stage`]);
+/// returns its verdict.
 pub fn write(p: &Pipeline, vtu: bool) -> Result<stability::Verdict> {
-    let m = p.model()?;
-    let t = Instant::now();
-    let st = p.stability().context("stability analysis")?;
-    let verdict = stability::verdict(m, st);
-    println!("{verdict}");
-    print!("{}", stability::pairs_text(m));
-    let dir = p.out.join("stability");
-    print!(
-        "{}",
-        stability::summary_text(m, st, t.elapsed().as_secs_f64())
-    );
-    match stability::normal_form(m, st) {
-        Ok(Some(nf)) => print!("{}", stability::criticality_text(m, st, &nf)),
-        Ok(None) => {}
-        Err(e) => println!("criticality of the Hopf point not computed: {e}"),
-    }
-    stability::write_tables(&dir, m, st)?;
-    stability::write_figures(&dir, st, m)?;
-    if vtu {
-        let vtm = stability::write_shapes(&dir, m, st, p.log())?;
-        println!("mode shape and equilibria for ParaView: {}", vtm.display());
-    }
-    println!("results in {}", dir.display());
-    Ok(verdict)
+    Ok(stages::stability_stage(p, vtu)?)
 }

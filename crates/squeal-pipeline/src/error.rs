@@ -79,6 +79,13 @@ pub enum PipelineError {
     },
     #[error("{what}: {message}")]
     Input { what: &'static str, message: String },
+    /// An error of a stage, named by what the stage was doing.
+    #[error("{stage}: {source}")]
+    Stage {
+        stage: &'static str,
+        #[source]
+        source: Box<PipelineError>,
+    },
     /// A mesh the analysis refuses: what `squeal mesh info` calls an ERROR, or a set the
     /// reduction uses naming ids the file never defined.
     #[error("{}: {message}", path.display())]
@@ -108,6 +115,14 @@ impl<T, E: Into<PipelineError>> Context<T> for std::result::Result<T, E> {
 
 impl PipelineError {
     /// A bad input value the user gave (an argument or an option).
+    /// This error as one of the stage doing `stage` ("stability analysis", ...).
+    pub fn in_stage(self, stage: &'static str) -> Self {
+        PipelineError::Stage {
+            stage,
+            source: Box::new(self),
+        }
+    }
+
     pub fn input(what: &'static str, message: impl std::fmt::Display) -> Self {
         PipelineError::Input {
             what,

@@ -44,6 +44,7 @@ pub mod report;
 pub mod shapes;
 pub mod sound;
 pub mod stability;
+pub mod stages;
 pub mod study;
 
 pub use error::{PipelineError, Result};
