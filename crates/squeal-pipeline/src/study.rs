@@ -13,8 +13,8 @@
 //! stores the records in a JSON file; the merge ([`merge`]) reads the shards and calls the
 //! same writer, so both give the same files, bit for bit.
 
-mod coupled;
 pub mod convergence;
+mod coupled;
 mod mesh;
 pub mod record;
 pub mod shard;
@@ -29,9 +29,7 @@ use rayon::prelude::*;
 use record::{F, GrowthRecord, Nominal, OutcomeRecord, ParadoxRecord, UnitResult};
 use shard::{Collected, Identity, ShardFile, Unit, UnitEntry};
 use squeal_brake::Brake;
-use squeal_brake::analysis::{
-    DampingSpec, PairChoice, basis_mode_of_branch, stability,
-};
+use squeal_brake::analysis::{DampingSpec, PairChoice, basis_mode_of_branch, stability};
 use squeal_brake::studies::{
     BranchCurve, Case, CaseOutcome, GrowthRow, log_slope, other_mode_growth, outcome, run_case,
     small_friction_grid,
@@ -293,7 +291,9 @@ fn study_units(
         .map(|u| -> Result<UnitResult> {
             let t = Instant::now();
             let r = match u {
-                Unit::CoupledModes => UnitResult::CoupledModes(coupled::coupled_modes(&s, &st, log)?),
+                Unit::CoupledModes => {
+                    UnitResult::CoupledModes(coupled::coupled_modes(&s, &st, log)?)
+                }
                 Unit::Case(k, case) => {
                     // Table 6 damps the same two modes in every case: the nominal's pair.
                     let p = (*k == Kind::Damping).then_some(pair);

@@ -90,10 +90,17 @@ impl Contact {
             "node" => return Ok(Contact::Node),
             _ => {}
         }
-        let bad = || format!("\"{s}\" is not a contact level: give a patch grid such as 3x5 (radial x angular), or nodal");
+        let bad = || {
+            format!(
+                "\"{s}\" is not a contact level: give a patch grid such as 3x5 (radial x angular), or nodal"
+            )
+        };
         let (r, a) = s.split_once(['x', 'X']).ok_or_else(bad)?;
         let n = |t: &str| t.trim().parse::<usize>().ok().filter(|v| *v > 0);
-        Ok(Contact::Patches([n(r).ok_or_else(bad)?, n(a).ok_or_else(bad)?]))
+        Ok(Contact::Patches([
+            n(r).ok_or_else(bad)?,
+            n(a).ok_or_else(bad)?,
+        ]))
     }
 
     /// `3x5 patches`, `node`, `nodal`.
@@ -324,7 +331,9 @@ pub fn plan(scene: &Scene, opts: &Options) -> Result<Plan> {
                     if !(f.is_finite() && f > 0.0) {
                         return Err(PipelineError::input(
                             "--mode-factors",
-                            format!("{f} is not a factor on the kept modes: give positive numbers such as 1.5,2"),
+                            format!(
+                                "{f} is not a factor on the kept modes: give positive numbers such as 1.5,2"
+                            ),
                         ));
                     }
                     add(Setting {
@@ -448,7 +457,9 @@ fn unstable_shape(s: &Model, st: &LinearStability, log: Log) -> Result<Option<Sh
             let pad = s.read_mesh(p, log)?;
             // A face too sparse for the circle leaves the column empty, not the study failed.
             match rings(&s.rom, &disc, &pad) {
-                Ok(r) => Some(summarize(s, (&disc, &pad), &r, &x, h.frequency_hz)?.nodal_diameters()),
+                Ok(r) => {
+                    Some(summarize(s, (&disc, &pad), &r, &x, h.frequency_hz)?.nodal_diameters())
+                }
                 Err(e) => {
                     log(&format!("  nodal diameters not measured: {e}"));
                     None
@@ -503,7 +514,11 @@ fn compute_level(
     r.mu0 = o.mu0;
     r.frequency_hz = o.frequency_hz;
     if let Some(u) = &o.unstable {
-        r.branch = u.mu.iter().zip(&u.values).map(|(m, v)| (*m, v.re)).collect();
+        r.branch =
+            u.mu.iter()
+                .zip(&u.values)
+                .map(|(m, v)| (*m, v.re))
+                .collect();
     }
     if r.mu0.is_none() {
         r.note = Some("no Hopf point in the band".into());
@@ -547,7 +562,12 @@ fn growth_mu(scene: &Scene, opts: &Options, base_mu0: Option<f64>) -> Result<Opt
 }
 
 /// Judges the computed levels knob by knob.
-pub fn judge(plan: &Plan, levels: Vec<LevelResult>, growth_mu: Option<f64>, tolerance: f64) -> Study {
+pub fn judge(
+    plan: &Plan,
+    levels: Vec<LevelResult>,
+    growth_mu: Option<f64>,
+    tolerance: f64,
+) -> Study {
     let mut knobs = Vec::new();
     for (knob, settings) in &plan.knobs {
         let idx: Vec<usize> = settings
@@ -604,7 +624,12 @@ pub fn run(scene: &Scene, out: &Path, mus: &[f64], opts: &Options, log: Log) -> 
     let mut levels = Vec::new();
     for (i, s) in settings.iter().enumerate() {
         let t = Instant::now();
-        log(&format!("level {}/{}: {} ...", i + 1, settings.len(), s.key()));
+        log(&format!(
+            "level {}/{}: {} ...",
+            i + 1,
+            settings.len(),
+            s.key()
+        ));
         let r = compute_level(scene, s, &rdir, mus, log)?;
         log(&format!(
             "level {}/{}: {} dofs, {} contact pairs, mu0 = {} at {} Hz ({:.1} s)",

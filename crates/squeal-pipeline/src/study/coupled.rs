@@ -349,4 +349,3 @@ pub(super) fn write_coupled_modes(m: &CoupledModes, dir: &Path, log: Log) -> Res
     squeal_io::atomic_write_bytes(&dir.join("coupled_modes.json"), m.json.as_bytes())?;
     Ok(())
 }
-

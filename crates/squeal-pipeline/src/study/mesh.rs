@@ -330,4 +330,3 @@ pub(super) fn write_mesh(levels: &[(&str, &Vec<MeshRow>)], dir: &Path, log: Log)
     write_svg_and_png(&fig, &dir.join("mesh"))?;
     Ok(())
 }
-

@@ -233,7 +233,11 @@ mod tests {
         assert!((r.limit.unwrap() - 0.5).abs() < 1e-12, "{r:?}");
         let c = last.last_change.unwrap();
         assert!((c - 0.0125 / 0.475).abs() < 1e-12, "{c}");
-        assert!(last.text.starts_with("converged: mu0 moved 2.63 %"), "{}", last.text);
+        assert!(
+            last.text.starts_with("converged: mu0 moved 2.63 %"),
+            "{}",
+            last.text
+        );
         // With a 1 % tolerance the same sequence is not converged yet.
         let strict = verdict(&v, Some(0.99), 0.01);
         assert_eq!(strict.status, Status::NotConverged, "{}", strict.text);
@@ -266,11 +270,21 @@ mod tests {
 
     #[test]
     fn missing_hopf_points_and_single_levels() {
-        assert_eq!(verdict(&[Some(0.4)], None, 0.01).status, Status::Undetermined);
-        assert_eq!(verdict(&[None, None], None, 0.01).status, Status::Undetermined);
+        assert_eq!(
+            verdict(&[Some(0.4)], None, 0.01).status,
+            Status::Undetermined
+        );
+        assert_eq!(
+            verdict(&[None, None], None, 0.01).status,
+            Status::Undetermined
+        );
         let lost = verdict(&[Some(0.4), None], None, 0.01);
         assert_eq!(lost.status, Status::NotConverged);
-        assert!(lost.text.contains("the last level has no Hopf point"), "{}", lost.text);
+        assert!(
+            lost.text.contains("the last level has no Hopf point"),
+            "{}",
+            lost.text
+        );
         let (a, b) = (
             verdict(&[Some(0.4), Some(0.4001)], None, 0.01),
             verdict(&[Some(0.4), Some(0.5)], None, 0.01),

@@ -26,9 +26,9 @@ fn energy_text(l: &LevelResult) -> String {
 
 /// The growth-rate column's header, with its friction.
 fn growth_header(study: &Study) -> String {
-    study
-        .growth_mu
-        .map_or("growth_per_s".into(), |m| format!("growth_per_s_at_mu_{}", fmt_sig(m, 4)))
+    study.growth_mu.map_or("growth_per_s".into(), |m| {
+        format!("growth_per_s_at_mu_{}", fmt_sig(m, 4))
+    })
 }
 
 /// One row per level of each knob (the base repeated at the head of each).
@@ -52,10 +52,9 @@ pub fn table(study: &Study) -> Table {
         let mut prev: Option<f64> = None;
         for (j, &i) in k.levels.iter().enumerate() {
             let l = &study.levels[i];
-            let change = l
-                .mu0
-                .zip(prev)
-                .map_or("-".into(), |(a, b)| format!("{:+.3}%", 100.0 * (a / b - 1.0)));
+            let change = l.mu0.zip(prev).map_or("-".into(), |(a, b)| {
+                format!("{:+.3}%", 100.0 * (a / b - 1.0))
+            });
             t.push_row([
                 k.knob.name().to_string(),
                 l.setting.label(k.knob, study.base_modes),
@@ -63,7 +62,16 @@ pub fn table(study: &Study) -> Table {
                 l.nodes.to_string(),
                 l.pairs.to_string(),
                 l.mu0.map_or_else(
-                    || if l.note.as_deref().is_some_and(|n| n.starts_with("the analysis failed")) { "failed".into() } else { "none".into() },
+                    || {
+                        if l.note
+                            .as_deref()
+                            .is_some_and(|n| n.starts_with("the analysis failed"))
+                        {
+                            "failed".into()
+                        } else {
+                            "none".into()
+                        }
+                    },
                     |m| fmt_sig(m, 6),
                 ),
                 opt(l.frequency_hz, 6),
@@ -84,10 +92,7 @@ pub fn table(study: &Study) -> Table {
 
 /// The verdicts as lines: the overall one, then one per knob.
 pub fn verdict_text(study: &Study) -> String {
-    let mut s = format!(
-        "Convergence of the Hopf point: {}\n",
-        study.overall.1
-    );
+    let mut s = format!("Convergence of the Hopf point: {}\n", study.overall.1);
     for k in &study.knobs {
         s.push_str(&format!("  {}: {}\n", k.knob.name(), k.verdict.text));
     }
@@ -199,7 +204,9 @@ pub fn write(study: &Study, dir: &Path, log: Log) -> Result<()> {
             "growth: Re(lambda) (1/s) of the branch that goes unstable, at mu = {}",
             fmt_sig(m, 4)
         )),
-        None => log("growth: no friction to evaluate it at (the base level has no Hopf point; give --growth-mu)"),
+        None => log(
+            "growth: no friction to evaluate it at (the base level has no Hopf point; give --growth-mu)",
+        ),
     }
     t.write_csv(&dir.join("convergence.csv"))?;
     squeal_io::atomic_write_bytes(
