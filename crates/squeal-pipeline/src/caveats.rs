@@ -10,7 +10,7 @@
 //!   [`NEAR_DEGENERATE_SPLIT`] of their frequency (a disc's doublet that the pads barely
 //!   split) are coupled by any friction: the smaller their split, the smaller μ0, and the split
 //!   itself is set by the mesh, the contact discretization and the kept modes rather than by
-//!   the design. μ0 then moves with those knobs; `squeal study --kind mesh` shows by how much.
+//!   the design. μ0 then moves with those knobs; `squeal study --kind convergence` shows by how much.
 //! - **A Hopf point near the top of the valid band.** The reduced model's frequencies are
 //!   converged up to the band's top (`valid_max_hz`, set by the kept modes); a Hopf point above
 //!   [`BAND_TOP_FRACTION`] of it rests on the modes that the truncation treats worst.
@@ -65,7 +65,7 @@ impl fmt::Display for Caveat {
             ),
             Caveat::NearDegenerate { modes, hz, split } => write!(
                 f,
-                "the coalescing modes #{} ({:.1} Hz) and #{} ({:.1} Hz) are {:.3} % apart (below {} %): any friction couples them, and mu0 rests on their split, which the mesh, the contact discretization and the kept modes set; check it with squeal study --kind mesh",
+                "the coalescing modes #{} ({:.1} Hz) and #{} ({:.1} Hz) are {:.3} % apart (below {} %): any friction couples them, and mu0 rests on their split, which the mesh, the contact discretization and the kept modes set; check it with squeal study --kind convergence",
                 modes.0,
                 hz.0,
                 modes.1,
