@@ -35,10 +35,13 @@ class VentLevel:
 
 
 LEVELS = {
-    # small enough that `squeal stability` with nodal contact takes well under a minute
-    "coarse": VentLevel("coarse", disc_size=0.016, pad_size=0.020, netgen=False),
-    "medium": VentLevel("medium", disc_size=0.009, pad_size=0.010, netgen=True),
-    "fine": VentLevel("fine", disc_size=0.005, pad_size=0.005, netgen=True),
+    # coarse: small enough that `squeal stability` with nodal contact takes about a minute
+    # (meshes/README.md); each level about halves the sizes of the one before (fine: 6.5 mm, at
+    # which the bore has no inverted curved element; Netgen off: its optimizer inverted or
+    # flattened curved elements on the bolt holes and bore)
+    "coarse": VentLevel("coarse", disc_size=0.024, pad_size=0.030, netgen=False),
+    "medium": VentLevel("medium", disc_size=0.012, pad_size=0.015, netgen=False),
+    "fine": VentLevel("fine", disc_size=0.0065, pad_size=0.0075, netgen=False),
 }
 PARTS = ("disc", "inboard", "outboard")
 
