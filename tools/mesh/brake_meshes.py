@@ -16,6 +16,9 @@ Usage (from the repository root)::
     python3 tools/mesh/brake_meshes.py                  # the bundled one-pad levels into meshes/
     python3 tools/mesh/brake_meshes.py --levels coarse  # one level
     python3 tools/mesh/brake_meshes.py --brake two-pad  # meshes/two_pad/{disc,outboard}_<level>
+    python3 tools/mesh/brake_meshes.py --brake ventilated --levels coarse
+                                  # meshes/ventilated/{disc,inboard,outboard}_coarse (separately
+                                  # meshed parts: ventilated_meshes.py)
     python3 tools/mesh/brake_meshes.py --levels huge --parts disc --out-dir /tmp/squeal-huge
                                                         # ~1M-dof disc of the scaling study
     python3 tools/mesh/check_meshes.py                  # verify what was written (both brakes)
@@ -158,14 +161,20 @@ def tube(r_in: float, r_out: float, z0: float, z1: float) -> list[tuple[int, int
     return out
 
 
-def sector(r_in: float, r_out: float, z0: float, z1: float) -> list[tuple[int, int]]:
-    """The pad's annular sector r_in..r_out, z0..z1, angles geo.PAD_ANGLE_MIN..MAX."""
+def sector(
+    r_in: float,
+    r_out: float,
+    z0: float,
+    z1: float,
+    angles: tuple[float, float] = (geo.PAD_ANGLE_MIN, geo.PAD_ANGLE_MAX),
+) -> list[tuple[int, int]]:
+    """An annular sector r_in..r_out, z0..z1 between two angles (the bundled pads': 65..115 deg)."""
     occ = gmsh.model.occ
-    span = geo.PAD_ANGLE_MAX - geo.PAD_ANGLE_MIN
+    span = angles[1] - angles[0]
     outer = occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, r_out, angle=span)
     inner = occ.addCylinder(0, 0, z0, 0, 0, z1 - z0, r_in, angle=span)
     out, _ = occ.cut([(3, outer)], [(3, inner)])
-    occ.rotate(out, 0, 0, 0, 0, 0, 1, geo.PAD_ANGLE_MIN)
+    occ.rotate(out, 0, 0, 0, 0, 0, 1, angles[0])
     return out
 
 
@@ -322,14 +331,17 @@ def build_pad(level: Level, part: geo.Part) -> None:
     physical(0, load_pts, pad.load_set)
 
 
-def sector_end_faces(dim_tags: list[tuple[int, int]]) -> list[int]:
+def sector_end_faces(
+    dim_tags: list[tuple[int, int]],
+    angles: tuple[float, float] = (geo.PAD_ANGLE_MIN, geo.PAD_ANGLE_MAX),
+) -> list[int]:
     """Planar faces among dim_tags lying in one of the two radial planes at the sector's ends."""
     out = []
     for dim, tag in dim_tags:
         if dim != 2 or gmsh.model.getType(dim, tag) != "Plane":
             continue
         x, y, _ = gmsh.model.occ.getCenterOfMass(dim, tag)
-        for angle in (geo.PAD_ANGLE_MIN, geo.PAD_ANGLE_MAX):
+        for angle in angles:
             # the centroid lies on the radial line at this angle, on the pad's side of the axis
             along = x * math.cos(angle) + y * math.sin(angle)
             across = -x * math.sin(angle) + y * math.cos(angle)
@@ -345,10 +357,13 @@ def _single_child(children: list[tuple[int, int]], dim: int) -> int:
     return tags[0]
 
 
-def mesh_and_write(stem: str, level: Level, out_dir: str) -> dict:
-    """Mesh the current model (second order), renumber, write .msh and .inp; return counts."""
+def mesh_and_write(stem: str, level: Level, out_dir: str, after_mesh=None) -> dict:
+    """Mesh the current model (second order), call after_mesh() if given (groups made from the
+    mesh), renumber, write .msh and .inp; return counts."""
     gmsh.model.mesh.generate(3)
     gmsh.model.mesh.setOrder(2)
+    if after_mesh is not None:
+        after_mesh()
     gmsh.model.mesh.renumberNodes()
     gmsh.model.mesh.renumberElements()
     base = os.path.join(out_dir, f"{stem}_{level.name}")
@@ -414,20 +429,29 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument(
         "--brake",
-        choices=list(geo.BRAKES),
+        choices=list(geo.BRAKES) + ["ventilated"],
         default="one-pad",
         help="one-pad: disc and pad (default); two-pad: two_pad/disc and two_pad/outboard "
-        "(its inboard pad is the one-pad brake's pad)",
+        "(its inboard pad is the one-pad brake's pad); ventilated: ventilated/disc, "
+        "ventilated/inboard and ventilated/outboard (meshes/README.md, Ventilated brake)",
     )
     ap.add_argument("--levels", nargs="+", choices=list(LEVELS), default=BUNDLED)
     ap.add_argument(
         "--parts",
         nargs="+",
-        choices=sorted({p for parts in geo.BRAKES.values() for p in parts}),
+        choices=sorted({p for parts in geo.BRAKES.values() for p in parts} | {"inboard"}),
         help="parts of the brake to write (default: all it does not reuse)",
     )
     ap.add_argument("--out-dir", default=default_out)
     args = ap.parse_args(argv)
+    if args.brake == "ventilated":
+        import ventilated_meshes as vm
+
+        parts = args.parts or list(vm.PARTS)
+        if any(p not in vm.PARTS for p in parts) or "huge" in args.levels:
+            ap.error(f"the ventilated brake writes the parts {', '.join(vm.PARTS)} (no huge level)")
+        vm.generate(args.levels, parts, args.out_dir)
+        return 0
     parts = args.parts or default_parts(args.brake)
     own = default_parts(args.brake)
     if any(p not in own for p in parts):

@@ -6,13 +6,14 @@ Gmsh's own reader. Each check compares against something defined without the mes
 analytic volume, the sets recomputed from node coordinates and the dimensions in
 brake_geometry.py, the edge midpoints. Exit status 0 when everything passes.
 
-Both bundled brakes are checked: the one-pad brake (disc, pad) and the two-pad brake
-(two_pad/disc, the same pad, two_pad/outboard); each file once.
+The bundled brakes are checked: the one-pad brake (disc, pad), the two-pad brake
+(two_pad/disc, the same pad, two_pad/outboard), each file once, and the levels of the
+ventilated brake that are there (check_ventilated.py).
 
 Usage (from the repository root)::
 
     python3 tools/mesh/check_meshes.py [--levels coarse medium fine] [--mesh-dir meshes]
-                                       [--brakes one-pad two-pad]
+                                       [--brakes one-pad two-pad ventilated]
 """
 
 from __future__ import annotations
@@ -224,10 +225,14 @@ def element_coords(mesh: InpMesh, conn: np.ndarray) -> np.ndarray:
     return mesh.coords[index[conn]]
 
 
-def check_midside(rep: Report, tag: str, part: geo.Part, x: np.ndarray) -> dict:
+def check_midside(
+    rep: Report, tag: str, part: geo.Part | None, x: np.ndarray, circles=None
+) -> dict:
     """Every midside node sits at its edge's midpoint, unless the edge lies on one of the part's
-    cylinders or arcs, where it sits on that circle within the arc's sagitta of the midpoint."""
-    radius = np.hypot(x[..., 0], x[..., 1])
+    cylinders or arcs, where it sits on that circle within the arc's sagitta of the midpoint.
+    The cylinders are the part's (about the z axis), or circles: (cx, cy, r) with axes along z."""
+    if circles is None:
+        circles = [(0.0, 0.0, r) for r in curved_radii(part)]
     n_straight = n_curved = 0
     bad = 0
     for k, (a, b) in enumerate(ABAQUS_EDGES):
@@ -236,7 +241,8 @@ def check_midside(rep: Report, tag: str, part: geo.Part, x: np.ndarray) -> dict:
         off = np.linalg.norm(xm - 0.5 * (xa + xb), axis=1)
         straight = off <= GEOM_TOL
         curved = np.zeros_like(straight)
-        for r in curved_radii(part):
+        for cx, cy, r in circles:
+            radius = np.hypot(x[..., 0] - cx, x[..., 1] - cy)
             on = (
                 (np.abs(radius[:, a] - r) < GEOM_TOL)
                 & (np.abs(radius[:, b] - r) < GEOM_TOL)
@@ -605,7 +611,8 @@ def main(argv: list[str] | None = None) -> int:
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser(description="Check the bundled brake meshes.")
     ap.add_argument("--levels", nargs="+", default=["coarse", "medium", "fine"])
-    ap.add_argument("--brakes", nargs="+", choices=list(geo.BRAKES), default=list(geo.BRAKES))
+    brakes = list(geo.BRAKES) + ["ventilated"]
+    ap.add_argument("--brakes", nargs="+", choices=brakes, default=brakes)
     ap.add_argument(
         "--mesh-dir", default=os.path.normpath(os.path.join(here, "..", "..", "meshes"))
     )
@@ -621,6 +628,14 @@ def main(argv: list[str] | None = None) -> int:
     totals = []
     for brake in args.brakes:
         print(f"\n{brake} brake\n")
+        if brake == "ventilated":
+            import check_ventilated as cv
+
+            print(cv.TABLE_HEADER)
+            for level in args.levels:
+                if cv.check_level(rep, args.mesh_dir, level) is not None:
+                    totals.append(f"ventilated {level}: checked")
+            continue
         print(table_header(brake))
         for level in args.levels:
             infos = {}

@@ -23,6 +23,9 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import brake_geometry as geo  # noqa: E402
 import brake_meshes  # noqa: E402
 import check_meshes as cm  # noqa: E402
+import check_ventilated as cv  # noqa: E402
+import ventilated_geometry as vg  # noqa: E402
+import ventilated_meshes  # noqa: E402
 
 _TMP = tempfile.TemporaryDirectory()
 _DIR = _TMP.name
@@ -37,6 +40,7 @@ def coarse_dir() -> str:
     if not _generated:
         brake_meshes.generate(["coarse"], ["disc", "pad"], _DIR)
         brake_meshes.generate(["coarse"], ["disc", "outboard"], _DIR, brake="two-pad")
+        ventilated_meshes.generate(["coarse"], list(ventilated_meshes.PARTS), _DIR)
         _generated = True
     return _DIR
 
@@ -305,6 +309,133 @@ class CheckerCatchesFaultsTest(unittest.TestCase):
         mesh = read("pad")
         mesh.materials["STEEL"] = (210.0e9, 0.3, 7800.0)
         self.assertTrue(any("STEEL" in f for f in failures("pad", mesh)))
+
+
+class VentilatedTest(unittest.TestCase):
+    """The ventilated two-pad brake (ventilated_meshes.py, check_ventilated.py)."""
+
+    def read(self, part: str) -> cm.InpMesh:
+        return cm.read_inp(os.path.join(coarse_dir(), f"{cv.stem(part)}_coarse.inp"))
+
+    def failures(self, part: str, mesh: cm.InpMesh) -> list[str]:
+        rep = cm.Report(verbose=False)
+        cv.check_inp(rep, f"{part}_test", part, mesh)
+        return rep.failures
+
+    def infos(self) -> dict:
+        rep = cm.Report(verbose=False)
+        infos = {p: cv.check_part(rep, coarse_dir(), p, "coarse") for p in cv.PARTS}
+        self.assertEqual(rep.failures, [])
+        return infos
+
+    def test_vane_volume_formula(self):
+        # a second route: the area of the strip |y| <= a between the two circles is the integral
+        # over r of the arc 2 r asin(a / r) inside the strip; 40-point Gauss-Legendre on a
+        # smooth integrand is exact to round-off (1e-13 relative)
+        a = 0.5 * vg.VANE_WIDTH
+        g, w = np.polynomial.legendre.leggauss(40)
+        r = vg.R_IN + (vg.R_OUT - vg.R_IN) * 0.5 * (g + 1.0)
+        area = 0.5 * (vg.R_OUT - vg.R_IN) * float(w @ (2.0 * r * np.arcsin(a / r)))
+        exact = area * (vg.Z_CHANNEL_TOP - vg.Z_CHANNEL_BOTTOM)
+        self.assertLess(abs(vg.vane_volume() - exact) / exact, 1e-13)
+
+    def test_geometry(self):
+        # the outboard pad clears the hat wall; pads inside the cheeks; bolt holes in the flange
+        for pad in vg.PADS:
+            self.assertGreaterEqual(pad.r_in - vg.HAT_R_OUT, 0.004 - 1e-15)
+            self.assertLessEqual(pad.r_out, vg.R_OUT)
+            self.assertAlmostEqual(math.degrees(pad.angle_max - pad.angle_min), 60.0, delta=1e-12)
+        for x, y in vg.bolt_centres():
+            r = math.hypot(x, y)
+            self.assertTrue(vg.BORE_R < r - vg.BOLT_R and r + vg.BOLT_R < vg.HAT_R_OUT)
+        self.assertTrue(21 <= vg.VANES <= 36)
+
+    def test_coarse_passes_all_checks_and_pairs(self):
+        rep = cm.Report(verbose=False)
+        infos = {p: cv.check_part(rep, coarse_dir(), p, "coarse") for p in cv.PARTS}
+        pairs = cv.check_pairs(rep, "coarse", infos)
+        self.assertEqual(rep.failures, [])
+        self.assertGreater(rep.passed, 60)
+        for pad in vg.PADS:
+            # non-matching: no pad face node is a disc node (measured 0 of 106)
+            self.assertEqual(pairs[pad.name]["shared"], 0)
+
+    def test_deterministic(self):
+        with tempfile.TemporaryDirectory() as other:
+            ventilated_meshes.generate(["coarse"], list(ventilated_meshes.PARTS), other)
+            for part in cv.PARTS:
+                for ext in (".inp", ".msh"):
+                    name = f"{cv.stem(part)}_coarse{ext}"
+                    a, b = os.path.join(coarse_dir(), name), os.path.join(other, name)
+                    self.assertTrue(filecmp.cmp(a, b, shallow=False), name)
+
+    @unittest.skipUnless(
+        brake_meshes.gmsh.__version__ == brake_meshes.GMSH_VERSION, "another Gmsh meshes otherwise"
+    )
+    def test_bundled_coarse_files_reproduced(self):
+        for part in cv.PARTS:
+            for ext in (".inp", ".msh"):
+                name = f"{cv.stem(part)}_coarse{ext}"
+                committed = os.path.join(_BUNDLED, name)
+                if not os.path.exists(committed):
+                    self.skipTest(f"{committed} not generated yet")
+                made = os.path.join(coarse_dir(), name)
+                self.assertTrue(filecmp.cmp(committed, made, shallow=False), name)
+
+    def test_pad_lifted_off_the_disc(self):
+        # the outboard pad moved 1 nm away from the disc: its face no longer on the disc face
+        infos = self.infos()
+        mesh = infos["outboard"]["mesh"]
+        mesh.coords = mesh.coords - np.array([0.0, 0.0, 1e-9])
+        rep = cm.Report(verbose=False)
+        cv.check_pairs(rep, "coarse", infos)
+        self.assertTrue(any("off the disc face" in f for f in rep.failures), rep.failures)
+
+    def test_disc_face_not_covering_the_pad(self):
+        # the disc face cut to the nodes inside the footprint leaves pad nodes uncovered
+        infos = self.infos()
+        disc = infos["disc"]["mesh"]
+        table = cm.node_table(disc)
+        disc.nsets["CONTACT_FACE"] = [
+            i
+            for i in disc.nsets["CONTACT_FACE"]
+            if vg.distance_to_footprint(vg.INBOARD, table[i][0], table[i][1]) == 0.0
+        ]
+        rep = cm.Report(verbose=False)
+        cv.check_pairs(rep, "coarse", infos)
+        self.assertTrue(any("outside the disc's CONTACT_FACE" in f for f in rep.failures))
+
+    def test_pad_turned_away(self):
+        # the inboard pad turned 90 degrees about the axis: it faces no part of its disc face
+        infos = self.infos()
+        mesh = infos["inboard"]["mesh"]
+        x, y = mesh.coords[:, 0].copy(), mesh.coords[:, 1].copy()
+        mesh.coords = np.stack([y, -x, mesh.coords[:, 2]], axis=1)
+        rep = cm.Report(verbose=False)
+        cv.check_pairs(rep, "coarse", infos)
+        self.assertTrue(any("inboard pad face nodes outside" in f for f in rep.failures))
+
+    def test_clamp_incomplete_and_vane_missing(self):
+        mesh = self.read("disc")
+        mesh.nsets["CLAMP"] = mesh.nsets["CLAMP"][1:]
+        self.assertTrue(any("bolt holes" in f for f in self.failures("disc", mesh)))
+        # the elements of one vane (centroid in the channel, within 5 mm of the first vane's
+        # plane, beyond the inner radius) dropped: the volume check fails
+        mesh = self.read("disc")
+        ids, conn = mesh.elsets["DISC"]
+        cen = cm.element_coords(mesh, conn)[:, :4].mean(axis=1)
+        in_channel = (cen[:, 2] > vg.Z_CHANNEL_BOTTOM) & (cen[:, 2] < vg.Z_CHANNEL_TOP)
+        vane0 = in_channel & (np.abs(cen[:, 0]) < 0.005) & (cen[:, 1] > 0)
+        self.assertGreater(int(vane0.sum()), 0)
+        mesh.elsets["DISC"] = (ids[~vane0], conn[~vane0])
+        self.assertTrue(any("volume" in f for f in self.failures("disc", mesh)))
+
+    def test_wrong_piston_point(self):
+        mesh = self.read("inboard")
+        k = int(np.flatnonzero(mesh.node_ids == mesh.nsets["PISTON"][2])[0])
+        mesh.coords = mesh.coords.copy()
+        mesh.coords[k, 0] += 1e-9
+        self.assertTrue(any("PISTON nodes" in f for f in self.failures("inboard", mesh)))
 
 
 if __name__ == "__main__":
