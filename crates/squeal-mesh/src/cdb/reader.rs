@@ -104,9 +104,11 @@ fn quiet(cmd: &str) -> bool {
 
 impl<'a> Reader<'a> {
     pub fn new(text: &'a str, path: &'a Path) -> Self {
+        // The piece after the last line break is no line.
+        let body = text.strip_suffix('\n').unwrap_or(text);
         Self {
             path,
-            lines: text.split('\n').map(|l| l.trim_end_matches('\r')).collect(),
+            lines: body.split('\n').map(|l| l.trim_end_matches('\r')).collect(),
             pos: 0,
             types: HashMap::new(),
             props: BTreeMap::new(),

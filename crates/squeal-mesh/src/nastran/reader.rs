@@ -202,7 +202,7 @@ impl<'a> Reader<'a> {
                 name => {
                     let name = name.to_string();
                     self.note(&format!("card {name}"), card.loc, || {
-                        format!("skipped {name}: squeal reads only {READ}")
+                        format!("skipped cards of type {name}: squeal reads only {READ}")
                     });
                 }
             }
@@ -381,7 +381,7 @@ impl<'a> Reader<'a> {
             b.skip_element(eid);
             let name = card.name.clone();
             self.note(&format!("linear {name}"), card.loc, || {
-                format!("skipped {name} elements with {} grids (first order): squeal reads quadratic solids, with every edge grid", s.linear)
+                format!("skipped elements of type {name} with {} grids (first order): squeal reads quadratic solids, with every edge grid", s.linear)
             });
             return Ok(());
         }
