@@ -50,9 +50,9 @@ pub enum MeshError {
         /// What was expected and what was found.
         message: String,
     },
-    /// [`crate::read`] was given a file whose extension is neither `.inp` nor `.msh`
-    /// (ASCII case-insensitive).
-    #[error("{}: unknown mesh format (expected a .inp or .msh file)", file.display())]
+    /// [`crate::read`] was given a file whose extension is none of `.inp`, `.msh`, `.bdf`,
+    /// `.nas`, `.dat`, `.cdb` (ASCII case-insensitive).
+    #[error("{}: unknown mesh format (expected a .inp, .msh, .bdf, .nas, .dat or .cdb file)", file.display())]
     UnknownFormat {
         /// The file that was given.
         file: PathBuf,

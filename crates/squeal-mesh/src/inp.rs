@@ -79,7 +79,7 @@
 //! control characters (binary files).
 
 mod fields;
-mod lex;
+pub(crate) mod lex;
 mod reader;
 mod store;
 mod transform;

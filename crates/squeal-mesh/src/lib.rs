@@ -2,8 +2,9 @@
 //!
 //! - [`model`]: the mesh every later stage reads ([`Mesh`]): nodes, 10-node tetrahedra in one
 //!   canonical node ordering ([`tet10::EDGES`]), named node and element sets, materials.
-//! - [`inp`] and [`msh`]: readers for Abaqus/CalculiX `.inp` and Gmsh `.msh` (2.2 and 4.1,
-//!   ASCII and binary); [`read`] picks one by the file's extension.
+//! - [`inp`], [`msh`], [`nastran`] and [`cdb`]: readers for Abaqus/CalculiX `.inp`, Gmsh
+//!   `.msh` (2.2 and 4.1, ASCII and binary), Nastran bulk data (`.bdf`, `.nas`, `.dat`) and
+//!   Ansys `.cdb`; [`read`] picks one by the file's extension.
 //!
 //! # A file without 10-node tetrahedra
 //! Abaqus and Gmsh themselves open a file of nodes only, or of other element types (Gmsh
@@ -27,12 +28,14 @@
 #![warn(missing_docs)]
 
 pub mod builder;
+pub mod cdb;
 pub mod error;
 pub mod file;
 pub mod generate;
 pub mod inp;
 pub mod model;
 pub mod msh;
+pub mod nastran;
 pub mod quality;
 pub mod select;
 pub mod units;
@@ -59,7 +62,7 @@ pub struct ReadMesh {
 }
 
 /// The warning of a parse that found no tet10 element, and the start of [`read`]'s error.
-pub(crate) const NO_TET10: &str = "no quadratic solid element (Abaqus C3D10, C3D20, C3D20R, C3D15; Gmsh types 11, 17, 18, 19) in the file";
+pub(crate) const NO_TET10: &str = "no quadratic solid element (Abaqus C3D10, C3D20, C3D20R, C3D15; Gmsh types 11, 17, 18, 19; Nastran CTETRA, CHEXA, CPENTA, CPYRAM with edge grids; Ansys SOLID186, SOLID187) in the file";
 
 /// A mesh file must hold tet10 elements (see the module documentation): the error names the
 /// file and repeats the warnings about skipped element types.
@@ -87,8 +90,9 @@ pub(crate) fn require_tet10(read: ReadMesh) -> Result<ReadMesh, MeshError> {
     ))
 }
 
-/// Reads a mesh file, choosing the reader by extension: `.inp` (Abaqus/CalculiX) or `.msh`
-/// (Gmsh 2.2 / 4.1, ASCII or binary).
+/// Reads a mesh file, choosing the reader by extension: `.inp` (Abaqus/CalculiX), `.msh`
+/// (Gmsh 2.2 / 4.1, ASCII or binary), `.bdf`, `.nas`, `.dat` (Nastran bulk data) or `.cdb`
+/// (Ansys, as CDWRITE writes it).
 pub fn read(path: &Path) -> Result<ReadMesh, MeshError> {
     let ext = path
         .extension()
@@ -96,6 +100,8 @@ pub fn read(path: &Path) -> Result<ReadMesh, MeshError> {
     match ext.as_deref() {
         Some("inp") => inp::read(path),
         Some("msh") => msh::read(path),
+        Some("bdf" | "nas" | "dat") => nastran::read(path),
+        Some("cdb") => cdb::read(path),
         _ => Err(MeshError::UnknownFormat {
             file: path.to_path_buf(),
         }),

@@ -495,7 +495,8 @@ fn broken_files_fail_with_located_errors() {
             "no_tet10.msh",
             Location::File,
             "no quadratic solid element (Abaqus C3D10, C3D20, C3D20R, C3D15; Gmsh types 11, 17, \
-             18, 19) in the file, which has 4 nodes; skipped 1 elements of type 4 (Tetrahedron 4): \
+             18, 19; Nastran CTETRA, CHEXA, CPENTA, CPYRAM with edge grids; Ansys SOLID186, \
+             SOLID187) in the file, which has 4 nodes; skipped 1 elements of type 4 (Tetrahedron 4): \
              squeal reads only quadratic solids (types 11, 17, 18, 19); mesh with Mesh.ElementOrder = 2",
         ),
         (

@@ -137,7 +137,7 @@ pub(super) fn lex(
 
 /// Checks that a file is text: UTF-8 without control characters other than tab, CR, LF and
 /// form feed. The error names the first offending line.
-fn decode(bytes: &[u8], path: &Path) -> Result<Rc<str>, MeshError> {
+pub(crate) fn decode(bytes: &[u8], path: &Path) -> Result<Rc<str>, MeshError> {
     let line_of = |offset: usize| 1 + bytes[..offset].iter().filter(|&&b| b == b'\n').count();
     let text = std::str::from_utf8(bytes).map_err(|e| {
         MeshError::invalid(
@@ -163,7 +163,7 @@ fn decode(bytes: &[u8], path: &Path) -> Result<Rc<str>, MeshError> {
 }
 
 /// Lexical normalisation (`a/./b/../c` -> `a/c`) used to recognise an include loop.
-fn normalize(path: &Path) -> PathBuf {
+pub(crate) fn normalize(path: &Path) -> PathBuf {
     let mut out = PathBuf::new();
     for c in path.components() {
         match c {
