@@ -38,6 +38,7 @@ pub mod dynamics;
 pub mod equilibrium;
 pub mod error;
 pub mod harmonic;
+pub mod interface_reduced;
 pub mod hopf;
 pub mod linearized;
 pub mod modal;

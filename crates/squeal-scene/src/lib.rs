@@ -25,6 +25,7 @@
 //! refused.
 
 mod checks;
+pub mod reduction;
 pub mod sets;
 
 pub use checks::{
@@ -107,6 +108,9 @@ pub struct SceneFile {
     /// the order of their names.
     #[serde(default)]
     pub pads: std::collections::BTreeMap<String, PadSection>,
+    /// `[reduction]`: an interface reduction beyond Craig–Bampton ([`reduction`]).
+    #[serde(default)]
+    pub reduction: reduction::ReductionSection,
 }
 
 /// `[pads.<name>]`: one pad of a brake with several (an inboard pad pushed by the pistons, an
@@ -606,6 +610,7 @@ impl Scene {
                 format!("'{iface}' is not 'patch', 'node' or 'nodal'"),
             ));
         }
+        self.interface_reduction()?;
         if *f.model.modes.get_ref() == 0 {
             return Err(self.error_at("model.modes", &f.model.modes, "must be at least 1"));
         }
