@@ -189,7 +189,9 @@ mod tests {
         let mut x = [0.0; 5];
         for (i, xi) in x.iter_mut().enumerate() {
             let (blk, off, nb) = if i < 3 { (0, 0, 3) } else { (1, 3, 2) };
-            *xi = (0..nb).map(|j| blocks[blk][(i - off, j)] * xp[off + j]).sum();
+            *xi = (0..nb)
+                .map(|j| blocks[blk][(i - off, j)] * xp[off + j])
+                .sum();
         }
         let pair: &ContactPair = &p.pairs[0];
         assert!((pair.penetration(&xp) - b.pairs[0].penetration(&x)).abs() < 1e-15);

@@ -149,16 +149,15 @@ pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
     let most = modes.iter().map(InterfaceModes::count).max().unwrap_or(0);
     let face_dofs = modes.iter().map(|m| (m.part.clone(), m.count())).collect();
     let dofs_before = model.brake.size();
-    let summary = |levels: Vec<InterfaceLevel>, chosen: usize, reason: String, tol| {
-        InterfaceSummary {
+    let summary =
+        |levels: Vec<InterfaceLevel>, chosen: usize, reason: String, tol| InterfaceSummary {
             face_dofs,
             dofs_before,
             tolerance: tol,
             levels,
             chosen,
             reason,
-        }
-    };
+        };
     match choice.modes {
         InterfaceModeCount::Fixed(k) => {
             let t = Instant::now();
@@ -233,9 +232,8 @@ fn agree(a: Option<(f64, f64)>, b: Option<(f64, f64)>, tol: f64) -> Option<Strin
         (None, None) => Some("the sweep finds no Hopf point, as".into()),
         (Some((m0, f0)), Some((m1, f1))) => {
             let (dm, df) = ((m1 - m0).abs() / m1.abs(), (f1 - f0).abs() / f1.abs());
-            (dm <= tol && df <= tol).then(|| {
-                format!("mu0 moved by {dm:.1e} and its frequency by {df:.1e} (relative)")
-            })
+            (dm <= tol && df <= tol)
+                .then(|| format!("mu0 moved by {dm:.1e} and its frequency by {df:.1e} (relative)"))
         }
         _ => None,
     }

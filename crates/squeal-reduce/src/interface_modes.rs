@@ -114,8 +114,12 @@ pub fn characteristic_constraint_modes(part: &ReducedPart) -> Result<InterfaceMo
         ));
     }
     let nc = c.len();
-    let k = Mat::from_fn(nc, nc, |i, j| 0.5 * (part.k[(c[i], c[j])] + part.k[(c[j], c[i])]));
-    let m = Mat::from_fn(nc, nc, |i, j| 0.5 * (part.m[(c[i], c[j])] + part.m[(c[j], c[i])]));
+    let k = Mat::from_fn(nc, nc, |i, j| {
+        0.5 * (part.k[(c[i], c[j])] + part.k[(c[j], c[i])])
+    });
+    let m = Mat::from_fn(nc, nc, |i, j| {
+        0.5 * (part.m[(c[i], c[j])] + part.m[(c[j], c[i])])
+    });
     let l = dense_cholesky(&m)
         .ok_or_else(|| invalid("the contact face's mass M_cc is not positive definite".into()))?;
     // A = L⁻¹ K L⁻ᵀ: X = L⁻¹ K, then A = L⁻¹ Xᵀ (K symmetric).
