@@ -39,6 +39,7 @@ pub mod equilibrium;
 pub mod error;
 pub mod harmonic;
 pub mod hopf;
+pub mod interface_reduced;
 pub mod linearized;
 pub mod modal;
 pub mod modal_brake;

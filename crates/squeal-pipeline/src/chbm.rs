@@ -205,6 +205,10 @@ pub fn point_dof(m: &Model, part: &str, role_contact_index: usize, direction: u8
         (name.as_str(), range.start)
     };
     let rp = m.rom.part(name)?;
+    // Interface modes ([reduction] interface): no coordinate is one point's motion.
+    if rp.info.dofs.len() != rp.size() {
+        return None;
+    }
     let point = rp
         .info
         .points

@@ -51,6 +51,8 @@ pub struct Model {
     /// The unit system the mesh files are written in (`[units]`): [`Model::read_mesh`]
     /// converts them to SI.
     pub units: UnitSystem,
+    /// What `[reduction] interface` kept and why (`None`: the contact faces' nodal dofs).
+    pub interface: Option<crate::interface::InterfaceSummary>,
 }
 
 impl Model {
@@ -309,6 +311,7 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
         pad_meshes: scene.pad_meshes()?,
         disc: disc_speed(scene)?,
         units: scene.units()?,
+        interface: None,
     })
 }
 
@@ -338,7 +341,7 @@ pub fn at_damping_key(scene: &Scene, e: PipelineError) -> PipelineError {
 /// The reduced model (cached) and the brake of a scene.
 pub fn build(scene: &Scene, out: &Path, log: Log) -> Result<Model> {
     let (rom, rom_path) = reduced_model(scene, out, log)?;
-    model_on(scene, rom, rom_path)
+    crate::interface::apply(scene, model_on(scene, rom, rom_path)?, log)
 }
 
 /// The default output folder of a scene: `out/` and the scene's path relative to the working

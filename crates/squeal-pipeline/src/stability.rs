@@ -358,6 +358,9 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
     let sw = &st.sweep;
     out.push_str(&equilibrium_text(s, &st.reference.equilibrium));
     let _ = writeln!(out, "{}", damping_text(s, st));
+    if let Some(i) = &s.interface {
+        out.push_str(&i.text());
+    }
     let _ = writeln!(
         out,
         "sweep: {} friction values {}..{} in {:.2} s; valid band up to {:.0} Hz{}",
@@ -698,6 +701,7 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
             "total_normal_force_n": st.reference.equilibrium.total_normal_force(),
         },
         "rom": s.rom_path.display().to_string(),
+        "interface_reduction": s.interface.as_ref().map(|i| i.json()),
     });
     squeal_io::atomic_write_bytes(
         &dir.join("summary.json"),

@@ -9,6 +9,7 @@ pub mod check;
 pub mod craig_bampton;
 pub mod export;
 pub mod interface;
+pub mod interface_modes;
 pub mod rom;
 pub mod summary;
 

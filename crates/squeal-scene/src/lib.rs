@@ -26,6 +26,7 @@
 
 mod checks;
 mod model_keys;
+pub mod reduction;
 pub mod sets;
 pub mod variant;
 pub use variant::{Interface, MESH_LEVELS, level_path};
@@ -112,6 +113,9 @@ pub struct SceneFile {
     /// the order of their names.
     #[serde(default)]
     pub pads: std::collections::BTreeMap<String, PadSection>,
+    /// `[reduction]`: an interface reduction beyond Craig–Bampton ([`reduction`]).
+    #[serde(default)]
+    pub reduction: reduction::ReductionSection,
 }
 
 /// `[pads.<name>]`: one pad of a brake with several (an inboard pad pushed by the pistons, an
@@ -611,6 +615,7 @@ impl Scene {
                 format!("'{iface}' is not 'patch', 'node' or 'nodal'"),
             ));
         }
+        self.interface_reduction()?;
         if *f.model.modes.get_ref() == 0 {
             return Err(self.error_at("model.modes", &f.model.modes, "must be at least 1"));
         }

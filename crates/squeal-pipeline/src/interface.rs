@@ -1,0 +1,286 @@
+//! `[reduction] interface = "cc"`: the brake on each part's characteristic constraint (CC)
+//! modes instead of its contact face's nodal dofs (the maths and the choice of basis:
+//! `squeal_reduce::interface_modes`; the brake's projection, contact forces still evaluated at
+//! every pair: `squeal_brake::interface_reduced`).
+//!
+//! **How many modes.** `interface_modes = n` keeps the `n` lowest CC modes of each part (all
+//! of them if it has fewer). `"auto"` chooses by convergence of what the analysis reports:
+//! starting from [`FIRST_LEVEL`] modes per part and doubling, it runs the scene's stability
+//! sweep at each count and keeps the first count `k_i` at which both μ0 and its frequency
+//! moved by less than `interface_tolerance` (relative) from `k_{i-1}`, or every CC mode (the
+//! unreduced-interface model in other coordinates) when no count before settles. Each count's
+//! μ0, frequency, size and time are kept in [`InterfaceSummary`] and written by `squeal
+//! stability` (its text and `summary.json`), so the choice can be checked.
+
+use crate::error::{PipelineError, Result};
+use crate::model::{Log, Model};
+use squeal_brake::interface_reduced::project_brake;
+use squeal_reduce::interface_modes::{
+    InterfaceModes, characteristic_constraint_modes, transformed_part,
+};
+use squeal_scene::Scene;
+use squeal_scene::reduction::InterfaceModeCount;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+/// The CC modes per part of `"auto"`'s first count; doubled until converged.
+pub const FIRST_LEVEL: usize = 10;
+
+/// One count of CC modes and what the brake gave with it.
+#[derive(Clone, Debug)]
+pub struct InterfaceLevel {
+    /// CC modes kept per part (disc, then the pads).
+    pub kept: Vec<usize>,
+    /// The brake's reduced size.
+    pub dofs: usize,
+    /// μ0 and its frequency (Hz), when the sweep found a Hopf point (`"auto"` only).
+    pub hopf: Option<(f64, f64)>,
+    /// Whether the stability sweep ran at this count.
+    pub swept: bool,
+    /// Seconds to build this count's brake and sweep it.
+    pub seconds: f64,
+}
+
+/// What the interface reduction kept, and why.
+#[derive(Clone, Debug)]
+pub struct InterfaceSummary {
+    /// The parts' names and their contact-face dofs before the reduction.
+    pub face_dofs: Vec<(String, usize)>,
+    /// The brake's size before the reduction.
+    pub dofs_before: usize,
+    /// `Some(tolerance)` for `"auto"`.
+    pub tolerance: Option<f64>,
+    /// Every count tried, ascending.
+    pub levels: Vec<InterfaceLevel>,
+    /// The count kept (index into `levels`).
+    pub chosen: usize,
+    /// Why that count.
+    pub reason: String,
+}
+
+impl InterfaceSummary {
+    /// The count kept.
+    pub fn chosen(&self) -> &InterfaceLevel {
+        &self.levels[self.chosen]
+    }
+
+    /// The lines `squeal stability` prints.
+    pub fn text(&self) -> String {
+        let mut out = String::new();
+        let parts: Vec<String> = self
+            .face_dofs
+            .iter()
+            .zip(&self.chosen().kept)
+            .map(|((n, d), k)| format!("{n} {k} of {d}"))
+            .collect();
+        let _ = writeln!(
+            out,
+            "interface reduction: characteristic constraint modes of each contact face ({}); {} dofs instead of {}: {}",
+            parts.join(", "),
+            self.chosen().dofs,
+            self.dofs_before,
+            self.reason
+        );
+        if self.levels.iter().any(|l| l.swept) {
+            let _ = writeln!(out, "  CC modes per part | dofs | mu0 | frequency (Hz) | s");
+            for l in &self.levels {
+                let (mu, f) = l.hopf.map_or(("-".into(), "-".into()), |(m, f)| {
+                    (format!("{m:.6}"), format!("{f:.2}"))
+                });
+                let _ = writeln!(
+                    out,
+                    "  {} | {} | {mu} | {f} | {:.1}",
+                    l.kept
+                        .iter()
+                        .map(usize::to_string)
+                        .collect::<Vec<_>>()
+                        .join("+"),
+                    l.dofs,
+                    l.seconds
+                );
+            }
+        }
+        out
+    }
+
+    /// Its record in `summary.json`.
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "method": "characteristic constraint modes of each part's contact face (Castanier, Tan & Pierre 2001)",
+            "contact_face_dofs": self.face_dofs.iter().map(|(n, d)| serde_json::json!({"part": n, "dofs": d})).collect::<Vec<_>>(),
+            "dofs_before": self.dofs_before,
+            "dofs": self.chosen().dofs,
+            "kept_per_part": self.chosen().kept,
+            "tolerance": self.tolerance,
+            "reason": self.reason,
+            "levels": self.levels.iter().map(|l| serde_json::json!({
+                "kept_per_part": l.kept,
+                "dofs": l.dofs,
+                "mu0": l.hopf.map(|h| h.0),
+                "frequency_hz": l.hopf.map(|h| h.1),
+                "swept": l.swept,
+                "seconds": l.seconds,
+            })).collect::<Vec<_>>(),
+        })
+    }
+}
+
+/// The model with the scene's interface reduction applied (the model itself without one).
+pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
+    let Some(choice) = scene.interface_reduction()? else {
+        return Ok(model);
+    };
+    let t = Instant::now();
+    let modes = model
+        .rom
+        .parts
+        .iter()
+        .map(characteristic_constraint_modes)
+        .collect::<std::result::Result<Vec<_>, _>>()?;
+    log(&format!(
+        "interface reduction: CC modes of {} in {:.1} s",
+        modes
+            .iter()
+            .map(|m| format!("{} ({} face dofs)", m.part, m.count()))
+            .collect::<Vec<_>>()
+            .join(", "),
+        t.elapsed().as_secs_f64()
+    ));
+    let most = modes.iter().map(InterfaceModes::count).max().unwrap_or(0);
+    let face_dofs = modes.iter().map(|m| (m.part.clone(), m.count())).collect();
+    let dofs_before = model.brake.size();
+    let summary =
+        |levels: Vec<InterfaceLevel>, chosen: usize, reason: String, tol| InterfaceSummary {
+            face_dofs,
+            dofs_before,
+            tolerance: tol,
+            levels,
+            chosen,
+            reason,
+        };
+    match choice.modes {
+        InterfaceModeCount::Fixed(k) => {
+            let t = Instant::now();
+            let mut m = at_count(&model, &modes, k)?;
+            let level = InterfaceLevel {
+                kept: kept(&modes, k),
+                dofs: m.brake.size(),
+                hopf: None,
+                swept: false,
+                seconds: t.elapsed().as_secs_f64(),
+            };
+            let reason = format!("interface_modes = {k} in {}", scene.path.display());
+            m.interface = Some(summary(vec![level], 0, reason, None));
+            Ok(m)
+        }
+        InterfaceModeCount::Auto { tolerance } => {
+            let mus = scene.mu_values()?;
+            let mut levels: Vec<InterfaceLevel> = Vec::new();
+            let mut k = FIRST_LEVEL.min(most);
+            loop {
+                let t = Instant::now();
+                let m = at_count(&model, &modes, k)?;
+                let st = crate::stability::analyse(&m, &mus)?;
+                let hopf = st.sweep.hopf.as_ref().map(|h| (h.mu0, h.frequency_hz));
+                let level = InterfaceLevel {
+                    kept: kept(&modes, k),
+                    dofs: m.brake.size(),
+                    hopf,
+                    swept: true,
+                    seconds: t.elapsed().as_secs_f64(),
+                };
+                log(&format!(
+                    "  {} CC modes per part, {} dofs: {} ({:.1} s)",
+                    k,
+                    level.dofs,
+                    hopf.map_or("no Hopf point".into(), |(mu, f)| format!(
+                        "mu0 = {mu:.6} at {f:.2} Hz"
+                    )),
+                    level.seconds
+                ));
+                let settled = levels
+                    .last()
+                    .and_then(|prev| agree(prev.hopf, hopf, tolerance));
+                levels.push(level);
+                let i = levels.len() - 1;
+                if let Some(why) = settled {
+                    let reason = format!(
+                        "the smallest count of {FIRST_LEVEL}, {}, ... per part at which {why} from the count before (tolerance {tolerance:e}, [reduction] interface_tolerance)",
+                        2 * FIRST_LEVEL
+                    );
+                    let mut m = m;
+                    m.interface = Some(summary(levels, i, reason, Some(tolerance)));
+                    return Ok(m);
+                }
+                if k >= most {
+                    let reason = format!(
+                        "no count below every CC mode settled to {tolerance:e}: all kept (the unreduced-interface model in other coordinates)"
+                    );
+                    let mut m = m;
+                    m.interface = Some(summary(levels, i, reason, Some(tolerance)));
+                    return Ok(m);
+                }
+                k = (2 * k).min(most);
+            }
+        }
+    }
+}
+
+/// Why two counts' Hopf points agree to `tol` (relative, in μ0 and in frequency), or `None`.
+fn agree(a: Option<(f64, f64)>, b: Option<(f64, f64)>, tol: f64) -> Option<String> {
+    match (a, b) {
+        (None, None) => Some("the sweep finds no Hopf point, as".into()),
+        (Some((m0, f0)), Some((m1, f1))) => {
+            let (dm, df) = ((m1 - m0).abs() / m1.abs(), (f1 - f0).abs() / f1.abs());
+            (dm <= tol && df <= tol)
+                .then(|| format!("mu0 moved by {dm:.1e} and its frequency by {df:.1e} (relative)"))
+        }
+        _ => None,
+    }
+}
+
+/// The CC modes each part keeps at count `k`.
+fn kept(modes: &[InterfaceModes], k: usize) -> Vec<usize> {
+    modes.iter().map(|m| k.min(m.count())).collect()
+}
+
+/// The model on `k` CC modes per part: its brake projected, its reduced parts (their matrices
+/// and bases, for the shapes on the meshes) in the same coordinates.
+pub fn at_count(model: &Model, modes: &[InterfaceModes], k: usize) -> Result<Model> {
+    let blocks: Vec<_> = modes.iter().map(|m| m.transformation(k)).collect();
+    // The brake's parts in the layout's order, each with its block.
+    let order: Vec<&str> = std::iter::once("disc")
+        .chain(model.layout.pads.iter().map(|p| p.0.as_str()))
+        .collect();
+    let ordered = order
+        .iter()
+        .map(|name| {
+            modes
+                .iter()
+                .position(|m| m.part == *name)
+                .map(|i| blocks[i].clone())
+                .ok_or(PipelineError::NoPart { part: "pad" })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let (brake, layout) = project_brake(&model.brake, &model.layout, &ordered)?;
+    let mut rom = model.rom.clone();
+    for (part, block) in rom.parts.iter_mut().zip(&blocks) {
+        *part = transformed_part(part, block);
+    }
+    Ok(Model {
+        rom,
+        rom_path: model.rom_path.clone(),
+        brake,
+        layout,
+        pairs: model.pairs.clone(),
+        params: model.params.clone(),
+        damping: model.damping.clone(),
+        damping_from: model.damping_from.clone(),
+        sweep: model.sweep.clone(),
+        disc_mesh: model.disc_mesh.clone(),
+        pad_meshes: model.pad_meshes.clone(),
+        disc: model.disc,
+        units: model.units,
+        interface: None,
+    })
+}

@@ -1,0 +1,98 @@
+//! `[reduction] interface = "cc"` on the bundled coarse brake with nodal contact: the
+//! frictionless brake's frequencies in the band, on the characteristic constraint modes of
+//! each contact face, against the unreduced-interface brake (every face node's dofs kept).
+//!
+//! The reference is the unreduced-interface brake itself (2234 dofs, the same Craig–Bampton
+//! parts and the same 355 node-to-surface pairs): the CC brake is its Rayleigh–Ritz projection
+//! on a subspace of its coordinates, so it can only be as accurate, and with every CC mode
+//! kept it is the same brake in other coordinates.
+
+use squeal_brake::equilibrium::NewtonOptions;
+use squeal_brake::modal::Damping;
+use squeal_brake::sweep::reference;
+use squeal_pipeline::interface::at_count;
+use squeal_pipeline::model::{Model, build, quiet};
+use squeal_reduce::interface_modes::characteristic_constraint_modes;
+use squeal_scene::Scene;
+use std::path::PathBuf;
+
+/// `meshes/brake.toml` on the coarse meshes with nodal contact, read as if it were
+/// `meshes/brake_coarse_nodal.toml`.
+fn coarse_nodal_scene() -> Scene {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes");
+    let mut text = std::fs::read_to_string(dir.join("brake.toml")).unwrap();
+    for (from, to) in [
+        ("disc = \"disc_medium.inp\"", "disc = \"disc_coarse.inp\""),
+        ("pad = \"pad_medium.inp\"", "pad = \"pad_coarse.inp\""),
+        ("interface = \"patch\"", "interface = \"nodal\""),
+    ] {
+        assert!(text.contains(from), "brake.toml lost '{from}'");
+        text = text.replacen(from, to, 1);
+    }
+    Scene::parse(&dir.join("brake_coarse_nodal.toml"), text).unwrap()
+}
+
+/// The frictionless brake's natural frequencies (Hz) below `fmax`, ascending.
+fn frequencies(m: &Model, fmax: f64) -> Vec<f64> {
+    let damping = Damping {
+        global_ratio: 0.0,
+        extra: vec![],
+    };
+    let r = reference(&m.brake, &damping, &NewtonOptions::default()).unwrap();
+    r.basis
+        .omega
+        .iter()
+        .map(|w| w / std::f64::consts::TAU)
+        .filter(|&f| f <= fmax)
+        .collect()
+}
+
+#[test]
+fn cc_modes_converge_to_the_unreduced_interface_frequencies() {
+    let scene = coarse_nodal_scene();
+    let out = std::env::temp_dir().join(format!("squeal-cc-{}", std::process::id()));
+    let full = build(&scene, &out, &quiet).unwrap();
+    assert_eq!(full.brake.size(), 2234);
+    let modes: Vec<_> = full
+        .rom
+        .parts
+        .iter()
+        .map(|p| characteristic_constraint_modes(p).unwrap())
+        .collect();
+    assert_eq!(
+        modes.iter().map(|m| m.count()).collect::<Vec<_>>(),
+        [1065, 1065]
+    );
+    // The scene's band top: the squeal band of meshes/brake.toml.
+    let fmax = 16000.0;
+    let f_full = frequencies(&full, fmax);
+    assert!(f_full.len() >= 20, "{} modes below {fmax} Hz", f_full.len());
+    let error = |k: usize| -> f64 {
+        let m = at_count(&full, &modes, k).unwrap();
+        let f = frequencies(&m, 2.0 * fmax);
+        assert!(f.len() >= f_full.len(), "{k} CC modes: {} modes", f.len());
+        let e = f_full
+            .iter()
+            .zip(&f)
+            .map(|(a, b)| (b - a).abs() / a)
+            .fold(0.0, f64::max);
+        eprintln!(
+            "{k} CC modes per part: {} dofs, largest relative error of the {} frequencies below {fmax} Hz {e:.2e}",
+            m.brake.size(),
+            f_full.len()
+        );
+        e
+    };
+    // Every CC mode: the same brake in other coordinates; its frequencies agree to the
+    // equilibrium's and the eigensolver's round-off (1e-8 is 1e5 times the 1e-13 of a dense
+    // eigensolve, for Newton's 1e-10 tolerance on the contact forces).
+    assert!(error(1065) <= 1e-8);
+    // Fewer: the errors fall as modes are added (Rayleigh–Ritz on nested subspaces), and at
+    // 160 per part (424 dofs) they are below 1e-3, the tolerance the issue sets for mu0.
+    let counts = [10, 20, 40, 80, 160, 320];
+    let errors: Vec<f64> = counts.iter().map(|&k| error(k)).collect();
+    for w in errors.windows(2) {
+        assert!(w[1] <= w[0], "{errors:?}");
+    }
+    assert!(errors[4] <= 1e-3, "{errors:?}");
+}

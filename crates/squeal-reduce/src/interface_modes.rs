@@ -1,0 +1,214 @@
+//! Interface reduction: characteristic constraint (CC) modes of a part's contact face.
+//!
+//! # Why
+//!
+//! With nodal contact (`[model] interface = "nodal"`) every node of a contact face keeps its
+//! three dofs as Craig–Bampton boundary coordinates (eqs (1)–(7) of Coudeyras, Sinou & Nacivet
+//! 2009): the coarse bundled brake has 3 × 355 face dofs on the disc and as many on the pad,
+//! 2234 reduced dofs in all, and the count grows with every refinement of the contact. The
+//! motion of a contact face in the band of interest is smooth on the scale of its nodes, so a
+//! few interface shapes carry it.
+//!
+//! # Which basis, and why this one
+//!
+//! Two bases are in use: the characteristic constraint modes of each component's interface
+//! (Castanier, Tan & Pierre, "Characteristic constraint modes for component mode synthesis",
+//! AIAA Journal 39(6), 2001, pp. 1182–1187), and a system-level basis of the assembled
+//! structure's real modes with the contact springs at equilibrium, as commercial complex
+//! eigenvalue analysis (CEA) projects onto. We take the CC modes, per part, for three reasons:
+//!
+//! 1. They keep the brake block-diagonal by part: each part's coordinates stay its own, so its
+//!    shapes expand onto its mesh with its own basis, energies are shared by part, and the
+//!    static equilibrium under friction (which moves with μ) is still solved with the parts'
+//!    fixed-interface modes and interface shapes — a system-mode basis taken at μ = 0 would
+//!    need static correction vectors for the μ-dependent equilibrium.
+//! 2. They are a Rayleigh–Ritz projection of the Craig–Bampton model: the frictionless brake's
+//!    frequencies converge from above, monotonically in the number kept (checked in the tests),
+//!    and with every CC mode kept the model is the unreduced-interface one up to a change of
+//!    coordinates.
+//! 3. They need nothing of the contact law: the contact forces are still evaluated at every
+//!    contact node and projected (below), whatever the element.
+//!
+//! # The maths
+//!
+//! A part's Craig–Bampton coordinates are `q = [x_c; x_p; η]`: the contact face's nodal dofs
+//! `x_c` (for the disc the face points its projected contact points are formed from, for a
+//! pad its contact points), the other kept boundary dofs `x_p` (the pistons) and the
+//! fixed-interface modal amplitudes `η`; the reduced matrices are `K̂`, `M̂` of eqs (6)–(7).
+//! The CC modes are the eigenvectors of the face partition of these matrices — the interface's
+//! own stiffness and mass, the interior statically condensed and the other boundary dofs held:
+//!
+//! `K̂_cc ψ_j = λ_j M̂_cc ψ_j`,  `ψ_jᵀ M̂_cc ψ_k = δ_jk`,  `λ_1 ≤ λ_2 ≤ …`
+//!
+//! (`K̂_cc` is the Guyan stiffness of the face, `M̂_cc` its constraint-mode mass). Keeping the
+//! `k` lowest, `x_c ≈ Ψ_k ξ`, the part's coordinates become `q = T q'`, `q' = [ξ; x_p; η]`,
+//!
+//! `T = [Ψ_k 0 0; 0 I 0; 0 0 I]`,  `K' = Tᵀ K̂ T`, `M' = Tᵀ M̂ T`,
+//!
+//! and its basis on the mesh `Φ' = Φ T`. The pencil is solved densely: `M̂_cc = L Lᵀ`,
+//! `A = L⁻¹ K̂_cc L⁻ᵀ = Y Λ Yᵀ`, `Ψ = L⁻ᵀ Y`.
+//!
+//! A contact pair's closure `δ_p = g_pᵀ x − g0_p` (the brake's eq (8) with `g_p` over the
+//! stacked parts' coordinates, [`squeal_brake`'s model]) becomes `δ_p = (Tᵀ g_p)ᵀ x' − g0_p`,
+//! and eq (10)'s forces `Σ_p F_n,p g_p + F_t,p h_p` project to `Σ_p F_n,p Tᵀg_p + F_t,p Tᵀh_p`:
+//! each pair's element is still evaluated at its own node from its own closure and slip, only
+//! its vectors are expressed in the reduced coordinates. The pistons' load `F_piston` acts on
+//! `x_p`, which `T` keeps, so `Tᵀ F_piston = F_piston`.
+//!
+//! How many CC modes each part keeps is chosen by convergence of the brake's results, not
+//! here: see the pipeline's `interface` module.
+
+use crate::craig_bampton::{ReduceError, dense_cholesky, hz};
+use crate::rom::{Basis, DofLabel, PointRole, ReducedPart};
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::{Mat, Par, Side};
+
+/// A part's characteristic constraint modes: the eigenvectors of its contact face's
+/// partition `(K̂_cc, M̂_cc)`, all of them, lowest first.
+#[derive(Clone, Debug)]
+pub struct InterfaceModes {
+    /// The part's name.
+    pub part: String,
+    /// The part's reduced dofs that are contact-face motions (`x_c`), ascending.
+    pub face_dofs: Vec<usize>,
+    /// `Ψ`: `face_dofs.len()` rows, one column per mode, `M̂_cc`-orthonormal.
+    pub psi: Mat<f64>,
+    /// `λ_j = ω_j²` (rad²/s²), ascending.
+    pub lambda: Vec<f64>,
+    /// The part's reduced size before the change of coordinates.
+    pub size: usize,
+}
+
+/// The reduced dofs of a part that move its contact face: `Point` dofs of its contact points
+/// (a pad) or of its face points (a disc with nodal contact). Pistons (and a disc's projected
+/// contact points, which own no dofs) are not among them.
+pub fn face_dofs(part: &ReducedPart) -> Vec<usize> {
+    let points = &part.info.points;
+    part.info
+        .dofs
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| match l {
+            DofLabel::Point { point, .. } | DofLabel::Along { point, .. } => points
+                .get(*point)
+                .is_some_and(|p| matches!(p.role, PointRole::Contact | PointRole::Face)),
+            DofLabel::Mode { .. } => false,
+        })
+        .map(|(d, _)| d)
+        .collect()
+}
+
+/// The CC modes of `part`'s contact face: the pencil `(K̂_cc, M̂_cc)` solved densely.
+pub fn characteristic_constraint_modes(part: &ReducedPart) -> Result<InterfaceModes, ReduceError> {
+    let name = part.info.name.clone();
+    let invalid = |what: String| ReduceError::Invalid {
+        part: name.clone(),
+        what,
+    };
+    let c = face_dofs(part);
+    if c.is_empty() {
+        return Err(invalid(
+            "no contact-face dofs to reduce (a patch interface has nothing to gain)".into(),
+        ));
+    }
+    let nc = c.len();
+    let k = Mat::from_fn(nc, nc, |i, j| {
+        0.5 * (part.k[(c[i], c[j])] + part.k[(c[j], c[i])])
+    });
+    let m = Mat::from_fn(nc, nc, |i, j| {
+        0.5 * (part.m[(c[i], c[j])] + part.m[(c[j], c[i])])
+    });
+    let l = dense_cholesky(&m)
+        .ok_or_else(|| invalid("the contact face's mass M_cc is not positive definite".into()))?;
+    // A = L⁻¹ K L⁻ᵀ: X = L⁻¹ K, then A = L⁻¹ Xᵀ (K symmetric).
+    let mut x = k;
+    solve_lower_triangular_in_place(l.as_ref(), x.as_mut(), Par::Seq);
+    let mut a = x.transpose().to_owned();
+    solve_lower_triangular_in_place(l.as_ref(), a.as_mut(), Par::Seq);
+    let a = Mat::from_fn(nc, nc, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
+    let evd = a
+        .self_adjoint_eigen(Side::Lower)
+        .map_err(|_| invalid("the dense eigensolver of the CC modes did not converge".into()))?;
+    let mut psi = evd.U().to_owned();
+    solve_upper_triangular_in_place(l.transpose(), psi.as_mut(), Par::Seq);
+    // A sign per mode, so that results do not depend on the eigensolver's: the largest entry
+    // positive.
+    for j in 0..nc {
+        let (mut big, mut at) = (0.0f64, 0);
+        for i in 0..nc {
+            if psi[(i, j)].abs() > big {
+                big = psi[(i, j)].abs();
+                at = i;
+            }
+        }
+        if psi[(at, j)] < 0.0 {
+            for i in 0..nc {
+                psi[(i, j)] = -psi[(i, j)];
+            }
+        }
+    }
+    let lambda = (0..nc).map(|j| evd.S()[j]).collect();
+    Ok(InterfaceModes {
+        part: part.info.name.clone(),
+        face_dofs: c,
+        psi,
+        lambda,
+        size: part.size(),
+    })
+}
+
+impl InterfaceModes {
+    /// Number of CC modes (= contact-face dofs).
+    pub fn count(&self) -> usize {
+        self.lambda.len()
+    }
+
+    /// The CC modes' frequencies `√λ_j / 2π` (Hz).
+    pub fn frequencies_hz(&self) -> Vec<f64> {
+        self.lambda.iter().map(|&l| hz(l)).collect()
+    }
+
+    /// `T` keeping the `keep` lowest CC modes (at most all): `size × (keep + others)`, the CC
+    /// amplitudes `ξ` first, then the part's other dofs (pistons, modal amplitudes) in their
+    /// order, each an identity column.
+    pub fn transformation(&self, keep: usize) -> Mat<f64> {
+        let keep = keep.min(self.count());
+        let others: Vec<usize> = (0..self.size)
+            .filter(|d| self.face_dofs.binary_search(d).is_err())
+            .collect();
+        let mut t = Mat::zeros(self.size, keep + others.len());
+        for j in 0..keep {
+            for (i, &d) in self.face_dofs.iter().enumerate() {
+                t[(d, j)] = self.psi[(i, j)];
+            }
+        }
+        for (j, &d) in others.iter().enumerate() {
+            t[(d, keep + j)] = 1.0;
+        }
+        t
+    }
+}
+
+/// The part in the coordinates `q = T q'`: `K' = Tᵀ K̂ T`, `M' = Tᵀ M̂ T` (symmetrized) and its
+/// basis `Φ T`. Its [`crate::rom::PartInfo`] is kept as it was (points, labels and frequencies
+/// of the Craig–Bampton model): `info.dofs` then no longer labels the coordinates, which its
+/// length (different from [`ReducedPart::size`]) tells.
+pub fn transformed_part(part: &ReducedPart, t: &Mat<f64>) -> ReducedPart {
+    let project = |a: &Mat<f64>| {
+        let b = t.transpose() * (a * t);
+        let n = b.nrows();
+        Mat::from_fn(n, n, |i, j| 0.5 * (b[(i, j)] + b[(j, i)]))
+    };
+    ReducedPart {
+        info: part.info.clone(),
+        k: project(&part.k),
+        m: project(&part.m),
+        basis: part.basis.as_ref().map(|b| Basis {
+            dof_node: b.dof_node.clone(),
+            dof_dir: b.dof_dir.clone(),
+            values: &b.values * t,
+        }),
+    }
+}
