@@ -683,6 +683,12 @@ pub fn reduce_brake_loaded(
     for (part, (name, input)) in loaded.iter().zip(&parts) {
         check_sets(&part.mesh, name, input, inputs).map_err(in_mesh(input))?;
     }
+    // Every part held before any part is reduced (a pad left free no longer costs the disc's
+    // reduction first).
+    for (part, (name, input)) in loaded.iter().zip(&parts) {
+        let spec = inputs.spec(name, input, part.info.clone());
+        crate::held::require_held(&part.mesh, &spec).map_err(in_mesh(input))?;
+    }
     let mut pairs = Vec::new();
     let mut tolerance = 0.0;
     // Nodal interface: each pad's face nodes projected onto the disc face under it, before

@@ -149,16 +149,34 @@ pub enum ReduceError {
     /// The contact points could not be built from the mesh's sets.
     #[error(transparent)]
     Interface(#[from] InterfaceError),
-    /// The interior stiffness `K_II` of a part is singular: its restraints leave a rigid
-    /// motion free.
+    /// A part's restraints and boundary coordinates leave rigid-body motions free (found
+    /// before any reduction work, [`crate::held`]): its interior stiffness `K_II` would be
+    /// singular.
     #[error(
-        "{part}: the interior stiffness K_II is singular: the part is not held (check its restraints: {restraints})"
+        "{part}: the part is not held: its restraints ({held}) leave {count} rigid-body motion(s) free: {motions}. To hold it, {add}"
     )]
     NotHeld {
         /// The part.
         part: String,
-        /// Its restraints, as given.
-        restraints: String,
+        /// How many motions are free.
+        count: usize,
+        /// The free motions, as shown ([`crate::held::FreeMotion`]).
+        motions: String,
+        /// Its restraints and pistons, as given.
+        held: String,
+        /// What to add.
+        add: String,
+    },
+    /// The interior stiffness `K_II` is singular although the restraints hold every rigid
+    /// motion of the part as a whole: a piece of it moves on its own.
+    #[error(
+        "{part}: the interior stiffness K_II is singular although its restraints ({held}) hold the part as a whole: a piece of the mesh is not connected to the rest by elements, or hangs on a node or an edge (`squeal mesh info` lists the mesh's findings); join it to the rest or hold it too"
+    )]
+    NotConnected {
+        /// The part.
+        part: String,
+        /// Its restraints and pistons, as given.
+        held: String,
     },
     /// The factorization or the eigensolver of a part failed.
     #[error("{part}: eigensolver: {source}")]
@@ -409,21 +427,21 @@ pub struct ReduceReport {
 }
 
 /// One boundary coordinate: `r = Σ c_k u_k` over free dofs.
-struct Row {
+pub(crate) struct Row {
     point: usize,
     label: DofLabel,
-    entries: Vec<(usize, f64)>,
+    pub(crate) entries: Vec<(usize, f64)>,
     /// A piston footprint's mean motion (held by a spring in the factored stiffness when it
     /// is a constraint row, see the module docs).
-    footprint: bool,
+    pub(crate) footprint: bool,
 }
 
 /// The free dofs of a part: those of its [`DofMap`], or the kept coordinates of a
 /// [`DofTransform`] when some nodes are held along skew directions (such a node's x, y, z have
 /// no dof of their own: it cannot be a boundary node).
-struct FreeDofs<'a> {
-    dofmap: &'a DofMap,
-    transform: Option<DofTransform>,
+pub(crate) struct FreeDofs<'a> {
+    pub(crate) dofmap: &'a DofMap,
+    pub(crate) transform: Option<DofTransform>,
 }
 
 impl FreeDofs<'_> {
@@ -463,7 +481,7 @@ impl FreeDofs<'_> {
             .collect()
     }
 
-    fn num_free(&self) -> usize {
+    pub(crate) fn num_free(&self) -> usize {
         self.transform
             .as_ref()
             .map_or(self.dofmap.num_free(), |t| t.num_free())
@@ -475,7 +493,11 @@ impl FreeDofs<'_> {
 /// is a dof of its own, eliminated like the paper's boundary dofs (a constraint row instead
 /// would leave the pad's motion along `n` free in the interior `K_vv`). A piston node that is
 /// held along skew directions already keeps its own axes, and the row is taken on those.
-fn piston_frames(mesh: &Mesh, spec: &PartSpec, held: &mut HeldNodes) -> Result<(), ReduceError> {
+pub(crate) fn piston_frames(
+    mesh: &Mesh,
+    spec: &PartSpec,
+    held: &mut HeldNodes,
+) -> Result<(), ReduceError> {
     let Some(n) = spec.piston_direction else {
         return Ok(());
     };
@@ -494,7 +516,10 @@ fn piston_frames(mesh: &Mesh, spec: &PartSpec, held: &mut HeldNodes) -> Result<(
 }
 
 /// The skew restraints of `spec` on the nodes of `mesh`.
-fn skew_restraints(mesh: &Mesh, spec: &PartSpec) -> Result<Vec<SkewRestraint>, ReduceError> {
+pub(crate) fn skew_restraints(
+    mesh: &Mesh,
+    spec: &PartSpec,
+) -> Result<Vec<SkewRestraint>, ReduceError> {
     let mut out = Vec::new();
     for (set, directions) in &spec.skew_restraints {
         let nodes = mesh
@@ -577,10 +602,16 @@ pub fn reduce_part(
         ..Default::default()
     };
     let factor = SparseCholesky::factorize_with(k_vv.as_ref(), &chol).map_err(|e| match e {
-        EigError::NotPositiveDefinite { .. } => ReduceError::NotHeld {
-            part: part.clone(),
-            restraints: describe(spec),
-        },
+        EigError::NotPositiveDefinite { .. } => {
+            let free_motions = crate::held::free_motions_of(mesh, &free, &held, &rows);
+            match free_motions.is_empty() {
+                false => crate::held::not_held(spec, &free_motions),
+                true => ReduceError::NotConnected {
+                    part: part.clone(),
+                    held: crate::held::describe(spec),
+                },
+            }
+        }
         other => eigen(other),
     })?;
     clock(Stage::Factor, t, &mut timings);
@@ -934,65 +965,8 @@ fn try_zeros(rows: usize, cols: usize, part: &str) -> Result<Mat<f64>, ReduceErr
     Ok(Mat::zeros(rows, cols))
 }
 
-/// A part's restraints as the scene or the options give them (`node set CLAMP held along x,
-/// y, z`, `node set ABUTMENT held axial, radial`), and the global translations none of the
-/// set restraints holds when there are no skew or axis restraints (those the part is then
-/// free to move along).
-fn describe(spec: &PartSpec) -> String {
-    use squeal_fe::NodeSelection;
-    let axes = |d: &[bool; 3]| -> Vec<String> {
-        (0..3)
-            .filter(|&i| d[i])
-            .map(|i| AXES[i].to_string())
-            .collect()
-    };
-    let mut out: Vec<String> = spec
-        .restraints
-        .iter()
-        .map(|r| {
-            let nodes = match &r.nodes {
-                NodeSelection::Set(s) => format!("node set {s}"),
-                NodeSelection::Indices(v) => format!("{} nodes given by index", v.len()),
-            };
-            format!("{nodes} held along {}", axes(&r.directions).join(", "))
-        })
-        .collect();
-    for (set, dirs) in &spec.skew_restraints {
-        out.push(format!(
-            "node set {set} held along {} direction(s)",
-            dirs.len()
-        ));
-    }
-    for (set, dirs) in &spec.axis_restraints {
-        let names: Vec<&str> = dirs
-            .iter()
-            .map(|d| match d {
-                AxisDirection::Axial => "axial",
-                AxisDirection::Radial => "radial",
-                AxisDirection::Tangential => "tangential",
-            })
-            .collect();
-        out.push(format!("node set {set} held {}", names.join(", ")));
-    }
-    if out.is_empty() {
-        return "none: the part can move freely".into();
-    }
-    let mut held = [false; 3];
-    for r in &spec.restraints {
-        (0..3).for_each(|d| held[d] |= r.directions[d]);
-    }
-    let free = axes(&held.map(|h| !h));
-    if spec.skew_restraints.is_empty() && spec.axis_restraints.is_empty() && !free.is_empty() {
-        out.push(format!(
-            "nothing holds translation along {}",
-            free.join(", ")
-        ));
-    }
-    out.join("; ")
-}
-
 /// Boundary points and rows: contact points (3 rows each), then piston nodes (1 row each).
-fn boundary_rows(
+pub(crate) fn boundary_rows(
     mesh: &Mesh,
     dofmap: &FreeDofs,
     spec: &PartSpec,

@@ -8,6 +8,7 @@ pub mod brake;
 pub mod check;
 pub mod craig_bampton;
 pub mod export;
+pub mod held;
 pub mod interface;
 pub mod interface_modes;
 pub mod rom;
