@@ -2,8 +2,9 @@
 //! levels of a periodic motion given harmonic by harmonic ([`sound`]).
 
 use crate::error::{AcousticsError, Result};
-use crate::surface::{RadiatingSurface, Velocity, dot};
+use crate::surface::{RadiatingSurface, Velocity};
 use num_complex::Complex64;
+use squeal_element::geometry::dot;
 use std::f64::consts::PI;
 
 /// Reference sound pressure for levels in dB (Pa), IEC 61672.

@@ -7,6 +7,7 @@
 use crate::error::{AcousticsError, Result};
 use crate::rule::FaceRule;
 use num_complex::Complex64;
+use squeal_element::geometry::{cross, dot};
 
 /// One quadrature point of the surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -180,16 +181,4 @@ fn check_len(what: &'static str, expected: usize, got: usize) -> Result<()> {
             got,
         })
     }
-}
-
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }

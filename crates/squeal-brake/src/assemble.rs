@@ -41,6 +41,7 @@ use crate::contact::{Law, LawSpec};
 use crate::error::BrakeError;
 use crate::model::{Brake, ContactPair, SparseVec};
 use faer::Mat;
+use squeal_element::geometry::dot;
 use squeal_fe::frames::RotationAxis;
 use squeal_reduce::brake::{PairingTolerance, pair_contact_points};
 use squeal_reduce::rom::{DofLabel, PointRole, ReducedModel, ReducedPart};
@@ -209,10 +210,6 @@ pub fn unit(v: [f64; 3], what: &'static str) -> Result<[f64; 3], BrakeError> {
         return Err(BrakeError::BadDirection { what });
     }
     Ok(v.map(|x| x / n))
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Indices of a part's points of a role.

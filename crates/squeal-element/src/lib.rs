@@ -14,6 +14,7 @@
 // Index loops mirror the formulas (J, cofactors); iterator rewrites would hide them.
 #![allow(clippy::needless_range_loop)]
 
+pub mod geometry;
 pub mod hex20;
 pub mod pyramid13;
 pub mod quadrature;

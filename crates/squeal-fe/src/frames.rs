@@ -22,6 +22,7 @@ use crate::dofmap::{DofMap, Restraint};
 use crate::error::FeError;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Mat, MatRef};
+use squeal_element::geometry::{cross, dot, unit};
 use squeal_mesh::Mesh;
 use std::collections::BTreeMap;
 
@@ -59,23 +60,6 @@ pub struct HeldNodes {
 /// as already spanned by the others.
 const AXIS_TOLERANCE: f64 = 1e-12;
 const RANK_TOLERANCE: f64 = 1e-9;
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let n = dot(a, a).sqrt();
-    (n.is_finite() && n > 0.0).then(|| a.map(|x| x / n))
-}
 
 /// The coordinate axis `a` is along (to [`AXIS_TOLERANCE`]), if any.
 fn coordinate_axis(a: [f64; 3]) -> Option<usize> {

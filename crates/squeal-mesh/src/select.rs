@@ -20,6 +20,7 @@
 //! selection.
 
 use crate::model::Mesh;
+use squeal_element::geometry::{cross, dot, sub, unit_or_self as unit};
 use squeal_element::{Face as ElementFace, FaceKind};
 use std::collections::HashMap;
 
@@ -141,24 +142,6 @@ pub enum Surface {
         /// Its normal (need not be unit).
         normal: [f64; 3],
     },
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn unit(a: [f64; 3]) -> [f64; 3] {
-    let n = dot(a, a).sqrt();
-    if n > 0.0 { a.map(|x| x / n) } else { a }
 }
 
 impl Surface {

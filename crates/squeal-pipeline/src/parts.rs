@@ -14,6 +14,7 @@
 
 use crate::error::{PipelineError, Result};
 use crate::model::Log;
+use squeal_element::geometry::{dot, unit_or_self as unit};
 use squeal_fe::frames::AxisDirection;
 use squeal_fe::{ElasticMaterial, FeError, MaterialTable, NodeSelection, Restraint};
 use squeal_mesh::Mesh;
@@ -154,15 +155,6 @@ fn default_tolerance(mesh: &Mesh) -> f64 {
     mesh.bounding_box().map_or(0.0, |(lo, hi)| {
         1e-6 * (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max)
     })
-}
-
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    v.map(|x| x / n)
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// The boundary faces facing `-n` (within 1 degree) on the part's lowest plane along `n`.

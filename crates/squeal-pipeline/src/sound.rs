@@ -32,6 +32,7 @@ use faer::{Accum, Mat, Par};
 use squeal_acoustics::{
     AcousticsError, Air, Complex64, FaceRule, Facing, Harmonic, RadiatingSurface, Sound, Velocity,
 };
+use squeal_element::geometry::{dot, unit_or_self as unit};
 use squeal_mesh::Mesh;
 use squeal_mesh::select::{self, Face};
 use squeal_reduce::rom::ReducedPart;
@@ -304,15 +305,6 @@ pub fn default_microphone(scene: &Scene, sp: &SceneParts) -> Result<[f64; 3]> {
     });
     let dir = unit(std::array::from_fn(|d| a[d] + radial[d]));
     Ok(std::array::from_fn(|d| centre[d] + 0.5 * dir[d]))
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let n = dot(v, v).sqrt();
-    if n > 0.0 { v.map(|x| x / n) } else { v }
 }
 
 /// One line on a cycle's sound, as `squeal chbm` prints it.

@@ -7,6 +7,7 @@
 //! report shows beside the numbers, and [`write_apng`] the animation beside the ParaView series.
 
 use crate::ReportError;
+use squeal_element::geometry::{cross, dot};
 use std::path::Path;
 
 /// A triangulated surface with one value per vertex.
@@ -59,18 +60,6 @@ impl View {
         let u = cross(w, r);
         (r, u, w)
     }
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// The colour map: viridis (perceptually uniform, readable in grey and with the common colour

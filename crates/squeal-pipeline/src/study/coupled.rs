@@ -28,18 +28,12 @@ pub(super) struct Rings {
     pad: Vec<(usize, f64)>,
 }
 
+/// `v / |v|`, or the z axis when `v` has no length.
 pub(super) fn unit(v: [f64; 3]) -> [f64; 3] {
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    if n > 0.0 {
-        v.map(|x| x / n)
-    } else {
-        [0.0, 0.0, 1.0]
-    }
+    squeal_element::geometry::unit(v).unwrap_or([0.0, 0.0, 1.0])
 }
 
-pub(super) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
+pub(super) use squeal_element::geometry::dot;
 
 /// Cylindrical coordinates (axial, radius, angle) about the axis; the angle is measured from
 /// the global x axis projected on the disc plane (from +x towards +y for the z axis).
