@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::{root, squeal, temp_dir};
+use common::{root, temp_dir};
 
 /// Pad face nodes of each coarse pad (`CONTACT_FACE`, 52 in both: meshes/README.md).
 const FACE_NODES: usize = 52;
@@ -27,13 +27,7 @@ fn the_ventilated_brake_pairs_every_pad_face_node_and_keeps_its_frictionless_pai
         out_dir.to_str().unwrap(),
         "--no-vtu",
     ];
-    let run = squeal(&args);
-    let stdout = String::from_utf8_lossy(&run.stdout);
-    assert!(
-        run.status.success(),
-        "squeal {args:?} failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let stdout = common::run_ok(&args);
 
     // Every pad face node is a pair, paired with the disc face under its pad by projection: the
     // faces were written on the same planes (z = 0, 0.023 m), so the projection distance and
