@@ -39,6 +39,7 @@ pub mod parts;
 pub mod pictures;
 pub mod progress;
 pub mod report;
+pub mod restraints;
 pub mod shapes;
 pub mod sound;
 pub mod stability;
