@@ -92,9 +92,9 @@ pub enum OdeError {
         /// Peak-to-peak (`max - min`) of the observable over the last complete cycle (NaN if
         /// none), in `unit`.
         last_peak_to_peak: f64,
-        /// What the observable is ([`crate::steady::SteadyOptions::observable`]).
+        /// What the observable is ([`crate::SteadyOptions::observable`]).
         observable: String,
-        /// Its unit ([`crate::steady::SteadyOptions::unit`]).
+        /// Its unit ([`crate::SteadyOptions::unit`]).
         unit: String,
     },
 }
