@@ -32,18 +32,58 @@ pub struct ExportArgs {
     pub restrain: Vec<String>,
     #[command(flatten)]
     pub materials: MaterialArgs,
+    #[command(flatten)]
+    pub units: UnitsArg,
+}
+
+/// The unit system a mesh file (and `--material`) is written in.
+#[derive(Args, Clone, Default)]
+pub struct UnitsArg {
+    /// The consistent unit system of the mesh file and of --material: m (SI, the default), mm
+    /// (mm, tonne, s, N, MPa; density t/mm^3), in (in, lbf, psi), or mm-kg-ms, mm-g-ms;
+    /// everything is converted to SI and shown in SI
+    #[arg(long)]
+    pub units: Option<String>,
+}
+
+impl UnitsArg {
+    /// The system named (SI when none is).
+    pub fn system(&self) -> Result<squeal_mesh::units::UnitSystem> {
+        match &self.units {
+            None => Ok(squeal_mesh::units::UnitSystem::default()),
+            Some(name) => Ok(squeal_pipeline::mesh_info::units_named(name)?),
+        }
+    }
 }
 
 /// Materials given on the command line (a Gmsh .msh carries none).
 #[derive(Args, Clone, Default)]
 pub struct MaterialArgs {
-    /// Isotropic material of an element set: SET=E,nu,rho (Pa, -, kg/m^3), e.g.
+    /// Isotropic material of an element set: SET=E,nu,rho (Pa, -, kg/m^3, or the units of
+    /// --units where the command takes it: MPa and t/mm^3 with --units mm), e.g.
     /// DISC=125e9,0.26,7200; repeatable; overrides the mesh's own
     #[arg(long = "material")]
     pub materials: Vec<String>,
 }
 
 impl MaterialArgs {
+    /// Parses `SET=E,nu,rho` entries given in `units`, in SI; a modulus or density no
+    /// structural solid has is warned about on stderr.
+    pub fn overrides_in(
+        &self,
+        units: &squeal_mesh::units::UnitSystem,
+    ) -> Result<Vec<(String, ElasticMaterial)>> {
+        let mut out = Vec::new();
+        for (set, m) in self.overrides()? {
+            let (si, warnings) = squeal_pipeline::mesh_info::material_in(&set, m, units);
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+            out.push((set, si));
+        }
+        Ok(out)
+    }
+
     /// Parses `SET=E,nu,rho` entries.
     pub fn overrides(&self) -> Result<Vec<(String, ElasticMaterial)>> {
         self.materials
@@ -100,9 +140,14 @@ pub fn run(cmd: FeCommand) -> Result<ExitCode> {
         );
     }
     squeal_io::require_folder(&args.out)?;
-    let mesh = read_mesh(&args.mesh)?.mesh;
-    let materials =
-        MaterialTable::from_mesh(&mesh, &args.materials.overrides()?).with_context(|| {
+    let units = args.units.system()?;
+    let mut read = read_mesh(&args.mesh)?;
+    for w in squeal_pipeline::mesh_info::read_in(&args.mesh, &mut read, &units) {
+        eprintln!("warning: {w}");
+    }
+    let mesh = read.mesh;
+    let materials = MaterialTable::from_mesh(&mesh, &args.materials.overrides_in(&units)?)
+        .with_context(|| {
             format!(
                 "materials of {} (a .msh has none: give --material SET=E,nu,rho)",
                 args.mesh.display()
@@ -125,6 +170,10 @@ pub fn run(cmd: FeCommand) -> Result<ExitCode> {
         system.nnz_k(),
         system.nnz_m(),
         assembled.as_secs_f64()
+    );
+    println!(
+        "K in N/m and M in kg (SI; the mesh read as {}: {})",
+        units.name, units.description
     );
     for f in ["K.mtx", "M.mtx", "dofs.csv"] {
         println!("wrote {}", args.out.join(format!("{stem}_{f}")).display());

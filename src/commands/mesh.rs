@@ -28,6 +28,8 @@ pub enum MeshCommand {
         all_ids: bool,
         #[command(flatten)]
         materials: crate::commands::fe::MaterialArgs,
+        #[command(flatten)]
+        units: crate::commands::fe::UnitsArg,
     },
     /// Write a mesh as VTK XML (.vtu) for ParaView, with node and element sets as flags
     Convert {
@@ -45,9 +47,13 @@ pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
             scene: Some(scene),
             vtu,
             materials,
+            units,
             ..
         } => {
             debug_assert!(files.is_empty());
+            if units.units.is_some() {
+                bail!("--units does not go with --scene: the scene's [units] system says it");
+            }
             if !materials.materials.is_empty() {
                 bail!(
                     "--material does not go with --scene: give the materials in the scene's [materials.<SET>]"
@@ -59,15 +65,20 @@ pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
             files,
             all_ids,
             materials,
+            units,
             ..
         } => {
-            let overrides = materials.overrides()?;
+            let units = units.system()?;
+            let overrides = materials.overrides_in(&units)?;
             // Everything is read and checked before anything is printed: a bad file or a
             // --material that fits none of the meshes is an error, not a footnote.
             let mut read = Vec::with_capacity(files.len());
             for f in &files {
                 let t = Instant::now();
-                let mesh = read_mesh(f)?;
+                let mut mesh = read_mesh(f)?;
+                for w in squeal_pipeline::mesh_info::read_in(f, &mut mesh, &units) {
+                    eprintln!("warning: {w}");
+                }
                 read.push((f, mesh, t.elapsed()));
             }
             for (set, _) in &overrides {
@@ -100,7 +111,7 @@ pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
                     println!();
                 }
                 let (text, errors) = squeal_pipeline::mesh_info::summary_text(
-                    f, mesh, *elapsed, all_ids, &overrides,
+                    f, mesh, *elapsed, all_ids, &overrides, &units,
                 )?;
                 print!("{text}");
                 any_error |= errors;

@@ -17,7 +17,7 @@
 //!
 //! **Steady state.** Cycles are delimited by the upward zero crossings of the penetration rate
 //! of the pair that moves most (its mean is exactly zero on a periodic orbit). A first
-//! detection needs the periods and peak-to-peak amplitudes of the last
+//! detection needs the periods and peak-to-peaks (max - min) of the last
 //! [`TiOptions::steady_cycles`] cycles to agree within [`TiOptions::steady_rtol`]; single-cycle
 //! measures carry the integrator's noise (about `30 rtol` relative at order 2), so this
 //! tolerance cannot be tight. From then on the Fourier coefficients of every state are averaged
@@ -417,6 +417,8 @@ pub fn integrate_from(mb: &ModalBrake, s: &TiStart, opts: &TiOptions) -> Result<
         samples_per_cycle: opts.samples_per_cycle,
         subdivisions: 4,
         min_amplitude: 1e-6 * rate0,
+        observable: "normal penetration rate of the most moving contact pair".into(),
+        unit: "m/s".into(),
     };
     let mut monitor = OscillationMonitor::new(2 * n, observable, &steady_opts)?;
     let mut history = Vec::new();

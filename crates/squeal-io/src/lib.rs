@@ -12,6 +12,7 @@ pub mod csv;
 pub mod folder;
 pub mod guard;
 pub mod host;
+pub mod interrupt;
 pub mod mtx;
 
 pub use guard::{OutputError, check_writable, refuse_inputs, require_extension, require_folder};
@@ -51,14 +52,30 @@ pub fn atomic_write<F>(path: &Path, fill: F) -> Result<(), IoError>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
-    write_replacing(path, fill, true)?;
+    let tracked = write_file(path, fill, true, true)?;
     folder::record_written(path);
+    // Off the interrupt registry only once the manifest knows the file ([`interrupt`]).
+    drop(tracked);
     Ok(())
 }
 
 /// [`atomic_write`] without telling the run folder ([`folder`]) about the file: for the
 /// folder's own manifest. `sync`: flush the file to the disk before the rename.
 pub(crate) fn write_replacing<F>(path: &Path, fill: F, sync: bool) -> Result<(), IoError>
+where
+    F: FnOnce(&mut dyn Write) -> io::Result<()>,
+{
+    write_file(path, fill, sync, false).map(|_| ())
+}
+
+/// The write of [`atomic_write`] and [`write_replacing`]; `track`: registered with
+/// [`interrupt`] (an output file, refused once the run is being stopped).
+fn write_file<F>(
+    path: &Path,
+    fill: F,
+    sync: bool,
+    track: bool,
+) -> Result<Option<interrupt::Tracked>, IoError>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
 {
@@ -80,6 +97,10 @@ where
         path: dir.join(temp_name(&name)),
         keep: false,
     };
+    let tracked = match track {
+        true => Some(interrupt::register(&tmp.path, path).map_err(wrap)?),
+        false => None,
+    };
     let file = fs::OpenOptions::new()
         .write(true)
         .create_new(true)
@@ -92,11 +113,14 @@ where
         if sync {
             file.sync_all()?;
         }
-        fs::rename(&tmp.path, path)
+        match &tracked {
+            Some(t) => interrupt::rename(t, &tmp.path, path),
+            None => fs::rename(&tmp.path, path),
+        }
     })();
     // Renamed: nothing left to remove. Otherwise dropping `tmp` removes the temporary file.
     tmp.keep = result.is_ok();
-    result.map_err(wrap)
+    result.map(|_| tracked).map_err(wrap)
 }
 
 /// A temporary file that is removed when dropped (on an error, or a panic in the filler)

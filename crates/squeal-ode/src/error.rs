@@ -79,8 +79,8 @@ pub enum OdeError {
     /// The steady-state detector reached the end time without finding a
     /// steady oscillation.
     #[error(
-        "no steady oscillation by t = {t:.4} s: {cycles} cycles seen, last period {last_period:.4e} s, \
-         last peak-to-peak amplitude {last_amplitude:.3e}"
+        "no steady oscillation by t = {t:.4} s: {cycles} cycles seen; the last one lasted {last_period:.4e} s \
+         and its {observable} went {last_peak_to_peak:.3e} {unit} from lowest to highest (peak-to-peak)"
     )]
     NotSteady {
         /// Time reached.
@@ -89,7 +89,12 @@ pub enum OdeError {
         cycles: usize,
         /// Period of the last complete cycle (NaN if none).
         last_period: f64,
-        /// Peak-to-peak amplitude of the last complete cycle (NaN if none).
-        last_amplitude: f64,
+        /// Peak-to-peak (`max - min`) of the observable over the last complete cycle (NaN if
+        /// none), in `unit`.
+        last_peak_to_peak: f64,
+        /// What the observable is ([`crate::SteadyOptions::observable`]).
+        observable: String,
+        /// Its unit ([`crate::SteadyOptions::unit`]).
+        unit: String,
     },
 }

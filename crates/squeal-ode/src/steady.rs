@@ -2,7 +2,7 @@
 //!
 //! A scalar observable `g(y)` (e.g. one dof's displacement) is followed along
 //! the dense output. Cycles are delimited by successive upward crossings of a
-//! level; each cycle's period and peak-to-peak amplitude are measured
+//! level; each cycle's period and peak-to-peak (`max - min`) are measured
 //! (crossings by the Illinois method, extrema by golden-section search on the
 //! interpolant). The oscillation is declared steady when, over the last
 //! `cycles` consecutive cycles, the spread (max - min) of the periods and of
@@ -53,9 +53,14 @@ pub struct SteadyOptions {
     /// The observable is sampled at this many equal sub-intervals of each
     /// step to find crossings and extrema (>= 1).
     pub subdivisions: usize,
-    /// Cycles whose peak-to-peak amplitude is below this never count as
+    /// Cycles whose peak-to-peak (`max - min`) is below this never count as
     /// steady (guards against declaring decayed noise a limit cycle).
     pub min_amplitude: f64,
+    /// What the observable is, for messages (e.g. `"penetration rate of the most moving
+    /// pair"`).
+    pub observable: String,
+    /// The observable's unit, for messages (e.g. `"m/s"`).
+    pub unit: String,
 }
 
 impl Default for SteadyOptions {
@@ -68,6 +73,8 @@ impl Default for SteadyOptions {
             samples_per_cycle: 64,
             subdivisions: 4,
             min_amplitude: 0.0,
+            observable: "observable g(y)".into(),
+            unit: "(the unit of g)".into(),
         }
     }
 }
@@ -125,7 +132,8 @@ pub struct CycleRecord {
 }
 
 impl CycleRecord {
-    /// Peak-to-peak amplitude `max - min`.
+    /// The peak-to-peak `max - min` (outputs call it peak-to-peak; an amplitude there is half
+    /// of it).
     pub fn amplitude(&self) -> f64 {
         self.max - self.min
     }
@@ -136,7 +144,7 @@ impl CycleRecord {
 pub struct SteadyState {
     /// Period of the last cycle.
     pub period: f64,
-    /// Peak-to-peak amplitude of the observable over the last cycle.
+    /// Peak-to-peak (`max - min`) of the observable over the last cycle.
     pub amplitude: f64,
     /// Start (upward crossing) of the last cycle.
     pub t_start: f64,
@@ -221,7 +229,9 @@ impl<G: FnMut(&[f64]) -> f64> OscillationMonitor<G> {
             t,
             cycles: self.completed,
             last_period: last.map_or(f64::NAN, |r| r.period),
-            last_amplitude: last.map_or(f64::NAN, |r| r.amplitude()),
+            last_peak_to_peak: last.map_or(f64::NAN, |r| r.amplitude()),
+            observable: self.opts.observable.clone(),
+            unit: self.opts.unit.clone(),
         }
     }
 

@@ -194,3 +194,36 @@ fn decaying_oscillation_is_not_steady() {
         other => panic!("unexpected {other:?}"),
     }
 }
+
+/// Issue 22: the message said "last peak-to-peak amplitude 1.277e0" with no unit and no word
+/// of what oscillated. It now names the observable, its unit and what the number is.
+#[test]
+fn not_steady_names_the_observable_its_unit_and_the_peak_to_peak() {
+    let sys = complex_pair(-0.05, 1.0);
+    let opts = BdfOptions {
+        rtol: 1e-8,
+        atol: Atol::Scalar(1e-10),
+        ..Default::default()
+    };
+    let mut bdf = Bdf::new(&sys, 0.0, &[0.0, -1.0], 100.0, &opts).unwrap();
+    let steady = SteadyOptions {
+        observable: "velocity of the mass".into(),
+        unit: "m/s".into(),
+        ..Default::default()
+    };
+    let err = run_to_steady_state(&mut bdf, |y: &[f64]| y[1], &steady).unwrap_err();
+    let OdeError::NotSteady {
+        last_peak_to_peak, ..
+    } = &err
+    else {
+        panic!("unexpected {err:?}");
+    };
+    let shown = err.to_string();
+    assert!(
+        shown.contains(&format!(
+            "its velocity of the mass went {last_peak_to_peak:.3e} m/s from lowest to highest (peak-to-peak)"
+        )),
+        "{shown}"
+    );
+    assert!(!shown.contains("amplitude"), "{shown}");
+}

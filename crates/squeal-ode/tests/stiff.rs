@@ -46,7 +46,7 @@ fn robertson_reference() {
 /// output, accurate to ~rtol; their difference over one period to a few
 /// rtol x T). The amplitude max |x| = 2.00861986087484 (HNW, also a known
 /// constant of the mu = 1 cycle) checks the peak search and the Fourier
-/// series: half the peak-to-peak amplitude, and the maximum of the
+/// series: half the peak-to-peak, and the maximum of the
 /// reconstructed 25-harmonic series, both within 1e-6 (the truncated series
 /// of the smooth cycle converges geometrically; 25 harmonics leave < 1e-8).
 #[test]

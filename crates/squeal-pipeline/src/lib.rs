@@ -42,6 +42,7 @@ pub mod pictures;
 pub mod progress;
 pub mod reduce;
 pub mod report;
+pub mod restraints;
 pub mod shapes;
 pub mod sound;
 pub mod stability;

@@ -2,11 +2,19 @@
 //! and element sets, materials (the file's and those given on the command line), volume and
 //! Jacobian quality, dofs and nonzeros of K and M, the mass, and the quality findings with
 //! their ids.
+//!
+//! A mesh written in another consistent system (`--units mm`: mm, tonne, s, N, MPa) is
+//! converted to SI on reading ([`read_in`]), with the `--material` constants given in that
+//! system ([`material_in`]); everything is then printed in SI with its unit, and values no
+//! structural part has (its size, moduli, densities: [`squeal_mesh::units::plausibility`], as
+//! with a scene) are warned about.
 
 use crate::error::{PipelineError, Result};
 use squeal_fe::ElasticMaterial;
 use squeal_mesh::quality::{self, QualityOptions, Severity};
+use squeal_mesh::units::{SYSTEMS, UnitSystem, check_density, check_modulus, plausibility};
 use squeal_mesh::{Elastic, Mesh, ReadMesh};
+use squeal_report::format::fmt_sig;
 use std::fmt::Display;
 use std::path::Path;
 use std::time::Instant;
@@ -17,16 +25,89 @@ fn line(s: &mut String, text: impl Display) {
     s.push('\n');
 }
 
-/// One mesh's summary, and whether the quality checks found errors.
+/// The unit system `--units` names: `m` (SI), `mm` (mm, tonne, s, N, MPa: `mm-t-s`), `in`
+/// (`in-lbf-s`), or any system's own name ([`SYSTEMS`]).
+pub fn units_named(name: &str) -> Result<UnitSystem> {
+    let system = match name.trim().to_ascii_lowercase().as_str() {
+        "m" => Some(SYSTEMS[0]),
+        "mm" => Some(SYSTEMS[1]),
+        "in" => Some(SYSTEMS[4]),
+        _ => UnitSystem::named(name),
+    };
+    system.ok_or_else(|| {
+        PipelineError::input(
+            "--units",
+            format!(
+                "'{name}' is not a unit system: give m (SI), mm (mm-t-s: mm, tonne, s, N, MPa), in (in-lbf-s) or one of {}",
+                UnitSystem::names()
+            ),
+        )
+    })
+}
+
+/// A mesh read in `units` converted to SI in place, and the warnings about values no brake
+/// part has (its size, its materials' moduli and densities), each naming the file and, when
+/// another system would make it plausible, the `--units` that says so.
+pub fn read_in(path: &Path, read: &mut ReadMesh, units: &UnitSystem) -> Vec<String> {
+    units.to_si(&mut read.mesh);
+    plausibility(&read.mesh, units)
+        .into_iter()
+        .map(|w| format!("{}: {w}{}", path.display(), units_hint(&w)))
+        .collect()
+}
+
+/// `; give --units <system>` when a warning names a system that would fit.
+fn units_hint(warning: &str) -> &'static str {
+    match warning.contains("would be plausible") {
+        true => " (--units names the file's system)",
+        false => "",
+    }
+}
+
+/// A `--material` given in `units` (modulus in its stress unit, density in its density unit)
+/// in SI, and the warnings about a modulus or density no structural solid has.
+pub fn material_in(
+    set: &str,
+    m: ElasticMaterial,
+    units: &UnitSystem,
+) -> (ElasticMaterial, Vec<String>) {
+    let si = match m {
+        ElasticMaterial::Isotropic {
+            young,
+            poisson,
+            density,
+        } => ElasticMaterial::isotropic(young * units.stress(), poisson, density * units.density()),
+        other => other,
+    };
+    let what = format!("--material {set}");
+    let mut warnings = Vec::new();
+    if let ElasticMaterial::Isotropic { young, density, .. } = si {
+        for w in [
+            check_modulus(&what, young, units),
+            check_density(&what, density, units),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            let hint = units_hint(&w);
+            warnings.push(format!("{w}{hint}"));
+        }
+    }
+    (si, warnings)
+}
+
+/// One mesh's summary, and whether the quality checks found errors. `read` is in SI (read in
+/// `units`, [`read_in`]); the summary says in which system the file was read.
 pub fn summary_text(
     path: &Path,
     read: &ReadMesh,
     elapsed: std::time::Duration,
     all_ids: bool,
     overrides: &[(String, ElasticMaterial)],
+    units: &UnitSystem,
 ) -> Result<(String, bool)> {
     let mut s = String::new();
-    let errors = summary(&mut s, path, read, elapsed, all_ids, overrides)?;
+    let errors = summary(&mut s, path, read, elapsed, all_ids, overrides, units)?;
     Ok((s, errors))
 }
 
@@ -37,6 +118,7 @@ fn summary(
     elapsed: std::time::Duration,
     all_ids: bool,
     overrides: &[(String, ElasticMaterial)],
+    units: &UnitSystem,
 ) -> Result<bool> {
     let m = &read.mesh;
     line(s, format_args!("{}", path.display()));
@@ -46,6 +128,19 @@ fn summary(
             "  read in {:.3} s ({} warning(s))",
             elapsed.as_secs_f64(),
             read.warnings.len()
+        ),
+    );
+    line(
+        s,
+        format_args!(
+            "  units     read as {} ({}), shown in SI{}",
+            units.name,
+            units.description,
+            if units.is_si() {
+                " (--units mm for a file in mm, tonne, N, MPa)"
+            } else {
+                ""
+            }
         ),
     );
     line(s, format_args!("  nodes     {:>10}", m.num_nodes()));
@@ -68,7 +163,7 @@ fn summary(
         line(
             s,
             format_args!(
-                "  bounds    x [{:.6}, {:.6}]  y [{:.6}, {:.6}]  z [{:.6}, {:.6}]",
+                "  bounds    x [{:.6}, {:.6}]  y [{:.6}, {:.6}]  z [{:.6}, {:.6}] m",
                 lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
             ),
         );
@@ -274,7 +369,7 @@ fn materials(s: &mut String, m: &Mesh, overrides: &[(String, ElasticMaterial)]) 
         };
         let rho = mat
             .density
-            .map(|r| format!(", rho = {r} kg/m^3"))
+            .map(|r| format!(", rho = {} kg/m^3", fmt_sig(r, 6)))
             .unwrap_or_else(|| ", no density".into());
         line(s, format_args!("    {name:<24} {elastic}{rho}"));
     }
@@ -287,7 +382,10 @@ fn describe(m: &ElasticMaterial) -> String {
             young,
             poisson,
             density,
-        } => format!("E = {young:.4e} Pa, nu = {poisson}, rho = {density} kg/m^3"),
+        } => format!(
+            "E = {young:.4e} Pa, nu = {poisson}, rho = {} kg/m^3",
+            fmt_sig(density, 6)
+        ),
         _ => "anisotropic".to_string(),
     }
 }

@@ -160,6 +160,7 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
         )),
         Freshness::Missing => {}
     }
+    crate::restraints::check_held(scene, &parts, &inputs)?;
     log(&format!(
         "reduced model: reducing {} ...",
         inputs

@@ -601,8 +601,28 @@ pub fn damping_text(s: &Model, st: &Stability) -> String {
     )
 }
 
-/// `branches.csv`, `stability.csv`, `equilibrium.csv` (the frictionless equilibrium pair by
-/// pair) and `summary.json`.
+/// The damping columns of `stability.csv`: `damping_ratio_all_modes`, and with extra damping
+/// on the pair `damping_ratio_extra_mode<a>`, `damping_ratio_extra_mode<b>` (1-based modes).
+fn damping_columns(s: &Model, st: &Stability) -> Vec<(String, f64)> {
+    let d = &s.damping;
+    let mut out = vec![("damping_ratio_all_modes".to_string(), d.global_ratio)];
+    if let Some((a, b)) = st.pair
+        && d.pair_ratios.iter().any(|r| *r != 0.0)
+    {
+        out.push((
+            format!("damping_ratio_extra_mode{}", a + 1),
+            d.pair_ratios[0],
+        ));
+        out.push((
+            format!("damping_ratio_extra_mode{}", b + 1),
+            d.pair_ratios[1],
+        ));
+    }
+    out
+}
+
+/// `branches.csv`, `stability.csv` (with the damping used as its last columns),
+/// `equilibrium.csv` (the frictionless equilibrium pair by pair) and `summary.json`.
 pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
     let sw = &st.sweep;
     let tau = threshold(s, st);
@@ -637,6 +657,10 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
     }
     header.push("unstable_in_band".into());
     header.push("unstable_outside_band".into());
+    // The damping used (eqs 12-13), as the summary says it: the ratio on every mode, and the
+    // pair's extra ratios when there are any (issue 22: the table must say what it assumed).
+    let damping = damping_columns(s, st);
+    header.extend(damping.iter().map(|d| d.0.clone()));
     let mut t = Table::new(header);
     for (k, p) in sw.points.iter().enumerate() {
         let mut row = vec![format!("{}", p.equilibrium.mu)];
@@ -656,6 +680,7 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
         }
         row.push(inb.to_string());
         row.push(outb.to_string());
+        row.extend(damping.iter().map(|d| d.1.to_string()));
         t.push_row(row);
     }
     t.write_csv(&dir.join("stability.csv"))?;
