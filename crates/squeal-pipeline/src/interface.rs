@@ -15,6 +15,7 @@
 use crate::error::{PipelineError, Result};
 use crate::model::{Log, Model};
 use squeal_brake::interface_reduced::project_brake;
+use squeal_brake::sweep::{PROJECT_ABOVE, SweepMethod};
 use squeal_reduce::interface_modes::{
     InterfaceModes, characteristic_constraint_modes, transformed_part,
 };
@@ -263,6 +264,17 @@ pub fn at_count(model: &Model, modes: &[InterfaceModes], k: usize) -> Result<Mod
         })
         .collect::<Result<Vec<_>>>()?;
     let (brake, layout) = project_brake(&model.brake, &model.layout, &ordered)?;
+    // The sweep's continuation borders `T(λ)` with one column per pair (355 on the coarse
+    // nodal brake), whatever the size: on a brake smaller than its pair count a dense
+    // eigen-decomposition per friction value is cheaper (`SweepMethod::Dense`; above
+    // `PROJECT_ABOVE` dofs `Auto` projects, as for any brake).
+    let mut sweep = model.sweep.clone();
+    if sweep.method == SweepMethod::Auto
+        && brake.pairs.len() > brake.size()
+        && brake.size() <= PROJECT_ABOVE
+    {
+        sweep.method = SweepMethod::Dense;
+    }
     let mut rom = model.rom.clone();
     for (part, block) in rom.parts.iter_mut().zip(&blocks) {
         *part = transformed_part(part, block);
@@ -276,7 +288,7 @@ pub fn at_count(model: &Model, modes: &[InterfaceModes], k: usize) -> Result<Mod
         params: model.params.clone(),
         damping: model.damping.clone(),
         damping_from: model.damping_from.clone(),
-        sweep: model.sweep.clone(),
+        sweep,
         disc_mesh: model.disc_mesh.clone(),
         pad_meshes: model.pad_meshes.clone(),
         disc: model.disc,
