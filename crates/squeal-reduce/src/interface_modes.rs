@@ -102,6 +102,17 @@ pub fn face_dofs(part: &ReducedPart) -> Vec<usize> {
 
 /// The CC modes of `part`'s contact face: the pencil `(K̂_cc, M̂_cc)` solved densely.
 pub fn characteristic_constraint_modes(part: &ReducedPart) -> Result<InterfaceModes, ReduceError> {
+    characteristic_constraint_modes_loaded(part, None)
+}
+
+/// The CC modes of the face loaded by a stiffness `K_s` on the part's reduced dofs (`size ×
+/// size`; only its face block is used): the pencil `(K̂_cc + K_s,cc, M̂_cc)`. With `K_s` the
+/// contact springs' tangent stiffness at the frictionless equilibrium, the other part held,
+/// the modes are the face's shapes under its contact rather than free of it.
+pub fn characteristic_constraint_modes_loaded(
+    part: &ReducedPart,
+    springs: Option<&Mat<f64>>,
+) -> Result<InterfaceModes, ReduceError> {
     let name = part.info.name.clone();
     let invalid = |what: String| ReduceError::Invalid {
         part: name.clone(),
@@ -114,8 +125,9 @@ pub fn characteristic_constraint_modes(part: &ReducedPart) -> Result<InterfaceMo
         ));
     }
     let nc = c.len();
+    let extra = |i: usize, j: usize| springs.map_or(0.0, |s| s[(c[i], c[j])] + s[(c[j], c[i])]);
     let k = Mat::from_fn(nc, nc, |i, j| {
-        0.5 * (part.k[(c[i], c[j])] + part.k[(c[j], c[i])])
+        0.5 * (part.k[(c[i], c[j])] + part.k[(c[j], c[i])] + extra(i, j))
     });
     let m = Mat::from_fn(nc, nc, |i, j| {
         0.5 * (part.m[(c[i], c[j])] + part.m[(c[j], c[i])])
