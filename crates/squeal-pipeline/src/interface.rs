@@ -15,8 +15,9 @@
 use crate::error::{PipelineError, Result};
 use crate::model::{Log, Model};
 use squeal_brake::interface_reduced::project_brake;
+use squeal_brake::sweep::{PROJECT_ABOVE, SweepMethod};
 use squeal_reduce::interface_modes::{
-    InterfaceModes, characteristic_constraint_modes, transformed_part,
+    InterfaceModes, characteristic_constraint_modes_loaded, transformed_part,
 };
 use squeal_scene::Scene;
 use squeal_scene::reduction::InterfaceModeCount;
@@ -131,12 +132,7 @@ pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
         return Ok(model);
     };
     let t = Instant::now();
-    let modes = model
-        .rom
-        .parts
-        .iter()
-        .map(characteristic_constraint_modes)
-        .collect::<std::result::Result<Vec<_>, _>>()?;
+    let modes = loaded_modes(&model)?;
     log(&format!(
         "interface reduction: CC modes of {} in {:.1} s",
         modes
@@ -226,6 +222,42 @@ pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
     }
 }
 
+/// Each part's CC modes with the contact springs' tangent stiffness at the frictionless
+/// static equilibrium on its face (the other part held), in the rom's part order.
+pub fn loaded_modes(model: &Model) -> Result<Vec<InterfaceModes>> {
+    let eq = squeal_brake::equilibrium::static_equilibrium(
+        &model.brake,
+        0.0,
+        None,
+        &model.sweep.newton,
+    )?;
+    let (ks, _) = model.brake.nonlinear_jacobian(&eq.x, 0.0, false);
+    let ranges: Vec<(&str, std::ops::Range<usize>)> =
+        std::iter::once(("disc", model.layout.disc.clone()))
+            .chain(
+                model
+                    .layout
+                    .pads
+                    .iter()
+                    .map(|p| (p.0.as_str(), p.1.clone())),
+            )
+            .collect();
+    model
+        .rom
+        .parts
+        .iter()
+        .map(|part| {
+            let r = ranges
+                .iter()
+                .find(|(n, _)| *n == part.info.name)
+                .map(|x| x.1.clone())
+                .ok_or(PipelineError::NoPart { part: "pad" })?;
+            let block = faer::Mat::from_fn(r.len(), r.len(), |i, j| ks[(r.start + i, r.start + j)]);
+            Ok(characteristic_constraint_modes_loaded(part, Some(&block))?)
+        })
+        .collect()
+}
+
 /// Why two counts' Hopf points agree to `tol` (relative, in μ0 and in frequency), or `None`.
 fn agree(a: Option<(f64, f64)>, b: Option<(f64, f64)>, tol: f64) -> Option<String> {
     match (a, b) {
@@ -263,6 +295,17 @@ pub fn at_count(model: &Model, modes: &[InterfaceModes], k: usize) -> Result<Mod
         })
         .collect::<Result<Vec<_>>>()?;
     let (brake, layout) = project_brake(&model.brake, &model.layout, &ordered)?;
+    // The sweep's continuation borders `T(λ)` with one column per pair (355 on the coarse
+    // nodal brake), whatever the size: on a brake smaller than its pair count a dense
+    // eigen-decomposition per friction value is cheaper (`SweepMethod::Dense`; above
+    // `PROJECT_ABOVE` dofs `Auto` projects, as for any brake).
+    let mut sweep = model.sweep;
+    if sweep.method == SweepMethod::Auto
+        && brake.pairs.len() > brake.size()
+        && brake.size() <= PROJECT_ABOVE
+    {
+        sweep.method = SweepMethod::Dense;
+    }
     let mut rom = model.rom.clone();
     for (part, block) in rom.parts.iter_mut().zip(&blocks) {
         *part = transformed_part(part, block);
@@ -274,9 +317,9 @@ pub fn at_count(model: &Model, modes: &[InterfaceModes], k: usize) -> Result<Mod
         layout,
         pairs: model.pairs.clone(),
         params: model.params.clone(),
-        damping: model.damping.clone(),
+        damping: model.damping,
         damping_from: model.damping_from.clone(),
-        sweep: model.sweep.clone(),
+        sweep,
         disc_mesh: model.disc_mesh.clone(),
         pad_meshes: model.pad_meshes.clone(),
         disc: model.disc,
