@@ -33,6 +33,7 @@ pub mod chbm;
 pub mod compare;
 pub mod cycle;
 mod error;
+pub mod full;
 pub mod mesh_info;
 pub mod model;
 pub mod parts;
