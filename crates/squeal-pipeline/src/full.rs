@@ -29,6 +29,7 @@
 //! near the band by shift-invert Arnoldi ([`squeal_eigs::quadratic`]).
 
 pub mod onset;
+pub mod run;
 
 use crate::error::{PipelineError, Result};
 use crate::model::Model;

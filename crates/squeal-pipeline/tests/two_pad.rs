@@ -9,11 +9,12 @@
 //! 1. the reduced brake (patch interface, 50 modes per part) is solved at μ = 0 under the
 //!    clamp force, and each pair's tangent contact stiffness `k_t = k_l + 3 k_nl δ²` taken
 //!    there; the reduced frequencies are those of `(K + Σ k_t g gᵀ, M)`;
-//! 2. the full model stacks each part's `K` and `M` on its mesh, with the reduction's
-//!    restraints (disc `CLAMP` all dofs, each pad `ABUTMENT` in x and y, load points free),
-//!    and joins them by the same springs: `K += k_t g gᵀ`, `g` the disc patch's
-//!    area-weighted mean motion along the pair normal minus the pad patch's, with the
-//!    patches and weights the reduction uses ([`squeal_reduce::interface::patches`]);
+//! 2. the full model ([`squeal_pipeline::full::full_brake`]) stacks each part's `K` and `M`
+//!    on its mesh, with the reduction's restraints (disc `CLAMP` all dofs, each pad
+//!    `ABUTMENT` in x and y, load points free), and joins them by the same springs:
+//!    `K += k_t g gᵀ`, `g` the disc patch's area-weighted mean motion along the pair normal
+//!    minus the pad patch's, with the patches and weights the reduction uses
+//!    ([`squeal_reduce::interface::patches`]);
 //! 3. its lowest 20 eigenvalues come from the sparse shift-invert Lanczos of squeal-eigs.
 //!
 //! The Craig–Bampton basis of each part, stacked, spans a subspace of the full model's dofs
