@@ -25,6 +25,14 @@ pub struct StabilityArgs {
     /// Skip the VTU files of the equilibrium and mode shape
     #[arg(long)]
     pub no_vtu: bool,
+    /// Also solve the full finite-element brake (no reduction: every contact pair's
+    /// linearized springs and friction on the meshes) and compare its mu0 and frequency with
+    /// the reduced brake's, both without modal damping; written to <out>/stability/full.txt
+    #[arg(long)]
+    pub full: bool,
+    /// With --full: only the full model's eigenvalues in the band at this friction value
+    #[arg(long, requires = "full")]
+    pub full_mu: Option<f64>,
 }
 
 /// The pipeline of a scene with the friction values of `--mu` (or the scene's).
@@ -58,6 +66,14 @@ pub fn take_folder(scene: &Path, out: &Path) -> Result<()> {
 pub fn run(args: StabilityArgs) -> Result<ExitCode> {
     let p = pipeline(&args.scene, &args.out, &args.mu)?;
     write(&p, !args.no_vtu)?;
+    if args.full {
+        if let Some(mu) = args.full_mu.filter(|mu| !mu.is_finite() || *mu < 0.0) {
+            anyhow::bail!("--full-mu {mu}: give a friction coefficient, a finite number >= 0");
+        }
+        let text = squeal_pipeline::full::run::full_check(&p, args.full_mu)
+            .context("the full-model check (--full)")?;
+        print!("{text}");
+    }
     Ok(ExitCode::SUCCESS)
 }
 

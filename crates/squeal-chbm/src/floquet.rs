@@ -57,6 +57,7 @@ use rayon::prelude::*;
 use squeal_brake::dynamics::state_jacobian;
 use squeal_brake::harmonic::ModalSolver;
 use squeal_brake::modal_brake::ModalBrake;
+use squeal_eigs::arnoldi::{Arnoldi, RitzPair};
 use squeal_hbm::{HarmonicLayout, HbmError, Part};
 use squeal_ode::{Atol, Bdf, BdfOptions, OdeSystem};
 use std::borrow::Cow;
@@ -631,132 +632,6 @@ impl<'a> Hill<'a> {
     }
 }
 
-/// A deterministic start vector (xorshift), the same for every run and thread count.
-fn start_vector(len: usize) -> Vec<c64> {
-    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut next = || {
-        state ^= state >> 12;
-        state ^= state << 25;
-        state ^= state >> 27;
-        (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    (0..len).map(|_| c64::new(next(), next())).collect()
-}
-
-/// An Arnoldi factorization `op V_m = V_{m+1} H_m`, grown a step at a time (orthogonalized
-/// twice by classical Gram–Schmidt with matrix–vector products).
-struct Arnoldi {
-    /// Basis, column-major, `m + 1` columns of `len` (grown as the steps go: most shifts
-    /// converge long before the largest dimension, so its storage is never allocated whole).
-    v: Vec<c64>,
-    len: usize,
-    /// Hessenberg, `(max + 1) × max`.
-    h: Mat<c64>,
-    /// Steps taken.
-    m: usize,
-    /// The Krylov space is invariant (the Ritz values are exact).
-    invariant: bool,
-}
-
-impl Arnoldi {
-    fn new(len: usize, max: usize) -> Self {
-        let mut a = Self {
-            v: Vec::new(),
-            len,
-            h: Mat::zeros(max + 1, max),
-            m: 0,
-            invariant: false,
-        };
-        a.restart();
-        a
-    }
-
-    /// Starts again from the start vector, keeping the storage of the basis.
-    fn restart(&mut self) {
-        let q = start_vector(self.len);
-        let nq = q.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
-        self.v.clear();
-        self.v.extend(q.iter().map(|x| x / nq));
-        self.h.fill(c64::new(0.0, 0.0));
-        self.m = 0;
-        self.invariant = false;
-    }
-
-    fn step(&mut self, op: &dyn Fn(&[c64]) -> Vec<c64>) {
-        let j = self.m;
-        let len = self.len;
-        let mut w = op(&self.v[j * len..(j + 1) * len]);
-        let basis = MatRef::from_column_major_slice(&self.v[..(j + 1) * len], len, j + 1);
-        let mut c = vec![c64::new(0.0, 0.0); j + 1];
-        for _ in 0..2 {
-            // c = Vᴴ w, w ← w - V c.
-            matmul(
-                MatMut::from_column_major_slice_mut(&mut c, j + 1, 1),
-                Accum::Replace,
-                basis.adjoint(),
-                MatRef::from_column_major_slice(&w, len, 1),
-                c64::new(1.0, 0.0),
-                Par::Seq,
-            );
-            matmul(
-                MatMut::from_column_major_slice_mut(&mut w, len, 1),
-                Accum::Add,
-                basis,
-                MatRef::from_column_major_slice(&c, j + 1, 1),
-                c64::new(-1.0, 0.0),
-                Par::Seq,
-            );
-            for (i, ci) in c.iter().enumerate() {
-                self.h[(i, j)] += ci;
-            }
-        }
-        let nw = faer::ColRef::from_slice(&w).norm_l2();
-        self.h[(j + 1, j)] = c64::new(nw, 0.0);
-        self.m += 1;
-        let scale = (0..=j).map(|i| self.h[(i, j)].norm()).fold(nw, f64::max);
-        // A NaN norm also ends the basis (it is not > the threshold).
-        if nw.partial_cmp(&(1e-13 * scale)) != Some(std::cmp::Ordering::Greater) {
-            self.invariant = true;
-            return;
-        }
-        self.v.extend(w.iter().map(|x| x / nw));
-    }
-
-    /// Ritz values with residual estimates, and the coefficients of their vectors.
-    fn ritz(&self) -> Result<Vec<(c64, f64, Vec<c64>)>, FloquetError> {
-        let m = self.m;
-        let hm = self.h.submatrix(0, 0, m, m).to_owned();
-        let evd = hm.eigen().map_err(|_| FloquetError::Eigen {
-            what: "Arnoldi Hessenberg",
-        })?;
-        let (s, u) = (evd.S(), evd.U());
-        let beta = if self.invariant {
-            0.0
-        } else {
-            self.h[(m, m - 1)].norm()
-        };
-        Ok((0..m)
-            .map(|k| {
-                let y: Vec<c64> = (0..m).map(|i| u[(i, k)]).collect();
-                let ny = y.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
-                let y: Vec<c64> = y.iter().map(|x| x / ny).collect();
-                (s[k], beta * y[m - 1].norm(), y)
-            })
-            .collect())
-    }
-
-    /// The Ritz vector of coefficients `y`.
-    fn vector(&self, y: &[c64]) -> Vec<c64> {
-        let mut x = vec![c64::new(0.0, 0.0); self.len];
-        for (c, v) in y.iter().zip(self.v.chunks_exact(self.len)) {
-            for (xi, vi) in x.iter_mut().zip(v) {
-                *xi += c * vi;
-            }
-        }
-        x
-    }
-}
-
 fn dot(a: &[c64], b: &[c64]) -> c64 {
     a.iter().zip(b).map(|(x, y)| x.conj() * y).sum()
 }
@@ -834,15 +709,22 @@ pub fn hill(
         // coverage 0.005: 12 of 102 verdicts wrong).
         let mut check = 12.min(max_krylov);
         loop {
-            while arnoldi.m < check && !arnoldi.invariant {
+            while arnoldi.steps() < check && !arnoldi.is_invariant() {
                 arnoldi.step(&op);
             }
-            let ritz = arnoldi.ritz()?;
+            let ritz = arnoldi.ritz().map_err(|_| FloquetError::Eigen {
+                what: "Arnoldi Hessenberg",
+            })?;
             // Converged Ritz values as exponents; the nearest unconverged one bounds the disk
             // in which every exponent was found.
             let mut radius = f64::INFINITY;
             let mut cell = Vec::new();
-            for (theta, res, y) in ritz {
+            for RitzPair {
+                value: theta,
+                residual: res,
+                coefficients: y,
+            } in ritz
+            {
                 if theta.norm() == 0.0 {
                     continue;
                 }
@@ -867,7 +749,7 @@ pub fn hill(
                     radius = radius.min((sigma - centre).norm());
                 }
             }
-            if radius >= need || arnoldi.m >= max_krylov || arnoldi.invariant {
+            if radius >= need || arnoldi.steps() >= max_krylov || arnoldi.is_invariant() {
                 let r = radius.min(need);
                 let covered = if r > half_height {
                     (r * r - half_height * half_height).sqrt()
@@ -880,7 +762,7 @@ pub fn hill(
             }
             check = (check + 4).min(max_krylov);
         }
-        solves += arnoldi.m;
+        solves += arnoldi.steps();
     }
     // The trivial exponent: the eigenvector most parallel to the cycle's velocity.
     let trivial_index = found

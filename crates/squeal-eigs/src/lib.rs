@@ -25,8 +25,12 @@
 //! - [`count_below`] / [`count_below_constrained`] / [`inertia`]: Sturm
 //!   counts from a sparse LBL^T (inside the eigensolver on the factor's
 //!   symbolic analysis or ordering).
+//! - [`arnoldi`]: a complex Arnoldi factorization for shift-invert solvers of non-symmetric
+//!   problems; [`quadratic`]: the eigenvalues of a sparse quadratic eigenproblem
+//!   `(λ² M + λ C + K) x = 0` near a segment of the imaginary axis (the full-model brake).
 //! - [`model_problems`]: matrices with known spectra for tests and benchmarks.
 
+pub mod arnoldi;
 mod block;
 mod cholesky;
 mod constraint;
@@ -35,6 +39,7 @@ mod inertia;
 mod lanczos;
 pub mod model_problems;
 mod ordering;
+pub mod quadratic;
 mod slicing;
 mod solver;
 mod sparse;

@@ -21,6 +21,8 @@ pub enum PipelineError {
     },
     #[error(transparent)]
     Brake(#[from] squeal_brake::BrakeError),
+    #[error("the full model's eigenvalues: {0}")]
+    Eigs(#[from] squeal_eigs::EigError),
     #[error(transparent)]
     Chbm(#[from] squeal_chbm::ChbmError),
     #[error(transparent)]

@@ -34,6 +34,7 @@ pub mod compare;
 pub mod cycle;
 mod error;
 pub mod folder;
+pub mod full;
 pub mod interface;
 pub mod mesh_info;
 pub mod model;

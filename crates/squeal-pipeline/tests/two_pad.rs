@@ -9,11 +9,12 @@
 //! 1. the reduced brake (patch interface, 50 modes per part) is solved at μ = 0 under the
 //!    clamp force, and each pair's tangent contact stiffness `k_t = k_l + 3 k_nl δ²` taken
 //!    there; the reduced frequencies are those of `(K + Σ k_t g gᵀ, M)`;
-//! 2. the full model stacks each part's `K` and `M` on its mesh, with the reduction's
-//!    restraints (disc `CLAMP` all dofs, each pad `ABUTMENT` in x and y, load points free),
-//!    and joins them by the same springs: `K += k_t g gᵀ`, `g` the disc patch's
-//!    area-weighted mean motion along the pair normal minus the pad patch's, with the
-//!    patches and weights the reduction uses ([`squeal_reduce::interface::patches`]);
+//! 2. the full model ([`squeal_pipeline::full::full_brake`]) stacks each part's `K` and `M`
+//!    on its mesh, with the reduction's restraints (disc `CLAMP` all dofs, each pad
+//!    `ABUTMENT` in x and y, load points free), and joins them by the same springs:
+//!    `K += k_t g gᵀ`, `g` the disc patch's area-weighted mean motion along the pair normal
+//!    minus the pad patch's, with the patches and weights the reduction uses
+//!    ([`squeal_reduce::interface::patches`]);
 //! 3. its lowest 20 eigenvalues come from the sparse shift-invert Lanczos of squeal-eigs.
 //!
 //! The Craig–Bampton basis of each part, stacked, spans a subspace of the full model's dofs
@@ -23,17 +24,17 @@
 //! same rank.
 
 use faer::Mat;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::SparseColMat;
 use squeal_brake::Brake;
 use squeal_brake::equilibrium::{Equilibrium, NewtonOptions, static_equilibrium};
 use squeal_brake::modal::modal_basis;
 use squeal_eigs::{EigOptions, lowest_modes};
-use squeal_fe::{DofMap, MaterialTable, Restraint, System, assemble};
+use squeal_fe::Restraint;
+use squeal_pipeline::full::{FullBrake, full_brake};
 use squeal_pipeline::model::{Model, model_on, quiet};
 use squeal_pipeline::parts::{SceneParts, brake_inputs, load_parts};
 use squeal_reduce::brake::{BrakeInputs, ModeChoice, reduce_brake_loaded};
 use squeal_reduce::craig_bampton::hz;
-use squeal_reduce::interface::{Patch, patches};
 use squeal_scene::Scene;
 use std::ops::Range;
 use std::path::PathBuf;
@@ -135,180 +136,17 @@ fn reduced_modes(m: &Mat<f64>, kt: &Mat<f64>, parts: &[Range<usize>]) -> (Vec<f6
     (f, shares)
 }
 
-/// One part of the full model: its free dofs and matrices.
-struct FullPart {
-    name: String,
-    dofmap: DofMap,
-    system: System,
-    offset: usize,
-}
-
-/// The full model: the parts' `K`, `M` stacked, and the springs.
-struct Full {
-    parts: Vec<FullPart>,
-    k: SparseColMat<usize, f64>,
-    m: SparseColMat<usize, f64>,
-}
-
-/// The patch `number` of `face_set` on `mesh`, cut as the reduction cuts it.
-fn patch(mesh: &squeal_mesh::Mesh, face_set: &str, number: usize, inputs: &BrakeInputs) -> Patch {
-    patches(mesh, face_set, inputs.grid[0], inputs.grid[1], &inputs.axis)
-        .unwrap()
-        .into_iter()
-        .find(|p| p.number == number)
-        .unwrap()
-}
-
-/// The full finite-element model of the brake `model` (reduced from `parts` with `inputs`)
-/// joined by springs `k` (one per pair of `model.pairs`).
-fn full_model(parts: &SceneParts, inputs: &BrakeInputs, model: &Model, k: &[f64]) -> Full {
-    let mut full = Vec::new();
-    let mut offset = 0;
-    for (name, input) in inputs.parts() {
-        // The bundled brake's axis is z: plain restraints, no node frames.
-        assert!(input.skew_restraints.is_empty());
-        let mesh = &parts.part(name).unwrap().mesh;
-        let materials = MaterialTable::from_mesh(mesh, &input.material_overrides).unwrap();
-        let dofmap = DofMap::new(mesh, &input.restraints).unwrap();
-        let system = assemble(mesh, &materials, &dofmap).unwrap();
-        let n = system.num_dofs();
-        full.push(FullPart {
-            name: name.to_string(),
-            dofmap,
-            system,
-            offset,
-        });
-        offset += n;
-    }
-    let n = offset;
-    let mut kt = Vec::new();
-    let mut mt = Vec::new();
-    for p in &full {
-        for (a, out) in [(&p.system.k, &mut kt), (&p.system.m, &mut mt)] {
-            for j in 0..a.ncols() {
-                for (i, &v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
-                    out.push(Triplet::new(p.offset + i, p.offset + j, v));
-                }
-            }
-        }
-    }
-    let disc_rom = model.rom.part("disc").unwrap();
-    let surfaces = inputs.disc.surfaces();
-    for (pairing, &kp) in model.pairs.iter().zip(k) {
-        let dp = &disc_rom.info.points[pairing.disc_point];
-        let g = if dp.projected.is_some() {
-            nodal_vector(parts, model, pairing, &full)
-        } else {
-            patch_vector(parts, inputs, model, pairing, &surfaces, &full)
-        };
-        for &(i, gi) in &g {
-            for &(j, gj) in &g {
-                kt.push(Triplet::new(i, j, kp * (gi * gj)));
-            }
-        }
-    }
-    Full {
-        parts: full,
-        k: SparseColMat::try_new_from_triplets(n, n, &kt).unwrap(),
-        m: SparseColMat::try_new_from_triplets(n, n, &mt).unwrap(),
-    }
-}
-
-/// Components of n below 64 ε are dropped, as the reduced brake drops them.
-const NEGLIGIBLE: f64 = 64.0 * f64::EPSILON;
-
-/// The free dof of node `id` of part `name` along `d` in the full model.
-fn full_dof(parts: &SceneParts, full: &[FullPart], name: &str, id: u64, d: usize) -> usize {
-    let mesh = &parts.part(name).unwrap().mesh;
-    let node = mesh.node_ids.iter().position(|&x| x == id).unwrap() as u32;
-    let fp = full.iter().find(|p| p.name == name).unwrap();
-    fp.offset + fp.dofmap.free_dof(node, d).expect("a free face dof")
-}
-
-/// `g` of a nodal pair in the full model: `+n` on the disc face nodes weighted by the shape
-/// functions at the projected point, `-n` on the pad node.
-fn nodal_vector(
-    parts: &SceneParts,
-    model: &Model,
-    pairing: &squeal_brake::assemble::Pairing,
-    full: &[FullPart],
-) -> Vec<(usize, f64)> {
-    let disc_rom = model.rom.part("disc").unwrap();
-    let pad_rom = model.rom.part(&pairing.pad).unwrap();
-    let dp = &disc_rom.info.points[pairing.disc_point];
-    let proj = dp.projected.as_ref().unwrap();
-    assert_eq!(proj.pad_point, pairing.pad_point);
-    let n = pairing.normal;
-    let mut g = Vec::new();
-    for d in (0..3).filter(|&d| n[d].abs() > NEGLIGIBLE) {
-        for &(k, w) in &proj.weights {
-            let id = disc_rom.info.points[k].node_id.unwrap();
-            g.push((full_dof(parts, full, "disc", id, d), w * n[d]));
-        }
-        let id = pad_rom.info.points[pairing.pad_point].node_id.unwrap();
-        g.push((full_dof(parts, full, &pairing.pad, id, d), -n[d]));
-    }
-    g
-}
-
-/// `g` of a patch pair in the full model: `+n` on the disc patch's weighted nodes, `-n` on
-/// the pad patch's.
-fn patch_vector(
+/// The full model ([`squeal_pipeline::full`]) of the brake `model` joined by the springs `k`
+/// (one per pair of `model.pairs`), without friction: its parts, `K + Σ k_p g_p g_pᵀ` and `M`.
+fn full_model(
     parts: &SceneParts,
     inputs: &BrakeInputs,
     model: &Model,
-    pairing: &squeal_brake::assemble::Pairing,
-    surfaces: &[squeal_reduce::rom::ContactSurface],
-    full: &[FullPart],
-) -> Vec<(usize, f64)> {
-    {
-        let disc_rom = model.rom.part("disc").unwrap();
-        let n = pairing.normal;
-        // The disc patch under the pair: the surface facing this pad, the point's patch.
-        let dp = &disc_rom.info.points[pairing.disc_point];
-        let surface = surfaces
-            .iter()
-            .find(|s| s.facing == dp.surface)
-            .expect("the disc point's surface");
-        let disc_patch = patch(
-            &parts.disc.mesh,
-            &surface.contact_face_set,
-            dp.patch.unwrap(),
-            inputs,
-        );
-        let pad_input = &inputs
-            .pads
-            .iter()
-            .find(|p| p.name == pairing.pad)
-            .unwrap()
-            .part;
-        let pp = &model.rom.part(&pairing.pad).unwrap().info.points[pairing.pad_point];
-        let pad_patch = patch(
-            &parts.part(&pairing.pad).unwrap().mesh,
-            &pad_input.contact_face_set,
-            pp.patch.unwrap(),
-            inputs,
-        );
-        // The same patches the reduction cut: the same centroids, to the bit.
-        assert_eq!(disc_patch.centroid, dp.position);
-        assert_eq!(pad_patch.centroid, pp.position);
-        // g: +n on the disc patch's weighted nodes, -n on the pad patch's.
-        let negligible = NEGLIGIBLE;
-        let mut g: Vec<(usize, f64)> = Vec::new();
-        for (part, weights, sign) in [
-            ("disc", &disc_patch.weights, 1.0),
-            (pairing.pad.as_str(), &pad_patch.weights, -1.0),
-        ] {
-            let fp = full.iter().find(|p| p.name == part).unwrap();
-            for &(node, w) in weights {
-                for d in (0..3).filter(|&d| n[d].abs() > negligible) {
-                    let dof = fp.dofmap.free_dof(node, d).expect("a free face dof");
-                    g.push((fp.offset + dof, sign * w * n[d]));
-                }
-            }
-        }
-        g
-    }
+    k: &[f64],
+) -> (FullBrake, SparseColMat<usize, f64>) {
+    let full = full_brake(parts, inputs, model).unwrap();
+    let kt = full.stiffness(k, &vec![0.0; k.len()]).unwrap();
+    (full, kt)
 }
 
 /// Relative differences `reduced / full - 1` of the first [`COUNT`] frequencies.
@@ -388,12 +226,12 @@ fn frictionless_frequencies_match_the_full_model_and_the_clamp_force_balances() 
     // (the springs hold every pad, so K_t is positive definite; a shift of -(2π 100 Hz)²
     // keeps K_t - σM so with room to spare).
     let t1 = Instant::now();
-    let full = full_model(&parts, &inputs, &b50, &k_t);
+    let (full, full_k) = full_model(&parts, &inputs, &b50, &k_t);
     let opts = EigOptions {
         shift: -4e5,
         ..EigOptions::default()
     };
-    let modes = lowest_modes(full.k.as_ref(), full.m.as_ref(), COUNT, &opts).unwrap();
+    let modes = lowest_modes(full_k.as_ref(), full.m.as_ref(), COUNT, &opts).unwrap();
     let t_full = t1.elapsed().as_secs_f64();
     let f_full: Vec<f64> = modes.values.iter().map(|&w2| hz(w2)).collect();
     let shares_full: Vec<Vec<f64>> = (0..COUNT)
@@ -441,13 +279,13 @@ fn frictionless_frequencies_match_the_full_model_and_the_clamp_force_balances() 
     let d100 = differences(&f100, &f_full);
     eprintln!(
         "full model: {} dofs ({}), {} nonzeros in K; k_t {:.4e} .. {:.4e} N/m",
-        full.k.nrows(),
+        full_k.nrows(),
         full.parts
             .iter()
             .map(|p| format!("{} {}", p.name, p.system.num_dofs()))
             .collect::<Vec<_>>()
             .join(", "),
-        full.k.val().len(),
+        full_k.val().len(),
         k_t.iter().copied().fold(f64::INFINITY, f64::min),
         k_t.iter().copied().fold(0.0, f64::max),
     );
@@ -605,12 +443,12 @@ fn nodal_contact_frictionless_frequencies_match_the_full_model() {
     let (f50, _) = reduced_modes(&b50.brake.m, &kt50, &ranges);
 
     let t1 = Instant::now();
-    let full = full_model(&parts, &inputs, &b50, &k_t);
+    let (full, full_k) = full_model(&parts, &inputs, &b50, &k_t);
     let opts = EigOptions {
         shift: -4e5,
         ..EigOptions::default()
     };
-    let modes = lowest_modes(full.k.as_ref(), full.m.as_ref(), COUNT, &opts).unwrap();
+    let modes = lowest_modes(full_k.as_ref(), full.m.as_ref(), COUNT, &opts).unwrap();
     let t_full = t1.elapsed().as_secs_f64();
     let f_full: Vec<f64> = modes.values.iter().map(|&w2| hz(w2)).collect();
 
