@@ -89,6 +89,7 @@ pub fn write(p: &Pipeline, vtu: bool) -> Result<stability::Verdict> {
     }
     stability::write_tables(&dir, m, st)?;
     stability::write_figures(&dir, st, m)?;
+    print!("{}", stability::write_makeup(&dir, m, st, p.log())?);
     if vtu {
         let vtm = stability::write_shapes(&dir, m, st, p.log())?;
         println!("mode shape and equilibria for ParaView: {}", vtm.display());
