@@ -70,7 +70,10 @@ pub fn dof_shares(m: &Mat<f64>, x: &[c64]) -> Vec<f64> {
 
 /// The sum of `shares` over each range (a part's dofs).
 pub fn part_sums(shares: &[f64], parts: &[Range<usize>]) -> Vec<f64> {
-    parts.iter().map(|r| shares[r.clone()].iter().sum()).collect()
+    parts
+        .iter()
+        .map(|r| shares[r.clone()].iter().sum())
+        .collect()
 }
 
 /// Physical reduced vector `x = Φ q`.

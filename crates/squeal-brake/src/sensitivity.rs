@@ -187,11 +187,20 @@ fn difference(plus: &Response, minus: &Response, h: f64) -> [f64; 6] {
     let d = |a: f64, b: f64| (a - b) / (2.0 * h);
     [
         d(plus.normal_derivatives[0], minus.normal_derivatives[0]),
-        d(plus.tangential_derivatives[0], minus.tangential_derivatives[0]),
+        d(
+            plus.tangential_derivatives[0],
+            minus.tangential_derivatives[0],
+        ),
         d(plus.normal_derivatives[1], minus.normal_derivatives[1]),
-        d(plus.tangential_derivatives[1], minus.tangential_derivatives[1]),
+        d(
+            plus.tangential_derivatives[1],
+            minus.tangential_derivatives[1],
+        ),
         d(plus.normal_derivatives[2], minus.normal_derivatives[2]),
-        d(plus.tangential_derivatives[2], minus.tangential_derivatives[2]),
+        d(
+            plus.tangential_derivatives[2],
+            minus.tangential_derivatives[2],
+        ),
     ]
 }
 
@@ -460,10 +469,7 @@ impl<'a> Sensitivities<'a> {
             Parameter::ModalDamping(modes) => {
                 let (x, y) = (&self.state.pair.right, &self.state.pair.left);
                 let d = self.lr.damping.diagonal().unwrap_or(&[]);
-                modes
-                    .iter()
-                    .map(|&j| l * y[j].conj() * x[j] * d[j])
-                    .sum()
+                modes.iter().map(|&j| l * y[j].conj() * x[j] * d[j]).sum()
             }
             Parameter::Stiffness(r) => {
                 let k = &brake.k;
@@ -485,7 +491,6 @@ impl<'a> Sensitivities<'a> {
             }
         }
     }
-
 }
 
 /// `e_p`: pair `p`'s contribution to `yᴴ (∂T/∂δ_p) x` per unit closure.

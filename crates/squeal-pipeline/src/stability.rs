@@ -715,13 +715,20 @@ pub mod sensitivities;
 /// What the unstable mode is made of and what moves μ0 ([`contributions`],
 /// [`sensitivities`]): writes their tables and chart into `dir` and returns the lines
 /// `squeal stability` prints (empty without a Hopf point), with the wall time they took.
-pub fn write_makeup(dir: &Path, m: &Model, st: &Stability, log: crate::model::Log) -> Result<String> {
+pub fn write_makeup(
+    dir: &Path,
+    m: &Model,
+    st: &Stability,
+    log: crate::model::Log,
+) -> Result<String> {
     let t = std::time::Instant::now();
     let mut out = String::new();
     if let Some(mut c) = contributions::at_hopf(m, st) {
         match crate::shapes::Meshes::read(m, log) {
             Ok(meshes) => contributions::classify(m, st, &mut c, &meshes),
-            Err(e) => log(&format!("nodal diameters of the contributors not classified: {e}")),
+            Err(e) => log(&format!(
+                "nodal diameters of the contributors not classified: {e}"
+            )),
         }
         let sweep = contributions::along_sweep(m, st);
         contributions::write(dir, &c, &sweep)?;

@@ -75,7 +75,11 @@ fn sensitivities_match_finite_differences_on_the_coarse_brake() {
     let c = common::coarse();
     let m = &c.model;
     let st = analyse(m, &common::mus(0.0, 1.0, 101)).unwrap();
-    let h = st.sweep.hopf.as_ref().expect("the coarse brake has a Hopf point");
+    let h = st
+        .sweep
+        .hopf
+        .as_ref()
+        .expect("the coarse brake has a Hopf point");
     // Tight equilibria: the differences divide their error by the step.
     let newton = NewtonOptions {
         tolerance: 1e-13,
@@ -84,7 +88,12 @@ fn sensitivities_match_finite_differences_on_the_coarse_brake() {
     let lr = LinearizedBrake::new(&m.brake, &st.reference).unwrap();
     let tau = threshold(m, &st);
     let state = hopf_state(&m.brake, &lr, h, tau, &newton, &m.sweep.continuation).unwrap();
-    assert!((state.mu - h.mu0).abs() <= m.sweep.mu_tolerance, "polished {} vs swept {}", state.mu, h.mu0);
+    assert!(
+        (state.mu - h.mu0).abs() <= m.sweep.mu_tolerance,
+        "polished {} vs swept {}",
+        state.mu,
+        h.mu0
+    );
     let s = Sensitivities::new(&m.brake, &st.reference, &lr, &state).unwrap();
     let (m1, m2) = st.pair.expect("a coalescing pair");
     let np = m.brake.pairs.len();
@@ -100,6 +109,15 @@ fn sensitivities_match_finite_differences_on_the_coarse_brake() {
         Parameter::ModalDamping(vec![m2]),
         Parameter::ModalDamping(vec![m1]),
     ];
+    // Exact scalings: the whole mass times f scales λ by 1/√f at equal ratios ζ_j, every
+    // stiffness and force times f (parts, contact, load) scales λ by √f with the equilibrium
+    // unchanged; neither moves μ0. So the parts' densities' rates sum to zero, and so do the
+    // parts' moduli, the contact stiffness and the load (round-off of rates ~0.1: 1e-12).
+    let mu0 = |p: &Parameter| s.rate(p).dmu0.unwrap();
+    let density = mu0(&params[5]) + mu0(&params[6]);
+    let stiffness = mu0(&params[3]) + mu0(&params[4]) + mu0(&params[0]) + mu0(&params[2]);
+    eprintln!("scaling identities: densities {density:e}, stiffnesses and load {stiffness:e}");
+    assert!(density.abs() < 1e-12 && stiffness.abs() < 1e-12);
     for p in &params {
         let r = s.rate(p);
         let dmu0 = r.dmu0.unwrap();
@@ -143,12 +161,25 @@ fn contributions_sum_to_one_by_mode_by_part_and_by_reduced_coordinate() {
     let x = h.point.spectrum.shape(&st.reference.basis, h.index);
     let shares = squeal_pipeline::stability::part_shares(m, &x);
     for (name, share) in &k.parts {
-        let own: f64 = k.reduced.iter().filter(|c| c.part == *name).map(|c| c.share).sum();
+        let own: f64 = k
+            .reduced
+            .iter()
+            .filter(|c| c.part == *name)
+            .map(|c| c.share)
+            .sum();
         let reference = shares.iter().find(|s| s.0 == *name).unwrap().1;
-        assert!((own - share).abs() < 1e-13 && (share - reference).abs() < 1e-12, "{name}: {own} {share} {reference}");
+        assert!(
+            (own - share).abs() < 1e-13 && (share - reference).abs() < 1e-12,
+            "{name}: {own} {share} {reference}"
+        );
     }
     // The first frictionless contributor is one of the coalescing pair.
     let (m1, m2) = st.pair.unwrap();
     let first: usize = k.modes[0].name[5..].parse().unwrap();
-    assert!(first == m1 + 1 || first == m2 + 1, "first contributor {first}, pair {} {}", m1 + 1, m2 + 1);
+    assert!(
+        first == m1 + 1 || first == m2 + 1,
+        "first contributor {first}, pair {} {}",
+        m1 + 1,
+        m2 + 1
+    );
 }

@@ -32,7 +32,11 @@ fn contributors_table(v: &[contributions::Contributor]) -> Table {
 }
 
 /// The section, `None` without a Hopf point. Writes the bar chart into the report's pictures.
-pub fn section(r: &RunResults<'_>, meshes: Option<&Meshes>, pics: &Path) -> Result<Option<Section>> {
+pub fn section(
+    r: &RunResults<'_>,
+    meshes: Option<&Meshes>,
+    pics: &Path,
+) -> Result<Option<Section>> {
     let (m, st) = (r.model, r.stability);
     let Some(mut c) = contributions::at_hopf(m, st) else {
         return Ok(None);
@@ -56,8 +60,14 @@ pub fn section(r: &RunResults<'_>, meshes: Option<&Meshes>, pics: &Path) -> Resu
         parts.join(", ")
     );
     let mut tables = vec![
-        (contributors_table(&c.modes), "Frictionless modes of the brake".to_string()),
-        (contributors_table(&c.reduced), "Reduced coordinates of the parts".to_string()),
+        (
+            contributors_table(&c.modes),
+            "Frictionless modes of the brake".to_string(),
+        ),
+        (
+            contributors_table(&c.reduced),
+            "Reduced coordinates of the parts".to_string(),
+        ),
     ];
     if let Some(s) = sensitivities::compute(m, st)? {
         let mut t = Table::new([
@@ -101,7 +111,12 @@ pub fn section(r: &RunResults<'_>, meshes: Option<&Meshes>, pics: &Path) -> Resu
 pub fn cycle_level(r: &RunResults<'_>, sol: &squeal_chbm::ChbmSolution) -> String {
     use crate::sound::{BrakeSurface, SQUEAL_DBA, SoundOptions};
     let level = BrakeSurface::new(r.scene, r.model, &crate::model::quiet).and_then(|s| {
-        let snd = s.cycle_sound(&sol.coeffs, sol.harmonics, sol.omega, &SoundOptions::default())?;
+        let snd = s.cycle_sound(
+            &sol.coeffs,
+            sol.harmonics,
+            sol.omega,
+            &SoundOptions::default(),
+        )?;
         Ok((snd.rayleigh_dba.first().copied(), s.microphone))
     });
     match level {
@@ -110,7 +125,11 @@ pub fn cycle_level(r: &RunResults<'_>, sol: &squeal_chbm::ChbmSolution) -> Strin
             mic[0],
             mic[1],
             mic[2],
-            if l >= SQUEAL_DBA { "squeal by" } else { "below" }
+            if l >= SQUEAL_DBA {
+                "squeal by"
+            } else {
+                "below"
+            }
         ),
         Ok((None, _)) => String::new(),
         Err(e) => format!(" (its sound not computed: {e})"),

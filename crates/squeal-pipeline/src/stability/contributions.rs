@@ -220,11 +220,7 @@ pub fn text(c: &Contributions) -> String {
             .collect::<Vec<_>>()
             .join("; ")
     };
-    let _ = writeln!(
-        out,
-        "  frictionless modes of the brake: {}",
-        list(&c.modes)
-    );
+    let _ = writeln!(out, "  frictionless modes of the brake: {}", list(&c.modes));
     let _ = writeln!(out, "  reduced coordinates: {}", list(&c.reduced));
     out
 }
@@ -238,8 +234,10 @@ fn rows(t: &mut Table, mu: f64, v: &[Contributor]) {
             c.part.clone(),
             c.frequency_hz.map_or(String::new(), |f| format!("{f}")),
             format!("{:e}", c.share),
-            c.coefficient.map_or(String::new(), |z| format!("{:e}", z.re)),
-            c.coefficient.map_or(String::new(), |z| format!("{:e}", z.im)),
+            c.coefficient
+                .map_or(String::new(), |z| format!("{:e}", z.re)),
+            c.coefficient
+                .map_or(String::new(), |z| format!("{:e}", z.im)),
             c.nodal_diameters.map_or(String::new(), |n| n.to_string()),
         ]);
     }

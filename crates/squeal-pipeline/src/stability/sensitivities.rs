@@ -88,7 +88,11 @@ pub fn parameters(m: &Model, st: &Stability) -> Vec<(String, &'static str, Param
             "youngs_modulus",
             Parameter::Stiffness(r.clone()),
         ));
-        out.push((format!("density of {name}"), "density", Parameter::Density(r)));
+        out.push((
+            format!("density of {name}"),
+            "density",
+            Parameter::Density(r),
+        ));
     }
     let n = st.reference.basis.omega.len();
     out.push((
