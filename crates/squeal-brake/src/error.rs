@@ -376,4 +376,15 @@ pub enum BrakeError {
         /// The value given.
         value: f64,
     },
+    /// [`crate::sensitivity`]: the unstable mode could not be followed to the Hopf point (the
+    /// continuation or Newton's method on `Re λ = τ` failed).
+    #[error(
+        "the sensitivities could not follow the unstable mode near mu = {mu}: {what} (the Hopf point is too close to a coalescence or the sweep's bracket is too wide)"
+    )]
+    HopfNotFollowed {
+        /// What failed.
+        what: &'static str,
+        /// The friction value reached.
+        mu: f64,
+    },
 }

@@ -37,6 +37,8 @@ pub struct RunResults<'a> {
     pub timings: &'a [(String, f64)],
 }
 
+mod makeup;
+
 /// Folder of the report's own pictures, inside the output folder.
 pub const PICTURES: &str = "report";
 
@@ -70,6 +72,7 @@ pub fn build(r: &RunResults<'_>, out: &Path, log: Log) -> Result<Report> {
     sections.push(modes_section(r, &modes));
     sections.push(equilibrium_section(r));
     sections.push(stability_section(r, &pics)?);
+    sections.extend(makeup::section(r, meshes.as_ref(), &pics)?);
     if crate::stability::verdict(r.model, r.stability).is_stable() {
         sections.push(Section {
             heading: "Limit cycles".into(),
@@ -176,10 +179,11 @@ fn verdict_text(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]) -
                 )
             });
         lines.push(format!(
-            "Limit cycle at μ = {}{ratio}: {}, {:.1} Hz{closure}.",
+            "Limit cycle at μ = {}{ratio}: {}, {:.1} Hz{closure}{}.",
             fmt_sig(mu, 5),
             s.outcome.label(),
-            s.omega / std::f64::consts::TAU
+            s.omega / std::f64::consts::TAU,
+            makeup::cycle_level(r, s)
         ));
     }
     lines.join("\n\n")

@@ -737,3 +737,43 @@ pub fn write_tables(dir: &Path, s: &Model, st: &Stability) -> Result<()> {
 
 mod figures;
 pub use figures::{write_figures, write_shapes};
+
+pub mod contributions;
+pub mod sensitivities;
+
+/// What the unstable mode is made of and what moves μ0 ([`contributions`],
+/// [`sensitivities`]): writes their tables and chart into `dir` and returns the lines
+/// `squeal stability` prints (empty without a Hopf point), with the wall time they took.
+pub fn write_makeup(
+    dir: &Path,
+    m: &Model,
+    st: &Stability,
+    log: crate::model::Log,
+) -> Result<String> {
+    let t = std::time::Instant::now();
+    let mut out = String::new();
+    if let Some(mut c) = contributions::at_hopf(m, st) {
+        match crate::shapes::Meshes::read(m, log) {
+            Ok(meshes) => contributions::classify(m, st, &mut c, &meshes),
+            Err(e) => log(&format!(
+                "nodal diameters of the contributors not classified: {e}"
+            )),
+        }
+        let sweep = contributions::along_sweep(m, st);
+        contributions::write(dir, &c, &sweep)?;
+        contributions::write_chart(dir, &c)?;
+        out.push_str(&contributions::text(&c));
+    }
+    if let Some(r) = sensitivities::compute(m, st)? {
+        sensitivities::write(dir, &r)?;
+        out.push_str(&sensitivities::text(&r, 10));
+    }
+    if !out.is_empty() {
+        let _ = writeln!(
+            out,
+            "  (contributions and sensitivities in {:.2} s: contributions*.csv, sensitivities.csv, their .json)",
+            t.elapsed().as_secs_f64()
+        );
+    }
+    Ok(out)
+}

@@ -51,6 +51,7 @@ pub fn stability_stage(p: &Pipeline, vtu: bool) -> Result<stability::Verdict> {
     }
     stability::write_tables(&dir, m, st)?;
     stability::write_figures(&dir, st, m)?;
+    tell(p, &stability::write_makeup(&dir, m, st, p.log())?);
     if vtu {
         let vtm = stability::write_shapes(&dir, m, st, p.log())?;
         tell(
