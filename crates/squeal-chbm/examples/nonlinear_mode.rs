@@ -95,21 +95,26 @@ mod tests {
 
     #[test]
     fn the_linear_limit_is_the_eigenvalue() {
-        // At a = 1e-6 of the opening amplitude the cubic term's share of (ω, ζ) is ~1e-12
-        // relative (it goes with a²); LM stops at 1e-10 of the scaled residual, which moves
-        // ω by far less than 1e-8 relative. The reference κ = -λ(λ + c) is exact (module docs)
-        // and λ comes from the dense eigenvalues of the linearized system.
+        // At a = 1e-5 of the opening amplitude the cubic term's share of (ω, ζ) is ~1e-12
+        // relative (it goes with a²: 2e-7 in ω and 4e-7 in ζ at 1e-2, `main`'s table). LM
+        // stops at 1e-10 of the scaled residual, the harmonics' rows scaled by the motion's
+        // own force: ζ enters those rows with a slope of about 2, so ζ is met to ~1e-10
+        // absolute and ω to ~1e-10 relative. The reference κ = -λ(λ + c) is exact (module
+        // docs) and λ comes from the dense eigenvalues of the linearized system.
         let system = system().unwrap();
         let mu0 = system.hopf().unwrap().mu0;
-        let mode = run(&system, 1.01 * mu0, vec![1e-6, 2e-6]).unwrap();
+        let mode = run(&system, 1.01 * mu0, vec![1e-5, 2e-5]).unwrap();
         let l = mode.lambda;
         let kappa = -(l * (l + c64::new(C, 0.0)));
         let omega = kappa.re.sqrt();
         let zeta = (kappa.im + C * omega) / (2.0 * omega * omega);
-        let p = &mode.points[0];
-        assert!((p.omega / omega - 1.0).abs() < 1e-8, "{} vs {omega}", p.omega);
-        assert!((p.zeta - zeta).abs() < 1e-8 * zeta.abs().max(1e-3), "{} vs {zeta}", p.zeta);
+        // The dense linear mode (the continuation's start) against κ: round-off.
         assert!((mode.linear.omega / omega - 1.0).abs() < 1e-12);
+        assert!((mode.linear.zeta - zeta).abs() < 1e-12);
+        for p in &mode.points {
+            assert!((p.omega / omega - 1.0).abs() < 1e-8, "{} vs {omega}", p.omega);
+            assert!((p.zeta - zeta).abs() < 1e-9, "{} vs {zeta}", p.zeta);
+        }
     }
 
     #[test]

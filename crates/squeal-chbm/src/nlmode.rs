@@ -35,7 +35,11 @@
 //!   modal amplitude `a` (m·kg^½) is the continuation parameter, on a logarithmic scale.
 //!
 //! The system is square; it is solved by Levenberg–Marquardt (module [`epmc`]: the analytic
-//! Jacobian). As `a → 0` the force tends to its tangent and `(ω, ζ)` to the linear mode of
+//! Jacobian). The static rows of `f1` are scaled by the static force level (as CHBM's), the
+//! harmonics' rows by the motion's own force level, that level times the motion's largest
+//! displacement over the smallest static penetration: the tolerance then means the same
+//! relative accuracy at every amplitude (with the static scale alone, a motion 1e-5 of the
+//! penetration would meet any tolerance at its first guess). As `a → 0` the force tends to its tangent and `(ω, ζ)` to the linear mode of
 //! [`linear`], which is where the continuation starts (`U1 = a ψ`).
 //!
 //! **What it gives.** `ω(a)`, `ζ(a)` and the harmonics `U~(a)`: one computation, all
@@ -220,14 +224,19 @@ struct Setup {
     force: f64,
     /// `max |ψ|` on the nonlinear dofs per unit modal amplitude (the phase row's scale).
     psi_max: f64,
+    /// The smallest static penetration of a closed pair (m).
+    penetration: f64,
     options: LmOptions,
 }
 
 impl Setup {
     /// One EPMC solve at amplitude `a` from `z0 = [U~, ω, ζ]`.
     fn solve(&mut self, a: f64, z0: &[f64]) -> Result<Option<NlModePoint>, NlModeError> {
+        // The harmonics' rows in the motion's own force level: the static force times the
+        // motion's largest displacement over the smallest static penetration.
         let scales = EpmcScales {
             force: self.force,
+            dynamic: self.force * (a * self.psi_max / self.penetration).min(1.0),
             phase: a * self.psi_max,
         };
         let mut problem = EpmcProblem::new(&mut self.hb, self.phase_dof, a, scales)?;
@@ -308,7 +317,7 @@ pub fn nonlinear_mode(
     let psi: Vec<c64> = (0..nn)
         .map(|i| (0..mb.modes()).map(|j| linear.shape[j] * mb.phi_n[(i, j)]).sum())
         .collect();
-    let (opening, mut guess) = first_guess(mb, &layout, &x_n0, &psi)?;
+    let (opening, penetration, mut guess) = first_guess(mb, &layout, &x_n0, &psi)?;
     let d = phase_dof(mb, &guess, &layout);
     let rot = psi[d].conj() / psi[d].norm();
     for i in 0..nn {
@@ -332,6 +341,7 @@ pub fn nonlinear_mode(
         phase_dof: d,
         force,
         psi_max: psi.iter().map(|v| v.norm()).fold(0.0, f64::max),
+        penetration,
         options: LmOptions {
             abs_tol: opts.tolerance,
             rel_tol: 0.0,
@@ -370,13 +380,13 @@ fn check_amplitudes(a: &[f64]) -> Result<(), NlModeError> {
 }
 
 /// The opening amplitude (the smallest static penetration over the largest normal motion of a
-/// pair per unit modal amplitude) and `[x_n0, Re ψ, -Im ψ, 0, ...]` per unit amplitude.
+/// pair per unit modal amplitude), that penetration, and `[x_n0, Re ψ, -Im ψ, 0, ...]` per unit amplitude.
 fn first_guess(
     mb: &ModalBrake,
     layout: &HarmonicLayout,
     x_n0: &[f64],
     psi: &[c64],
-) -> Result<(f64, Vec<f64>), NlModeError> {
+) -> Result<(f64, f64, Vec<f64>), NlModeError> {
     let nn = layout.n_dofs();
     let (mut dmax, mut pen) = (0.0f64, f64::INFINITY);
     for p in &mb.pairs {
@@ -396,7 +406,7 @@ fn first_guess(
         u[nn + i] = psi[i].re;
         u[2 * nn + i] = -psi[i].im;
     }
-    Ok((pen / dmax, u))
+    Ok((pen / dmax, pen, u))
 }
 
 /// The points over `amplitudes`, each from the prediction of the ones before; a failed step

@@ -35,6 +35,7 @@ pub mod cycle;
 mod error;
 pub mod mesh_info;
 pub mod model;
+pub mod nlmode;
 pub mod parts;
 pub mod pictures;
 pub mod progress;

@@ -209,8 +209,11 @@ impl DynamicStiffness for EpmcStiffness {
 /// The scales of [`EpmcProblem`]'s rows.
 #[derive(Clone, Copy, Debug)]
 pub struct EpmcScales {
-    /// Force scale of the harmonic balance rows (N).
+    /// Force scale of the static rows (block 0) of the harmonic balance (N).
     pub force: f64,
+    /// Force scale of the harmonics' rows (N): the motion's own force level, so that the
+    /// tolerance means the same at every amplitude.
+    pub dynamic: f64,
     /// Displacement scale of the phase row (m).
     pub phase: f64,
 }
@@ -249,6 +252,15 @@ impl<'a> EpmcProblem<'a> {
         })
     }
 
+    /// The scale of harmonic balance row `i` (`n` dofs per block).
+    fn row_scale(&self, i: usize, n: usize) -> f64 {
+        if i < n {
+            self.scales.force
+        } else {
+            self.scales.dynamic
+        }
+    }
+
     fn split(z: &[f64], len: usize) -> (&[f64], f64, f64) {
         (&z[..len], z[len], z[len + 1])
     }
@@ -282,8 +294,9 @@ impl LeastSquaresProblem for EpmcProblem<'_> {
             }
             Err(e) => return Err(e),
         }
-        for v in &mut r[..len] {
-            *v /= self.scales.force;
+        let nn = layout.n_dofs();
+        for (i, v) in r[..len].iter_mut().enumerate() {
+            *v /= self.row_scale(i, nn);
         }
         r[len] = u[self.phase_index] / self.scales.phase;
         let (q, _) = self.hb.linear_mut().modal_first_harmonic(&layout, omega, u);
@@ -304,8 +317,8 @@ impl LeastSquaresProblem for EpmcProblem<'_> {
             &mut self.jac_omega,
         )?;
         let ds = self.hb.linear_mut().shift_derivative(&layout, omega, u);
-        let inv = 1.0 / self.scales.force;
         for i in 0..len {
+            let inv = 1.0 / self.row_scale(i, nn);
             for j in 0..len {
                 jac[(i, j)] *= inv;
             }
@@ -371,6 +384,7 @@ mod tests {
         .unwrap();
         let scales = EpmcScales {
             force: 60.0,
+            dynamic: 3.0,
             phase: 1e-5,
         };
         let mut p = EpmcProblem::new(&mut hb, 1, 3e-5, scales).unwrap();
