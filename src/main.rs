@@ -58,6 +58,9 @@ enum Command {
     /// The branch of limit cycles from the Hopf point, with their stability: where and how
     /// loud the brake squeals
     Branch(commands::branch::BranchArgs),
+    /// The squeal mode's complex nonlinear mode: frequency and modal damping against amplitude,
+    /// the limit cycles where the damping vanishes
+    Nlmode(commands::nlmode::NlModeArgs),
     /// Parametric stability studies: piston pressure, contact stiffness, modal damping
     Study(commands::study::StudyArgs),
     /// CHBM against time integration: accuracy, speed, robustness
@@ -112,6 +115,7 @@ fn main() -> ExitCode {
         Command::Stability(args) => commands::stability::run(args),
         Command::Chbm(args) => commands::chbm::run(args),
         Command::Branch(args) => commands::branch::run(args),
+        Command::Nlmode(args) => commands::nlmode::run(args),
         Command::Study(args) => commands::study::run(args),
         Command::Compare(args) => commands::compare::run(args),
         Command::Run(args) => commands::run::run(args),

@@ -19,6 +19,9 @@
 //! - [`physics`]: the checks a cycle of the model takes for granted: open fractions from the
 //!   roots of the continuous penetration, and the sliding margin of the disc's surface speed
 //!   over the pads' tangential vibration.
+//! - [`nlmode`]: complex nonlinear modes by the extended periodic motion concept (Krack 2015):
+//!   frequency, modal damping and shape of the squeal mode against its amplitude at one μ; the
+//!   limit cycles are the roots of the damping.
 
 #![warn(missing_docs)]
 // Index loops over dofs and harmonics read like the formulas they implement.
@@ -29,6 +32,7 @@ pub mod branch;
 pub mod compare;
 pub mod cycle;
 pub mod floquet;
+pub mod nlmode;
 pub mod physics;
 pub mod shooting;
 pub mod solve;

@@ -30,11 +30,15 @@
 //!   46–48) — [`crate::solve`](mod@crate::solve);
 //! - [`FrictionSystem::branch`]: the branch of limit cycles born at μ0, from the Hopf normal
 //!   form, with each cycle's Floquet multipliers by Hill's method and the bifurcations they
-//!   show — [`crate::branch`], [`crate::floquet`], [`crate::bifurcation`].
+//!   show — [`crate::branch`], [`crate::floquet`], [`crate::bifurcation`];
+//! - [`FrictionSystem::nonlinear_mode`]: the squeal mode's frequency and modal damping against
+//!   its amplitude at μ (extended periodic motion concept), its roots the limit cycles —
+//!   [`crate::nlmode`].
 
 use crate::bifurcation::{Bifurcation, bifurcations, follow_from_hopf_with_hill};
 use crate::branch::{BranchOptions, LimitCycleBranch};
 use crate::floquet::{FloquetError, HillFloquet, HillOptions};
+use crate::nlmode::{NlModeError, NlModeOptions, NonlinearMode, nonlinear_mode};
 use crate::solve::{ChbmError, ChbmOptions, ChbmSolution, RESTART_AMPLITUDES, solve_with_restarts};
 use crate::start::{StartError, start_at};
 use faer::{Mat, c64};
@@ -70,6 +74,9 @@ pub enum SystemError {
     /// The harmonic balance or the branch.
     #[error(transparent)]
     Chbm(#[from] ChbmError),
+    /// The nonlinear mode ([`crate::nlmode`]).
+    #[error(transparent)]
+    NlMode(#[from] NlModeError),
     /// The sweep found no Hopf point.
     #[error(
         "no mode turns unstable for mu in [{from}, {to}]: widen Settings::friction_range (or check the friction coupling)"
@@ -327,6 +334,28 @@ impl FrictionSystem {
         )?;
         let mb = ModalBrake::new(&self.brake, &self.reference, mu);
         Ok(solve_with_restarts(&mb, &start, &s.chbm, &s.restart_amplitudes)?.0)
+    }
+
+    /// The complex nonlinear mode of the squeal mode (the most unstable one) at friction `mu`
+    /// by the extended periodic motion concept: frequency, modal damping and harmonics against
+    /// the modal amplitude, and the limit cycles where the damping vanishes
+    /// ([`crate::nlmode`]).
+    pub fn nonlinear_mode(
+        &self,
+        mu: f64,
+        options: &NlModeOptions,
+    ) -> Result<NonlinearMode, SystemError> {
+        let s = &self.settings;
+        let start = start_at(
+            &self.brake,
+            &self.reference,
+            mu,
+            &s.sweep.band,
+            &s.sweep.newton,
+            None,
+        )?;
+        let mb = ModalBrake::new(&self.brake, &self.reference, mu);
+        Ok(nonlinear_mode(&mb, &start, options)?)
     }
 
     /// The Hopf normal form at the Hopf point ([`squeal_brake::criticality`]).

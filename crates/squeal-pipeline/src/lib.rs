@@ -38,6 +38,7 @@ pub mod full;
 pub mod interface;
 pub mod mesh_info;
 pub mod model;
+pub mod nlmode;
 pub mod parts;
 pub mod pictures;
 pub mod progress;
