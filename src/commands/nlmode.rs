@@ -6,9 +6,8 @@
 use crate::commands::stability::pipeline;
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use squeal_chbm::branch::{BranchOptions, Harmonics};
-use squeal_chbm::floquet::HillOptions;
-use squeal_chbm::nlmode::{NlModeOptions, log_spaced};
+use squeal_pipeline::branch::{BranchOptions, Harmonics, HillOptions};
+use squeal_pipeline::nlmode::{NlModeOptions, log_spaced};
 use squeal_pipeline::{branch, nlmode};
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -10,7 +10,9 @@ use crate::model::{Log, Model};
 use crate::stability;
 use squeal_brake::analysis::LinearStability as Stability;
 use squeal_brake::criticality::NormalForm;
-use squeal_chbm::nlmode::{NlModeOptions, NonlinearMode, nonlinear_mode};
+use squeal_chbm::nlmode::{NonlinearMode, nonlinear_mode};
+/// The nonlinear mode's options and amplitude grid, as the command line sets them.
+pub use squeal_chbm::nlmode::{NlModeOptions, log_spaced};
 use squeal_hbm::HarmonicLayout;
 use squeal_report::format::fmt_sig;
 use squeal_report::{Annotation, Dash, Figure, Layout, Panel, Scale, Series, Table};
