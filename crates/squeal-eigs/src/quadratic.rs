@@ -126,12 +126,15 @@ impl<'a> QuadraticPencil<'a> {
             let Some(a) = a else { continue };
             if a.nrows() != n || a.ncols() != n {
                 return Err(EigError::DimensionMismatch {
-                    what: format!("{name} is {}x{}, K is {n}x{}", a.nrows(), a.ncols(), k.ncols()),
+                    what: format!(
+                        "{name} is {}x{}, K is {n}x{}",
+                        a.nrows(),
+                        a.ncols(),
+                        k.ncols()
+                    ),
                 });
             }
-            if let Some(col) =
-                (0..n).find(|&j| a.val_of_col(j).iter().any(|v| !v.is_finite()))
-            {
+            if let Some(col) = (0..n).find(|&j| a.val_of_col(j).iter().any(|v| !v.is_finite())) {
                 return Err(EigError::NonFinite { matrix: name, col });
             }
         }
@@ -257,7 +260,8 @@ fn solve_cell(
             }
             let lambda = centre + c64::new(1.0, 0.0) / r.value;
             if r.residual / r.value.norm_sqr() <= opts.tolerance * lambda.norm() {
-                let inside = lambda.im >= cell.lo && (lambda.im < cell.hi || last && lambda.im <= cell.hi);
+                let inside =
+                    lambda.im >= cell.lo && (lambda.im < cell.hi || last && lambda.im <= cell.hi);
                 if inside && (lambda - centre).norm() <= need {
                     found.push((lambda, r.coefficients));
                 }
@@ -338,8 +342,14 @@ pub fn eigs_on_segment(
             Some(found) => pairs.extend(found),
             None if 0.5 * (cell.hi - cell.lo) >= 2.0 * opts.min_cell => {
                 let mid = 0.5 * (cell.lo + cell.hi);
-                todo.push(Cell { lo: mid, hi: cell.hi });
-                todo.push(Cell { lo: cell.lo, hi: mid });
+                todo.push(Cell {
+                    lo: mid,
+                    hi: cell.hi,
+                });
+                todo.push(Cell {
+                    lo: cell.lo,
+                    hi: mid,
+                });
                 total += 2;
             }
             None => {

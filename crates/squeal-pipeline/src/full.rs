@@ -77,7 +77,11 @@ fn full_error(message: impl std::fmt::Display) -> PipelineError {
 }
 
 /// A stacked block of `a` at `offset` as triplets.
-fn push_block(a: &SparseColMat<usize, f64>, offset: usize, out: &mut Vec<Triplet<usize, usize, f64>>) {
+fn push_block(
+    a: &SparseColMat<usize, f64>,
+    offset: usize,
+    out: &mut Vec<Triplet<usize, usize, f64>>,
+) {
     for j in 0..a.ncols() {
         for (i, &v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
             out.push(Triplet::new(offset + i, offset + j, v));
@@ -191,7 +195,10 @@ impl FullBrake {
             )));
         }
         let a: Vec<f64> = responses.iter().map(|r| r.normal_derivatives[0]).collect();
-        let b: Vec<f64> = responses.iter().map(|r| r.tangential_derivatives[0]).collect();
+        let b: Vec<f64> = responses
+            .iter()
+            .map(|r| r.tangential_derivatives[0])
+            .collect();
         let k = self.stiffness(&a, &b)?;
         if !responses.iter().any(|r| r.has_velocity_terms()) {
             return Ok((k, None));
@@ -289,7 +296,11 @@ impl<'a> PairVectors<'a> {
 
     /// The pair's vector along `w` (`g_p` for the normal, `h_p` for the sliding direction).
     fn vector(&mut self, pairing: &Pairing, w: [f64; 3]) -> Result<SparseVec> {
-        let disc = self.model.rom.part("disc").ok_or(PipelineError::NoPart { part: "disc" })?;
+        let disc = self
+            .model
+            .rom
+            .part("disc")
+            .ok_or(PipelineError::NoPart { part: "disc" })?;
         let dp = disc
             .info
             .points
@@ -306,7 +317,9 @@ impl<'a> PairVectors<'a> {
     /// projected point, `-w` on the pad node.
     fn nodal(&self, pairing: &Pairing, w: [f64; 3]) -> Result<SparseVec> {
         let rom = &self.model.rom;
-        let disc = rom.part("disc").ok_or(PipelineError::NoPart { part: "disc" })?;
+        let disc = rom
+            .part("disc")
+            .ok_or(PipelineError::NoPart { part: "disc" })?;
         let pad = rom
             .part(&pairing.pad)
             .ok_or_else(|| full_error(format!("no pad {} in the reduced model", pairing.pad)))?;
@@ -358,7 +371,9 @@ impl<'a> PairVectors<'a> {
     /// A patch pair: `+w` on the disc patch's weighted nodes, `-w` on the pad patch's.
     fn patch(&mut self, pairing: &Pairing, w: [f64; 3]) -> Result<SparseVec> {
         let rom = &self.model.rom;
-        let disc = rom.part("disc").ok_or(PipelineError::NoPart { part: "disc" })?;
+        let disc = rom
+            .part("disc")
+            .ok_or(PipelineError::NoPart { part: "disc" })?;
         let dp = &disc.info.points[pairing.disc_point];
         let surfaces = self.inputs.disc.surfaces();
         let surface = surfaces

@@ -26,7 +26,10 @@ fn coarse_scene(interface: &str) -> Scene {
     for (from, to) in [
         ("disc = \"disc_medium.inp\"", "disc = \"disc_coarse.inp\""),
         ("pad = \"pad_medium.inp\"", "pad = \"pad_coarse.inp\""),
-        ("interface = \"patch\"", &format!("interface = \"{interface}\"")),
+        (
+            "interface = \"patch\"",
+            &format!("interface = \"{interface}\""),
+        ),
     ] {
         // A test must not silently run the scene's own (medium) meshes.
         assert!(text.contains(from), "brake.toml lost '{from}'");
@@ -86,8 +89,14 @@ fn frictionless_full_eigenvalues_match_the_symmetric_solve() {
     let (lo, hi) = (1000.0, 0.5 * (f[34] + f[35]));
     let pencil = QuadraticPencil::new(k.as_ref(), None, full.m.as_ref()).unwrap();
     let t = Instant::now();
-    let eigs = eigs_on_segment(&pencil, TAU * lo, TAU * hi, &QuadraticOptions::default(), &|_, _| {})
-        .unwrap();
+    let eigs = eigs_on_segment(
+        &pencil,
+        TAU * lo,
+        TAU * hi,
+        &QuadraticOptions::default(),
+        &|_, _| {},
+    )
+    .unwrap();
     let t_arnoldi = t.elapsed().as_secs_f64();
     let expected: Vec<f64> = f.iter().copied().filter(|&x| x >= lo && x <= hi).collect();
     eprintln!(
@@ -108,15 +117,23 @@ fn frictionless_full_eigenvalues_match_the_symmetric_solve() {
         worst = worst.max((fa / fl - 1.0).abs());
         worst_re = worst_re.max(p.value.re.abs() / p.value.norm());
     }
-    eprintln!("largest relative difference {worst:.2e}; largest |Re lambda| / |lambda| {worst_re:.1e}");
+    eprintln!(
+        "largest relative difference {worst:.2e}; largest |Re lambda| / |lambda| {worst_re:.1e}"
+    );
     // The 1e-8: both solvers converge their eigenvalues to about 1e-11 relative.
     assert!(worst < 1e-8, "{worst:e}");
     assert!(worst_re < 1e-8, "{worst_re:e}");
     // Measured 1.4e-9 (max-abs norms of K and M in the scale): asserted 1e-8.
-    assert!(eigs.worst_backward_error < 1e-8, "{:e}", eigs.worst_backward_error);
+    assert!(
+        eigs.worst_backward_error < 1e-8,
+        "{:e}",
+        eigs.worst_backward_error
+    );
 }
 
-fn compare(interface: &str) {
+/// The reduced brake's and the full model's onsets (first in band, and the reduced brake's
+/// mode), printed; returns `(reduced μ0, reduced Hz, full μ0 of that mode, its Hz)`.
+fn compare(interface: &str) -> (f64, f64, f64, f64) {
     let scene = coarse_scene(interface);
     let (model, parts, inputs) = reduced(&scene);
     let full = full_brake(&parts, &inputs, &model).unwrap();
@@ -139,9 +156,21 @@ fn compare(interface: &str) {
         full.size(),
         squeal_pipeline::full::onset::comparison_text(Some(&r), Some(&f), Some(&g))
     );
+    (r.mu0, r.frequency_hz, g.mu0, g.frequency_hz)
 }
 
 #[test]
 fn reduced_onset_matches_the_full_model_patch() {
-    compare("patch");
+    // Measured (undamped, 50 modes per part, 13980 full dofs): the reduced brake's μ0
+    // 0.2636878 at 2943.081 Hz, the full model's onset of that mode 0.2631766 at 2942.160 Hz:
+    // +1.94e-3 and +3.1e-4. That is the Craig–Bampton error: the 50-mode brake's frequencies
+    // lie 1e-6 … 1.2e-3 above the full model's (`--test two_pad`), and a coalescence's μ0
+    // moves with the gap between the two frequencies, a few times more sensitive. Asserted:
+    // 4e-3 and 1e-3, about 2x and 3x the measured. (The full model's first onset in the band is
+    // another mode, a disc doublet at 12430 Hz coalescing at μ = 0.04371 with a growth rate
+    // under 0.1 1/s, which the reduced brake does not reproduce: docs/reduction.md.)
+    let (mu_r, f_r, mu_f, f_f) = compare("patch");
+    let (dmu, df) = (mu_r / mu_f - 1.0, f_r / f_f - 1.0);
+    assert!(dmu.abs() < 4e-3, "mu0: {dmu:e}");
+    assert!(df.abs() < 1e-3, "frequency: {df:e}");
 }

@@ -176,7 +176,11 @@ pub fn thinned(mus: &[f64], count: usize) -> Vec<f64> {
 
 /// One line of progress about a spectrum.
 fn spectrum_line(s: &FullSpectrum, what: &str, opts: &FullOptions) -> String {
-    let worst = s.values().iter().map(|l| l.re / l.norm()).fold(f64::NEG_INFINITY, f64::max);
+    let worst = s
+        .values()
+        .iter()
+        .map(|l| l.re / l.norm())
+        .fold(f64::NEG_INFINITY, f64::max);
     format!(
         "full model, mu = {:.6} ({what}): {} eigenvalues in {:.0}..{:.0} Hz, {} shifts, {} solves, max Re/|lambda| {:.2e}{}, backward error {:.1e}, {:.1} s",
         s.mu,
@@ -186,7 +190,11 @@ fn spectrum_line(s: &FullSpectrum, what: &str, opts: &FullOptions) -> String {
         s.eigs.shifts,
         s.eigs.steps,
         worst,
-        if worst > opts.unstable { " (unstable)" } else { "" },
+        if worst > opts.unstable {
+            " (unstable)"
+        } else {
+            ""
+        },
         s.eigs.worst_backward_error,
         s.seconds
     )
@@ -201,7 +209,10 @@ fn tracked_band(s: &FullSpectrum, opts: &FullOptions) -> (f64, f64) {
         .collect();
     let lo = f.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = f.iter().copied().fold(0.0, f64::max);
-    ((lo * (1.0 - opts.track_width)).max(0.0), hi * (1.0 + opts.track_width))
+    (
+        (lo * (1.0 - opts.track_width)).max(0.0),
+        hi * (1.0 + opts.track_width),
+    )
 }
 
 /// The full model's μ0 over `mus` (ascending) in `band_hz` (module docs), `log` told each
@@ -249,7 +260,11 @@ pub fn full_onset(
     let mut q = opts.quadratic;
     while top.mu - lo > opts.mu_tolerance * top.mu {
         let mu = 0.5 * (lo + top.mu);
-        let growth = top.unstable(opts.unstable).iter().map(|l| l.re).fold(0.0, f64::max);
+        let growth = top
+            .unstable(opts.unstable)
+            .iter()
+            .map(|l| l.re)
+            .fold(0.0, f64::max);
         q.strip = opts.quadratic.strip.max(2.0 * growth);
         q.cell = q.cell.min(0.5 * TAU * (band.1 - band.0));
         let (s, eq) = spectrum_at(full, model, mu, band, Some(&lo_eq), &q, &quiet)?;
@@ -317,20 +332,33 @@ pub fn comparison_text(
         _ => "-".to_string(),
     };
     for (what, r, f) in [
-        ("mu0 (first in band)", reduced.map(|r| r.mu0), full.map(|f| f.mu0)),
+        (
+            "mu0 (first in band)",
+            reduced.map(|r| r.mu0),
+            full.map(|f| f.mu0),
+        ),
         (
             "  its frequency (Hz)",
             reduced.map(|r| r.frequency_hz),
             full.map(|f| f.frequency_hz),
         ),
-        ("mu0 (reduced's mode)", reduced.map(|r| r.mu0), mode.map(|f| f.mu0)),
+        (
+            "mu0 (reduced's mode)",
+            reduced.map(|r| r.mu0),
+            mode.map(|f| f.mu0),
+        ),
         (
             "  its frequency (Hz)",
             reduced.map(|r| r.frequency_hz),
             mode.map(|f| f.frequency_hz),
         ),
     ] {
-        out.push_str(&format!("  {what:<20} {:<16} {:<16} {}\n", cell(r), cell(f), rel(r, f)));
+        out.push_str(&format!(
+            "  {what:<20} {:<16} {:<16} {}\n",
+            cell(r),
+            cell(f),
+            rel(r, f)
+        ));
     }
     for (what, f) in [("first in band", full), ("reduced's mode", mode)] {
         let Some(f) = f else { continue };

@@ -52,14 +52,18 @@ pub fn full_check(p: &Pipeline, at: Option<f64>) -> Result<String> {
     let opts = FullOptions::default();
     match at {
         Some(mu) => {
-            let tell = |done: usize, total: usize| log(&format!("full model: shift {done} of {total}"));
+            let tell =
+                |done: usize, total: usize| log(&format!("full model: shift {done} of {total}"));
             let (s, _) = spectrum_at(&full, m, mu, band, None, &opts.quadratic, &tell)?;
             let _ = writeln!(
                 out,
                 "eigenvalues of the full model at mu = {mu} in {:.0}..{:.0} Hz (and their conjugates), {} shifts, {} solves, {:.1} s:",
                 band.0, band.1, s.eigs.shifts, s.eigs.steps, s.seconds
             );
-            let _ = writeln!(out, "  #  frequency (Hz)   Re lambda (1/s)   backward error");
+            let _ = writeln!(
+                out,
+                "  #  frequency (Hz)   Re lambda (1/s)   backward error"
+            );
             for (k, e) in s.eigs.pairs.iter().enumerate() {
                 let _ = writeln!(
                     out,
@@ -68,7 +72,11 @@ pub fn full_check(p: &Pipeline, at: Option<f64>) -> Result<String> {
                     e.value.im / TAU,
                     e.value.re,
                     e.backward_error,
-                    if e.value.re > opts.unstable * e.value.norm() { "  unstable" } else { "" }
+                    if e.value.re > opts.unstable * e.value.norm() {
+                        "  unstable"
+                    } else {
+                        ""
+                    }
                 );
             }
         }
