@@ -36,10 +36,11 @@ use crate::error::{Context, PipelineError, Result};
 use crate::model::{Log, Model, build};
 use crate::shapes::expand_complex;
 use faer::c64;
-use squeal_brake::analysis::{LinearStability, stability};
+use squeal_brake::analysis::{LinearStability, stability_with};
 use squeal_brake::studies::{Case, energy_share, outcome};
 use squeal_scene::{CycleFriction, Interface, MESH_LEVELS, Scene};
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 mod output;
@@ -148,7 +149,8 @@ impl Contact {
 pub struct Options {
     /// The knobs to refine, in order.
     pub knobs: Vec<Knob>,
-    /// The contact levels after the scene's own (`None`: [`Contact::refinements`]).
+    /// The contact levels after the scene's own (`None`: two finer grids, 3 x 3 -> 3 x 5 -> 5 x 5,
+    /// then nodal contact).
     pub contacts: Option<Vec<Contact>>,
     /// Factors on the scene's kept modes after ×1.
     pub mode_factors: Vec<f64>,
@@ -496,7 +498,15 @@ fn compute_level(
         shape: None,
         note: None,
     };
-    let st = match stability(&s.brake, &s.damping, mus, &s.sweep)
+    // A line per tenth of each sweep (a nodal level's sweeps take minutes).
+    let tenth = AtomicUsize::new(usize::MAX);
+    let tell = |done: usize, total: usize| {
+        let t = done * 10 / total.max(1);
+        if tenth.swap(t, Ordering::Relaxed) != t {
+            log(&format!("  sweep: {done}/{total} friction values"));
+        }
+    };
+    let st = match stability_with(&s.brake, &s.damping, mus, &s.sweep, &tell)
         .with_context(|| format!("level {}", setting.key()))
     {
         Ok(st) => st,
