@@ -67,7 +67,9 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<ReadMesh, MeshError> {
     let text = crate::inp::lex::decode(bytes, path)?;
     // CDWRITE ends every line: a last line with content and no line break was cut off, and a
     // cut-off number cannot be told from a complete one.
-    if let Some(last) = text.rfind('\n').map_or(Some(&text[..]), |i| Some(&text[i + 1..]))
+    if let Some(last) = text
+        .rfind('\n')
+        .map_or(Some(&text[..]), |i| Some(&text[i + 1..]))
         && !last.trim().is_empty()
     {
         let line = text.bytes().filter(|&b| b == b'\n').count() + 1;

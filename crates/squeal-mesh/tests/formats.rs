@@ -11,14 +11,18 @@ use squeal_mesh::{Elastic, Location, Mesh, MeshError, cdb, inp, nastran};
 use std::path::{Path, PathBuf};
 
 fn data(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(rel)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(rel)
 }
 
 /// Positions of `corners` then the midpoints of `edges` (0-based vertex pairs).
 fn positions(corners: &[[f64; 3]], edges: &[[usize; 2]]) -> Vec<[f64; 3]> {
     let mut p = corners.to_vec();
     for [a, b] in edges {
-        p.push(std::array::from_fn(|d| 0.5 * (corners[*a][d] + corners[*b][d])));
+        p.push(std::array::from_fn(|d| {
+            0.5 * (corners[*a][d] + corners[*b][d])
+        }));
     }
     p
 }
@@ -63,8 +67,18 @@ fn nastran_element(kind: ElementKind) -> (&'static str, Vec<[f64; 3]>) {
             positions(
                 &HEX,
                 &[
-                    [0, 1], [1, 2], [2, 3], [3, 0], [0, 4], [1, 5], [2, 6], [3, 7], [4, 5],
-                    [5, 6], [6, 7], [7, 4],
+                    [0, 1],
+                    [1, 2],
+                    [2, 3],
+                    [3, 0],
+                    [0, 4],
+                    [1, 5],
+                    [2, 6],
+                    [3, 7],
+                    [4, 5],
+                    [5, 6],
+                    [6, 7],
+                    [7, 4],
                 ],
             ),
         ),
@@ -72,14 +86,33 @@ fn nastran_element(kind: ElementKind) -> (&'static str, Vec<[f64; 3]>) {
             "CPENTA",
             positions(
                 &WEDGE,
-                &[[0, 1], [1, 2], [2, 0], [0, 3], [1, 4], [2, 5], [3, 4], [4, 5], [5, 3]],
+                &[
+                    [0, 1],
+                    [1, 2],
+                    [2, 0],
+                    [0, 3],
+                    [1, 4],
+                    [2, 5],
+                    [3, 4],
+                    [4, 5],
+                    [5, 3],
+                ],
             ),
         ),
         ElementKind::Pyramid13 => (
             "CPYRAM",
             positions(
                 &PYRAMID,
-                &[[0, 1], [1, 2], [2, 3], [3, 0], [0, 4], [1, 4], [2, 4], [3, 4]],
+                &[
+                    [0, 1],
+                    [1, 2],
+                    [2, 3],
+                    [3, 0],
+                    [0, 4],
+                    [1, 4],
+                    [2, 4],
+                    [3, 4],
+                ],
             ),
         ),
     }
@@ -89,7 +122,8 @@ fn nastran_element(kind: ElementKind) -> (&'static str, Vec<[f64; 3]>) {
 /// in its four forms, and SOLID187 (I J K L corners, M N O P Q R on I-J, J-K, K-I, I-L, J-L,
 /// K-L): the position of each node of the record.
 fn ansys_element(kind: ElementKind, solid187: bool) -> Vec<[f64; 3]> {
-    let mid = |a: [f64; 3], b: [f64; 3]| -> [f64; 3] { std::array::from_fn(|d| 0.5 * (a[d] + b[d])) };
+    let mid =
+        |a: [f64; 3], b: [f64; 3]| -> [f64; 3] { std::array::from_fn(|d| 0.5 * (a[d] + b[d])) };
     if solid187 {
         return positions(&TET, &[[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]]);
     }
@@ -111,7 +145,17 @@ fn ansys_element(kind: ElementKind, solid187: bool) -> Vec<[f64; 3]> {
     };
     let mut p = c.to_vec();
     for [a, b] in [
-        [0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4], [0, 4], [1, 5], [2, 6],
+        [0, 1],
+        [1, 2],
+        [2, 3],
+        [3, 0],
+        [4, 5],
+        [5, 6],
+        [6, 7],
+        [7, 4],
+        [0, 4],
+        [1, 5],
+        [2, 6],
         [3, 7],
     ] {
         p.push(mid(c[a], c[b]));
@@ -127,7 +171,11 @@ fn assert_canonical(mesh: &Mesh, kind: ElementKind, what: &str) {
     let (k, conn) = mesh.blocks.get(0).unwrap();
     assert_eq!(k, kind, "{what}");
     for (i, &n) in conn.iter().enumerate() {
-        assert_eq!(mesh.nodes[n as usize], kind.nodes_ref()[i], "{what}: canonical node {i}");
+        assert_eq!(
+            mesh.nodes[n as usize],
+            kind.nodes_ref()[i],
+            "{what}: canonical node {i}"
+        );
     }
     let x: Vec<[f64; 3]> = conn
         .iter()
@@ -178,7 +226,11 @@ fn card(name: &str, values: &[String], f: Field) -> String {
             }
             Field::Large => {
                 for (h, half) in chunk.chunks(4).enumerate() {
-                    let head = if k == 0 && h == 0 { format!("{name}*") } else { "*".into() };
+                    let head = if k == 0 && h == 0 {
+                        format!("{name}*")
+                    } else {
+                        "*".into()
+                    };
                     s += &format!("{head:<8}");
                     for v in half {
                         s += &format!("{v:>16}");
@@ -250,7 +302,10 @@ fn cdb_text(ty: u32, record: &[[f64; 3]]) -> String {
         s += "\n";
     }
     s += "N,R5.3,LOC,       -1,\nEBLOCK,19,SOLID,1,1\n(19i9)\n";
-    let rec: Vec<usize> = [1, 1, 1, 1, 0, 0, 0, 0, ids.len(), 0, 1].into_iter().chain(ids).collect();
+    let rec: Vec<usize> = [1, 1, 1, 1, 0, 0, 0, 0, ids.len(), 0, 1]
+        .into_iter()
+        .chain(ids)
+        .collect();
     for line in rec.chunks(19) {
         s += &line.iter().map(|v| format!("{v:9}")).collect::<String>();
         s += "\n";
@@ -269,12 +324,16 @@ fn ansys_orders_map_to_canonical() {
     ] {
         let text = cdb_text(ty, &ansys_element(kind, solid187));
         let what = format!("SOLID{ty} as {kind}");
-        let r = cdb::parse(text.as_bytes(), Path::new("one.cdb")).unwrap_or_else(|e| panic!("{what}: {e}\n{text}"));
+        let r = cdb::parse(text.as_bytes(), Path::new("one.cdb"))
+            .unwrap_or_else(|e| panic!("{what}: {e}\n{text}"));
         assert_canonical(&r.mesh, kind, &what);
         assert_eq!(r.mesh.element_materials(), vec![Some("MAT_1")], "{what}");
         assert_eq!(
             r.mesh.materials["MAT_1"].elastic,
-            Some(Elastic::Isotropic { young: 2.1e11, poisson: 0.3 })
+            Some(Elastic::Isotropic {
+                young: 2.1e11,
+                poisson: 0.3
+            })
         );
     }
 }
@@ -293,14 +352,23 @@ fn the_same_mesh_in_three_formats_reads_to_the_same_bits() {
     for file in ["formats/pad_coarse.bdf", "formats/pad_coarse.cdb"] {
         let r = squeal_mesh::read(&data(file)).unwrap_or_else(|e| panic!("{e}"));
         let b = r.mesh;
-        assert!(r.warnings.iter().all(|w| !w.message.contains("no quadratic")), "{file}");
+        assert!(
+            r.warnings
+                .iter()
+                .all(|w| !w.message.contains("no quadratic")),
+            "{file}"
+        );
         assert_eq!(bits(&a), bits(&b), "{file}: node coordinates");
         assert_eq!(a.node_ids, b.node_ids, "{file}");
         assert_eq!(a.blocks, b.blocks, "{file}: elements");
         assert_eq!(a.element_ids, b.element_ids, "{file}");
         assert_eq!(a.node_sets, b.node_sets, "{file}: node sets");
         for (name, set) in &a.element_sets {
-            assert_eq!(b.element_set(name), Some(&set[..]), "{file}: element set {name}");
+            assert_eq!(
+                b.element_set(name),
+                Some(&set[..]),
+                "{file}: element set {name}"
+            );
         }
         let (ma, mb) = (a.element_materials(), b.element_materials());
         for e in 0..a.num_elements() {
@@ -348,10 +416,26 @@ GRID,99,,1.,1.,1.
     assert_eq!(m.node_set("SET1_9"), Some(&[0u32, 1, 2, 4][..]));
     // E and G give NU = E / (2 G) - 1; E and NU as given.
     let e1 = m.materials["MAT_1"];
-    assert_eq!(e1.elastic, Some(Elastic::Isotropic { young: 2.1e11, poisson: 2.1e11 / 1.6e11 - 1.0 }));
+    assert_eq!(
+        e1.elastic,
+        Some(Elastic::Isotropic {
+            young: 2.1e11,
+            poisson: 2.1e11 / 1.6e11 - 1.0
+        })
+    );
     assert_eq!(e1.density, Some(7850.0));
-    assert_eq!(m.materials["MAT_2"].elastic, Some(Elastic::Isotropic { young: 1.0e9, poisson: 0.25 }));
-    assert!(r.warnings.iter().any(|w| w.message.contains("no quadratic solid element")));
+    assert_eq!(
+        m.materials["MAT_2"].elastic,
+        Some(Elastic::Isotropic {
+            young: 1.0e9,
+            poisson: 0.25
+        })
+    );
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.message.contains("no quadratic solid element"))
+    );
 }
 
 /// 3×3 inverse by Gauss-Jordan elimination with partial pivoting.
@@ -362,7 +446,9 @@ fn inverse(a: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
         m[i][3 + i] = 1.0;
     }
     for c in 0..3 {
-        let p = (c..3).max_by(|&x, &y| m[x][c].abs().total_cmp(&m[y][c].abs())).unwrap();
+        let p = (c..3)
+            .max_by(|&x, &y| m[x][c].abs().total_cmp(&m[y][c].abs()))
+            .unwrap();
         m.swap(c, p);
         let d = m[c][c];
         for v in m[c].iter_mut() {
@@ -384,7 +470,11 @@ fn inverse(a: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
 /// constants to round-off; a coupled one, and MAT9 in other material axes, are refused.
 #[test]
 fn mat9_orthotropic_reads_as_engineering_constants() {
-    let (e, nu, g) = ([1.0e10, 5.0e9, 2.0e9], [0.3, 0.2, 0.25], [4.0e9, 3.0e9, 2.0e9]);
+    let (e, nu, g) = (
+        [1.0e10, 5.0e9, 2.0e9],
+        [0.3, 0.2, 0.25],
+        [4.0e9, 3.0e9, 2.0e9],
+    );
     let s = [
         [1.0 / e[0], -nu[0] / e[0], -nu[1] / e[0]],
         [-nu[0] / e[0], 1.0 / e[1], -nu[2] / e[1]],
@@ -396,25 +486,56 @@ fn mat9_orthotropic_reads_as_engineering_constants() {
     let f = |v: f64| format!("{v:e}");
     let text = format!(
         "MAT9,4,{},{},{},,,,{}\n,{},,,,{},,,\n,{},,,{},,{},1500.\nPSOLID,1,4\n",
-        f(c[0][0]), f(c[0][1]), f(c[0][2]), f(c[1][1]), f(c[1][2]), f(c[2][2]), f(g[0]), f(g[2]), f(g[1])
+        f(c[0][0]),
+        f(c[0][1]),
+        f(c[0][2]),
+        f(c[1][1]),
+        f(c[1][2]),
+        f(c[2][2]),
+        f(g[0]),
+        f(g[2]),
+        f(g[1])
     );
     let r = nastran::parse(text.as_bytes(), Path::new("m.bdf"), &inp::NoIncludes).unwrap();
-    let Some(Elastic::EngineeringConstants { e: e2, nu: nu2, g: g2 }) = r.mesh.materials["MAT_4"].elastic else {
+    let Some(Elastic::EngineeringConstants {
+        e: e2,
+        nu: nu2,
+        g: g2,
+    }) = r.mesh.materials["MAT_4"].elastic
+    else {
         panic!("not orthotropic")
     };
     // Two 3x3 inversions of a matrix with condition number ~10: round-off of ~1e-15.
     for k in 0..3 {
-        assert!((e2[k] / e[k] - 1.0).abs() < 1e-13, "E{k}: {} {}", e2[k], e[k]);
+        assert!(
+            (e2[k] / e[k] - 1.0).abs() < 1e-13,
+            "E{k}: {} {}",
+            e2[k],
+            e[k]
+        );
         assert!((nu2[k] / nu[k] - 1.0).abs() < 1e-13, "nu{k}");
         assert_eq!(g2[k], g[k]);
     }
     assert_eq!(r.mesh.materials["MAT_4"].density, Some(1500.0));
     let coupled = "MAT9,4,1.+10,,,5.+8,,,1.+10\n,,,,,1.+10,,,\n,1.+9,,,1.+9,,1.+9\n";
-    let err = nastran::parse(coupled.as_bytes(), Path::new("c.bdf"), &inp::NoIncludes).unwrap_err().to_string();
-    assert!(err.starts_with("c.bdf:1: MAT9 4 couples shear and extension (G14 not zero)"), "{err}");
-    let axes = text.replace("PSOLID,1,4", "PSOLID,1,4,2\nCTETRA,1,1,1,2,3,4,5,6\n,7,8,9,10");
-    let err = nastran::parse(axes.as_bytes(), Path::new("a.bdf"), &inp::NoIncludes).unwrap_err().to_string();
-    assert!(err.contains("a.bdf:4: PSOLID 1 gives the material axes CORDM = 2"), "{err}");
+    let err = nastran::parse(coupled.as_bytes(), Path::new("c.bdf"), &inp::NoIncludes)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.starts_with("c.bdf:1: MAT9 4 couples shear and extension (G14 not zero)"),
+        "{err}"
+    );
+    let axes = text.replace(
+        "PSOLID,1,4",
+        "PSOLID,1,4,2\nCTETRA,1,1,1,2,3,4,5,6\n,7,8,9,10",
+    );
+    let err = nastran::parse(axes.as_bytes(), Path::new("a.bdf"), &inp::NoIncludes)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("a.bdf:4: PSOLID 1 gives the material axes CORDM = 2"),
+        "{err}"
+    );
 }
 
 /// Files held in memory, for include tests.
@@ -440,13 +561,20 @@ fn nastran_includes_are_relative_and_loops_are_named() {
     let r = nastran::parse(main, Path::new("m/main.bdf"), &files).unwrap();
     assert_eq!(r.mesh.node_ids, vec![1, 2, 3, 4]);
     let looping = Memory(vec![("m/sub/b.bdf", "INCLUDE '../main.bdf'\n")]);
-    let e = nastran::parse(main, Path::new("m/main.bdf"), &looping).unwrap_err().to_string();
+    let e = nastran::parse(main, Path::new("m/main.bdf"), &looping)
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains("m/sub/b.bdf:1: include loop: m/main.bdf -> m/sub/b.bdf -> m/sub/../main.bdf"),
         "{e}"
     );
-    let e = nastran::parse(main, Path::new("m/main.bdf"), &inp::NoIncludes).unwrap_err().to_string();
-    assert!(e.starts_with("m/main.bdf:3: cannot read included file m/sub/b.bdf"), "{e}");
+    let e = nastran::parse(main, Path::new("m/main.bdf"), &inp::NoIncludes)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("m/main.bdf:3: cannot read included file m/sub/b.bdf"),
+        "{e}"
+    );
 }
 
 /// Broken files (tests/data/broken/{nastran,cdb}/MANIFEST): each gives its error at the
@@ -456,7 +584,10 @@ fn broken_files_give_located_errors() {
     for dir in ["broken/nastran", "broken/cdb"] {
         let text = std::fs::read_to_string(data(dir).join("MANIFEST")).unwrap();
         let mut listed = vec!["MANIFEST".to_string()];
-        for line in text.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty()) {
+        for line in text
+            .lines()
+            .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        {
             let cols: Vec<&str> = line.split(" | ").collect();
             assert_eq!(cols.len(), 3, "bad manifest line {line}");
             let (file, place, fragment) = (cols[0], cols[1], cols[2]);
@@ -474,14 +605,30 @@ fn broken_files_give_located_errors() {
                 (_, Ok(_)) => panic!("{file}: expected an error"),
                 (place, Err(e)) => {
                     let shown = e.to_string();
-                    let MeshError::Invalid { file: f, location, message } = e else {
+                    let MeshError::Invalid {
+                        file: f,
+                        location,
+                        message,
+                    } = e
+                    else {
                         panic!("{file}: expected MeshError::Invalid, got {shown}")
                     };
                     let (err_file, at) = place.rsplit_once(':').unwrap();
-                    let loc = if at == "-" { Location::File } else { Location::Line(at.parse().unwrap()) };
-                    assert!(f.ends_with(err_file), "{file}: error names {} not {err_file}", f.display());
+                    let loc = if at == "-" {
+                        Location::File
+                    } else {
+                        Location::Line(at.parse().unwrap())
+                    };
+                    assert!(
+                        f.ends_with(err_file),
+                        "{file}: error names {} not {err_file}",
+                        f.display()
+                    );
                     assert_eq!(location, loc, "{file}: {shown}");
-                    assert!(message.contains(fragment), "{file}: '{message}' lacks '{fragment}'");
+                    assert!(
+                        message.contains(fragment),
+                        "{file}: '{message}' lacks '{fragment}'"
+                    );
                 }
             }
         }

@@ -62,7 +62,10 @@ impl Format {
                 return Err(bad());
             }
             if fields.len() + count > MAX_FIELDS {
-                return Err(format!("the format line {} describes more than {MAX_FIELDS} fields", line.trim()));
+                return Err(format!(
+                    "the format line {} describes more than {MAX_FIELDS} fields",
+                    line.trim()
+                ));
             }
             fields.extend(std::iter::repeat_n((kind, width), count));
         }
@@ -116,7 +119,10 @@ mod tests {
         assert_eq!(f.ints(), 3);
         assert_eq!(f.fields[3], (Kind::Real, 21));
         assert_eq!(Format::parse("(19i9)").unwrap().fields.len(), 19);
-        assert_eq!(Format::parse("(8I10)").unwrap().fields, vec![(Kind::Int, 10); 8]);
+        assert_eq!(
+            Format::parse("(8I10)").unwrap().fields,
+            vec![(Kind::Int, 10); 8]
+        );
         assert_eq!(Format::parse("(1i9,3e20.9e3)").unwrap().ints(), 1);
         assert!(Format::parse("3i9").is_err());
         assert!(Format::parse("(3x9)").is_err());

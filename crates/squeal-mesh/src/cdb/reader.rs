@@ -65,7 +65,12 @@ fn element_type(name: &str) -> Option<Type> {
         .unwrap_or(&upper)
         .parse()
         .ok()
-        .or_else(|| upper.trim_start_matches(|c: char| c.is_ascii_alphabetic()).parse().ok())?;
+        .or_else(|| {
+            upper
+                .trim_start_matches(|c: char| c.is_ascii_alphabetic())
+                .parse()
+                .ok()
+        })?;
     Some(match number {
         186 | 95 => Type::Solid186,
         187 | 92 => Type::Solid187,
@@ -98,7 +103,21 @@ fn quiet(cmd: &str) -> bool {
     cmd.starts_with(['/', '*', '!'])
         || matches!(
             cmd,
-            "KEYOPT" | "FINISH" | "NUMOFF" | "TYPE" | "MAT" | "REAL" | "SECNUM" | "ESYS" | "CSYS" | "MPTEMP" | "EXTOPT" | "N" | "EN" | "E" | "ANTYPE"
+            "KEYOPT"
+                | "FINISH"
+                | "NUMOFF"
+                | "TYPE"
+                | "MAT"
+                | "REAL"
+                | "SECNUM"
+                | "ESYS"
+                | "CSYS"
+                | "MPTEMP"
+                | "EXTOPT"
+                | "N"
+                | "EN"
+                | "E"
+                | "ANTYPE"
         )
 }
 
@@ -144,7 +163,13 @@ impl<'a> Reader<'a> {
             if t.is_empty() || t.starts_with('!') {
                 continue;
             }
-            let args: Vec<&str> = t.split('!').next().unwrap_or("").split(',').map(str::trim).collect();
+            let args: Vec<&str> = t
+                .split('!')
+                .next()
+                .unwrap_or("")
+                .split(',')
+                .map(str::trim)
+                .collect();
             let cmd = args[0].to_ascii_uppercase();
             match cmd.as_str() {
                 "ET" => self.et(&args, line)?,
@@ -180,8 +205,15 @@ impl<'a> Reader<'a> {
 
     /// The format line after a block command.
     fn format(&mut self, what: &str, line: usize) -> Result<(usize, Format), MeshError> {
-        let (l, text) = self.next_line().ok_or_else(|| self.err(line, format!("the file ends after {what}, before its format line")))?;
-        Format::parse(text).map(|f| (l, f)).map_err(|m| self.err(l, m))
+        let (l, text) = self.next_line().ok_or_else(|| {
+            self.err(
+                line,
+                format!("the file ends after {what}, before its format line"),
+            )
+        })?;
+        Format::parse(text)
+            .map(|f| (l, f))
+            .map_err(|m| self.err(l, m))
     }
 
     /// `NBLOCK`: `(3i9,6e21.13e3)` lines of node number, two integers, X, Y, Z and three
@@ -194,7 +226,12 @@ impl<'a> Reader<'a> {
             return Err(self.err(fl, "an NBLOCK format needs an integer field (the node number) and three real fields (X, Y, Z)"));
         }
         loop {
-            let (l, text) = self.next_line().ok_or_else(|| self.err(line, "the file ends inside this NBLOCK (no N,R5.3,LOC,-1 or -1 line ends it)"))?;
+            let (l, text) = self.next_line().ok_or_else(|| {
+                self.err(
+                    line,
+                    "the file ends inside this NBLOCK (no N,R5.3,LOC,-1 or -1 line ends it)",
+                )
+            })?;
             if text.trim_start().to_ascii_uppercase().starts_with("N,") {
                 return Ok(());
             }
@@ -202,17 +239,34 @@ impl<'a> Reader<'a> {
             let id = match v[0].map(int) {
                 Some(Some(-1)) => return Ok(()),
                 Some(Some(id)) if id > 0 => id as u64,
-                _ => return Err(self.err(l, format!("expected a node line (node number, then coordinates), found '{}'", shown(text)))),
+                _ => {
+                    return Err(self.err(
+                        l,
+                        format!(
+                            "expected a node line (node number, then coordinates), found '{}'",
+                            shown(text)
+                        ),
+                    ));
+                }
             };
             let mut x = [0.0; 6];
             for (k, slot) in x.iter_mut().enumerate() {
-                let Some(Some(s)) = v.get(ints + k) else { continue };
-                *slot = real(s).ok_or_else(|| self.err(l, format!("node {id}: expected a number, found '{}'", shown(s))))?;
+                let Some(Some(s)) = v.get(ints + k) else {
+                    continue;
+                };
+                *slot = real(s).ok_or_else(|| {
+                    self.err(
+                        l,
+                        format!("node {id}: expected a number, found '{}'", shown(s)),
+                    )
+                })?;
             }
             if x[3..].iter().any(|&a| a != 0.0) {
                 self.note("rotated", l, || "the nodal coordinate systems (rotation angles of NBLOCK) are ignored: squeal reads no loads or constraints from the file and takes displacements in the global axes".into());
             }
-            self.b.add_node(id, [x[0], x[1], x[2]]).map_err(|m| self.err(l, m))?;
+            self.b
+                .add_node(id, [x[0], x[1], x[2]])
+                .map_err(|m| self.err(l, m))?;
         }
     }
 
@@ -225,11 +279,19 @@ impl<'a> Reader<'a> {
         let (fl, f) = self.format("EBLOCK", line)?;
         let per_line = f.fields.len();
         if f.ints() != per_line || per_line < 11 {
-            return Err(self.err(fl, "an EBLOCK format has integer fields only, at least 11 (such as (19i9))"));
+            return Err(self.err(
+                fl,
+                "an EBLOCK format has integer fields only, at least 11 (such as (19i9))",
+            ));
         }
         let solid = args.get(2).is_some_and(|s| s.eq_ignore_ascii_case("SOLID"));
         loop {
-            let (l, text) = self.next_line().ok_or_else(|| self.err(line, "the file ends inside this EBLOCK (no -1 line ends it)"))?;
+            let (l, text) = self.next_line().ok_or_else(|| {
+                self.err(
+                    line,
+                    "the file ends inside this EBLOCK (no -1 line ends it)",
+                )
+            })?;
             let first = self.ints(&f, text, l)?;
             if first.first() == Some(&-1) {
                 return Ok(());
@@ -242,10 +304,26 @@ impl<'a> Reader<'a> {
             if first.len() < 11 {
                 return Err(self.err(l, format!("an EBLOCK record starts with 11 attributes (material, type, ..., element number), found {} numbers", first.len())));
             }
-            let count = usize::try_from(first[8]).ok().filter(|&c| c <= 20).ok_or_else(|| self.err(l, format!("element {}: expected a node count of 1 to 20 (field 9), found {}", first[10], first[8])))?;
+            let count = usize::try_from(first[8])
+                .ok()
+                .filter(|&c| c <= 20)
+                .ok_or_else(|| {
+                    self.err(
+                        l,
+                        format!(
+                            "element {}: expected a node count of 1 to 20 (field 9), found {}",
+                            first[10], first[8]
+                        ),
+                    )
+                })?;
             let mut nodes: Vec<i64> = first[11..].to_vec();
             while nodes.len() < count {
-                let (l2, t2) = self.next_line().ok_or_else(|| self.err(l, format!("the file ends inside the record of element {}", first[10])))?;
+                let (l2, t2) = self.next_line().ok_or_else(|| {
+                    self.err(
+                        l,
+                        format!("the file ends inside the record of element {}", first[10]),
+                    )
+                })?;
                 nodes.extend(self.ints(&f, t2, l2)?);
             }
             if nodes.len() != count || nodes.iter().any(|&n| n <= 0) {
@@ -260,16 +338,39 @@ impl<'a> Reader<'a> {
         let v = f.split(text).map_err(|m| self.err(l, m))?;
         let mut out = Vec::with_capacity(v.len());
         for s in v.into_iter().flatten() {
-            out.push(int(s).ok_or_else(|| self.err(l, format!("expected an integer, found '{}'", shown(s))))?);
+            out.push(int(s).ok_or_else(|| {
+                self.err(l, format!("expected an integer, found '{}'", shown(s)))
+            })?);
         }
         Ok(out)
     }
 
     fn element(&mut self, attrs: &[i64], nodes: &[i64], l: usize) -> Result<(), MeshError> {
-        let id = u64::try_from(attrs[10]).ok().filter(|&v| v > 0).ok_or_else(|| self.err(l, format!("expected a positive element number (field 11), found {}", attrs[10])))?;
-        let ty = u64::try_from(attrs[1]).ok().and_then(|t| self.types.get(&t)).copied().ok_or_else(|| {
-            self.err(l, format!("element {id} has type {}, which no ET command defines (before this line)", attrs[1]))
-        })?;
+        let id = u64::try_from(attrs[10])
+            .ok()
+            .filter(|&v| v > 0)
+            .ok_or_else(|| {
+                self.err(
+                    l,
+                    format!(
+                        "expected a positive element number (field 11), found {}",
+                        attrs[10]
+                    ),
+                )
+            })?;
+        let ty = u64::try_from(attrs[1])
+            .ok()
+            .and_then(|t| self.types.get(&t))
+            .copied()
+            .ok_or_else(|| {
+                self.err(
+                    l,
+                    format!(
+                        "element {id} has type {}, which no ET command defines (before this line)",
+                        attrs[1]
+                    ),
+                )
+            })?;
         let n: Vec<u64> = nodes.iter().map(|&v| v as u64).collect();
         let (kind, canonical): (ElementKind, Vec<u64>) = match ty {
             Type::Solid187 if n.len() == 10 => (ElementKind::Tet10, n.clone()),
@@ -286,7 +387,9 @@ impl<'a> Reader<'a> {
                 return Ok(());
             }
         };
-        self.b.add_typed(id, kind, &canonical).map_err(|m| self.err(l, m))?;
+        self.b
+            .add_typed(id, kind, &canonical)
+            .map_err(|m| self.err(l, m))?;
         let mat = u64::try_from(attrs[0]).unwrap_or(0);
         self.by_material.entry(mat).or_default().push(id);
         Ok(())
@@ -295,16 +398,46 @@ impl<'a> Reader<'a> {
     /// `CMBLOCK, NAME, NODE|ELEM, COUNT` and `COUNT` integers (a negative one ends a range
     /// begun by the one before it).
     fn cmblock(&mut self, args: &[&str], line: usize) -> Result<(), MeshError> {
-        let name = args.get(1).filter(|s| !s.is_empty()).ok_or_else(|| self.err(line, "CMBLOCK needs a component name"))?.to_string();
-        let entity = args.get(2).map(|s| s.to_ascii_uppercase()).unwrap_or_default();
-        let count = args.get(3).and_then(|s| int(s)).and_then(|c| usize::try_from(c).ok()).ok_or_else(|| self.err(line, "CMBLOCK needs 'CMBLOCK, name, NODE or ELEM, number of entries'"))?;
+        let name = args
+            .get(1)
+            .filter(|s| !s.is_empty())
+            .ok_or_else(|| self.err(line, "CMBLOCK needs a component name"))?
+            .to_string();
+        let entity = args
+            .get(2)
+            .map(|s| s.to_ascii_uppercase())
+            .unwrap_or_default();
+        let count = args
+            .get(3)
+            .and_then(|s| int(s))
+            .and_then(|c| usize::try_from(c).ok())
+            .ok_or_else(|| {
+                self.err(
+                    line,
+                    "CMBLOCK needs 'CMBLOCK, name, NODE or ELEM, number of entries'",
+                )
+            })?;
         let (_, f) = self.format("CMBLOCK", line)?;
         let mut values: Vec<i64> = Vec::new();
         while values.len() < count {
-            let (l, text) = self.next_line().ok_or_else(|| self.err(line, format!("the file ends inside component {name} ({} of {count} entries read)", values.len())))?;
+            let (l, text) = self.next_line().ok_or_else(|| {
+                self.err(
+                    line,
+                    format!(
+                        "the file ends inside component {name} ({} of {count} entries read)",
+                        values.len()
+                    ),
+                )
+            })?;
             let v = self.ints(&f, text, l)?;
             if v.is_empty() {
-                return Err(self.err(l, format!("component {name}: expected {count} entries, found an empty line after {}", values.len())));
+                return Err(self.err(
+                    l,
+                    format!(
+                        "component {name}: expected {count} entries, found an empty line after {}",
+                        values.len()
+                    ),
+                ));
             }
             values.extend(v);
         }
@@ -320,14 +453,27 @@ impl<'a> Reader<'a> {
             };
             let to = v.unsigned_abs();
             if to - from > 10_000_000 {
-                return Err(self.err(line, format!("component {name}: the range {from} to {to} has more than 10 million ids")));
+                return Err(self.err(
+                    line,
+                    format!(
+                        "component {name}: the range {from} to {to} has more than 10 million ids"
+                    ),
+                ));
             }
             ids.extend(from + 1..=to);
         }
         match entity.as_str() {
             "NODE" | "NODES" => self.b.add_to_node_set(&name, ids),
             "ELEM" | "ELEMENT" | "ELEMENTS" => self.b.add_to_element_set(&name, ids),
-            other => return Err(self.err(line, format!("CMBLOCK {name}: expected NODE or ELEM, found '{}'", shown(other)))),
+            other => {
+                return Err(self.err(
+                    line,
+                    format!(
+                        "CMBLOCK {name}: expected NODE or ELEM, found '{}'",
+                        shown(other)
+                    ),
+                ));
+            }
         }
         Ok(())
     }
@@ -335,19 +481,47 @@ impl<'a> Reader<'a> {
     /// `MPDATA, R5.0, LENGTH, LAB, MAT, STLOC, C1, ...` (as CDWRITE writes it),
     /// `MPDATA, LAB, MAT, STLOC, C1, ...` and `MP, LAB, MAT, C0, C1, ...`.
     fn mpdata(&mut self, cmd: &str, args: &[&str], line: usize) -> Result<(), MeshError> {
-        let record = cmd == "MPDATA" && args.get(1).is_some_and(|s| s.to_ascii_uppercase().starts_with('R'));
+        let record = cmd == "MPDATA"
+            && args
+                .get(1)
+                .is_some_and(|s| s.to_ascii_uppercase().starts_with('R'));
         let (lab, mat, stloc, values) = match (cmd, record) {
             ("MPDATA", true) => (args.get(3), args.get(4), args.get(5), args.get(6..)),
             ("MPDATA", false) => (args.get(1), args.get(2), args.get(3), args.get(4..)),
             _ => (args.get(1), args.get(2), Some(&"1"), args.get(3..)),
         };
-        let bad = || self.err(line, format!("expected '{cmd}, label, material, ...' with a positive material number, found '{}'", shown(&args.join(","))));
-        let lab = lab.map(|s| s.to_ascii_uppercase()).filter(|s| !s.is_empty()).ok_or_else(bad)?;
-        let mat = mat.and_then(|s| int(s)).filter(|&m| m > 0).ok_or_else(bad)? as u64;
-        let stloc = stloc.map(|s| if s.is_empty() { 1 } else { int(s).unwrap_or(0) }).unwrap_or(1);
-        let values: Vec<&str> = values.unwrap_or(&[]).iter().copied().filter(|s| !s.is_empty()).collect();
-        let Some(first) = values.first() else { return Err(bad()) };
-        let v = real(first).ok_or_else(|| self.err(line, format!("{cmd} {lab} of material {mat}: expected a number, found '{}'", shown(first))))?;
+        let bad = || {
+            self.err(line, format!("expected '{cmd}, label, material, ...' with a positive material number, found '{}'", shown(&args.join(","))))
+        };
+        let lab = lab
+            .map(|s| s.to_ascii_uppercase())
+            .filter(|s| !s.is_empty())
+            .ok_or_else(bad)?;
+        let mat = mat
+            .and_then(|s| int(s))
+            .filter(|&m| m > 0)
+            .ok_or_else(bad)? as u64;
+        let stloc = stloc
+            .map(|s| if s.is_empty() { 1 } else { int(s).unwrap_or(0) })
+            .unwrap_or(1);
+        let values: Vec<&str> = values
+            .unwrap_or(&[])
+            .iter()
+            .copied()
+            .filter(|s| !s.is_empty())
+            .collect();
+        let Some(first) = values.first() else {
+            return Err(bad());
+        };
+        let v = real(first).ok_or_else(|| {
+            self.err(
+                line,
+                format!(
+                    "{cmd} {lab} of material {mat}: expected a number, found '{}'",
+                    shown(first)
+                ),
+            )
+        })?;
         let later = stloc > 1 || values.len() > 1;
         if later {
             self.note("temperature", line, || "temperature-dependent material properties (several MPDATA values or MP coefficients): squeal uses the first".into());
@@ -366,7 +540,10 @@ impl<'a> Reader<'a> {
         let get = |k: &str| p.values.get(k).copied();
         let density = get("DENS");
         let Some(ex) = get("EX") else {
-            return Ok(Material { elastic: None, density });
+            return Ok(Material {
+                elastic: None,
+                density,
+            });
         };
         for k in ["EY", "EZ"] {
             if get(k).is_some_and(|e| e != ex) {
@@ -387,7 +564,13 @@ impl<'a> Reader<'a> {
                 return Err(self.err(p.line, format!("material {mat} has GXY = {g:e}, but EX / (2 (1 + PRXY)) = {implied:e}: squeal's isotropic material has two constants; leave GXY out")));
             }
         }
-        Ok(Material { elastic: Some(Elastic::Isotropic { young: ex, poisson: nu }), density })
+        Ok(Material {
+            elastic: Some(Elastic::Isotropic {
+                young: ex,
+                poisson: nu,
+            }),
+            density,
+        })
     }
 
     fn finish(mut self) -> Result<ReadMesh, MeshError> {
@@ -402,18 +585,39 @@ impl<'a> Reader<'a> {
             if props.contains_key(&mat) {
                 self.b.add_section(&name, &name);
             } else {
-                let w = format!("elements are made of material {mat}, which no MPDATA defines: they have no material");
-                self.warnings.push(Warning { file: self.path.to_path_buf(), location: Location::File, message: w });
+                let w = format!(
+                    "elements are made of material {mat}, which no MPDATA defines: they have no material"
+                );
+                self.warnings.push(Warning {
+                    file: self.path.to_path_buf(),
+                    location: Location::File,
+                    message: w,
+                });
             }
         }
         for (line, count, stem) in std::mem::take(&mut self.once).into_values() {
-            let times = if count == 1 { "once".to_string() } else { format!("{count} times, the first here") };
-            self.warnings.push(Warning { file: self.path.to_path_buf(), location: Location::Line(line), message: format!("{stem} ({times})") });
+            let times = if count == 1 {
+                "once".to_string()
+            } else {
+                format!("{count} times, the first here")
+            };
+            self.warnings.push(Warning {
+                file: self.path.to_path_buf(),
+                location: Location::Line(line),
+                message: format!("{stem} ({times})"),
+            });
         }
         if self.b.num_elements() == 0 {
-            self.warnings.push(Warning { file: self.path.to_path_buf(), location: Location::File, message: crate::NO_TET10.to_string() });
+            self.warnings.push(Warning {
+                file: self.path.to_path_buf(),
+                location: Location::File,
+                message: crate::NO_TET10.to_string(),
+            });
         }
-        Ok(ReadMesh { mesh: self.b.finish(), warnings: self.warnings })
+        Ok(ReadMesh {
+            mesh: self.b.finish(),
+            warnings: self.warnings,
+        })
     }
 }
 

@@ -141,7 +141,11 @@ fn columns(chars: &[char], from: usize, to: usize) -> String {
     if from >= to {
         return String::new();
     }
-    chars[from..to].iter().collect::<String>().trim().to_string()
+    chars[from..to]
+        .iter()
+        .collect::<String>()
+        .trim()
+        .to_string()
 }
 
 /// The first field and the data fields of one line: free field if it has a comma, else
@@ -292,7 +296,11 @@ impl Lexer<'_> {
             }
             // Only lines starting with I, E or B can be INCLUDE, ENDDATA or BEGIN BULK.
             let special = trimmed.starts_with(['I', 'i', 'E', 'e', 'B', 'b']);
-            let upper = if special { words(trimmed) } else { String::new() };
+            let upper = if special {
+                words(trimmed)
+            } else {
+                String::new()
+            };
             if upper.starts_with("INCLUDE") && !upper.starts_with("INCLUDE*") {
                 let (name, used) = include_name(&lines[i - 1..]).ok_or_else(|| {
                     self.out.error(loc, "INCLUDE needs a file name in single quotes: INCLUDE 'file.bdf' (an unclosed quote runs to the end of the file)")
@@ -429,16 +437,31 @@ mod tests {
     #[test]
     fn fields_in_the_three_formats() {
         let (f, d) = split_line("GRID,7,,1.5,2.,3.").unwrap();
-        assert_eq!((f.as_str(), &d[..4]), ("GRID", &["7", "", "1.5", "2."].map(String::from)[..]));
+        assert_eq!(
+            (f.as_str(), &d[..4]),
+            ("GRID", &["7", "", "1.5", "2."].map(String::from)[..])
+        );
         assert_eq!(d.len(), 8);
         let (f, d) = split_line("GRID           7       0     1.5      2.      3.").unwrap();
-        assert_eq!((f.as_str(), &d[..5]), ("GRID", &["7", "0", "1.5", "2.", "3."].map(String::from)[..]));
+        assert_eq!(
+            (f.as_str(), &d[..5]),
+            ("GRID", &["7", "0", "1.5", "2.", "3."].map(String::from)[..])
+        );
         let (f, d) =
             split_line("GRID*                  7               0             1.5              2.")
                 .unwrap();
-        assert_eq!((f.as_str(), d), ("GRID*".into(), vec!["7".into(), "0".into(), "1.5".into(), "2.".into()]));
+        assert_eq!(
+            (f.as_str(), d),
+            (
+                "GRID*".into(),
+                vec!["7".into(), "0".into(), "1.5".into(), "2.".into()]
+            )
+        );
         let (f, d) = split_line("GRID\t7\t\t1.5").unwrap();
-        assert_eq!((f.as_str(), &d[..3]), ("GRID", &["7", "", "1.5"].map(String::from)[..]));
+        assert_eq!(
+            (f.as_str(), &d[..3]),
+            ("GRID", &["7", "", "1.5"].map(String::from)[..])
+        );
         assert!(split_line("GRID,1,2,3,4,5,6,7,8,9,10").is_err());
     }
 
@@ -466,7 +489,10 @@ mod tests {
 
     #[test]
     fn include_names() {
-        assert_eq!(include_name(&["INCLUDE 'a.bdf'"]), Some(("a.bdf".into(), 1)));
+        assert_eq!(
+            include_name(&["INCLUDE 'a.bdf'"]),
+            Some(("a.bdf".into(), 1))
+        );
         assert_eq!(
             include_name(&["include 'dir/", "  sub.bdf'", "GRID"]),
             Some(("dir/sub.bdf".into(), 2))

@@ -7,9 +7,9 @@
 pub(crate) fn real(s: &str) -> Option<f64> {
     let s = s.trim();
     if s.is_empty()
-        || !s
-            .bytes()
-            .all(|b| b.is_ascii_digit() || matches!(b, b'.' | b'+' | b'-' | b'e' | b'E' | b'd' | b'D'))
+        || !s.bytes().all(|b| {
+            b.is_ascii_digit() || matches!(b, b'.' | b'+' | b'-' | b'e' | b'E' | b'd' | b'D')
+        })
     {
         return None;
     }
@@ -59,7 +59,9 @@ mod tests {
         assert_eq!(real("1."), Some(1.0));
         assert_eq!(real("3"), Some(3.0));
         assert_eq!(real("0.01231920804111597"), Some(0.01231920804111597));
-        for bad in ["", "nan", "inf", "1.2.3", "1.0E", "1e999", "+", "-", ".", "1.0-", "1,0"] {
+        for bad in [
+            "", "nan", "inf", "1.2.3", "1.0E", "1e999", "+", "-", ".", "1.0-", "1,0",
+        ] {
             assert_eq!(real(bad), None, "{bad}");
         }
         assert_eq!(real_or(" ", 0.0), Some(0.0));

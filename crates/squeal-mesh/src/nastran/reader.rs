@@ -50,7 +50,8 @@ fn solid(name: &str) -> Option<Solid> {
 }
 
 /// The cards squeal reads, in the warning about the others.
-const READ: &str = "GRID, CORD2R, CORD2C, CORD2S, CTETRA, CHEXA, CPENTA, CPYRAM, PSOLID, MAT1, MAT9, SET1";
+const READ: &str =
+    "GRID, CORD2R, CORD2C, CORD2S, CTETRA, CHEXA, CPENTA, CPYRAM, PSOLID, MAT1, MAT9, SET1";
 
 /// A coordinate system as defined: read, or of a kind squeal refuses when a grid uses it.
 enum System {
@@ -123,7 +124,11 @@ impl<'a> Reader<'a> {
         int(s).ok_or_else(|| {
             self.err(
                 card.loc_of(i),
-                format!("{} needs {what} as an integer, found '{}'", card.name, shown(s)),
+                format!(
+                    "{} needs {what} as an integer, found '{}'",
+                    card.name,
+                    shown(s)
+                ),
             )
         })
     }
@@ -164,7 +169,13 @@ impl<'a> Reader<'a> {
                 "GRID" => grids.push(card),
                 "CORD2R" | "CORD2C" | "CORD2S" => {
                     let (id, def) = self.cord2(card)?;
-                    self.unique(&mut systems, id, (System::Defined(def), card.loc), card, "coordinate system")?;
+                    self.unique(
+                        &mut systems,
+                        id,
+                        (System::Defined(def), card.loc),
+                        card,
+                        "coordinate system",
+                    )?;
                 }
                 "CORD1R" | "CORD1C" | "CORD1S" | "CORD3G" | "CORD3R" => {
                     let id = self.id(card, 0, "the coordinate system id CID")?;
@@ -173,20 +184,34 @@ impl<'a> Reader<'a> {
                     } else {
                         "is a general or convective system"
                     };
-                    self.unique(&mut systems, id, (System::Refused(why), card.loc), card, "coordinate system")?;
+                    self.unique(
+                        &mut systems,
+                        id,
+                        (System::Refused(why), card.loc),
+                        card,
+                        "coordinate system",
+                    )?;
                 }
                 "PSOLID" => {
                     let pid = self.id(card, 0, "the property id PID")?;
                     let mid = self.id(card, 1, "the material id MID")?;
                     let cordm = self.int_or(card, 2, 0, "the material system CORDM")?;
-                    let p = Property { mid, cordm, loc: card.loc };
+                    let p = Property {
+                        mid,
+                        cordm,
+                        loc: card.loc,
+                    };
                     if let Some(first) = properties.insert(pid, p) {
                         return Err(self.twice(card, "property", pid, first.loc));
                     }
                 }
                 "MAT1" | "MAT9" => {
                     let mid = self.id(card, 0, "the material id MID")?;
-                    let m = if card.name == "MAT1" { self.mat1(card)? } else { self.mat9(card)? };
+                    let m = if card.name == "MAT1" {
+                        self.mat1(card)?
+                    } else {
+                        self.mat9(card)?
+                    };
                     if let Some(first) = materials.insert(mid, m) {
                         return Err(self.twice(card, "material", mid, first.loc));
                     }
@@ -196,7 +221,9 @@ impl<'a> Reader<'a> {
                     if !matches!(card.get(1), "" | "0") || !matches!(card.get(5), "" | "0") {
                         return Err(self.err(card.loc, "GRDSET gives default coordinate systems (CP, CD), which squeal does not read: give them on each GRID"));
                     }
-                    self.note("GRDSET", card.loc, || "skipped GRDSET (defaults of the grids' constraints)".into());
+                    self.note("GRDSET", card.loc, || {
+                        "skipped GRDSET (defaults of the grids' constraints)".into()
+                    });
                 }
                 name if solid(name).is_some() => elements.push(card),
                 name => {
@@ -221,7 +248,10 @@ impl<'a> Reader<'a> {
             names.get(&(named, id)).cloned().unwrap_or(default)
         };
         for (&mid, m) in &materials {
-            b.set_material(&name_of(Named::Material, mid, format!("MAT_{mid}")), m.material);
+            b.set_material(
+                &name_of(Named::Material, mid, format!("MAT_{mid}")),
+                m.material,
+            );
         }
         for (pid, ids) in by_property {
             let set = name_of(Named::Property, pid, format!("PSOLID_{pid}"));
@@ -232,13 +262,22 @@ impl<'a> Reader<'a> {
                 continue;
             };
             match materials.get(&p.mid) {
-                None => self.warnings.push(lx.warning(p.loc, format!("PSOLID {pid} names material {}, which no MAT1 or MAT9 defines", p.mid))),
+                None => self.warnings.push(lx.warning(
+                    p.loc,
+                    format!(
+                        "PSOLID {pid} names material {}, which no MAT1 or MAT9 defines",
+                        p.mid
+                    ),
+                )),
                 Some(m) if m.anisotropic && p.cordm != 0 => {
                     return Err(self.err(p.loc, format!("PSOLID {pid} gives the material axes CORDM = {} for the MAT9 material {}: squeal takes material constants in the basic axes; give them there (CORDM = 0 or blank)", p.cordm, p.mid)));
                 }
                 Some(_) => {}
             }
-            b.add_section(&set, &name_of(Named::Material, p.mid, format!("MAT_{}", p.mid)));
+            b.add_section(
+                &set,
+                &name_of(Named::Material, p.mid, format!("MAT_{}", p.mid)),
+            );
         }
         for card in sets {
             self.set1(card, &names, &mut b)?;
@@ -246,7 +285,14 @@ impl<'a> Reader<'a> {
         self.finish(b)
     }
 
-    fn unique<T>(&self, map: &mut HashMap<u64, (T, Loc)>, id: u64, v: (T, Loc), card: &Card, what: &str) -> Result<(), MeshError> {
+    fn unique<T>(
+        &self,
+        map: &mut HashMap<u64, (T, Loc)>,
+        id: u64,
+        v: (T, Loc),
+        card: &Card,
+        what: &str,
+    ) -> Result<(), MeshError> {
         if let Some(first) = map.get(&id) {
             return Err(self.twice(card, what, id, first.1));
         }
@@ -269,7 +315,12 @@ impl<'a> Reader<'a> {
     fn cord2(&self, card: &Card) -> Result<(u64, Definition), MeshError> {
         let id = self.id(card, 0, "the coordinate system id CID")?;
         let rid = self.int_or(card, 1, 0, "the reference system RID")?;
-        let rid = u64::try_from(rid).map_err(|_| self.err(card.loc, format!("{} {id}: RID must be 0 or positive", card.name)))?;
+        let rid = u64::try_from(rid).map_err(|_| {
+            self.err(
+                card.loc,
+                format!("{} {id}: RID must be 0 or positive", card.name),
+            )
+        })?;
         let mut p = [0.0; 9];
         for (k, v) in p.iter_mut().enumerate() {
             *v = self.real_or(card, 2 + k, 0.0, "the points A, B, C")?;
@@ -279,11 +330,23 @@ impl<'a> Reader<'a> {
             "CORD2C" => Kind::Cylindrical,
             _ => Kind::Spherical,
         };
-        Ok((id, Definition { kind, rid, a: [p[0], p[1], p[2]], b: [p[3], p[4], p[5]], c: [p[6], p[7], p[8]] }))
+        Ok((
+            id,
+            Definition {
+                kind,
+                rid,
+                a: [p[0], p[1], p[2]],
+                b: [p[3], p[4], p[5]],
+                c: [p[6], p[7], p[8]],
+            },
+        ))
     }
 
     /// Every defined system in basic axes, following `RID` chains (a loop is an error).
-    fn frames(&self, systems: &HashMap<u64, (System, Loc)>) -> Result<HashMap<u64, Frame>, MeshError> {
+    fn frames(
+        &self,
+        systems: &HashMap<u64, (System, Loc)>,
+    ) -> Result<HashMap<u64, Frame>, MeshError> {
         let mut frames: HashMap<u64, Frame> = HashMap::new();
         let mut ids: Vec<u64> = systems.keys().copied().collect();
         ids.sort_unstable();
@@ -292,17 +355,32 @@ impl<'a> Reader<'a> {
             // Walk down to a system whose reference is resolved (or basic).
             loop {
                 let id = *chain.last().unwrap_or(&start);
-                let (System::Defined(def), loc) = &systems[&id] else { break };
+                let (System::Defined(def), loc) = &systems[&id] else {
+                    break;
+                };
                 if def.rid == 0 || frames.contains_key(&def.rid) {
                     break;
                 }
                 if chain.contains(&def.rid) {
-                    let path: Vec<String> = chain.iter().chain([&def.rid]).map(u64::to_string).collect();
-                    return Err(self.err(*loc, format!("coordinate systems reference each other in a loop: {}", path.join(" -> "))));
+                    let path: Vec<String> =
+                        chain.iter().chain([&def.rid]).map(u64::to_string).collect();
+                    return Err(self.err(
+                        *loc,
+                        format!(
+                            "coordinate systems reference each other in a loop: {}",
+                            path.join(" -> ")
+                        ),
+                    ));
                 }
                 match systems.get(&def.rid) {
                     Some(_) => chain.push(def.rid),
-                    None => return Err(self.err(*loc, format!("coordinate system {id} is defined in system {}, which is not defined", def.rid))),
+                    None => return Err(self.err(
+                        *loc,
+                        format!(
+                            "coordinate system {id} is defined in system {}, which is not defined",
+                            def.rid
+                        ),
+                    )),
                 }
             }
             for &id in chain.iter().rev() {
@@ -325,7 +403,13 @@ impl<'a> Reader<'a> {
     }
 
     /// `GRID, ID, CP, X1, X2, X3, CD, PS, SEID`.
-    fn grid(&mut self, card: &Card, systems: &HashMap<u64, (System, Loc)>, frames: &HashMap<u64, Frame>, b: &mut MeshBuilder) -> Result<(), MeshError> {
+    fn grid(
+        &mut self,
+        card: &Card,
+        systems: &HashMap<u64, (System, Loc)>,
+        frames: &HashMap<u64, Frame>,
+        b: &mut MeshBuilder,
+    ) -> Result<(), MeshError> {
         let id = self.id(card, 0, "the grid id")?;
         let cp = self.int_or(card, 1, 0, "the coordinate system CP")?;
         let mut x = [0.0; 3];
@@ -340,7 +424,10 @@ impl<'a> Reader<'a> {
                 _ => return Err(self.err(card.loc_of(1), format!("GRID {id} is given in coordinate system {cp}, which is not defined"))),
             };
             if !x.iter().all(|v| v.is_finite()) {
-                return Err(self.err(card.loc, format!("GRID {id} is placed at a point that is not finite")));
+                return Err(self.err(
+                    card.loc,
+                    format!("GRID {id} is placed at a point that is not finite"),
+                ));
             }
         }
         let cd = self.int_or(card, 5, 0, "the displacement system CD")?;
@@ -354,8 +441,15 @@ impl<'a> Reader<'a> {
     }
 
     /// A solid element: `EID, PID, G1, G2, ...` with all its edge grids or none.
-    fn element(&mut self, card: &Card, b: &mut MeshBuilder, by_property: &mut BTreeMap<u64, Vec<u64>>) -> Result<(), MeshError> {
-        let Some(s) = solid(&card.name) else { return Ok(()) };
+    fn element(
+        &mut self,
+        card: &Card,
+        b: &mut MeshBuilder,
+        by_property: &mut BTreeMap<u64, Vec<u64>>,
+    ) -> Result<(), MeshError> {
+        let Some(s) = solid(&card.name) else {
+            return Ok(());
+        };
         let eid = self.id(card, 0, "the element id EID")?;
         let pid = match card.get(1) {
             "" => eid,
@@ -371,11 +465,26 @@ impl<'a> Reader<'a> {
             };
         }
         if let Some(k) = (2 + n..card.fields.len()).find(|&k| !card.get(k).is_empty()) {
-            return Err(self.err(card.loc_of(k), format!("{} {eid} has more than {n} grids ('{}' in data field {}): a {} has {n}", card.name, shown(card.get(k)), k + 2, s.kind)));
+            return Err(self.err(
+                card.loc_of(k),
+                format!(
+                    "{} {eid} has more than {n} grids ('{}' in data field {}): a {} has {n}",
+                    card.name,
+                    shown(card.get(k)),
+                    k + 2,
+                    s.kind
+                ),
+            ));
         }
         let given = grids.iter().filter(|&&g| g != 0).count();
         if grids[..s.linear].contains(&0) {
-            return Err(self.err(card.loc, format!("{} {eid} lacks a corner grid (G1 to G{})", card.name, s.linear)));
+            return Err(self.err(
+                card.loc,
+                format!(
+                    "{} {eid} lacks a corner grid (G1 to G{})",
+                    card.name, s.linear
+                ),
+            ));
         }
         if given == s.linear {
             b.skip_element(eid);
@@ -389,7 +498,8 @@ impl<'a> Reader<'a> {
             return Err(self.err(card.loc, format!("{} {eid} has {given} of its {n} grids: squeal reads quadratic elements with every edge grid (or, skipped, first-order ones without any)", card.name)));
         }
         let nodes: Vec<u64> = s.to_canonical.iter().map(|&k| grids[k]).collect();
-        b.add_typed(eid, s.kind, &nodes).map_err(|m| self.err(card.loc, m))?;
+        b.add_typed(eid, s.kind, &nodes)
+            .map_err(|m| self.err(card.loc, m))?;
         by_property.entry(pid).or_default().push(eid);
         Ok(())
     }
@@ -407,7 +517,10 @@ impl<'a> Reader<'a> {
             (Some(e), Some(g), None) => (e, e / (2.0 * g) - 1.0),
             (None, Some(g), Some(nu)) => (2.0 * (1.0 + nu) * g, nu),
             (Some(e), None, None) => {
-                self.warnings.push(self.lx.warning(card.loc, format!("MAT1 {mid} gives E only: Poisson's ratio is 0 (Nastran's rule)")));
+                self.warnings.push(self.lx.warning(
+                    card.loc,
+                    format!("MAT1 {mid} gives E only: Poisson's ratio is 0 (Nastran's rule)"),
+                ));
                 (e, 0.0)
             }
             (Some(e), Some(g), Some(nu)) => {
@@ -417,12 +530,26 @@ impl<'a> Reader<'a> {
                 }
                 (e, nu)
             }
-            _ => return Err(self.err(card.loc, format!("MAT1 {mid} needs two of E, G and NU (with E), found no Young's modulus"))),
+            _ => {
+                return Err(self.err(
+                    card.loc,
+                    format!(
+                        "MAT1 {mid} needs two of E, G and NU (with E), found no Young's modulus"
+                    ),
+                ));
+            }
         };
         if !card.get(7).is_empty() && real(card.get(7)) != Some(0.0) {
             self.note("GE", card.loc, || "the structural damping GE of the materials is ignored: the scene's [damping] gives the damping".into());
         }
-        Ok(MaterialCard { material: Material { elastic: Some(Elastic::Isotropic { young, poisson }), density: rho }, anisotropic: false, loc: card.loc })
+        Ok(MaterialCard {
+            material: Material {
+                elastic: Some(Elastic::Isotropic { young, poisson }),
+                density: rho,
+            },
+            anisotropic: false,
+            loc: card.loc,
+        })
     }
 
     /// `MAT9, MID, G11, G12, ..., G66, RHO`: the upper triangle of the 6×6 stiffness in the
@@ -432,17 +559,29 @@ impl<'a> Reader<'a> {
     /// `G23 = G55`, `G13 = G66`); any coupling is refused.
     fn mat9(&mut self, card: &Card) -> Result<MaterialCard, MeshError> {
         let mid = card.get(0).to_string();
-        const NAMES: [&str; 21] = ["G11", "G12", "G13", "G14", "G15", "G16", "G22", "G23", "G24", "G25", "G26", "G33", "G34", "G35", "G36", "G44", "G45", "G46", "G55", "G56", "G66"];
+        const NAMES: [&str; 21] = [
+            "G11", "G12", "G13", "G14", "G15", "G16", "G22", "G23", "G24", "G25", "G26", "G33",
+            "G34", "G35", "G36", "G44", "G45", "G46", "G55", "G56", "G66",
+        ];
         let mut g = [0.0; 21];
         for (k, v) in g.iter_mut().enumerate() {
             *v = self.real_or(card, 1 + k, 0.0, NAMES[k])?;
         }
         let at = |name: &str| NAMES.iter().position(|n| *n == name).map_or(0.0, |k| g[k]);
-        let coupled: Vec<&str> = ["G14", "G15", "G16", "G24", "G25", "G26", "G34", "G35", "G36", "G45", "G46", "G56"].into_iter().filter(|n| at(n) != 0.0).collect();
+        let coupled: Vec<&str> = [
+            "G14", "G15", "G16", "G24", "G25", "G26", "G34", "G35", "G36", "G45", "G46", "G56",
+        ]
+        .into_iter()
+        .filter(|n| at(n) != 0.0)
+        .collect();
         if !coupled.is_empty() {
             return Err(self.err(card.loc, format!("MAT9 {mid} couples shear and extension ({} not zero): squeal's finite elements have isotropic, transversely isotropic and orthotropic materials only; give an orthotropic MAT9 (only G11, G12, G13, G22, G23, G33, G44, G55, G66) or the scene's [materials]", coupled.join(", "))));
         }
-        let c = [[at("G11"), at("G12"), at("G13")], [at("G12"), at("G22"), at("G23")], [at("G13"), at("G23"), at("G33")]];
+        let c = [
+            [at("G11"), at("G12"), at("G13")],
+            [at("G12"), at("G22"), at("G23")],
+            [at("G13"), at("G23"), at("G33")],
+        ];
         let det = crate::tet10::det3(&c);
         let cof = |i: usize, j: usize| {
             let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
@@ -459,7 +598,14 @@ impl<'a> Reader<'a> {
         }
         let nu = [-s(0, 1) / s(0, 0), -s(0, 2) / s(0, 0), -s(1, 2) / s(1, 1)];
         let rho = self.optional_real(card, 22, "the density RHO")?;
-        Ok(MaterialCard { material: Material { elastic: Some(Elastic::EngineeringConstants { e, nu, g: shear }), density: rho }, anisotropic: true, loc: card.loc })
+        Ok(MaterialCard {
+            material: Material {
+                elastic: Some(Elastic::EngineeringConstants { e, nu, g: shear }),
+                density: rho,
+            },
+            anisotropic: true,
+            loc: card.loc,
+        })
     }
 
     /// The names comments give, by (kind, id); a name given to two ids is an error.
@@ -488,24 +634,47 @@ impl<'a> Reader<'a> {
 
     /// `SET1, SID, ID1, ID2, ...` with `ID1 THRU ID2` ranges: a node set (an element set if a
     /// `$HMSET` comment says so), named by its `$HMSET` comment or `SET1_<sid>`.
-    fn set1(&mut self, card: &Card, names: &HashMap<(Named, u64), String>, b: &mut MeshBuilder) -> Result<(), MeshError> {
+    fn set1(
+        &mut self,
+        card: &Card,
+        names: &HashMap<(Named, u64), String>,
+        b: &mut MeshBuilder,
+    ) -> Result<(), MeshError> {
         let sid = self.id(card, 0, "the set id SID")?;
         let elements = names.contains_key(&(Named::Set(2), sid));
-        let name = names.get(&(Named::Set(0), sid)).cloned().unwrap_or_else(|| format!("SET1_{sid}"));
-        let tokens: Vec<(usize, &str)> = (1..card.fields.len()).map(|k| (k, card.get(k))).filter(|(_, t)| !t.is_empty()).collect();
+        let name = names
+            .get(&(Named::Set(0), sid))
+            .cloned()
+            .unwrap_or_else(|| format!("SET1_{sid}"));
+        let tokens: Vec<(usize, &str)> = (1..card.fields.len())
+            .map(|k| (k, card.get(k)))
+            .filter(|(_, t)| !t.is_empty())
+            .collect();
         let mut ids = Vec::new();
         let mut k = 0;
         while k < tokens.len() {
             let (i, t) = tokens[k];
             if t.eq_ignore_ascii_case("THRU") {
                 let (Some(&from), Some(&(j, _))) = (ids.last(), tokens.get(k + 1)) else {
-                    return Err(self.err(card.loc_of(i), format!("SET1 {sid}: THRU needs an id before and after it")));
+                    return Err(self.err(
+                        card.loc_of(i),
+                        format!("SET1 {sid}: THRU needs an id before and after it"),
+                    ));
                 };
                 let to = self.id(card, j, "the id after THRU")?;
                 if to < from {
-                    return Err(self.err(card.loc_of(j), format!("SET1 {sid}: the range {from} THRU {to} ends before it starts")));
+                    return Err(self.err(
+                        card.loc_of(j),
+                        format!("SET1 {sid}: the range {from} THRU {to} ends before it starts"),
+                    ));
                 }
-                let defined = |id: u64| if elements { b.has_element(id) } else { b.has_node(id) };
+                let defined = |id: u64| {
+                    if elements {
+                        b.has_element(id)
+                    } else {
+                        b.has_node(id)
+                    }
+                };
                 // Bounded by the ids defined, not by the range's size.
                 let count = if to - from < 10_000_000 {
                     let mut n = 0u64;
@@ -542,7 +711,8 @@ impl<'a> Reader<'a> {
                 1 => "once".to_string(),
                 n => format!("{n} times, the first here"),
             };
-            self.warnings.push(self.lx.warning(loc, format!("{stem} ({times})")));
+            self.warnings
+                .push(self.lx.warning(loc, format!("{stem} ({times})")));
         }
         if b.num_elements() == 0 {
             self.warnings.push(Warning {
@@ -551,7 +721,10 @@ impl<'a> Reader<'a> {
                 message: crate::NO_TET10.to_string(),
             });
         }
-        Ok(ReadMesh { mesh: b.finish(), warnings: self.warnings })
+        Ok(ReadMesh {
+            mesh: b.finish(),
+            warnings: self.warnings,
+        })
     }
 }
 
