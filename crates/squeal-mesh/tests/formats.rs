@@ -527,7 +527,7 @@ fn mat9_orthotropic_reads_as_engineering_constants() {
     );
     let axes = text.replace(
         "PSOLID,1,4",
-        "PSOLID,1,4,2\nCTETRA,1,1,1,2,3,4,5,6,7,8\n,9,10",
+        "PSOLID,1,4,2\nCTETRA,1,1,1,2,3,4,5,6\n,7,8,9,10",
     );
     let err = nastran::parse(axes.as_bytes(), Path::new("a.bdf"), &inp::NoIncludes)
         .unwrap_err()
@@ -650,10 +650,13 @@ fn every_cut_inside_a_line_is_an_error() {
         let bytes = std::fs::read(data(file)).unwrap();
         let path = data(file);
         for cut in (1..bytes.len()).step_by(997) {
-            if bytes[cut - 1] == b'\n' {
+            let head = &bytes[..cut];
+            // A cut at a line end, or inside a comment line, leaves a shorter complete file.
+            let last = head.rsplit(|&b| b == b'\n').next().unwrap_or(&[]);
+            let last = String::from_utf8_lossy(last);
+            if last.trim().is_empty() || last.trim_start().starts_with('$') {
                 continue;
             }
-            let head = &bytes[..cut];
             let r = std::panic::catch_unwind(|| {
                 if file.ends_with(".bdf") {
                     nastran::parse(head, &path, &inp::NoIncludes)

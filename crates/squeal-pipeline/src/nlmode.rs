@@ -10,9 +10,9 @@ use crate::model::{Log, Model};
 use crate::stability;
 use squeal_brake::analysis::LinearStability as Stability;
 use squeal_brake::criticality::NormalForm;
-use squeal_chbm::nlmode::{NonlinearMode, nonlinear_mode};
 /// The nonlinear mode's options and amplitude grid, as the command line sets them.
 pub use squeal_chbm::nlmode::{NlModeOptions, log_spaced};
+use squeal_chbm::nlmode::{NonlinearMode, nonlinear_mode};
 use squeal_hbm::HarmonicLayout;
 use squeal_report::format::fmt_sig;
 use squeal_report::{Annotation, Dash, Figure, Layout, Panel, Scale, Series, Table};
@@ -171,7 +171,10 @@ pub fn summary_text(a: &NlModeAnalysis) -> String {
             );
         }
         if md.cycles.is_empty() {
-            let _ = writeln!(s, "  no limit cycle in the amplitudes asked (zeta keeps its sign)");
+            let _ = writeln!(
+                s,
+                "  no limit cycle in the amplitudes asked (zeta keeps its sign)"
+            );
         }
     }
     for c in &a.checks {
@@ -303,16 +306,20 @@ pub fn figure(a: &NlModeAnalysis) -> Figure {
             &name,
             p.iter().map(|p| (p.a, p.omega / TAU)).collect(),
         ));
-        damp.series
-            .push(Series::line(name.as_str(), p.iter().map(|p| (p.a, p.zeta)).collect()));
+        damp.series.push(Series::line(
+            name.as_str(),
+            p.iter().map(|p| (p.a, p.zeta)).collect(),
+        ));
         let roots: Vec<&_> = m.mode.cycles.iter().map(|c| &c.point).collect();
         if !roots.is_empty() {
             freq.series.push(Series::markers(
                 "",
                 roots.iter().map(|p| (p.a, p.omega / TAU)).collect(),
             ));
-            damp.series
-                .push(Series::markers("", roots.iter().map(|p| (p.a, 0.0)).collect()));
+            damp.series.push(Series::markers(
+                "",
+                roots.iter().map(|p| (p.a, 0.0)).collect(),
+            ));
         }
     }
     damp.annotations.push(Annotation::HLine {

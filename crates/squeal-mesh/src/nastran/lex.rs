@@ -437,12 +437,15 @@ mod tests {
     #[test]
     fn fields_in_the_three_formats() {
         let (f, d) = split_line("GRID,7,,1.5,2.,3.").unwrap();
-        assert_eq!((f.as_str(), &d[..4]), ("GRID", &["7", "", "1.5", "2."][..]));
+        assert_eq!(
+            (f.as_str(), &d[..4]),
+            ("GRID", &["7", "", "1.5", "2."].map(String::from)[..])
+        );
         assert_eq!(d.len(), 8);
         let (f, d) = split_line("GRID           7       0     1.5      2.      3.").unwrap();
         assert_eq!(
             (f.as_str(), &d[..5]),
-            ("GRID", &["7", "0", "1.5", "2.", "3."][..])
+            ("GRID", &["7", "0", "1.5", "2.", "3."].map(String::from)[..])
         );
         let (f, d) =
             split_line("GRID*                  7               0             1.5              2.")
@@ -455,7 +458,10 @@ mod tests {
             )
         );
         let (f, d) = split_line("GRID\t7\t\t1.5").unwrap();
-        assert_eq!((f.as_str(), &d[..3]), ("GRID", &["7", "", "1.5"][..]));
+        assert_eq!(
+            (f.as_str(), &d[..3]),
+            ("GRID", &["7", "", "1.5"].map(String::from)[..])
+        );
         assert!(split_line("GRID,1,2,3,4,5,6,7,8,9,10").is_err());
     }
 
