@@ -51,16 +51,27 @@ fn amplitudes(text: &str) -> Result<Vec<f64>> {
     let to: f64 = to.trim().parse().with_context(bad)?;
     let n: usize = n.trim().parse().with_context(bad)?;
     if !(from > 0.0 && to > from && to.is_finite() && (2..=10_000).contains(&n)) {
-        bail!("{}: FROM and TO positive with TO above FROM, N from 2 to 10000", bad());
+        bail!(
+            "{}: FROM and TO positive with TO above FROM, N from 2 to 10000",
+            bad()
+        );
     }
     Ok(log_spaced(from, to, n))
 }
 
 pub fn run(args: NlModeArgs) -> Result<ExitCode> {
     if !(1..=50).contains(&args.harmonics) {
-        bail!("--harmonics must be between 1 and 50 (got {})", args.harmonics);
+        bail!(
+            "--harmonics must be between 1 and 50 (got {})",
+            args.harmonics
+        );
     }
-    if let Some(v) = args.mu.iter().chain(&args.at).find(|v| !(v.is_finite() && **v > 0.0)) {
+    if let Some(v) = args
+        .mu
+        .iter()
+        .chain(&args.at)
+        .find(|v| !(v.is_finite() && **v > 0.0))
+    {
         bail!("--mu and --at take positive values (got {v})");
     }
     let opts = NlModeOptions {

@@ -50,7 +50,11 @@ pub fn system() -> Result<FrictionSystem, SystemError> {
 }
 
 /// The nonlinear mode at `mu` over `amplitudes` (fractions of the opening amplitude).
-pub fn run(system: &FrictionSystem, mu: f64, amplitudes: Vec<f64>) -> Result<NonlinearMode, SystemError> {
+pub fn run(
+    system: &FrictionSystem,
+    mu: f64,
+    amplitudes: Vec<f64>,
+) -> Result<NonlinearMode, SystemError> {
     let opts = NlModeOptions {
         amplitudes,
         ..NlModeOptions::default()
@@ -63,8 +67,16 @@ fn main() -> Result<(), SystemError> {
     let system = system()?;
     let mu0 = system.hopf()?.mu0;
     let mode = run(&system, 1.01 * mu0, log_spaced(1e-3, 1.0, 25))?;
-    println!("mu = 1.01 mu0 = {:.8}; linear limit: f = {:.6} Hz, zeta = {:.6e}", 1.01 * mu0, mode.linear.omega / std::f64::consts::TAU, mode.linear.zeta);
-    println!("{:>12} {:>14} {:>14} {:>10} {:>5}", "a", "f (Hz)", "zeta", "residual", "iter");
+    println!(
+        "mu = 1.01 mu0 = {:.8}; linear limit: f = {:.6} Hz, zeta = {:.6e}",
+        1.01 * mu0,
+        mode.linear.omega / std::f64::consts::TAU,
+        mode.linear.zeta
+    );
+    println!(
+        "{:>12} {:>14} {:>14} {:>10} {:>5}",
+        "a", "f (Hz)", "zeta", "residual", "iter"
+    );
     for p in &mode.points {
         println!(
             "{:12.4e} {:14.8} {:14.6e} {:10.2e} {:5}",
@@ -112,7 +124,11 @@ mod tests {
         assert!((mode.linear.omega / omega - 1.0).abs() < 1e-12);
         assert!((mode.linear.zeta - zeta).abs() < 1e-12);
         for p in &mode.points {
-            assert!((p.omega / omega - 1.0).abs() < 1e-8, "{} vs {omega}", p.omega);
+            assert!(
+                (p.omega / omega - 1.0).abs() < 1e-8,
+                "{} vs {omega}",
+                p.omega
+            );
             assert!((p.zeta - zeta).abs() < 1e-9, "{} vs {zeta}", p.zeta);
         }
     }

@@ -315,7 +315,11 @@ pub fn nonlinear_mode(
     let layout = HarmonicLayout::new(nn, opts.harmonics)?;
     // The mode on the nonlinear dofs, ψ = Φ_n q (|q| = 1).
     let psi: Vec<c64> = (0..nn)
-        .map(|i| (0..mb.modes()).map(|j| linear.shape[j] * mb.phi_n[(i, j)]).sum())
+        .map(|i| {
+            (0..mb.modes())
+                .map(|j| linear.shape[j] * mb.phi_n[(i, j)])
+                .sum()
+        })
         .collect();
     let (opening, penetration, mut guess) = first_guess(mb, &layout, &x_n0, &psi)?;
     let d = phase_dof(mb, &guess, &layout);

@@ -23,8 +23,15 @@ fn the_subcritical_oscillator_reads_subcritical() {
     let nf = normal_form_of(&m);
     assert_eq!(nf.criticality(), Criticality::Subcritical);
     let mu = 1.01 * nf.mu0;
-    let start = start_at(&m.brake, &m.reference, mu, &band(), &NewtonOptions::default(), None)
-        .unwrap();
+    let start = start_at(
+        &m.brake,
+        &m.reference,
+        mu,
+        &band(),
+        &NewtonOptions::default(),
+        None,
+    )
+    .unwrap();
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
     let opts = NlModeOptions {
         amplitudes: vec![1e-2, 2e-2, 4e-2],

@@ -169,7 +169,10 @@ pub fn summary_text(a: &NlModeAnalysis) -> String {
             );
         }
         if md.cycles.is_empty() {
-            let _ = writeln!(s, "  no limit cycle in the amplitudes asked (zeta keeps its sign)");
+            let _ = writeln!(
+                s,
+                "  no limit cycle in the amplitudes asked (zeta keeps its sign)"
+            );
         }
     }
     for c in &a.checks {
@@ -301,16 +304,20 @@ pub fn figure(a: &NlModeAnalysis) -> Figure {
             &name,
             p.iter().map(|p| (p.a, p.omega / TAU)).collect(),
         ));
-        damp.series
-            .push(Series::line(name.as_str(), p.iter().map(|p| (p.a, p.zeta)).collect()));
+        damp.series.push(Series::line(
+            name.as_str(),
+            p.iter().map(|p| (p.a, p.zeta)).collect(),
+        ));
         let roots: Vec<&_> = m.mode.cycles.iter().map(|c| &c.point).collect();
         if !roots.is_empty() {
             freq.series.push(Series::markers(
                 "",
                 roots.iter().map(|p| (p.a, p.omega / TAU)).collect(),
             ));
-            damp.series
-                .push(Series::markers("", roots.iter().map(|p| (p.a, 0.0)).collect()));
+            damp.series.push(Series::markers(
+                "",
+                roots.iter().map(|p| (p.a, 0.0)).collect(),
+            ));
         }
     }
     damp.annotations.push(Annotation::HLine {

@@ -236,13 +236,14 @@ impl<'a> EpmcProblem<'a> {
         scales: EpmcScales,
     ) -> Result<Self, HbmError> {
         let layout = hb.layout();
-        let phase_index = layout
-            .index(1, Part::Sin, phase_dof)
-            .ok_or(HbmError::BadPhaseCondition {
-                dof: phase_dof,
-                n_dofs: layout.n_dofs(),
-                n_harmonics: layout.n_harmonics(),
-            })?;
+        let phase_index =
+            layout
+                .index(1, Part::Sin, phase_dof)
+                .ok_or(HbmError::BadPhaseCondition {
+                    dof: phase_dof,
+                    n_dofs: layout.n_dofs(),
+                    n_harmonics: layout.n_harmonics(),
+                })?;
         Ok(Self {
             jac_omega: vec![0.0; layout.len()],
             hb,
@@ -338,7 +339,12 @@ impl LeastSquaresProblem for EpmcProblem<'_> {
             jac[(len + 1, rs + c)] = g.im / s;
         }
         let [dq_omega, dq_zeta] = st.modal_rates(omega, &q, &t);
-        let dot = |dq: &[c64]| q.iter().zip(dq).map(|(a, b)| (a.conj() * b).re).sum::<f64>();
+        let dot = |dq: &[c64]| {
+            q.iter()
+                .zip(dq)
+                .map(|(a, b)| (a.conj() * b).re)
+                .sum::<f64>()
+        };
         jac[(len + 1, len)] = dot(&dq_omega) / s;
         jac[(len + 1, len + 1)] = dot(&dq_zeta) / s;
         Ok(())

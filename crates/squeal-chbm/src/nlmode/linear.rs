@@ -62,9 +62,7 @@ fn matrix(mb: &ModalBrake, kc: &Mat<f64>, cc: &Mat<f64>, omega: f64) -> Mat<c64>
     let (n, nn) = (mb.modes(), mb.nl());
     let p = &mb.phi_n;
     let j = Mat::<c64>::from_fn(nn, nn, |r, c| c64::new(kc[(r, c)], omega * cc[(r, c)]));
-    let pj = Mat::<c64>::from_fn(n, nn, |a, c| {
-        (0..nn).map(|r| j[(r, c)] * p[(r, a)]).sum()
-    });
+    let pj = Mat::<c64>::from_fn(n, nn, |a, c| (0..nn).map(|r| j[(r, c)] * p[(r, a)]).sum());
     Mat::<c64>::from_fn(n, n, |a, b| {
         let mut v: c64 = (0..nn).map(|c| pj[(a, c)] * p[(c, b)]).sum();
         v += c64::new(0.0, omega * mb.damping.entry(a, b));
@@ -77,7 +75,11 @@ fn matrix(mb: &ModalBrake, kc: &Mat<f64>, cc: &Mat<f64>, omega: f64) -> Mat<c64>
 
 /// The linear mode at the static equilibrium `x_n0` (nonlinear dofs) that continues the
 /// brake's eigenvalue `lambda` (`ν` starts nearest `-λ²`).
-pub fn linear_mode(mb: &ModalBrake, x_n0: &[f64], lambda: c64) -> Result<LinearMode, LinearModeError> {
+pub fn linear_mode(
+    mb: &ModalBrake,
+    x_n0: &[f64],
+    lambda: c64,
+) -> Result<LinearMode, LinearModeError> {
     let (kc, cc) = reference_jacobian(&ContactForce::new(mb), x_n0);
     let mut nu = -(lambda * lambda);
     let mut omega = lambda.im.abs();
