@@ -6,13 +6,10 @@
 
 mod common;
 
-use common::oscillator::band;
-use common::{normal_form_of, subcritical};
+use common::{normal_form_of, start, subcritical};
 use squeal_brake::criticality::Criticality;
-use squeal_brake::equilibrium::NewtonOptions;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::nlmode::{NlModeOptions, nonlinear_mode};
-use squeal_chbm::start::start_at;
 
 #[test]
 fn the_subcritical_oscillator_reads_subcritical() {
@@ -23,15 +20,7 @@ fn the_subcritical_oscillator_reads_subcritical() {
     let nf = normal_form_of(&m);
     assert_eq!(nf.criticality(), Criticality::Subcritical);
     let mu = 1.01 * nf.mu0;
-    let start = start_at(
-        &m.brake,
-        &m.reference,
-        mu,
-        &band(),
-        &NewtonOptions::default(),
-        None,
-    )
-    .unwrap();
+    let start = start(&m, mu);
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
     let opts = NlModeOptions {
         amplitudes: vec![1e-2, 2e-2, 4e-2],
