@@ -6,8 +6,10 @@
 //! **How many modes.** `interface_modes = n` keeps the `n` lowest CC modes of each part (all
 //! of them if it has fewer). `"auto"` chooses by convergence of what the analysis reports:
 //! starting from [`FIRST_LEVEL`] modes per part and doubling, it runs the scene's stability
-//! sweep at each count and keeps the first count `k_i` at which both μ0 and its frequency
-//! moved by less than `interface_tolerance` (relative) from `k_{i-1}`, or every CC mode (the
+//! sweep at each count and keeps the first count `k_i` at which the frictionless frequencies
+//! in the band, μ0 and its frequency all moved by less than `interface_tolerance` (relative)
+//! from `k_{i-1}` (no Hopf point at two counts does not count as settled: too few modes
+//! stiffen the interface and can push the onset out of the swept range), or every CC mode (the
 //! unreduced-interface model in other coordinates) when no count before settles. Each count's
 //! μ0, frequency, size and time are kept in [`InterfaceSummary`] and written by `squeal
 //! stability` (its text and `summary.json`), so the choice can be checked.
@@ -173,11 +175,21 @@ pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
             let mus = scene.mu_values()?;
             let mut levels: Vec<InterfaceLevel> = Vec::new();
             let mut k = FIRST_LEVEL.min(most);
+            let mut previous: Option<Vec<f64>> = None;
             loop {
                 let t = Instant::now();
                 let m = at_count(&model, &modes, k)?;
                 let st = crate::stability::analyse(&m, &mus)?;
                 let hopf = st.sweep.hopf.as_ref().map(|h| (h.mu0, h.frequency_hz));
+                let tau = std::f64::consts::TAU;
+                let frictionless: Vec<f64> = st
+                    .reference
+                    .basis
+                    .omega
+                    .iter()
+                    .map(|w| w / tau)
+                    .filter(|&f| m.sweep.band.contains(f))
+                    .collect();
                 let level = InterfaceLevel {
                     kept: kept(&modes, k),
                     dofs: m.brake.size(),
@@ -194,14 +206,17 @@ pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
                     )),
                     level.seconds
                 ));
-                let settled = levels
-                    .last()
+                let settled = previous
+                    .as_ref()
+                    .filter(|prev| same_frequencies(prev, &frictionless, tolerance))
+                    .and(levels.last())
                     .and_then(|prev| agree(prev.hopf, hopf, tolerance));
+                previous = Some(frictionless);
                 levels.push(level);
                 let i = levels.len() - 1;
                 if let Some(why) = settled {
                     let reason = format!(
-                        "the smallest count of {FIRST_LEVEL}, {}, ... per part at which {why} from the count before (tolerance {tolerance:e}, [reduction] interface_tolerance)",
+                        "the smallest count of {FIRST_LEVEL}, {}, ... per part at which the frictionless frequencies in the band and the Hopf point settled: {why} from the count before (tolerance {tolerance:e}, [reduction] interface_tolerance)",
                         2 * FIRST_LEVEL
                     );
                     let mut m = m;
@@ -261,7 +276,9 @@ pub fn loaded_modes(model: &Model) -> Result<Vec<InterfaceModes>> {
 /// Why two counts' Hopf points agree to `tol` (relative, in μ0 and in frequency), or `None`.
 fn agree(a: Option<(f64, f64)>, b: Option<(f64, f64)>, tol: f64) -> Option<String> {
     match (a, b) {
-        (None, None) => Some("the sweep finds no Hopf point, as".into()),
+        // No Hopf point at two counts is no evidence: a stiff interface (too few modes) can
+        // push the onset out of the swept range.
+        (None, None) => None,
         (Some((m0, f0)), Some((m1, f1))) => {
             let (dm, df) = ((m1 - m0).abs() / m1.abs(), (f1 - f0).abs() / f1.abs());
             (dm <= tol && df <= tol)
@@ -269,6 +286,12 @@ fn agree(a: Option<(f64, f64)>, b: Option<(f64, f64)>, tol: f64) -> Option<Strin
         }
         _ => None,
     }
+}
+
+/// Whether two counts' frictionless frequencies in the band agree: as many, each within
+/// `tol` (relative).
+fn same_frequencies(a: &[f64], b: &[f64], tol: f64) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol * y.abs())
 }
 
 /// The CC modes each part keeps at count `k`.
