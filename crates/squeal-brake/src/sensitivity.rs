@@ -639,6 +639,6 @@ pub fn recompute(
         })?
         .0;
     let lambda = pair.lambda;
-    let state = polish(&brake, &lr, (base.mu, &eq, &pair), base.tau, newton, opts)?;
+    let state = polish(brake, &lr, (base.mu, &eq, &pair), base.tau, newton, opts)?;
     Ok((lambda, state))
 }
