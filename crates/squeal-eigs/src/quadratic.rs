@@ -312,7 +312,7 @@ pub fn eigs_on_segment(
         });
     }
     let valid = opts.cell > 0.0 && opts.min_cell > 0.0 && opts.strip >= 0.0;
-    if !valid || opts.max_krylov < 16 || !(opts.tolerance > 0.0) {
+    if !valid || opts.max_krylov < 16 || opts.tolerance.is_nan() || opts.tolerance <= 0.0 {
         return Err(EigError::InvalidOption {
             what: "quadratic eigensolver: cell, min_cell > 0, strip >= 0, tolerance > 0 and a \
                    Krylov dimension of at least 16"

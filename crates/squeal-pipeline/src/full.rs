@@ -43,6 +43,8 @@ use squeal_reduce::brake::BrakeInputs;
 use squeal_reduce::interface::{Patch, patches};
 use std::collections::HashMap;
 
+/// A real sparse matrix of the full model.
+type Sparse = SparseColMat<usize, f64>;
 /// One part of the full model: its free dofs, matrices and place in the stacked model.
 pub struct FullPart {
     /// The part's name (`disc`, or the pad's).
@@ -183,10 +185,7 @@ impl FullBrake {
 
     /// `K_t(μ)` and `C(μ)` (module docs) from each pair's element response at the state;
     /// `C` is `None` when no element depends on the velocities.
-    pub fn linearized(
-        &self,
-        responses: &[Response],
-    ) -> Result<(SparseColMat<usize, f64>, Option<SparseColMat<usize, f64>>)> {
+    pub fn linearized(&self, responses: &[Response]) -> Result<(Sparse, Option<Sparse>)> {
         if responses.len() != self.normal.len() {
             return Err(full_error(format!(
                 "{} element responses for {} pairs",

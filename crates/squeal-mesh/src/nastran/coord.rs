@@ -70,7 +70,7 @@ impl Frame {
     }
 
     /// Basic coordinates of the point with coordinates `q` in this system.
-    pub fn to_basic(&self, q: [f64; 3]) -> [f64; 3] {
+    pub fn to_basic(self, q: [f64; 3]) -> [f64; 3] {
         let local = match self.kind {
             Kind::Rectangular => q,
             Kind::Cylindrical => {

@@ -453,7 +453,7 @@ mod tests {
         assert_eq!(
             (f.as_str(), d),
             (
-                "GRID*".into(),
+                "GRID*",
                 vec!["7".into(), "0".into(), "1.5".into(), "2.".into()]
             )
         );
