@@ -31,7 +31,7 @@ fn the_ventilated_brake_pairs_every_pad_face_node_and_keeps_its_frictionless_pai
 
     // Every pad face node is a pair, paired with the disc face under its pad by projection: the
     // faces were written on the same planes (z = 0, 0.023 m), so the projection distance and
-    // the gap are round-off of 0.1 m coordinates (measured at most 3.9e-17 m), asserted below
+    // the gap are round-off of 0.1 m coordinates (measured at most 5.9e-17 m), asserted below
     // 1e-12 m; a pad node missing the disc face would be 1e-3 m or more away.
     let csv = std::fs::read_to_string(out_dir.join("stability/equilibrium.csv")).unwrap();
     let rows: Vec<Vec<&str>> = csv
