@@ -764,9 +764,18 @@ pub fn write_makeup(
         contributions::write_chart(dir, &c)?;
         out.push_str(&contributions::text(&c));
     }
-    if let Some(r) = sensitivities::compute(m, st)? {
-        sensitivities::write(dir, &r)?;
-        out.push_str(&sensitivities::text(&r, 10));
+    // The sensitivities need the unstable mode followed to the Hopf point; where that fails
+    // (an undamped coalescence, a bracket too wide) the rest of the stage stands, and the
+    // output says why they are missing.
+    match sensitivities::compute(m, st) {
+        Ok(Some(r)) => {
+            sensitivities::write(dir, &r)?;
+            out.push_str(&sensitivities::text(&r, 10));
+        }
+        Ok(None) => {}
+        Err(e) => {
+            let _ = writeln!(out, "sensitivities of mu0 not computed: {e}");
+        }
     }
     if !out.is_empty() {
         let _ = writeln!(
