@@ -31,7 +31,7 @@ pub fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
     (n.is_finite() && n > 0.0).then(|| a.map(|x| x / n))
 }
 
-/// `a / |a|`, or `a` itself when it has no direction ([`unit`] is `None`).
+/// `a / |a|`, or `a` itself when it has no direction ([`unit()`] is `None`).
 pub fn unit_or_self(a: [f64; 3]) -> [f64; 3] {
     unit(a).unwrap_or(a)
 }
