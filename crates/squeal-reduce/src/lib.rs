@@ -7,6 +7,7 @@
 pub mod brake;
 pub mod check;
 pub mod craig_bampton;
+pub mod error;
 pub mod export;
 pub mod held;
 pub mod interface;
@@ -14,4 +15,4 @@ pub mod interface_modes;
 pub mod rom;
 pub mod summary;
 
-pub use craig_bampton::ReduceError;
+pub use error::ReduceError;

@@ -1,0 +1,445 @@
+//! Solves with the linearized brake's matrix at one λ: a dense LU for small models, a bordered solve of the modal diagonal plus the contact coupling (Schur complement) for large ones.
+
+use super::*;
+
+/// `T(λ)` factored for solves.
+pub enum Factor {
+    /// Diagonal `D`: the bordered system of a diagonal plus rank-`r` matrix.
+    Bordered(Bordered),
+    /// Full `D`: a dense LU factorization.
+    Dense(DenseFactor),
+}
+
+impl Factor {
+    /// `T(λ)⁻¹ b`.
+    pub fn solve(&self, lr: &LinearizedBrake, c: &Coupling, b: &[c64]) -> Vec<c64> {
+        match self {
+            Factor::Bordered(f) => f.solve(lr, c, b, false),
+            Factor::Dense(f) => f.solve(b, false),
+        }
+    }
+
+    /// `T(λ)⁻ᴴ b`.
+    pub fn solve_adjoint(&self, lr: &LinearizedBrake, c: &Coupling, b: &[c64]) -> Vec<c64> {
+        match self {
+            Factor::Bordered(f) => f.solve(lr, c, b, true),
+            Factor::Dense(f) => f.solve(b, true),
+        }
+    }
+}
+
+/// `T(λ)` as a dense complex matrix, LU-factored with partial pivoting (full `D`).
+pub struct DenseFactor {
+    pub(super) lu: faer::linalg::solvers::PartialPivLu<c64>,
+    pub(super) lu_adjoint: faer::linalg::solvers::PartialPivLu<c64>,
+}
+
+impl DenseFactor {
+    pub(super) fn new(lr: &LinearizedBrake, c: &Coupling, l: c64) -> Self {
+        let n = lr.size();
+        let u: Vec<Vec<c64>> = (0..c.rank)
+            .map(|p| {
+                let mut z = vec![c64::new(0.0, 0.0); c.rank];
+                z[p] = c64::new(1.0, 0.0);
+                lr.apply_u(c, l, &z)
+            })
+            .collect();
+        let t = Mat::<c64>::from_fn(n, n, |i, j| {
+            let mut s = l * lr.damping.entry(i, j);
+            if i == j {
+                s += l * l + lr.omega[i] * lr.omega[i];
+            }
+            for (p, up) in u.iter().enumerate() {
+                s += up[i] * c.v[p * n + j];
+            }
+            s
+        });
+        let th = t.adjoint().to_owned();
+        Self {
+            lu: t.partial_piv_lu(),
+            lu_adjoint: th.partial_piv_lu(),
+        }
+    }
+
+    pub(super) fn solve(&self, b: &[c64], adjoint: bool) -> Vec<c64> {
+        let rhs = Mat::<c64>::from_fn(b.len(), 1, |i, _| b[i]);
+        let x = if adjoint {
+            self.lu_adjoint.solve(&rhs)
+        } else {
+            self.lu.solve(&rhs)
+        };
+        (0..b.len()).map(|i| x[(i, 0)]).collect()
+    }
+}
+
+/// Modes kept out of the Schur complement of [`Bordered`]: those nearest to λ, whose `1/δ_j`
+/// would be large (a disc doublet and its neighbours).
+pub(super) const NEAR: usize = 4;
+
+/// Indices of the `m` smallest `|δ_j|` (ties to the lower index), ascending by index.
+pub(super) fn nearest(delta: &[c64], m: usize) -> Vec<usize> {
+    // Insertion into a short sorted list: `m` is a handful, `n` a few hundred.
+    let mut best: Vec<(f64, usize)> = Vec::with_capacity(m + 1);
+    for (j, d) in delta.iter().enumerate() {
+        let a = d.norm_sqr();
+        if best.len() == m && best.last().is_some_and(|&(b, _)| a >= b) {
+            continue;
+        }
+        let at = best.partition_point(|&(b, _)| b <= a);
+        best.insert(at, (a, j));
+        best.truncate(m);
+    }
+    let mut out: Vec<usize> = best.into_iter().map(|(_, j)| j).collect();
+    out.sort_unstable();
+    out
+}
+
+/// `Σ a_j b_j` in four interleaved partial sums (vectorizable, in a fixed order).
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0f64; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = ca
+        .remainder()
+        .iter()
+        .zip(cb.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// `T(λ) = Δ + U Vᵀ` (diagonal `D`) factored for solves: the modes nearest to λ stay
+/// unknowns next to `z = Vᵀ x`, the others are eliminated (their `δ_j` is far from zero):
+///
+/// `[[Δ_J, U_J], [-V_Jᵀ, S]] [x_J; z] = [b_J; Σ_{j∉J} v_j b_j / δ_j]`,
+/// `x_j = (b_j - u_jᵀ z) / δ_j` for `j ∉ J`,
+///
+/// with the Schur complement `S = I + Σ_{j∉J} v_j u_jᵀ / δ_j` (`r × r`). The adjoint uses the
+/// same blocks with `U` and `V` exchanged (`Tᵀ = Δ + V Uᵀ`). Keeping the nearest modes in the
+/// small system avoids dividing by a `δ_j` that vanishes where λ meets a mode barely touched
+/// by the contact. `U = U₀ + λ U₁` is complex when `U₁ ≠ 0`.
+pub struct Bordered {
+    pub(super) delta: Vec<c64>,
+    pub(super) near: Vec<usize>,
+    /// `U(λ)` split into real and imaginary parts (column-major `n × r`) when `U₁ ≠ 0`; else
+    /// `U = U₀`, read from the coupling.
+    pub(super) u_lambda: Option<(Vec<f64>, Vec<f64>)>,
+    pub(super) lu: SmallLu,
+    pub(super) lu_t: SmallLu,
+}
+
+/// Column `p` (of `n` entries) of a column-major matrix, and of its imaginary part if any.
+pub(super) fn column<'a>(
+    re: &'a [f64],
+    im: &'a [f64],
+    p: usize,
+    n: usize,
+) -> (&'a [f64], Option<&'a [f64]>) {
+    (&re[p * n..(p + 1) * n], im.get(p * n..(p + 1) * n))
+}
+
+/// `Σ_j x_j m_j` over a column `m` (real, or complex `re + i im`), summed in order of `j`.
+pub(super) fn dot_column(x: &[c64], (re, im): (&[f64], Option<&[f64]>)) -> c64 {
+    let mut s = c64::new(0.0, 0.0);
+    match im {
+        None => {
+            for (a, &m) in x.iter().zip(re) {
+                s += c64::new(a.re * m, a.im * m);
+            }
+        }
+        Some(im) => {
+            for ((a, &mr), &mi) in x.iter().zip(re).zip(im) {
+                s += a * c64::new(mr, mi);
+            }
+        }
+    }
+    s
+}
+
+/// `acc_j += a m_j` over a column `m` (real, or complex `re + i im`).
+pub(super) fn add_column(acc: &mut [c64], a: c64, (re, im): (&[f64], Option<&[f64]>)) {
+    match im {
+        None => {
+            for (o, &m) in acc.iter_mut().zip(re) {
+                *o += c64::new(a.re * m, a.im * m);
+            }
+        }
+        Some(im) => {
+            for ((o, &mr), &mi) in acc.iter_mut().zip(re).zip(im) {
+                *o += a * c64::new(mr, mi);
+            }
+        }
+    }
+}
+
+impl Bordered {
+    pub(super) fn new(lr: &LinearizedBrake, c: &Coupling, d: &[f64], l: c64) -> Self {
+        let n = lr.size();
+        let r = c.rank;
+        let delta: Vec<c64> = (0..n)
+            .map(|j| l * l + l * d[j] + lr.omega[j] * lr.omega[j])
+            .collect();
+        let near = nearest(&delta, NEAR.min(n));
+        let m = near.len();
+        let u_lambda: Option<(Vec<f64>, Vec<f64>)> = c.u1.as_ref().map(|u1| {
+            (
+                c.u0.iter().zip(u1).map(|(a, b)| a + l.re * b).collect(),
+                u1.iter().map(|b| l.im * b).collect(),
+            )
+        });
+        let (u_re, u_im): (&[f64], &[f64]) = match &u_lambda {
+            Some((re, im)) => (re, im),
+            None => (&c.u0, &[]),
+        };
+        let u_at = |i: usize| c64::new(u_re[i], u_im.get(i).copied().unwrap_or(0.0));
+        let s = schur(n, r, &c.v, u_re, u_im, &delta, &near);
+        let size = m + r;
+        let mut a = vec![c64::new(0.0, 0.0); size * size];
+        let mut at = vec![c64::new(0.0, 0.0); size * size];
+        for (row, &j) in near.iter().enumerate() {
+            a[row * size + row] = delta[j];
+            at[row * size + row] = delta[j];
+            for p in 0..r {
+                a[row * size + m + p] = u_at(p * n + j);
+                a[(m + p) * size + row] = c64::new(-c.v[p * n + j], 0.0);
+                at[row * size + m + p] = c64::new(c.v[p * n + j], 0.0);
+                at[(m + p) * size + row] = -u_at(p * n + j);
+            }
+        }
+        for p in 0..r {
+            for q in 0..r {
+                a[(m + p) * size + m + q] = s[p * r + q];
+                at[(m + p) * size + m + q] = s[q * r + p];
+            }
+        }
+        Bordered {
+            delta,
+            near,
+            u_lambda,
+            lu: SmallLu::new(size, a),
+            lu_t: SmallLu::new(size, at),
+        }
+    }
+
+    /// Solves `T x = b` or, with `adjoint`, `Tᴴ x = b` (as `Tᵀ x̄ = b̄`, `Tᵀ = Δ + V Uᵀ`). The
+    /// sums over the modes run along the columns of `U` and `V` (contiguous), each in the
+    /// order of the modes.
+    pub(super) fn solve(
+        &self,
+        lr: &LinearizedBrake,
+        c: &Coupling,
+        b: &[c64],
+        adjoint: bool,
+    ) -> Vec<c64> {
+        let (n, r) = (lr.size(), c.rank);
+        let b: Vec<c64> = if adjoint {
+            b.iter().map(|v| v.conj()).collect()
+        } else {
+            b.to_vec()
+        };
+        let (u_re, u_im): (&[f64], &[f64]) = match &self.u_lambda {
+            Some((re, im)) => (re, im),
+            None => (&c.u0, &[]),
+        };
+        // (Δ + L Rᵀ) x = b with (L, R) = (U, V), or (V, U) for the transpose.
+        let u_col = |p: usize| column(u_re, u_im, p, n);
+        let v_col = |p: usize| column(&c.v, &[], p, n);
+        let (left, right): (&dyn Fn(usize) -> _, &dyn Fn(usize) -> _) = if adjoint {
+            (&v_col, &u_col)
+        } else {
+            (&u_col, &v_col)
+        };
+        let m = self.near.len();
+        // b_j / δ_j off the near modes, 0 on them (which adds nothing to the sums below).
+        let mut inv_b: Vec<c64> = b.iter().zip(&self.delta).map(|(bj, d)| bj / d).collect();
+        let mut rhs = vec![c64::new(0.0, 0.0); m + r];
+        for (i, &j) in self.near.iter().enumerate() {
+            rhs[i] = b[j];
+            inv_b[j] = c64::new(0.0, 0.0);
+        }
+        for p in 0..r {
+            rhs[m + p] = dot_column(&inv_b, right(p));
+        }
+        if adjoint {
+            self.lu_t.solve(&mut rhs);
+        } else {
+            self.lu.solve(&mut rhs);
+        }
+        let mut lz = vec![c64::new(0.0, 0.0); n];
+        for (p, &zp) in rhs[m..].iter().enumerate() {
+            add_column(&mut lz, zp, left(p));
+        }
+        let mut x: Vec<c64> = inv_b
+            .iter()
+            .zip(&lz)
+            .zip(&self.delta)
+            .map(|((ib, l), d)| ib - l / d)
+            .collect();
+        for (i, &j) in self.near.iter().enumerate() {
+            x[j] = rhs[i];
+        }
+        if adjoint {
+            for v in &mut x {
+                *v = v.conj();
+            }
+        }
+        x
+    }
+}
+
+/// `S = I + Σ_{j ∉ near} v_j u_jᵀ / δ_j` (`r × r`, row-major): `S_ab = δ_ab + Σ_j V_ja U_jb
+/// w_j` with `w_j = 1/δ_j` (0 for the near modes), as dot products over the modes.
+pub(super) fn schur(
+    n: usize,
+    r: usize,
+    v: &[f64],
+    u_re: &[f64],
+    u_im: &[f64],
+    delta: &[c64],
+    near: &[usize],
+) -> Vec<c64> {
+    let mut w_re = vec![0.0; n];
+    let mut w_im = vec![0.0; n];
+    for j in 0..n {
+        if !near.contains(&j) {
+            let w = c64::new(1.0, 0.0) / delta[j];
+            w_re[j] = w.re;
+            w_im[j] = w.im;
+        }
+    }
+    let mut t_re = vec![0.0; n];
+    let mut t_im = vec![0.0; n];
+    let mut s = vec![c64::new(0.0, 0.0); r * r];
+    for a in 0..r {
+        let va = &v[a * n..(a + 1) * n];
+        for j in 0..n {
+            t_re[j] = va[j] * w_re[j];
+            t_im[j] = va[j] * w_im[j];
+        }
+        for b in 0..r {
+            let ub = &u_re[b * n..(b + 1) * n];
+            let one = if a == b { 1.0 } else { 0.0 };
+            let mut re = one + dot(&t_re, ub);
+            let mut im = dot(&t_im, ub);
+            if !u_im.is_empty() {
+                let ui = &u_im[b * n..(b + 1) * n];
+                re -= dot(&t_im, ui);
+                im += dot(&t_re, ui);
+            }
+            s[a * r + b] = c64::new(re, im);
+        }
+    }
+    s
+}
+
+/// A small dense complex LU factorization with partial pivoting, after scaling rows and then
+/// columns to unit largest entry (by powers of two, which round nothing): the bordered matrix
+/// mixes entries of order `ω²`, `k_p` and 1. A zero pivot is replaced by `ε` times the largest
+/// entry, as inverse iteration does at an exact eigenvalue: the solve then returns a large
+/// multiple of the null vector, which is what is wanted.
+pub(super) struct SmallLu {
+    pub(super) n: usize,
+    pub(super) a: Vec<c64>,
+    pub(super) perm: Vec<usize>,
+    pub(super) row_scale: Vec<f64>,
+    pub(super) col_scale: Vec<f64>,
+}
+
+/// `|Re z| + |Im z|`: a norm as good as `|z|` for pivoting and scaling, without a square root.
+pub(super) fn abs1(z: c64) -> f64 {
+    z.re.abs() + z.im.abs()
+}
+
+/// The power of two nearest to `1 / m` (1 for a zero or non-finite `m`).
+pub(super) fn inverse_power_of_two(m: f64) -> f64 {
+    if m > 0.0 && m.is_finite() {
+        (-m.log2().round()).exp2()
+    } else {
+        1.0
+    }
+}
+
+impl SmallLu {
+    pub(super) fn new(n: usize, mut a: Vec<c64>) -> Self {
+        let row_scale: Vec<f64> = (0..n)
+            .map(|i| inverse_power_of_two((0..n).map(|j| abs1(a[i * n + j])).fold(0.0, f64::max)))
+            .collect();
+        for i in 0..n {
+            for j in 0..n {
+                a[i * n + j] *= row_scale[i];
+            }
+        }
+        let col_scale: Vec<f64> = (0..n)
+            .map(|j| inverse_power_of_two((0..n).map(|i| abs1(a[i * n + j])).fold(0.0, f64::max)))
+            .collect();
+        for i in 0..n {
+            for j in 0..n {
+                a[i * n + j] *= col_scale[j];
+            }
+        }
+        let floor = f64::EPSILON;
+        let mut perm: Vec<usize> = (0..n).collect();
+        for k in 0..n {
+            let mut piv = k;
+            for i in k + 1..n {
+                if abs1(a[i * n + k]) > abs1(a[piv * n + k]) {
+                    piv = i;
+                }
+            }
+            if piv != k {
+                for col in 0..n {
+                    a.swap(k * n + col, piv * n + col);
+                }
+                perm.swap(k, piv);
+            }
+            if abs1(a[k * n + k]) < floor {
+                a[k * n + k] = c64::new(floor, 0.0);
+            }
+            let inv = c64::new(1.0, 0.0) / a[k * n + k];
+            for i in k + 1..n {
+                let f = a[i * n + k] * inv;
+                a[i * n + k] = f;
+                for col in k + 1..n {
+                    let v = a[k * n + col];
+                    a[i * n + col] -= f * v;
+                }
+            }
+        }
+        Self {
+            n,
+            a,
+            perm,
+            row_scale,
+            col_scale,
+        }
+    }
+
+    pub(super) fn solve(&self, b: &mut [c64]) {
+        let n = self.n;
+        let mut x: Vec<c64> = self
+            .perm
+            .iter()
+            .map(|&i| b[i] * self.row_scale[i])
+            .collect();
+        for i in 0..n {
+            for k in 0..i {
+                let v = x[k];
+                x[i] -= self.a[i * n + k] * v;
+            }
+        }
+        for i in (0..n).rev() {
+            for k in i + 1..n {
+                let v = x[k];
+                x[i] -= self.a[i * n + k] * v;
+            }
+            x[i] /= self.a[i * n + i];
+        }
+        for (i, v) in x.iter().enumerate() {
+            b[i] = *v * self.col_scale[i];
+        }
+    }
+}
