@@ -349,7 +349,7 @@ pub fn gauss_legendre_unit(n: usize) -> (Vec<f64>, Vec<f64>) {
 
 /// Gauss–Legendre points and weights on `[-1, 1]`, ascending and symmetric bit for bit (the
 /// upper half mirrors the lower one, the middle point of an odd rule is 0).
-fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
+pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut x = vec![0.0; n];
     let mut w = vec![0.0; n];
     for i in 0..n.div_ceil(2) {

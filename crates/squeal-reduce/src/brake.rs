@@ -24,6 +24,7 @@ use crate::rom::{
 use faer::Par;
 use serde::{Deserialize, Serialize};
 use squeal_eigs::{Backend, EigOptions};
+use squeal_element::geometry::unit;
 use squeal_fe::frames::AxisDirection;
 use squeal_fe::{ElasticMaterial, MaterialTable, NodeSelection, Restraint};
 use squeal_mesh::Mesh;
@@ -287,8 +288,8 @@ impl BrakeInputs {
     /// the piston dof is a [`crate::rom::DofLabel::Along`].
     pub fn about(mut self, axis: Axis, normal: [f64; 3]) -> Result<Self, ReduceError> {
         let bad = |what: &str| ReduceError::Options(format!("the {what} has zero length"));
-        let a = unit3(axis.direction).ok_or_else(|| bad("disc axis"))?;
-        let n = unit3(normal).ok_or_else(|| bad("contact normal"))?;
+        let a = unit(axis.direction).ok_or_else(|| bad("disc axis"))?;
+        let n = unit(normal).ok_or_else(|| bad("contact normal"))?;
         self.axis = axis;
         match coordinate_axis(n) {
             Some(d) => {

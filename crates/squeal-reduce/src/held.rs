@@ -38,6 +38,7 @@ use crate::craig_bampton::{
     FreeDofs, PartSpec, ReduceError, Row, boundary_rows, piston_frames, skew_restraints,
 };
 use faer::{Mat, Side};
+use squeal_element::geometry::{cross, norm};
 use squeal_fe::frames::{AxisDirection, DofTransform, HeldNodes};
 use squeal_fe::{DofMap, DofStatus};
 use squeal_mesh::Mesh;
@@ -256,14 +257,6 @@ fn unit_axis(d: usize) -> [f64; 3] {
     e
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 /// The mean of the used nodes and the largest extent of their bounding box (1 if none).
 fn centre_and_length(mesh: &Mesh, used: &[bool]) -> ([f64; 3], f64) {
     let mut sum = [0.0; 3];
@@ -331,10 +324,6 @@ fn null_motions(gram: &[[f64; 6]; 6], centre: [f64; 3], length: f64) -> Vec<Free
             }
         })
         .collect()
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
 /// `d` or `-d`, whichever has its largest component positive.

@@ -35,6 +35,7 @@
 //! `Σ_k C_pk x_k = x̄_p` to round-off: the patch's mean motion under a rigid translation is
 //! that translation, and its centroid is where its mean motion is taken.
 
+use squeal_element::geometry::{cross, dot, norm, sub};
 mod clip;
 pub mod nodal;
 
@@ -676,29 +677,12 @@ fn mean_point(points: impl Iterator<Item = [f64; 3]>) -> [f64; 3] {
     s.map(|v| v / n.max(1) as f64)
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
 fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
     a.map(|v| v * s)
-}
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
 }
 fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
     let n = norm(a);
     (n > 0.0 && n.is_finite()).then(|| scale(a, 1.0 / n))
 }
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 #[cfg(test)]
 mod tests;

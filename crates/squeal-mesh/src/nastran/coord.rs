@@ -10,6 +10,7 @@
 //! `(R sin θ cos φ, R sin θ sin φ, R cos θ)` for `(R, θ, φ)` in a spherical one (angles in
 //! degrees).
 
+use squeal_element::geometry::{cross, sub, unit};
 /// The kind of a coordinate system.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Kind {
@@ -34,23 +35,6 @@ pub(super) struct Frame {
     pub kind: Kind,
     pub origin: [f64; 3],
     pub axes: [[f64; 3]; 3],
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    (n > 0.0 && n.is_finite()).then(|| [a[0] / n, a[1] / n, a[2] / n])
 }
 
 impl Frame {

@@ -1,6 +1,7 @@
 //! The contact sets' checks and the pairing of the disc's and pads' contact points (by patch or node), with their projections.
 
 use super::*;
+use squeal_element::geometry::{norm, sub};
 
 /// Checks a part's node sets before any work: every set named exists and is not empty, and
 /// no boundary node (contact node or face node, piston node along the normal) is restrained
@@ -246,7 +247,7 @@ pub fn pair_contact_points(
             let mut spacing = f64::INFINITY;
             for (i, a) in disc.iter().enumerate() {
                 for b in &disc[i + 1..] {
-                    spacing = spacing.min(distance(*a, *b));
+                    spacing = spacing.min(norm(sub(*a, *b)));
                 }
             }
             f * spacing
@@ -257,7 +258,7 @@ pub fn pair_contact_points(
     for (i, &x) in disc.iter().enumerate() {
         let nearest = (0..pad.len())
             .filter(|&j| !taken[j])
-            .map(|j| (j, distance(x, pad[j])))
+            .map(|j| (j, norm(sub(x, pad[j]))))
             .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
         match nearest {
             Some((j, d)) if d <= tolerance => {
@@ -281,16 +282,7 @@ pub fn pair_contact_points(
     Ok((pairs, tolerance))
 }
 
-pub(super) fn unit3(a: [f64; 3]) -> Option<[f64; 3]> {
-    let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    (n.is_finite() && n > 0.0).then(|| a.map(|x| x / n))
-}
-
 /// The coordinate axis the unit `a` is along (other components within 1e-12), if any.
 pub(super) fn coordinate_axis(a: [f64; 3]) -> Option<usize> {
     (0..3).find(|&d| (0..3).all(|e| e == d || a[e].abs() <= 1e-12))
-}
-
-pub(super) fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }

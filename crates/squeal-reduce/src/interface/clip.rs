@@ -292,34 +292,10 @@ impl PlanarMap<'_> {
     }
 }
 
-/// Gauss–Legendre points and weights on `[-1, 1]` (Newton's method on `P_N` from the usual
-/// cosine first guesses; converged to round-off).
+/// Gauss–Legendre points and weights on `[-1, 1]`, ascending (the elements' own rule).
 fn gauss_legendre<const N: usize>() -> [(f64, f64); N] {
-    let n = N as f64;
-    // P_N(x) and P_N'(x) by the three-term recurrence.
-    let legendre = |x: f64| {
-        let (mut p0, mut p1) = (1.0, x);
-        for k in 2..=N {
-            let k = k as f64;
-            let p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-            p0 = p1;
-            p1 = p2;
-        }
-        (p1, n * (x * p1 - p0) / (x * x - 1.0))
-    };
-    std::array::from_fn(|i| {
-        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n + 0.5)).cos();
-        for _ in 0..100 {
-            let (p, dp) = legendre(x);
-            let step = p / dp;
-            x -= step;
-            if step.abs() <= 1e-16 {
-                break;
-            }
-        }
-        let (_, dp) = legendre(x);
-        (x, 2.0 / ((1.0 - x * x) * dp * dp))
-    })
+    let (x, w) = squeal_element::quadrature::gauss_legendre(N);
+    std::array::from_fn(|i| (x[i], w[i]))
 }
 
 /// The quadrature rules of the iterated integral.
