@@ -89,12 +89,12 @@ fn thread_count(s: &str) -> Result<usize, String> {
 
 fn main() -> ExitCode {
     // Ctrl-C (SIGINT): the writes under way are dropped, the output folder's manifest says the
-    // run was interrupted and its lock is released, then exit 130 (squeal_io::interrupt).
+    // run was interrupted and its lock is released, then exit 130 (squeal_pipeline::folder::interrupt).
     let _ = ctrlc::set_handler(|| {
         eprintln!(
             "\ninterrupted (Ctrl-C): no partial file is left; the output folder's manifest marks this run as interrupted"
         );
-        squeal_io::interrupt::stop("interrupted (Ctrl-C)");
+        squeal_pipeline::folder::interrupt::stop("interrupted (Ctrl-C)");
     });
     let cli = Cli::parse();
     // Dense kernels run sequentially: their results would otherwise depend on the thread

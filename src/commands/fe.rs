@@ -1,12 +1,11 @@
 //! `squeal fe export`: sparse K and M of a mesh as MatrixMarket files, for MATLAB and Python.
 
-use crate::commands::mesh::read_mesh;
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
-use squeal_fe::{DofMap, ElasticMaterial, MaterialTable, Restraint, assemble, write_matrix_market};
+use squeal_pipeline::fe_export::{ElasticMaterial, ExportRequest, Restraint, export};
+use squeal_pipeline::mesh_info::Units;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::Instant;
 
 #[derive(Subcommand)]
 pub enum FeCommand {
@@ -48,9 +47,9 @@ pub struct UnitsArg {
 
 impl UnitsArg {
     /// The system named (SI when none is).
-    pub fn system(&self) -> Result<squeal_mesh::units::UnitSystem> {
+    pub fn system(&self) -> Result<Units> {
         match &self.units {
-            None => Ok(squeal_mesh::units::UnitSystem::default()),
+            None => Ok(Units::default()),
             Some(name) => Ok(squeal_pipeline::mesh_info::units_named(name)?),
         }
     }
@@ -69,10 +68,7 @@ pub struct MaterialArgs {
 impl MaterialArgs {
     /// Parses `SET=E,nu,rho` entries given in `units`, in SI; a modulus or density no
     /// structural solid has is warned about on stderr.
-    pub fn overrides_in(
-        &self,
-        units: &squeal_mesh::units::UnitSystem,
-    ) -> Result<Vec<(String, ElasticMaterial)>> {
+    pub fn overrides_in(&self, units: &Units) -> Result<Vec<(String, ElasticMaterial)>> {
         let mut out = Vec::new();
         for (set, m) in self.overrides()? {
             let (si, warnings) = squeal_pipeline::mesh_info::material_in(&set, m, units);
@@ -88,47 +84,16 @@ impl MaterialArgs {
     pub fn overrides(&self) -> Result<Vec<(String, ElasticMaterial)>> {
         self.materials
             .iter()
-            .map(|s| {
-                let (set, values) = s
-                    .split_once('=')
-                    .with_context(|| format!("--material '{s}': expected SET=E,nu,rho"))?;
-                let v: Vec<f64> = values
-                    .split(',')
-                    .map(|x| x.trim().parse::<f64>())
-                    .collect::<Result<_, _>>()
-                    .with_context(|| format!("--material '{s}': E, nu and rho must be numbers"))?;
-                let [e, nu, rho] = v[..] else {
-                    bail!("--material '{s}': expected three values E,nu,rho")
-                };
-                let m = ElasticMaterial::isotropic(e, nu, rho);
-                // The same checks as the reduction's: E > 0, -1 < nu < 0.5, rho > 0.
-                m.elasticity()
-                    .with_context(|| format!("--material '{s}'"))?;
-                Ok((set.trim().to_string(), m))
-            })
+            .map(|s| Ok(squeal_pipeline::fe_export::parse_material(s)?))
             .collect()
     }
 }
 
 /// Parses `--clamp SET` and `--restrain SET:xyz` into restraints.
 pub fn restraints(clamp: &[String], restrain: &[String]) -> Result<Vec<Restraint>> {
-    let mut out: Vec<Restraint> = clamp.iter().map(|s| Restraint::clamp(s)).collect();
-    for r in restrain {
-        let (set, dirs) = r
-            .split_once(':')
-            .with_context(|| format!("--restrain '{r}': expected SET:xyz"))?;
-        let mut d = [false; 3];
-        for c in dirs.chars() {
-            match c.to_ascii_lowercase() {
-                'x' => d[0] = true,
-                'y' => d[1] = true,
-                'z' => d[2] = true,
-                _ => bail!("--restrain '{r}': directions are letters among x, y, z"),
-            }
-        }
-        out.push(Restraint::set(set, d));
-    }
-    Ok(out)
+    Ok(squeal_pipeline::fe_export::parse_restraints(
+        clamp, restrain,
+    )?)
 }
 
 pub fn run(cmd: FeCommand) -> Result<ExitCode> {
@@ -139,44 +104,29 @@ pub fn run(cmd: FeCommand) -> Result<ExitCode> {
             args.format
         );
     }
-    squeal_io::require_folder(&args.out)?;
     let units = args.units.system()?;
-    let mut read = read_mesh(&args.mesh)?;
-    for w in squeal_pipeline::mesh_info::read_in(&args.mesh, &mut read, &units) {
+    let mut req = ExportRequest::new(args.mesh.clone(), args.out.clone());
+    req.restraints = restraints(&args.clamp, &args.restrain)?;
+    req.materials = args.materials.overrides()?;
+    req.units = units.clone();
+    let done = export(&req)?;
+    for w in &done.warnings {
         eprintln!("warning: {w}");
     }
-    let mesh = read.mesh;
-    let materials = MaterialTable::from_mesh(&mesh, &args.materials.overrides_in(&units)?)
-        .with_context(|| {
-            format!(
-                "materials of {} (a .msh has none: give --material SET=E,nu,rho)",
-                args.mesh.display()
-            )
-        })?;
-    let dofmap = DofMap::new(&mesh, &restraints(&args.clamp, &args.restrain)?)?;
-    let t = Instant::now();
-    let system = assemble(&mesh, &materials, &dofmap)?;
-    let assembled = t.elapsed();
-    let stem = args
-        .mesh
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "mesh".into());
-    write_matrix_market(&args.out, &stem, &system.k, &system.m, &dofmap)?;
     println!(
         "{} free dofs ({} restrained), K {} and M {} stored nonzeros, assembled in {:.3} s",
-        dofmap.num_free(),
-        dofmap.num_restrained(),
-        system.nnz_k(),
-        system.nnz_m(),
-        assembled.as_secs_f64()
+        done.free,
+        done.restrained,
+        done.nnz_k,
+        done.nnz_m,
+        done.assembled.as_secs_f64()
     );
     println!(
         "K in N/m and M in kg (SI; the mesh read as {}: {})",
         units.name, units.description
     );
-    for f in ["K.mtx", "M.mtx", "dofs.csv"] {
-        println!("wrote {}", args.out.join(format!("{stem}_{f}")).display());
+    for f in &done.files {
+        println!("wrote {}", f.display());
     }
     Ok(ExitCode::SUCCESS)
 }

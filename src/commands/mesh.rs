@@ -1,8 +1,8 @@
 //! `squeal mesh info` and `squeal mesh convert`.
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::Subcommand;
-use squeal_mesh::ReadMesh;
+use squeal_pipeline::mesh_info::ReadMesh;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -124,13 +124,12 @@ pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
             })
         }
         MeshCommand::Convert { input, output } => {
-            squeal_io::require_extension(&output, "vtu", "VTK XML unstructured grids (.vtu)")?;
-            squeal_io::refuse_inputs(&output, &[(&input, "input mesh")])?;
-            let read = read_mesh(&input)?;
-            squeal_mesh::vtu::write_vtu(&output, &read.mesh, &[], &[])
-                .with_context(|| format!("writing {}", output.display()))?;
+            let read = squeal_pipeline::mesh_info::convert(&input, &output)?;
+            for w in &read.warnings {
+                eprintln!("warning: {w}");
+            }
             println!(
-                "wrote {} ({} nodes, {} quadratic tetrahedra)",
+                "wrote {} ({} nodes, {} elements)",
                 output.display(),
                 read.mesh.num_nodes(),
                 read.mesh.num_elements()
@@ -142,8 +141,7 @@ pub fn run(cmd: MeshCommand) -> Result<ExitCode> {
 
 /// Reads a mesh and prints the reader's warnings to stderr.
 pub fn read_mesh(path: &Path) -> Result<ReadMesh> {
-    let read =
-        squeal_mesh::read(path).with_context(|| format!("reading mesh {}", path.display()))?;
+    let read = squeal_pipeline::mesh_info::read_mesh(path)?;
     for w in &read.warnings {
         eprintln!("warning: {w}");
     }

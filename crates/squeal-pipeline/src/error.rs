@@ -7,7 +7,8 @@ use std::path::PathBuf;
 pub enum PipelineError {
     #[error(transparent)]
     Scene(#[from] squeal_scene::SceneError),
-    #[error("reading {}: {error}", path.display())]
+    /// A mesh file that could not be read (the reader's error names the file and the place).
+    #[error("{error}")]
     Mesh {
         path: PathBuf,
         error: squeal_mesh::MeshError,

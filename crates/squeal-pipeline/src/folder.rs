@@ -7,6 +7,8 @@ use crate::error::{PipelineError, Result};
 use std::path::Path;
 
 pub use squeal_io::folder::remove_earlier;
+/// Ctrl-C: a run's folder marked interrupted and its lock released before the process ends.
+pub use squeal_io::interrupt;
 
 /// Takes the output folder `out` of the scene file `scene` for the command line `command`
 /// (`force`: write over files the folder's manifest does not list). Returns the notes to show

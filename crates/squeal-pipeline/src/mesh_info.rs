@@ -13,11 +13,34 @@ use crate::error::{PipelineError, Result};
 use squeal_fe::ElasticMaterial;
 use squeal_mesh::quality::{self, QualityOptions, Severity};
 use squeal_mesh::units::{SYSTEMS, UnitSystem, check_density, check_modulus, plausibility};
-use squeal_mesh::{Elastic, Mesh, ReadMesh};
+use squeal_mesh::{Elastic, Mesh};
 use squeal_report::format::fmt_sig;
 use std::fmt::Display;
 use std::path::Path;
 use std::time::Instant;
+
+pub use squeal_mesh::ReadMesh;
+pub use squeal_mesh::units::UnitSystem as Units;
+
+/// Reads a mesh file (.inp, .bdf/.nas/.dat, .cdb or .msh) as its reader reads it; the reader's
+/// warnings are in [`ReadMesh::warnings`].
+pub fn read_mesh(path: &Path) -> Result<ReadMesh> {
+    squeal_mesh::read(path).map_err(|error| PipelineError::Mesh {
+        path: path.to_path_buf(),
+        error,
+    })
+}
+
+/// Reads the mesh `input` and writes it as VTK XML (`output`: `.vtu`, never over the input)
+/// with its node and element sets as flags; the mesh as read is returned for its counts and
+/// warnings.
+pub fn convert(input: &Path, output: &Path) -> Result<ReadMesh> {
+    squeal_io::require_extension(output, "vtu", "VTK XML unstructured grids (.vtu)")?;
+    squeal_io::refuse_inputs(output, &[(input, "input mesh")])?;
+    let read = read_mesh(input)?;
+    squeal_mesh::vtu::write_vtu(output, &read.mesh, &[], &[])?;
+    Ok(read)
+}
 
 /// Appends `text` and a line break.
 fn line(s: &mut String, text: impl Display) {
