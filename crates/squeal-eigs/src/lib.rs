@@ -34,6 +34,7 @@ pub mod arnoldi;
 mod block;
 mod cholesky;
 mod constraint;
+pub mod dense;
 mod error;
 mod inertia;
 mod lanczos;

@@ -1,9 +1,10 @@
 //! Checks of a reduced part: its natural frequencies with the boundary coordinates fixed or
 //! free, and the definiteness of `K̂` and `M̂` (eqs 6–7).
 
-use crate::craig_bampton::{ReduceError, dense_cholesky, hz};
+use crate::craig_bampton::{ReduceError, hz};
 use crate::rom::{DofLabel, ReducedPart};
 use faer::{Mat, Side};
+use squeal_eigs::dense::cholesky_lower;
 
 /// What the boundary coordinates of a reduced part do in a frequency check.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,7 +28,7 @@ pub fn dense_eigenvalues(k: &Mat<f64>, m: &Mat<f64>, part: &str) -> Result<Vec<f
         return Err(invalid("K and M are not square matrices of one size"));
     }
     let l =
-        dense_cholesky(m).ok_or_else(|| invalid("the reduced mass is not positive definite"))?;
+        cholesky_lower(m).ok_or_else(|| invalid("the reduced mass is not positive definite"))?;
     // X = L⁻¹ K, then A = L⁻¹ Xᵀ = L⁻¹ K L⁻ᵀ (K symmetric).
     let x = forward_solve(&l, k);
     let a = forward_solve(&l, &x.transpose().to_owned());

@@ -568,32 +568,6 @@ pub fn omega2(hz: f64) -> f64 {
     (2.0 * std::f64::consts::PI * hz).powi(2)
 }
 
-/// Lower Cholesky factor `L` of a small symmetric positive definite matrix (`A = L Lᵀ`,
-/// textbook column order), or `None` at a pivot that is not positive.
-pub(crate) fn dense_cholesky(a: &Mat<f64>) -> Option<Mat<f64>> {
-    let n = a.nrows();
-    let mut l = Mat::<f64>::zeros(n, n);
-    for j in 0..n {
-        let mut d = a[(j, j)];
-        for k in 0..j {
-            d -= l[(j, k)] * l[(j, k)];
-        }
-        if !(d > 0.0 && d.is_finite()) {
-            return None;
-        }
-        let d = d.sqrt();
-        l[(j, j)] = d;
-        for i in j + 1..n {
-            let mut s = a[(i, j)];
-            for k in 0..j {
-                s -= l[(i, k)] * l[(j, k)];
-            }
-            l[(i, j)] = s / d;
-        }
-    }
-    Some(l)
-}
-
 fn block_norm(a: &Mat<f64>, rows: std::ops::Range<usize>, cols: std::ops::Range<usize>) -> f64 {
     let mut s = 0.0;
     for i in rows {

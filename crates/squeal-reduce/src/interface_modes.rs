@@ -66,12 +66,13 @@
 //! How many CC modes each part keeps is chosen by convergence of the brake's results, not
 //! here: see the pipeline's `interface` module.
 
-use crate::craig_bampton::{ReduceError, dense_cholesky, hz};
+use crate::craig_bampton::{ReduceError, hz};
 use crate::rom::{Basis, DofLabel, PointRole, ReducedPart};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
 use faer::{Mat, Par, Side};
+use squeal_eigs::dense::cholesky_lower;
 
 /// A part's characteristic constraint modes: the eigenvectors of its contact face's
 /// partition `(K̂_cc, M̂_cc)`, all of them, lowest first.
@@ -140,7 +141,7 @@ pub fn characteristic_constraint_modes_loaded(
     let m = Mat::from_fn(nc, nc, |i, j| {
         0.5 * (part.m[(c[i], c[j])] + part.m[(c[j], c[i])])
     });
-    let l = dense_cholesky(&m)
+    let l = cholesky_lower(&m)
         .ok_or_else(|| invalid("the contact face's mass M_cc is not positive definite".into()))?;
     // A = L⁻¹ K L⁻ᵀ: X = L⁻¹ K, then A = L⁻¹ Xᵀ (K symmetric).
     let mut x = k;

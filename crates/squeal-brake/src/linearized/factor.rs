@@ -1,6 +1,7 @@
 //! Solves with the linearized brake's matrix at one λ: a dense LU for small models, a bordered solve of the modal diagonal plus the contact coupling (Schur complement) for large ones.
 
 use super::*;
+use squeal_eigs::dense::SmallLu;
 
 /// `T(λ)` factored for solves.
 pub enum Factor {
@@ -334,112 +335,4 @@ pub(super) fn schur(
         }
     }
     s
-}
-
-/// A small dense complex LU factorization with partial pivoting, after scaling rows and then
-/// columns to unit largest entry (by powers of two, which round nothing): the bordered matrix
-/// mixes entries of order `ω²`, `k_p` and 1. A zero pivot is replaced by `ε` times the largest
-/// entry, as inverse iteration does at an exact eigenvalue: the solve then returns a large
-/// multiple of the null vector, which is what is wanted.
-pub(super) struct SmallLu {
-    pub(super) n: usize,
-    pub(super) a: Vec<c64>,
-    pub(super) perm: Vec<usize>,
-    pub(super) row_scale: Vec<f64>,
-    pub(super) col_scale: Vec<f64>,
-}
-
-/// `|Re z| + |Im z|`: a norm as good as `|z|` for pivoting and scaling, without a square root.
-pub(super) fn abs1(z: c64) -> f64 {
-    z.re.abs() + z.im.abs()
-}
-
-/// The power of two nearest to `1 / m` (1 for a zero or non-finite `m`).
-pub(super) fn inverse_power_of_two(m: f64) -> f64 {
-    if m > 0.0 && m.is_finite() {
-        (-m.log2().round()).exp2()
-    } else {
-        1.0
-    }
-}
-
-impl SmallLu {
-    pub(super) fn new(n: usize, mut a: Vec<c64>) -> Self {
-        let row_scale: Vec<f64> = (0..n)
-            .map(|i| inverse_power_of_two((0..n).map(|j| abs1(a[i * n + j])).fold(0.0, f64::max)))
-            .collect();
-        for i in 0..n {
-            for j in 0..n {
-                a[i * n + j] *= row_scale[i];
-            }
-        }
-        let col_scale: Vec<f64> = (0..n)
-            .map(|j| inverse_power_of_two((0..n).map(|i| abs1(a[i * n + j])).fold(0.0, f64::max)))
-            .collect();
-        for i in 0..n {
-            for j in 0..n {
-                a[i * n + j] *= col_scale[j];
-            }
-        }
-        let floor = f64::EPSILON;
-        let mut perm: Vec<usize> = (0..n).collect();
-        for k in 0..n {
-            let mut piv = k;
-            for i in k + 1..n {
-                if abs1(a[i * n + k]) > abs1(a[piv * n + k]) {
-                    piv = i;
-                }
-            }
-            if piv != k {
-                for col in 0..n {
-                    a.swap(k * n + col, piv * n + col);
-                }
-                perm.swap(k, piv);
-            }
-            if abs1(a[k * n + k]) < floor {
-                a[k * n + k] = c64::new(floor, 0.0);
-            }
-            let inv = c64::new(1.0, 0.0) / a[k * n + k];
-            for i in k + 1..n {
-                let f = a[i * n + k] * inv;
-                a[i * n + k] = f;
-                for col in k + 1..n {
-                    let v = a[k * n + col];
-                    a[i * n + col] -= f * v;
-                }
-            }
-        }
-        Self {
-            n,
-            a,
-            perm,
-            row_scale,
-            col_scale,
-        }
-    }
-
-    pub(super) fn solve(&self, b: &mut [c64]) {
-        let n = self.n;
-        let mut x: Vec<c64> = self
-            .perm
-            .iter()
-            .map(|&i| b[i] * self.row_scale[i])
-            .collect();
-        for i in 0..n {
-            for k in 0..i {
-                let v = x[k];
-                x[i] -= self.a[i * n + k] * v;
-            }
-        }
-        for i in (0..n).rev() {
-            for k in i + 1..n {
-                let v = x[k];
-                x[i] -= self.a[i * n + k] * v;
-            }
-            x[i] /= self.a[i * n + i];
-        }
-        for (i, v) in x.iter().enumerate() {
-            b[i] = *v * self.col_scale[i];
-        }
-    }
 }

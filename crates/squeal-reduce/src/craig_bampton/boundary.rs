@@ -1,6 +1,7 @@
 //! The boundary's rows of a part: its contact points and piston dofs as constraint rows, the footprint springs, and the projection of the boundary onto the fixed-interface modes (eq (2)).
 
 use super::*;
+use squeal_eigs::dense::cholesky_lower;
 
 /// Boundary points and rows: contact points (3 rows each), then piston nodes (1 row each).
 pub(crate) fn boundary_rows(
@@ -619,7 +620,7 @@ pub(super) fn orthonormalize_modes(
     let n = basis.ncols();
     let nm = n - nb;
     let mnn = Mat::from_fn(nm, nm, |i, j| m_hat[(nb + i, nb + j)]);
-    let l = dense_cholesky(&mnn).ok_or_else(|| ReduceError::Invalid {
+    let l = cholesky_lower(&mnn).ok_or_else(|| ReduceError::Invalid {
         part: part.into(),
         what: "the modal block of the reduced mass is not positive definite".into(),
     })?;
