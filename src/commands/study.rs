@@ -8,7 +8,7 @@ use crate::progress::say;
 use anyhow::{Context, Result};
 use clap::Args;
 use squeal_pipeline::model::default_out;
-use squeal_pipeline::study::convergence::{self, Contact, Knob};
+use squeal_pipeline::study::convergence::{self, ContactLevel, Knob};
 use squeal_pipeline::study::{self, Kind as StudyKind, Shard};
 use squeal_scene::{Scene, parse_range};
 use std::path::PathBuf;
@@ -58,8 +58,8 @@ pub struct StudyArgs {
     pub knobs: Vec<Knob>,
     /// --kind convergence: the contact levels after the scene's own, patch grids RxA (radial x
     /// angular) or nodal (default for a 3x3 scene: 3x5,5x5,nodal)
-    #[arg(long, value_delimiter = ',', value_parser = Contact::parse)]
-    pub grids: Vec<Contact>,
+    #[arg(long, value_delimiter = ',', value_parser = ContactLevel::parse)]
+    pub grids: Vec<ContactLevel>,
     /// --kind convergence: factors on the scene's kept modes per part after x1
     #[arg(long, value_delimiter = ',', default_value = "1.5,2")]
     pub mode_factors: Vec<f64>,

@@ -31,7 +31,7 @@
 
 use super::coupled::{face_set, rings, summarize};
 use super::create_dir;
-use super::verdict::{self, DEFAULT_TOLERANCE, Verdict};
+use super::verdict::{self, DEFAULT_TOLERANCE, KnobVerdict};
 use crate::error::{Context, PipelineError, Result};
 use crate::model::{Log, Model, build};
 use crate::shapes::expand_complex;
@@ -76,19 +76,19 @@ impl Knob {
 
 /// A contact discretization: a patch grid (radial × angular), node or nodal contact.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Contact {
+pub enum ContactLevel {
     Patches([usize; 2]),
     Node,
     Nodal,
 }
 
-impl Contact {
+impl ContactLevel {
     /// `3x5` (radial x angular patches), `node` or `nodal`.
-    pub fn parse(s: &str) -> std::result::Result<Contact, String> {
+    pub fn parse(s: &str) -> std::result::Result<ContactLevel, String> {
         let s = s.trim();
         match s {
-            "nodal" => return Ok(Contact::Nodal),
-            "node" => return Ok(Contact::Node),
+            "nodal" => return Ok(ContactLevel::Nodal),
+            "node" => return Ok(ContactLevel::Node),
             _ => {}
         }
         let bad = || {
@@ -98,7 +98,7 @@ impl Contact {
         };
         let (r, a) = s.split_once(['x', 'X']).ok_or_else(bad)?;
         let n = |t: &str| t.trim().parse::<usize>().ok().filter(|v| *v > 0);
-        Ok(Contact::Patches([
+        Ok(ContactLevel::Patches([
             n(r).ok_or_else(bad)?,
             n(a).ok_or_else(bad)?,
         ]))
@@ -107,39 +107,39 @@ impl Contact {
     /// `3x5 patches`, `node`, `nodal`.
     pub fn label(self) -> String {
         match self {
-            Contact::Patches([r, a]) => format!("{r}x{a} patches"),
-            Contact::Node => "node".into(),
-            Contact::Nodal => "nodal".into(),
+            ContactLevel::Patches([r, a]) => format!("{r}x{a} patches"),
+            ContactLevel::Node => "node".into(),
+            ContactLevel::Nodal => "nodal".into(),
         }
     }
 
     fn key(self) -> String {
         match self {
-            Contact::Patches([r, a]) => format!("p{r}x{a}"),
-            Contact::Node => "node".into(),
-            Contact::Nodal => "nodal".into(),
+            ContactLevel::Patches([r, a]) => format!("p{r}x{a}"),
+            ContactLevel::Node => "node".into(),
+            ContactLevel::Nodal => "nodal".into(),
         }
     }
 
     /// The scene's own contact discretization.
-    fn of(scene: &Scene) -> Result<Contact> {
+    fn of(scene: &Scene) -> Result<ContactLevel> {
         Ok(match scene.interface()? {
-            Interface::Patch => Contact::Patches(scene.patch_grid()?),
-            Interface::Node => Contact::Node,
-            Interface::Nodal => Contact::Nodal,
+            Interface::Patch => ContactLevel::Patches(scene.patch_grid()?),
+            Interface::Node => ContactLevel::Node,
+            Interface::Nodal => ContactLevel::Nodal,
         })
     }
 
     /// The default refinements after this one: two finer grids, then nodal contact.
-    fn refinements(self) -> Vec<Contact> {
+    fn refinements(self) -> Vec<ContactLevel> {
         match self {
-            Contact::Patches([r, a]) => vec![
-                Contact::Patches([r, a + 2]),
-                Contact::Patches([r + 2, a + 2]),
-                Contact::Nodal,
+            ContactLevel::Patches([r, a]) => vec![
+                ContactLevel::Patches([r, a + 2]),
+                ContactLevel::Patches([r + 2, a + 2]),
+                ContactLevel::Nodal,
             ],
-            Contact::Node => vec![Contact::Nodal],
-            Contact::Nodal => Vec::new(),
+            ContactLevel::Node => vec![ContactLevel::Nodal],
+            ContactLevel::Nodal => Vec::new(),
         }
     }
 }
@@ -151,7 +151,7 @@ pub struct Options {
     pub knobs: Vec<Knob>,
     /// The contact levels after the scene's own (`None`: two finer grids, 3 x 3 -> 3 x 5 -> 5 x 5,
     /// then nodal contact).
-    pub contacts: Option<Vec<Contact>>,
+    pub contacts: Option<Vec<ContactLevel>>,
     /// Factors on the scene's kept modes after ×1.
     pub mode_factors: Vec<f64>,
     /// The mesh levels, the first being the base of every knob; empty: the scene's own level,
@@ -180,7 +180,7 @@ impl Default for Options {
 /// A point in the knobs' space: what one level computes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Setting {
-    pub contact: Contact,
+    pub contact: ContactLevel,
     pub modes: usize,
     /// The mesh level, when the scene's meshes have one.
     pub level: Option<String>,
@@ -218,12 +218,12 @@ impl Setting {
             v.set_mesh_level(l)?;
         }
         match self.contact {
-            Contact::Patches(g) => {
+            ContactLevel::Patches(g) => {
                 v.set_interface(Interface::Patch);
                 v.set_patch_grid(g)?;
             }
-            Contact::Node => v.set_interface(Interface::Node),
-            Contact::Nodal => v.set_interface(Interface::Nodal),
+            ContactLevel::Node => v.set_interface(Interface::Node),
+            ContactLevel::Nodal => v.set_interface(Interface::Nodal),
         }
         v.set_modes(self.modes);
         v.set_rom(&dir.join(format!("brake_{}.rom", self.key())));
@@ -303,7 +303,7 @@ pub fn plan(scene: &Scene, opts: &Options) -> Result<Plan> {
     let levels = mesh_levels(scene, &opts.levels)?;
     let modes = scene.modes_per_part();
     let base = Setting {
-        contact: Contact::of(scene)?,
+        contact: ContactLevel::of(scene)?,
         modes,
         level: levels[0].clone(),
     };
@@ -378,7 +378,7 @@ pub struct LevelResult {
     pub dofs: usize,
     /// Mesh nodes of all parts.
     pub nodes: usize,
-    /// Contact pairs.
+    /// ContactLevel pairs.
     pub pairs: usize,
     pub mu0: Option<f64>,
     pub frequency_hz: Option<f64>,
@@ -545,7 +545,7 @@ pub struct KnobResult {
     pub levels: Vec<usize>,
     /// MAC of each level's unstable mode against the previous level's (`None` for the first).
     pub mac: Vec<Option<f64>>,
-    pub verdict: Verdict,
+    pub verdict: KnobVerdict,
 }
 
 /// The whole study.
@@ -601,7 +601,8 @@ pub fn judge(
             verdict,
         });
     }
-    let named: Vec<(&str, &Verdict)> = knobs.iter().map(|k| (k.knob.name(), &k.verdict)).collect();
+    let named: Vec<(&str, &KnobVerdict)> =
+        knobs.iter().map(|k| (k.knob.name(), &k.verdict)).collect();
     let overall = verdict::overall(&named);
     Study {
         base_modes: plan.base.modes,
@@ -665,15 +666,18 @@ mod tests {
 
     #[test]
     fn contact_levels_parse_and_refine() {
-        assert_eq!(Contact::parse("3x5"), Ok(Contact::Patches([3, 5])));
-        assert_eq!(Contact::parse(" nodal "), Ok(Contact::Nodal));
-        assert!(Contact::parse("3x0").is_err() && Contact::parse("five").is_err());
         assert_eq!(
-            Contact::Patches([3, 3]).refinements(),
+            ContactLevel::parse("3x5"),
+            Ok(ContactLevel::Patches([3, 5]))
+        );
+        assert_eq!(ContactLevel::parse(" nodal "), Ok(ContactLevel::Nodal));
+        assert!(ContactLevel::parse("3x0").is_err() && ContactLevel::parse("five").is_err());
+        assert_eq!(
+            ContactLevel::Patches([3, 3]).refinements(),
             vec![
-                Contact::Patches([3, 5]),
-                Contact::Patches([5, 5]),
-                Contact::Nodal
+                ContactLevel::Patches([3, 5]),
+                ContactLevel::Patches([5, 5]),
+                ContactLevel::Nodal
             ]
         );
         assert_eq!(fmt_factor(1.5), "1.5");

@@ -44,7 +44,7 @@ impl Status {
 
 /// The observed rate of three levels.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Rate {
+pub struct ConvergenceRate {
     /// `|Δ_n| / |Δ_{n−1}|`.
     pub ratio: f64,
     /// The two changes have opposite signs.
@@ -55,17 +55,17 @@ pub struct Rate {
 
 /// The verdict on one knob.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Verdict {
+pub struct KnobVerdict {
     pub status: Status,
     /// `δ_n`, when the last two levels have a μ0.
     pub last_change: Option<f64>,
-    pub rate: Option<Rate>,
+    pub rate: Option<ConvergenceRate>,
     /// One line: the status and why.
     pub text: String,
 }
 
 /// The observed rate of the last three values (all present, the older change non-zero).
-pub fn rate(values: &[Option<f64>]) -> Option<Rate> {
+pub fn rate(values: &[Option<f64>]) -> Option<ConvergenceRate> {
     let n = values.len();
     if n < 3 {
         return None;
@@ -78,14 +78,14 @@ pub fn rate(values: &[Option<f64>]) -> Option<Rate> {
     let ratio = (d2 / d1).abs();
     let oscillating = d1 * d2 < 0.0;
     let limit = (!oscillating && ratio < 1.0).then(|| c + d2 * ratio / (1.0 - ratio));
-    Some(Rate {
+    Some(ConvergenceRate {
         ratio,
         oscillating,
         limit,
     })
 }
 
-fn rate_text(r: &Rate) -> String {
+fn rate_text(r: &ConvergenceRate) -> String {
     let mut t = if r.oscillating {
         format!(
             "oscillating: the last change is {:.2} times the one before, of opposite sign",
@@ -111,9 +111,9 @@ fn rate_text(r: &Rate) -> String {
 /// The verdict on a knob from its levels' μ0 (`None`: no Hopf point in the band at that level),
 /// the MAC of the last level's unstable mode against the previous level's (when both have one),
 /// and the relative tolerance.
-pub fn verdict(values: &[Option<f64>], mac: Option<f64>, tolerance: f64) -> Verdict {
+pub fn verdict(values: &[Option<f64>], mac: Option<f64>, tolerance: f64) -> KnobVerdict {
     let n = values.len();
-    let undetermined = |why: &str| Verdict {
+    let undetermined = |why: &str| KnobVerdict {
         status: Status::Undetermined,
         last_change: None,
         rate: None,
@@ -129,7 +129,7 @@ pub fn verdict(values: &[Option<f64>], mac: Option<f64>, tolerance: f64) -> Verd
         }
         (p, _) => {
             let which = if p.is_some() { "last" } else { "previous" };
-            return Verdict {
+            return KnobVerdict {
                 status: Status::NotConverged,
                 last_change: None,
                 rate: None,
@@ -170,7 +170,7 @@ pub fn verdict(values: &[Option<f64>], mac: Option<f64>, tolerance: f64) -> Verd
     } else {
         Status::NotConverged
     };
-    Verdict {
+    KnobVerdict {
         status,
         last_change: Some(change),
         rate: r,
@@ -180,7 +180,7 @@ pub fn verdict(values: &[Option<f64>], mac: Option<f64>, tolerance: f64) -> Verd
 
 /// The overall verdict from the knobs' (name, verdict): converged when every knob is, not
 /// converged when any is not (naming them), else undetermined.
-pub fn overall(knobs: &[(&str, &Verdict)]) -> (Status, String) {
+pub fn overall(knobs: &[(&str, &KnobVerdict)]) -> (Status, String) {
     let names = |s: Status| -> Vec<&str> {
         knobs
             .iter()
