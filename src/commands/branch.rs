@@ -66,10 +66,11 @@ pub fn options(args: &BranchArgs) -> Result<BranchOptions> {
     if args.max_points < 2 {
         bail!("--max-points must be at least 2");
     }
-    let mut o = BranchOptions {
-        harmonics,
-        range: (lo, hi),
-        ..BranchOptions::default()
+    let mut o = {
+        let mut o = BranchOptions::default();
+        o.harmonics = harmonics;
+        o.range = (lo, hi);
+        o
     };
     o.continuation.max_points = args.max_points;
     Ok(o)

@@ -73,10 +73,11 @@ pub fn run(args: NlModeArgs) -> Result<ExitCode> {
     {
         bail!("--mu and --at take positive values (got {v})");
     }
-    let opts = NlModeOptions {
-        harmonics: args.harmonics,
-        amplitudes: amplitudes(&args.amplitudes)?,
-        ..NlModeOptions::default()
+    let opts = {
+        let mut o = NlModeOptions::default();
+        o.harmonics = args.harmonics;
+        o.amplitudes = amplitudes(&args.amplitudes)?;
+        o
     };
     let p = pipeline(&args.scene, &args.out, &None)?;
     let m = p.model()?;
@@ -97,10 +98,11 @@ pub fn run(args: NlModeArgs) -> Result<ExitCode> {
     p.record("nonlinear modes", t.elapsed().as_secs_f64());
     if args.compare {
         let t = std::time::Instant::now();
-        let bo = BranchOptions {
-            harmonics: Harmonics::Fixed(args.harmonics),
-            range: (0.5, 1.05 * mus.iter().fold(1.3f64, |m, v| m.max(v / mu0))),
-            ..BranchOptions::default()
+        let bo = {
+            let mut o = BranchOptions::default();
+            o.harmonics = Harmonics::Fixed(args.harmonics);
+            o.range = (0.5, 1.05 * mus.iter().fold(1.3f64, |m, v| m.max(v / mu0)));
+            o
         };
         let b = branch::analyse(m, st, &bo, &HillOptions::default(), &mus, p.log())?
             .context("the branch of limit cycles")?;

@@ -45,6 +45,7 @@ use faer::linalg::solvers::Solve;
 
 /// Convergence controls of the Newton iteration and of the load continuation.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct NewtonOptions {
     /// Converged when `||K x + F_nl - λ F_piston|| <= tolerance * max(||λ F_piston||, ||F_nl||)`:
     /// relative to the forces being balanced (the contact forces carry the load even when a

@@ -55,6 +55,7 @@ use std::sync::Arc;
 
 /// Controls of the projected sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ProjectionOptions {
     /// Largest relative distance `|λ_k - λ| / |λ|` allowed between an in-band eigenvalue of
     /// the projection and the unprojected brake's at the checked friction values.

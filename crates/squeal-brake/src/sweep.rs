@@ -89,6 +89,7 @@ impl SweepMethod {
 
 /// Controls of a sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SweepOptions {
     /// Where a crossing may define μ0 ([`Band::contains`] at its frequency).
     pub band: Band,

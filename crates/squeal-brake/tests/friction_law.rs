@@ -110,13 +110,14 @@ fn velocity_weakening_friction_destabilizes_at_the_closed_form_threshold() {
         let r = reference(&b, &damping, &NewtonOptions::default()).unwrap();
         let exact = closed_form(speed);
         let mus: Vec<f64> = (0..=40).map(|k| 2.0 * exact * k as f64 / 40.0).collect();
-        let opts = SweepOptions {
-            band: Band {
+        let opts = {
+            let mut o = SweepOptions::default();
+            o.band = Band {
                 valid_max_hz: f64::INFINITY,
                 user: None,
-            },
-            mu_tolerance: 1e-12 * exact,
-            ..SweepOptions::default()
+            };
+            o.mu_tolerance = 1e-12 * exact;
+            o
         };
         let s = sweep(&b, &r, &mus, &opts).unwrap();
         let h = s.hopf.as_ref().expect("a Hopf point below 2 mu*");

@@ -73,9 +73,10 @@ fn hopf(case: &Case) -> (f64, f64) {
     let reference = reference(&brake, &damping, &newton).unwrap();
     let exact = case.mu_c();
     let mus: Vec<f64> = (0..=40).map(|k| 2.0 * exact * k as f64 / 40.0).collect();
-    let opts = SweepOptions {
-        mu_tolerance: 1e-13 * exact,
-        ..SweepOptions::default()
+    let opts = {
+        let mut o = SweepOptions::default();
+        o.mu_tolerance = 1e-13 * exact;
+        o
     };
     let s = sweep(&brake, &reference, &mus, &opts).unwrap();
     for p in &s.points {
@@ -223,9 +224,10 @@ fn a_full_modal_damping_matrix_gives_the_routh_hurwitz_threshold() {
     }
     let exact = 0.5 * (lo + hi);
     let mus: Vec<f64> = (0..=40).map(|k| 2.0 * exact * k as f64 / 40.0).collect();
-    let opts = SweepOptions {
-        mu_tolerance: 1e-13 * exact,
-        ..SweepOptions::default()
+    let opts = {
+        let mut o = SweepOptions::default();
+        o.mu_tolerance = 1e-13 * exact;
+        o
     };
     let s = sweep(&brake, &r, &mus, &opts).unwrap();
     let h = s.hopf.as_ref().expect("no Hopf point");

@@ -55,9 +55,10 @@ pub fn run(
     mu: f64,
     amplitudes: Vec<f64>,
 ) -> Result<NonlinearMode, SystemError> {
-    let opts = NlModeOptions {
-        amplitudes,
-        ..NlModeOptions::default()
+    let opts = {
+        let mut o = NlModeOptions::default();
+        o.amplitudes = amplitudes;
+        o
     };
     system.nonlinear_mode(mu, &opts)
 }

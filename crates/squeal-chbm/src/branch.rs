@@ -95,6 +95,7 @@ impl Parameter {
 
 /// Controls of [`follow_from_hopf`] and [`follow_from_point`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct BranchOptions {
     /// Harmonics along the branch.
     pub harmonics: Harmonics,
@@ -124,16 +125,18 @@ impl Default for BranchOptions {
             range: (0.5, 1.3),
             start_offset: 1e-4,
             max_closure: None,
-            continuation: ContinuationOptions {
-                initial_step: 0.02,
-                min_step: 1e-6,
-                max_step: 0.1,
-                target_iterations: 4,
-                max_iterations: 12,
-                tolerance: 1e-9,
-                step_tolerance: 1e-9,
-                parameter_range: (f64::NEG_INFINITY, f64::INFINITY),
-                max_points: 400,
+            continuation: {
+                let mut o = ContinuationOptions::default();
+                o.initial_step = 0.02;
+                o.min_step = 1e-6;
+                o.max_step = 0.1;
+                o.target_iterations = 4;
+                o.max_iterations = 12;
+                o.tolerance = 1e-9;
+                o.step_tolerance = 1e-9;
+                o.parameter_range = (f64::NEG_INFINITY, f64::INFINITY);
+                o.max_points = 400;
+                o
             },
         }
     }
@@ -435,9 +438,10 @@ pub fn follow_from_hopf_observed(
     let ic = layout.index(1, Part::Cos, d).ok_or(ChbmError::NoBranch)?;
     let mut row = vec![0.0; z0.len()];
     row[ic] = 1.0;
-    let copts = ContinuationOptions {
-        parameter_range: (opts.range.0 * mu0, opts.range.1 * mu0),
-        ..opts.continuation.clone()
+    let copts = {
+        let mut o = opts.continuation.clone();
+        o.parameter_range = (opts.range.0 * mu0, opts.range.1 * mu0);
+        o
     };
     let start = continuation::correct_point(
         &mut hb_family,
@@ -656,9 +660,10 @@ pub fn follow_from_point(
     let mut row = vec![0.0; n];
     row[n - 1] = 1.0;
     let along: Vec<f64> = row.iter().map(|v| v * direction.signum()).collect();
-    let copts = ContinuationOptions {
-        parameter_range: (opts.range.0 * p0, opts.range.1 * p0),
-        ..opts.continuation.clone()
+    let copts = {
+        let mut o = opts.continuation.clone();
+        o.parameter_range = (opts.range.0 * p0, opts.range.1 * p0);
+        o
     };
     let start =
         continuation::correct_point(&mut hb_family, &z0, &row, p0, &wf(&layout), &along, &copts)?
@@ -710,9 +715,10 @@ pub fn cycles_at(
     let sc = scales(mb, &x_eq, family.build(first.harmonics)?.external_force());
     let mut hb_family = family.continuation(first.harmonics, branch.phase_dof, sc)?;
     let wf = weights(sc.phase, first.omega, mu);
-    let copts = ContinuationOptions {
-        parameter_range: (f64::NEG_INFINITY, f64::INFINITY),
-        ..opts.continuation.clone()
+    let copts = {
+        let mut o = opts.continuation.clone();
+        o.parameter_range = (f64::NEG_INFINITY, f64::INFINITY);
+        o
     };
     let z_of = |p: &BranchPoint| {
         let mut z = p.nl_coeffs.clone();

@@ -66,6 +66,7 @@ pub enum CompareError {
 
 /// Options of [`compare_at`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct CompareOptions {
     /// Harmonics of the CHBM solves (Table 1's columns).
     pub harmonics: Vec<usize>,
@@ -467,6 +468,7 @@ pub struct TiCell {
 
 /// Options of [`robustness`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct GridOptions {
     /// Friction levels as ratios μ/μ0.
     pub mu_ratios: Vec<f64>,

@@ -120,6 +120,7 @@ pub struct CycleRef<'a> {
 
 /// Options of [`hill`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct HillOptions {
     /// Harmonics of the perturbation (`None`: the cycle's). More than the cycle's measures the
     /// truncation's effect on the exponents.

@@ -100,6 +100,7 @@ pub enum NlModeError {
 
 /// Options of [`nonlinear_mode`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct NlModeOptions {
     /// Harmonics `H` (default 3, as CHBM's).
     pub harmonics: usize,
@@ -346,11 +347,12 @@ pub fn nonlinear_mode(
         force,
         psi_max: psi.iter().map(|v| v.norm()).fold(0.0, f64::max),
         penetration,
-        options: LmOptions {
-            abs_tol: opts.tolerance,
-            rel_tol: 0.0,
-            max_iterations: opts.max_iterations,
-            ..LmOptions::default()
+        options: {
+            let mut o = LmOptions::default();
+            o.abs_tol = opts.tolerance;
+            o.rel_tol = 0.0;
+            o.max_iterations = opts.max_iterations;
+            o
         },
     };
     let amplitudes: Vec<f64> = opts.amplitudes.iter().map(|f| f * opening).collect();

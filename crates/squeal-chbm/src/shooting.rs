@@ -71,6 +71,7 @@ pub enum ShootingReferenceError {
 
 /// Options of [`shooting_reference`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ShootingReferenceOptions {
     /// BDF tolerance of the reference's period (`atol` scaled as in [`crate::timeint`]).
     pub rtol: f64,
@@ -262,26 +263,28 @@ fn options_at(
     q_scale: f64,
 ) -> ShootingOptions {
     let atol_q = rtol * q_scale;
-    ShootingOptions {
-        bdf: BdfOptions {
-            rtol,
-            atol: Atol::PerComponent(
+    {
+        let mut o = ShootingOptions::default();
+        o.bdf = {
+            let mut o = BdfOptions::default();
+            o.rtol = rtol;
+            o.atol = Atol::PerComponent(
                 (0..2 * n)
                     .map(|i| if i < n { atol_q } else { atol_q * omega })
                     .collect(),
-            ),
-            max_order: opts.max_order,
-            ..BdfOptions::default()
-        },
-        weights: (0..2 * n)
+            );
+            o.max_order = opts.max_order;
+            o
+        };
+        o.weights = (0..2 * n)
             .map(|i| if i < n { 1.0 } else { 1.0 / omega })
-            .collect(),
-        tol: opts.tol_factor * rtol,
-        max_iterations: opts.max_iterations,
-        min_iterations: opts.min_iterations,
-        harmonics: opts.harmonics,
-        samples: opts.samples,
-        ..ShootingOptions::default()
+            .collect();
+        o.tol = opts.tol_factor * rtol;
+        o.max_iterations = opts.max_iterations;
+        o.min_iterations = opts.min_iterations;
+        o.harmonics = opts.harmonics;
+        o.samples = opts.samples;
+        o
     }
 }
 

@@ -73,6 +73,7 @@ pub enum ChbmError {
 
 /// Options of [`solve`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ChbmOptions {
     /// Harmonics `H` of the Fourier series of eq (23) (at least 1).
     pub harmonics: usize,
@@ -456,12 +457,13 @@ fn solve_guessed(
         opts.weight,
         omega0.abs().max(f64::MIN_POSITIVE),
     )?;
-    let lm_opts = LmOptions {
-        abs_tol: opts.eps1,
-        rel_tol: 0.0,
-        max_iterations: opts.max_iterations,
-        accept_stationary: true,
-        ..LmOptions::default()
+    let lm_opts = {
+        let mut o = LmOptions::default();
+        o.abs_tol = opts.eps1;
+        o.rel_tol = 0.0;
+        o.max_iterations = opts.max_iterations;
+        o.accept_stationary = true;
+        o
     };
     let (result, _) = solve_chbm(&mut hb, phase, constraint, scales, &z0, omega0, &lm_opts)?;
     let l = layout.len();

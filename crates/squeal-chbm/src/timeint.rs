@@ -41,6 +41,7 @@ use std::time::{Duration, Instant};
 
 /// Options of [`integrate_to_limit_cycle`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct TiOptions {
     /// Relative tolerance of the BDF error test.
     pub rtol: f64,
@@ -394,12 +395,13 @@ pub fn integrate_from(mb: &ModalBrake, s: &TiStart, opts: &TiOptions) -> Result<
     let atol: Vec<f64> = (0..2 * n)
         .map(|i| if i < n { atol_q } else { atol_q * s.omega0 })
         .collect();
-    let bdf_opts = BdfOptions {
-        rtol: opts.rtol,
-        atol: Atol::PerComponent(atol),
-        max_order: opts.max_order,
-        max_steps: opts.max_steps,
-        ..BdfOptions::default()
+    let bdf_opts = {
+        let mut o = BdfOptions::default();
+        o.rtol = opts.rtol;
+        o.atol = Atol::PerComponent(atol);
+        o.max_order = opts.max_order;
+        o.max_steps = opts.max_steps;
+        o
     };
     let period0 = 2.0 * PI / s.omega0;
     let t_end = opts.max_cycles * period0;
@@ -409,16 +411,18 @@ pub fn integrate_from(mb: &ModalBrake, s: &TiStart, opts: &TiOptions) -> Result<
     let observable = move |y: &[f64]| (0..n).map(|j| w[j] * y[n + j]).sum::<f64>();
     // A cycle must be at least a millionth of the initial rate amplitude to count.
     let rate0 = s.rate_scale;
-    let steady_opts = SteadyOptions {
-        level: 0.0,
-        rtol: opts.steady_rtol,
-        cycles: opts.steady_cycles,
-        harmonics: opts.harmonics,
-        samples_per_cycle: opts.samples_per_cycle,
-        subdivisions: 4,
-        min_amplitude: 1e-6 * rate0,
-        observable: "normal penetration rate of the most moving contact pair".into(),
-        unit: "m/s".into(),
+    let steady_opts = {
+        let mut o = SteadyOptions::default();
+        o.level = 0.0;
+        o.rtol = opts.steady_rtol;
+        o.cycles = opts.steady_cycles;
+        o.harmonics = opts.harmonics;
+        o.samples_per_cycle = opts.samples_per_cycle;
+        o.subdivisions = 4;
+        o.min_amplitude = 1e-6 * rate0;
+        o.observable = "normal penetration rate of the most moving contact pair".into();
+        o.unit = "m/s".into();
+        o
     };
     let mut monitor = OscillationMonitor::new(2 * n, observable, &steady_opts)?;
     let mut history = Vec::new();

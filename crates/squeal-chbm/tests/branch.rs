@@ -25,10 +25,11 @@ use squeal_hbm::HarmonicLayout;
 fn branch(m: &Model, harmonics: Harmonics) -> (NormalForm, ModalBrake, LimitCycleBranch) {
     let nf = normal_form_of(m);
     let mb = ModalBrake::new(&m.brake, &m.reference, nf.mu0);
-    let opts = BranchOptions {
-        harmonics,
-        range: (0.3, 1.5),
-        ..Default::default()
+    let opts = {
+        let mut o = BranchOptions::default();
+        o.harmonics = harmonics;
+        o.range = (0.3, 1.5);
+        o
     };
     let b = follow_from_hopf(&mb, &nf, &opts).unwrap();
     (nf, mb, b)
@@ -50,11 +51,12 @@ fn settle(m: &Model, mu: f64, y0: &[f64], omega: f64, periods: f64) -> (f64, Vec
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
     let sys = BrakeDynamics::new(&mb);
     let period = 2.0 * std::f64::consts::PI / omega;
-    let opts = BdfOptions {
-        rtol: 1e-9,
-        atol: Atol::Scalar(1e-12),
-        max_order: 5,
-        ..BdfOptions::default()
+    let opts = {
+        let mut o = BdfOptions::default();
+        o.rtol = 1e-9;
+        o.atol = Atol::Scalar(1e-12);
+        o.max_order = 5;
+        o
     };
     let mut bdf = Bdf::new(&sys, 0.0, y0, periods * period, &opts).unwrap();
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -190,9 +192,10 @@ fn hill_alongside_the_continuation_gives_the_same_bits_as_after_it() {
     // (the tasks wait for the continuation) and with two.
     let m = subcritical();
     let (nf, mb, b) = branch(&m, BranchOptions::default().harmonics);
-    let opts = BranchOptions {
-        range: (0.3, 1.5),
-        ..Default::default()
+    let opts = {
+        let mut o = BranchOptions::default();
+        o.range = (0.3, 1.5);
+        o
     };
     let hill = HillOptions::default();
     let after = hill_along(&mb, &b, None, &hill);
@@ -225,14 +228,11 @@ fn hill_and_the_monodromy_matrix_agree_within_hills_error() {
     let trace = mb.damping.trace();
     let sum: f64 = mono.exponents.iter().map(|e| e.sigma.re).sum();
     assert!((sum + trace).abs() < 1e-6 * trace, "{sum} vs -{trace}");
-    let hf = hill(
-        &mbp,
-        &c,
-        &HillOptions {
-            harmonics: Some(2 * p.harmonics),
-            ..Default::default()
-        },
-    )
+    let hf = hill(&mbp, &c, &{
+        let mut o = HillOptions::default();
+        o.harmonics = Some(2 * p.harmonics);
+        o
+    })
     .unwrap();
     let (h, mo) = (hf.leading().unwrap().sigma, mono.leading().unwrap().sigma);
     assert!((h - mo).norm() < 1e-5 * mo.norm(), "{h} vs {mo}");
@@ -249,14 +249,11 @@ fn hill_and_the_monodromy_matrix_agree_within_hills_error() {
     let mo = mono.leading().unwrap().sigma;
     let mut last = f64::INFINITY;
     for h in [p.harmonics, 2 * p.harmonics, 4 * p.harmonics] {
-        let hf = hill(
-            &mbp,
-            &c,
-            &HillOptions {
-                harmonics: Some(h),
-                ..Default::default()
-            },
-        )
+        let hf = hill(&mbp, &c, &{
+            let mut o = HillOptions::default();
+            o.harmonics = Some(h);
+            o
+        })
         .unwrap();
         let d = (hf.leading().unwrap().sigma - mo).norm();
         assert!(d <= hf.trivial_error, "H {h}: {d} > {}", hf.trivial_error);
@@ -275,9 +272,10 @@ fn a_supercritical_branch_point_is_the_cycle_chbm_finds_there() {
     let m = model(KL, KNL);
     let (nf, mb, b) = branch(&m, Harmonics::Fixed(5));
     assert!(nf.l1 < 0.0 && b.points[0].parameter > nf.mu0);
-    let opts = BranchOptions {
-        harmonics: Harmonics::Fixed(5),
-        ..Default::default()
+    let opts = {
+        let mut o = BranchOptions::default();
+        o.harmonics = Harmonics::Fixed(5);
+        o
     };
     let at = cycles_at(&mb, &b, 1.005 * nf.mu0, &opts).unwrap();
     // The branch grows to 1.0143 mu0 and folds back when the contact opens: it crosses 1.005
@@ -289,9 +287,10 @@ fn a_supercritical_branch_point_is_the_cycle_chbm_finds_there() {
     let (s, ..) = squeal_chbm::solve_with_restarts(
         &mbp,
         &common::start(&m, p.parameter),
-        &squeal_chbm::ChbmOptions {
-            harmonics: 5,
-            ..Default::default()
+        &{
+            let mut o = squeal_chbm::ChbmOptions::default();
+            o.harmonics = 5;
+            o
         },
         &squeal_chbm::RESTART_AMPLITUDES,
     )

@@ -22,9 +22,10 @@ fn the_subcritical_oscillator_reads_subcritical() {
     let mu = 1.01 * nf.mu0;
     let start = start(&m, mu);
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
-    let opts = NlModeOptions {
-        amplitudes: vec![1e-2, 2e-2, 4e-2],
-        ..NlModeOptions::default()
+    let opts = {
+        let mut o = NlModeOptions::default();
+        o.amplitudes = vec![1e-2, 2e-2, 4e-2];
+        o
     };
     let mode = nonlinear_mode(&mb, &start, &opts).unwrap();
     assert_eq!(mode.points.len(), 3);
@@ -47,9 +48,10 @@ fn with_non_proportional_damping_the_small_amplitude_limit_is_the_linear_mode() 
         .build()
         .unwrap();
     let mu0 = sys.hopf().unwrap().mu0;
-    let opts = NlModeOptions {
-        amplitudes: vec![1e-5, 2e-5],
-        ..NlModeOptions::default()
+    let opts = {
+        let mut o = NlModeOptions::default();
+        o.amplitudes = vec![1e-5, 2e-5];
+        o
     };
     let mode = sys.nonlinear_mode(1.02 * mu0, &opts).unwrap();
     for p in &mode.points {

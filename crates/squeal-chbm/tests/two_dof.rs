@@ -74,9 +74,10 @@ fn chbm_amplitude(m: &Model, mu: f64, h: usize) -> (f64, f64) {
     let (s, ..) = solve_with_restarts(
         &mb,
         &start(m, mu),
-        &ChbmOptions {
-            harmonics: h,
-            ..ChbmOptions::default()
+        &{
+            let mut o = ChbmOptions::default();
+            o.harmonics = h;
+            o
         },
         &RESTART_AMPLITUDES,
     )
@@ -88,28 +89,23 @@ fn chbm_amplitude(m: &Model, mu: f64, h: usize) -> (f64, f64) {
 fn ti(m: &Model, mu: f64) -> squeal_chbm::timeint::TiSteady {
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
     let st = start(m, mu);
-    let run = integrate_to_limit_cycle(
-        &mb,
-        st.lambda,
-        &st.mode,
-        &st.equilibrium,
-        &TiOptions {
-            // Near the Hopf point the amplitude is set by a balance of growth rates of a
-            // fraction of 1 s⁻¹, and the integrator's numerical damping shifts it: at rtol 1e-8
-            // the amplitude at 1.001 μ0 was 3.4e-4 off CHBM's, at 1e-10 7e-6 (and CHBM did not
-            // move). The 2-dof model is cheap enough for the tight tolerance.
-            rtol: 1e-10,
-            // No lightly damped high modes here: the higher orders are stable and cheaper.
-            max_order: 5,
-            perturbation: 0.05,
-            harmonics: 5,
-            samples_per_cycle: 64,
-            drift_tol: 1e-7,
-            steady_rtol: 1e-5,
-            max_cycles: 20_000.0,
-            ..TiOptions::default()
-        },
-    )
+    let run = integrate_to_limit_cycle(&mb, st.lambda, &st.mode, &st.equilibrium, &{
+        let mut o = TiOptions::default();
+        // Near the Hopf point the amplitude is set by a balance of growth rates of a
+        // fraction of 1 s⁻¹, and the integrator's numerical damping shifts it: at rtol 1e-8
+        // the amplitude at 1.001 μ0 was 3.4e-4 off CHBM's, at 1e-10 7e-6 (and CHBM did not
+        // move). The 2-dof model is cheap enough for the tight tolerance.
+        o.rtol = 1e-10;
+        // No lightly damped high modes here: the higher orders are stable and cheaper.
+        o.max_order = 5;
+        o.perturbation = 0.05;
+        o.harmonics = 5;
+        o.samples_per_cycle = 64;
+        o.drift_tol = 1e-7;
+        o.steady_rtol = 1e-5;
+        o.max_cycles = 20_000.0;
+        o
+    })
     .unwrap();
     run.steady
         .unwrap_or_else(|| panic!("no steady cycle at mu = {mu}: {:?}", run.failure))
@@ -174,9 +170,10 @@ fn chbm_against_time_integration(m: &Model, mu: f64) -> squeal_chbm::cycle::Rela
     let (s, ..) = solve_with_restarts(
         &mb,
         &start(m, mu),
-        &ChbmOptions {
-            harmonics: 5,
-            ..ChbmOptions::default()
+        &{
+            let mut o = ChbmOptions::default();
+            o.harmonics = 5;
+            o
         },
         &RESTART_AMPLITUDES,
     )
@@ -248,15 +245,12 @@ fn analytic_jacobian_matches_finite_differences() {
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
     let st = start(&m, mu);
     for h in [1, 3] {
-        let (w1, w2) = check_jacobian(
-            &mb,
-            &st,
-            &ChbmOptions {
-                harmonics: h,
-                amplitude: 0.5,
-                ..ChbmOptions::default()
-            },
-        )
+        let (w1, w2) = check_jacobian(&mb, &st, &{
+            let mut o = ChbmOptions::default();
+            o.harmonics = h;
+            o.amplitude = 0.5;
+            o
+        })
         .unwrap();
         // Central differences with relative steps 1e-6: truncation ~1e-12 and round-off
         // ~1e-16 / 1e-6 = 1e-10 relative to each row's scale, but the rows of the small
@@ -347,11 +341,12 @@ fn envelope_ratio(
     let y0 = BrakeDynamics::state_from_physical(&mb, &x0, &v0).unwrap();
     let sys = BrakeDynamics::new(&mb);
     let period = 2.0 * std::f64::consts::PI / w;
-    let opts = BdfOptions {
-        rtol: 1e-10,
-        atol: Atol::Scalar(1e-16),
-        max_order: 5,
-        ..BdfOptions::default()
+    let opts = {
+        let mut o = BdfOptions::default();
+        o.rtol = 1e-10;
+        o.atol = Atol::Scalar(1e-16);
+        o.max_order = 5;
+        o
     };
     let mut bdf = Bdf::new(&sys, 0.0, &y0, periods * period, &opts).unwrap();
     let closure = |y: &[f64]| {
@@ -418,10 +413,11 @@ fn the_shooting_reference_states_an_error_that_bounds_its_own() {
     let m = model(KL, KNL);
     let mu = 1.01 * hopf(&m);
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
-    let opts = CompareOptions {
-        harmonics: vec![3, 10, 20],
-        rtols: vec![],
-        ..CompareOptions::default()
+    let opts = {
+        let mut o = CompareOptions::default();
+        o.harmonics = vec![3, 10, 20];
+        o.rtols = vec![];
+        o
     };
     let c = compare_at(&mb, &start(&m, mu), &opts).unwrap();
     assert_eq!(c.reference_start, ReferenceStart::Chbm(20));
@@ -480,17 +476,19 @@ fn a_time_integration_that_does_not_settle_is_reported_as_failed() {
     let m = model(KL, KNL);
     let mu = 1.01 * hopf(&m);
     let mb = ModalBrake::new(&m.brake, &m.reference, mu);
-    let opts = CompareOptions {
-        harmonics: vec![3],
-        ti: TiOptions {
-            perturbation: 0.05,
-            harmonics: 5,
-            samples_per_cycle: 64,
-            max_cycles: 10.0,
-            ..TiOptions::default()
-        },
-        rtols: vec![1e-6],
-        ..CompareOptions::default()
+    let opts = {
+        let mut o = CompareOptions::default();
+        o.harmonics = vec![3];
+        o.ti = {
+            let mut o = TiOptions::default();
+            o.perturbation = 0.05;
+            o.harmonics = 5;
+            o.samples_per_cycle = 64;
+            o.max_cycles = 10.0;
+            o
+        };
+        o.rtols = vec![1e-6];
+        o
     };
     // Every run is announced before it starts, in the order `steps` lists (exact).
     let mut announced = Vec::new();

@@ -65,9 +65,10 @@ fn main() {
         "1-RHS solve (ms)        {:8.2}",
         t.elapsed().as_secs_f64() * 1000.0 / 20.0
     );
-    let opts = EigOptions {
-        backend,
-        ..Default::default()
+    let opts = {
+        let mut o = EigOptions::default();
+        o.backend = backend;
+        o
     };
     let t = Instant::now();
     let modes =

@@ -31,6 +31,7 @@ const RHS_BLOCK: usize = 16;
 
 /// Options of the Cholesky factorization.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct CholeskyOptions {
     /// A pivot L_jj^2 smaller than this times the diagonal entry A_jj it came
     /// from means that all but the last ~12 digits cancelled: the matrix is

@@ -48,6 +48,7 @@ pub struct QuadraticPencil<'a> {
 
 /// Controls of [`eigs_on_segment`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct QuadraticOptions {
     /// Largest Krylov dimension per shift.
     pub max_krylov: usize,

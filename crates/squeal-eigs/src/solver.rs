@@ -33,6 +33,7 @@ pub enum Backend {
 
 /// Options of [`lowest_modes`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct EigOptions {
     /// Shift sigma: must lie below the lowest eigenvalue so that K - sigma M
     /// is positive definite. 0 for a held structure; negative (e.g. -1e-2 of

@@ -86,9 +86,10 @@ fn free_free_bar_with_negative_shift_finds_the_rigid_mode() {
     let (n_el, len) = (300, 1.0);
     let p = bar(n_el, len, Ends::Free);
     let exact = bar_eigenvalues(n_el, len, Ends::Free);
-    let opts = EigOptions {
-        shift: -1.0,
-        ..Default::default()
+    let opts = {
+        let mut o = EigOptions::default();
+        o.shift = -1.0;
+        o
     };
     let modes = lowest_modes(p.k.as_ref(), p.m.as_ref(), 6, &opts).unwrap();
     // Tolerance: the zero eigenvalue is found to rounding of the shifted
@@ -133,9 +134,10 @@ fn singular_stiffness_is_not_positive_definite() {
 fn shift_above_lowest_eigenvalue_is_rejected() {
     let p = bar(100, 1.0, Ends::Fixed);
     let exact = bar_eigenvalues(100, 1.0, Ends::Fixed);
-    let opts = EigOptions {
-        shift: 0.5 * (exact[0] + exact[1]),
-        ..Default::default()
+    let opts = {
+        let mut o = EigOptions::default();
+        o.shift = 0.5 * (exact[0] + exact[1]);
+        o
     };
     let err = lowest_modes(p.k.as_ref(), p.m.as_ref(), 3, &opts).unwrap_err();
     assert!(
@@ -227,9 +229,10 @@ fn factor_reuse_matches_fresh_factorization_and_detects_a_wrong_factor() {
         // Tolerance: same algorithm, same matrix; only rounding differs.
         assert!(rel(*a, *b) < 1e-12);
     }
-    let shifted_opts = EigOptions {
-        shift: -50.0,
-        ..Default::default()
+    let shifted_opts = {
+        let mut o = EigOptions::default();
+        o.shift = -50.0;
+        o
     };
     let err =
         lowest_modes_with_factor(p.k.as_ref(), p.m.as_ref(), &f, 10, &shifted_opts).unwrap_err();
@@ -285,9 +288,10 @@ fn results_do_not_depend_on_the_thread_count() {
     let p = box_vector([6, 5, 5], [1.0, 0.8, 0.6]);
     let run = |threads: usize| {
         in_pool(threads, |par| {
-            let opts = EigOptions {
-                par,
-                ..Default::default()
+            let opts = {
+                let mut o = EigOptions::default();
+                o.par = par;
+                o
             };
             lowest_modes(p.k.as_ref(), p.m.as_ref(), 8, &opts).unwrap()
         })
@@ -301,10 +305,11 @@ fn results_do_not_depend_on_the_thread_count() {
 #[test]
 fn non_convergence_is_an_error_with_residuals() {
     let p = box_scalar([12, 11, 10], [1.0, 0.9, 0.8]);
-    let opts = EigOptions {
-        max_iter: 1,
-        ncv: Some(14),
-        ..Default::default()
+    let opts = {
+        let mut o = EigOptions::default();
+        o.max_iter = 1;
+        o.ncv = Some(14);
+        o
     };
     match lowest_modes(p.k.as_ref(), p.m.as_ref(), 10, &opts).unwrap_err() {
         EigError::NotConverged {
@@ -369,9 +374,10 @@ fn whole_spectrum_of_a_tiny_problem() {
 #[test]
 fn arpack_backend_without_feature_is_a_typed_error() {
     let p = bar(20, 1.0, Ends::Fixed);
-    let opts = EigOptions {
-        backend: squeal_eigs::Backend::Arpack,
-        ..Default::default()
+    let opts = {
+        let mut o = EigOptions::default();
+        o.backend = squeal_eigs::Backend::Arpack;
+        o
     };
     let e = lowest_modes(p.k.as_ref(), p.m.as_ref(), 2, &opts).unwrap_err();
     assert_eq!(e, EigError::BackendUnavailable("arpack"));

@@ -15,13 +15,15 @@ fn both(
     nev: usize,
     shift: f64,
 ) -> (Vec<f64>, Vec<f64>) {
-    let lan = EigOptions {
-        shift,
-        ..Default::default()
+    let lan = {
+        let mut o = EigOptions::default();
+        o.shift = shift;
+        o
     };
-    let arp = EigOptions {
-        backend: Backend::Arpack,
-        ..lan
+    let arp = {
+        let mut o = lan;
+        o.backend = Backend::Arpack;
+        o
     };
     let a = lowest_modes(k.as_ref(), m.as_ref(), nev, &lan).unwrap();
     let b = lowest_modes(k.as_ref(), m.as_ref(), nev, &arp).unwrap();

@@ -14,9 +14,10 @@ mod common;
 use common::{in_pool, orthonormality_error, rel};
 
 fn block_opts(block_size: usize) -> EigOptions {
-    EigOptions {
-        block_size,
-        ..Default::default()
+    {
+        let mut o = EigOptions::default();
+        o.block_size = block_size;
+        o
     }
 }
 
@@ -73,9 +74,10 @@ fn block_and_single_vector_lanczos_agree() {
 fn block_lanczos_with_a_negative_shift_finds_the_rigid_mode() {
     let p = bar(300, 1.0, Ends::Free);
     let exact = bar_eigenvalues(300, 1.0, Ends::Free);
-    let opts = EigOptions {
-        shift: -1.0,
-        ..block_opts(4)
+    let opts = {
+        let mut o = block_opts(4);
+        o.shift = -1.0;
+        o
     };
     let modes = lowest_modes(p.k.as_ref(), p.m.as_ref(), 6, &opts).unwrap();
     assert_eq!(modes.stats.block, 4);
@@ -98,9 +100,10 @@ fn block_lanczos_replaces_dependent_directions() {
     let mt: Vec<Triplet<usize, usize, f64>> = (0..n).map(|i| Triplet::new(i, i, 1.0)).collect();
     let k = SparseColMat::try_new_from_triplets(n, n, &kt).unwrap();
     let m = SparseColMat::try_new_from_triplets(n, n, &mt).unwrap();
-    let opts = EigOptions {
-        sturm_check: false,
-        ..block_opts(8)
+    let opts = {
+        let mut o = block_opts(8);
+        o.sturm_check = false;
+        o
     };
     let modes = lowest_modes(k.as_ref(), m.as_ref(), 5, &opts).unwrap();
     assert_eq!(modes.stats.block, 8);
@@ -115,9 +118,10 @@ fn block_lanczos_replaces_dependent_directions() {
 fn nested_dissection_fills_less_than_amd_and_solves_the_same() {
     let p = box_vector([14, 13, 12], [1.0, 0.9, 0.8]);
     let factor = |ordering| {
-        let opts = CholeskyOptions {
-            ordering,
-            ..Default::default()
+        let opts = {
+            let mut o = CholeskyOptions::default();
+            o.ordering = ordering;
+            o
         };
         SparseCholesky::factorize_with(p.k.as_ref(), &opts).unwrap()
     };
@@ -151,9 +155,10 @@ fn nested_dissection_and_factor_do_not_depend_on_the_thread_count() {
     let p = box_vector([12, 12, 11], [1.0, 1.0, 0.9]);
     let run = |threads: usize| {
         in_pool(threads, |par| {
-            let opts = CholeskyOptions {
-                par,
-                ..Default::default()
+            let opts = {
+                let mut o = CholeskyOptions::default();
+                o.par = par;
+                o
             };
             let f = SparseCholesky::factorize_with(p.k.as_ref(), &opts).unwrap();
             let b = Mat::<f64>::from_fn(p.k.nrows(), 40, |i, j| ((i + 3 * j) % 7) as f64);

@@ -68,9 +68,10 @@ fn constrained_modes_match_a_dense_null_space_reference() {
     let cf = ConstrainedFactor::new(&factor, &c).unwrap();
     let nev = 25;
     for block_size in [1, 8] {
-        let opts = EigOptions {
-            block_size,
-            ..Default::default()
+        let opts = {
+            let mut o = EigOptions::default();
+            o.block_size = block_size;
+            o
         };
         let modes = lowest_modes_constrained(p.k.as_ref(), p.m.as_ref(), &cf, nev, &opts).unwrap();
         assert_eq!(modes.stats.block, block_size);

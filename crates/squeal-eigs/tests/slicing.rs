@@ -11,9 +11,10 @@ mod common;
 use common::{in_pool, orthonormality_error, rel};
 
 fn sliced(slice: usize) -> EigOptions {
-    EigOptions {
-        slice,
-        ..Default::default()
+    {
+        let mut o = EigOptions::default();
+        o.slice = slice;
+        o
     }
 }
 
@@ -86,10 +87,11 @@ fn slicing_does_not_depend_on_the_thread_count() {
     let p = box_vector([6, 6, 5], [1.0, 0.9, 0.8]);
     let run = |threads: usize| {
         in_pool(threads, |par| {
-            let opts = EigOptions {
-                par,
-                slice: 16,
-                ..Default::default()
+            let opts = {
+                let mut o = EigOptions::default();
+                o.par = par;
+                o.slice = 16;
+                o
             };
             lowest_modes(p.k.as_ref(), p.m.as_ref(), 40, &opts).unwrap()
         })

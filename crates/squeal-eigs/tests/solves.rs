@@ -67,13 +67,11 @@ fn supernodal_and_simplicial_solves_are_both_backward_stable() {
     let n = p.k.nrows();
     let nd = SparseCholesky::factorize(p.k.as_ref()).unwrap();
     let small = box_vector([4, 3, 3], [1.0, 0.9, 0.8]);
-    let amd = SparseCholesky::factorize_with(
-        small.k.as_ref(),
-        &CholeskyOptions {
-            ordering: FillOrdering::Amd,
-            ..Default::default()
-        },
-    )
+    let amd = SparseCholesky::factorize_with(small.k.as_ref(), &{
+        let mut o = CholeskyOptions::default();
+        o.ordering = FillOrdering::Amd;
+        o
+    })
     .unwrap();
     assert!(nd.stats().supernodal && !amd.stats().supernodal);
     let b = rhs(n, 8);

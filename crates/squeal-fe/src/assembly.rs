@@ -34,6 +34,7 @@ use squeal_mesh::{BlockVisitor, Mesh};
 
 /// Quadrature rules used by [`assemble_with`], and which elements count as curved.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct AssemblyOptions {
     /// Stiffness rule of straight-sided elements. Default: [`Quadrature::four_point`], exact
     /// for them.

@@ -156,9 +156,10 @@ fn straight_elements_keep_the_four_point_bits() {
     let straight = squeal_mesh::generate::box_tet10([0.3, 0.1, 0.1], [3, 1, 1]);
     let materials = MaterialTable::uniform(&straight, iron()).unwrap();
     let dofs = DofMap::new(&straight, &[Restraint::clamp("XMIN")]).unwrap();
-    let four_only = AssemblyOptions {
-        straight_tolerance: f64::INFINITY,
-        ..Default::default()
+    let four_only = {
+        let mut o = AssemblyOptions::default();
+        o.straight_tolerance = f64::INFINITY;
+        o
     };
     let a = assemble(&straight, &materials, &dofs).unwrap();
     let b = assemble_with(&straight, &materials, &dofs, &four_only).unwrap();
@@ -212,10 +213,11 @@ fn disc_frequencies(mesh: &Mesh, options: &AssemblyOptions) -> Vec<f64> {
 #[test]
 fn coarse_disc_frequencies_against_an_exactly_integrated_stiffness() {
     let mesh = read("disc_coarse.inp");
-    let everywhere = |rule: Quadrature| AssemblyOptions {
-        stiffness_rule: rule,
-        straight_tolerance: f64::INFINITY,
-        ..Default::default()
+    let everywhere = |rule: Quadrature| {
+        let mut o = AssemblyOptions::default();
+        o.stiffness_rule = rule;
+        o.straight_tolerance = f64::INFINITY;
+        o
     };
     let f_ref = disc_frequencies(&mesh, &everywhere(gauss(12)));
     let f_old = disc_frequencies(&mesh, &everywhere(Quadrature::four_point()));
@@ -238,9 +240,10 @@ fn coarse_disc_frequencies_against_an_exactly_integrated_stiffness() {
     }
     // The mass keeps its 14-point rule (degree 5) on curved elements, where its integrand has
     // degree 7: the exact mass (8³-point collapsed Gauss, degree 13) moves nothing that counts.
-    let exact_mass = AssemblyOptions {
-        mass_rule: gauss(8),
-        ..everywhere(gauss(12))
+    let exact_mass = {
+        let mut o = everywhere(gauss(12));
+        o.mass_rule = gauss(8);
+        o
     };
     let e_mass = worst(&disc_frequencies(&mesh, &exact_mass));
     let (e_old, e_new) = (worst(&f_old), worst(&f_new));

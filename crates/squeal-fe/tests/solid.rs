@@ -158,9 +158,10 @@ fn consistent_mass_is_exact() {
 fn zero_modes(mesh: &Mesh, reduced: bool) -> usize {
     let materials = MaterialTable::uniform(mesh, steel()).unwrap();
     let dofs = DofMap::new(mesh, &[]).unwrap();
-    let options = AssemblyOptions {
-        reduced_integration: reduced,
-        ..AssemblyOptions::default()
+    let options = {
+        let mut o = AssemblyOptions::default();
+        o.reduced_integration = reduced;
+        o
     };
     let sys = assemble_with(mesh, &materials, &dofs, &options).unwrap();
     let l = common::dense_eigenvalues(&common::dense(&sys.k), &common::dense(&sys.m));

@@ -47,9 +47,10 @@ pub fn van_der_pol(eps: f64, harmonics: usize) -> Result<(f64, f64, f64, usize),
     // solve slide back to x = 0; the weight must exceed 2√2 for the sum of squares to
     // decrease outward from small A (with unit row scales).
     let constraint = ReLambda::new(tracker, k0, c0, lambda, 3.0, lambda.im)?;
-    let options = LmOptions {
-        abs_tol: 1e-12,
-        ..LmOptions::default()
+    let options = {
+        let mut o = LmOptions::default();
+        o.abs_tol = 1e-12;
+        o
     };
     let phase = PhaseCondition::FirstSineZero { dof: 0 };
     let (sol, _) = solve_chbm(

@@ -45,6 +45,7 @@ pub trait Family {
 
 /// Controls of [`continue_branch`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ContinuationOptions {
     /// First arclength step (scaled unknowns).
     pub initial_step: f64,

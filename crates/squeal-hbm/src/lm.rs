@@ -67,6 +67,7 @@ pub trait LeastSquaresProblem {
 /// Options of [`solve`]. Tolerances are in the units of the residual (absolute) or
 /// relative to the initial residual norm.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct LmOptions {
     /// Converged when `||r|| <= abs_tol`.
     pub abs_tol: f64,

@@ -109,11 +109,12 @@ fn follow(
 
 #[test]
 fn one_harmonic_branch_goes_through_the_fold_on_the_closed_form() {
-    let opts = ContinuationOptions {
-        initial_step: 0.05,
-        max_step: 0.1,
-        parameter_range: (-0.5, 0.1),
-        ..Default::default()
+    let opts = {
+        let mut o = ContinuationOptions::default();
+        o.initial_step = 0.05;
+        o.max_step = 0.1;
+        o.parameter_range = (-0.5, 0.1);
+        o
     };
     let branch = follow(&opts, |_| Control::Continue);
     assert_eq!(branch.stop, Stop::ParameterRange, "{}", branch.stop);
@@ -175,11 +176,12 @@ fn harmonics_raised_along_the_branch_match_time_integration() {
     // branch then continues with them. The end point's cycle (A = 1.46, beyond the fold),
     // integrated over its own period by RK4, must come back to its start. The harmonics decay
     // slowly on this strongly nonlinear cycle (|U9| = 1e-3 at A = 1.5), hence the 21.
-    let opts = ContinuationOptions {
-        initial_step: 0.05,
-        max_step: 0.1,
-        parameter_range: (-0.5, -0.02),
-        ..Default::default()
+    let opts = {
+        let mut o = ContinuationOptions::default();
+        o.initial_step = 0.05;
+        o.max_step = 0.1;
+        o.parameter_range = (-0.5, -0.02);
+        o
     };
     let mut switched = false;
     let branch = follow(&opts, |p| {

@@ -38,9 +38,10 @@ where
 
 /// Default options with only the absolute residual criterion (`||r|| <= 1e-10`).
 fn absolute_only() -> LmOptions {
-    LmOptions {
-        rel_tol: 0.0,
-        ..LmOptions::default()
+    {
+        let mut o = LmOptions::default();
+        o.rel_tol = 0.0;
+        o
     }
 }
 
@@ -174,9 +175,10 @@ fn local_minimum_is_reported_as_not_converged() {
     );
 
     // The same stop is a success when the caller asks for a least-squares minimum.
-    let options = LmOptions {
-        accept_stationary: true,
-        ..LmOptions::default()
+    let options = {
+        let mut o = LmOptions::default();
+        o.accept_stationary = true;
+        o
     };
     let report = lm::solve(&mut freudenstein_roth(), &[0.5, -2.0], &options).unwrap();
     assert!(!report.stop.is_converged());
@@ -219,9 +221,10 @@ fn box_3d_overdetermined_reaches_zero_residual() {
 fn iteration_limit_is_a_typed_failure() {
     // Three trials cannot solve Rosenbrock from (-1.2, 1) (it needs about 20): the error
     // must say MaxIterations and carry a three-entry history.
-    let options = LmOptions {
-        max_iterations: 3,
-        ..LmOptions::default()
+    let options = {
+        let mut o = LmOptions::default();
+        o.max_iterations = 3;
+        o
     };
     match lm::solve(&mut rosenbrock(), &[-1.2, 1.0], &options) {
         Err(LmError::NotConverged { report }) => {
@@ -231,9 +234,10 @@ fn iteration_limit_is_a_typed_failure() {
         }
         other => panic!("expected MaxIterations, got {other:?}"),
     }
-    let bad = LmOptions {
-        abs_tol: f64::NAN,
-        ..LmOptions::default()
+    let bad = {
+        let mut o = LmOptions::default();
+        o.abs_tol = f64::NAN;
+        o
     };
     assert!(matches!(
         lm::solve(&mut rosenbrock(), &[0.0, 0.0], &bad),

@@ -71,6 +71,7 @@ pub struct Finding {
 
 /// Thresholds of the checks.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct QualityOptions {
     /// Elements whose min/max Jacobian determinant ratio falls below this are reported as
     /// badly curved. 0.2 flags midside nodes moved by roughly a quarter of the edge length.

@@ -162,11 +162,12 @@ fn options(sys: &BrakeLike, rtol: f64, max_order: usize) -> BdfOptions {
             }
         })
         .collect();
-    BdfOptions {
-        rtol,
-        atol: Atol::PerComponent(atol),
-        max_order,
-        ..Default::default()
+    {
+        let mut o = BdfOptions::default();
+        o.rtol = rtol;
+        o.atol = Atol::PerComponent(atol);
+        o.max_order = max_order;
+        o
     }
 }
 
@@ -248,11 +249,12 @@ fn steady_run(sys: &BrakeLike, t_end: f64, rtol: f64, max_order: usize) {
     let opts = options(sys, rtol, max_order);
     let start = Instant::now();
     let result = Bdf::new(sys, 0.0, &initial(sys), t_end, &opts).and_then(|mut bdf| {
-        let steady = SteadyOptions {
-            rtol: 1e-4,
-            cycles: 10,
-            harmonics: 3,
-            ..Default::default()
+        let steady = {
+            let mut o = SteadyOptions::default();
+            o.rtol = 1e-4;
+            o.cycles = 10;
+            o.harmonics = 3;
+            o
         };
         let r = run_to_steady_state(&mut bdf, |y: &[f64]| sys.modal_u(&y[..N_DOF]), &steady);
         r.map(|s| (s, *bdf.stats()))

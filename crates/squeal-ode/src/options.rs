@@ -30,6 +30,7 @@ pub struct FixedStep {
 /// satisfies `rms(err_i / (atol_i + rtol * |y_i|)) <= 1` (Shampine & Reichelt
 /// 1997, scipy `BDF`).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct BdfOptions {
     /// Relative tolerance (> 0; raised to 100 machine epsilons if smaller).
     pub rtol: f64,

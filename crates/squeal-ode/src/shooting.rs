@@ -86,6 +86,7 @@ pub enum ShootingError {
 
 /// Options of [`shoot`].
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ShootingOptions {
     /// Options of each period's BDF integration.
     pub bdf: BdfOptions,

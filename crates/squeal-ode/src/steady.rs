@@ -38,6 +38,7 @@ const CROSSING_ITERATIONS: usize = 100;
 
 /// Options of the steady-state detector.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct SteadyOptions {
     /// Level whose upward crossings delimit cycles (e.g. the equilibrium
     /// value of the observable).

@@ -55,10 +55,11 @@ impl OdeSystem for NanJacobian {
 /// t in [0.999, 1): the solution there exceeds 1e3, far past rtol control.
 #[test]
 fn blow_up_is_an_error() {
-    let opts = BdfOptions {
-        rtol: 1e-6,
-        atol: Atol::Scalar(1e-9),
-        ..Default::default()
+    let opts = {
+        let mut o = BdfOptions::default();
+        o.rtol = 1e-6;
+        o.atol = Atol::Scalar(1e-9);
+        o
     };
     let err = solve(BlowUp, 0.0, &[1.0], &[2.0], &opts).unwrap_err();
     let t = match err {
@@ -98,9 +99,10 @@ fn nan_jacobian_is_an_error() {
 
 #[test]
 fn too_many_steps() {
-    let opts = BdfOptions {
-        max_steps: 10,
-        ..Default::default()
+    let opts = {
+        let mut o = BdfOptions::default();
+        o.max_steps = 10;
+        o
     };
     let err = solve(complex_pair(0.0, 1.0), 0.0, &[1.0, 0.0], &[100.0], &opts).unwrap_err();
     assert!(
@@ -121,14 +123,16 @@ fn invalid_inputs() {
             ..
         })
     ));
-    let bad_atol = BdfOptions {
-        atol: Atol::PerComponent(vec![1e-6]),
-        ..Default::default()
+    let bad_atol = {
+        let mut o = BdfOptions::default();
+        o.atol = Atol::PerComponent(vec![1e-6]);
+        o
     };
     assert!(Bdf::new(&sys, 0.0, &[1.0, 0.0], 1.0, &bad_atol).is_err());
-    let bad_order = BdfOptions {
-        max_order: 6,
-        ..Default::default()
+    let bad_order = {
+        let mut o = BdfOptions::default();
+        o.max_order = 6;
+        o
     };
     assert!(Bdf::new(&sys, 0.0, &[1.0, 0.0], 1.0, &bad_order).is_err());
     assert!(Bdf::new(&sys, 1.0, &[1.0, 0.0], 0.0, &o).is_err());
@@ -161,10 +165,11 @@ fn out_of_range_and_finished() {
 /// NewtonFailure rather than accept an unconverged step.
 #[test]
 fn fixed_step_newton_failure() {
-    let opts = BdfOptions {
-        fixed_step: Some(FixedStep { h: 0.1, order: 1 }),
-        max_newton_iter: 1,
-        ..Default::default()
+    let opts = {
+        let mut o = BdfOptions::default();
+        o.fixed_step = Some(FixedStep { h: 0.1, order: 1 });
+        o.max_newton_iter = 1;
+        o
     };
     let sys = Linear {
         a: vec![vec![-1.0]],
@@ -177,10 +182,11 @@ fn fixed_step_newton_failure() {
 #[test]
 fn decaying_oscillation_is_not_steady() {
     let sys = complex_pair(-0.05, 1.0);
-    let opts = BdfOptions {
-        rtol: 1e-8,
-        atol: Atol::Scalar(1e-10),
-        ..Default::default()
+    let opts = {
+        let mut o = BdfOptions::default();
+        o.rtol = 1e-8;
+        o.atol = Atol::Scalar(1e-10);
+        o
     };
     let mut bdf = Bdf::new(&sys, 0.0, &[0.0, -1.0], 100.0, &opts).unwrap();
     let err =
@@ -200,16 +206,18 @@ fn decaying_oscillation_is_not_steady() {
 #[test]
 fn not_steady_names_the_observable_its_unit_and_the_peak_to_peak() {
     let sys = complex_pair(-0.05, 1.0);
-    let opts = BdfOptions {
-        rtol: 1e-8,
-        atol: Atol::Scalar(1e-10),
-        ..Default::default()
+    let opts = {
+        let mut o = BdfOptions::default();
+        o.rtol = 1e-8;
+        o.atol = Atol::Scalar(1e-10);
+        o
     };
     let mut bdf = Bdf::new(&sys, 0.0, &[0.0, -1.0], 100.0, &opts).unwrap();
-    let steady = SteadyOptions {
-        observable: "velocity of the mass".into(),
-        unit: "m/s".into(),
-        ..Default::default()
+    let steady = {
+        let mut o = SteadyOptions::default();
+        o.observable = "velocity of the mass".into();
+        o.unit = "m/s".into();
+        o
     };
     let err = run_to_steady_state(&mut bdf, |y: &[f64]| y[1], &steady).unwrap_err();
     let OdeError::NotSteady {

@@ -7,10 +7,11 @@ use common::{Linear, complex_pair, complex_pair_exact};
 use squeal_ode::{Atol, Bdf, BdfOptions, FixedStep, OscillationMonitor, SteadyOptions, solve};
 
 fn opts(rtol: f64, atol: f64) -> BdfOptions {
-    BdfOptions {
-        rtol,
-        atol: Atol::Scalar(atol),
-        ..Default::default()
+    {
+        let mut o = BdfOptions::default();
+        o.rtol = rtol;
+        o.atol = Atol::Scalar(atol);
+        o
     }
 }
 
@@ -100,10 +101,11 @@ fn convergence_order_fixed_step() {
             let mut logs = Vec::new();
             for &n in &[25usize, 50, 100, 200] {
                 let h = t_end / n as f64;
-                let opts = BdfOptions {
-                    ndf,
-                    fixed_step: Some(FixedStep { h, order: k }),
-                    ..Default::default()
+                let opts = {
+                    let mut o = BdfOptions::default();
+                    o.ndf = ndf;
+                    o.fixed_step = Some(FixedStep { h, order: k });
+                    o
                 };
                 let past: Vec<Vec<f64>> = (0..=k)
                     .map(|j| complex_pair_exact(a, b, -(j as f64) * h).to_vec())

@@ -36,23 +36,26 @@ impl OdeSystem for Hopf {
 }
 
 fn options(rtol: f64) -> ShootingOptions {
-    ShootingOptions {
-        bdf: BdfOptions {
-            rtol,
-            atol: Atol::Scalar(rtol * 1e-2),
-            ..BdfOptions::default()
-        },
-        tol: 1e-12,
-        ..ShootingOptions::default()
+    {
+        let mut o = ShootingOptions::default();
+        o.bdf = {
+            let mut o = BdfOptions::default();
+            o.rtol = rtol;
+            o.atol = Atol::Scalar(rtol * 1e-2);
+            o
+        };
+        o.tol = 1e-12;
+        o
     }
 }
 
 /// The monodromy for Newton: the variational equations at a looser tolerance (it only steers).
 fn loose(rtol: f64) -> BdfOptions {
-    BdfOptions {
-        rtol,
-        atol: Atol::Scalar(rtol * 1e-2),
-        ..BdfOptions::default()
+    {
+        let mut o = BdfOptions::default();
+        o.rtol = rtol;
+        o.atol = Atol::Scalar(rtol * 1e-2);
+        o
     }
 }
 

@@ -15,10 +15,11 @@ use squeal_ode::{Atol, Bdf, BdfOptions, SteadyOptions, run_to_steady_state, solv
 #[test]
 fn robertson_reference() {
     let reference = [0.7158270687, 9.185534764e-6, 0.2841637457];
-    let opts = BdfOptions {
-        rtol: 1e-8,
-        atol: Atol::PerComponent(vec![1e-10, 1e-14, 1e-10]),
-        ..Default::default()
+    let opts = {
+        let mut o = BdfOptions::default();
+        o.rtol = 1e-8;
+        o.atol = Atol::PerComponent(vec![1e-10, 1e-14, 1e-10]);
+        o
     };
     let sol = solve(Robertson, 0.0, &[1.0, 0.0, 0.0], &[40.0], &opts).unwrap();
     let y = &sol.y[0];
@@ -51,19 +52,21 @@ fn robertson_reference() {
 /// of the smooth cycle converges geometrically; 25 harmonics leave < 1e-8).
 #[test]
 fn van_der_pol_period() {
-    let opts = BdfOptions {
-        rtol: 1e-11,
-        atol: Atol::Scalar(1e-12),
-        ..Default::default()
+    let opts = {
+        let mut o = BdfOptions::default();
+        o.rtol = 1e-11;
+        o.atol = Atol::Scalar(1e-12);
+        o
     };
     let mut bdf = Bdf::new(VanDerPol { mu: 1.0 }, 0.0, &[2.0, 0.0], 500.0, &opts).unwrap();
-    let steady = SteadyOptions {
-        level: 0.0,
-        rtol: 1e-8,
-        cycles: 5,
-        harmonics: 25,
-        samples_per_cycle: 128,
-        ..Default::default()
+    let steady = {
+        let mut o = SteadyOptions::default();
+        o.level = 0.0;
+        o.rtol = 1e-8;
+        o.cycles = 5;
+        o.harmonics = 25;
+        o.samples_per_cycle = 128;
+        o
     };
     let s = run_to_steady_state(&mut bdf, |y: &[f64]| y[0], &steady).unwrap();
     let t_ref = 6.663_286_859_323_13; // published 6.6632868593231302, rounded to f64
@@ -116,10 +119,11 @@ fn van_der_pol_period() {
 #[test]
 fn van_der_pol_stiff() {
     let run = |rtol: f64| {
-        let opts = BdfOptions {
-            rtol,
-            atol: Atol::Scalar(rtol),
-            ..Default::default()
+        let opts = {
+            let mut o = BdfOptions::default();
+            o.rtol = rtol;
+            o.atol = Atol::Scalar(rtol);
+            o
         };
         solve(VanDerPol { mu: 1000.0 }, 0.0, &[2.0, 0.0], &[3000.0], &opts).unwrap()
     };

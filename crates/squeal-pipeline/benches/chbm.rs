@@ -179,11 +179,12 @@ fn main() {
                 if h == 1 && !ladder {
                     continue;
                 }
-                let o = ChbmOptions {
-                    harmonics: h,
-                    amplitude: AMPLITUDES[0],
-                    ladder,
-                    ..ChbmOptions::default()
+                let o = {
+                    let mut o = ChbmOptions::default();
+                    o.harmonics = h;
+                    o.amplitude = AMPLITUDES[0];
+                    o.ladder = ladder;
+                    o
                 };
                 let (t, s) = best(reps, || solve(&mb, &start, &o).unwrap());
                 let b = breakdown(&mb, &start, &s, reps);
@@ -223,10 +224,11 @@ fn main() {
         }
         if let Some(n) = arg("profile").and_then(|s| s.parse::<usize>().ok()) {
             // Only the ladder solve of the first H, n times (for `perf record`).
-            let o = ChbmOptions {
-                harmonics: hs[0],
-                amplitude: AMPLITUDES[0],
-                ..ChbmOptions::default()
+            let o = {
+                let mut o = ChbmOptions::default();
+                o.harmonics = hs[0];
+                o.amplitude = AMPLITUDES[0];
+                o
             };
             let (t, s) = best(n, || solve(&mb, &start, &o).unwrap());
             println!(
@@ -242,10 +244,11 @@ fn main() {
             for h in [1, 2, 3, 5, 10] {
                 let mut row = format!("{h:>3}:");
                 for a in AMPLITUDES {
-                    let o = ChbmOptions {
-                        harmonics: h,
-                        amplitude: a,
-                        ..ChbmOptions::default()
+                    let o = {
+                        let mut o = ChbmOptions::default();
+                        o.harmonics = h;
+                        o.amplitude = a;
+                        o
                     };
                     let t = Instant::now();
                     let s = solve(&mb, &start, &o).unwrap();

@@ -5,7 +5,7 @@ mod common;
 
 use common::best;
 
-use squeal_brake::sweep::{SweepMethod, SweepOptions, sweep};
+use squeal_brake::sweep::{SweepMethod, sweep};
 use std::time::Instant;
 
 fn main() {
@@ -15,9 +15,10 @@ fn main() {
     let (b, r) = (&c.model.brake, &c.reference);
     let mus = common::mus(0.0, 1.0, 201);
     let cont = common::options(c);
-    let dense = SweepOptions {
-        method: SweepMethod::Dense,
-        ..cont
+    let dense = {
+        let mut o = cont;
+        o.method = SweepMethod::Dense;
+        o
     };
     let (tc, sc) = best(3, || sweep(b, r, &mus, &cont).unwrap());
     println!("continuation: {:.3} s; stats {:?}", tc, sc.stats);

@@ -14,7 +14,7 @@ mod common;
 
 use squeal_brake::equilibrium::NewtonOptions;
 use squeal_brake::modal::Damping;
-use squeal_brake::sweep::{SweepMethod, SweepOptions, reference, sweep};
+use squeal_brake::sweep::{SweepMethod, reference, sweep};
 use squeal_pipeline::model::{build, quiet};
 use squeal_scene::Scene;
 use std::time::Instant;
@@ -89,9 +89,10 @@ fn main() {
                 "auto" => SweepMethod::Auto,
                 _ => SweepMethod::Projected,
             };
-            let opts = SweepOptions {
-                method: m,
-                ..model.sweep
+            let opts = {
+                let mut o = model.sweep;
+                o.method = m;
+                o
             };
             let t = Instant::now();
             let s = sweep(brake, &r, &mus, &opts).expect("the sweep");

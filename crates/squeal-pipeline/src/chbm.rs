@@ -45,9 +45,10 @@ pub fn solve_with_restarts(
 ) -> Result<(ChbmSolution, f64)> {
     let mut last = None;
     for &a in amplitudes {
-        let o = ChbmOptions {
-            amplitude: a,
-            ..opts.clone()
+        let o = {
+            let mut o = opts.clone();
+            o.amplitude = a;
+            o
         };
         let sol = squeal_chbm::solve(mb, start, &o)?;
         if sol.outcome == Outcome::LimitCycle {
@@ -134,11 +135,12 @@ pub fn solve_along_branch(
     };
     let mb = &ModalBrake::new(&m.brake, &st.reference, mu);
     let ratio = mu / nf.mu0;
-    let bopts = BranchOptions {
-        harmonics: Harmonics::Fixed(opts.harmonics),
-        samples: opts.samples,
-        range: (ratio.min(0.5) * 0.99, ratio.max(1.3) * 1.01),
-        ..BranchOptions::default()
+    let bopts = {
+        let mut o = BranchOptions::default();
+        o.harmonics = Harmonics::Fixed(opts.harmonics);
+        o.samples = opts.samples;
+        o.range = (ratio.min(0.5) * 0.99, ratio.max(1.3) * 1.01);
+        o
     };
     let mb0 = ModalBrake::new(&m.brake, &st.reference, nf.mu0);
     let branch = follow_from_hopf(&mb0, &nf, &bopts)?;

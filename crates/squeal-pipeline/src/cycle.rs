@@ -48,9 +48,10 @@ impl CyclePlan {
         let spec = scene.cycle()?;
         Ok(Self {
             at: spec.at,
-            options: ChbmOptions {
-                harmonics: spec.harmonics,
-                ..ChbmOptions::default()
+            options: {
+                let mut o = ChbmOptions::default();
+                o.harmonics = spec.harmonics;
+                o
             },
             start: CycleStart::Branch,
         })

@@ -285,12 +285,13 @@ pub fn valid_max_hz(rom: &ReducedModel) -> f64 {
 
 /// Sweep options of the scene on a reduced model (band and defaults).
 pub fn sweep_options(scene: &Scene, rom: &ReducedModel) -> SweepOptions {
-    SweepOptions {
-        band: Band {
+    {
+        let mut o = SweepOptions::default();
+        o.band = Band {
             valid_max_hz: valid_max_hz(rom),
             user: scene.band_hz(),
-        },
-        ..SweepOptions::default()
+        };
+        o
     }
 }
 

@@ -45,6 +45,7 @@ pub const SQUEAL_DBA: f64 = 70.0;
 
 /// How the sound of a cycle is estimated.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SoundOptions {
     /// The air.
     pub air: Air,

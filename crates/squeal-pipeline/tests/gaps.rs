@@ -45,9 +45,10 @@ fn a_tenth_of_a_millimetre_gap_closes_under_the_clamp_force() {
     eprintln!("largest geometric gap on the coarse meshes: {worst:.3e} m");
     assert!(worst < 1e-9, "{worst:e}");
     // The full load at once (the default), and a ramp of ten steps at first.
-    let ramp = NewtonOptions {
-        first_load_step: 0.1,
-        ..opts
+    let ramp = {
+        let mut o = opts;
+        o.first_load_step = 0.1;
+        o
     };
     for (mu, opts) in [(0.0, opts), (0.5, opts), (0.5, ramp)] {
         let t = std::time::Instant::now();

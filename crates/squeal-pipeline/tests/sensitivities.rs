@@ -81,9 +81,10 @@ fn sensitivities_match_finite_differences_on_the_coarse_brake() {
         .as_ref()
         .expect("the coarse brake has a Hopf point");
     // Tight equilibria: the differences divide their error by the step.
-    let newton = NewtonOptions {
-        tolerance: 1e-13,
-        ..m.sweep.newton
+    let newton = {
+        let mut o = m.sweep.newton;
+        o.tolerance = 1e-13;
+        o
     };
     let lr = LinearizedBrake::new(&m.brake, &st.reference).unwrap();
     let tau = threshold(m, &st);

@@ -6,16 +6,17 @@
 
 mod common;
 
-use squeal_brake::sweep::{SweepMethod, SweepOptions, sweep};
+use squeal_brake::sweep::{SweepMethod, sweep};
 
 #[test]
 fn continuation_agrees_with_dense_eigen_decompositions() {
     let c = common::coarse();
     let mus = common::mus(0.0, 1.0, 101);
     let cont = common::options(c);
-    let dense = SweepOptions {
-        method: SweepMethod::Dense,
-        ..cont
+    let dense = {
+        let mut o = cont;
+        o.method = SweepMethod::Dense;
+        o
     };
     let sc = sweep(&c.model.brake, &c.reference, &mus, &cont).unwrap();
     let sd = sweep(&c.model.brake, &c.reference, &mus, &dense).unwrap();
@@ -79,13 +80,15 @@ fn the_projected_sweep_agrees_with_continuation_within_its_checked_tolerance() {
     let c = common::coarse();
     let mus = common::mus(0.0, 1.0, 101);
     let exact = common::options(c);
-    let projected = SweepOptions {
-        method: SweepMethod::Projected,
-        projection: ProjectionOptions {
-            tolerance: 1e-5,
-            ..ProjectionOptions::default()
-        },
-        ..exact
+    let projected = {
+        let mut o = exact;
+        o.method = SweepMethod::Projected;
+        o.projection = {
+            let mut o = ProjectionOptions::default();
+            o.tolerance = 1e-5;
+            o
+        };
+        o
     };
     let se = sweep(&c.model.brake, &c.reference, &mus, &exact).unwrap();
     let sp = sweep(&c.model.brake, &c.reference, &mus, &projected).unwrap();

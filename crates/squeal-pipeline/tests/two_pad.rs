@@ -227,9 +227,10 @@ fn frictionless_frequencies_match_the_full_model_and_the_clamp_force_balances() 
     // keeps K_t - σM so with room to spare).
     let t1 = Instant::now();
     let (full, full_k) = full_model(&parts, &inputs, &b50, &k_t);
-    let opts = EigOptions {
-        shift: -4e5,
-        ..EigOptions::default()
+    let opts = {
+        let mut o = EigOptions::default();
+        o.shift = -4e5;
+        o
     };
     let modes = lowest_modes(full_k.as_ref(), full.m.as_ref(), COUNT, &opts).unwrap();
     let t_full = t1.elapsed().as_secs_f64();
@@ -444,9 +445,10 @@ fn nodal_contact_frictionless_frequencies_match_the_full_model() {
 
     let t1 = Instant::now();
     let (full, full_k) = full_model(&parts, &inputs, &b50, &k_t);
-    let opts = EigOptions {
-        shift: -4e5,
-        ..EigOptions::default()
+    let opts = {
+        let mut o = EigOptions::default();
+        o.shift = -4e5;
+        o
     };
     let modes = lowest_modes(full_k.as_ref(), full.m.as_ref(), COUNT, &opts).unwrap();
     let t_full = t1.elapsed().as_secs_f64();

@@ -81,9 +81,10 @@ fn main() {
         _ => FillOrdering::NestedDissection,
     };
     println!("# ordering: {ordering:?}");
-    let copts = CholeskyOptions {
-        ordering,
-        ..Default::default()
+    let copts = {
+        let mut o = CholeskyOptions::default();
+        o.ordering = ordering;
+        o
     };
     let t = Instant::now();
     let f = SparseCholesky::factorize_with(sys.k.as_ref(), &copts).expect("factorization");
@@ -112,16 +113,17 @@ fn main() {
         return;
     }
     let defaults = EigOptions::default();
-    let opts = EigOptions {
-        block_size: arg(&args, "--block=")
+    let opts = {
+        let mut o = defaults;
+        o.block_size = arg(&args, "--block=")
             .and_then(|x| x.parse().ok())
-            .unwrap_or(defaults.block_size),
-        ncv: arg(&args, "--ncv=").and_then(|x| x.parse().ok()),
-        sturm_check: !args.iter().any(|a| a == "--no-sturm"),
-        slice: arg(&args, "--slice=")
+            .unwrap_or(defaults.block_size);
+        o.ncv = arg(&args, "--ncv=").and_then(|x| x.parse().ok());
+        o.sturm_check = !args.iter().any(|a| a == "--no-sturm");
+        o.slice = arg(&args, "--slice=")
             .and_then(|x| x.parse().ok())
-            .unwrap_or(defaults.slice),
-        ..defaults
+            .unwrap_or(defaults.slice);
+        o
     };
     let t = Instant::now();
     let modes = lowest_modes_with_factor(sys.k.as_ref(), sys.m.as_ref(), &f, nev, &opts)

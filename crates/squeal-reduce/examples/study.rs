@@ -81,9 +81,10 @@ fn full_frequencies_held(part: &str, level: &str, count: usize, boundary_held: b
     }
     let dofmap = DofMap::new(&m, &restraints).expect("dofs");
     let system = assemble(&m, &materials, &dofmap).expect("assembly");
-    let opts = EigOptions {
-        shift: -4e5,
-        ..EigOptions::default()
+    let opts = {
+        let mut o = EigOptions::default();
+        o.shift = -4e5;
+        o
     };
     let modes =
         lowest_modes(system.k.as_ref(), system.m.as_ref(), count, &opts).expect("full modes");

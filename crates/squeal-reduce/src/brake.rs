@@ -437,11 +437,12 @@ impl BrakeInputs {
 
     fn reduce_options(&self) -> ReduceOptions {
         ReduceOptions {
-            eig: EigOptions {
-                backend: self.backend,
-                tol: self.eig_tol,
-                par: self.par,
-                ..EigOptions::default()
+            eig: {
+                let mut o = EigOptions::default();
+                o.backend = self.backend;
+                o.tol = self.eig_tol;
+                o.par = self.par;
+                o
             },
             orthonormalize: self.orthonormalize,
             keep_basis: self.keep_basis,

@@ -425,9 +425,10 @@ pub fn reduce_part(
 
     progress(Stage::Factor);
     let t = Instant::now();
-    let chol = squeal_eigs::CholeskyOptions {
-        par: opts.eig.par,
-        ..Default::default()
+    let chol = {
+        let mut o = squeal_eigs::CholeskyOptions::default();
+        o.par = opts.eig.par;
+        o
     };
     let factor = SparseCholesky::factorize_with(k_vv.as_ref(), &chol).map_err(|e| match e {
         EigError::NotPositiveDefinite { .. } => {

@@ -180,11 +180,12 @@ fn a_solver_that_does_not_converge_is_an_error() {
     let (mesh, materials) = bar();
     let spec = bar_spec("XMIN", Vec::new(), 20);
     let opts = ReduceOptions {
-        eig: EigOptions {
+        eig: {
+            let mut o = EigOptions::default();
             // One restart cycle with a basis barely larger than the modes wanted.
-            max_iter: 1,
-            ncv: Some(24),
-            ..EigOptions::default()
+            o.max_iter = 1;
+            o.ncv = Some(24);
+            o
         },
         ..ReduceOptions::default()
     };

@@ -104,6 +104,7 @@ impl MonodromyFloquet {
 
 /// Options of [`monodromy`]: the BDF tolerances of each column's integration.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct MonodromyOptions {
     /// Relative tolerance.
     pub rtol: f64,
@@ -141,11 +142,12 @@ pub fn monodromy_matrix(
     };
     let dim = sys.dim();
     let period = 2.0 * PI / cycle.omega;
-    let bdf_opts = BdfOptions {
-        rtol: opts.rtol,
-        atol: Atol::Scalar(opts.atol),
-        max_order: opts.max_order,
-        ..BdfOptions::default()
+    let bdf_opts = {
+        let mut o = BdfOptions::default();
+        o.rtol = opts.rtol;
+        o.atol = Atol::Scalar(opts.atol);
+        o.max_order = opts.max_order;
+        o
     };
     let columns: Vec<Result<(Vec<f64>, usize), FloquetError>> = (0..dim)
         .into_par_iter()

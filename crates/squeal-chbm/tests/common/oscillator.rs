@@ -79,9 +79,10 @@ pub fn band() -> Band {
 /// The Hopf point μ0 from a friction sweep over 0..2 and its refinement.
 pub fn hopf(brake: &Brake, reference: &Reference) -> f64 {
     let mus: Vec<f64> = (0..=40).map(|k| 0.05 * k as f64).collect();
-    let opts = SweepOptions {
-        band: band(),
-        ..SweepOptions::default()
+    let opts = {
+        let mut o = SweepOptions::default();
+        o.band = band();
+        o
     };
     let s = sweep(brake, reference, &mus, &opts).expect("the sweep runs");
     s.hopf.expect("a Hopf point below mu = 2").mu0
@@ -103,9 +104,10 @@ pub fn limit_cycle(
         None,
     )?;
     let mb = ModalBrake::new(brake, reference, mu);
-    let opts = ChbmOptions {
-        harmonics,
-        ..ChbmOptions::default()
+    let opts = {
+        let mut o = ChbmOptions::default();
+        o.harmonics = harmonics;
+        o
     };
     Ok(solve_with_restarts(&mb, &start, &opts, &RESTART_AMPLITUDES)?.0)
 }

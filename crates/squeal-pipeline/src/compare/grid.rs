@@ -31,17 +31,19 @@ pub(super) fn run_grid(
         band: m.sweep.band,
         newton: m.sweep.newton,
     };
-    let opts = GridOptions {
-        harmonics: settings.harmonics.clone(),
-        chbm: ChbmOptions::default(),
-        ti: TiOptions {
-            rtol: 1e-6,
-            perturbation: settings.perturbation,
-            max_order: settings.max_order,
-            max_cycles: 2000.0,
-            ..TiOptions::default()
-        },
-        ..GridOptions::default()
+    let opts = {
+        let mut o = GridOptions::default();
+        o.harmonics = settings.harmonics.clone();
+        o.chbm = ChbmOptions::default();
+        o.ti = {
+            let mut o = TiOptions::default();
+            o.rtol = 1e-6;
+            o.perturbation = settings.perturbation;
+            o.max_order = settings.max_order;
+            o.max_cycles = 2000.0;
+            o
+        };
+        o
     };
     log(&format!(
         "\n== robustness: {} friction levels x {} initial amplitudes x {} harmonic counts, and BDF rtol 1e-6 at each level",

@@ -156,30 +156,29 @@ pub fn run(
         .max()
         .unwrap_or(1)
         .max(20);
-    let reference = ShootingReferenceOptions::default();
-    let reference = ShootingReferenceOptions {
-        rtol: settings.reference_rtol,
-        check_rtol: REFERENCE_CHECK_FACTOR * settings.reference_rtol,
-        harmonics: reference.harmonics.max(ti_harmonics),
-        samples: reference.samples.max(4 * ti_harmonics + 8),
-        ..reference
-    };
-    let opts = CompareOptions {
-        harmonics: settings.harmonics.clone(),
-        ti: TiOptions {
-            perturbation: settings.perturbation,
-            max_order: settings.max_order,
-            harmonics: ti_harmonics,
-            samples_per_cycle: TiOptions::default()
+    let mut reference = ShootingReferenceOptions::default();
+    reference.rtol = settings.reference_rtol;
+    reference.check_rtol = REFERENCE_CHECK_FACTOR * settings.reference_rtol;
+    reference.harmonics = reference.harmonics.max(ti_harmonics);
+    reference.samples = reference.samples.max(4 * ti_harmonics + 8);
+    let opts = {
+        let mut o = CompareOptions::default();
+        o.harmonics = settings.harmonics.clone();
+        o.ti = {
+            let mut o = TiOptions::default();
+            o.perturbation = settings.perturbation;
+            o.max_order = settings.max_order;
+            o.harmonics = ti_harmonics;
+            o.samples_per_cycle = TiOptions::default()
                 .samples_per_cycle
-                .max(4 * ti_harmonics + 8),
-            max_cycles: settings.max_cycles,
-            ..TiOptions::default()
-        },
-        rtols: settings.rtols.clone(),
-        reference,
-        disc: m.disc,
-        ..CompareOptions::default()
+                .max(4 * ti_harmonics + 8);
+            o.max_cycles = settings.max_cycles;
+            o
+        };
+        o.rtols = settings.rtols.clone();
+        o.reference = reference;
+        o.disc = m.disc;
+        o
     };
     let mut summary = Vec::new();
     let mut levels = Vec::new();

@@ -40,6 +40,7 @@ use std::time::Instant;
 
 /// Controls of the full model's search.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct FullOptions {
     /// The quadratic eigensolver's controls (over the whole band).
     pub quadratic: QuadraticOptions,

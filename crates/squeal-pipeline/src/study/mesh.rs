@@ -158,12 +158,13 @@ pub(super) fn mesh_units(
             nodes: total_nodes(&nrom),
             brake: nb,
             damping: ps.damping,
-            sweep: SweepOptions {
-                band: squeal_brake::sweep::Band {
+            sweep: {
+                let mut o = ps.sweep;
+                o.band = squeal_brake::sweep::Band {
                     valid_max_hz: valid_max_hz(&nrom),
                     ..ps.sweep.band
-                },
-                ..ps.sweep
+                };
+                o
             },
         });
         models.push(MeshModel {

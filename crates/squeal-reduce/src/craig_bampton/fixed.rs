@@ -91,9 +91,10 @@ pub(super) fn check_deferred(
             Ok(modes)
         }
         Err(EigError::MissedEigenvalues { .. }) => {
-            let chol = squeal_eigs::CholeskyOptions {
-                par: opts.eig.par,
-                ..Default::default()
+            let chol = {
+                let mut o = squeal_eigs::CholeskyOptions::default();
+                o.par = opts.eig.par;
+                o
             };
             let factor = analysis.factorize(k, &chol).map_err(eigen)?;
             let constrained = match c {
@@ -125,10 +126,11 @@ pub(super) fn fixed_interface_modes(
         source,
     };
     let n = k_vv.nrows();
-    let mut eig_opts = EigOptions {
-        shift: 0.0,
-        sturm_beside: sturm == SturmPlacement::Beside,
-        ..opts.eig
+    let mut eig_opts = {
+        let mut o = opts.eig;
+        o.shift = 0.0;
+        o.sturm_beside = sturm == SturmPlacement::Beside;
+        o
     };
     let deferred = sturm == SturmPlacement::Deferred && opts.eig.sturm_check;
     if deferred {
