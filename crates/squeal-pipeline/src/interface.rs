@@ -348,5 +348,6 @@ pub fn at_count(model: &Model, modes: &[InterfaceModes], k: usize) -> Result<Mod
         disc: model.disc,
         units: model.units,
         interface: None,
+        normal_forms: Default::default(),
     })
 }

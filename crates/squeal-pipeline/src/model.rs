@@ -53,6 +53,40 @@ pub struct Model {
     pub units: UnitSystem,
     /// What `[reduction] interface` kept and why (`None`: the contact faces' nodal dofs).
     pub interface: Option<crate::interface::InterfaceSummary>,
+    /// Normal forms already computed ([`crate::stability::normal_form`]): each stage of a run
+    /// asks for the one at μ0, and each is a dense eigendecomposition of the whole brake.
+    pub(crate) normal_forms: NormalFormCache,
+}
+
+/// Normal forms by the Hopf point they were computed at (μ0 and the eigenvalue's guess, bit
+/// for bit: another sweep with another μ0 gets its own).
+#[derive(Default)]
+pub(crate) struct NormalFormCache(
+    std::sync::Mutex<Vec<([u64; 3], squeal_brake::criticality::NormalForm)>>,
+);
+
+impl NormalFormCache {
+    fn lock(
+        &self,
+    ) -> std::sync::MutexGuard<'_, Vec<([u64; 3], squeal_brake::criticality::NormalForm)>> {
+        self.0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// The normal form at `key`, computed by `make` the first time.
+    pub(crate) fn get_or_try<E>(
+        &self,
+        key: [u64; 3],
+        make: impl FnOnce() -> std::result::Result<squeal_brake::criticality::NormalForm, E>,
+    ) -> std::result::Result<squeal_brake::criticality::NormalForm, E> {
+        if let Some((_, nf)) = self.lock().iter().find(|(k, _)| *k == key) {
+            return Ok(nf.clone());
+        }
+        let nf = make()?;
+        self.lock().push((key, nf.clone()));
+        Ok(nf)
+    }
 }
 
 impl Model {
@@ -314,6 +348,7 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
         disc: disc_speed(scene)?,
         units: scene.units()?,
         interface: None,
+        normal_forms: Default::default(),
     })
 }
 

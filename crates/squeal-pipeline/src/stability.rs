@@ -50,13 +50,17 @@ pub fn normal_form(m: &Model, st: &Stability) -> Result<Option<NormalForm>> {
         return Ok(None);
     };
     let guess = h.point.spectrum.values[h.index];
-    Ok(Some(squeal_brake::criticality::normal_form(
-        &m.brake,
-        &st.reference,
-        h.mu0,
-        guess,
-        &m.sweep.newton,
-    )?))
+    let key = [h.mu0.to_bits(), guess.re.to_bits(), guess.im.to_bits()];
+    let nf = m.normal_forms.get_or_try(key, || {
+        squeal_brake::criticality::normal_form(
+            &m.brake,
+            &st.reference,
+            h.mu0,
+            guess,
+            &m.sweep.newton,
+        )
+    })?;
+    Ok(Some(nf))
 }
 
 /// The largest first-harmonic closure over the pairs of the normal form's cycle at `mu` (m),
