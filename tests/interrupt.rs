@@ -1,5 +1,6 @@
-//! Issue 22 leftovers: a Ctrl-C (SIGINT) leaves no partial file and no stale lock in the output
-//! folder, and `stability.csv` says the damping it used.
+//! Issue 22 leftovers: a Ctrl-C (SIGINT) or a closed output pipe (`| head -1`) leaves no
+//! partial file and no stale lock in the output folder, and `stability.csv` says the damping it
+//! used.
 
 mod common;
 
@@ -82,6 +83,76 @@ fn ctrl_c_leaves_no_partial_output_and_no_lock() {
             }
         }
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `squeal stability ... | head -1`: the reader takes the first line and closes the pipe.
+/// Before: the next `println!` panicked on EPIPE ("thread 'main' panicked at ...stdio.rs:
+/// failed printing to stdout: Broken pipe", a backtrace with RUST_BACKTRACE), the exit status
+/// was 101 and the folder kept `.squeal-lock` and a manifest saying "running". Now the run
+/// stops as on Ctrl-C: exit 141 (128 + SIGPIPE), one line on standard error without Rust's
+/// panic text, no lock, no temporary file, the manifest says the run was interrupted because
+/// the standard output was closed.
+#[cfg(unix)]
+#[test]
+fn a_closed_output_pipe_ends_the_run_cleanly() {
+    use std::io::BufRead;
+    let dir = temp_dir("interrupt", "pipe");
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
+    let out = dir.join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_squeal"))
+        .args(["stability", scene.to_str().unwrap(), "--mu", "0..0.1/3"])
+        .args(["--no-vtu", "-o", out.to_str().unwrap()])
+        .current_dir(root())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    std::io::BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    // The reader is dropped here: the pipe is closed after the first line, as `head -1` does.
+    assert!(first.starts_with("reduced model"), "{first}");
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(141), "{:?}: {err}", o.status);
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("error: the standard output was closed before the run ended"),
+        "{err}"
+    );
+    for bad in ["panicked", "stdio.rs", "os error", "stack backtrace"] {
+        assert!(!err.contains(bad), "{bad}: {err}");
+    }
+    let names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(!names.iter().any(|n| n == ".squeal-lock"), "{names:?}");
+    assert!(!names.iter().any(|n| n.contains(".tmp-")), "{names:?}");
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("squeal-manifest.json")).unwrap())
+            .unwrap();
+    assert_eq!(
+        manifest["runs"][0]["status"], "interrupted (the standard output was closed)",
+        "{manifest}"
+    );
+    assert!(manifest["runs"][0]["ended"].is_string(), "{manifest}");
+    // The next run into the folder needs no --force and finds no unfinished run.
+    let o = squeal(&[
+        "stability",
+        scene.to_str().unwrap(),
+        "--mu",
+        "0..0.1/3",
+        "--no-vtu",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(!err.contains("did not finish"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
