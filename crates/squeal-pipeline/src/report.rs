@@ -357,22 +357,25 @@ fn modes_section(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]) 
          meshes) are in [stability/shapes.vtm](stability/shapes.vtm). Nodal diameters: the \
          out-of-plane motion of the disc's outer annulus, analysed over the angle."
             .to_string()
-    } else if modes.is_empty() {
-        "No mode goes unstable in the band.".to_string()
+    } else if let Some(sentence) = summary::no_unstable_mode(r, modes) {
+        sentence
     } else {
         "The mode pictures need the meshes and the bases of the reduced model; they could not \
          be made for this run (see the messages of `squeal run`)."
             .to_string()
     };
-    let _ = r;
+    let tables = match modes.is_empty() {
+        true => Vec::new(),
+        false => vec![(
+            t,
+            "Nodal-diameter classification of the unstable modes".into(),
+        )],
+    };
     Section {
         heading: "Mode shapes".into(),
         text,
         figures,
-        tables: vec![(
-            t,
-            "Nodal-diameter classification of the unstable modes".into(),
-        )],
+        tables,
         after: String::new(),
     }
 }
