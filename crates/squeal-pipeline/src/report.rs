@@ -538,19 +538,18 @@ fn stability_section(r: &RunResults<'_>, pics: &Path) -> Result<Section> {
             tau
         ),
     ]);
-    for c in &sw.crossings {
+    for c in sw.crossings.iter().filter(|c| c.in_band) {
         t.push_row([
             format!("crossing at {:.0} Hz", c.frequency_hz),
-            format!(
-                "μ in [{}, {}]{}",
-                fmt_sig(c.mu_lo, 4),
-                fmt_sig(c.mu_hi, 4),
-                if c.in_band {
-                    ""
-                } else {
-                    " (outside the band: not physical for this model)"
-                }
-            ),
+            format!("μ in [{}, {}]", fmt_sig(c.mu_lo, 4), fmt_sig(c.mu_hi, 4)),
+        ]);
+    }
+    // One row for all the crossings outside the band: one each buried those in it.
+    let outside = sw.crossings.iter().filter(|c| !c.in_band).count();
+    if outside > 0 {
+        t.push_row([
+            "crossings outside the band".to_string(),
+            crate::stability::outside_band_text(&r.model.sweep.band, outside).replace("mu0", "μ0"),
         ]);
     }
     let map = eigenvalue_map(r, pics)?;
