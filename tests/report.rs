@@ -131,7 +131,17 @@ fn the_report_shows_both_instabilities_of_the_coarse_brake() {
         html.contains("Not run (<code>squeal run --no-compare</code>)"),
         "{html}"
     );
-    // Units on the limit cycle at the contacts.
+    // Units on the limit cycle at the contacts, and what "amplitude" is (issue 22: amplitude
+    // in some tables, peak-to-peak in others, neither defined): half the peak-to-peak, said
+    // where the tables are; the bifurcation diagram says it draws the peak-to-peak.
+    assert!(
+        html.contains("Amplitudes are half the peak-to-peak relative motion"),
+        "{html}"
+    );
+    assert!(
+        html.contains("the loudest pair&#39;s peak-to-peak closure"),
+        "{html}"
+    );
     assert!(html.contains("closure amplitude (µm)"));
     assert!(html.contains("sliding-velocity amplitude (mm/s)"));
 
