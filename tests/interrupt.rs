@@ -5,8 +5,57 @@
 mod common;
 
 use common::{bundled_scene, root, squeal, temp_dir};
-use std::process::{Command, Stdio};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
+
+/// `squeal stability` of the coarse bundled scene over `mu`, into `out` of a fresh folder named
+/// after `name`, standard output to `stdout`, standard error piped: the run, its folder and
+/// the scene.
+fn start_stability(name: &str, mu: &str, stdout: Stdio) -> (Child, PathBuf, PathBuf) {
+    let dir = temp_dir("interrupt", name);
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
+    let out = dir.join("out");
+    let child = Command::new(env!("CARGO_BIN_EXE_squeal"))
+        .args(["stability", scene.to_str().unwrap(), "--mu", mu])
+        .args(["--no-vtu", "-o", out.to_str().unwrap()])
+        .current_dir(root())
+        .stdout(stdout)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    (child, dir, scene)
+}
+
+/// `squeal stability scene --mu 0..0.1/3 --no-vtu -o out` to its end (about 2 s).
+fn quick_stability(scene: &Path, out: &Path) -> std::process::Output {
+    squeal(&[
+        "stability",
+        scene.to_str().unwrap(),
+        "--mu",
+        "0..0.1/3",
+        "--no-vtu",
+        "-o",
+        out.to_str().unwrap(),
+    ])
+}
+
+/// The manifest of the output folder `out` of a stopped run, which must leave neither its
+/// lock nor a temporary file.
+fn left_clean(out: &Path) -> serde_json::Value {
+    let names: Vec<String> = std::fs::read_dir(out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(!names.iter().any(|n| n == ".squeal-lock"), "{names:?}");
+    assert!(!names.iter().any(|n| n.contains(".tmp-")), "{names:?}");
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("squeal-manifest.json")).unwrap())
+            .unwrap();
+    assert!(manifest["runs"][0]["ended"].is_string(), "{manifest}");
+    manifest
+}
 
 /// Before: `squeal stability` died of the signal (no exit status), leaving `.squeal-lock` and
 /// a manifest that still said "running" (and any `.NAME.tmp-...` file being written). Now it
@@ -16,19 +65,9 @@ use std::time::{Duration, Instant};
 #[cfg(unix)]
 #[test]
 fn ctrl_c_leaves_no_partial_output_and_no_lock() {
-    let dir = temp_dir("interrupt", "sigint");
-    let scene = dir.join("scene.toml");
-    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
-    let out = dir.join("out");
     // A long sweep, so that the signal comes while the run works (reduction, then sweep).
-    let mut child = Command::new(env!("CARGO_BIN_EXE_squeal"))
-        .args(["stability", scene.to_str().unwrap(), "--mu", "0..1/20001"])
-        .args(["--no-vtu", "-o", out.to_str().unwrap()])
-        .current_dir(root())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let (mut child, dir, _) = start_stability("sigint", "0..1/20001", Stdio::null());
+    let out = dir.join("out");
     let t = Instant::now();
     while !out.join(".squeal-lock").exists() {
         assert!(
@@ -52,18 +91,9 @@ fn ctrl_c_leaves_no_partial_output_and_no_lock() {
     assert_eq!(o.status.code(), Some(130), "{:?}: {err}", o.status);
     assert!(err.contains("interrupted (Ctrl-C)"), "{err}");
 
-    let names: Vec<String> = std::fs::read_dir(&out)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    assert!(!names.iter().any(|n| n == ".squeal-lock"), "{names:?}");
-    assert!(!names.iter().any(|n| n.contains(".tmp-")), "{names:?}");
-    let manifest: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("squeal-manifest.json")).unwrap())
-            .unwrap();
+    let manifest = left_clean(&out);
     let status = manifest["runs"][0]["status"].as_str().unwrap();
     assert!(status.contains("interrupted"), "{status}");
-    assert!(manifest["runs"][0]["ended"].is_string(), "{manifest}");
     // Every file left (recursively) is one the manifest says this run wrote.
     let mut stack = vec![out.clone()];
     while let Some(d) = stack.pop() {
@@ -97,18 +127,8 @@ fn ctrl_c_leaves_no_partial_output_and_no_lock() {
 #[test]
 fn a_closed_output_pipe_ends_the_run_cleanly() {
     use std::io::BufRead;
-    let dir = temp_dir("interrupt", "pipe");
-    let scene = dir.join("scene.toml");
-    std::fs::write(&scene, bundled_scene("coarse")).unwrap();
+    let (mut child, dir, scene) = start_stability("pipe", "0..0.1/3", Stdio::piped());
     let out = dir.join("out");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_squeal"))
-        .args(["stability", scene.to_str().unwrap(), "--mu", "0..0.1/3"])
-        .args(["--no-vtu", "-o", out.to_str().unwrap()])
-        .current_dir(root())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
     let mut first = String::new();
     std::io::BufReader::new(child.stdout.take().unwrap())
         .read_line(&mut first)
@@ -126,30 +146,13 @@ fn a_closed_output_pipe_ends_the_run_cleanly() {
     for bad in ["panicked", "stdio.rs", "os error", "stack backtrace"] {
         assert!(!err.contains(bad), "{bad}: {err}");
     }
-    let names: Vec<String> = std::fs::read_dir(&out)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    assert!(!names.iter().any(|n| n == ".squeal-lock"), "{names:?}");
-    assert!(!names.iter().any(|n| n.contains(".tmp-")), "{names:?}");
-    let manifest: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("squeal-manifest.json")).unwrap())
-            .unwrap();
+    let manifest = left_clean(&out);
     assert_eq!(
         manifest["runs"][0]["status"], "interrupted (the standard output was closed)",
         "{manifest}"
     );
-    assert!(manifest["runs"][0]["ended"].is_string(), "{manifest}");
     // The next run into the folder needs no --force and finds no unfinished run.
-    let o = squeal(&[
-        "stability",
-        scene.to_str().unwrap(),
-        "--mu",
-        "0..0.1/3",
-        "--no-vtu",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let o = quick_stability(&scene, &out);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");
     assert!(!err.contains("did not finish"), "{err}");
@@ -165,15 +168,7 @@ fn stability_csv_says_the_damping_used() {
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, bundled_scene("coarse")).unwrap();
     let out = dir.join("out");
-    let o = squeal(&[
-        "stability",
-        scene.to_str().unwrap(),
-        "--mu",
-        "0..0.1/3",
-        "--no-vtu",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let o = quick_stability(&scene, &out);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(out.join("stability/stability.csv")).unwrap();
     let mut lines = text.lines();
