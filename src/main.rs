@@ -8,6 +8,7 @@
 #![allow(rustdoc::invalid_html_tags, rustdoc::broken_intra_doc_links)]
 
 mod commands;
+mod ending;
 mod progress;
 
 use clap::{Parser, Subcommand};
@@ -19,7 +20,10 @@ const EXIT_CODES: &str = "Exit codes:
   1  an error (the message names the file, and the line where there is one)
   2  a usage error: an unknown option or a missing argument (the message shows the usage)
   3  chbm, run: no limit cycle converged (the outputs are written and say why)
-  4  mesh info: a mesh has errors (inverted elements, ...), listed in the output";
+  4  mesh info: a mesh has errors (inverted elements, ...), listed in the output
+  101  an internal error (a bug): the run stopped, the message says where
+  130  interrupted (Ctrl-C): the run stopped, no partial file is left
+  141  the standard output was closed (`| head`): the run stopped, no partial file is left";
 
 #[derive(Parser)]
 #[command(
@@ -88,6 +92,8 @@ fn thread_count(s: &str) -> Result<usize, String> {
 }
 
 fn main() -> ExitCode {
+    // A panic (a closed output pipe, a bug) ends the run as cleanly as Ctrl-C (ending.rs).
+    ending::install();
     // Ctrl-C (SIGINT): the writes under way are dropped, the output folder's manifest says the
     // run was interrupted and its lock is released, then exit 130 (squeal_pipeline::folder::interrupt).
     let _ = ctrlc::set_handler(|| {

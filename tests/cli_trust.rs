@@ -228,7 +228,14 @@ fn mesh_info_checks_material_overrides() {
 fn exit_codes_are_distinct_and_documented() {
     let o = squeal(&["--help"]);
     let help = String::from_utf8_lossy(&o.stdout);
-    for line in ["2  a usage error", "3  chbm, run", "4  mesh info"] {
+    for line in [
+        "2  a usage error",
+        "3  chbm, run",
+        "4  mesh info",
+        "101  an internal error",
+        "130  interrupted (Ctrl-C)",
+        "141  the standard output was closed",
+    ] {
         assert!(help.contains(line), "{help}");
     }
     assert_eq!(squeal(&["mesh", "info"]).status.code(), Some(2));

@@ -102,6 +102,18 @@ fn the_report_shows_both_instabilities_of_the_coarse_brake() {
     );
     assert!(svg.contains("unstable from μ ≈ 0.772, 2952 Hz"), "legend");
 
+    // Issue 22: Figure 3 (the paper's Figure 2) readable in an 800 px window, and the disc's
+    // pattern visible in the mode picture.
+    figure_3_reads_at_800_px(&read(&out.join("stability/stability.svg")));
+    the_disc_has_its_own_colour_scale(&out.join("report/mode_1.png"));
+    assert!(
+        html.contains("colour: displacement magnitude over the largest of its own part")
+            && html.contains(
+                "each part on its own scale; largest displacement relative to the pad&#39;s: disc "
+            ),
+        "{html}"
+    );
+
     // The instability threshold is relative to |λ| and said.
     assert!(
         html.contains("<td>instability threshold</td><td>Re λ &gt; "),
@@ -119,7 +131,17 @@ fn the_report_shows_both_instabilities_of_the_coarse_brake() {
         html.contains("Not run (<code>squeal run --no-compare</code>)"),
         "{html}"
     );
-    // Units on the limit cycle at the contacts.
+    // Units on the limit cycle at the contacts, and what "amplitude" is (issue 22: amplitude
+    // in some tables, peak-to-peak in others, neither defined): half the peak-to-peak, said
+    // where the tables are; the bifurcation diagram says it draws the peak-to-peak.
+    assert!(
+        html.contains("Amplitudes are half the peak-to-peak relative motion"),
+        "{html}"
+    );
+    assert!(
+        html.contains("the loudest pair&#39;s peak-to-peak closure"),
+        "{html}"
+    );
     assert!(html.contains("closure amplitude (µm)"));
     assert!(html.contains("sliding-velocity amplitude (mm/s)"));
 
@@ -165,6 +187,20 @@ fn the_report_shows_both_instabilities_of_the_coarse_brake() {
         html.contains("<p><strong>Verdict: no squeal for μ in [0, 0.3].</strong>"),
         "{html}"
     );
+    // A stable brake's report has no empty table of unstable modes: a sentence stands for it.
+    assert!(
+        html.contains(
+            "The brake is stable for μ in [0, 0.3]: no mode in the band goes unstable (every \
+             eigenvalue has ζ ≥ 0 at every friction value swept)."
+        ),
+        "{html}"
+    );
+    for empty in [
+        "Every mode that goes unstable in the band",
+        "Nodal-diameter classification of the unstable modes",
+    ] {
+        assert!(!html.contains(empty), "{empty}: {html}");
+    }
     assert!(
         !out.join("report/mode_1.png").exists(),
         "the earlier report's picture stayed"
@@ -176,6 +212,106 @@ fn the_report_shows_both_instabilities_of_the_coarse_brake() {
     assert!(earlier.contains("(run 1, "), "{earlier}");
     check_in_browser(&out, html.matches("<img").count());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The width of a report's column in an 800 px wide window: 800 px less the page's padding
+/// at that width (0.8 rem each side, `@media (max-width:900px)`) and the figure's 1 px border.
+const COLUMN_AT_800_PX: f64 = 800.0 - 2.0 * 0.8 * 16.0 - 2.0;
+
+/// The numbers of `attr="..."` in `text`.
+fn attr_values(text: &str, attr: &str) -> Vec<f64> {
+    let key = format!("{attr}=\"");
+    text.split(&key)
+        .skip(1)
+        .filter_map(|t| t.split('"').next()?.parse().ok())
+        .collect()
+}
+
+/// Figure 3 (real parts and frequencies against μ) as a browser shows it in an 800 px window:
+/// the image is scaled down to the column when wider. Before (issue 22: "unreadable at 800
+/// px"): 1120 px wide, shown at 0.69, its smallest text 7.8 px and panel (b)'s plot area,
+/// beside its legend, 86 px wide ((a) 322 px). Now (a) over (b), 760 px wide, shown at full
+/// size: text 11.3 px, plot areas 668 and 325 px. Asked: text of at least 10 px, each plot
+/// area at least 300 px wide.
+fn figure_3_reads_at_800_px(svg: &str) {
+    let head = &svg[..svg.find('>').unwrap()];
+    let width = attr_values(head, "width")[0];
+    let view: Vec<f64> = head
+        .split("viewBox=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap()
+        .split(' ')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    // SVG units per CSS pixel, then the browser's shrinking to the column.
+    let units = view[2] / width;
+    let shown = (COLUMN_AT_800_PX / width).min(1.0) / units;
+    let font = attr_values(svg, "font-size")
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        font * shown >= 10.0,
+        "smallest text {:.1} px at 800 px (figure {width} px wide)",
+        font * shown
+    );
+    // The plot areas: the frames drawn in the axes' colour.
+    let frames: Vec<f64> = svg
+        .split("<rect ")
+        .skip(1)
+        .filter(|r| r.contains("stroke=\"#3C3C3C\""))
+        .map(|r| attr_values(r, "width")[0] * shown)
+        .collect();
+    assert_eq!(frames.len(), 2, "{frames:?}");
+    for w in &frames {
+        assert!(
+            *w >= 300.0,
+            "a plot area {w:.0} px wide at 800 px: {frames:?}"
+        );
+    }
+    eprintln!(
+        "Figure 3 at 800 px: smallest text {:.1} px, plot areas {frames:.0?} px",
+        font * shown
+    );
+}
+
+/// The Hopf mode's picture: the middle view is the disc alone, from above. Before (issue 22:
+/// "the disc's pattern is invisible under a colour scale set by the pad"), one scale for both
+/// parts, set by the pad, which moves most: 126 of the disc view's 52 537 pixels (0.24 %) in
+/// the upper half of the colour bar, the rest dark. Now each part on its own scale: 6220
+/// (11.8 %). Counted: green above 140 (viridis at 0.5 is (33, 145, 140)) and blue below 200
+/// (not the grey of the lighting's highlights); at least 5 % asked, far from both.
+fn the_disc_has_its_own_colour_scale(png_path: &Path) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(png_path).unwrap(),
+    ));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0u8; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb, "{png_path:?}");
+    let (w, h) = (info.width as usize, info.height as usize);
+    let (mut disc, mut upper) = (0usize, 0usize);
+    // The three views over the colour bar: the top 300 rows (the views' height), middle third.
+    for y in 0..h.min(300) {
+        for x in w / 3..2 * w / 3 {
+            let p = &buf[3 * (y * w + x)..3 * (y * w + x) + 3];
+            let (r, g, b) = (p[0] as u32, p[1] as u32, p[2] as u32);
+            if r + g + b < 700 {
+                disc += 1;
+                if g > 140 && b < 200 {
+                    upper += 1;
+                }
+            }
+        }
+    }
+    eprintln!("disc view: {upper} of {disc} pixels in the upper half of the colour bar");
+    assert!(disc > 10_000, "no disc in the middle view: {disc} pixels");
+    assert!(
+        upper as f64 >= 0.05 * disc as f64,
+        "the disc's pattern is dark: {upper} of {disc} pixels in the upper half of the colour bar"
+    );
 }
 
 /// Chromium's binary: `$SQUEAL_BROWSER`, else `chromium`, `chromium-browser` or
@@ -318,5 +454,48 @@ fn the_report_has_the_comparison_tables_and_failures() {
                 .contains("<li>BDF time integration at rtol 1e-5: no steady oscillation by t = "),
         "{html}"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 22: crossings outside the band are one line, in the summary and in the report's
+/// table; listed one by one (53 to 66 on a fine model) they buried those in the band. Here the
+/// scene's band starts at 3000 Hz, so the coarse brake's second instability (2952 Hz from
+/// μ ≈ 0.772) is outside it. Before: the summary called it "above the valid band" (it is below
+/// the scene's band) and the report gave it a row of its own.
+#[test]
+fn crossings_outside_the_band_are_one_line() {
+    let dir = temp_dir("report", "band");
+    let scene = dir.join("brake.toml");
+    let text = bundled_scene("coarse")
+        .replace("band_hz = [1000.0, 16000.0]", "band_hz = [3000.0, 16000.0]");
+    assert!(text.contains("band_hz = [3000.0, 16000.0]"));
+    std::fs::write(&scene, text).unwrap();
+    let out = dir.join("out");
+    let said = run_ok(&[
+        "run",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--no-compare",
+    ]);
+    let crossings: Vec<&str> = said
+        .lines()
+        .filter(|l| l.starts_with("  crossing:"))
+        .collect();
+    assert_eq!(crossings.len(), 1, "{said}");
+    assert!(crossings[0].contains("at 4062 Hz"), "{said}");
+    assert!(
+        said.contains(
+            "1 crossing(s) outside the band (the model's valid band up to 20285 Hz, the scene's band_hz 3000..16000 Hz) do not define mu0"
+        ),
+        "{said}"
+    );
+    let html = read(&out.join("index.html"));
+    assert!(
+        html.contains("<td>crossings outside the band</td><td>1 crossing(s) outside the band"),
+        "{html}"
+    );
+    assert!(!html.contains("crossing at 2952 Hz"), "{html}");
+    assert!(html.contains("crossing at 4062 Hz"), "{html}");
     let _ = std::fs::remove_dir_all(&dir);
 }

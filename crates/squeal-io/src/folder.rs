@@ -479,7 +479,18 @@ fn find<'a>(runs: &'a mut [Active], path: &Path) -> Option<(&'a mut Active, Stri
 /// Records that `path` was just written by this process (called by
 /// [`crate::atomic_write`]): the active run of its folder, if any, claims it.
 pub fn record_written(path: &Path) {
-    let mut runs = active();
+    record(active(), path);
+}
+
+/// [`record_written`] waiting at most `wait` for the folders' state (the panic path,
+/// [`crate::interrupt::stop_with`]).
+pub(crate) fn record_written_within(path: &Path, wait: std::time::Duration) {
+    if let Some(runs) = crate::interrupt::lock_within(&ACTIVE, wait) {
+        record(runs, path);
+    }
+}
+
+fn record(mut runs: std::sync::MutexGuard<'_, Vec<Active>>, path: &Path) {
     if runs.is_empty() {
         return;
     }
@@ -568,8 +579,19 @@ pub fn remove_earlier(dir: &Path, which: impl Fn(&str) -> bool) -> Vec<String> {
 /// Ends the run of `dir` (every run of this process with `None`): records `status`
 /// (`finished`, or `failed: ...`) and the time, and releases the lock.
 pub fn finish(dir: Option<&Path>, status: &str) {
+    finish_runs(active(), dir, status);
+}
+
+/// [`finish`] of every run of this process, waiting at most `wait` for the folders' state
+/// (the panic path, [`crate::interrupt::stop_with`]).
+pub(crate) fn finish_within(status: &str, wait: std::time::Duration) {
+    if let Some(runs) = crate::interrupt::lock_within(&ACTIVE, wait) {
+        finish_runs(runs, None, status);
+    }
+}
+
+fn finish_runs(mut runs: std::sync::MutexGuard<'_, Vec<Active>>, dir: Option<&Path>, status: &str) {
     let canon = dir.and_then(|d| fs::canonicalize(d).ok());
-    let mut runs = active();
     let (done, kept): (Vec<Active>, Vec<Active>) = runs
         .drain(..)
         .partition(|a| dir.is_none() || canon.as_ref() == Some(&a.dir));

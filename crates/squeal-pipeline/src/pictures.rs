@@ -89,20 +89,28 @@ fn norm3(u: &[f64], i: usize) -> f64 {
     (u[3 * i].powi(2) + u[3 * i + 1].powi(2) + u[3 * i + 2].powi(2)).sqrt()
 }
 
+/// The largest displacement magnitude of each part (`u` per part, `3 × nodes`).
+fn part_peaks(u: &[Vec<f64>]) -> Vec<f64> {
+    u.iter()
+        .map(|u| (0..u.len() / 3).map(|i| norm3(u, i)).fold(0.0, f64::max))
+        .collect()
+}
+
 /// Surfaces of the parts deformed by `u` (per part, `3 × nodes`) times `scale`, coloured by
-/// `|u| / umax`.
+/// `|u|` over `umax[p]`, the colour scale of part `p` (its own largest in a mode picture).
 fn surfaces(
     parts: &[PartMesh<'_>],
     tris: &[Vec<[u32; 3]>],
     u: &[Vec<f64>],
     scale: f64,
-    umax: f64,
+    umax: &[f64],
 ) -> Vec<Surface> {
     parts
         .iter()
         .zip(tris)
         .zip(u)
-        .map(|((p, t), u)| Surface {
+        .zip(umax)
+        .map(|(((p, t), u), &umax)| Surface {
             positions: p
                 .mesh
                 .nodes
@@ -118,7 +126,7 @@ fn surfaces(
                 .collect(),
             triangles: t.clone(),
             values: (0..p.mesh.num_nodes())
-                .map(|i| norm3(u, i) / umax)
+                .map(|i| norm3(u, i) / umax.max(f64::MIN_POSITIVE))
                 .collect(),
         })
         .collect()
@@ -226,6 +234,10 @@ pub fn nodal_diameters(mesh: &Mesh, u: &[c64]) -> Option<NodalDiameters> {
 pub struct ModePicture {
     /// The image, relative to the report folder.
     pub file: String,
+    /// Each part's name and its largest displacement over the largest of all parts: each part
+    /// is coloured on its own scale (its largest is yellow), so the caption says how they
+    /// compare.
+    pub peaks: Vec<(String, f64)>,
     /// The disc's nodal-diameter content.
     pub nodal: Option<NodalDiameters>,
 }
@@ -233,7 +245,10 @@ pub struct ModePicture {
 /// Writes `dir/<stem>.png`: the real part of the complex mode `x` (reduced brake vector,
 /// phase set so that its largest component is real) on both meshes, three views side by side
 /// (three-quarter view of the brake, the disc from above without the pad, the brake from the
-/// side), coloured by the displacement's magnitude with a colour bar underneath.
+/// side), coloured by the displacement's magnitude over the largest of its own part, with a
+/// colour bar underneath. One scale for all parts would be set by the part that moves most
+/// (the pad, in the bundled brake's squeal mode) and leave the other dark: the disc's pattern,
+/// its nodal diameters, would not show. The shape's exaggeration is common to all parts.
 pub fn write_mode_picture(
     dir: &Path,
     stem: &str,
@@ -246,14 +261,15 @@ pub fn write_mode_picture(
     let re: Vec<f64> = x.iter().map(|v| v.re).collect();
     let im: Vec<f64> = x.iter().map(|v| v.im).collect();
     let (u_re, u_im) = (expand_parts(&parts, &re)?, expand_parts(&parts, &im)?);
-    let umax = u_re
+    let peaks = part_peaks(&u_re);
+    let umax = peaks
         .iter()
-        .flat_map(|u| (0..u.len() / 3).map(move |i| norm3(u, i)))
+        .copied()
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
     let scale = EXAGGERATION * model_size(&parts) / umax;
     let tris: Vec<Vec<[u32; 3]>> = parts.iter().map(|p| boundary_triangles(p.mesh)).collect();
-    let s = surfaces(&parts, &tris, &u_re, scale, umax);
+    let s = surfaces(&parts, &tris, &u_re, scale, &peaks);
     let (w, h) = (380, 300);
     let mut images = Vec::new();
     let all: Vec<_> = s.iter().collect();
@@ -272,7 +288,7 @@ pub fn write_mode_picture(
             .collect::<Vec<_>>(),
         8,
     );
-    let (bar_row, bh) = colour_bar_with_scale(rw / 3, 12, "|u| / max |u|")?;
+    let (bar_row, bh) = colour_bar_with_scale(rw / 3, 12, "|u| / max |u| of its part")?;
     let mut img = row;
     // The colour bar, centred under the views, after a white gap.
     let gap = vec![255u8; 3 * (rw * 6) as usize];
@@ -294,6 +310,11 @@ pub fn write_mode_picture(
         .collect();
     Ok(ModePicture {
         file,
+        peaks: parts
+            .iter()
+            .zip(&peaks)
+            .map(|(p, &m)| (p.part.info.name.clone(), m / umax))
+            .collect(),
         nodal: nodal_diameters(parts[0].mesh, &disc_u),
     })
 }
@@ -354,7 +375,7 @@ pub fn write_cycle_animation(
             .map(|p| vec![0.0; 3 * p.mesh.num_nodes()])
             .collect::<Vec<_>>(),
         0.0,
-        1.0,
+        &vec![1.0; parts.len()],
     );
     let all: Vec<&Surface> = undeformed.iter().collect();
     let b = screen_bounds(&all, &View::ISO).unwrap_or(([0.0, 0.0], [1.0, 1.0]));
@@ -362,7 +383,7 @@ pub fn write_cycle_animation(
     let images: Vec<Vec<u8>> = us
         .iter()
         .map(|u| {
-            let s = surfaces(&parts, &tris, u, scale, umax);
+            let s = surfaces(&parts, &tris, u, scale, &vec![umax; parts.len()]);
             render(&s.iter().collect::<Vec<_>>(), &View::ISO, b, w, hgt)
         })
         .collect();
@@ -433,5 +454,21 @@ mod tests {
         let nd = nodal_diameters(&mesh, &travelling).unwrap();
         assert_eq!(nd.dominant, 4);
         assert!(nd.share > 0.99, "{nd:?}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 22: the peaks that set each part's colour scale are each part's own. The bundled
+    /// brake's squeal mode moves the pad most; one scale for both (the old picture) put the
+    /// disc's largest at a small fraction of the bar, its pattern dark.
+    #[test]
+    fn each_part_has_its_own_peak() {
+        // Disc nodes moving 3e-3 and 4e-3 (|u| = 5e-3 for the second), pad nodes up to 1.
+        let disc = vec![3e-3, 0.0, 0.0, 0.0, 3e-3, 4e-3];
+        let pad = vec![0.0, 0.0, 1.0, 0.6, 0.8, 0.0];
+        assert_eq!(part_peaks(&[disc, pad]), [5e-3, 1.0]);
     }
 }

@@ -357,22 +357,25 @@ fn modes_section(r: &RunResults<'_>, modes: &[(Unstable, Option<ModePicture>)]) 
          meshes) are in [stability/shapes.vtm](stability/shapes.vtm). Nodal diameters: the \
          out-of-plane motion of the disc's outer annulus, analysed over the angle."
             .to_string()
-    } else if modes.is_empty() {
-        "No mode goes unstable in the band.".to_string()
+    } else if let Some(sentence) = summary::no_unstable_mode(r, modes) {
+        sentence
     } else {
         "The mode pictures need the meshes and the bases of the reduced model; they could not \
          be made for this run (see the messages of `squeal run`)."
             .to_string()
     };
-    let _ = r;
+    let tables = match modes.is_empty() {
+        true => Vec::new(),
+        false => vec![(
+            t,
+            "Nodal-diameter classification of the unstable modes".into(),
+        )],
+    };
     Section {
         heading: "Mode shapes".into(),
         text,
         figures,
-        tables: vec![(
-            t,
-            "Nodal-diameter classification of the unstable modes".into(),
-        )],
+        tables,
         after: String::new(),
     }
 }
@@ -535,19 +538,18 @@ fn stability_section(r: &RunResults<'_>, pics: &Path) -> Result<Section> {
             tau
         ),
     ]);
-    for c in &sw.crossings {
+    for c in sw.crossings.iter().filter(|c| c.in_band) {
         t.push_row([
             format!("crossing at {:.0} Hz", c.frequency_hz),
-            format!(
-                "μ in [{}, {}]{}",
-                fmt_sig(c.mu_lo, 4),
-                fmt_sig(c.mu_hi, 4),
-                if c.in_band {
-                    ""
-                } else {
-                    " (outside the band: not physical for this model)"
-                }
-            ),
+            format!("μ in [{}, {}]", fmt_sig(c.mu_lo, 4), fmt_sig(c.mu_hi, 4)),
+        ]);
+    }
+    // One row for all the crossings outside the band: one each buried those in it.
+    let outside = sw.crossings.iter().filter(|c| !c.in_band).count();
+    if outside > 0 {
+        t.push_row([
+            "crossings outside the band".to_string(),
+            crate::stability::outside_band_text(&r.model.sweep.band, outside).replace("mu0", "μ0"),
         ]);
     }
     let map = eigenvalue_map(r, pics)?;

@@ -430,14 +430,23 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
         }
     }
     if !outside.is_empty() {
-        let _ = writeln!(
-            out,
-            "{} crossing(s) above the valid band are not physical for this model and do not define mu0 (listed in summary.json)",
-            outside.len()
-        );
+        let _ = writeln!(out, "{}", outside_band_text(&s.sweep.band, outside.len()));
     }
     out.push_str(&caveats_text(&caveats(s, st)));
     out
+}
+
+/// The one line that stands for the `n` crossings outside `band`: listed one by one (53 to 66
+/// of them on a fine model) they buried the crossings in the band (issue 22). Names the band:
+/// the model's valid band, and the scene's `band_hz` when given.
+pub fn outside_band_text(band: &squeal_brake::sweep::Band, n: usize) -> String {
+    format!(
+        "{n} crossing(s) outside the band (the model's valid band up to {:.0} Hz{}) do not define mu0 and are not listed here: stability/summary.json lists them",
+        band.valid_max_hz,
+        band.user.map_or(String::new(), |(a, b)| format!(
+            ", the scene's band_hz {a:.0}..{b:.0} Hz"
+        ))
+    )
 }
 
 /// What the sweep says of squeal, in one line.

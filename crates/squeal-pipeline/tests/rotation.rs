@@ -247,9 +247,19 @@ fn a_scene_that_contradicts_the_mesh_is_refused() {
         &format!("normal = [0.0, {:?}, {:?}]", a.sin(), a.cos()),
         1,
     );
+    // Issue 22: the check's message names the scene file and the key's line.
+    let line = tilted
+        .lines()
+        .position(|l| l.starts_with("normal = [0.0, 0.17"))
+        .unwrap()
+        + 1;
     let e = build(tilted).unwrap_err().to_string();
     assert!(
         e.contains("is 10.0 degrees from the scene's contact normal"),
+        "{e}"
+    );
+    assert!(
+        e.starts_with(&format!("{}:{line}:", path.display())) && e.contains("contact.normal"),
         "{e}"
     );
 }

@@ -124,7 +124,8 @@ pub enum ReduceError {
     /// A contact or piston node is also restrained in a direction whose dof it keeps as a
     /// boundary coordinate.
     #[error(
-        "{part}: boundary node {node} ({set}) is restrained in direction {direction}: a boundary dof cannot also be clamped"
+        "{part}: boundary node {node} at ({:.4}, {:.4}, {:.4}) m ({set}) is restrained in direction {direction}: a boundary dof cannot also be clamped; narrow the restraint (its node set, or the scene's rule for it) so that it leaves the {set} nodes",
+        position[0], position[1], position[2]
     )]
     BoundaryRestrained {
         /// The part.
@@ -133,6 +134,8 @@ pub enum ReduceError {
         set: String,
         /// The node's id in the mesh.
         node: u64,
+        /// The node's coordinates (m): a rule's set has no ids the user wrote.
+        position: [f64; 3],
         /// The direction both kept and restrained: `x`, `y` or `z`.
         direction: char,
     },

@@ -103,6 +103,17 @@ pub enum InterfaceKind {
     Nodal,
 }
 
+impl InterfaceKind {
+    /// The name the scene file uses (`[model] interface`), as the `.rom` header spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            InterfaceKind::Node => "node",
+            InterfaceKind::Patch => "patch",
+            InterfaceKind::Nodal => "nodal",
+        }
+    }
+}
+
 /// What a part is in the brake.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -98,10 +98,23 @@ fn file_round_trip_and_freshness() {
     assert!(reasons.iter().any(|r| r.contains("modes")), "{reasons:?}");
     other = inputs.clone();
     other.interface = InterfaceKind::Node;
-    assert!(matches!(
-        freshness(&path, &other).unwrap(),
-        Freshness::Stale(_)
-    ));
+    let Freshness::Stale(reasons) = freshness(&path, &other).unwrap() else {
+        panic!("node interface asked for, patch in the file");
+    };
+    // Issue 22: the interface by the scene's name for it, not Rust's `Patch`/`Node`.
+    assert!(
+        reasons.contains(
+            &"disc: interface \"patch\" in the file, \"node\" asked for ([model] interface)"
+                .to_string()
+        ),
+        "{reasons:?}"
+    );
+    assert!(
+        !reasons
+            .iter()
+            .any(|r| r.contains("Patch") || r.contains("Node")),
+        "{reasons:?}"
+    );
 
     // The same mesh under another name is the same mesh (by SHA-256); a changed byte is not.
     let copy = dir.join("pad.inp");

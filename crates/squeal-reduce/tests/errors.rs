@@ -103,6 +103,23 @@ fn a_clamped_boundary_node_is_refused() {
             matches!(&e, ReduceError::BoundaryRestrained { part, direction: 'x', .. } if part == "disc"),
             "{interface:?}: {e}"
         );
+        // Issue 22: the node is placed (a rule's set has no ids the user wrote), at its own
+        // coordinates in the mesh, and the fix is said.
+        let ReduceError::BoundaryRestrained { position, node, .. } = &e else {
+            unreachable!()
+        };
+        let disc = coarse("disc");
+        let i = disc.mesh.node_ids.iter().position(|id| id == node).unwrap();
+        assert_eq!(*position, disc.mesh.nodes[i], "{e}");
+        let at = format!(
+            "boundary node {node} at ({:.4}, {:.4}, {:.4}) m (",
+            position[0], position[1], position[2]
+        );
+        let text = e.to_string();
+        assert!(
+            text.contains(&at) && text.contains("narrow the restraint"),
+            "{text}"
+        );
     }
     // A piston node held along the normal, the direction it keeps.
     let mut inputs = coarse_inputs(InterfaceKind::Patch);

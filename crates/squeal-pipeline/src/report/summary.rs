@@ -253,25 +253,74 @@ pub(super) fn summary_section(
         figures.push((
             PathBuf::from(PICTURES).join(&p.file),
             format!(
-                "The {} at {:.0} Hz: three-quarter view, the disc from above (pad hidden), the brake from the side; colour: displacement magnitude over its largest (viridis, dark = 0, yellow = 1), shape exaggerated",
-                u.label, u.frequency_hz
+                "The {} at {:.0} Hz: three-quarter view, the disc from above (pad hidden), the brake from the side; colour: displacement magnitude over the largest of its own part (viridis, dark = 0, yellow = 1; {}), shape exaggerated",
+                u.label,
+                u.frequency_hz,
+                peaks_text(&p.peaks)
             ),
         ));
     }
-    Section {
-        heading: "Key numbers".into(),
-        text: String::new(),
-        figures,
-        tables: vec![
-            (key.align_numbers_right(), "What this brake does".into()),
-            (
+    let mut tables = vec![(key.align_numbers_right(), "What this brake does".into())];
+    // A table without rows says nothing: a stable brake gets the sentence instead.
+    let text = match no_unstable_mode(r, modes) {
+        Some(sentence) => sentence,
+        None => {
+            tables.push((
                 unstable.align_numbers_right(),
                 "Every mode that goes unstable in the band (ζ < 0: the vibration grows)".into(),
-            ),
-            (inputs, "Inputs".into()),
-        ],
+            ));
+            String::new()
+        }
+    };
+    tables.push((inputs, "Inputs".into()));
+    Section {
+        heading: "Key numbers".into(),
+        text,
+        figures,
+        tables,
         after: String::new(),
     }
+}
+
+/// The sentence that stands for the tables of unstable modes when there is none: `None` when
+/// some mode goes unstable. "Stable in [a, b]" only when the verdict says so: a sweep unstable
+/// from its first point is not called stable.
+pub(super) fn no_unstable_mode(
+    r: &RunResults<'_>,
+    modes: &[(Unstable, Option<ModePicture>)],
+) -> Option<String> {
+    use crate::stability::{Verdict, short, verdict};
+    if !modes.is_empty() {
+        return None;
+    }
+    Some(match verdict(r.model, r.stability) {
+        Verdict::Stable { from, to } => format!(
+            "The brake is stable for μ in [{}, {}]: no mode in the band goes unstable (every \
+             eigenvalue has ζ ≥ 0 at every friction value swept).",
+            short(from),
+            short(to)
+        ),
+        _ => "No single mode could be followed as going unstable in the band (see the \
+              stability section)."
+            .to_string(),
+    })
+}
+
+/// How the parts' colour scales compare: "each part on its own scale; largest displacement
+/// relative to the pad's: disc 18 %".
+fn peaks_text(peaks: &[(String, f64)]) -> String {
+    let Some((top, _)) = peaks.iter().max_by(|a, b| a.1.total_cmp(&b.1)) else {
+        return String::new();
+    };
+    let others: Vec<String> = peaks
+        .iter()
+        .filter(|(n, _)| n != top)
+        .map(|(n, r)| format!("{n} {} %", fmt_sig(100.0 * r, 2)))
+        .collect();
+    format!(
+        "each part on its own scale; largest displacement relative to the {top}'s: {}",
+        others.join(", ")
+    )
 }
 
 pub(super) fn describe_material(m: &squeal_fe::ElasticMaterial) -> String {

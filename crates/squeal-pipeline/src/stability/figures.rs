@@ -10,6 +10,10 @@ use squeal_report::format::fmt_sig;
 use squeal_report::{Annotation, Dash, Figure, Panel, Rgb, Series, write_svg_and_png};
 use std::path::{Path, PathBuf};
 
+/// The stability figure's width in CSS pixels: a report column in an 800 px wide window
+/// (about 770 px) shows it at full size.
+pub const STABILITY_WIDTH: u32 = 760;
+
 /// The stability figure (paper Figure 2) as SVG and PNG.
 pub fn write_figures(dir: &Path, st: &Stability, s: &Model) -> Result<()> {
     let sw = &st.sweep;
@@ -99,9 +103,14 @@ pub fn write_figures(dir: &Path, st: &Stability, s: &Model) -> Result<()> {
             dash: Dash::Dashed,
         });
     }
+    // (a) over (b), each as wide as a report's column: side by side (1120 px) the figure was
+    // shrunk to 0.69 in an 800 px window, its text to 8 px and panel (b), beside its legend,
+    // to 86 px wide (issue 22).
     let fig = Figure {
         title: "Stability against friction (the paper's Figure 2)".into(),
         panels: vec![re, fr],
+        layout: squeal_report::Layout::Column,
+        panel_size: (STABILITY_WIDTH, 380),
         ..Figure::default()
     };
     write_svg_and_png(&fig, &dir.join("stability"))?;

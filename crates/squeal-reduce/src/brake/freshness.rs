@@ -80,8 +80,9 @@ pub fn stale_reasons(header: &RomHeader, inputs: &BrakeInputs, hashes: &[String]
         }
         if info.interface != inputs.interface {
             reasons.push(format!(
-                "{name}: interface {:?} in the file, {:?} asked for",
-                info.interface, inputs.interface
+                "{name}: interface \"{}\" in the file, \"{}\" asked for ([model] interface)",
+                info.interface.name(),
+                inputs.interface.name()
             ));
         }
         match &info.build {

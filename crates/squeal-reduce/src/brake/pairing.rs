@@ -62,6 +62,7 @@ pub fn check_sets(
                         part: name.into(),
                         set: (*bset).into(),
                         node: mesh.node_ids.get(n as usize).copied().unwrap_or(0),
+                        position: mesh.nodes.get(n as usize).copied().unwrap_or_default(),
                         direction: ['x', 'y', 'z'][d],
                     });
                 }

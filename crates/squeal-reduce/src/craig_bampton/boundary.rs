@@ -16,6 +16,7 @@ pub(crate) fn boundary_rows(
         part: part.clone(),
         set: set.into(),
         node: mesh.node_ids[node as usize],
+        position: mesh.nodes[node as usize],
         direction: AXES[d],
     };
     for surface in spec.surfaces() {
