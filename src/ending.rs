@@ -1,6 +1,6 @@
 //! A panic ends a run as cleanly as Ctrl-C does: the writes under way are dropped, every output
 //! folder's manifest records how the run ended and its lock is released
-//! ([`squeal_io::interrupt::stop_with`]), one line says what happened, and the exit status says
+//! ([`squeal_pipeline::folder::interrupt::stop_with`]), one line says what happened, and the exit status says
 //! it too.
 //!
 //! The common panic is not a bug: `squeal stability scene.toml | head -1` closes the pipe
@@ -106,7 +106,7 @@ pub fn install() {
         }
         // Standard error may be the closed pipe: the line is then lost, not a second panic.
         let _ = writeln!(std::io::stderr().lock(), "{}", end.message);
-        squeal_io::interrupt::stop_with(&end.status, end.code);
+        squeal_pipeline::folder::interrupt::stop_with(&end.status, end.code);
     }));
 }
 

@@ -458,7 +458,7 @@ mod tests {
 }
 
 #[cfg(test)]
-mod tests {
+mod colour_scales {
     use super::*;
 
     /// Issue 22: the peaks that set each part's colour scale are each part's own. The bundled
