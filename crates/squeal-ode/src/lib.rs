@@ -46,7 +46,9 @@
 //!     fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) { dy[0] = -y[0]; }
 //!     fn jacobian(&self, _t: f64, _y: &[f64], mut jac: MatMut<'_, f64>) { jac[(0, 0)] = -1.0; }
 //! }
-//! let opts = BdfOptions { rtol: 1e-8, atol: squeal_ode::Atol::Scalar(1e-10), ..Default::default() };
+//! let mut opts = BdfOptions::default();
+//! opts.rtol = 1e-8;
+//! opts.atol = squeal_ode::Atol::Scalar(1e-10);
 //! let mut bdf = Bdf::new(Decay, 0.0, &[1.0], 2.0, &opts).unwrap();
 //! while !bdf.is_finished() { bdf.step().unwrap(); }
 //! assert!((bdf.y()[0] - (-2.0f64).exp()).abs() < 1e-6);
