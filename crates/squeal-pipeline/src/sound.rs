@@ -210,9 +210,7 @@ impl BrakeSurface {
         let mics = self.microphones(opts);
         squeal_acoustics::sound(&opts.air, &self.surface, &h, &mics, opts.facing).map_err(acoustic)
     }
-}
 
-impl BrakeSurface {
     /// The microphones of `opts`, or the default one when none is given.
     pub fn microphones(&self, opts: &SoundOptions) -> Vec<[f64; 3]> {
         if opts.microphones.is_empty() {
@@ -389,10 +387,10 @@ pub fn branch_levels(
 
 /// Where the branch's stable cycles reach SAE J2521's 70 dB(A) at the microphone: one line.
 pub fn squeal_level_text(a: &crate::branch::BranchAnalysis, levels: &[f64]) -> String {
+    use squeal_chbm::floquet::CycleStability as Stability;
     let at = a.microphone.map_or(String::new(), |m| {
         format!(" ({:.3}, {:.3}, {:.3}) m", m[0], m[1], m[2])
     });
-    use squeal_chbm::floquet::CycleStability as Stability;
     let loud: Vec<f64> = a
         .branch
         .points
@@ -512,10 +510,7 @@ pub fn parse_microphone(text: &str) -> std::result::Result<[f64; 3], String> {
     let usage = "give the microphone's position as three numbers in metres separated by commas, x,y,z, in the meshes' frame (e.g. --mic 0.35,0,0.35); repeat --mic for more microphones";
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
     if parts.len() != 3 {
-        return Err(format!(
-            "'{text}' has {} value(s): {usage}",
-            parts.len()
-        ));
+        return Err(format!("'{text}' has {} value(s): {usage}", parts.len()));
     }
     let mut out = [0.0; 3];
     for (d, p) in parts.iter().enumerate() {
