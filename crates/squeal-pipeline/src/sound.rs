@@ -23,6 +23,9 @@
 //! centroid. On the axis itself the modes with nodal diameters radiate nothing by symmetry;
 //! off it they do. The Rayleigh integral takes only the faces that face the microphone
 //! ([`Facing::TowardMicrophone`]).
+//! Other microphones come from the pipeline's sound options (`Pipeline::sound`, the command
+//! line's `--mic x,y,z`, checked by [`check_microphones`]): `squeal chbm` gives the level at
+//! each, the branch and the report at the first.
 
 use crate::error::{PipelineError, Result};
 use crate::model::{Log, Model};
