@@ -37,6 +37,8 @@ pub struct BranchArgs {
     /// .toml: out/meshes/brake for meshes/brake.toml)
     #[arg(long, short)]
     pub out: Option<PathBuf>,
+    #[arg(long, value_name = "X,Y,Z", help = crate::commands::mic::HELP, allow_hyphen_values = true, value_parser = squeal_pipeline::sound::parse_microphone)]
+    pub mic: Vec<[f64; 3]>,
 }
 
 /// The branch's options from the command line, checked before any work.
@@ -78,7 +80,8 @@ pub fn options(args: &BranchArgs) -> Result<BranchOptions> {
 
 pub fn run(args: BranchArgs) -> Result<ExitCode> {
     let opts = options(&args)?;
-    let p = pipeline(&args.scene, &args.out, &None)?;
+    let mut p = pipeline(&args.scene, &args.out, &None)?;
+    crate::commands::mic::apply(&mut p, &args.mic)?;
     Ok(if write(&p, &opts, &args.at)?.is_some() {
         ExitCode::SUCCESS
     } else {

@@ -47,6 +47,8 @@ pub struct ChbmArgs {
     /// Skip the VTU time series of the limit cycle
     #[arg(long)]
     pub no_vtu: bool,
+    #[arg(long, value_name = "X,Y,Z", help = crate::commands::mic::HELP, allow_hyphen_values = true, value_parser = squeal_pipeline::sound::parse_microphone)]
+    pub mic: Vec<[f64; 3]>,
 }
 
 /// The limit cycle the command line asks for: the scene's ([`CyclePlan::of_scene`]) with the
@@ -116,8 +118,9 @@ pub fn run(args: ChbmArgs) -> Result<ExitCode> {
     {
         bail!("--amplitude {a}: must be a positive number");
     }
-    let p = pipeline(&args.scene, &args.out, &None)?;
+    let mut p = pipeline(&args.scene, &args.out, &None)?;
     let plan = plan(&p, &args)?;
+    crate::commands::mic::apply(&mut p, &args.mic)?;
     let lc = solve(&p, &plan, !args.no_vtu)?;
     Ok(if lc.cycle().is_some() {
         ExitCode::SUCCESS

@@ -4,6 +4,7 @@ pub mod compare;
 pub mod fe;
 pub mod mesh;
 pub mod mesh_scene;
+pub mod mic;
 pub mod nlmode;
 pub mod reduce;
 pub mod run;

@@ -31,6 +31,8 @@ pub struct RunArgs {
     /// comma-separated list; the reference is the periodic orbit by shooting)
     #[arg(long, value_delimiter = ',', default_value = "1e-5,1e-6,1e-7")]
     pub compare_rtol: Vec<f64>,
+    #[arg(long, value_name = "X,Y,Z", help = crate::commands::mic::HELP, allow_hyphen_values = true, value_parser = squeal_pipeline::sound::parse_microphone)]
+    pub mic: Vec<[f64; 3]>,
 }
 
 pub fn run(args: RunArgs) -> Result<ExitCode> {
@@ -41,7 +43,8 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         ..CompareSettings::default()
     };
     settings.validate()?;
-    let p = stability::pipeline(&args.scene, &args.out, &None)?;
+    let mut p = stability::pipeline(&args.scene, &args.out, &None)?;
+    crate::commands::mic::apply(&mut p, &args.mic)?;
     let plan = RunPlan {
         compare: (!args.no_compare).then_some(settings),
         ..RunPlan::of_scene(&p)?

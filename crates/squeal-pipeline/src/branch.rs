@@ -51,6 +51,8 @@ pub struct BranchAnalysis {
     /// Each point's A-weighted level at the microphone (dB(A), [`crate::sound::branch_levels`]);
     /// empty when not computed.
     pub levels: Vec<f64>,
+    /// The microphone the levels are taken at (m), when they were computed.
+    pub microphone: Option<[f64; 3]>,
 }
 
 /// A cycle of the branch at a friction value asked for.
@@ -186,6 +188,7 @@ pub fn analyse(
         floquet_time,
         at: cycles,
         levels: Vec::new(),
+        microphone: None,
     }))
 }
 
@@ -464,6 +467,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
             "exponent": [bi.exponent.sigma.re, bi.exponent.sigma.im],
             "unstable_before_after": [bi.unstable.0, bi.unstable.1],
         })).collect::<Vec<_>>(),
+        "microphone_m": a.microphone,
         "cycles_at": a.at.iter().map(|c| {
             let f = c.floquet.as_ref().ok();
             serde_json::json!({

@@ -77,6 +77,9 @@ pub struct Pipeline<'a> {
     model: OnceCell<Model>,
     stability: OnceCell<Stability>,
     timings: RefCell<Vec<(String, f64)>>,
+    /// How the limit cycles' sound is estimated: the air and the microphones (none: the
+    /// default one, [`sound::default_microphone`]).
+    pub sound: sound::SoundOptions,
 }
 
 impl<'a> Pipeline<'a> {
@@ -97,6 +100,7 @@ impl<'a> Pipeline<'a> {
             model: OnceCell::new(),
             stability: OnceCell::new(),
             timings: RefCell::new(Vec::new()),
+            sound: sound::SoundOptions::default(),
         })
     }
 

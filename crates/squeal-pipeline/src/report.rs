@@ -48,6 +48,8 @@ pub struct RunResults<'a> {
     pub compare: Option<&'a CompareSummary>,
     /// Wall time of each stage (s).
     pub timings: &'a [(String, f64)],
+    /// How the limit cycle's sound is estimated (its microphones).
+    pub sound: &'a crate::sound::SoundOptions,
 }
 
 mod makeup;

@@ -23,6 +23,9 @@
 //! centroid. On the axis itself the modes with nodal diameters radiate nothing by symmetry;
 //! off it they do. The Rayleigh integral takes only the faces that face the microphone
 //! ([`Facing::TowardMicrophone`]).
+//! Other microphones come from the pipeline's sound options (`Pipeline::sound`, the command
+//! line's `--mic x,y,z`, checked by [`check_microphones`]): `squeal chbm` gives the level at
+//! each, the branch and the report at the first.
 
 use crate::error::{PipelineError, Result};
 use crate::model::{Log, Model};
@@ -207,12 +210,35 @@ impl BrakeSurface {
                 velocity: Velocity::Nodal(v),
             })
             .collect();
-        let mics = if opts.microphones.is_empty() {
+        let mics = self.microphones(opts);
+        squeal_acoustics::sound(&opts.air, &self.surface, &h, &mics, opts.facing).map_err(acoustic)
+    }
+
+    /// The microphones of `opts`, or the default one when none is given.
+    pub fn microphones(&self, opts: &SoundOptions) -> Vec<[f64; 3]> {
+        if opts.microphones.is_empty() {
             vec![self.microphone]
         } else {
             opts.microphones.clone()
-        };
-        squeal_acoustics::sound(&opts.air, &self.surface, &h, &mics, opts.facing).map_err(acoustic)
+        }
+    }
+
+    /// The first microphone of `opts`, or the default one.
+    pub fn first_microphone(&self, opts: &SoundOptions) -> [f64; 3] {
+        opts.microphones.first().copied().unwrap_or(self.microphone)
+    }
+
+    /// The corners (least, greatest) of the box that bounds the radiating surface's points.
+    pub fn bounds(&self) -> ([f64; 3], [f64; 3]) {
+        self.surface.points.iter().fold(
+            ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+            |(lo, hi), q| {
+                (
+                    std::array::from_fn(|d| lo[d].min(q.position[d])),
+                    std::array::from_fn(|d| hi[d].max(q.position[d])),
+                )
+            },
+        )
     }
 }
 
@@ -334,19 +360,23 @@ pub fn sound_text(s: &Sound, surface: &BrakeSurface, mic: [f64; 3]) -> String {
     )
 }
 
-/// The A-weighted level (Rayleigh integral, default microphone, dB(A)) of every cycle of a
-/// branch: each cycle's coefficients of all dofs recovered by eq (35) at its own μ
-/// ([`squeal_chbm::branch::full_cycle`] on `samples` AFT samples), then
-/// [`BrakeSurface::cycle_sound`].
+/// The A-weighted level (Rayleigh integral, dB(A)) at the first microphone of `opts` (the
+/// default one when none is given) of every cycle of a branch: each cycle's coefficients of
+/// all dofs recovered by eq (35) at its own μ ([`squeal_chbm::branch::full_cycle`] on
+/// `samples` AFT samples), then [`BrakeSurface::cycle_sound`].
 pub fn branch_levels(
     surface: &BrakeSurface,
     m: &Model,
     st: &squeal_brake::analysis::LinearStability,
     a: &crate::branch::BranchAnalysis,
     samples: Option<usize>,
+    opts: &SoundOptions,
 ) -> Result<Vec<f64>> {
     let mb = squeal_brake::modal_brake::ModalBrake::new(&m.brake, &st.reference, a.mu0());
-    let opts = SoundOptions::default();
+    let opts = SoundOptions {
+        microphones: vec![surface.first_microphone(opts)],
+        ..opts.clone()
+    };
     a.branch
         .points
         .iter()
@@ -361,6 +391,9 @@ pub fn branch_levels(
 /// Where the branch's stable cycles reach SAE J2521's 70 dB(A) at the microphone: one line.
 pub fn squeal_level_text(a: &crate::branch::BranchAnalysis, levels: &[f64]) -> String {
     use squeal_chbm::floquet::CycleStability as Stability;
+    let at = a.microphone.map_or(String::new(), |m| {
+        format!(" ({:.3}, {:.3}, {:.3}) m", m[0], m[1], m[2])
+    });
     let loud: Vec<f64> = a
         .branch
         .points
@@ -388,43 +421,106 @@ pub fn squeal_level_text(a: &crate::branch::BranchAnalysis, levels: &[f64]) -> S
         format!("; loudest {l:.1} dB(A) at mu = {mu:.6}")
     });
     format!(
-        "sound at the microphone (Rayleigh integral, SAE J2521 squeal from {SQUEAL_DBA} dB(A)): {range}{top}\n"
+        "sound at the microphone{at} (Rayleigh integral, SAE J2521 squeal from {SQUEAL_DBA} dB(A)): {range}{top}\n"
     )
 }
 
-/// The line `squeal chbm` prints on a CHBM solution's sound (or why it was not computed).
+/// The lines `squeal chbm` prints on a CHBM solution's sound, one per microphone of `opts`
+/// (the default one when none is given), or why it was not computed.
 pub fn solution_sound_text(
     scene: &Scene,
     m: &Model,
     sol: &squeal_chbm::ChbmSolution,
+    opts: &SoundOptions,
     log: Log,
 ) -> String {
     let text = BrakeSurface::new(scene, m, log).and_then(|s| {
-        let snd = s.cycle_sound(
-            &sol.coeffs,
-            sol.harmonics,
-            sol.omega,
-            &SoundOptions::default(),
-        )?;
-        Ok(sound_text(&snd, &s, s.microphone))
+        let mut out = String::new();
+        for mic in s.microphones(opts) {
+            let one = SoundOptions {
+                microphones: vec![mic],
+                ..opts.clone()
+            };
+            let snd = s.cycle_sound(&sol.coeffs, sol.harmonics, sol.omega, &one)?;
+            out += &sound_text(&snd, &s, mic);
+        }
+        Ok(out)
     });
     text.unwrap_or_else(|e| format!("  sound: not computed: {e}\n"))
 }
 
-/// [`branch_levels`] on the scene's radiating surface; empty (with the reason logged) when
-/// it cannot be computed, e.g. a reduced model kept without its bases.
+/// [`branch_levels`] on the scene's radiating surface, with the microphone they are taken
+/// at; empty (with the reason logged) when they cannot be computed, e.g. a reduced model kept
+/// without its bases.
 pub fn branch_levels_or_log(
     scene: &Scene,
     m: &Model,
     st: &squeal_brake::analysis::LinearStability,
     a: &crate::branch::BranchAnalysis,
     samples: Option<usize>,
+    opts: &SoundOptions,
     log: Log,
-) -> Vec<f64> {
+) -> (Vec<f64>, Option<[f64; 3]>) {
     BrakeSurface::new(scene, m, log)
-        .and_then(|s| branch_levels(&s, m, st, a, samples))
+        .and_then(|s| {
+            let levels = branch_levels(&s, m, st, a, samples, opts)?;
+            Ok((levels, Some(s.first_microphone(opts))))
+        })
         .unwrap_or_else(|e| {
             log(&format!("sound of the branch's cycles not computed: {e}"));
-            Vec::new()
+            (Vec::new(), None)
         })
+}
+
+/// Checks microphones given on the command line against the brake of `m` before any long
+/// computation: each must lie in the air around the brake, outside the box that bounds its
+/// radiating surface (inside it the Rayleigh integral over the faces that face it and the
+/// monopole sum have no meaning).
+pub fn check_microphones(scene: &Scene, m: &Model, mics: &[[f64; 3]], log: Log) -> Result<()> {
+    if mics.is_empty() {
+        return Ok(());
+    }
+    let s = BrakeSurface::new(scene, m, log)?;
+    let (lo, hi) = s.bounds();
+    for (k, mic) in mics.iter().enumerate() {
+        if (0..3).all(|d| lo[d] <= mic[d] && mic[d] <= hi[d]) {
+            return Err(PipelineError::input(
+                "--mic",
+                format!(
+                    "microphone {} at ({}, {}, {}) m is inside the brake's bounds x {:.3}..{:.3}, y {:.3}..{:.3}, z {:.3}..{:.3} m (the meshes' frame in metres): place it in the air around the brake, e.g. the default ({:.3}, {:.3}, {:.3}) m, 0.5 m from the disc's centre",
+                    k + 1,
+                    mic[0],
+                    mic[1],
+                    mic[2],
+                    lo[0],
+                    hi[0],
+                    lo[1],
+                    hi[1],
+                    lo[2],
+                    hi[2],
+                    s.microphone[0],
+                    s.microphone[1],
+                    s.microphone[2]
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A microphone position from the command line: `x,y,z` in metres (three finite numbers).
+pub fn parse_microphone(text: &str) -> std::result::Result<[f64; 3], String> {
+    let usage = "give the microphone's position as three numbers in metres separated by commas, x,y,z, in the meshes' frame (e.g. --mic 0.35,0,0.35); repeat --mic for more microphones";
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(format!("'{text}' has {} value(s): {usage}", parts.len()));
+    }
+    let mut out = [0.0; 3];
+    for (d, p) in parts.iter().enumerate() {
+        out[d] = match p.parse::<f64>() {
+            Ok(v) if v.is_finite() => v,
+            _ => return Err(format!("'{p}' in '{text}' is not a finite number: {usage}")),
+        };
+    }
+    Ok(out)
 }

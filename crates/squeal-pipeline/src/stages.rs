@@ -92,7 +92,8 @@ pub fn branch_stage(
     };
     p.record("branch and its stability", t.elapsed().as_secs_f64());
     let t = Instant::now();
-    a.levels = crate::sound::branch_levels_or_log(&p.scene, m, st, &a, opts.samples, p.log());
+    (a.levels, a.microphone) =
+        crate::sound::branch_levels_or_log(&p.scene, m, st, &a, opts.samples, &p.sound, p.log());
     p.record("sound of the branch's cycles", t.elapsed().as_secs_f64());
     tell(p, &branch::summary_text(&a));
     let dir = p.out.join("branch");
@@ -199,7 +200,7 @@ fn write_solution(
     if sol.outcome == Outcome::LimitCycle {
         tell(
             p,
-            &crate::sound::solution_sound_text(&p.scene, m, sol, p.log()),
+            &crate::sound::solution_sound_text(&p.scene, m, sol, &p.sound, p.log()),
         );
     }
     let dir = p.out.join("chbm");
@@ -310,6 +311,7 @@ pub fn run(p: &Pipeline, plan: &RunPlan) -> Result<RunOutcome> {
         chbm: cycle.as_ref(),
         compare: compare.as_ref(),
         timings: &timings,
+        sound: &p.sound,
     };
     let report_notes = build(&results, &p.out, p.log())
         .map_err(|e| e.in_stage("the report's pictures"))?

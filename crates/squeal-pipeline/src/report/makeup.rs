@@ -107,17 +107,17 @@ pub fn section(
 }
 
 /// `, 84.2 dB(A) at the microphone (x, y, z) m (squeal by SAE J2521's 70 dB(A))` for the
-/// limit cycle of the run (Rayleigh integral, the scene's first microphone), or why not.
+/// limit cycle of the run (Rayleigh integral, the run's first microphone), or why not.
 pub fn cycle_level(r: &RunResults<'_>, sol: &squeal_chbm::ChbmSolution) -> String {
     use crate::sound::{BrakeSurface, SQUEAL_DBA, SoundOptions};
     let level = BrakeSurface::new(r.scene, r.model, &crate::model::quiet).and_then(|s| {
-        let snd = s.cycle_sound(
-            &sol.coeffs,
-            sol.harmonics,
-            sol.omega,
-            &SoundOptions::default(),
-        )?;
-        Ok((snd.rayleigh_dba.first().copied(), s.microphone))
+        let mic = s.first_microphone(r.sound);
+        let opts = SoundOptions {
+            microphones: vec![mic],
+            ..r.sound.clone()
+        };
+        let snd = s.cycle_sound(&sol.coeffs, sol.harmonics, sol.omega, &opts)?;
+        Ok((snd.rayleigh_dba.first().copied(), mic))
     });
     match level {
         Ok((Some(l), mic)) => format!(
