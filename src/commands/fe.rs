@@ -108,7 +108,7 @@ pub fn run(cmd: FeCommand) -> Result<ExitCode> {
     let mut req = ExportRequest::new(args.mesh.clone(), args.out.clone());
     req.restraints = restraints(&args.clamp, &args.restrain)?;
     req.materials = args.materials.overrides()?;
-    req.units = units.clone();
+    req.units = units;
     let done = export(&req)?;
     for w in &done.warnings {
         eprintln!("warning: {w}");
