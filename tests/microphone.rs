@@ -109,3 +109,69 @@ fn microphones_from_the_command_line() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `[sound]` in the scene (issue 23: microphones and air from the scene): its microphone is
+/// used as `--mic` would be, in the scene's length unit; the air's density scales the radiated
+/// power (ERP = ½ ρ c Σ A v_n², so twice the density is +3.01 dB); values that are not air are
+/// refused at the key's line.
+#[test]
+fn microphones_and_air_from_the_scene() {
+    let dir = temp_dir("mic", "scene");
+    let base = bundled_scene("coarse");
+    let o = dir.join("out");
+    let o = o.to_str().unwrap();
+    let write = |name: &str, extra: &str| {
+        let p = dir.join(name);
+        std::fs::write(&p, format!("{base}\n{extra}\n")).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let flag = sound_lines(&run_ok(&[
+        "chbm",
+        &write("plain.toml", ""),
+        "-o",
+        o,
+        "--no-vtu",
+        "--mic",
+        "0.35,0,0.35",
+    ]));
+    let scene = sound_lines(&run_ok(&[
+        "chbm",
+        &write("mic.toml", "[sound]\nmicrophones = [[0.35, 0.0, 0.35]]"),
+        "-o",
+        o,
+        "--no-vtu",
+    ]));
+    // The same position, the same cycle: the same printed level and ERP.
+    assert_eq!(scene, flag, "scene {scene:?} vs --mic {flag:?}");
+    let dense = sound_lines(&run_ok(&[
+        "chbm",
+        &write(
+            "air.toml",
+            "[sound]\nmicrophones = [[0.35, 0.0, 0.35]]\nair_density = 2.4",
+        ),
+        "-o",
+        o,
+        "--no-vtu",
+    ]));
+    // 10 log10(2) = 3.0103 dB, to the two printed values' 0.05 dB each.
+    assert!(
+        (dense[0].2 - flag[0].2 - 3.0103).abs() <= 0.1 + 1e-9,
+        "{dense:?} vs {flag:?}"
+    );
+    for (extra, said) in [
+        ("[sound]\nair_density = -1.0", "sound.air_density"),
+        ("[sound]\nspeed_of_sound = 1e9", "sound.speed_of_sound"),
+        ("[sound]\nmicrophones = []", "sound.microphones"),
+        (
+            "[sound]\nmicrophones = [[0.0, 0.0, 0.0]]",
+            "inside the brake",
+        ),
+    ] {
+        let p = write("bad.toml", extra);
+        let out = squeal(&["chbm", &p, "-o", o, "--no-vtu"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{extra}: {err}");
+        assert!(err.contains(said), "{extra}: {err}");
+        assert!(err.contains("bad.toml:"), "{extra}: no file:line in {err}");
+    }
+}

@@ -77,8 +77,8 @@ pub struct Pipeline<'a> {
     model: OnceCell<Model>,
     stability: OnceCell<Stability>,
     timings: RefCell<Vec<(String, f64)>>,
-    /// How the limit cycles' sound is estimated: the air and the microphones (none: the
-    /// default one, [`sound::default_microphone`]).
+    /// How the limit cycles' sound is estimated: the air and the microphones of the scene's
+    /// `[sound]` (none: the default one, [`sound::default_microphone`]).
     pub sound: sound::SoundOptions,
 }
 
@@ -91,6 +91,7 @@ impl<'a> Pipeline<'a> {
     pub fn new(scene: Scene, out: PathBuf, log: Log<'a>) -> Result<Self> {
         let mus = scene.mu_values()?;
         model::check_outputs(&scene, &out)?;
+        let sound = sound::SoundOptions::of_scene(&scene)?;
         Ok(Self {
             scene,
             out,
@@ -100,7 +101,7 @@ impl<'a> Pipeline<'a> {
             model: OnceCell::new(),
             stability: OnceCell::new(),
             timings: RefCell::new(Vec::new()),
-            sound: sound::SoundOptions::default(),
+            sound,
         })
     }
 
@@ -151,6 +152,18 @@ impl<'a> Pipeline<'a> {
         }
         let m = self.timed("reduced model and brake", || {
             model::build(&self.scene, &self.out, self.log)
+        })?;
+        // The scene's own microphones, checked against the brake as `--mic` is.
+        let scene_mics = self.scene.sound()?.microphones;
+        sound::check_microphones(&self.scene, &m, &scene_mics, self.log).map_err(|e| {
+            let message = match e {
+                PipelineError::Input { message, .. } => message,
+                other => other.to_string(),
+            };
+            PipelineError::from(
+                self.scene
+                    .error_at_key(squeal_scene::Key::Microphones, message),
+            )
         })?;
         Ok(self.model.get_or_init(|| m))
     }

@@ -58,6 +58,18 @@ pub struct SoundOptions {
     pub facing: Facing,
 }
 
+impl SoundOptions {
+    /// The scene's `[sound]`: its microphones (none: the default one) and its air.
+    pub fn of_scene(scene: &Scene) -> Result<Self> {
+        let s = scene.sound()?;
+        let mut o = Self::default();
+        o.air.density = s.air_density;
+        o.air.speed_of_sound = s.speed_of_sound;
+        o.microphones = s.microphones;
+        Ok(o)
+    }
+}
+
 impl Default for SoundOptions {
     fn default() -> Self {
         Self {

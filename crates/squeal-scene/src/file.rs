@@ -40,6 +40,9 @@ pub struct SceneFile {
     /// `[reduction]`: an interface reduction beyond Craig–Bampton ([`reduction`]).
     #[serde(default)]
     pub reduction: reduction::ReductionSection,
+    /// `[sound]`: microphones and air ([`crate::sound`]).
+    #[serde(default)]
+    pub sound: crate::sound::SoundSection,
 }
 
 /// `[pads.<name>]`: one pad of a brake with several (an inboard pad pushed by the pistons, an

@@ -28,6 +28,7 @@ mod checks;
 mod model_keys;
 pub mod reduction;
 pub mod sets;
+pub mod sound;
 pub mod variant;
 pub use variant::{Interface, MESH_LEVELS, level_path};
 
@@ -282,6 +283,7 @@ impl Scene {
             ));
         }
         self.interface_reduction()?;
+        self.sound()?;
         if *f.model.modes.get_ref() == 0 {
             return Err(self.error_at("model.modes", &f.model.modes, "must be at least 1"));
         }

@@ -21,6 +21,8 @@ pub enum Key {
     DampingPairRatios,
     /// `[damping] global_ratio`
     DampingGlobalRatio,
+    /// `[sound] microphones`
+    Microphones,
 }
 
 impl Key {
@@ -32,6 +34,7 @@ impl Key {
             Key::DampingPair => "damping.pair",
             Key::DampingPairRatios => "damping.pair_ratios",
             Key::DampingGlobalRatio => "damping.global_ratio",
+            Key::Microphones => "sound.microphones",
         }
     }
 }
@@ -121,6 +124,7 @@ impl Scene {
             Key::DampingPair => Some(f.damping.pair.span()),
             Key::DampingPairRatios => f.damping.pair_ratios.as_ref().map(|v| v.span()),
             Key::DampingGlobalRatio => Some(f.damping.global_ratio.span()),
+            Key::Microphones => f.sound.microphones.as_ref().map(|v| v.span()),
         }
     }
 
