@@ -29,7 +29,11 @@
 //! The equilibria of a large brake are found by the Newton iteration of
 //! [`crate::equilibrium`] with its steps solved in the modal basis: `Φᵀ K_t Φ = T(0) = Ω² +
 //! U₀ Vᵀ`, so `K_t⁻¹ b = Φ T(0)⁻¹ Φᵀ b`, a diagonal plus rank-`P` solve ([`crate::linearized`])
-//! and two products with `Φ`, `O(n² + n P²)` instead of the `O(n³)` of a dense LU.
+//! and two products with `Φ`, `O(n² + n P²)` instead of the `O(n³)` of a dense LU. Each
+//! starts from the linear extrapolation of the two equilibria before it (error `O(Δμ²)`: one
+//! Newton iteration per point instead of two on the 1998-dof brake, each a few passes over
+//! `n × n` matrices), from the last one when that fails. The Hopf point's regula falsi and
+//! the normal form of a large brake ([`crate::criticality`]) take the same modal steps.
 //!
 //! The truncation neglects the dynamics of the dropped modes beyond the terms kept (with one,
 //! `T_tt(λ)⁻¹` against `Ω_t⁻²`, a relative `ω²/ω_t²`); it is small when they lie well above

@@ -174,6 +174,23 @@ fn main() {
             eprintln!("  stats: {:?}", s.stats);
             let newton: usize = s.points.iter().map(|p| p.equilibrium.iterations).sum();
             eprintln!("  Newton iterations over the points: {newton}");
+            if let Some(h) = &s.hopf {
+                // The normal form at μ0 the pipeline computes after the sweep.
+                let t = Instant::now();
+                let guess = faer::c64::new(0.0, std::f64::consts::TAU * h.frequency_hz);
+                let nf = squeal_brake::criticality::normal_form(
+                    brake,
+                    &r,
+                    h.mu0,
+                    guess,
+                    &opts.newton,
+                );
+                eprintln!(
+                    "  normal form at mu0: {:.2} s, l1 = {}",
+                    t.elapsed().as_secs_f64(),
+                    nf.map_or_else(|e| e.to_string(), |nf| format!("{:.6e}", nf.l1))
+                );
+            }
             let p = &s.timings;
             eprintln!(
                 "  phases (s): projection {:.2}, equilibria {:.2}, spectra {:.2}, tracking {:.2}, refinement {:.2} ({} evaluations)",
