@@ -178,13 +178,8 @@ fn main() {
                 // The normal form at μ0 the pipeline computes after the sweep.
                 let t = Instant::now();
                 let guess = faer::c64::new(0.0, std::f64::consts::TAU * h.frequency_hz);
-                let nf = squeal_brake::criticality::normal_form(
-                    brake,
-                    &r,
-                    h.mu0,
-                    guess,
-                    &opts.newton,
-                );
+                let nf =
+                    squeal_brake::criticality::normal_form(brake, &r, h.mu0, guess, &opts.newton);
                 eprintln!(
                     "  normal form at mu0: {:.2} s, l1 = {}",
                     t.elapsed().as_secs_f64(),
