@@ -293,7 +293,7 @@ fn upper_point(
 }
 
 /// The equilibrium at a friction value from a given state.
-pub(crate) type EquilibriumAt = dyn Fn(f64, &[f64]) -> Result<Equilibrium, BrakeError>;
+pub(crate) type EquilibriumAt<'a> = dyn Fn(f64, &[f64]) -> Result<Equilibrium, BrakeError> + 'a;
 
 /// Finds, in a new spectrum, the mode continuing a tracked one (best eigenvector correlation,
 /// ties broken by eigenvalue distance).
@@ -316,7 +316,7 @@ fn follow(from: &Spectrum, j: usize, to: &Spectrum) -> usize {
 /// correlation from the lower end of the bracket. `equilibrium_at(μ, from)`: the equilibrium at
 /// μ from the state `from`.
 pub(crate) fn regula_falsi(
-    equilibrium_at: &EquilibriumAt,
+    equilibrium_at: &EquilibriumAt<'_>,
     spectrum_at: &dyn Fn(&Equilibrium) -> Result<Spectrum, BrakeError>,
     sweep: &Sweep,
     c: &Crossing,
