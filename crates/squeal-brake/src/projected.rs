@@ -23,8 +23,10 @@
 //! band's top); its left singular vectors of small singular value carry responses a
 //! contact force excites only weakly, and dropping those below a fraction of the largest
 //! keeps the flexibility to that fraction with fewer vectors (`k` enters the cost cubed). The
-//! check below judges the compressed basis like any other. The equilibrium of eq (14) at each μ is not projected: it is the
-//! brake's own, as in the other methods.
+//! check below judges the compressed basis like any other.
+//!
+//! The equilibrium of eq (14) at each μ is not projected: it is the brake's own, as in the
+//! other methods.
 //!
 //! The equilibria of a large brake are found by the Newton iteration of
 //! [`crate::equilibrium`] with its steps solved in the modal basis: `Φᵀ K_t Φ = T(0) = Ω² +
