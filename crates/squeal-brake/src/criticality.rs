@@ -38,6 +38,7 @@ use crate::error::BrakeError;
 use crate::linearized::{Coupling, LinearizedBrake};
 use crate::model::{Brake, ContactPair, dot_sparse};
 use crate::spectrum::{Reference, spectrum};
+use crate::sweep::PROJECT_ABOVE;
 use faer::c64;
 
 /// Which way the branch of limit cycles leaves the Hopf point.
@@ -291,7 +292,11 @@ impl Forms<'_> {
 
 /// The Hopf normal form of `brake` at `mu0`, for the critical eigenvalue nearest `guess`
 /// (`iω0` of the sweep's Hopf point). Fails when a pair is open at the equilibrium (the
-/// contact law is not smooth there) or the eigenvalue cannot be polished.
+/// contact law is not smooth there) or the eigenvalue cannot be polished. Above
+/// [`PROJECT_ABOVE`] dofs the equilibrium's Newton steps are solved in the modal basis and the
+/// critical eigenpair starts from a projection ([`crate::projected`]) instead of the dense
+/// spectrum of the whole brake; both end on the same exact eigenpair of `T(λ)`
+/// ([`normal_form_with`]).
 pub fn normal_form(
     brake: &Brake,
     reference: &Reference,
@@ -299,29 +304,52 @@ pub fn normal_form(
     guess: c64,
     newton: &NewtonOptions,
 ) -> Result<NormalForm, BrakeError> {
-    let eq = static_equilibrium(brake, mu0, None, newton)?;
+    let large = brake.size() > PROJECT_ABOVE;
+    normal_form_with(brake, reference, mu0, guess, newton, large)
+}
+
+/// [`normal_form`], the equilibrium and critical eigenpair found as for a large brake
+/// (`large`: modal Newton steps, a projection's eigenpair converged on the whole brake) or as
+/// for a small one (dense Newton steps, the dense spectrum) whatever the size.
+pub fn normal_form_with(
+    brake: &Brake,
+    reference: &Reference,
+    mu0: f64,
+    guess: c64,
+    newton: &NewtonOptions,
+    large: bool,
+) -> Result<NormalForm, BrakeError> {
+    let lin = LinearizedBrake::new(brake, reference)?;
+    let eq = if large {
+        // Newton steps in the modal basis from the frictionless equilibrium, as the
+        // projected sweep's (a dense LU of a large brake per step is the cost otherwise).
+        crate::projected::equilibrium(brake, reference, &lin, mu0, None, newton)?
+    } else {
+        static_equilibrium(brake, mu0, None, newton)?
+    };
     if let Some(p) = eq.penetrations.iter().position(|d| *d <= 0.0) {
         return Err(BrakeError::OpenAtHopf { pair: p + 1 });
     }
-    let lin = LinearizedBrake::new(brake, reference)?;
     let c = lin.coupling(brake, &eq);
-    // The critical eigenpair from the dense spectrum, polished with its left vector.
-    let sp = spectrum(brake, reference, &eq)?;
-    let j = (0..sp.values.len())
-        .min_by(|&a, &b| {
-            (sp.values[a] - guess)
-                .norm()
-                .total_cmp(&(sp.values[b] - guess).norm())
-        })
-        .ok_or(BrakeError::EigenNoConvergence)?;
-    let right: Vec<c64> = (0..sp.modes.nrows()).map(|r| sp.modes[(r, j)]).collect();
-    let pair = seed(
-        &lin,
-        &c,
-        sp.values[j],
-        right,
-        &EigenContinuationOptions::default(),
-    );
+    let copts = EigenContinuationOptions::default();
+    let pair = if large {
+        // The critical eigenpair from a projection, converged on the whole brake (the dense
+        // spectrum of a brake of thousands of dofs would cost minutes).
+        crate::projected::nearest_pair(&lin, reference, &c, guess, &copts)?
+            .ok_or(BrakeError::EigenNoConvergence)?
+    } else {
+        // The critical eigenpair from the dense spectrum, polished with its left vector.
+        let sp = spectrum(brake, reference, &eq)?;
+        let j = (0..sp.values.len())
+            .min_by(|&a, &b| {
+                (sp.values[a] - guess)
+                    .norm()
+                    .total_cmp(&(sp.values[b] - guess).norm())
+            })
+            .ok_or(BrakeError::EigenNoConvergence)?;
+        let right: Vec<c64> = (0..sp.modes.nrows()).map(|r| sp.modes[(r, j)]).collect();
+        seed(&lin, &c, sp.values[j], right, &copts)
+    };
     let l = pair.lambda;
     let omega0 = l.im;
     // dλ/dμ along the equilibrium path.

@@ -21,7 +21,7 @@
 //! branches followed by correlation (`regula_falsi`).
 
 use crate::continuation::{Eigenpair, converge, seed};
-use crate::equilibrium::{Equilibrium, static_equilibrium};
+use crate::equilibrium::Equilibrium;
 use crate::error::BrakeError;
 use crate::linearized::{Coupling, LinearizedBrake};
 use crate::model::Brake;
@@ -292,6 +292,9 @@ fn upper_point(
     Ok(Some((point, position[found], found)))
 }
 
+/// The equilibrium at a friction value from a given state.
+pub(crate) type EquilibriumAt<'a> = dyn Fn(f64, &[f64]) -> Result<Equilibrium, BrakeError> + 'a;
+
 /// Finds, in a new spectrum, the mode continuing a tracked one (best eigenvector correlation,
 /// ties broken by eigenvalue distance).
 fn follow(from: &Spectrum, j: usize, to: &Spectrum) -> usize {
@@ -310,9 +313,10 @@ fn follow(from: &Spectrum, j: usize, to: &Spectrum) -> usize {
 /// Refines a crossing by the Illinois variant of regula falsi on the larger real part of the
 /// crossing branch and its partner (as [`crate::hopf`] does, for the same reason: where two
 /// modes coalesce, either may carry the instability), keeping a bracket. Both are followed by
-/// correlation from the lower end of the bracket.
+/// correlation from the lower end of the bracket. `equilibrium_at(μ, from)`: the equilibrium at
+/// μ from the state `from`.
 pub(crate) fn regula_falsi(
-    brake: &Brake,
+    equilibrium_at: &EquilibriumAt<'_>,
     spectrum_at: &dyn Fn(&Equilibrium) -> Result<Spectrum, BrakeError>,
     sweep: &Sweep,
     c: &Crossing,
@@ -371,7 +375,7 @@ pub(crate) fn regula_falsi(
         if !mu.is_finite() || mu <= lo.mu + 0.01 * width || mu >= hi.mu - 0.01 * width {
             mu = 0.5 * (lo.mu + hi.mu);
         }
-        let eq = static_equilibrium(brake, mu, Some(&lo.point.equilibrium.x), &opts.newton)?;
+        let eq = equilibrium_at(mu, &lo.point.equilibrium.x)?;
         let sp = spectrum_at(&eq)?;
         let modes = follow_all(&lo, &sp);
         let e = end(

@@ -10,7 +10,10 @@
 use crate::damping::ModalDamping;
 use crate::error::BrakeError;
 use faer::linalg::solvers::Solve;
-use faer::{Mat, Side};
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::{Mat, Par, Side};
 
 /// Mass-normalized modes, frequencies ascending.
 #[derive(Clone, Debug)]
@@ -29,9 +32,22 @@ pub fn modal_basis(m: &Mat<f64>, k: &Mat<f64>) -> Result<ModalBasis, BrakeError>
         .llt(Side::Lower)
         .map_err(|_| BrakeError::MassNotPositive)?;
     let l = llt.L().to_owned();
+    // Above the size the projected sweep starts at, the triangular solves are faer's blocked
+    // ones (a 2000-dof brake: seconds less than the column loops, whose bits the bundled brakes'
+    // pinned numbers come from and keep).
+    let blocked = n > crate::sweep::PROJECT_ABOVE;
+    let lower = |b: &Mat<f64>| {
+        if blocked {
+            let mut x = b.clone();
+            solve_lower_triangular_in_place(l.as_ref(), x.as_mut(), Par::Seq);
+            x
+        } else {
+            solve_lower(&l, b)
+        }
+    };
     // A = L⁻¹ K L⁻ᵀ, computed as L⁻¹ (L⁻¹ K)ᵀ using K's symmetry, then symmetrized.
-    let linv_k = solve_lower(&l, k);
-    let a0 = solve_lower(&l, &linv_k.transpose().to_owned());
+    let linv_k = lower(k);
+    let a0 = lower(&linv_k.transpose().to_owned());
     // faer 0.24.4's dense self-adjoint eigensolver loses accuracy for n >= 129 when the matrix
     // norm is far from 1 (relative residuals ~1e-3 on the 158-dof brake, whose norm is
     // ~ω_max² ~ 1e11): solve the problem scaled to unit norm, and check the residuals.
@@ -54,7 +70,13 @@ pub fn modal_basis(m: &Mat<f64>, k: &Mat<f64>) -> Result<ModalBasis, BrakeError>
         return Err(BrakeError::EigenInaccurate { residual: worst });
     }
     // φ = L⁻ᵀ y.
-    let phi = l.transpose().to_owned().partial_piv_lu().solve(evd.U());
+    let phi = if blocked {
+        let mut y = evd.U().to_owned();
+        solve_upper_triangular_in_place(l.transpose(), y.as_mut(), Par::Seq);
+        y
+    } else {
+        l.transpose().to_owned().partial_piv_lu().solve(evd.U())
+    };
     Ok(ModalBasis { phi, omega })
 }
 

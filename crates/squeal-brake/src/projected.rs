@@ -15,13 +15,27 @@
 //! symmetric eigenproblem, `Θ²`). The projected problem is then of the same form, with
 //! frequencies `[Ω_m, Θ]`, damping `Qᵀ D Q` and coupling `(Qᵀ U)(Qᵀ V)ᵀ`, and is solved densely
 //! through the scaled state matrix of [`crate::spectrum`] at `O(k³)` per friction value
-//! (`k = m + 2P` per correction term at most). The equilibrium of eq (14) at each μ is not projected: it is the
-//! brake's own, as in the other methods.
+//! (`k = m + 2P` per correction term at most).
+//!
+//! The correction vectors can be compressed ([`ProjectionOptions::compression`]): the dropped
+//! modes' dynamic flexibility at the contact, `F ↦ (Ω_t² + λ²)⁻¹ [V, W]_t F`, is represented
+//! on the span of its terms `Ω_t⁻²ᵏ [V, W]_t` weighted by `ω_top^{2(k-1)}` (their size at the
+//! band's top); its left singular vectors of small singular value carry responses a
+//! contact force excites only weakly, and dropping those below a fraction of the largest
+//! keeps the flexibility to that fraction with fewer vectors (`k` enters the cost cubed). The
+//! check below judges the compressed basis like any other.
+//!
+//! The equilibrium of eq (14) at each μ is not projected: it is the brake's own, as in the
+//! other methods.
 //!
 //! The equilibria of a large brake are found by the Newton iteration of
 //! [`crate::equilibrium`] with its steps solved in the modal basis: `Φᵀ K_t Φ = T(0) = Ω² +
 //! U₀ Vᵀ`, so `K_t⁻¹ b = Φ T(0)⁻¹ Φᵀ b`, a diagonal plus rank-`P` solve ([`crate::linearized`])
-//! and two products with `Φ`, `O(n² + n P²)` instead of the `O(n³)` of a dense LU.
+//! and two products with `Φ`, `O(n² + n P²)` instead of the `O(n³)` of a dense LU. Each
+//! starts from the linear extrapolation of the two equilibria before it (error `O(Δμ²)`: one
+//! Newton iteration per point instead of two on the 1998-dof brake, each a few passes over
+//! `n × n` matrices), from the last one when that fails. The Hopf point's regula falsi and
+//! the normal form of a large brake ([`crate::criticality`]) take the same modal steps.
 //!
 //! The truncation neglects the dynamics of the dropped modes beyond the terms kept (with one,
 //! `T_tt(λ)⁻¹` against `Ω_t⁻²`, a relative `ω²/ω_t²`); it is small when they lie well above
@@ -43,15 +57,20 @@
 
 use crate::continuation::{Eigenpair, converge};
 use crate::damping::ModalDamping;
-use crate::equilibrium::{Equilibrium, static_equilibrium, static_equilibrium_with};
+use crate::equilibrium::{Equilibrium, NewtonOptions, static_equilibrium, static_equilibrium_with};
 use crate::error::BrakeError;
 use crate::linearized::{Coupling, LinearizedBrake};
 use crate::model::Brake;
 use crate::spectrum::{Reference, Ritz, Spectrum, modal_spectrum};
-use crate::sweep::{SweepOptions, SweepPoint, SweepProgress, SweepStats, SweptPoints, track};
-use faer::{Mat, Side, c64};
+use crate::sweep::{
+    SweepOptions, SweepPoint, SweepProgress, SweepStats, SweepTimings, SweptPoints, track_by,
+};
+use crate::tracking::match_modes_blocked;
+use faer::linalg::matmul::matmul;
+use faer::{Accum, Mat, Par, Side, c64};
 use rayon::prelude::*;
 use std::sync::Arc;
+use std::time::Instant;
 
 /// Controls of the projected sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -72,6 +91,11 @@ pub struct ProjectionOptions {
     /// powers of `λ²`, module documentation). The first projection tried has one; a failed
     /// check adds the next before the cut-off grows.
     pub correction_terms: usize,
+    /// Correction vectors kept: the left singular vectors of the `t × 2P·terms` matrix of
+    /// the terms (term `k` scaled by `ω_top^{2(k-1)}`, its weight at the band's top) whose
+    /// singular value is above this fraction of the largest; `0` keeps them all (only
+    /// dependent ones dropped).
+    pub compression: f64,
 }
 
 impl Default for ProjectionOptions {
@@ -85,6 +109,7 @@ impl Default for ProjectionOptions {
             growth: 1.25,
             checks: 3,
             correction_terms: 2,
+            compression: 0.0,
         }
     }
 }
@@ -192,7 +217,7 @@ pub(crate) fn choose(
         deviation: 0.0,
         tolerance: opts.projection.tolerance,
         trials: Vec::new(),
-        basis: basis(lr, reference, n, 0)?,
+        basis: basis(lr, reference, n, 0, None)?,
     };
     if !top.is_finite() {
         return Ok(out);
@@ -201,17 +226,19 @@ pub(crate) fn choose(
     let mut start: Option<Equilibrium> = None;
     for k in check_indices(mus.len(), opts.projection.checks) {
         let from = start.as_ref().map(|e| e.x.as_slice());
-        let eq = equilibrium(brake, reference, lr, mus[k], from, opts)?;
+        let eq = equilibrium(brake, reference, lr, mus[k], from, &opts.newton)?;
         couplings.push(lr.coupling(brake, &eq));
         out.checked_mus.push(mus[k]);
         start = Some(eq);
     }
     let mut cutoff = opts.projection.first_cutoff * top;
     let most = opts.projection.correction_terms;
+    let compression = (opts.projection.compression > 0.0)
+        .then_some((opts.projection.compression, std::f64::consts::TAU * top));
     let mut terms = most.min(1);
     loop {
         let m = modes_below(omega, cutoff).min(n);
-        let b = basis(lr, reference, m, terms)?;
+        let b = basis(lr, reference, m, terms, compression)?;
         let (deviation, count) = deviation(lr, &b, &couplings, opts)?;
         let s = b.ritz.residual.ncols();
         out.trials.push(Trial {
@@ -243,37 +270,20 @@ pub(crate) fn choose(
 const DEPENDENT: f64 = 1e-8;
 
 /// The basis of the `m` lowest modes and the static correction of the others (module
-/// documentation).
+/// documentation); `compression = Some((fraction, ω_top))`: the correction's dominant
+/// directions ([`ProjectionOptions::compression`]).
 fn basis(
     lr: &LinearizedBrake,
     reference: &Reference,
     m: usize,
     terms: usize,
+    compression: Option<(f64, f64)>,
 ) -> Result<Basis, BrakeError> {
-    let (n, np) = (lr.size(), lr.pairs());
-    let t = n - m;
-    let (vg, vh) = lr.contact_columns();
-    // Ω_t⁻²ᵏ [v_p, w_p]_t, k = 1..terms, orthonormalized (modified Gram-Schmidt, twice).
-    let mut cols: Vec<Vec<f64>> = Vec::new();
-    for (k, p) in (1..=terms).flat_map(|k| (0..np).map(move |p| (k, p))) {
-        for src in [vg, vh] {
-            let mut a: Vec<f64> = (0..t)
-                .map(|i| src[p * n + m + i] / (lr.omega[m + i] * lr.omega[m + i]).powi(k as i32))
-                .collect();
-            let before = a.iter().map(|x| x * x).sum::<f64>().sqrt();
-            for _ in 0..2 {
-                for c in &cols {
-                    let d: f64 = c.iter().zip(&a).map(|(x, y)| x * y).sum();
-                    a.iter_mut().zip(c).for_each(|(y, x)| *y -= d * x);
-                }
-            }
-            let after = a.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if after > DEPENDENT * before && after > 0.0 {
-                a.iter_mut().for_each(|y| *y /= after);
-                cols.push(a);
-            }
-        }
-    }
+    let t = lr.size() - m;
+    let cols = match compression {
+        None => orthonormal_corrections(lr, m, terms),
+        Some((fraction, w_top)) => dominant_corrections(lr, m, terms, fraction, w_top)?,
+    };
     let s = cols.len();
     let r_hat = Mat::from_fn(t, s, |i, k| cols[k][i]);
     // Qᵀ Ω² Q on the residual block, scaled to unit norm for the eigensolver (as in
@@ -298,6 +308,80 @@ fn basis(
         omega,
         damping,
     })
+}
+
+/// Term `k` (from 1) of the dropped modes' response to contact direction `src` of pair `p`:
+/// `Ω_t⁻²ᵏ a_t` on the modes from `m` on.
+fn correction_term(lr: &LinearizedBrake, src: &[f64], p: usize, m: usize, k: usize) -> Vec<f64> {
+    let n = lr.size();
+    (0..n - m)
+        .map(|i| src[p * n + m + i] / (lr.omega[m + i] * lr.omega[m + i]).powi(k as i32))
+        .collect()
+}
+
+/// Every correction vector, orthonormalized (modified Gram-Schmidt, twice; dependent ones
+/// dropped).
+fn orthonormal_corrections(lr: &LinearizedBrake, m: usize, terms: usize) -> Vec<Vec<f64>> {
+    let (vg, vh) = lr.contact_columns();
+    // Ω_t⁻²ᵏ [v_p, w_p]_t, k = 1..terms, orthonormalized (modified Gram-Schmidt, twice).
+    let mut cols: Vec<Vec<f64>> = Vec::new();
+    for (k, p) in (1..=terms).flat_map(|k| (0..lr.pairs()).map(move |p| (k, p))) {
+        for src in [vg, vh] {
+            let mut a = correction_term(lr, src, p, m, k);
+            let before = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+            for _ in 0..2 {
+                for c in &cols {
+                    let d: f64 = c.iter().zip(&a).map(|(x, y)| x * y).sum();
+                    a.iter_mut().zip(c).for_each(|(y, x)| *y -= d * x);
+                }
+            }
+            let after = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if after > DEPENDENT * before && after > 0.0 {
+                a.iter_mut().for_each(|y| *y /= after);
+                cols.push(a);
+            }
+        }
+    }
+    cols
+}
+
+/// The dominant directions of the correction vectors: the left singular vectors of
+/// `[ω_top^{2(k-1)} Ω_t⁻²ᵏ [v_p, w_p]_t]` (all pairs and terms) whose singular value exceeds
+/// `fraction` of the largest. Term `k` enters the response at the band's top `ω_top` with the
+/// weight `ω_top^{2(k-1)}` (`(Ω_t² + λ²)⁻¹` expanded in `λ²`), so the scaled terms compare
+/// as the parts of one dynamic flexibility there.
+fn dominant_corrections(
+    lr: &LinearizedBrake,
+    m: usize,
+    terms: usize,
+    fraction: f64,
+    w_top: f64,
+) -> Result<Vec<Vec<f64>>, BrakeError> {
+    let (vg, vh) = lr.contact_columns();
+    let mut raw: Vec<Vec<f64>> = Vec::new();
+    for k in 1..=terms {
+        let weight = w_top.powi(2 * (k as i32 - 1));
+        for p in 0..lr.pairs() {
+            for src in [vg, vh] {
+                let mut a = correction_term(lr, src, p, m, k);
+                a.iter_mut().for_each(|y| *y *= weight);
+                raw.push(a);
+            }
+        }
+    }
+    let t = lr.size() - m;
+    if raw.is_empty() || t == 0 {
+        return Ok(Vec::new());
+    }
+    let a = Mat::from_fn(t, raw.len(), |i, j| raw[j][i]);
+    let svd = a.thin_svd().map_err(|_| BrakeError::EigenNoConvergence)?;
+    let s = svd.S().column_vector();
+    let largest = (0..s.nrows()).map(|j| s[j]).fold(0.0, f64::max);
+    let u = svd.U();
+    Ok((0..s.nrows())
+        .filter(|&j| s[j] > fraction * largest && s[j] > 0.0)
+        .map(|j| (0..t).map(|i| u[(i, j)]).collect())
+        .collect())
 }
 
 /// `Qᵀ D Q` (diagonal when nothing is added to the kept modes, or nothing is damped there).
@@ -413,12 +497,48 @@ pub(crate) fn spectrum(
     project(&p.basis, c, lr.size())
 }
 
+/// The eigenpair nearest `guess` of the brake at the coupling `c`, from a projection on the
+/// modes below `1.5 |guess|` and two terms of the others' correction (the first projection
+/// [`choose`] tries), carried to the unprojected brake by the Rayleigh iteration of
+/// [`crate::continuation`]: the eigenpair without a dense eigen-decomposition of the whole
+/// brake. `None` when the iteration does not converge or lands more than `1e-3 |guess|` away
+/// (the projection is then too coarse to say which eigenvalue is meant).
+pub(crate) fn nearest_pair(
+    lr: &LinearizedBrake,
+    reference: &Reference,
+    c: &Coupling,
+    guess: c64,
+    opts: &crate::continuation::EigenContinuationOptions,
+) -> Result<Option<Eigenpair>, BrakeError> {
+    let n = lr.size();
+    let m = modes_below(&lr.omega, 1.5 * guess.norm() / std::f64::consts::TAU).min(n);
+    let b = basis(lr, reference, m, 2, None)?;
+    let sp = project(&b, c, n)?;
+    let Some(j) = (0..sp.values.len()).min_by(|&a, &b| {
+        (sp.values[a] - guess)
+            .norm()
+            .total_cmp(&(sp.values[b] - guess).norm())
+    }) else {
+        return Ok(None);
+    };
+    let right = sp.modal(j);
+    let start = Eigenpair {
+        lambda: sp.values[j],
+        left: right.iter().map(|v| v.conj()).collect(),
+        right,
+    };
+    Ok(converge(lr, c, &start, opts)
+        .map(|(p, _)| p)
+        .filter(|p| (p.lambda - guess).norm() <= 1e-3 * guess.norm()))
+}
+
 /// Friction values whose equilibria are found in turn before their spectra are computed in
 /// parallel: the progress count moves once per chunk.
 const CHUNK: usize = 8;
 
 /// Points and branches of the projected sweep: equilibria in turn, projected spectra (in
 /// parallel, each alone: the bits do not depend on the thread count), branches by correlation.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn points(
     brake: &Brake,
     reference: &Reference,
@@ -427,21 +547,37 @@ pub(crate) fn points(
     mus: &[f64],
     opts: &SweepOptions,
     progress: SweepProgress,
+    timings: &mut SweepTimings,
 ) -> Result<SweptPoints, BrakeError> {
     let mut points: Vec<SweepPoint> = Vec::with_capacity(mus.len());
     for chunk in mus.chunks(CHUNK) {
+        let t = Instant::now();
         let mut equilibria: Vec<Equilibrium> = Vec::with_capacity(chunk.len());
         for &mu in chunk {
-            let from = equilibria
-                .last()
-                .or(points.last().map(|p| &p.equilibrium))
-                .map(|e| e.x.as_slice());
-            equilibria.push(equilibrium(brake, reference, lr, mu, from, opts)?);
+            let mut recent = points
+                .iter()
+                .map(|p| &p.equilibrium)
+                .chain(&equilibria)
+                .rev();
+            let (last, before) = (recent.next(), recent.next());
+            let from = last.map(|e| e.x.as_slice());
+            let eq = match last.zip(before).map(|(a, b)| predicted(a, b, mu)) {
+                // The predicted start, else the last equilibrium's.
+                Some(x) => match modal_newton(brake, lr, reference, mu, &x, &opts.newton) {
+                    Ok(eq) => eq,
+                    Err(_) => equilibrium(brake, reference, lr, mu, from, &opts.newton)?,
+                },
+                None => equilibrium(brake, reference, lr, mu, from, &opts.newton)?,
+            };
+            equilibria.push(eq);
         }
+        timings.equilibria += t.elapsed();
+        let t = Instant::now();
         let spectra: Vec<Spectrum> = equilibria
             .par_iter()
             .map(|eq| spectrum(lr, p, &lr.coupling(brake, eq)))
             .collect::<Result<_, _>>()?;
+        timings.spectra += t.elapsed();
         points.extend(
             equilibria
                 .into_iter()
@@ -453,7 +589,9 @@ pub(crate) fn points(
         );
         progress(points.len(), mus.len());
     }
-    let branches = track(&points);
+    let t = Instant::now();
+    let branches = track_by(&points, match_modes_blocked);
+    timings.tracking = t.elapsed();
     let stats = SweepStats {
         dense: points.len(),
         ..SweepStats::default()
@@ -464,23 +602,48 @@ pub(crate) fn points(
 /// The equilibrium at `mu` from `from` (from scratch without), its Newton steps solved in the
 /// modal basis (module documentation); the dense steps of [`static_equilibrium`] when that
 /// fails.
-fn equilibrium(
+pub(crate) fn equilibrium(
     brake: &Brake,
     reference: &Reference,
     lr: &LinearizedBrake,
     mu: f64,
     from: Option<&[f64]>,
-    opts: &SweepOptions,
+    newton: &NewtonOptions,
 ) -> Result<Equilibrium, BrakeError> {
     // The frictionless equilibrium is a start as good as any for the first friction value,
     // and spares the load ramp's dense steps.
-    let from = from.or(Some(reference.equilibrium.x.as_slice()));
+    let from = from.unwrap_or(reference.equilibrium.x.as_slice());
+    match modal_newton(brake, lr, reference, mu, from, newton) {
+        Ok(eq) => Ok(eq),
+        Err(_) => static_equilibrium(brake, mu, Some(from), newton),
+    }
+}
+
+/// The state at `mu` extrapolated linearly from the equilibria `last` and `before` it: the
+/// path `x(μ)` is smooth while the contact does not change, and the extrapolation's error
+/// (`O(Δμ²)`) saves the sweep's Newton iterations one of two.
+fn predicted(last: &Equilibrium, before: &Equilibrium, mu: f64) -> Vec<f64> {
+    let s = (mu - last.mu) / (last.mu - before.mu);
+    last.x
+        .iter()
+        .zip(&before.x)
+        .map(|(a, b)| a + s * (a - b))
+        .collect()
+}
+
+/// Newton's method for the equilibrium at `mu` from `x`, its steps solved in the modal basis
+/// (no dense fallback).
+fn modal_newton(
+    brake: &Brake,
+    lr: &LinearizedBrake,
+    reference: &Reference,
+    mu: f64,
+    x: &[f64],
+    newton: &NewtonOptions,
+) -> Result<Equilibrium, BrakeError> {
     let phi = &reference.basis.phi;
     let solve = |x: &[f64], b: &[f64]| modal_tangent_solve(brake, lr, phi, mu, x, b);
-    match static_equilibrium_with(brake, mu, from, &opts.newton, Some(&solve)) {
-        Ok(eq) => Ok(eq),
-        Err(_) => static_equilibrium(brake, mu, from, &opts.newton),
-    }
+    static_equilibrium_with(brake, mu, Some(x), newton, Some(&solve))
 }
 
 /// `K_t(x)⁻¹ b = Φ T(0)⁻¹ Φᵀ b`, `None` when not finite.
@@ -499,19 +662,25 @@ fn modal_tangent_solve(
         .map(|p| p.response(x, None, mu))
         .collect();
     let c = lr.coupling_of(mu, responses, Vec::new());
-    let q: Vec<c64> = (0..n)
-        .map(|j| {
-            let col = phi.col(j);
-            c64::new((0..n).map(|i| col[i] * b[i]).sum(), 0.0)
-        })
-        .collect();
+    // Φᵀ b and Φ y as blocked products (sequential: the bits do not depend on the thread
+    // count); a pass over the n x n basis is the cost of a step.
+    let product = |a: faer::MatRef<'_, f64>, v: &[f64]| -> Mat<f64> {
+        let mut out = Mat::<f64>::zeros(a.nrows(), 1);
+        matmul(
+            out.as_mut(),
+            Accum::Replace,
+            a,
+            faer::ColRef::from_slice(v).as_mat(),
+            1.0,
+            Par::Seq,
+        );
+        out
+    };
+    let pb = product(phi.transpose(), b);
+    let q: Vec<c64> = (0..n).map(|j| c64::new(pb[(j, 0)], 0.0)).collect();
     let y = lr.factor(&c, c64::new(0.0, 0.0)).solve(lr, &c, &q);
-    let mut dx = vec![0.0; n];
-    for (j, yj) in y.iter().enumerate() {
-        let col = phi.col(j);
-        for (i, d) in dx.iter_mut().enumerate() {
-            *d += col[i] * yj.re;
-        }
-    }
+    let y_re: Vec<f64> = y.iter().map(|v| v.re).collect();
+    let dx = product(phi.as_ref(), &y_re);
+    let dx: Vec<f64> = (0..n).map(|i| dx[(i, 0)]).collect();
     dx.iter().all(|v| v.is_finite()).then_some(dx)
 }

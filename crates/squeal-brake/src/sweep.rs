@@ -35,6 +35,7 @@ use crate::spectrum::{Reference, Spectrum, eigenvalues_of, spectrum, spectrum_of
 use crate::tracking::match_modes;
 use faer::{Mat, c64};
 use rayon::prelude::*;
+use std::time::{Duration, Instant};
 
 /// The frequency band a result is trusted in.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -146,6 +147,23 @@ pub struct SweepStats {
     pub iterations: usize,
 }
 
+/// Wall time of a sweep's phases, for benchmarks (`crates/squeal-pipeline/benches`): not
+/// part of the result (the numbers do not depend on it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SweepTimings {
+    /// Choosing and checking the projection ([`SweepMethod::Projected`]; zero otherwise).
+    pub projection: Duration,
+    /// The equilibria of the sweep points, when found apart from the spectra (the projected
+    /// and dense methods; the continuation's are in `spectra`).
+    pub equilibria: Duration,
+    /// The spectra of the sweep points (with the continuation, the whole walk).
+    pub spectra: Duration,
+    /// Tracking the branches by correlation (the projected and dense methods).
+    pub tracking: Duration,
+    /// Refining the Hopf point.
+    pub refinement: Duration,
+}
+
 /// Equilibrium and spectrum at one μ.
 #[derive(Clone, Debug)]
 pub struct SweepPoint {
@@ -214,6 +232,8 @@ pub struct Sweep {
     pub stats: SweepStats,
     /// With [`SweepMethod::Projected`]: the modes kept and how the truncation was checked.
     pub projection: Option<Projection>,
+    /// Wall time of each phase.
+    pub timings: SweepTimings,
 }
 
 impl Sweep {
@@ -310,17 +330,29 @@ fn sweep_until(
         .unwrap_or_else(|| default_threshold(reference));
     let stop = to_hopf.then_some(tau);
     progress(0, mus.len());
+    let mut timings = SweepTimings::default();
+    let t = Instant::now();
     let projection = match method {
         SweepMethod::Projected => {
             Some(crate::projected::choose(brake, reference, &lin, mus, opts)?)
         }
         _ => None,
     };
+    timings.projection = t.elapsed();
+    let t = &mut timings;
     let (points, branches, stats) = match (&projection, low_rank) {
-        (Some(p), _) => crate::projected::points(brake, reference, &lin, p, mus, opts, progress)?,
-        (None, Some(lr)) => continued_points(brake, reference, lr, mus, opts, stop, progress)?,
-        (None, None) => dense_points(brake, reference, mus, opts, progress)?,
+        (Some(p), _) => {
+            crate::projected::points(brake, reference, &lin, p, mus, opts, progress, t)?
+        }
+        (None, Some(lr)) => {
+            let start = Instant::now();
+            let swept = continued_points(brake, reference, lr, mus, opts, stop, progress)?;
+            t.spectra = start.elapsed();
+            swept
+        }
+        (None, None) => dense_points(brake, reference, mus, opts, progress, t)?,
     };
+    let start = Instant::now();
     let crossings = crossings(&points, &branches, opts, tau);
     let mut sweep = Sweep {
         points,
@@ -329,6 +361,7 @@ fn sweep_until(
         hopf: None,
         stats,
         projection: None,
+        timings,
     };
     if let Some(first) = sweep.crossings.iter().find(|c| c.in_band).copied() {
         let continued = match low_rank {
@@ -339,10 +372,18 @@ fn sweep_until(
             Some(p) => crate::projected::spectrum(&lin, p, &lin.coupling(brake, eq)),
             None => spectrum(brake, reference, eq),
         };
+        // The projection's equilibria take their Newton steps in the modal basis (a dense LU
+        // of a large brake per step costs more than its projected spectrum).
+        let equilibrium_at = |mu: f64, from: &[f64]| match &projection {
+            Some(_) => {
+                crate::projected::equilibrium(brake, reference, &lin, mu, Some(from), &opts.newton)
+            }
+            None => static_equilibrium(brake, mu, Some(from), &opts.newton),
+        };
         sweep.hopf = match continued {
             Some(h) => Some(h),
             None => Some(crate::hopf::regula_falsi(
-                brake,
+                &equilibrium_at,
                 &spectrum_at,
                 &sweep,
                 &first,
@@ -352,6 +393,7 @@ fn sweep_until(
         };
     }
     sweep.projection = projection;
+    sweep.timings.refinement = start.elapsed();
     Ok(sweep)
 }
 
@@ -386,7 +428,9 @@ pub(crate) fn dense_points(
     mus: &[f64],
     opts: &SweepOptions,
     progress: SweepProgress,
+    timings: &mut SweepTimings,
 ) -> Result<SweptPoints, BrakeError> {
+    let t = Instant::now();
     let mut equilibria = Vec::with_capacity(mus.len());
     let mut start: Option<Vec<f64>> = None;
     for &mu in mus {
@@ -394,11 +438,14 @@ pub(crate) fn dense_points(
         start = Some(eq.x.clone());
         equilibria.push(eq);
     }
+    timings.equilibria = t.elapsed();
+    let t = Instant::now();
     // The equilibria are a small part of the work: the count moves once the spectra are done.
     let spectra: Vec<Spectrum> = equilibria
         .par_iter()
         .map(|eq| spectrum(brake, reference, eq))
         .collect::<Result<_, _>>()?;
+    timings.spectra = t.elapsed();
     progress(mus.len(), mus.len());
     let points: Vec<SweepPoint> = equilibria
         .into_iter()
@@ -408,7 +455,9 @@ pub(crate) fn dense_points(
             spectrum,
         })
         .collect();
+    let t = Instant::now();
     let branches = track(&points);
+    timings.tracking = t.elapsed();
     let stats = SweepStats {
         dense: points.len(),
         ..SweepStats::default()
@@ -658,10 +707,18 @@ impl Walker<'_> {
 
 /// Branch indices: branch `b` starts as mode `b` of the first spectrum.
 pub(crate) fn track(points: &[SweepPoint]) -> Vec<Vec<usize>> {
+    track_by(points, match_modes)
+}
+
+/// [`track`] with a given matching of consecutive spectra.
+pub(crate) fn track_by(
+    points: &[SweepPoint],
+    matching: fn(&Spectrum, &Spectrum) -> Vec<usize>,
+) -> Vec<Vec<usize>> {
     let n = points[0].spectrum.values.len();
     let mut branches: Vec<Vec<usize>> = (0..n).map(|b| vec![b]).collect();
     for k in 1..points.len() {
-        let m = match_modes(&points[k - 1].spectrum, &points[k].spectrum);
+        let m = matching(&points[k - 1].spectrum, &points[k].spectrum);
         for br in branches.iter_mut() {
             let prev = br[k - 1];
             br.push(m[prev]);

@@ -5,16 +5,20 @@
 //! `cargo bench -p squeal-pipeline --bench sweep_scaling -- [GRID:MODES[:METHODS]]...`
 //! with GRID the contact patches `RxA` (radial x angular; the scene's is 3x3: 9 pairs), MODES
 //! the fixed-interface modes per part and METHODS a `+`-separated list of `projected`,
-//! `continuation`, `dense`, `auto` (default `projected`). More modes grow the reduced brake
+//! `continuation`, `dense`, `auto` (default `projected`), then optionally `:cut=F,comp=Z,terms=T,tol=E`
+//! (the projection's first cut-off over the band's top, compression of its correction vectors,
+//! most correction terms, tolerance of its check). More modes grow the reduced brake
 //! with the number of eigenvalues in the band nearly fixed; a finer grid grows it with the
 //! contact (three interface dofs per patch and part, one pair per patch).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use squeal_brake::equilibrium::NewtonOptions;
-use squeal_brake::modal::Damping;
-use squeal_brake::sweep::{SweepMethod, reference, sweep};
+use squeal_brake::Brake;
+use squeal_brake::equilibrium::{NewtonOptions, static_equilibrium};
+use squeal_brake::modal::{Damping, modal_basis};
+use squeal_brake::spectrum::Reference;
+use squeal_brake::sweep::{SweepMethod, sweep};
 use squeal_pipeline::model::{build, quiet};
 use squeal_scene::Scene;
 use std::time::Instant;
@@ -43,6 +47,28 @@ fn scene(grid: (usize, usize), modes: usize) -> Scene {
     Scene::parse(&common::meshes().join(name), text).expect("the edited scene parses")
 }
 
+/// The frictionless reference as [`squeal_brake::sweep::reference`] makes it, each phase
+/// timed: equilibrium, modal basis, modal damping (s).
+fn timed_reference(brake: &Brake, damping: &Damping) -> (Reference, [f64; 3]) {
+    let t = Instant::now();
+    let eq = static_equilibrium(brake, 0.0, None, &NewtonOptions::default()).expect("equilibrium");
+    let kt0 = brake.tangent_stiffness(&eq.x, 0.0);
+    let t_eq = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let basis = modal_basis(&brake.m, &kt0).expect("modal basis");
+    let t_basis = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let d = damping.modal(&basis).expect("modal damping");
+    let t_damping = t.elapsed().as_secs_f64();
+    let r = Reference {
+        equilibrium: eq,
+        kt0,
+        basis,
+        damping: d,
+    };
+    (r, [t_eq, t_basis, t_damping])
+}
+
 fn main() {
     let args: Vec<String> = std::env::args()
         .skip(1)
@@ -66,6 +92,9 @@ fn main() {
             .unwrap_or((3, 3));
         let modes: usize = it.next().and_then(|m| m.parse().ok()).unwrap_or(50);
         let methods = it.next().unwrap_or("projected");
+        // Projection options: `cut=F` (first cut-off / band top), `comp=Z` (compression of
+        // the correction vectors), `terms=T`, comma-separated.
+        let tweaks = it.next().unwrap_or("");
         let out = std::env::temp_dir().join(format!(
             "squeal-sweep-scaling-{}x{}-{modes}",
             grid.0, grid.1
@@ -74,13 +103,16 @@ fn main() {
         let model = build(&scene(grid, modes), &out, &quiet).expect("the model builds");
         eprintln!("{case}: model built in {:.1?}", t.elapsed());
         let brake = &model.brake;
-        let t = Instant::now();
         let damping = Damping {
             global_ratio: model.damping.global_ratio,
             extra: vec![],
         };
-        let r = reference(brake, &damping, &NewtonOptions::default()).expect("reference");
-        let t_ref = t.elapsed().as_secs_f64();
+        let (r, phases) = timed_reference(brake, &damping);
+        let t_ref: f64 = phases.iter().sum();
+        eprintln!(
+            "  reference: equilibrium {:.2} s, modal basis {:.2} s, damping {:.2} s",
+            phases[0], phases[1], phases[2]
+        );
         let mus = common::mus(0.0, 1.0, 201);
         for method in methods.split('+') {
             let m = match method {
@@ -89,11 +121,21 @@ fn main() {
                 "auto" => SweepMethod::Auto,
                 _ => SweepMethod::Projected,
             };
-            let opts = {
+            let mut opts = {
                 let mut o = model.sweep;
                 o.method = m;
                 o
             };
+            for (key, value) in tweaks.split(',').filter_map(|t| t.split_once('=')) {
+                let v: f64 = value.parse().expect("a number");
+                match key {
+                    "cut" => opts.projection.first_cutoff = v,
+                    "comp" => opts.projection.compression = v,
+                    "terms" => opts.projection.correction_terms = v as usize,
+                    "tol" => opts.projection.tolerance = v,
+                    _ => panic!("unknown projection option {key}"),
+                }
+            }
             let t = Instant::now();
             let s = sweep(brake, &r, &mus, &opts).expect("the sweep");
             let ts = t.elapsed().as_secs_f64();
@@ -111,7 +153,7 @@ fn main() {
                 .as_ref()
                 .map_or((f64::NAN, f64::NAN), |h| (h.mu0, h.frequency_hz));
             println!(
-                "| {}x{} | {modes} | {} | {} | {method} | {ts:.2} | {t_ref:.2} | {in_band} | {kept} | {mu0:.8} | {f0:.3} |",
+                "| {}x{} | {modes} | {} | {} | {method} {tweaks} | {ts:.2} | {t_ref:.2} | {in_band} | {kept} | {mu0:.8} | {f0:.3} |",
                 grid.0,
                 grid.1,
                 brake.size(),
@@ -130,6 +172,30 @@ fn main() {
                 );
             }
             eprintln!("  stats: {:?}", s.stats);
+            let newton: usize = s.points.iter().map(|p| p.equilibrium.iterations).sum();
+            eprintln!("  Newton iterations over the points: {newton}");
+            if let Some(h) = &s.hopf {
+                // The normal form at μ0 the pipeline computes after the sweep.
+                let t = Instant::now();
+                let guess = faer::c64::new(0.0, std::f64::consts::TAU * h.frequency_hz);
+                let nf =
+                    squeal_brake::criticality::normal_form(brake, &r, h.mu0, guess, &opts.newton);
+                eprintln!(
+                    "  normal form at mu0: {:.2} s, l1 = {}",
+                    t.elapsed().as_secs_f64(),
+                    nf.map_or_else(|e| e.to_string(), |nf| format!("{:.6e}", nf.l1))
+                );
+            }
+            let p = &s.timings;
+            eprintln!(
+                "  phases (s): projection {:.2}, equilibria {:.2}, spectra {:.2}, tracking {:.2}, refinement {:.2} ({} evaluations)",
+                p.projection.as_secs_f64(),
+                p.equilibria.as_secs_f64(),
+                p.spectra.as_secs_f64(),
+                p.tracking.as_secs_f64(),
+                p.refinement.as_secs_f64(),
+                s.hopf.as_ref().map_or(0, |h| h.evaluations)
+            );
         }
     }
 }
