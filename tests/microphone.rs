@@ -158,7 +158,21 @@ fn microphones_and_air_from_the_scene() {
         (dense[0].2 - flag[0].2 - 3.0103).abs() <= 0.1 + 1e-9,
         "{dense:?} vs {flag:?}"
     );
+    // The disc alone radiates less power than the disc and the pad (the pad's faces add
+    // their share, never cancel in the ERP's sum of squares).
+    let disc = sound_lines(&run_ok(&[
+        "chbm",
+        &write(
+            "disc.toml",
+            "[sound]\nmicrophones = [[0.35, 0.0, 0.35]]\nradiating = [\"disc\"]",
+        ),
+        "-o",
+        o,
+        "--no-vtu",
+    ]));
+    assert!(disc[0].2 < flag[0].2, "disc alone {disc:?} vs all {flag:?}");
     for (extra, said) in [
+        ("[sound]\nradiating = [\"caliper\"]", "its parts: disc, pad"),
         ("[sound]\nair_density = -1.0", "sound.air_density"),
         ("[sound]\nspeed_of_sound = 1e9", "sound.speed_of_sound"),
         ("[sound]\nmicrophones = []", "sound.microphones"),

@@ -13,7 +13,8 @@
 //! (restrained dofs: zero), one product for all harmonics. The mean `U_0` does not radiate.
 //!
 //! **Radiating faces** ([`BrakeSurface::new`]): every boundary face of the disc, and every
-//! boundary face of each pad but its friction face (pressed on the disc, not in air). The
+//! boundary face of each pad but its friction face (pressed on the disc, not in air); the
+//! scene's `[sound] radiating` keeps only the parts it names. The
 //! pads' back plates are kept although the piston and the caliper cover part of them.
 //!
 //! **Microphone** ([`default_microphone`]): SAE J2521 places its microphone near the wheel of
@@ -118,6 +119,9 @@ impl BrakeSurface {
         let npads = sp.pads.len();
         let mut names = vec![("disc".to_string(), m.layout.disc.clone())];
         names.extend(m.layout.pads.iter().cloned());
+        if let Some(keep) = scene.sound()?.radiating {
+            names.retain(|(n, _)| keep.contains(n));
+        }
         for (name, range) in names {
             let mesh = &sp
                 .part(&name)

@@ -7,6 +7,8 @@
 //!                                      # 45 degrees off its axis towards the pad)
 //! air_density = 1.2                    # kg/m^3 whatever the [units] (default 1.2: 20 °C, 1 atm)
 //! speed_of_sound = 343.0               # m/s whatever the [units] (default 343)
+//! radiating = ["disc"]                 # the parts whose surfaces radiate (default: the disc
+//!                                      # and every pad, each pad less its friction face)
 //! ```
 //!
 //! The command lines' `--mic x,y,z` (metres) replaces the scene's microphones.
@@ -30,6 +32,8 @@ pub struct SoundSection {
     pub air_density: Option<Spanned<f64>>,
     /// m/s.
     pub speed_of_sound: Option<Spanned<f64>>,
+    /// Part names (`"disc"`, the pads' names).
+    pub radiating: Option<Spanned<Vec<String>>>,
 }
 
 /// What `[sound]` asks for, in SI.
@@ -41,6 +45,8 @@ pub struct SoundSetting {
     pub air_density: f64,
     /// Speed of sound (m/s).
     pub speed_of_sound: f64,
+    /// The parts whose surfaces radiate; `None`: all of them.
+    pub radiating: Option<Vec<String>>,
 }
 
 impl Scene {
@@ -85,7 +91,36 @@ impl Scene {
                 ))
             }
         };
+        let radiating = match &s.radiating {
+            None => None,
+            Some(v) => {
+                let pads = self.pads()?;
+                let known = |n: &str| n == "disc" || pads.iter().any(|(p, _)| p == n);
+                if v.get_ref().is_empty() {
+                    return Err(self.error_at(
+                        "sound.radiating",
+                        v,
+                        "is empty: name at least one part, or leave the key out for all",
+                    ));
+                }
+                if let Some(bad) = v.get_ref().iter().find(|n| !known(n)) {
+                    let names: Vec<&str> = std::iter::once("disc")
+                        .chain(pads.iter().map(|(p, _)| p.as_str()))
+                        .collect();
+                    return Err(self.error_at(
+                        "sound.radiating",
+                        v,
+                        format!(
+                            "'{bad}' is not a part of this brake (its parts: {})",
+                            names.join(", ")
+                        ),
+                    ));
+                }
+                Some(v.get_ref().clone())
+            }
+        };
         Ok(SoundSetting {
+            radiating,
             microphones,
             air_density: value(
                 "sound.air_density",
