@@ -32,7 +32,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scene = Scene::read(&scene_path)?;
     let out = std::env::temp_dir().join("squeal-two-mode");
     std::fs::create_dir_all(&out)?;
-    let p = Pipeline::new(scene, out, &quiet)?.with_mus(vec![0.0, mu])?;
+    // The sweep the CLI runs by default (0..1.2 in steps of 0.01, and on to mu), for the
+    // reference and damping of `squeal stability`.
+    let top = mu.max(1.2);
+    let count = (top / 0.01).round() as usize;
+    let mus: Vec<f64> = (0..=count).map(|k| top * k as f64 / count as f64).collect();
+    let p = Pipeline::new(scene, out, &quiet)?.with_mus(mus)?;
     let m = p.model()?;
     let st = p.stability()?;
     let starts = unstable_modes(&m.brake, &st.reference, mu, &m.sweep.band, &m.sweep.newton)?;
@@ -52,7 +57,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             harmonics: 3,
             ..ChbmOptions::default()
         };
-        let cycles = mode_cycles(&mb, &starts, &opts, &RESTART_AMPLITUDES, &HillOptions::default())?;
+        let cycles = mode_cycles(
+            &mb,
+            &starts,
+            &opts,
+            &RESTART_AMPLITUDES,
+            &HillOptions::default(),
+        )?;
         for c in &cycles {
             let s = &c.solution;
             print!(

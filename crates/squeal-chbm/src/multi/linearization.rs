@@ -10,8 +10,8 @@
 //! [`squeal_hbm::DescribingFunction`]), `F_j` the same of the force.
 
 use faer::{Mat, c64};
-use squeal_hbm::{EigenTrack, HbmError, LinearUpdate, LinearizedEigen, LocalJacobian};
 use squeal_hbm::NonlinearForce;
+use squeal_hbm::{EigenTrack, HbmError, LinearUpdate, LinearizedEigen, LocalJacobian};
 
 /// One time sample of a motion: the force's dofs' displacement and velocity, and the phase of
 /// each base frequency there (rad).
@@ -164,10 +164,22 @@ impl MultiLinearization {
                 })
                 .collect();
             let b1: Vec<f64> = (0..2 * n)
-                .map(|i| if i < n { x[j][i].re } else { -r * x[j][i - n].im })
+                .map(|i| {
+                    if i < n {
+                        x[j][i].re
+                    } else {
+                        -r * x[j][i - n].im
+                    }
+                })
                 .collect();
             let b2: Vec<f64> = (0..2 * n)
-                .map(|i| if i < n { x[j][i].im } else { r * x[j][i - n].re })
+                .map(|i| {
+                    if i < n {
+                        x[j][i].im
+                    } else {
+                        r * x[j][i - n].re
+                    }
+                })
                 .collect();
             let a1: Vec<f64> = a.iter().map(|v| v.re).collect();
             let a2: Vec<f64> = a.iter().map(|v| v.im).collect();

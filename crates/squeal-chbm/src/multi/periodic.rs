@@ -12,10 +12,10 @@
 use super::linearization::{MultiLinearization, Sample};
 use crate::floquet::{CycleRef, CycleStability, FloquetError, HillFloquet, HillOptions, hill};
 use crate::solve::{ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Outcome, solve_with_restarts};
+use faer::Mat;
 use faer::c64;
 use squeal_brake::harmonic::{BrakeEigen, ContactForce};
 use squeal_brake::modal_brake::ModalBrake;
-use faer::Mat;
 use squeal_hbm::{HarmonicLayout, HbmError, LinearUpdate, LinearizedEigen, reference_jacobian};
 use std::f64::consts::PI;
 
@@ -72,7 +72,11 @@ impl std::fmt::Display for Verdict {
             Verdict::Periodic { mode } => write!(f, "periodic: mode {} wins", mode + 1),
             Verdict::Multistable { modes } => {
                 let list: Vec<String> = modes.iter().map(|m| (m + 1).to_string()).collect();
-                write!(f, "multistable: the cycles of modes {} attract", list.join(", "))
+                write!(
+                    f,
+                    "multistable: the cycles of modes {} attract",
+                    list.join(", ")
+                )
             }
             Verdict::QuasiPeriodic => {
                 f.write_str("quasi-periodic: no single-mode cycle attracts (torus needed)")

@@ -19,8 +19,8 @@
 //! The envelope of a window is the smallest and largest of the signal's local maxima
 //! (deviation from the window's mean; each maximum refined by a parabola through three samples).
 
-use crate::timeint::{TiError, TiStart};
 use crate::solve::ChbmStart;
+use crate::timeint::{TiError, TiStart};
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
 use squeal_brake::dynamics::BrakeDynamics;
@@ -102,6 +102,8 @@ pub struct MultiRun {
     pub pair: usize,
     /// That pair's windows.
     pub windows: Vec<Window>,
+    /// Every pair's windows (pair order).
+    pub pairs: Vec<Vec<Window>>,
     /// Why the run stopped early, if it did.
     pub failure: Option<OdeError>,
     /// The integrator's counters.
@@ -139,8 +141,8 @@ pub fn integrate_modes(
     for (d, e) in dx.iter_mut().zip(&first.equilibrium) {
         *d -= e;
     }
-    let qd = BrakeDynamics::state_from_physical(mb, &dx, &vec![0.0; n])
-        .ok_or(TiError::SingularModes)?;
+    let qd =
+        BrakeDynamics::state_from_physical(mb, &dx, &vec![0.0; n]).ok_or(TiError::SingularModes)?;
     let q_scale = qd[..n].iter().fold(0.0f64, |a, b| a.max(b.abs())) / opts.perturbation;
     let w_max = starts.iter().map(|s| s.lambda.im.abs()).fold(0.0, f64::max);
     let atol: Vec<f64> = (0..2 * n)
@@ -202,9 +204,27 @@ pub fn integrate_modes(
     let pair = (0..records.len())
         .max_by(|&a, &b| spread(&records[a]).total_cmp(&spread(&records[b])))
         .unwrap_or(0);
-    let rec = &records[pair];
+    let pairs: Vec<Vec<Window>> = records
+        .iter()
+        .map(|rec| windows_of(rec, rate, opts))
+        .collect();
+    let windows = pairs.get(pair).cloned().unwrap_or_default();
+    Ok(MultiRun {
+        epsilons,
+        rate,
+        pair,
+        windows,
+        pairs,
+        failure,
+        stats: *bdf.stats(),
+        wall: t0.elapsed(),
+    })
+}
+
+/// The windows of one pair's record.
+fn windows_of(rec: &[f64], rate: f64, opts: &MultiRunOptions) -> Vec<Window> {
     let per = rec.len() / opts.windows.max(1);
-    let windows = (0..opts.windows.max(1))
+    (0..opts.windows.max(1))
         .filter(|_| per >= 8)
         .map(|k| {
             let s = &rec[k * per..(k + 1) * per];
@@ -216,17 +236,12 @@ pub fn integrate_modes(
                 envelope: envelope(s),
             }
         })
-        .collect();
-    Ok(MultiRun {
-        epsilons,
-        rate,
-        pair,
-        windows,
-        failure,
-        stats: *bdf.stats(),
-        wall: t0.elapsed(),
-    })
+        .collect()
 }
+
+/// Peaks refined per window: the largest bins only (each refinement costs about 60
+/// evaluations of the transform).
+const MAX_PEAKS: usize = 12;
 
 /// `|Σ w_n (s_n - mean) e^{-2πi f n / rate}|` with the Hann window `w`.
 fn dtft(s: &[f64], mean: f64, rate: f64, f: f64) -> f64 {
@@ -242,7 +257,8 @@ fn dtft(s: &[f64], mean: f64, rate: f64, f: f64) -> f64 {
     re.hypot(im)
 }
 
-/// The peaks of a record sampled at `rate` (module docs), largest first.
+/// The peaks of a record sampled at `rate` (module docs), largest first (at most the
+/// twelve largest).
 pub fn peaks(s: &[f64], rate: f64, floor: f64) -> Vec<Peak> {
     let len = s.len();
     if len < 8 {
@@ -264,8 +280,13 @@ pub fn peaks(s: &[f64], rate: f64, floor: f64) -> Vec<Peak> {
         .map(|k| 0.5 - 0.5 * (2.0 * PI * k as f64 / len as f64).cos())
         .sum();
     let bin = rate / len as f64;
-    let mut out: Vec<Peak> = (2..mag.len().saturating_sub(1))
+    let mut bins: Vec<usize> = (2..mag.len().saturating_sub(1))
         .filter(|&k| mag[k] > mag[k - 1] && mag[k] >= mag[k + 1] && mag[k] > floor * top)
+        .collect();
+    bins.sort_by(|&a, &b| mag[b].total_cmp(&mag[a]));
+    bins.truncate(MAX_PEAKS);
+    let mut out: Vec<Peak> = bins
+        .into_iter()
         .map(|k| {
             // Golden section on |S(f)| in [f_k - bin, f_k + bin].
             let (mut a, mut b) = ((k as f64 - 1.0) * bin, (k as f64 + 1.0) * bin);
