@@ -46,6 +46,15 @@
 //! **The reference** ([`reference`]): time integration of the whole brake from the static
 //! solution perturbed along every unstable mode, and the spectrum of its steady state
 //! (frequencies, amplitudes, whether one mode dies out).
+//!
+//! **Not here yet.** The quasi-periodic solve: the two-frequency harmonic balance (the torus
+//! method of `squeal-hbm`, built apart) with, as its extra rows, the residuals of
+//! [`linearization::ModeConstraints`] evaluated on [`linearization::MultiLinearization`]
+//! made from its AFT grid's samples (each sample's phases `(θ_1, θ_2)`), started from the
+//! superposition of the mode cycles of [`periodic`] (as `tests/multi.rs` builds the exact
+//! torus of two uncoupled oscillators) or from eq (48) once per mode. The constraint rows'
+//! gradient (the analogue of the analytic one of [`squeal_hbm::ReLambda`]) is not written:
+//! until it is, a solve differentiates them numerically.
 
 pub mod linearization;
 pub mod periodic;

@@ -12,10 +12,10 @@ use squeal_brake::harmonic::{BrakeEigen, ContactForce};
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::floquet::{CycleStability, HillOptions};
 use squeal_chbm::multi::linearization::{ModeConstraints, MultiLinearization, Sample};
-use squeal_chbm::multi::periodic::{Verdict, mode_cycles, verdict};
+use squeal_chbm::multi::periodic::{ModeCycle, Verdict, mode_cycles, verdict};
 use squeal_chbm::multi::reference::{MultiRunOptions, integrate_modes};
 use squeal_chbm::multi::unstable_modes;
-use squeal_chbm::{ChbmOptions, Contact, FrictionSystem, Outcome, RESTART_AMPLITUDES};
+use squeal_chbm::{ChbmOptions, ChbmStart, Contact, FrictionSystem, Outcome, RESTART_AMPLITUDES};
 use squeal_hbm::HarmonicLayout;
 use std::f64::consts::PI;
 
@@ -57,11 +57,11 @@ fn chbm_options() -> ChbmOptions {
     }
 }
 
-#[test]
-fn uncoupled_oscillators_give_two_unstable_modes_and_no_attracting_cycle() {
-    let sys = system(0.0);
-    let mu0 = sys.hopf().unwrap().mu0;
-    let mu = 1.01 * mu0;
+/// The unstable modes of `system(kc)` at `ratio` μ0, its modal form and each mode's CHBM
+/// cycle (5 harmonics) with Hill's verdict.
+fn setup(kc: f64, ratio: f64) -> (Vec<ChbmStart>, ModalBrake, Vec<ModeCycle>) {
+    let sys = system(kc);
+    let mu = ratio * sys.hopf().unwrap().mu0;
     let st = &sys.settings;
     let starts = unstable_modes(
         sys.brake(),
@@ -71,6 +71,21 @@ fn uncoupled_oscillators_give_two_unstable_modes_and_no_attracting_cycle() {
         &st.sweep.newton,
     )
     .unwrap();
+    let mb = ModalBrake::new(sys.brake(), sys.reference(), mu);
+    let cycles = mode_cycles(
+        &mb,
+        &starts,
+        &chbm_options(),
+        &RESTART_AMPLITUDES,
+        &HillOptions::default(),
+    )
+    .unwrap();
+    (starts, mb, cycles)
+}
+
+#[test]
+fn uncoupled_oscillators_give_two_unstable_modes_and_no_attracting_cycle() {
+    let (starts, _mb, cycles) = setup(0.0, 1.01);
     assert_eq!(starts.len(), 2, "two unstable modes at 1.01 mu0");
     // The scaled block's eigenvalue is the first's times s (exact scaling; the eigensolver's
     // round-off on a 4-dof system is far below 1e-9).
@@ -84,15 +99,6 @@ fn uncoupled_oscillators_give_two_unstable_modes_and_no_attracting_cycle() {
         "unstable eigenvalues {lo:.6} and {hi:.6}; |lambda2 - s lambda1| / |lambda2| = {:.1e}",
         (hi - lo * SCALE).norm() / hi.norm()
     );
-    let mb = ModalBrake::new(sys.brake(), sys.reference(), mu);
-    let cycles = mode_cycles(
-        &mb,
-        &starts,
-        &chbm_options(),
-        &RESTART_AMPLITUDES,
-        &HillOptions::default(),
-    )
-    .unwrap();
     let w: Vec<f64> = cycles.iter().map(|c| c.solution.omega).collect();
     for c in &cycles {
         assert_eq!(c.solution.outcome, Outcome::LimitCycle);
@@ -163,13 +169,14 @@ fn torus_samples(
             layout.velocity_at(u1, w1, t1, &mut v1).unwrap();
             layout.displacement_at(u2, t2, &mut x2).unwrap();
             layout.velocity_at(u2, w2, t2, &mut v2).unwrap();
-            let mut x = vec![x1[0], x1[1], 0.0, 0.0];
-            let mut v = vec![v1[0], v1[1], 0.0, 0.0];
-            for d in 2..4 {
-                let mean = u2[d];
-                x[d] = mean + a2 * (x2[d] - mean);
-                v[d] = a2 * v2[d];
-            }
+            // Block 2's mean is its static part u2[2], u2[3] (the zeroth harmonic).
+            let x = vec![
+                x1[0],
+                x1[1],
+                u2[2] + a2 * (x2[2] - u2[2]),
+                u2[3] + a2 * (x2[3] - u2[3]),
+            ];
+            let v = vec![v1[0], v1[1], a2 * v2[2], a2 * v2[3]];
             out.push(Sample {
                 x,
                 v,
@@ -182,27 +189,8 @@ fn torus_samples(
 
 #[test]
 fn the_two_mode_constraints_vanish_on_the_exact_torus_and_only_there() {
-    let sys = system(0.0);
-    let mu = 1.01 * sys.hopf().unwrap().mu0;
-    let st = &sys.settings;
-    let starts = unstable_modes(
-        sys.brake(),
-        sys.reference(),
-        mu,
-        &st.sweep.band,
-        &st.sweep.newton,
-    )
-    .unwrap();
-    let mb = ModalBrake::new(sys.brake(), sys.reference(), mu);
+    let (starts, mb, cycles) = setup(0.0, 1.01);
     assert_eq!(mb.nl(), 4, "every dof carries a contact");
-    let cycles = mode_cycles(
-        &mb,
-        &starts,
-        &chbm_options(),
-        &RESTART_AMPLITUDES,
-        &HillOptions::default(),
-    )
-    .unwrap();
     // Which cycle is which block: block 1 moves dofs 0, 1.
     let layout = HarmonicLayout::new(4, 5).unwrap();
     let amp = |u: &[f64], d: usize| u[4 + d].hypot(u[8 + d]);
@@ -227,10 +215,10 @@ fn the_two_mode_constraints_vanish_on_the_exact_torus_and_only_there() {
         );
         let lin = MultiLinearization::from_samples(&force, &[w1, w2], &samples).unwrap();
         // The conditions N(iω_j) X_j = F_j hold to round-off.
-        for j in 0..2 {
-            let nx = lin.apply(lin.omegas[j], &lin.x[j]);
-            let size = lin.f[j].iter().map(|v| v.norm()).fold(0.0, f64::max);
-            for (a, b) in nx.iter().zip(&lin.f[j]) {
+        for ((w, x), f) in lin.omegas.iter().zip(&lin.x).zip(&lin.f) {
+            let nx = lin.apply(*w, x);
+            let size = f.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            for (a, b) in nx.iter().zip(f) {
                 assert!((a - b).norm() < 1e-10 * size, "N X {a} vs F {b}");
             }
         }
@@ -258,26 +246,7 @@ fn the_two_mode_constraints_vanish_on_the_exact_torus_and_only_there() {
 
 #[test]
 fn time_integration_from_both_modes_settles_on_both_cycles() {
-    let sys = system(0.0);
-    let mu = 1.01 * sys.hopf().unwrap().mu0;
-    let st = &sys.settings;
-    let starts = unstable_modes(
-        sys.brake(),
-        sys.reference(),
-        mu,
-        &st.sweep.band,
-        &st.sweep.newton,
-    )
-    .unwrap();
-    let mb = ModalBrake::new(sys.brake(), sys.reference(), mu);
-    let cycles = mode_cycles(
-        &mb,
-        &starts,
-        &chbm_options(),
-        &RESTART_AMPLITUDES,
-        &HillOptions::default(),
-    )
-    .unwrap();
+    let (starts, mb, cycles) = setup(0.0, 1.01);
     let opts = MultiRunOptions {
         rtol: 1e-8,
         perturbation: 0.05,
