@@ -43,7 +43,7 @@
 //! harmonic balance with the `m` constraints of [`linearization::ModeConstraints`]. Several:
 //! the brake is multistable and the start decides.
 //!
-//! **The reference** ([`reference`]): time integration of the whole brake from the static
+//! **The reference** ([`mod@reference`]): time integration of the whole brake from the static
 //! solution perturbed along every unstable mode, and the spectrum of its steady state
 //! (frequencies, amplitudes, whether one mode dies out).
 //!
