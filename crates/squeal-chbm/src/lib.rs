@@ -22,6 +22,9 @@
 //! - [`nlmode`]: complex nonlinear modes by the extended periodic motion concept (Krack 2015):
 //!   frequency, modal damping and shape of the squeal mode against its amplitude at one μ; the
 //!   limit cycles are the roots of the damping.
+//! - [`multi`]: several unstable modes at one μ (the generalized CHBM of Coudeyras, Nacivet &
+//!   Sinou 2009): one constraint per unstable eigenvalue, each mode's cycle and which one
+//!   attracts, and the reference time integration from all of them with its spectrum.
 
 #![warn(missing_docs)]
 // Index loops over dofs and harmonics read like the formulas they implement.
@@ -32,6 +35,7 @@ pub mod branch;
 pub mod compare;
 pub mod cycle;
 pub mod floquet;
+pub mod multi;
 pub mod nlmode;
 pub mod physics;
 pub mod shooting;
