@@ -51,9 +51,10 @@ fn system(kc: f64) -> FrictionSystem {
 }
 
 fn chbm_options() -> ChbmOptions {
-    ChbmOptions {
-        harmonics: 5,
-        ..ChbmOptions::default()
+    {
+        let mut o = ChbmOptions::default();
+        o.harmonics = 5;
+        o
     }
 }
 

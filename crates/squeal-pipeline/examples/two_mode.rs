@@ -53,9 +53,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mb = squeal_brake::modal_brake::ModalBrake::new(&m.brake, &st.reference, mu);
     if what != "run" {
         let t = std::time::Instant::now();
-        let opts = ChbmOptions {
-            harmonics: 3,
-            ..ChbmOptions::default()
+        let opts = {
+            let mut o = ChbmOptions::default();
+            o.harmonics = 3;
+            o
         };
         let cycles = mode_cycles(
             &mb,

@@ -148,12 +148,13 @@ pub fn integrate_modes(
     let atol: Vec<f64> = (0..2 * n)
         .map(|i| opts.rtol * q_scale * if i < n { 1.0 } else { w_max })
         .collect();
-    let bdf_opts = BdfOptions {
-        rtol: opts.rtol,
-        atol: Atol::PerComponent(atol),
-        max_order: opts.max_order,
-        max_steps: opts.max_steps,
-        ..BdfOptions::default()
+    let bdf_opts = {
+        let mut o = BdfOptions::default();
+        o.rtol = opts.rtol;
+        o.atol = Atol::PerComponent(atol);
+        o.max_order = opts.max_order;
+        o.max_steps = opts.max_steps;
+        o
     };
     let t_end = opts.transient + opts.record;
     let sys = BrakeDynamics::new(mb);
