@@ -162,8 +162,11 @@ impl BrakeSurface {
         harmonics: usize,
         omega: f64,
     ) -> Result<Vec<Vec<[Complex64; 3]>>> {
-        let n = self.parts.last().map_or(0, |p| p.range.end);
-        if coeffs.len() != (2 * harmonics + 1) * n {
+        // The brake's dofs: the last part's range ends there unless `[sound] radiating` left
+        // it out, so the size comes from the coefficients, checked against every part kept.
+        let n = coeffs.len() / (2 * harmonics + 1);
+        let fits = self.parts.iter().all(|p| p.range.end <= n);
+        if !fits || coeffs.len() != (2 * harmonics + 1) * n {
             return Err(PipelineError::input(
                 "the sound of a cycle",
                 format!(
