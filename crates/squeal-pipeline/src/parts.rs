@@ -21,7 +21,7 @@ use squeal_mesh::Mesh;
 use squeal_mesh::select::{self, Face, Rule, Selection, Surface};
 use squeal_mesh::units::UnitSystem;
 use squeal_reduce::brake::PartInput;
-use squeal_reduce::brake::{BrakeInputs, LoadedPart, load_part_in, refuse_shortened_set};
+use squeal_reduce::brake::{BrakeInputs, LoadedPart, load_part_of, refuse_shortened_set};
 use squeal_reduce::rom::ContactSurface;
 use squeal_scene::Scene;
 use squeal_scene::sets::Hold;
@@ -372,10 +372,11 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
     for w in scene.material_warnings()? {
         log(&format!("warning: {w}"));
     }
-    let mut disc = load_part_in(&scene.disc_mesh(), &units)?;
+    let mut disc = load_part_of(&scene.disc_mesh(), scene.disc_elset().as_deref(), &units)?;
     let mut pads = Vec::new();
     for (name, path) in scene.pad_meshes()? {
-        pads.push((name, load_part_in(&path, &units)?));
+        let elset = scene.pad_elset(&name);
+        pads.push((name, load_part_of(&path, elset.as_deref(), &units)?));
     }
     for w in disc
         .warnings
@@ -420,7 +421,7 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
 /// Refuses a node set of a mesh that the reduction uses (a clamp, contact face, pistons or
 /// abutments chosen by name) when the file names in it a node it never defines: checked here,
 /// before the cached model's freshness, so that a model reduced from such a set is not
-/// called up to date. (A mesh with errors is refused on reading, [`load_part_in`].)
+/// called up to date. (A mesh with errors is refused on reading, [`load_part_of`].)
 fn refuse_shortened_sets(
     sets: &[ChosenSet],
     disc: &LoadedPart,

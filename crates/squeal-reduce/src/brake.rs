@@ -46,7 +46,8 @@ mod load;
 #[allow(unused_imports)]
 use load::*;
 pub use load::{
-    LoadedPart, backend_name, load_part, load_part_in, refuse_mesh_errors, refuse_shortened_set,
+    LoadedPart, backend_name, load_part, load_part_in, load_part_of, refuse_mesh_errors,
+    refuse_shortened_set,
 };
 
 /// The version written into every `.rom` file; a file made by another version is stale. The
@@ -97,6 +98,10 @@ impl ModeChoice {
 pub struct PartInput {
     /// Mesh file (`.inp` or `.msh`).
     pub mesh: PathBuf,
+    /// The element set of `mesh` the part is, when the file holds an assembly (the part's
+    /// elements, the nodes they use and the sets restricted to them,
+    /// [`squeal_mesh::Mesh::part`]); `None`: the whole file.
+    pub elset: Option<String>,
     /// Materials by element set, applied after the mesh's own sections (a `.msh` has none).
     pub material_overrides: Vec<(String, ElasticMaterial)>,
     /// How the part is held: node sets and their clamped directions.
@@ -134,6 +139,7 @@ impl PartInput {
     pub fn disc(mesh: impl Into<PathBuf>) -> Self {
         Self {
             mesh: mesh.into(),
+            elset: None,
             material_overrides: Vec::new(),
             restraints: vec![Restraint::clamp("CLAMP")],
             skew_restraints: Vec::new(),
@@ -153,6 +159,7 @@ impl PartInput {
     pub fn pad(mesh: impl Into<PathBuf>) -> Self {
         Self {
             mesh: mesh.into(),
+            elset: None,
             material_overrides: Vec::new(),
             restraints: vec![Restraint::set("ABUTMENT", [true, true, false])],
             skew_restraints: Vec::new(),
@@ -361,6 +368,7 @@ impl BrakeInputs {
             eig_tol: self.eig_tol,
             orthonormalize: self.orthonormalize,
             units: (!input.units.is_si()).then(|| input.units.name.to_string()),
+            elset: input.elset.clone(),
         }
     }
 
@@ -547,11 +555,12 @@ pub fn reduce_brake(
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     inputs.validate()?;
     progress("disc", Stage::Read);
-    let disc = load_part_in(&inputs.disc.mesh, &inputs.disc.units)?;
+    let disc = load_part_of(&inputs.disc.mesh, inputs.disc.elset.as_deref(), &inputs.disc.units)?;
     let mut pads = Vec::with_capacity(inputs.pads.len());
     for pad in &inputs.pads {
         progress(&pad.name, Stage::Read);
-        pads.push(load_part_in(&pad.part.mesh, &pad.part.units)?);
+        let p = &pad.part;
+        pads.push(load_part_of(&p.mesh, p.elset.as_deref(), &p.units)?);
     }
     reduce_brake_loaded(inputs, disc, pads, progress)
 }

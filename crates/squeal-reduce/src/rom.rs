@@ -374,6 +374,10 @@ pub struct BuildRecord {
     /// (`None`: SI; absent from files of earlier versions, which read SI meshes only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub units: Option<String>,
+    /// The element set of the mesh file the part is (absent for a whole file, and in older
+    /// files).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elset: Option<String>,
 }
 
 /// The JSON header stored in `__metadata__.squeal`.

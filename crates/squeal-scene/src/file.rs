@@ -50,6 +50,8 @@ pub struct SceneFile {
 pub struct PadSection {
     /// Its mesh, relative to the scene.
     pub mesh: PathBuf,
+    /// The pad as an element set of `mesh`, when that file holds an assembly.
+    pub elset: Option<Spanned<String>>,
     /// Where the clamp force enters: the pistons' or the fingers' points (a node set or a
     /// rule, as `[sets.pad] pistons`); default `PISTON`.
     pub load: Option<Spanned<toml::Value>>,
@@ -204,6 +206,11 @@ pub struct ModelSection {
     pub modes: Spanned<usize>,
     /// Where the reduced model is kept (relative to the scene); default: in the output folder.
     pub rom: Option<PathBuf>,
+    /// The disc as an element set of `disc`'s file, when that file holds an assembly (the
+    /// disc and pads as element sets, as CAE tools export them).
+    pub disc_elset: Option<Spanned<String>>,
+    /// The pad of a one-pad brake as an element set of `pad`'s file.
+    pub pad_elset: Option<Spanned<String>>,
 }
 
 pub(super) fn default_interface() -> Spanned<String> {

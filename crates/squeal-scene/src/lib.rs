@@ -372,6 +372,7 @@ impl Scene {
         self.set_rules()?;
         self.patch_grid()?;
         self.materials()?;
+        self.check_elsets()?;
         Ok(())
     }
 

@@ -52,6 +52,51 @@ impl Scene {
             .collect())
     }
 
+    /// `[model] disc_elset`: the disc's element set in its file, when the file holds an
+    /// assembly (`None`: the whole file is the disc).
+    pub fn disc_elset(&self) -> Option<String> {
+        self.file.model.disc_elset.as_ref().map(|s| s.get_ref().clone())
+    }
+
+    /// The element set of pad `pad` in its file (`[model] pad_elset` for a one-pad brake,
+    /// `[pads.<name>] elset` otherwise), when the file holds an assembly.
+    pub fn pad_elset(&self, pad: &str) -> Option<String> {
+        let f = &self.file;
+        match f.pads.get(pad) {
+            Some(p) => p.elset.as_ref(),
+            None => f.model.pad_elset.as_ref(),
+        }
+        .map(|s| s.get_ref().clone())
+    }
+
+    /// Checks the element-set keys: not empty, and `[model] pad_elset` only with `[model] pad`.
+    pub(crate) fn check_elsets(&self) -> Result<()> {
+        let f = &self.file;
+        let given = [
+            ("model.disc_elset", f.model.disc_elset.as_ref()),
+            ("model.pad_elset", f.model.pad_elset.as_ref()),
+        ]
+        .into_iter()
+        .chain(f.pads.values().map(|p| ("pads.elset", p.elset.as_ref())));
+        for (key, v) in given {
+            if let Some(v) = v
+                && v.get_ref().trim().is_empty()
+            {
+                return Err(self.error_at(key, v, "must name an element set of the mesh file"));
+            }
+        }
+        if let Some(v) = &f.model.pad_elset
+            && f.model.pad.is_none()
+        {
+            return Err(self.error_at(
+                "model.pad_elset",
+                v,
+                "names the element set of [model] pad, which is not given: with [pads.<name>] tables give elset = \"...\" in each",
+            ));
+        }
+        Ok(())
+    }
+
     /// `[model] modes`: the fixed-interface modes kept per part.
     pub fn modes_per_part(&self) -> usize {
         *self.file.model.modes.get_ref()
