@@ -102,6 +102,10 @@ pub struct PartInput {
     /// elements, the nodes they use and the sets restricted to them,
     /// [`squeal_mesh::Mesh::part`]); `None`: the whole file.
     pub elset: Option<String>,
+    /// Tied interfaces inside the part (its meshes merged, [`crate::tie`]).
+    pub ties: Vec<crate::tie::Tie>,
+    /// Springs to ground on node sets ([`crate::tie`]).
+    pub supports: Vec<crate::tie::Support>,
     /// Materials by element set, applied after the mesh's own sections (a `.msh` has none).
     pub material_overrides: Vec<(String, ElasticMaterial)>,
     /// How the part is held: node sets and their clamped directions.
@@ -140,6 +144,8 @@ impl PartInput {
         Self {
             mesh: mesh.into(),
             elset: None,
+            ties: Vec::new(),
+            supports: Vec::new(),
             material_overrides: Vec::new(),
             restraints: vec![Restraint::clamp("CLAMP")],
             skew_restraints: Vec::new(),
@@ -160,6 +166,8 @@ impl PartInput {
         Self {
             mesh: mesh.into(),
             elset: None,
+            ties: Vec::new(),
+            supports: Vec::new(),
             material_overrides: Vec::new(),
             restraints: vec![Restraint::set("ABUTMENT", [true, true, false])],
             skew_restraints: Vec::new(),
@@ -369,6 +377,8 @@ impl BrakeInputs {
             orthonormalize: self.orthonormalize,
             units: (!input.units.is_si()).then(|| input.units.name.to_string()),
             elset: input.elset.clone(),
+            ties: input.ties.clone(),
+            supports: input.supports.clone(),
         }
     }
 
@@ -488,6 +498,8 @@ impl BrakeInputs {
                 ModeChoice::Fixed(n) => n,
                 ModeChoice::Auto { .. } => self.max_modes,
             },
+            ties: input.ties.clone(),
+            supports: input.supports.clone(),
         }
     }
 }

@@ -105,7 +105,8 @@ pub fn free_motions(mesh: &Mesh, spec: &PartSpec) -> Result<Vec<FreeMotion>, Red
         transform: held.has_frames().then(|| DofTransform::new(&dofmap, &held)),
     };
     let (_, rows) = boundary_rows(mesh, &free, spec)?;
-    Ok(free_motions_of(mesh, &free, &held, &rows))
+    let springs = crate::tie::support_springs(mesh, &spec.supports)?;
+    Ok(free_motions_of(mesh, &free, &held, &rows, &springs))
 }
 
 /// [`free_motions`], as an error naming them and what to add when there are any.
@@ -168,6 +169,7 @@ pub(crate) fn free_motions_of(
     free: &FreeDofs,
     held: &HeldNodes,
     rows: &[Row],
+    springs: &std::collections::BTreeMap<u32, [f64; 3]>,
 ) -> Vec<FreeMotion> {
     let used = mesh.used_nodes();
     let (centre, length) = centre_and_length(mesh, &used);
@@ -206,6 +208,12 @@ pub(crate) fn free_motions_of(
     for (&node, frame) in &held.frames {
         for axis in frame.axes.iter().take(frame.held) {
             add(row_of(node, *axis));
+        }
+    }
+    // A support's spring holds its node along each direction it has stiffness in.
+    for (&node, k) in springs {
+        for d in (0..3).filter(|&d| k[d] > 0.0) {
+            add(row_of(node, unit_axis(d)));
         }
     }
     let physical = physical_coordinates(free);

@@ -378,6 +378,12 @@ pub struct BuildRecord {
     /// files).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elset: Option<String>,
+    /// Tied interfaces inside the part (absent when there are none, and in older files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ties: Vec<crate::tie::Tie>,
+    /// Springs to ground (absent when there are none, and in older files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub supports: Vec<crate::tie::Support>,
 }
 
 /// The JSON header stored in `__metadata__.squeal`.
