@@ -53,22 +53,30 @@ impl Mesh {
     /// The part of element set `name` (ASCII case-insensitive): its elements, the nodes they
     /// use, the sets restricted to them and the materials of its sections (module docs).
     pub fn part(&self, name: &str) -> Result<Mesh, PartError> {
-        let set = self.element_set(name).ok_or_else(|| PartError::NoSet {
-            name: name.to_string(),
-            known: self
-                .element_sets
-                .keys()
-                .cloned()
-                .collect::<Vec<_>>()
-                .join(", "),
-        })?;
-        if set.is_empty() {
-            return Err(PartError::Empty { name: name.into() });
-        }
+        self.part_of_sets(&[name.to_string()])
+    }
+
+    /// The part made of the element sets `names` together (a pad and the shim tied to it):
+    /// [`Mesh::part`] of their union.
+    pub fn part_of_sets(&self, names: &[String]) -> Result<Mesh, PartError> {
         let mut keep_element = vec![false; self.num_elements()];
-        for &e in set {
-            if let Some(k) = keep_element.get_mut(e as usize) {
-                *k = true;
+        for name in names {
+            let set = self.element_set(name).ok_or_else(|| PartError::NoSet {
+                name: name.to_string(),
+                known: self
+                    .element_sets
+                    .keys()
+                    .cloned()
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })?;
+            if set.is_empty() {
+                return Err(PartError::Empty { name: name.into() });
+            }
+            for &e in set {
+                if let Some(k) = keep_element.get_mut(e as usize) {
+                    *k = true;
+                }
             }
         }
         Ok(self.sub_mesh(&keep_element))

@@ -70,3 +70,35 @@ fn an_unknown_element_set_is_refused_with_the_file_and_the_sets() {
         "{e}"
     );
 }
+
+/// The coarse pad's back face is the plane z = 35 mm.
+const BACK_FACE: &str =
+    "{ facing = [0, 0, 1], plane = { point = [0, 0, 0.035], normal = [0, 0, 1] } }";
+
+/// Issue 21 item 4: a pad pressed and held in-plane over its whole back face leaves pitch and
+/// roll free and is refused before any reduction; a support stiffness over that face (the
+/// piston's and caliper's backing, 5e9 N/m along the normal) holds it, and the brake builds.
+#[test]
+fn a_pad_held_over_its_back_face_by_a_support_stiffness_builds() {
+    let base = bundled_scene("coarse");
+    let held =
+        format!("{}\n[sets.pad]\npistons = {BACK_FACE}\nabutments = {BACK_FACE}\n", base.text);
+    let scene = Scene::parse(&base.path, held.clone()).unwrap();
+    let Err(e) = build(&scene, &out("unsupported"), &quiet) else {
+        panic!("a pad free in pitch and roll must be refused")
+    };
+    assert!(e.to_string().contains("2 rigid-body motion(s) free"), "{e}");
+    let supported = format!(
+        "{held}\n[[supports]]\npart = \"pad\"\nset = {BACK_FACE}\nstiffness = [0.0, 0.0, 5.0e9]\n"
+    );
+    let scene = Scene::parse(&base.path, supported).unwrap();
+    let model = match build(&scene, &out("supported"), &quiet) {
+        Ok(m) => m,
+        Err(e) => panic!("{e}"),
+    };
+    // The support is recorded with the pad's reduction (a changed stiffness makes it stale).
+    let pad = &model.rom.parts[1];
+    let record = pad.info.build.as_ref().unwrap();
+    assert_eq!(record.supports.len(), 1);
+    assert_eq!(record.supports[0].stiffness, [0.0, 0.0, 5.0e9]);
+}

@@ -98,10 +98,10 @@ impl ModeChoice {
 pub struct PartInput {
     /// Mesh file (`.inp` or `.msh`).
     pub mesh: PathBuf,
-    /// The element set of `mesh` the part is, when the file holds an assembly (the part's
+    /// The element sets of `mesh` the part is made of, when the file holds an assembly (their
     /// elements, the nodes they use and the sets restricted to them,
-    /// [`squeal_mesh::Mesh::part`]); `None`: the whole file.
-    pub elset: Option<String>,
+    /// [`squeal_mesh::Mesh::part_of_sets`]); empty: the whole file.
+    pub elset: Vec<String>,
     /// Tied interfaces inside the part (its meshes merged, [`crate::tie`]).
     pub ties: Vec<crate::tie::Tie>,
     /// Springs to ground on node sets ([`crate::tie`]).
@@ -143,7 +143,7 @@ impl PartInput {
     pub fn disc(mesh: impl Into<PathBuf>) -> Self {
         Self {
             mesh: mesh.into(),
-            elset: None,
+            elset: Vec::new(),
             ties: Vec::new(),
             supports: Vec::new(),
             material_overrides: Vec::new(),
@@ -165,7 +165,7 @@ impl PartInput {
     pub fn pad(mesh: impl Into<PathBuf>) -> Self {
         Self {
             mesh: mesh.into(),
-            elset: None,
+            elset: Vec::new(),
             ties: Vec::new(),
             supports: Vec::new(),
             material_overrides: Vec::new(),
@@ -567,12 +567,12 @@ pub fn reduce_brake(
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     inputs.validate()?;
     progress("disc", Stage::Read);
-    let disc = load_part_of(&inputs.disc.mesh, inputs.disc.elset.as_deref(), &inputs.disc.units)?;
+    let disc = load_part_of(&inputs.disc.mesh, &inputs.disc.elset, &inputs.disc.units)?;
     let mut pads = Vec::with_capacity(inputs.pads.len());
     for pad in &inputs.pads {
         progress(&pad.name, Stage::Read);
         let p = &pad.part;
-        pads.push(load_part_of(&p.mesh, p.elset.as_deref(), &p.units)?);
+        pads.push(load_part_of(&p.mesh, &p.elset, &p.units)?);
     }
     reduce_brake_loaded(inputs, disc, pads, progress)
 }

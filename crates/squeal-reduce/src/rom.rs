@@ -376,8 +376,8 @@ pub struct BuildRecord {
     pub units: Option<String>,
     /// The element set of the mesh file the part is (absent for a whole file, and in older
     /// files).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub elset: Option<String>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub elset: Vec<String>,
     /// Tied interfaces inside the part (absent when there are none, and in older files).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub ties: Vec<crate::tie::Tie>,

@@ -40,6 +40,12 @@ pub struct SceneFile {
     /// `[reduction]`: an interface reduction beyond Craig–Bampton ([`reduction`]).
     #[serde(default)]
     pub reduction: reduction::ReductionSection,
+    /// `[[supports]]`: springs to ground on node sets of a part ([`crate::assembly`]).
+    #[serde(default)]
+    pub supports: Vec<crate::assembly::SupportSection>,
+    /// `[[ties]]`: tied interfaces inside a part ([`crate::assembly`]).
+    #[serde(default)]
+    pub ties: Vec<crate::assembly::TieSection>,
 }
 
 /// `[pads.<name>]`: one pad of a brake with several (an inboard pad pushed by the pistons, an
@@ -50,8 +56,9 @@ pub struct SceneFile {
 pub struct PadSection {
     /// Its mesh, relative to the scene.
     pub mesh: PathBuf,
-    /// The pad as an element set of `mesh`, when that file holds an assembly.
-    pub elset: Option<Spanned<String>>,
+    /// The pad as an element set (or a list of them) of `mesh`, when that file holds an
+    /// assembly.
+    pub elset: Option<Spanned<toml::Value>>,
     /// Where the clamp force enters: the pistons' or the fingers' points (a node set or a
     /// rule, as `[sets.pad] pistons`); default `PISTON`.
     pub load: Option<Spanned<toml::Value>>,
@@ -208,9 +215,10 @@ pub struct ModelSection {
     pub rom: Option<PathBuf>,
     /// The disc as an element set of `disc`'s file, when that file holds an assembly (the
     /// disc and pads as element sets, as CAE tools export them).
-    pub disc_elset: Option<Spanned<String>>,
-    /// The pad of a one-pad brake as an element set of `pad`'s file.
-    pub pad_elset: Option<Spanned<String>>,
+    /// (A list of element sets makes one part of them all, e.g. a pad and its tied shim.)
+    pub disc_elset: Option<Spanned<toml::Value>>,
+    /// The pad of a one-pad brake as an element set (or a list of them) of `pad`'s file.
+    pub pad_elset: Option<Spanned<toml::Value>>,
 }
 
 pub(super) fn default_interface() -> Spanned<String> {

@@ -52,24 +52,25 @@ impl Scene {
             .collect())
     }
 
-    /// `[model] disc_elset`: the disc's element set in its file, when the file holds an
-    /// assembly (`None`: the whole file is the disc).
-    pub fn disc_elset(&self) -> Option<String> {
-        self.file.model.disc_elset.as_ref().map(|s| s.get_ref().clone())
+    /// `[model] disc_elset`: the disc's element sets in its file, when the file holds an
+    /// assembly (empty: the whole file is the disc).
+    pub fn disc_elset(&self) -> Vec<String> {
+        elset_names(self.file.model.disc_elset.as_ref())
     }
 
-    /// The element set of pad `pad` in its file (`[model] pad_elset` for a one-pad brake,
-    /// `[pads.<name>] elset` otherwise), when the file holds an assembly.
-    pub fn pad_elset(&self, pad: &str) -> Option<String> {
+    /// The element sets of pad `pad` in its file (`[model] pad_elset` for a one-pad brake,
+    /// `[pads.<name>] elset` otherwise), when the file holds an assembly (empty: the whole
+    /// file).
+    pub fn pad_elset(&self, pad: &str) -> Vec<String> {
         let f = &self.file;
-        match f.pads.get(pad) {
+        elset_names(match f.pads.get(pad) {
             Some(p) => p.elset.as_ref(),
             None => f.model.pad_elset.as_ref(),
-        }
-        .map(|s| s.get_ref().clone())
+        })
     }
 
-    /// Checks the element-set keys: not empty, and `[model] pad_elset` only with `[model] pad`.
+    /// Checks the element-set keys: a name or a list of names, and `[model] pad_elset` only
+    /// with `[model] pad`.
     pub(crate) fn check_elsets(&self) -> Result<()> {
         let f = &self.file;
         let given = [
@@ -79,10 +80,19 @@ impl Scene {
         .into_iter()
         .chain(f.pads.values().map(|p| ("pads.elset", p.elset.as_ref())));
         for (key, v) in given {
-            if let Some(v) = v
-                && v.get_ref().trim().is_empty()
-            {
-                return Err(self.error_at(key, v, "must name an element set of the mesh file"));
+            if let Some(v) = v {
+                let names = elset_names(Some(v));
+                let count = match v.get_ref() {
+                    toml::Value::Array(a) => a.len(),
+                    _ => 1,
+                };
+                if names.is_empty() || names.len() != count {
+                    return Err(self.error_at(
+                        key,
+                        v,
+                        "must name an element set of the mesh file, or be a list of them",
+                    ));
+                }
             }
         }
         if let Some(v) = &f.model.pad_elset
@@ -174,6 +184,19 @@ impl Scene {
             .matches('\n')
             .count()
             + 1
+    }
+}
+
+/// The names of an element-set value: a string, or a list of non-empty strings.
+fn elset_names(v: Option<&Spanned<toml::Value>>) -> Vec<String> {
+    match v.map(|v| v.get_ref()) {
+        Some(toml::Value::String(s)) if !s.trim().is_empty() => vec![s.trim().to_string()],
+        Some(toml::Value::Array(a)) => a
+            .iter()
+            .filter_map(|x| x.as_str().map(str::trim).filter(|s| !s.is_empty()))
+            .map(String::from)
+            .collect(),
+        _ => Vec::new(),
     }
 }
 
