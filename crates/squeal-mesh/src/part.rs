@@ -253,14 +253,10 @@ mod tests {
         for conn in &b.blocks.tet10 {
             m.blocks.tet10.push(conn.map(|n| n + offset));
         }
-        m.element_ids.extend(
-            b.element_ids
-                .iter()
-                .map(|i| i + 10 * first as u64),
-        );
+        m.element_ids
+            .extend(b.element_ids.iter().map(|i| i + 10 * first as u64));
         m.element_sets.clear();
-        m.element_sets
-            .insert("A".into(), (0..first).collect());
+        m.element_sets.insert("A".into(), (0..first).collect());
         m.element_sets.insert(
             "B".into(),
             (first..first + b.num_elements() as u32).collect(),

@@ -42,7 +42,11 @@ fn parts_cut_from_one_file_give_the_same_hopf_point_bit_for_bit() {
     assert_eq!(a.parts.len(), b.parts.len());
     for (p, q) in a.parts.iter().zip(&b.parts) {
         assert_eq!(p.info.full_dofs, q.info.full_dofs, "{}", p.info.name);
-        assert!(p.k == q.k && p.m == q.m, "{}: reduced matrices differ", p.info.name);
+        assert!(
+            p.k == q.k && p.m == q.m,
+            "{}: reduced matrices differ",
+            p.info.name
+        );
     }
     let mus = bundled_scene("coarse").mu_values().unwrap();
     let sa = squeal_pipeline::stability::analyse(&separate, &mus).unwrap();
@@ -59,7 +63,9 @@ fn parts_cut_from_one_file_give_the_same_hopf_point_bit_for_bit() {
 #[test]
 fn an_unknown_element_set_is_refused_with_the_file_and_the_sets() {
     let scene = assembly_scene();
-    let text = scene.text.replace("pad_elset = \"PAD\"", "pad_elset = \"PADS\"");
+    let text = scene
+        .text
+        .replace("pad_elset = \"PAD\"", "pad_elset = \"PADS\"");
     let scene = Scene::parse(&scene.path, text).unwrap();
     let Err(e) = build(&scene, &out("unknown"), &quiet) else {
         panic!("an unknown element set must be refused")
@@ -81,8 +87,10 @@ const BACK_FACE: &str =
 #[test]
 fn a_pad_held_over_its_back_face_by_a_support_stiffness_builds() {
     let base = bundled_scene("coarse");
-    let held =
-        format!("{}\n[sets.pad]\npistons = {BACK_FACE}\nabutments = {BACK_FACE}\n", base.text);
+    let held = format!(
+        "{}\n[sets.pad]\npistons = {BACK_FACE}\nabutments = {BACK_FACE}\n",
+        base.text
+    );
     let scene = Scene::parse(&base.path, held.clone()).unwrap();
     let Err(e) = build(&scene, &out("unsupported"), &quiet) else {
         panic!("a pad free in pitch and roll must be refused")

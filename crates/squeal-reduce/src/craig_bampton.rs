@@ -580,8 +580,7 @@ fn refuse_held_slaves(
     ties: &std::collections::BTreeMap<u32, Vec<(u32, f64)>>,
 ) -> Result<(), ReduceError> {
     for &s in ties.keys() {
-        let restrained =
-            (0..3).any(|d| dofmap.status(s, d) == squeal_fe::DofStatus::Restrained);
+        let restrained = (0..3).any(|d| dofmap.status(s, d) == squeal_fe::DofStatus::Restrained);
         if restrained || held.frames.contains_key(&s) {
             return Err(ReduceError::Options(format!(
                 "node {} is tied (on a slave surface) and also restrained or kept as a piston: hold or press the master part instead, or make the held surface the master",

@@ -134,10 +134,7 @@ fn extent(mesh: &Mesh, nodes: &[u32]) -> f64 {
             hi[d] = hi[d].max(x[d]);
         }
     }
-    (0..3)
-        .map(|d| (hi[d] - lo[d]).powi(2))
-        .sum::<f64>()
-        .sqrt()
+    (0..3).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt()
 }
 
 /// Each supported node's spring stiffness along x, y, z (N/m): the supports' totals shared

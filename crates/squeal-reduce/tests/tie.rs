@@ -166,9 +166,19 @@ fn a_block_tied_on_matching_meshes_is_the_block_meshed_as_one() {
     );
     // The same stiffness and mass after eliminating the shared nodes: only the sums'
     // order differs (round-off, ~1e-15 on K; 1e-9 leaves the eigensolver's tolerance).
-    assert_eq!(q.info.full_dofs, p.info.full_dofs + 3 * 25, "the slave's own dofs");
-    assert!(fixed < 1e-9, "fixed-interface frequencies differ by {fixed:.2e}");
-    assert!(reduced < 1e-9, "reduced-model frequencies differ by {reduced:.2e}");
+    assert_eq!(
+        q.info.full_dofs,
+        p.info.full_dofs + 3 * 25,
+        "the slave's own dofs"
+    );
+    assert!(
+        fixed < 1e-9,
+        "fixed-interface frequencies differ by {fixed:.2e}"
+    );
+    assert!(
+        reduced < 1e-9,
+        "reduced-model frequencies differ by {reduced:.2e}"
+    );
 }
 
 #[test]
@@ -223,7 +233,13 @@ fn a_cube_on_springs_moves_at_sqrt_k_over_m() {
         .min_by(|x, y| (x - f0).abs().total_cmp(&(y - f0).abs()))
         .unwrap();
     let error = (vertical / f0 - 1.0).abs();
-    eprintln!("cube on springs: {vertical:.9} Hz against sqrt(k/m)/2pi = {f0} Hz ({error:.2e}); six lowest {:?}", &f[..6]);
+    eprintln!(
+        "cube on springs: {vertical:.9} Hz against sqrt(k/m)/2pi = {f0} Hz ({error:.2e}); six lowest {:?}",
+        &f[..6]
+    );
     // The elastic cube's coupling moves it by about (f0 / f_elastic)² ≈ 2e-6.
-    assert!(error < 1e-4, "vertical rigid-body frequency off by {error:.2e}");
+    assert!(
+        error < 1e-4,
+        "vertical rigid-body frequency off by {error:.2e}"
+    );
 }

@@ -97,7 +97,11 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
 
 /// The scene's `[[supports]]` and `[[ties]]` on their parts, by the node sets chosen for them
 /// ([`SceneParts::assembly_sets`]).
-fn add_supports_and_ties(scene: &Scene, parts: &SceneParts, inputs: &mut BrakeInputs) -> Result<()> {
+fn add_supports_and_ties(
+    scene: &Scene,
+    parts: &SceneParts,
+    inputs: &mut BrakeInputs,
+) -> Result<()> {
     let name_of = |key: &str| {
         parts
             .assembly_sets

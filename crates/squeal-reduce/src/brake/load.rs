@@ -127,10 +127,13 @@ pub fn load_part_of(
 ) -> Result<LoadedPart, ReduceError> {
     let mut part = load_part_in(path, units)?;
     if !elset.is_empty() {
-        part.mesh = part.mesh.part_of_sets(elset).map_err(|error| ReduceError::Part {
-            path: path.to_path_buf(),
-            error,
-        })?;
+        part.mesh = part
+            .mesh
+            .part_of_sets(elset)
+            .map_err(|error| ReduceError::Part {
+                path: path.to_path_buf(),
+                error,
+            })?;
         part.info.nodes = part.mesh.num_nodes();
         part.info.elements = part.mesh.num_elements();
     }
