@@ -14,7 +14,9 @@
 //!   in its own axes): `w · u(x) = w · t + θ · ((x − c) × w) = 0`;
 //! - a boundary coordinate eliminated from the interior (a contact node's, a piston node's
 //!   dof `w` at `x`): the same row;
-//! - a footprint's mean motion `Σ_k c_k w_k · u(x_k) = 0`.
+//! - a footprint's mean motion `Σ_k c_k w_k · u(x_k) = 0`;
+//! - a support's spring along `e_d` at node `x` ([`crate::tie`]): `e_d · u(x) = 0`, since
+//!   the spring adds `k (e_d · u)²` to the energy.
 //!
 //! (A contact patch's mean motion is a constraint on the interior, not part of `K_vv`: it does
 //! not hold the part there.) These are the rows `a` of a matrix `A` on the six unknowns
