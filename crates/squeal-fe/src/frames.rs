@@ -195,7 +195,17 @@ pub struct DofTransform {
     /// Old free dof of each direction of each framed node, and the new dof and axis of each
     /// kept coordinate.
     framed: BTreeMap<u32, FramedNode>,
+    /// Tied (slave) nodes: their old free dofs and, per direction, the kept coordinates
+    /// their motion is made of ([`DofTransform::with_ties`]).
+    slaves: BTreeMap<u32, SlaveNode>,
     num_new: usize,
+}
+
+#[derive(Clone, Debug)]
+struct SlaveNode {
+    old: [Option<usize>; 3],
+    /// Per direction: `(new dof, weight)`.
+    rows: [Vec<(usize, f64)>; 3],
 }
 
 #[derive(Clone, Debug)]
@@ -208,6 +218,22 @@ struct FramedNode {
 impl DofTransform {
     /// The transform of `dofmap` (built with `held.restraints`) under `held.frames`.
     pub fn new(dofmap: &DofMap, held: &HeldNodes) -> Self {
+        Self::with_ties(dofmap, held, &BTreeMap::new())
+    }
+
+    /// The transform of `dofmap` under `held.frames` and the multi-point constraints `ties`:
+    /// each tied (slave) node moves as `u_s = Σ_i w_i u_i` of its master nodes `(i, w_i)`
+    /// (a tie's shape-function weights at the slave's projection), direction by direction,
+    /// and keeps no coordinate of its own. A master's restrained direction contributes
+    /// nothing (it does not move); a master in its own axes contributes its kept coordinates.
+    /// Masters must not be slaves themselves and slaves must have no frame (the caller checks
+    /// both). `Tᵀ K T` is then the exact stiffness of the tied parts (the constraints
+    /// eliminated, not penalised).
+    pub fn with_ties(
+        dofmap: &DofMap,
+        held: &HeldNodes,
+        ties: &BTreeMap<u32, Vec<(u32, f64)>>,
+    ) -> Self {
         let n_old = dofmap.num_free();
         let mut new_of_old = vec![None; n_old];
         let mut framed: BTreeMap<u32, FramedNode> = BTreeMap::new();
@@ -216,6 +242,9 @@ impl DofTransform {
             let Some((node, dir)) = dofmap.node_dir(f) else {
                 continue;
             };
+            if ties.contains_key(&node) {
+                continue;
+            }
             match held.frames.get(&node) {
                 None => {
                     new_of_old[f] = Some(next);
@@ -238,11 +267,31 @@ impl DofTransform {
                 }
             }
         }
-        Self {
+        let mut t = Self {
             new_of_old,
             framed,
+            slaves: BTreeMap::new(),
             num_new: next,
+        };
+        let mut slaves = BTreeMap::new();
+        let mut row = Vec::new();
+        for (&node, masters) in ties {
+            let old = dofmap.node_dofs(node);
+            let rows = std::array::from_fn(|dir| {
+                let mut out: Vec<(usize, f64)> = Vec::new();
+                for &(m, w) in masters {
+                    let Some(mo) = dofmap.free_dof(m, dir) else {
+                        continue;
+                    };
+                    t.row(mo, Some((m, dir)), &mut row);
+                    out.extend(row.iter().map(|&(n, v)| (n, w * v)));
+                }
+                out
+            });
+            slaves.insert(node, SlaveNode { old, rows });
         }
+        t.slaves = slaves;
+        t
     }
 
     /// Number of kept coordinates (rows and columns of the held system).
@@ -266,6 +315,10 @@ impl DofTransform {
         out.clear();
         if let Some(n) = self.new_dof(old) {
             out.push((n, 1.0));
+        } else if let Some((node, dir)) = node_dir
+            && let Some(sl) = self.slaves.get(&node)
+        {
+            out.extend_from_slice(&sl.rows[dir]);
         } else if let Some((node, dir)) = node_dir
             && let Some(fr) = self.framed.get(&node)
         {
@@ -343,7 +396,7 @@ impl DofTransform {
         for c in 0..self.num_new {
             for k in col_ptr[c]..col_ptr[c + 1] {
                 let r = row_idx[k];
-                if r != c && (is_framed_new[r] || is_framed_new[c]) {
+                if r != c && (!self.slaves.is_empty() || is_framed_new[r] || is_framed_new[c]) {
                     sym[k] = 0.5 * (val[k] + lookup(c, r, &col_ptr, &row_idx, &val));
                 }
             }
@@ -378,6 +431,14 @@ impl DofTransform {
                 let Some(old) = old else { continue };
                 for j in 0..x.ncols() {
                     out[(*old, j)] = fr.kept.iter().map(|&(n, a)| a[dir] * x[(n, j)]).sum();
+                }
+            }
+        }
+        for sl in self.slaves.values() {
+            for (dir, old) in sl.old.iter().enumerate() {
+                let Some(old) = old else { continue };
+                for j in 0..x.ncols() {
+                    out[(*old, j)] = sl.rows[dir].iter().map(|&(n, w)| w * x[(n, j)]).sum();
                 }
             }
         }

@@ -15,6 +15,8 @@
 //! mesh, shells) and says that a file cut off before its elements reads like this. Parsing
 //! text held in memory ([`inp::parse`], [`msh::parse`], for fragments and tests) gives the
 //! mesh with a warning instead.
+//! - [`part`]: the sub-mesh of one element set of an assembly file, and the bodies (connected
+//!   components of elements) a file holds.
 //! - [`quality`]: inverted or badly curved elements, missing nodes, duplicate coordinates,
 //!   unused nodes, empty sets.
 //! - [`vtu`]: VTK XML unstructured grids (quadratic tetra, cell type 24) with point and cell
@@ -36,6 +38,7 @@ pub mod inp;
 pub mod model;
 pub mod msh;
 pub mod nastran;
+pub mod part;
 pub mod quality;
 pub mod select;
 pub mod units;

@@ -192,6 +192,7 @@ fn summary(
         );
     }
     sets(s, m);
+    bodies(s, m);
     materials(s, m, overrides);
     let report = quality::check(m, &QualityOptions::default());
     line(s, format_args!("  volume    {:.9e} m^3", report.volume));
@@ -348,6 +349,59 @@ fn sets(s: &mut String, m: &Mesh) {
                 format_args!("    {name:<24} {:>8} elements{mat}", set.len()),
             );
         }
+    }
+}
+
+/// The bodies of the file (connected components of its elements) and the element sets that
+/// are each: a file of several bodies is an assembly, whose parts a scene takes by element set
+/// (`[model] disc_elset`, `pad_elset`, `[pads.<name>] elset`).
+fn bodies(s: &mut String, m: &Mesh) {
+    let found = squeal_mesh::part::bodies(m);
+    line(
+        s,
+        format_args!(
+            "  bodies    {:>10}  (connected components of elements){}",
+            found.len(),
+            if found.len() > 1 {
+                ": an assembly; a scene takes a part by its element set"
+            } else {
+                ""
+            }
+        ),
+    );
+    if found.len() < 2 {
+        return;
+    }
+    for (k, b) in found.iter().enumerate() {
+        let whole: Vec<&str> = b
+            .sets
+            .iter()
+            .filter(|(_, w)| *w)
+            .map(|(n, _)| n.as_str())
+            .collect();
+        let partly: Vec<&str> = b
+            .sets
+            .iter()
+            .filter(|(_, w)| !*w)
+            .map(|(n, _)| n.as_str())
+            .collect();
+        let mut sets = match whole.is_empty() {
+            true => "no element set is the whole body".to_string(),
+            false => format!("element set(s) {}", whole.join(", ")),
+        };
+        if !partly.is_empty() {
+            sets.push_str(&format!("; part of {}", partly.join(", ")));
+        }
+        line(
+            s,
+            format_args!(
+                "    body {:<3} {:>8} elements {:>8} nodes (first element {}): {sets}",
+                k + 1,
+                b.elements,
+                b.nodes,
+                b.first_element
+            ),
+        );
     }
 }
 

@@ -124,6 +124,10 @@ pub fn brake_inputs(scene: &Scene) -> Result<BrakeInputs> {
             part: PartInput::pad(path.clone()),
         })
         .collect();
+    inputs.disc.elset = scene.disc_elset();
+    for pad in &mut inputs.pads {
+        pad.part.elset = scene.pad_elset(&pad.name);
+    }
     let mut inputs = inputs.about(axis, normal.unwrap_or(direction))?;
     inputs.interface = match scene.interface()? {
         Interface::Node => InterfaceKind::Node,

@@ -21,7 +21,7 @@ use squeal_mesh::Mesh;
 use squeal_mesh::select::{self, Face, Rule, Selection, Surface};
 use squeal_mesh::units::UnitSystem;
 use squeal_reduce::brake::PartInput;
-use squeal_reduce::brake::{BrakeInputs, LoadedPart, load_part_in, refuse_shortened_set};
+use squeal_reduce::brake::{BrakeInputs, LoadedPart, load_part_of, refuse_shortened_set};
 use squeal_reduce::rom::ContactSurface;
 use squeal_scene::Scene;
 use squeal_scene::sets::Hold;
@@ -101,6 +101,9 @@ pub struct SceneParts {
     pub sets: Vec<ChosenSet>,
     /// The scene's materials (SI), by element set.
     pub materials: Vec<(String, ElasticMaterial)>,
+    /// The sets of `[[supports]]` and `[[ties]]` (keys `supports.<k>.set`,
+    /// `ties.<k>.slave`, `ties.<k>.master`), added to their parts' meshes.
+    pub assembly_sets: Vec<ChosenSet>,
 }
 
 impl SceneParts {
@@ -372,10 +375,11 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
     for w in scene.material_warnings()? {
         log(&format!("warning: {w}"));
     }
-    let mut disc = load_part_in(&scene.disc_mesh(), &units)?;
+    let mut disc = load_part_of(&scene.disc_mesh(), &scene.disc_elset(), &units)?;
     let mut pads = Vec::new();
     for (name, path) in scene.pad_meshes()? {
-        pads.push((name, load_part_in(&path, &units)?));
+        let elset = scene.pad_elset(&name);
+        pads.push((name, load_part_of(&path, &elset, &units)?));
     }
     for w in disc
         .warnings
@@ -403,6 +407,12 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
         }
         sets
     };
+    let assembly_sets = {
+        let mut meshes: Vec<(&str, &mut Mesh)> = std::iter::once(("disc", &mut disc.mesh))
+            .chain(pads.iter_mut().map(|(n, p)| (n.as_str(), &mut p.mesh)))
+            .collect();
+        choose_assembly_sets(scene, &mut meshes)?
+    };
     let all: Vec<(&str, &Mesh)> = std::iter::once(("disc", &disc.mesh))
         .chain(pads.iter().map(|(n, p)| (n.as_str(), &p.mesh)))
         .collect();
@@ -414,13 +424,40 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
         units,
         sets,
         materials,
+        assembly_sets,
     })
+}
+
+/// Chooses the sets of the scene's `[[supports]]` and `[[ties]]` on their parts and adds them
+/// to the meshes as node sets (a set of the mesh by name is used as is).
+fn choose_assembly_sets(scene: &Scene, meshes: &mut [(&str, &mut Mesh)]) -> Result<Vec<ChosenSet>> {
+    let mut wanted: Vec<(String, squeal_scene::sets::SetRule)> = Vec::new();
+    for s in scene.supports()? {
+        wanted.push((s.part, s.set));
+    }
+    for t in scene.ties()? {
+        wanted.push((t.part.clone(), t.slave));
+        wanted.push((t.part, t.master));
+    }
+    let mut out = Vec::with_capacity(wanted.len());
+    for (part, rule) in wanted {
+        let Some((_, mesh)) = meshes.iter_mut().find(|m| m.0 == part) else {
+            continue;
+        };
+        let boundary = select::boundary_faces(mesh);
+        let c = from_scene(&part, &rule.key.clone(), &rule, mesh, &boundary)?;
+        if c.by_geometry && mesh.node_set(&c.name).is_none() {
+            mesh.node_sets.insert(c.name.clone(), c.nodes());
+        }
+        out.push(c);
+    }
+    Ok(out)
 }
 
 /// Refuses a node set of a mesh that the reduction uses (a clamp, contact face, pistons or
 /// abutments chosen by name) when the file names in it a node it never defines: checked here,
 /// before the cached model's freshness, so that a model reduced from such a set is not
-/// called up to date. (A mesh with errors is refused on reading, [`load_part_in`].)
+/// called up to date. (A mesh with errors is refused on reading, [`load_part_of`].)
 fn refuse_shortened_sets(
     sets: &[ChosenSet],
     disc: &LoadedPart,

@@ -47,7 +47,8 @@ mod load;
 #[allow(unused_imports)]
 use load::*;
 pub use load::{
-    LoadedPart, backend_name, load_part, load_part_in, refuse_mesh_errors, refuse_shortened_set,
+    LoadedPart, backend_name, load_part, load_part_in, load_part_of, refuse_mesh_errors,
+    refuse_shortened_set,
 };
 
 /// The version written into every `.rom` file; a file made by another version is stale. The
@@ -98,6 +99,14 @@ impl ModeChoice {
 pub struct PartInput {
     /// Mesh file (`.inp` or `.msh`).
     pub mesh: PathBuf,
+    /// The element sets of `mesh` the part is made of, when the file holds an assembly (their
+    /// elements, the nodes they use and the sets restricted to them,
+    /// [`squeal_mesh::Mesh::part_of_sets`]); empty: the whole file.
+    pub elset: Vec<String>,
+    /// Tied interfaces inside the part (its meshes merged, [`crate::tie`]).
+    pub ties: Vec<crate::tie::Tie>,
+    /// Springs to ground on node sets ([`crate::tie`]).
+    pub supports: Vec<crate::tie::Support>,
     /// Materials by element set, applied after the mesh's own sections (a `.msh` has none).
     pub material_overrides: Vec<(String, ElasticMaterial)>,
     /// How the part is held: node sets and their clamped directions.
@@ -135,6 +144,9 @@ impl PartInput {
     pub fn disc(mesh: impl Into<PathBuf>) -> Self {
         Self {
             mesh: mesh.into(),
+            elset: Vec::new(),
+            ties: Vec::new(),
+            supports: Vec::new(),
             material_overrides: Vec::new(),
             restraints: vec![Restraint::clamp("CLAMP")],
             skew_restraints: Vec::new(),
@@ -154,6 +166,9 @@ impl PartInput {
     pub fn pad(mesh: impl Into<PathBuf>) -> Self {
         Self {
             mesh: mesh.into(),
+            elset: Vec::new(),
+            ties: Vec::new(),
+            supports: Vec::new(),
             material_overrides: Vec::new(),
             restraints: vec![Restraint::set("ABUTMENT", [true, true, false])],
             skew_restraints: Vec::new(),
@@ -362,6 +377,9 @@ impl BrakeInputs {
             eig_tol: self.eig_tol,
             orthonormalize: self.orthonormalize,
             units: (!input.units.is_si()).then(|| input.units.name.to_string()),
+            elset: input.elset.clone(),
+            ties: input.ties.clone(),
+            supports: input.supports.clone(),
         }
     }
 
@@ -482,6 +500,8 @@ impl BrakeInputs {
                 ModeChoice::Fixed(n) => n,
                 ModeChoice::Auto { .. } => self.max_modes,
             },
+            ties: input.ties.clone(),
+            supports: input.supports.clone(),
         }
     }
 }
@@ -549,11 +569,12 @@ pub fn reduce_brake(
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     inputs.validate()?;
     progress("disc", Stage::Read);
-    let disc = load_part_in(&inputs.disc.mesh, &inputs.disc.units)?;
+    let disc = load_part_of(&inputs.disc.mesh, &inputs.disc.elset, &inputs.disc.units)?;
     let mut pads = Vec::with_capacity(inputs.pads.len());
     for pad in &inputs.pads {
         progress(&pad.name, Stage::Read);
-        pads.push(load_part_in(&pad.part.mesh, &pad.part.units)?);
+        let p = &pad.part;
+        pads.push(load_part_of(&p.mesh, &p.elset, &p.units)?);
     }
     reduce_brake_loaded(inputs, disc, pads, progress)
 }

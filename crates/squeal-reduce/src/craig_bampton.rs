@@ -128,6 +128,11 @@ pub struct PartSpec {
     pub piston_direction: Option<[f64; 3]>,
     /// Fixed-interface modes kept.
     pub modes: usize,
+    /// Tied interfaces inside the part (its meshes merged), eliminated exactly
+    /// ([`crate::tie`]).
+    pub ties: Vec<crate::tie::Tie>,
+    /// Springs to ground on node sets, added to `K` before the reduction ([`crate::tie`]).
+    pub supports: Vec<crate::tie::Support>,
 }
 
 impl PartSpec {
@@ -398,16 +403,24 @@ pub fn reduce_part(
     let mut held = HeldNodes::new(mesh, &spec.restraints, &skew_restraints(mesh, spec)?)?;
     piston_frames(mesh, spec, &mut held)?;
     let dofmap = DofMap::new(mesh, &held.restraints)?;
+    let ties = crate::tie::tie_constraints(mesh, &spec.ties)?;
+    refuse_held_slaves(mesh, &dofmap, &held, &ties)?;
     let system = assemble(mesh, materials, &dofmap)?;
-    // Nodes held along skew directions: K' = Tᵀ K T, M' = Tᵀ M T on the kept coordinates.
+    // Nodes held along skew directions and tied nodes: K' = Tᵀ K T, M' = Tᵀ M T on the kept
+    // coordinates.
     let free = FreeDofs {
         dofmap: &dofmap,
-        transform: held.has_frames().then(|| DofTransform::new(&dofmap, &held)),
+        transform: (held.has_frames() || !ties.is_empty())
+            .then(|| DofTransform::with_ties(&dofmap, &held, &ties)),
     };
-    let system = match &free.transform {
+    let mut system = match &free.transform {
         Some(t) => t.system(&dofmap, &system),
         None => system,
     };
+    let springs = crate::tie::support_springs(mesh, &spec.supports)?;
+    if !springs.is_empty() {
+        system.k = add_springs(&system.k, &free, &springs);
+    }
     clock(Stage::Assemble, t, &mut timings);
 
     progress(Stage::Interface);
@@ -432,7 +445,7 @@ pub fn reduce_part(
     };
     let factor = SparseCholesky::factorize_with(k_vv.as_ref(), &chol).map_err(|e| match e {
         EigError::NotPositiveDefinite { .. } => {
-            let free_motions = crate::held::free_motions_of(mesh, &free, &held, &rows);
+            let free_motions = crate::held::free_motions_of(mesh, &free, &held, &rows, &springs);
             match free_motions.is_empty() {
                 false => crate::held::not_held(spec, &free_motions),
                 true => ReduceError::NotConnected {
@@ -557,6 +570,52 @@ pub fn reduce_part(
         },
         report,
     ))
+}
+
+/// Refuses a tied (slave) node that is restrained or in axes of its own: its motion is its
+/// masters' (module docs of [`crate::tie`]).
+fn refuse_held_slaves(
+    mesh: &Mesh,
+    dofmap: &DofMap,
+    held: &HeldNodes,
+    ties: &std::collections::BTreeMap<u32, Vec<(u32, f64)>>,
+) -> Result<(), ReduceError> {
+    for &s in ties.keys() {
+        let restrained = (0..3).any(|d| dofmap.status(s, d) == squeal_fe::DofStatus::Restrained);
+        if restrained || held.frames.contains_key(&s) {
+            return Err(ReduceError::Options(format!(
+                "node {} is tied (on a slave surface) and also restrained or kept as a piston: hold or press the master part instead, or make the held surface the master",
+                mesh.node_ids[s as usize]
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// `K` plus the supports' springs: `k_d (w · u)²` for each supported node and direction
+/// `w = e_d` with `k_d > 0`, on the free coordinates (a node in its own axes through its kept
+/// coordinates; a restrained direction holds already and adds nothing).
+fn add_springs(
+    k: &SparseColMat<usize, f64>,
+    free: &FreeDofs,
+    springs: &std::collections::BTreeMap<u32, [f64; 3]>,
+) -> SparseColMat<usize, f64> {
+    let mut added: Vec<Vec<(usize, f64)>> = vec![Vec::new(); k.ncols()];
+    for (&node, kd) in springs {
+        for d in (0..3).filter(|&d| kd[d] > 0.0) {
+            let mut w = [0.0; 3];
+            w[d] = 1.0;
+            let Some(a) = free.along(node, w) else {
+                continue;
+            };
+            for &(j, cj) in &a {
+                for &(i, ci) in &a {
+                    added[j].push((i, kd[d] * ci * cj));
+                }
+            }
+        }
+    }
+    with_added(k, added)
 }
 
 /// Natural frequency (Hz) of an eigenvalue `ω²` (negative round-off clipped to 0).

@@ -19,6 +19,14 @@ pub enum ReduceError {
     /// The mesh file could not be read.
     #[error(transparent)]
     Mesh(#[from] squeal_mesh::MeshError),
+    /// A part named by element set cannot be cut out of its file.
+    #[error("{}: {error}", path.display())]
+    Part {
+        /// The assembly file.
+        path: std::path::PathBuf,
+        /// Why not.
+        error: squeal_mesh::part::PartError,
+    },
     /// A reduced-model file could not be read or written.
     #[error(transparent)]
     Rom(#[from] crate::rom::RomError),

@@ -14,7 +14,9 @@
 //!   in its own axes): `w · u(x) = w · t + θ · ((x − c) × w) = 0`;
 //! - a boundary coordinate eliminated from the interior (a contact node's, a piston node's
 //!   dof `w` at `x`): the same row;
-//! - a footprint's mean motion `Σ_k c_k w_k · u(x_k) = 0`.
+//! - a footprint's mean motion `Σ_k c_k w_k · u(x_k) = 0`;
+//! - a support's spring along `e_d` at node `x` ([`crate::tie`]): `e_d · u(x) = 0`, since
+//!   the spring adds `k (e_d · u)²` to the energy.
 //!
 //! (A contact patch's mean motion is a constraint on the interior, not part of `K_vv`: it does
 //! not hold the part there.) These are the rows `a` of a matrix `A` on the six unknowns
@@ -106,7 +108,8 @@ pub fn free_motions(mesh: &Mesh, spec: &PartSpec) -> Result<Vec<FreeMotion>, Red
         transform: held.has_frames().then(|| DofTransform::new(&dofmap, &held)),
     };
     let (_, rows) = boundary_rows(mesh, &free, spec)?;
-    Ok(free_motions_of(mesh, &free, &held, &rows))
+    let springs = crate::tie::support_springs(mesh, &spec.supports)?;
+    Ok(free_motions_of(mesh, &free, &held, &rows, &springs))
 }
 
 /// [`free_motions`], as an error naming them and what to add when there are any.
@@ -169,6 +172,7 @@ pub(crate) fn free_motions_of(
     free: &FreeDofs,
     held: &HeldNodes,
     rows: &[Row],
+    springs: &std::collections::BTreeMap<u32, [f64; 3]>,
 ) -> Vec<FreeMotion> {
     let used = mesh.used_nodes();
     let (centre, length) = centre_and_length(mesh, &used);
@@ -207,6 +211,12 @@ pub(crate) fn free_motions_of(
     for (&node, frame) in &held.frames {
         for axis in frame.axes.iter().take(frame.held) {
             add(row_of(node, *axis));
+        }
+    }
+    // A support's spring holds its node along each direction it has stiffness in.
+    for (&node, k) in springs {
+        for d in (0..3).filter(|&d| k[d] > 0.0) {
+            add(row_of(node, unit_axis(d)));
         }
     }
     let physical = physical_coordinates(free);

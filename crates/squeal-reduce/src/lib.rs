@@ -14,5 +14,6 @@ pub mod interface;
 pub mod interface_modes;
 pub mod rom;
 pub mod summary;
+pub mod tie;
 
 pub use error::ReduceError;

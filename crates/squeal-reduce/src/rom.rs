@@ -385,6 +385,16 @@ pub struct BuildRecord {
     /// (`None`: SI; absent from files of earlier versions, which read SI meshes only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub units: Option<String>,
+    /// The element set of the mesh file the part is (absent for a whole file, and in older
+    /// files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub elset: Vec<String>,
+    /// Tied interfaces inside the part (absent when there are none, and in older files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ties: Vec<crate::tie::Tie>,
+    /// Springs to ground (absent when there are none, and in older files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub supports: Vec<crate::tie::Support>,
 }
 
 /// The JSON header stored in `__metadata__.squeal`.

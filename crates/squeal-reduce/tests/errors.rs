@@ -157,6 +157,8 @@ fn bar_spec(contact: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec
         normal_direction: 2,
         piston_direction: None,
         modes,
+        ties: Vec::new(),
+        supports: Vec::new(),
     }
 }
 

@@ -47,6 +47,8 @@ fn spec(restraints: Vec<Restraint>, footprints: Vec<String>, pistons: Option<&st
         normal_direction: 2,
         piston_direction: None,
         modes: 4,
+        ties: Vec::new(),
+        supports: Vec::new(),
     }
 }
 

@@ -49,6 +49,8 @@ fn spec(name: &str, interface: InterfaceKind) -> (squeal_mesh::Mesh, PartSpec) {
         normal_direction: 2,
         piston_direction: None,
         modes: 50,
+        ties: Vec::new(),
+        supports: Vec::new(),
     };
     (mesh, spec)
 }

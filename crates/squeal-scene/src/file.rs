@@ -43,6 +43,12 @@ pub struct SceneFile {
     /// `[sound]`: microphones and air ([`crate::sound`]).
     #[serde(default)]
     pub sound: crate::sound::SoundSection,
+    /// `[[supports]]`: springs to ground on node sets of a part ([`crate::assembly`]).
+    #[serde(default)]
+    pub supports: Vec<crate::assembly::SupportSection>,
+    /// `[[ties]]`: tied interfaces inside a part ([`crate::assembly`]).
+    #[serde(default)]
+    pub ties: Vec<crate::assembly::TieSection>,
 }
 
 /// `[pads.<name>]`: one pad of a brake with several (an inboard pad pushed by the pistons, an
@@ -53,6 +59,9 @@ pub struct SceneFile {
 pub struct PadSection {
     /// Its mesh, relative to the scene.
     pub mesh: PathBuf,
+    /// The pad as an element set (or a list of them) of `mesh`, when that file holds an
+    /// assembly.
+    pub elset: Option<Spanned<toml::Value>>,
     /// Where the clamp force enters: the pistons' or the fingers' points (a node set or a
     /// rule, as `[sets.pad] pistons`); default `PISTON`.
     pub load: Option<Spanned<toml::Value>>,
@@ -207,6 +216,12 @@ pub struct ModelSection {
     pub modes: Spanned<usize>,
     /// Where the reduced model is kept (relative to the scene); default: in the output folder.
     pub rom: Option<PathBuf>,
+    /// The disc as an element set of `disc`'s file, when that file holds an assembly (the
+    /// disc and pads as element sets, as CAE tools export them).
+    /// (A list of element sets makes one part of them all, e.g. a pad and its tied shim.)
+    pub disc_elset: Option<Spanned<toml::Value>>,
+    /// The pad of a one-pad brake as an element set (or a list of them) of `pad`'s file.
+    pub pad_elset: Option<Spanned<toml::Value>>,
 }
 
 pub(super) fn default_interface() -> Spanned<String> {

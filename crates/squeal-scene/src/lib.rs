@@ -58,6 +58,8 @@ pub use file::{
 
 mod contact_keys;
 
+pub mod assembly;
+
 /// What is wrong with a scene file, with the file and, where a value is at fault, its key and
 /// line.
 #[derive(Debug, thiserror::Error)]
@@ -374,6 +376,9 @@ impl Scene {
         self.set_rules()?;
         self.patch_grid()?;
         self.materials()?;
+        self.check_elsets()?;
+        self.supports()?;
+        self.ties()?;
         Ok(())
     }
 

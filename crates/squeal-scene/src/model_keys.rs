@@ -55,6 +55,61 @@ impl Scene {
             .collect())
     }
 
+    /// `[model] disc_elset`: the disc's element sets in its file, when the file holds an
+    /// assembly (empty: the whole file is the disc).
+    pub fn disc_elset(&self) -> Vec<String> {
+        elset_names(self.file.model.disc_elset.as_ref())
+    }
+
+    /// The element sets of pad `pad` in its file (`[model] pad_elset` for a one-pad brake,
+    /// `[pads.<name>] elset` otherwise), when the file holds an assembly (empty: the whole
+    /// file).
+    pub fn pad_elset(&self, pad: &str) -> Vec<String> {
+        let f = &self.file;
+        elset_names(match f.pads.get(pad) {
+            Some(p) => p.elset.as_ref(),
+            None => f.model.pad_elset.as_ref(),
+        })
+    }
+
+    /// Checks the element-set keys: a name or a list of names, and `[model] pad_elset` only
+    /// with `[model] pad`.
+    pub(crate) fn check_elsets(&self) -> Result<()> {
+        let f = &self.file;
+        let given = [
+            ("model.disc_elset", f.model.disc_elset.as_ref()),
+            ("model.pad_elset", f.model.pad_elset.as_ref()),
+        ]
+        .into_iter()
+        .chain(f.pads.values().map(|p| ("pads.elset", p.elset.as_ref())));
+        for (key, v) in given {
+            if let Some(v) = v {
+                let names = elset_names(Some(v));
+                let count = match v.get_ref() {
+                    toml::Value::Array(a) => a.len(),
+                    _ => 1,
+                };
+                if names.is_empty() || names.len() != count {
+                    return Err(self.error_at(
+                        key,
+                        v,
+                        "must name an element set of the mesh file, or be a list of them",
+                    ));
+                }
+            }
+        }
+        if let Some(v) = &f.model.pad_elset
+            && f.model.pad.is_none()
+        {
+            return Err(self.error_at(
+                "model.pad_elset",
+                v,
+                "names the element set of [model] pad, which is not given: with [pads.<name>] tables give elset = \"...\" in each",
+            ));
+        }
+        Ok(())
+    }
+
     /// `[model] modes`: the fixed-interface modes kept per part.
     pub fn modes_per_part(&self) -> usize {
         *self.file.model.modes.get_ref()
@@ -133,6 +188,19 @@ impl Scene {
             .matches('\n')
             .count()
             + 1
+    }
+}
+
+/// The names of an element-set value: a string, or a list of non-empty strings.
+fn elset_names(v: Option<&Spanned<toml::Value>>) -> Vec<String> {
+    match v.map(|v| v.get_ref()) {
+        Some(toml::Value::String(s)) if !s.trim().is_empty() => vec![s.trim().to_string()],
+        Some(toml::Value::Array(a)) => a
+            .iter()
+            .filter_map(|x| x.as_str().map(str::trim).filter(|s| !s.is_empty()))
+            .map(String::from)
+            .collect(),
+        _ => Vec::new(),
     }
 }
 

@@ -348,7 +348,7 @@ impl Scene {
     }
 
     /// One `[sets]` key as rules in SI.
-    fn set_rule(
+    pub(crate) fn set_rule(
         &self,
         key: &str,
         value: Option<&Spanned<toml::Value>>,

@@ -91,7 +91,43 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
         }
     }
     inputs.grid = scene.patch_grid()?;
+    add_supports_and_ties(scene, parts, &mut inputs)?;
     Ok(inputs)
+}
+
+/// The scene's `[[supports]]` and `[[ties]]` on their parts, by the node sets chosen for them
+/// ([`SceneParts::assembly_sets`]).
+fn add_supports_and_ties(
+    scene: &Scene,
+    parts: &SceneParts,
+    inputs: &mut BrakeInputs,
+) -> Result<()> {
+    let name_of = |key: &str| {
+        parts
+            .assembly_sets
+            .iter()
+            .find(|c| c.key == key)
+            .map(|c| c.name.clone())
+            .unwrap_or_default()
+    };
+    for s in scene.supports()? {
+        if let Some(p) = part_mut(inputs, &s.part) {
+            p.supports.push(squeal_reduce::tie::Support {
+                set: name_of(&s.set.key),
+                stiffness: s.stiffness,
+            });
+        }
+    }
+    for t in scene.ties()? {
+        if let Some(p) = part_mut(inputs, &t.part) {
+            p.ties.push(squeal_reduce::tie::Tie {
+                slave: name_of(&t.slave.key),
+                master: name_of(&t.master.key),
+                tolerance: t.tolerance,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The chosen set `k` of [`PAD_SETS`] of pad `pad`, the `index`-th of `count`: chosen under
@@ -270,4 +306,19 @@ pub(super) fn nearest_to_patches(
         out.push(best);
     }
     Ok(out)
+}
+
+/// The part named `name` of `inputs` (`disc` or a pad's name).
+fn part_mut<'a>(
+    inputs: &'a mut BrakeInputs,
+    name: &str,
+) -> Option<&'a mut squeal_reduce::brake::PartInput> {
+    if name == "disc" {
+        return Some(&mut inputs.disc);
+    }
+    inputs
+        .pads
+        .iter_mut()
+        .find(|p| p.name == name)
+        .map(|p| &mut p.part)
 }

@@ -115,3 +115,27 @@ pub fn load_part_in(path: &Path, units: &UnitSystem) -> Result<LoadedPart, Reduc
     );
     Ok(part)
 }
+
+/// [`load_part_in`] of the part made of element sets `elset` of an assembly file
+/// ([`squeal_mesh::Mesh::part_of_sets`]: their elements, the nodes they use, the sets
+/// restricted to them), or of the whole file when `elset` is empty. The `.rom` records the
+/// file's hash and the part's node and element counts.
+pub fn load_part_of(
+    path: &Path,
+    elset: &[String],
+    units: &UnitSystem,
+) -> Result<LoadedPart, ReduceError> {
+    let mut part = load_part_in(path, units)?;
+    if !elset.is_empty() {
+        part.mesh = part
+            .mesh
+            .part_of_sets(elset)
+            .map_err(|error| ReduceError::Part {
+                path: path.to_path_buf(),
+                error,
+            })?;
+        part.info.nodes = part.mesh.num_nodes();
+        part.info.elements = part.mesh.num_elements();
+    }
+    Ok(part)
+}

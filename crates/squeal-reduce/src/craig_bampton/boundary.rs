@@ -288,6 +288,18 @@ pub(super) fn footprint_springs(
     if !any {
         return None;
     }
+    Some(with_added(k, added))
+}
+
+/// `K` plus the entries `added[j]` (row, value) of each column `j`: both triangles as given,
+/// each column's rows ascending; an entry both in `K` and added is `K`'s plus the added ones
+/// in the order given (the same bits for any thread count).
+pub(crate) fn with_added(
+    k: &SparseColMat<usize, f64>,
+    mut added: Vec<Vec<(usize, f64)>>,
+) -> SparseColMat<usize, f64> {
+    let n = k.ncols();
+    let kr = k.as_ref();
     let mut col_ptr = Vec::with_capacity(n + 1);
     let mut row_idx = Vec::with_capacity(kr.compute_nnz());
     let mut val = Vec::with_capacity(kr.compute_nnz());
@@ -318,10 +330,10 @@ pub(super) fn footprint_springs(
         }
         col_ptr.push(row_idx.len());
     }
-    Some(SparseColMat::new(
+    SparseColMat::new(
         SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx),
         val,
-    ))
+    )
 }
 
 /// The label of point `p`'s dof along coordinate axis `d`.

@@ -1,0 +1,145 @@
+//! `[[supports]]` and `[[ties]]`: springs to ground and tied interfaces inside a part.
+//!
+//! ```toml
+//! [[supports]]            # a spring to ground (the piston's seal, a finger, a bracket mount)
+//! part = "pad"            # "disc", "pad" (a one-pad brake) or a [pads.<name>] name
+//! set = "BACK_FACE"       # a node set, or a rule as in [sets] (e.g. a plane with facing)
+//! stiffness = [0.0, 0.0, 2.0e7]   # total N/m along x, y, z (or the [units] force/length)
+//!
+//! [[ties]]                # a bonded interface: slave nodes move with the master face
+//! part = "pad"            # the part holding both surfaces (a list of element sets in elset)
+//! slave = "SHIM_TOP"      # node set or rule
+//! master = "BACKPLATE_BACK"
+//! tolerance = 1.0e-4      # optional (the [units] length): default 1 % of the master's size
+//! ```
+//!
+//! The reduction shares a support's stiffness over its set by tributary area and adds it to
+//! the part's stiffness before the Craig–Bampton reduction; a tie's constraints are
+//! eliminated exactly before it (`squeal_reduce::tie`).
+
+use crate::sets::SetRule;
+use crate::{Result, Scene};
+use serde::Deserialize;
+use toml::Spanned;
+
+/// `[[supports]]` as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SupportSection {
+    /// The part: `disc`, `pad` or a pad's name.
+    pub part: Spanned<String>,
+    /// A node set or a rule.
+    pub set: Spanned<toml::Value>,
+    /// Total stiffness along x, y, z.
+    pub stiffness: Spanned<[f64; 3]>,
+}
+
+/// `[[ties]]` as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TieSection {
+    /// The part holding both surfaces.
+    pub part: Spanned<String>,
+    /// The slave surface: a node set or a rule.
+    pub slave: Spanned<toml::Value>,
+    /// The master face: a node set or a rule.
+    pub master: Spanned<toml::Value>,
+    /// Largest distance of a slave node from the master face.
+    pub tolerance: Option<Spanned<f64>>,
+}
+
+/// A support, typed: the part, its set's rules and the stiffness in N/m.
+#[derive(Clone, Debug)]
+pub struct SupportSpec {
+    /// `disc` or the pad's name.
+    pub part: String,
+    /// The set (key `supports.<k>.set`).
+    pub set: SetRule,
+    /// Total stiffness along x, y, z (N/m).
+    pub stiffness: [f64; 3],
+}
+
+/// A tie, typed.
+#[derive(Clone, Debug)]
+pub struct TieSpec {
+    /// `disc` or the pad's name.
+    pub part: String,
+    /// The slave surface (key `ties.<k>.slave`).
+    pub slave: SetRule,
+    /// The master face (key `ties.<k>.master`).
+    pub master: SetRule,
+    /// Tolerance (m), if given.
+    pub tolerance: Option<f64>,
+}
+
+impl Scene {
+    /// The part names a support or tie may name: `disc` and the pads'.
+    fn check_part(&self, key: &str, part: &Spanned<String>) -> Result<String> {
+        let names: Vec<String> = std::iter::once("disc".to_string())
+            .chain(self.pads()?.into_iter().map(|p| p.0))
+            .collect();
+        let name = part.get_ref().trim();
+        if !names.iter().any(|n| n == name) {
+            return Err(self.error_at(
+                key,
+                part,
+                format!("'{name}' is not a part (the parts: {})", names.join(", ")),
+            ));
+        }
+        Ok(name.to_string())
+    }
+
+    /// `[[supports]]`, typed, in the order written.
+    pub fn supports(&self) -> Result<Vec<SupportSpec>> {
+        let u = self.units()?;
+        let per_length = u.force() / u.length;
+        let mut out = Vec::new();
+        for (k, s) in self.file.supports.iter().enumerate() {
+            let key = |f: &str| format!("supports.{}.{f}", k + 1);
+            let part = self.check_part(&key("part"), &s.part)?;
+            let stiffness = *s.stiffness.get_ref();
+            if stiffness.iter().any(|x| !(x.is_finite() && *x >= 0.0))
+                || stiffness.iter().all(|x| *x == 0.0)
+            {
+                return Err(self.error_at(
+                    &key("stiffness"),
+                    &s.stiffness,
+                    "must be three stiffnesses >= 0 (x, y, z), not all zero",
+                ));
+            }
+            let set = self
+                .set_rule(&key("set"), Some(&s.set), false)?
+                .ok_or_else(|| self.error_at(&key("set"), &s.set, "must select a node set"))?;
+            out.push(SupportSpec {
+                part,
+                set,
+                stiffness: stiffness.map(|x| x * per_length),
+            });
+        }
+        Ok(out)
+    }
+
+    /// `[[ties]]`, typed, in the order written.
+    pub fn ties(&self) -> Result<Vec<TieSpec>> {
+        let l = self.length_unit()?;
+        let mut out = Vec::new();
+        for (k, t) in self.file.ties.iter().enumerate() {
+            let key = |f: &str| format!("ties.{}.{f}", k + 1);
+            let part = self.check_part(&key("part"), &t.part)?;
+            let rule = |f: &str, v: &Spanned<toml::Value>| {
+                self.set_rule(&key(f), Some(v), false)?
+                    .ok_or_else(|| self.error_at(&key(f), v, "must select a node set"))
+            };
+            if let Some(tol) = &t.tolerance {
+                self.positive(&key("tolerance"), tol)?;
+            }
+            out.push(TieSpec {
+                part,
+                slave: rule("slave", &t.slave)?,
+                master: rule("master", &t.master)?,
+                tolerance: t.tolerance.as_ref().map(|v| v.get_ref() * l),
+            });
+        }
+        Ok(out)
+    }
+}
