@@ -46,8 +46,8 @@ use squeal_brake::modal_brake::ModalBrake;
 use squeal_hbm::continuation::{self, ContinuationOptions, Control, Point, Stop};
 use squeal_hbm::torus::measure::{Envelope, envelope};
 use squeal_hbm::torus::{
-    LinearBlocks, TorusBalance, TorusBasis, TorusFamily, TorusForce, TorusLinear, TorusScales,
-    Truncation, start_from_cycle,
+    LinearBlocks, TorusBalance, TorusBasis, TorusFamily, TorusForce, TorusLinear, TorusPhase,
+    TorusScales, Truncation, start_from_cycle,
 };
 use squeal_hbm::{HarmonicLayout, HbmError, LocalJacobian};
 use std::time::{Duration, Instant};
@@ -403,6 +403,11 @@ pub struct TorusBranch {
     pub points: Vec<TorusPoint>,
     /// `||J1 p|| / ||J1 p0||` of the start's Floquet vector ([`squeal_hbm::torus::TorusStart`]).
     pub null_residual: f64,
+    /// The phase conditions, as `(wave number, dof)`: `Us = 0` there.
+    pub phase: [([i64; 2], usize); 2],
+    /// The displacement level of the rows and unknowns (the start cycle's first harmonic on
+    /// the phase dof, m).
+    pub scale: f64,
     /// Why the branch ended.
     pub stop: Stop,
     /// Wall time.
@@ -505,17 +510,13 @@ pub fn follow_torus(
         .ok_or(TorusError::NoCycle(mu))?;
     let (family, start, basis, grid) = start_family(mb, &cycle, ns, opts)?;
     let mut family = family;
-    let TorusStartPoint { point, null_residual } = start;
-    let l = basis.len();
-    let x_scale = family_scale(&basis, &point.z);
-    let omega1 = point.z[l];
-    let weights = move |layout: &HarmonicLayout| {
-        let mut w = vec![1.0 / x_scale; layout.len() + 3];
-        w[layout.len()] = 1.0 / omega1;
-        w[layout.len() + 1] = 1.0 / omega1;
-        w[layout.len() + 2] = 1.0 / mu;
-        w
-    };
+    let TorusStartPoint {
+        point,
+        null_residual,
+        phase,
+        scale,
+    } = start;
+    let weights = weights(scale, point.z[basis.len()], mu);
     let copts = opts.continuation.clone();
     let mut failure = None;
     let mut points = Vec::new();
@@ -540,23 +541,62 @@ pub fn follow_torus(
         grid,
         points,
         null_residual,
+        phase,
+        scale,
         stop: raw.stop,
         time: t0.elapsed(),
     })
 }
 
-/// The displacement level of the unknowns: the largest first-element amplitude.
-fn family_scale(basis: &TorusBasis, z: &[f64]) -> f64 {
-    let e = basis.element([1, 0]).map_or(1, |e| e.0);
-    (0..basis.n_dofs())
-        .filter_map(|i| basis.amplitude(&z[..basis.len()], e, i))
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE)
+/// The unknowns' weights: `1/scale` for `U`, `1/ω1` for both frequencies, `1/μ`.
+fn weights(scale: f64, omega1: f64, mu: f64) -> impl Fn(&HarmonicLayout) -> Vec<f64> {
+    move |layout: &HarmonicLayout| {
+        let mut w = vec![1.0 / scale; layout.len() + 3];
+        w[layout.len()] = 1.0 / omega1;
+        w[layout.len() + 1] = 1.0 / omega1;
+        w[layout.len() + 2] = 1.0 / mu;
+        w
+    }
 }
 
 struct TorusStartPoint {
     point: Point,
     null_residual: f64,
+    phase: [([i64; 2], usize); 2],
+    scale: f64,
+}
+
+/// The brake's family on `truncation` at the row level `scale` with the phase conditions
+/// `phase` (wave numbers and dofs).
+fn family(
+    mb: &ModalBrake,
+    truncation: Truncation,
+    grid: Option<[usize; 2]>,
+    phase: [([i64; 2], usize); 2],
+    scale: f64,
+) -> Result<BrakeFamily, HbmError> {
+    let balance = brake_torus(mb, truncation, grid)?;
+    let conditions = phase.map(|(k, d)| {
+        balance
+            .basis()
+            .element(k)
+            .map(|e| (e.0, d))
+            .ok_or(HbmError::BadOption("the basis lacks a phase condition's wave number"))
+    });
+    let [a, b] = conditions;
+    let scales = TorusScales {
+        balance: scale,
+        phase: scale,
+    };
+    TorusFamily::new(
+        balance,
+        set_mu as fn(&mut BrakeTorus, f64) -> Result<(), HbmError>,
+        TorusPhase {
+            conditions: [a?, b?],
+        },
+        scales,
+        1e-7,
+    )
 }
 
 type BrakeFamily = TorusFamily<
@@ -613,20 +653,15 @@ fn start_family(
         d,
         opts.start_amplitude * a1,
     )?;
-    let scales = TorusScales {
-        balance: a1.max(f64::MIN_POSITIVE),
-        phase: a1.max(f64::MIN_POSITIVE),
-    };
-    let mut family: BrakeFamily = TorusFamily::new(balance, set_mu as fn(&mut BrakeTorus, f64) -> Result<(), HbmError>, start.phase, scales, 1e-7)?;
+    let scale = a1.max(f64::MIN_POSITIVE);
+    let phase = start.phase.conditions.map(|(e, d)| (basis.wave(e), d));
+    let mut family = family(&mbp, truncation, opts.grid, phase, scale)?;
     let mut z0 = start.z.clone();
     z0.push(cycle.parameter);
     let mut row = vec![0.0; z0.len()];
     row[start.amplitude_index] = 1.0;
     let l = basis.len();
-    let mut w = vec![1.0 / a1.max(f64::MIN_POSITIVE); l + 3];
-    w[l] = 1.0 / cycle.omega;
-    w[l + 1] = 1.0 / cycle.omega;
-    w[l + 2] = 1.0 / cycle.parameter;
+    let w = weights(scale, cycle.omega, cycle.parameter)(&HarmonicLayout::new(l, 0)?);
     let point = continuation::correct_point(
         &mut family,
         &z0,
@@ -642,10 +677,59 @@ fn start_family(
         TorusStartPoint {
             point,
             null_residual: start.null_residual,
+            phase,
+            scale,
         },
         basis,
         grid,
     ))
+}
+
+/// The torus of `branch` at exactly `mu`, on the basis `truncation` (`None`: the branch's) and
+/// grid `grid` (`None`: the default of the basis): the coefficients interpolated between the
+/// two points whose μ brackets `mu` (first crossing along the branch), moved onto the basis by
+/// wave number (elements the branch lacks start at zero), and corrected with μ held fixed.
+pub fn torus_at(
+    mb: &ModalBrake,
+    branch: &TorusBranch,
+    mu: f64,
+    truncation: Option<Truncation>,
+    grid: Option<[usize; 2]>,
+    opts: &TorusOptions,
+) -> Result<TorusPoint, TorusError> {
+    let i = (1..branch.points.len())
+        .find(|&i| (branch.points[i - 1].mu - mu) * (branch.points[i].mu - mu) <= 0.0)
+        .ok_or(TorusError::NoCycle(mu))?;
+    let (a, b) = (&branch.points[i - 1], &branch.points[i]);
+    let s = if a.mu != b.mu { (mu - a.mu) / (b.mu - a.mu) } else { 0.5 };
+    let lerp = |x: f64, y: f64| x + s * (y - x);
+    let truncation = truncation.unwrap_or(branch.basis.truncation());
+    let mut fam = family(mb, truncation, grid, branch.phase, branch.scale)?;
+    let basis = fam.balance().basis().clone();
+    let (old, n) = (&branch.basis, basis.n_dofs());
+    let mut z = vec![0.0; basis.len() + 3];
+    for (e, k) in old.waves().iter().enumerate() {
+        let Some((f, _)) = basis.element(*k) else {
+            continue;
+        };
+        for part in [squeal_hbm::Part::Cos, squeal_hbm::Part::Sin] {
+            for d in 0..n {
+                if let (Some(x), Some(y)) = (old.index(e, part, d), basis.index(f, part, d)) {
+                    z[y] = lerp(a.coeffs[x], b.coeffs[x]);
+                }
+            }
+        }
+    }
+    let l = basis.len();
+    z[l] = lerp(a.omega[0], b.omega[0]);
+    z[l + 1] = lerp(a.omega[1], b.omega[1]);
+    z[l + 2] = mu;
+    let mut row = vec![0.0; l + 3];
+    row[l + 2] = 1.0;
+    let w = weights(branch.scale, z[l], mu)(&HarmonicLayout::new(l, 0)?);
+    let p = continuation::correct_point(&mut fam, &z, &row, mu, &w, &row, &opts.continuation)?
+        .ok_or(TorusError::Start { mu })?;
+    Ok(summary(mb, &basis, &p, opts)?)
 }
 
 /// The modal state `[q; q̇]` of the torus `coeffs` (reduced coordinates, basis `basis`) of
