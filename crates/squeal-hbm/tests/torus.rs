@@ -320,3 +320,38 @@ fn torus_branch_in_a_parameter() {
         check_torus(&basis, &p.z, p.parameter(), 1e-9);
     }
 }
+
+/// `f = -ε (1 - x_i²) ẋ_i + κ (x_i - x_j)`-type velocity-dependent coupling on the same 4 dofs.
+fn pumped(x: &[f64], v: &[f64], f: &mut [f64], jac: Option<LocalJacobian<'_>>) {
+    let eps = 0.3;
+    let mut jac = jac;
+    for i in 0..4 {
+        let j = (i + 1) % 4;
+        f[i] = -eps * (1.0 - x[i] * x[i]) * v[i] + 0.2 * x[j] * v[j];
+        if let Some(jc) = jac.as_mut() {
+            jc.dfdx[i * 4 + i] = 2.0 * eps * x[i] * v[i];
+            jc.dfdx[i * 4 + j] = 0.2 * v[j];
+            jc.dfdxdot[i * 4 + i] = -eps * (1.0 - x[i] * x[i]);
+            jc.dfdxdot[i * 4 + j] = 0.2 * x[j];
+        }
+    }
+}
+
+#[test]
+fn velocity_dependent_jacobian_matches_finite_differences() {
+    // The velocity terms of the 2-D AFT Jacobian (through D', and dF/dω1, dF/dω2) against
+    // central differences; tolerance as for the displacement terms (polynomial force of degree
+    // 3: truncation error ~1e-12, round-off ~1e-10).
+    let basis = TorusBasis::new(4, Truncation::Box(3, 2)).unwrap();
+    let (m, c, k) = matrices(0.7);
+    let m = Mat::<f64>::from_fn(4, 4, |i, j| if i == j { 1.0 } else { 0.0 * m[(i, j)] });
+    let linear = MckTorus::new(m.as_ref(), c.as_ref(), k.as_ref()).unwrap();
+    let f = Square(FnForce::new(4, pattern(), true, pumped as fn(&[f64], &[f64], &mut [f64], Option<LocalJacobian<'_>>)));
+    let len = basis.len();
+    let mut balance = TorusBalance::new(basis.clone(), linear, f, vec![0.0; len], None).unwrap();
+    let (mut z, _) = guess(&basis, 0.7);
+    for (i, v) in z.iter_mut().enumerate().take(len) {
+        *v += 0.05 * ((i * 5 % 11) as f64 - 5.0) / 5.0;
+    }
+    fd_check(&mut balance, &z, 1e-7);
+}
