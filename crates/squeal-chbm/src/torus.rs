@@ -462,7 +462,12 @@ pub fn closures_along_flow(
     Ok(out)
 }
 
-fn summary(mb: &ModalBrake, basis: &TorusBasis, p: &Point, opts: &TorusOptions) -> Result<TorusPoint, HbmError> {
+fn summary(
+    mb: &ModalBrake,
+    basis: &TorusBasis,
+    p: &Point,
+    opts: &TorusOptions,
+) -> Result<TorusPoint, HbmError> {
     let l = basis.len();
     let omega = [p.z[l], p.z[l + 1]];
     let period = 2.0 * std::f64::consts::PI / omega[0];
@@ -474,7 +479,9 @@ fn summary(mb: &ModalBrake, basis: &TorusBasis, p: &Point, opts: &TorusOptions) 
         .map(|s| {
             envelope(s, dt, period)
                 .map(|envelope| PairTorus { envelope })
-                .ok_or(HbmError::BadOption("a torus envelope needs at least two fast periods"))
+                .ok_or(HbmError::BadOption(
+                    "a torus envelope needs at least two fast periods",
+                ))
         })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(TorusPoint {
@@ -520,18 +527,23 @@ pub fn follow_torus(
     let copts = opts.continuation.clone();
     let mut failure = None;
     let mut points = Vec::new();
-    let raw = continuation::continue_from(&mut family, point.clone(), &weights, &copts, |p| {
-        match summary(mb, &basis, p, opts) {
-            Ok(s) => {
-                points.push(s);
-                Control::Continue
-            }
-            Err(e) => {
-                failure = Some(e);
-                Control::Stop("a torus point could not be summarized".into())
-            }
-        }
-    })?;
+    let raw =
+        continuation::continue_from(
+            &mut family,
+            point.clone(),
+            &weights,
+            &copts,
+            |p| match summary(mb, &basis, p, opts) {
+                Ok(s) => {
+                    points.push(s);
+                    Control::Continue
+                }
+                Err(e) => {
+                    failure = Some(e);
+                    Control::Stop("a torus point could not be summarized".into())
+                }
+            },
+        )?;
     if let Some(e) = failure {
         return Err(e.into());
     }
@@ -581,7 +593,9 @@ fn family(
             .basis()
             .element(k)
             .map(|e| (e.0, d))
-            .ok_or(HbmError::BadOption("the basis lacks a phase condition's wave number"))
+            .ok_or(HbmError::BadOption(
+                "the basis lacks a phase condition's wave number",
+            ))
     });
     let [a, b] = conditions;
     let scales = TorusScales {
@@ -599,11 +613,8 @@ fn family(
     )
 }
 
-type BrakeFamily = TorusFamily<
-    BrakeReceptance,
-    ReducedContact,
-    fn(&mut BrakeTorus, f64) -> Result<(), HbmError>,
->;
+type BrakeFamily =
+    TorusFamily<BrakeReceptance, ReducedContact, fn(&mut BrakeTorus, f64) -> Result<(), HbmError>>;
 
 fn set_mu(b: &mut BrakeTorus, mu: f64) -> Result<(), HbmError> {
     if !mu.is_finite() {
@@ -701,7 +712,11 @@ pub fn torus_at(
         .find(|&i| (branch.points[i - 1].mu - mu) * (branch.points[i].mu - mu) <= 0.0)
         .ok_or(TorusError::NoCycle(mu))?;
     let (a, b) = (&branch.points[i - 1], &branch.points[i]);
-    let s = if a.mu != b.mu { (mu - a.mu) / (b.mu - a.mu) } else { 0.5 };
+    let s = if a.mu != b.mu {
+        (mu - a.mu) / (b.mu - a.mu)
+    } else {
+        0.5
+    };
     let lerp = |x: f64, y: f64| x + s * (y - x);
     let truncation = truncation.unwrap_or(branch.basis.truncation());
     let mut fam = family(mb, truncation, grid, branch.phase, branch.scale)?;

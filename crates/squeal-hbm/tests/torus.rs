@@ -13,12 +13,17 @@
 //! of a circle is a circle again, so the torus lies in the basis' `(1, 0)` and `(0, 1)`
 //! elements exactly: harmonic balance must return it to round-off, whatever the truncation.
 
+// Index loops over the four state components read like the formulas.
+#![allow(clippy::needless_range_loop)]
+
 use faer::linalg::solvers::Solve;
 use faer::{Mat, c64};
-use squeal_hbm::continuation::{ContinuationOptions, Control, Family, continue_from, correct_point};
+use squeal_hbm::continuation::{
+    ContinuationOptions, Control, Family, continue_from, correct_point,
+};
 use squeal_hbm::torus::{
-    LinearBlocks, MckTorus, Square, TorusBalance, TorusBasis, TorusFamily, TorusLinear,
-    TorusPhase, TorusScales, Truncation,
+    LinearBlocks, MckTorus, Square, TorusBalance, TorusBasis, TorusFamily, TorusLinear, TorusPhase,
+    TorusScales, Truncation,
 };
 use squeal_hbm::{FnForce, HbmError, LocalJacobian, Part};
 
@@ -93,7 +98,10 @@ fn pattern() -> Vec<(usize, usize)> {
 /// `K = -L(α_a)`, `C = I`, `M = 0`.
 fn matrices(alpha_a: f64) -> (Mat<f64>, Mat<f64>, Mat<f64>) {
     let mut k = Mat::<f64>::zeros(4, 4);
-    for (o, (al, om)) in [(alpha_a, P.omega[0]), (ALPHA_B, P.omega[1])].into_iter().enumerate() {
+    for (o, (al, om)) in [(alpha_a, P.omega[0]), (ALPHA_B, P.omega[1])]
+        .into_iter()
+        .enumerate()
+    {
         let (i, j) = (2 * o, 2 * o + 1);
         k[(i, i)] = -al;
         k[(j, j)] = -al;
@@ -106,7 +114,12 @@ fn matrices(alpha_a: f64) -> (Mat<f64>, Mat<f64>, Mat<f64>) {
 type Force = Square<FnForce<fn(&[f64], &[f64], &mut [f64], Option<LocalJacobian<'_>>)>>;
 
 fn force() -> Force {
-    Square(FnForce::new(4, pattern(), false, cubic as fn(&[f64], &[f64], &mut [f64], Option<LocalJacobian<'_>>)))
+    Square(FnForce::new(
+        4,
+        pattern(),
+        false,
+        cubic as fn(&[f64], &[f64], &mut [f64], Option<LocalJacobian<'_>>),
+    ))
 }
 
 fn mck_balance(alpha_a: f64, t: Truncation) -> TorusBalance<MckTorus, Force> {
@@ -127,7 +140,9 @@ fn set_alpha(b: &mut TorusBalance<MckTorus, Force>, alpha: f64) -> Result<(), Hb
 /// every element), and the phase conditions on `a1` at `(1, 0)` and `a2` at `(0, 1)`.
 fn guess(basis: &TorusBasis, alpha_a: f64) -> (Vec<f64>, TorusPhase) {
     let (ra2, rb2, w1, w2) = closed_form(alpha_a);
-    let mut u: Vec<f64> = (0..basis.len()).map(|i| 1e-3 * ((i * 7 % 13) as f64 - 6.0)).collect();
+    let mut u: Vec<f64> = (0..basis.len())
+        .map(|i| 1e-3 * ((i * 7 % 13) as f64 - 6.0))
+        .collect();
     let e10 = basis.element([1, 0]).unwrap().0;
     let e01 = basis.element([0, 1]).unwrap().0;
     for (e, d, r) in [(e10, 0, ra2.sqrt()), (e01, 2, rb2.sqrt())] {
@@ -136,7 +151,12 @@ fn guess(basis: &TorusBasis, alpha_a: f64) -> (Vec<f64>, TorusPhase) {
         u[basis.index(e, Part::Sin, d + 1).unwrap()] = 0.8 * r;
     }
     u.extend([1.05 * w1, 0.95 * w2, alpha_a]);
-    (u, TorusPhase { conditions: [(e10, 0), (e01, 2)] })
+    (
+        u,
+        TorusPhase {
+            conditions: [(e10, 0), (e01, 2)],
+        },
+    )
 }
 
 fn fix_parameter(len: usize, value: f64) -> (Vec<f64>, f64) {
@@ -158,7 +178,12 @@ fn check_torus(basis: &TorusBasis, z: &[f64], alpha_a: f64, tol: f64) {
     expected[basis.index(e01, Part::Cos, 2).unwrap()] = rb2.sqrt();
     expected[basis.index(e01, Part::Sin, 3).unwrap()] = rb2.sqrt();
     for i in 0..l {
-        assert!((z[i] - expected[i]).abs() < tol, "coefficient {i}: {} vs {}", z[i], expected[i]);
+        assert!(
+            (z[i] - expected[i]).abs() < tol,
+            "coefficient {i}: {} vs {}",
+            z[i],
+            expected[i]
+        );
     }
 }
 
@@ -172,11 +197,17 @@ fn closed_form_torus_by_total_order_and_box() {
         let balance = mck_balance(alpha_a, t);
         let basis = balance.basis().clone();
         let (z0, phase) = guess(&basis, alpha_a);
-        let scales = TorusScales { balance: 1.0, phase: 1.0 };
+        let scales = TorusScales {
+            balance: 1.0,
+            phase: 1.0,
+        };
         let mut fam = TorusFamily::new(balance, set_alpha, phase, scales, 1e-6).unwrap();
         let w = vec![1.0; z0.len()];
         let (row, value) = fix_parameter(z0.len(), alpha_a);
-        let opts = ContinuationOptions { max_iterations: 30, ..Default::default() };
+        let opts = ContinuationOptions {
+            max_iterations: 30,
+            ..Default::default()
+        };
         let p = correct_point(&mut fam, &z0, &row, value, &w, &row, &opts)
             .unwrap()
             .expect("Newton converges from the guess");
@@ -208,7 +239,9 @@ fn fd_check<L: TorusLinear, F: squeal_hbm::torus::TorusForce>(
     let omega = [z[l], z[l + 1]];
     let mut jac = Mat::<f64>::zeros(l, l);
     let (mut j1, mut j2) = (vec![0.0; l], vec![0.0; l]);
-    balance.jacobian(&z[..l], omega, jac.as_mut(), [&mut j1, &mut j2]).unwrap();
+    balance
+        .jacobian(&z[..l], omega, jac.as_mut(), [&mut j1, &mut j2])
+        .unwrap();
     let h = 1e-6;
     let (mut rp, mut rm) = (vec![0.0; l], vec![0.0; l]);
     let mut worst: f64 = 0.0;
@@ -217,8 +250,12 @@ fn fd_check<L: TorusLinear, F: squeal_hbm::torus::TorusForce>(
         let mut zm = zp.clone();
         zp[col] += h;
         zm[col] -= h;
-        balance.residual(&zp[..l], [zp[l], zp[l + 1]], &mut rp).unwrap();
-        balance.residual(&zm[..l], [zm[l], zm[l + 1]], &mut rm).unwrap();
+        balance
+            .residual(&zp[..l], [zp[l], zp[l + 1]], &mut rp)
+            .unwrap();
+        balance
+            .residual(&zm[..l], [zm[l], zm[l + 1]], &mut rm)
+            .unwrap();
         for row in 0..l {
             let fd = (rp[row] - rm[row]) / (2.0 * h);
             let an = match col {
@@ -272,21 +309,48 @@ fn receptance_form_gives_the_same_torus() {
     let basis = TorusBasis::new(4, Truncation::TotalOrder(3)).unwrap();
     let (_, _, k) = matrices(alpha_a);
     let len = basis.len();
-    let mut balance =
-        TorusBalance::new(basis.clone(), Receptance { k }, force(), vec![0.0; len], None).unwrap();
+    let mut balance = TorusBalance::new(
+        basis.clone(),
+        Receptance { k },
+        force(),
+        vec![0.0; len],
+        None,
+    )
+    .unwrap();
     let (z0, phase) = guess(&basis, alpha_a);
     let mut zc = z0.clone();
     for (i, v) in zc.iter_mut().enumerate().take(len) {
         *v += 0.05 * ((i * 5 % 11) as f64 - 5.0) / 5.0;
     }
     fd_check(&mut balance, &zc, 1e-7);
-    let scales = TorusScales { balance: 1.0, phase: 1.0 };
-    let mut fam = TorusFamily::new(balance, |_: &mut TorusBalance<Receptance, Force>, _| Ok(()), phase, scales, 1e-6).unwrap();
+    let scales = TorusScales {
+        balance: 1.0,
+        phase: 1.0,
+    };
+    let mut fam = TorusFamily::new(
+        balance,
+        |_: &mut TorusBalance<Receptance, Force>, _| Ok(()),
+        phase,
+        scales,
+        1e-6,
+    )
+    .unwrap();
     let (row, value) = fix_parameter(z0.len(), alpha_a);
-    let opts = ContinuationOptions { max_iterations: 30, ..Default::default() };
-    let p = correct_point(&mut fam, &z0, &row, value, &vec![1.0; z0.len()], &row, &opts)
-        .unwrap()
-        .expect("Newton converges");
+    let opts = ContinuationOptions {
+        max_iterations: 30,
+        ..Default::default()
+    };
+    let p = correct_point(
+        &mut fam,
+        &z0,
+        &row,
+        value,
+        &vec![1.0; z0.len()],
+        &row,
+        &opts,
+    )
+    .unwrap()
+    .expect("Newton converges");
     check_torus(&basis, &p.z, alpha_a, 1e-12);
 }
 
@@ -299,7 +363,10 @@ fn torus_branch_in_a_parameter() {
     let balance = mck_balance(alpha_a, Truncation::TotalOrder(3));
     let basis = balance.basis().clone();
     let (z0, phase) = guess(&basis, alpha_a);
-    let scales = TorusScales { balance: 1.0, phase: 1.0 };
+    let scales = TorusScales {
+        balance: 1.0,
+        phase: 1.0,
+    };
     let mut fam = TorusFamily::new(balance, set_alpha, phase, scales, 1e-6).unwrap();
     let w = vec![1.0; z0.len()];
     let (row, value) = fix_parameter(z0.len(), alpha_a);
@@ -310,9 +377,18 @@ fn torus_branch_in_a_parameter() {
         ..Default::default()
     };
     let along: Vec<f64> = row.iter().map(|v| -v).collect();
-    let start = correct_point(&mut fam, &z0, &row, value, &w, &along, &opts).unwrap().unwrap();
+    let start = correct_point(&mut fam, &z0, &row, value, &w, &along, &opts)
+        .unwrap()
+        .unwrap();
     assert_eq!(fam.layout().len(), basis.len());
-    let branch = continue_from(&mut fam, start, |_| vec![1.0; basis.len() + 3], &opts, |_| Control::Continue).unwrap();
+    let branch = continue_from(
+        &mut fam,
+        start,
+        |_| vec![1.0; basis.len() + 3],
+        &opts,
+        |_| Control::Continue,
+    )
+    .unwrap();
     assert!(branch.points.len() > 5);
     let last = branch.points.last().unwrap().parameter();
     assert!(last < 0.3 + 1e-9, "branch ended at {last}");
@@ -346,7 +422,12 @@ fn velocity_dependent_jacobian_matches_finite_differences() {
     let (m, c, k) = matrices(0.7);
     let m = Mat::<f64>::from_fn(4, 4, |i, j| if i == j { 1.0 } else { 0.0 * m[(i, j)] });
     let linear = MckTorus::new(m.as_ref(), c.as_ref(), k.as_ref()).unwrap();
-    let f = Square(FnForce::new(4, pattern(), true, pumped as fn(&[f64], &[f64], &mut [f64], Option<LocalJacobian<'_>>)));
+    let f = Square(FnForce::new(
+        4,
+        pattern(),
+        true,
+        pumped as fn(&[f64], &[f64], &mut [f64], Option<LocalJacobian<'_>>),
+    ));
     let len = basis.len();
     let mut balance = TorusBalance::new(basis.clone(), linear, f, vec![0.0; len], None).unwrap();
     let (mut z, _) = guess(&basis, 0.7);

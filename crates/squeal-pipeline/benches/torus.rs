@@ -31,7 +31,10 @@ fn main() {
     let p = Pipeline::new(common::bundled_scene(&level), out, &quiet).unwrap();
     let t = Instant::now();
     let (m, st) = (p.model().unwrap(), p.stability().unwrap());
-    eprintln!("{level} brake and sweep in {:.1?} (not timed below)", t.elapsed());
+    eprintln!(
+        "{level} brake and sweep in {:.1?} (not timed below)",
+        t.elapsed()
+    );
     let nf = stability::normal_form(m, st).unwrap().unwrap();
     let mb = ModalBrake::new(&m.brake, &st.reference, nf.mu0);
 
@@ -45,7 +48,10 @@ fn main() {
         "{level} brake: mu0 = {:.6}, {} cycles to {:.4} mu0, {} folds (first at {:.5} mu0), branch with Hill {t_branch:.2} s",
         nf.mu0,
         b.branch.points.len(),
-        b.branch.points.last().map_or(f64::NAN, |p| p.parameter / nf.mu0),
+        b.branch
+            .points
+            .last()
+            .map_or(f64::NAN, |p| p.parameter / nf.mu0),
         folds.len(),
         folds.first().map_or(f64::NAN, |f| f.parameter / nf.mu0),
     );
@@ -59,7 +65,10 @@ fn main() {
             bf.torus_frequency_hz()
         );
     }
-    let Some(ns) = bifs.iter().find(|x| x.kind == BifurcationKind::NeimarkSacker) else {
+    let Some(ns) = bifs
+        .iter()
+        .find(|x| x.kind == BifurcationKind::NeimarkSacker)
+    else {
         println!("no Neimark-Sacker point on the branch");
         return;
     };
@@ -91,7 +100,9 @@ fn main() {
         tb.points.len(),
         tb.stop
     );
-    println!("| mu/mu0 | f1 (Hz) | f2 (Hz) | pair | swing min (um) | swing max (um) | closure min..max (um) | iterations |");
+    println!(
+        "| mu/mu0 | f1 (Hz) | f2 (Hz) | pair | swing min (um) | swing max (um) | closure min..max (um) | iterations |"
+    );
     println!("|---|---|---|---|---|---|---|---|");
     for p in &tb.points {
         let (pair, e) = p.loudest();

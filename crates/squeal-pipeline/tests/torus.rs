@@ -74,7 +74,15 @@ fn coarse_brake_torus_matches_time_integration() {
     // BDF from the torus' state at θ = 0.
     let mut mbm = mb.clone();
     mbm.mu = mu;
-    let y0 = modal_state(&mbm, tb.basis.truncation(), Some(tb.grid), &torus.coeffs, torus.omega, [0.0, 0.0]).unwrap();
+    let y0 = modal_state(
+        &mbm,
+        tb.basis.truncation(),
+        Some(tb.grid),
+        &torus.coeffs,
+        torus.omega,
+        [0.0, 0.0],
+    )
+    .unwrap();
     let sys = BrakeDynamics::new(&mbm);
     let period = 2.0 * std::f64::consts::PI / torus.omega[0];
     let dt = period / SAMPLES as f64;
@@ -145,8 +153,16 @@ fn coarse_brake_torus_matches_time_integration() {
     );
     // The measure itself, on the torus' own signal (whose frequencies are known exactly):
     // the peaks' leakage bias stays below a tenth of the tolerance asserted on the BDF run.
-    assert!(rel(g1, w[0]) < 1e-5, "the spectral measure is biased: {g1} vs {}", w[0]);
-    assert!(rel(g2, w[1]) < 1e-5, "the spectral measure is biased: {g2} vs {}", w[1]);
+    assert!(
+        rel(g1, w[0]) < 1e-5,
+        "the spectral measure is biased: {g1} vs {}",
+        w[0]
+    );
+    assert!(
+        rel(g2, w[1]) < 1e-5,
+        "the spectral measure is biased: {g2} vs {}",
+        w[1]
+    );
     // The tolerances: both frequencies within 1e-4, the envelope within 1 %.
     assert!(rel(f1, w[0]) < 1e-4, "f1: {f1} vs {}", w[0]);
     assert!(rel(f2, w[1]) < 1e-4, "f2: {f2} vs {}", w[1]);

@@ -98,8 +98,14 @@ impl TorusAft {
         }
         let mut planner = FftPlanner::new();
         let ffts = [
-            [planner.plan_fft_forward(grid[0]), planner.plan_fft_inverse(grid[0])],
-            [planner.plan_fft_forward(grid[1]), planner.plan_fft_inverse(grid[1])],
+            [
+                planner.plan_fft_forward(grid[0]),
+                planner.plan_fft_inverse(grid[0]),
+            ],
+            [
+                planner.plan_fft_forward(grid[1]),
+                planner.plan_fft_inverse(grid[1]),
+            ],
         ];
         let scratch_len = ffts
             .iter()
@@ -179,7 +185,12 @@ impl TorusAft {
 
     /// The projection of `width`-valued samples (`N width`, sample-major) onto the basis
     /// (`width` values per block).
-    pub fn samples_to_coeffs(&mut self, values: &[f64], width: usize, out: &mut [f64]) -> Result<(), HbmError> {
+    pub fn samples_to_coeffs(
+        &mut self,
+        values: &[f64],
+        width: usize,
+        out: &mut [f64],
+    ) -> Result<(), HbmError> {
         let n = self.n_samples();
         if values.len() != n * width || out.len() != width * self.basis.n_blocks() {
             return Err(HbmError::Dimension {
@@ -302,7 +313,12 @@ impl TorusAft {
         Ok(())
     }
 
-    fn check_force<F: TorusForce + ?Sized>(&self, force: &F, u: &[f64], out: &[f64]) -> Result<usize, HbmError> {
+    fn check_force<F: TorusForce + ?Sized>(
+        &self,
+        force: &F,
+        u: &[f64],
+        out: &[f64],
+    ) -> Result<usize, HbmError> {
         if force.n_inputs() != self.basis.n_dofs() {
             return Err(HbmError::Dimension {
                 what: "torus force inputs",
@@ -443,7 +459,12 @@ impl TorusAft {
 
     /// Adds `E diag(g) D` (displacement, `omega = None`) or `E diag(g) D'` (velocity) of every
     /// pattern entry, whose spectra are loaded.
-    fn add_products(&self, pattern: &[(usize, usize)], omega: Option<[f64; 2]>, mut jac: MatMut<'_, f64>) {
+    fn add_products(
+        &self,
+        pattern: &[(usize, usize)],
+        omega: Option<[f64; 2]>,
+        mut jac: MatMut<'_, f64>,
+    ) {
         let ne = self.basis.n_waves();
         let (n, ns) = (self.basis.n_dofs(), self.n_samples());
         let m = jac.nrows() / self.basis.n_blocks();

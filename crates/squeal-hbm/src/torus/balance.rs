@@ -424,7 +424,10 @@ where
         scales: TorusScales,
         step: f64,
     ) -> Result<Self, HbmError> {
-        for (what, v) in [("balance scale", scales.balance), ("phase scale", scales.phase)] {
+        for (what, v) in [
+            ("balance scale", scales.balance),
+            ("phase scale", scales.phase),
+        ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(HbmError::BadScale { what, value: v });
             }

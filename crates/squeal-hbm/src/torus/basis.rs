@@ -29,7 +29,9 @@ impl Truncation {
     fn keeps(self, k1: i64, k2: i64) -> bool {
         match self {
             Truncation::TotalOrder(h) => k1.unsigned_abs() + k2.unsigned_abs() <= h as u64,
-            Truncation::Box(h1, h2) => k1.unsigned_abs() <= h1 as u64 && k2.unsigned_abs() <= h2 as u64,
+            Truncation::Box(h1, h2) => {
+                k1.unsigned_abs() <= h1 as u64 && k2.unsigned_abs() <= h2 as u64
+            }
         }
     }
 
@@ -171,7 +173,12 @@ impl TorusBasis {
     }
 
     /// `X(θ)` at the torus angles `theta` into `out` (one value per dof).
-    pub fn displacement_at(&self, u: &[f64], theta: [f64; 2], out: &mut [f64]) -> Result<(), HbmError> {
+    pub fn displacement_at(
+        &self,
+        u: &[f64],
+        theta: [f64; 2],
+        out: &mut [f64],
+    ) -> Result<(), HbmError> {
         self.check(u, out)?;
         let n = self.n_dofs;
         out.copy_from_slice(&u[..n]);
@@ -255,7 +262,8 @@ mod tests {
     fn counts_and_lookup() {
         // Total order H: 2H² + 2H + 1 lattice points, half of the others plus (0, 0).
         let b = TorusBasis::new(2, Truncation::TotalOrder(3)).unwrap();
-        assert_eq!(b.n_waves(), (2 * 9 + 2 * 3 + 1 + 1) / 2);
+        // 2·9 + 2·3 + 1 = 25 lattice points: (25 - 1) / 2 + 1 = 13 elements.
+        assert_eq!(b.n_waves(), 13);
         assert_eq!(b.wave(1), [0, 1]);
         assert_eq!(b.wave(2), [1, 0]);
         assert_eq!(b.element([-1, 0]), Some((2, true)));
@@ -270,7 +278,9 @@ mod tests {
     fn shift_is_an_angle_shift() {
         // Direct evaluation at θ + φ against the rotated coefficients: rounding only.
         let b = TorusBasis::new(2, Truncation::Box(2, 2)).unwrap();
-        let mut u: Vec<f64> = (0..b.len()).map(|i| ((i * 7 + 3) % 11) as f64 - 5.0).collect();
+        let mut u: Vec<f64> = (0..b.len())
+            .map(|i| ((i * 7 + 3) % 11) as f64 - 5.0)
+            .collect();
         let (theta, phi) = ([0.37, -1.2], [1.1, 0.4]);
         let (mut direct, mut shifted) = (vec![0.0; 2], vec![0.0; 2]);
         b.displacement_at(&u, [theta[0] + phi[0], theta[1] + phi[1]], &mut direct)

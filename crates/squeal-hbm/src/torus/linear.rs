@@ -61,7 +61,11 @@ pub struct MckTorus {
 impl MckTorus {
     /// From dense square `M`, `C`, `K` of equal size with finite entries (`M` may be zero: a
     /// first-order system `C x' + K x + f = 0`).
-    pub fn new(m: MatRef<'_, f64>, c: MatRef<'_, f64>, k: MatRef<'_, f64>) -> Result<Self, HbmError> {
+    pub fn new(
+        m: MatRef<'_, f64>,
+        c: MatRef<'_, f64>,
+        k: MatRef<'_, f64>,
+    ) -> Result<Self, HbmError> {
         // The same checks as the one-angle dynamic stiffness.
         let checked = MckStiffness::new(m, c, k)?;
         Ok(Self {

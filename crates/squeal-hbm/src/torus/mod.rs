@@ -28,6 +28,9 @@
 //! Periodic and quasi-periodic solutions for multi-instabilities involved in brake squeal,
 //! JSV 328.
 
+// Index loops over dofs, elements and angles read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
 mod aft;
 mod balance;
 mod basis;

@@ -89,7 +89,9 @@ pub fn start_from_cycle<L: TorusLinear, F: TorusForce>(
     let e1 = basis
         .element([1, 0])
         .map(|e| e.0)
-        .ok_or(HbmError::BadOption("the torus basis needs the wave number (1, 0)"))?;
+        .ok_or(HbmError::BadOption(
+            "the torus basis needs the wave number (1, 0)",
+        ))?;
     // The modulation's unknowns: every block of an element with |k2| = 1.
     let sub: Vec<usize> = (1..basis.n_waves())
         .filter(|&e| basis.wave(e)[1].abs() == 1)
@@ -100,7 +102,9 @@ pub fn start_from_cycle<L: TorusLinear, F: TorusForce>(
         })
         .collect();
     if sub.is_empty() {
-        return Err(HbmError::BadOption("the torus basis has no wave number with |k2| = 1"));
+        return Err(HbmError::BadOption(
+            "the torus basis has no wave number with |k2| = 1",
+        ));
     }
     let len = basis.len();
     let mut jac = Mat::<f64>::zeros(len, len);
@@ -118,7 +122,9 @@ pub fn start_from_cycle<L: TorusLinear, F: TorusForce>(
         if !(s.is_finite() && s > 0.0) {
             return Err(HbmError::SingularTangent);
         }
-        v = v * (1.0 / s);
+        for i in 0..ns {
+            v[(i, 0)] /= s;
+        }
     }
     let null_residual = norm(&(&j1 * &v)) / start_residual.max(f64::MIN_POSITIVE);
     let mut p = vec![0.0; len];
