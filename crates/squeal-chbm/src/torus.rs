@@ -77,49 +77,9 @@ pub enum TorusError {
     },
 }
 
-/// Orthonormal columns spanning `vectors` (Gram–Schmidt twice, dependent ones dropped).
-fn orthonormal(vectors: &[Vec<f64>], n: usize) -> Mat<f64> {
-    let mut cols: Vec<Vec<f64>> = Vec::new();
-    for v in vectors {
-        let mut w = v.clone();
-        let n0 = w.iter().map(|a| a * a).sum::<f64>().sqrt();
-        for _ in 0..2 {
-            for c in &cols {
-                let d: f64 = c.iter().zip(&w).map(|(a, b)| a * b).sum();
-                w.iter_mut().zip(c).for_each(|(a, b)| *a -= d * b);
-            }
-        }
-        let nw = w.iter().map(|a| a * a).sum::<f64>().sqrt();
-        if nw > 1e-10 * n0 && nw > 0.0 {
-            cols.push(w.into_iter().map(|a| a / nw).collect());
-        }
-    }
-    Mat::from_fn(n, cols.len(), |i, j| cols[j][i])
-}
-
-/// `(Q_E, Q_R)` of `mb` (module docs).
+/// `(Q_E, Q_R)` of `mb` (module docs): the same spaces as Hill's Woodbury solve.
 fn contact_spaces(mb: &ModalBrake) -> (Mat<f64>, Mat<f64>) {
-    let nn = mb.nl();
-    let dense = |sv: &[(usize, f64)]| {
-        let mut v = vec![0.0; nn];
-        for &(i, a) in sv {
-            v[i] += a;
-        }
-        v
-    };
-    let g: Vec<Vec<f64>> = mb.pairs.iter().map(|p| dense(&p.normal)).collect();
-    let gh: Vec<Vec<f64>> = mb
-        .pairs
-        .iter()
-        .flat_map(|p| [dense(&p.normal), dense(&p.tangent)])
-        .collect();
-    let qe = orthonormal(&gh, nn);
-    let qr = if mb.velocity_dependent() {
-        qe.clone()
-    } else {
-        orthonormal(&g, nn)
-    };
-    (qe, qr)
+    crate::floquet::contact_bases(mb)
 }
 
 /// The contact force in reduced coordinates: `c(y) = Q_Eᵀ G(Q_R y)` (module docs).
