@@ -271,7 +271,7 @@ fn orthonormal(vectors: &[Vec<f64>], n: usize) -> Mat<f64> {
 /// `g·x'`, `h·x'`), so `J_x = Q_E C_x Q_Rᵀ`, `J_v = Q_E C_v Q_Rᵀ` with `Q_E` spanning
 /// `{g, h}` and `Q_R` spanning `{g}` (`{g, h}` with velocity terms). The springs `K_s` lie in
 /// `{g} ⊗ {g}`.
-fn contact_bases(mb: &ModalBrake) -> (Mat<f64>, Mat<f64>) {
+pub(crate) fn contact_bases(mb: &ModalBrake) -> (Mat<f64>, Mat<f64>) {
     let nn = mb.nl();
     let dense = |sv: &[(usize, f64)]| {
         let mut v = vec![0.0; nn];

@@ -19,6 +19,9 @@
 //! - [`physics`]: the checks a cycle of the model takes for granted: open fractions from the
 //!   roots of the continuous penetration, and the sliding margin of the disc's surface speed
 //!   over the pads' tangential vibration.
+//! - [`torus`]: quasi-periodic squeal past a Neimark–Sacker point: the torus branch by the
+//!   quasi-periodic harmonic balance of [`squeal_hbm::torus`] in the brake's contact
+//!   coordinates.
 //! - [`nlmode`]: complex nonlinear modes by the extended periodic motion concept (Krack 2015):
 //!   frequency, modal damping and shape of the squeal mode against its amplitude at one μ; the
 //!   limit cycles are the roots of the damping.
@@ -43,6 +46,7 @@ pub mod solve;
 pub mod start;
 pub mod system;
 pub mod timeint;
+pub mod torus;
 
 pub use solve::{
     ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Guess, Outcome, RESTART_AMPLITUDES,

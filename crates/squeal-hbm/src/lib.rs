@@ -20,6 +20,8 @@
 //!   its eigenvalues ([`LinearizedEigen`]; [`DenseEigen`] for dense `M`, `C`, `K`):
 //!   [`solve_chbm`]. `examples/` has two short programs.
 //! * [`continuation`]: branches of periodic solutions in a parameter (pseudo-arclength).
+//! * [`torus`]: quasi-periodic harmonic balance on an invariant torus (two base frequencies,
+//!   2-D AFT, two phase conditions), started at a Neimark–Sacker point.
 //! * [`Periodic`]: a periodic motion as Fourier coefficients (eq. 23), and [`FourierSums`],
 //!   its coefficients from equally spaced samples.
 //!
@@ -58,6 +60,7 @@ mod layout;
 mod linear;
 pub mod lm;
 mod periodic;
+pub mod torus;
 
 pub use aft::{Aft, TimeSamples, default_samples, min_samples_exact};
 pub use chbm::{
