@@ -20,6 +20,8 @@
 //!   its eigenvalues ([`LinearizedEigen`]; [`DenseEigen`] for dense `M`, `C`, `K`):
 //!   [`solve_chbm`]. `examples/` has two short programs.
 //! * [`continuation`]: branches of periodic solutions in a parameter (pseudo-arclength).
+//! * [`stick_slip`]: exact stick–slip friction contacts by the dynamic Lagrangian
+//!   frequency–time method (Nacivet et al. 2003), [`solve_stick_slip`].
 //! * [`Periodic`]: a periodic motion as Fourier coefficients (eq. 23), and [`FourierSums`],
 //!   its coefficients from equally spaced samples.
 //!
@@ -58,6 +60,7 @@ mod layout;
 mod linear;
 pub mod lm;
 mod periodic;
+pub mod stick_slip;
 
 pub use aft::{Aft, TimeSamples, default_samples, min_samples_exact};
 pub use chbm::{
@@ -75,3 +78,7 @@ pub use layout::{HarmonicLayout, MAX_COEFFICIENTS, Part};
 pub use linear::{DynamicStiffness, MckStiffness};
 pub use lm::{LeastSquaresProblem, LmError, LmIteration, LmOptions, LmReport, LmStop};
 pub use periodic::{FourierSums, Periodic};
+pub use stick_slip::{
+    ContactState, FrictionContact, NormalLoad, StickSlipBalance, StickSlipProblem,
+    default_stick_slip_samples, solve_stick_slip,
+};
