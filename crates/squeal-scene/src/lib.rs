@@ -56,6 +56,7 @@ pub use file::{
 };
 
 mod contact_keys;
+mod stick_slip_keys;
 
 /// What is wrong with a scene file, with the file and, where a value is at fault, its key and
 /// line.
