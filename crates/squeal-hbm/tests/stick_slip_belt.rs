@@ -94,119 +94,69 @@ fn exact_coeffs(h: usize) -> Vec<f64> {
     c
 }
 
-fn solve(h: usize, epsilon: f64) -> (HbSolution, f64) {
+/// DLFT from the closed-form cycle's own coefficients: period, mean and stick fraction.
+fn solve(h: usize, epsilon: f64) -> Option<(f64, f64, f64, usize)> {
     let mut ssb = belt(h, epsilon, None);
-    let layout = ssb.layout();
     let e = exact();
     let u0 = exact_coeffs(h);
     let phase = PhaseCondition::FirstSineZero { dof: 0 };
-    let sol = match solve_stick_slip(&mut ssb, phase, &u0, 2.0 * PI / e.period, N, &LmOptions::default()) {
-        Ok(s) => s,
-        Err(HbmError::NotConverged { report }) => { println!("NC h {h} eps {epsilon}: res {:e} (from {:e}) omega {} stop {}", report.residual_norm, report.initial_residual_norm, report.x[report.x.len()-1], report.stop); for it in report.history.iter().take(12) { println!("   {} {:e} {:e} {:e} {}", it.iteration, it.residual_norm, it.trial_residual_norm, it.damping, it.gain_ratio); } return (HbSolution { coeffs: report.x[..layout.len()].to_vec(), omega: report.x[layout.len()], report: *report }, 0.0); }
-        Err(e) => panic!("{e}"),
-    };
-    let stick = ssb.stick_fractions()[0];
-    (sol, stick)
+    let sol = solve_stick_slip(&mut ssb, phase, &u0, 2.0 * PI / e.period, N, &LmOptions::default()).ok()?;
+    Some((sol.period(), sol.coeffs[0], ssb.stick_fractions()[0], sol.report.iterations))
 }
 
 #[test]
-fn explore() {
+fn dlft_cycle_against_the_closed_form() {
     let e = exact();
-    println!("exact T {} A {} mean {} stick {}", e.period, e.amplitude, e.mean, e.stick_fraction);
-    for (h, eps) in [(5, 1e3), (10, 1e3), (20, 1e3), (40, 1e3), (40, 1e2), (40, 1e4), (80, 1e3)] {
-        let (sol, stick) = solve(h, eps);
-        let layout = HarmonicLayout::new(1, h).unwrap();
-        let mut xs = vec![0.0];
-        let (mut mx, mut mn) = (f64::MIN, f64::MAX);
-        for j in 0..4096 {
-            layout.displacement_at(&sol.coeffs, 2.0 * PI * j as f64 / 4096.0, &mut xs).unwrap();
-            mx = mx.max(xs[0]);
-            mn = mn.min(xs[0]);
-        }
-        println!("H {h}: T {:.6e} ({:.2e}) p2p/2 {:.2e} mean {:.2e} stick {:.4} iters {}", sol.period(), sol.period() / e.period - 1.0, (mx - mn) / 2.0 / e.amplitude - 1.0, sol.coeffs[0] / e.mean - 1.0, stick, sol.report.iterations);
+    let mut errors = Vec::new();
+    for (h, tol) in [(5, 4e-2), (10, 1.5e-2)] {
+        let (t, mean, stick, it) = solve(h, 1.0e3).expect("DLFT converges from the closed form's coefficients");
+        let (et, em, es) = (t / e.period - 1.0, mean / e.mean - 1.0, stick - e.stick_fraction);
+        println!("H {h}: period {et:.3e}, mean {em:.3e}, stick fraction {stick:.4} ({es:+.4}), {it} iterations");
+        // The cycle's acceleration jumps at both transitions: its coefficients decay like k^-3
+        // and the truncated cycle's period misses by a few percent at H = 5 and about 1 % at
+        // H = 10 (measured 3.1e-2 and 1.2e-2).
+        assert!(et.abs() < tol, "H {h}: period error {et:e}");
+        assert!(em.abs() < 1e-3, "H {h}: mean error {em:e}");
+        assert!(es.abs() < 0.06, "H {h}: stick fraction {stick} against {}", e.stick_fraction);
+        errors.push(et.abs());
     }
+    assert!(errors[1] < errors[0], "more harmonics, closer: {errors:?}");
 }
 
 #[test]
-fn jacobian_fd() {
+fn dlft_jacobian_matches_finite_differences() {
     let h = 20;
     let mut ssb = belt(h, 1000.0, None);
     let layout = ssb.layout();
     let len = layout.len();
+    // The closed form's coefficients: two transitions per period, both blended.
     let u = exact_coeffs(h);
     let om = 93.6;
     let mut j = Mat::zeros(len, len);
     let mut jo = vec![0.0; len];
     ssb.jacobian(&u, om, j.as_mut(), &mut jo).unwrap();
     let (mut rp, mut rm) = (vec![0.0; len], vec![0.0; len]);
+    let mut worst = 0.0f64;
     for c in 0..=len {
         let step = if c < len { 1e-11 } else { 1e-6 };
         let (mut up, mut um) = (u.clone(), u.clone());
         let (mut op, mut omm) = (om, om);
-        if c < len { up[c] += step; um[c] -= step; } else { op += step; omm -= step; }
+        if c < len {
+            up[c] += step;
+            um[c] -= step;
+        } else {
+            op += step;
+            omm -= step;
+        }
         ssb.residual(&up, op, &mut rp).unwrap();
         ssb.residual(&um, omm, &mut rm).unwrap();
         for i in 0..len {
             let fd = (rp[i] - rm[i]) / (2.0 * step);
             let an = if c < len { j[(i, c)] } else { jo[i] };
-            if (fd - an).abs() > 1e-3 * (an.abs() + 1.0) && c < 3 {
-                println!("({i},{c}) fd {fd} an {an}");
-            }
+            worst = worst.max((fd - an).abs() / (an.abs() + 1.0));
         }
     }
-}
-
-#[test]
-fn debug_a() {
-    let h = 40;
-    let e = exact();
-    let c = exact_coeffs(h);
-    let w = 2.0 * PI / e.period;
-    let eps = 1000.0;
-    let ns = 2048;
-    let mut prev = "";
-    for j in 0..ns {
-        let th = 2.0 * PI * j as f64 / ns as f64;
-        let (mut x, mut v, mut acc) = (c[0], 0.0, 0.0);
-        for k in 1..=h {
-            let kf = k as f64;
-            let (s, co) = (kf * th).sin_cos();
-            x += c[2 * k - 1] * co + c[2 * k] * s;
-            v += kf * w * (-c[2 * k - 1] * s + c[2 * k] * co);
-            acc -= (kf * w).powi(2) * (c[2 * k - 1] * co + c[2 * k] * s);
-        }
-        let a = M * acc + K * x + eps * (V - v);
-        let st = if a.abs() <= MU_K * N { "stick" } else if a.abs() > MU_S * N { "slip" } else { "amb" };
-        if st != prev || j % 128 == 0 {
-            println!("j {j} x {x:.4e} v {v:.4e} a {a:.4} {st}");
-            prev = st;
-        }
-    }
-}
-
-#[test]
-fn ladder() {
-    let e = exact();
-    let mut prev: Option<(Vec<f64>, f64, usize)> = None;
-    for h in [5, 10, 20, 40, 80] {
-        let mut ssb = belt(h, 1000.0, None);
-        let layout = ssb.layout();
-        let (u0, w0) = match &prev {
-            None => (exact_coeffs(h), 2.0 * PI / e.period),
-            Some((u, w, hp)) => {
-                let mut u0 = vec![0.0; layout.len()];
-                u0[..2 * hp + 1].copy_from_slice(u);
-                (u0, *w)
-            }
-        };
-        let phase = PhaseCondition::FirstSineZero { dof: 0 };
-        match solve_stick_slip(&mut ssb, phase, &u0, w0, N, &LmOptions { max_iterations: 400, ..LmOptions::default() }) {
-            Ok(sol) => {
-                println!("H {h}: T err {:.3e} mean err {:.3e} stick {:.4} (exact {:.4}) iters {}", sol.period() / e.period - 1.0, sol.coeffs[0] / e.mean - 1.0, ssb.stick_fractions()[0], e.stick_fraction, sol.report.iterations);
-                prev = Some((sol.coeffs.clone(), sol.omega, h));
-            }
-            Err(HbmError::NotConverged { report }) => { println!("H {h} NC res {:e} from {:e}", report.residual_norm, report.initial_residual_norm); break; }
-            Err(er) => panic!("{er}"),
-        }
-    }
+    // Central differences of a piecewise-smooth residual away from its kinks: truncation
+    // and round-off near 1e-6 of entries of order k = 1e4 N/m.
+    assert!(worst < 1e-4, "worst relative difference {worst:e}");
 }
