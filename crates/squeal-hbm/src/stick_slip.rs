@@ -565,7 +565,11 @@ impl<L: DynamicStiffness, F: NonlinearForce> StickSlipBalance<L, F> {
         // ∂x_j/∂z = sign a_j ∂a_j/∂z - (L/N) N'_j ∂δ_j/∂z.
         let dg = |j: usize, sign: f64| -> Vec<f64> {
             let mut v: Vec<f64> = (0..cols)
-                .map(|col| sign * (0..nb).map(|b| self.basis.d(j, b) * q[(b, col)]).sum::<f64>())
+                .map(|col| {
+                    sign * (0..nb)
+                        .map(|b| self.basis.d(j, b) * q[(b, col)])
+                        .sum::<f64>()
+                })
                 .collect();
             for &(d, gd) in c.normal.dofs() {
                 for b in 0..nb {

@@ -43,11 +43,20 @@ fn exact() -> Exact {
     }
 }
 
-fn belt(h: usize, epsilon: f64, samples: Option<usize>) -> StickSlipBalance<MckStiffness, impl NonlinearForce> {
+fn belt(
+    h: usize,
+    epsilon: f64,
+    samples: Option<usize>,
+) -> StickSlipBalance<MckStiffness, impl NonlinearForce> {
     let layout = HarmonicLayout::new(1, h).unwrap();
     let s = |v: f64| Mat::from_fn(1, 1, |_, _| v);
     let linear = MckStiffness::new(s(M).as_ref(), s(0.0).as_ref(), s(K).as_ref()).unwrap();
-    let none = FnForce::new(1, vec![], false, |_: &[f64], _: &[f64], _: &mut [f64], _: Option<LocalJacobian<'_>>| {});
+    let none = FnForce::new(
+        1,
+        vec![],
+        false,
+        |_: &[f64], _: &[f64], _: &mut [f64], _: Option<LocalJacobian<'_>>| {},
+    );
     let hb = HarmonicBalance::new(layout, linear, none, vec![0.0; layout.len()], None).unwrap();
     let contact = FrictionContact {
         direction: vec![(0, -1.0)],
@@ -100,8 +109,21 @@ fn solve(h: usize, epsilon: f64) -> Option<(f64, f64, f64, usize)> {
     let e = exact();
     let u0 = exact_coeffs(h);
     let phase = PhaseCondition::FirstSineZero { dof: 0 };
-    let sol = solve_stick_slip(&mut ssb, phase, &u0, 2.0 * PI / e.period, N, &LmOptions::default()).ok()?;
-    Some((sol.period(), sol.coeffs[0], ssb.stick_fractions()[0], sol.report.iterations))
+    let sol = solve_stick_slip(
+        &mut ssb,
+        phase,
+        &u0,
+        2.0 * PI / e.period,
+        N,
+        &LmOptions::default(),
+    )
+    .ok()?;
+    Some((
+        sol.period(),
+        sol.coeffs[0],
+        ssb.stick_fractions()[0],
+        sol.report.iterations,
+    ))
 }
 
 #[test]
@@ -109,15 +131,26 @@ fn dlft_cycle_against_the_closed_form() {
     let e = exact();
     let mut errors = Vec::new();
     for (h, tol) in [(5, 4e-2), (10, 1.5e-2)] {
-        let (t, mean, stick, it) = solve(h, 1.0e3).expect("DLFT converges from the closed form's coefficients");
-        let (et, em, es) = (t / e.period - 1.0, mean / e.mean - 1.0, stick - e.stick_fraction);
-        println!("H {h}: period {et:.3e}, mean {em:.3e}, stick fraction {stick:.4} ({es:+.4}), {it} iterations");
+        let (t, mean, stick, it) =
+            solve(h, 1.0e3).expect("DLFT converges from the closed form's coefficients");
+        let (et, em, es) = (
+            t / e.period - 1.0,
+            mean / e.mean - 1.0,
+            stick - e.stick_fraction,
+        );
+        println!(
+            "H {h}: period {et:.3e}, mean {em:.3e}, stick fraction {stick:.4} ({es:+.4}), {it} iterations"
+        );
         // The cycle's acceleration jumps at both transitions: its coefficients decay like k^-3
         // and the truncated cycle's period misses by a few percent at H = 5 and about 1 % at
         // H = 10 (measured 3.1e-2 and 1.2e-2).
         assert!(et.abs() < tol, "H {h}: period error {et:e}");
         assert!(em.abs() < 1e-3, "H {h}: mean error {em:e}");
-        assert!(es.abs() < 0.06, "H {h}: stick fraction {stick} against {}", e.stick_fraction);
+        assert!(
+            es.abs() < 0.06,
+            "H {h}: stick fraction {stick} against {}",
+            e.stick_fraction
+        );
         errors.push(et.abs());
     }
     assert!(errors[1] < errors[0], "more harmonics, closer: {errors:?}");

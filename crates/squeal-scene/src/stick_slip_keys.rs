@@ -43,7 +43,11 @@ impl Scene {
         let v_s = v_reg.and_then(|v| number("static_speed_m_per_s", 10.0 * v));
         let all_known = table.keys().all(|k| known.contains(&k.as_str()));
         let (Some(v_reg), Some(ratio), Some(v_s), true) = (v_reg, ratio, v_s, all_known) else {
-            return Some(Err(self.error_at("contact.law", v, format!("must be {USAGE}"))));
+            return Some(Err(self.error_at(
+                "contact.law",
+                v,
+                format!("must be {USAGE}"),
+            )));
         };
         Some(match self.disc_angular_speed() {
             Err(e) => Err(e),
@@ -110,7 +114,10 @@ mod tests {
             "{ kind = \"regularized-coulomb\", v1 = 2 }",
         ] {
             let e = law(bad, true).unwrap_err().to_string();
-            assert!(e.contains("contact.law") && e.contains("regularized-coulomb"), "{e}");
+            assert!(
+                e.contains("contact.law") && e.contains("regularized-coulomb"),
+                "{e}"
+            );
         }
         let e = law("{ kind = \"regularized-coulomb\" }", false)
             .unwrap_err()

@@ -126,7 +126,10 @@ mod tests {
             let an = law.shape(v).1;
             // Central differences: truncation (h / v_reg)² ≈ 1e-10 relative, round-off
             // 1e-16 / h ≈ 1e-8 of the shape's unit scale.
-            assert!((fd - an).abs() < 1e-6 * an.abs().max(1.0), "{v}: {fd} vs {an}");
+            assert!(
+                (fd - an).abs() < 1e-6 * an.abs().max(1.0),
+                "{v}: {fd} vs {an}"
+            );
         }
         // Odd in v, μ_s at creep speeds between v_reg and v_s, μ at fast sliding.
         assert_eq!(law.shape(-2e-3).0, -law.shape(2e-3).0);
