@@ -25,15 +25,21 @@
 //! - [`velocity_dependent`]: the same penalty with a friction coefficient that changes with the
 //!   sliding speed ([`VelocityDependent`]); it depends on `v`, so the linearization gains a
 //!   damping part (see [`crate::linearized`]).
+//! - [`regularized_coulomb`]: Coulomb friction with `tanh(v / v_reg)` in place of the sign of
+//!   the slip velocity ([`RegularizedCoulomb`]), optionally with a static coefficient above the
+//!   kinetic one: a smooth element that sticks and slips, for cycles whose sliding margin falls
+//!   below 1.
 //!
 //! A scene chooses one for every pair by a [`LawSpec`] (`[contact] law`); a law written
 //! outside the crate (`crates/squeal-chbm/examples/user_contact_law.rs`) plugs in the same way
 //! without touching any other file.
 
 pub mod penalty_coulomb;
+pub mod regularized_coulomb;
 pub mod velocity_dependent;
 
 pub use penalty_coulomb::{PenaltyCoulomb, cubic_penalty};
+pub use regularized_coulomb::{DEFAULT_REGULARIZATION_SPEED, RegularizedCoulomb};
 pub use velocity_dependent::VelocityDependent;
 
 use std::fmt::Debug;
@@ -122,6 +128,16 @@ pub enum LawSpec {
         /// `v0` (m/s): the speed over which the coefficient moves from `μ_s` to `μ_d`.
         decay_speed: f64,
     },
+    /// Regularized Coulomb friction ([`RegularizedCoulomb`]):
+    /// `F_t = μ F_n s(|v|) tanh(v / v_reg)`, `s(v) = 1 + (r - 1) e^(-v/v_s)`.
+    RegularizedCoulomb {
+        /// `v_reg` (m/s).
+        regularization_speed: f64,
+        /// `r = μ_s / μ` (1: one coefficient).
+        static_ratio: f64,
+        /// `v_s` (m/s).
+        static_speed: f64,
+    },
 }
 
 impl LawSpec {
@@ -138,14 +154,26 @@ impl LawSpec {
                 static_ratio,
                 decay_speed,
             }),
+            LawSpec::RegularizedCoulomb {
+                regularization_speed,
+                static_ratio,
+                static_speed,
+            } => Arc::new(RegularizedCoulomb {
+                k_linear,
+                k_cubic,
+                regularization_speed,
+                static_ratio,
+                static_speed,
+            }),
         }
     }
 
-    /// Its name in a scene: `penalty-coulomb` or `velocity-dependent`.
+    /// Its name in a scene: `penalty-coulomb`, `velocity-dependent` or `regularized-coulomb`.
     pub fn scene_name(&self) -> &'static str {
         match self {
             LawSpec::PenaltyCoulomb => "penalty-coulomb",
             LawSpec::VelocityDependent { .. } => "velocity-dependent",
+            LawSpec::RegularizedCoulomb { .. } => "regularized-coulomb",
         }
     }
 }

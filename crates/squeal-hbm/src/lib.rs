@@ -22,6 +22,8 @@
 //! * [`continuation`]: branches of periodic solutions in a parameter (pseudo-arclength).
 //! * [`torus`]: quasi-periodic harmonic balance on an invariant torus (two base frequencies,
 //!   2-D AFT, two phase conditions), started at a Neimark–Sacker point.
+//! * [`stick_slip`]: exact stick–slip friction contacts by the dynamic Lagrangian
+//!   frequency–time method (Nacivet et al. 2003), [`solve_stick_slip`].
 //! * [`Periodic`]: a periodic motion as Fourier coefficients (eq. 23), and [`FourierSums`],
 //!   its coefficients from equally spaced samples.
 //!
@@ -60,6 +62,7 @@ mod layout;
 mod linear;
 pub mod lm;
 mod periodic;
+pub mod stick_slip;
 pub mod torus;
 
 pub use aft::{Aft, TimeSamples, default_samples, min_samples_exact};
@@ -78,3 +81,7 @@ pub use layout::{HarmonicLayout, MAX_COEFFICIENTS, Part};
 pub use linear::{DynamicStiffness, MckStiffness};
 pub use lm::{LeastSquaresProblem, LmError, LmIteration, LmOptions, LmReport, LmStop};
 pub use periodic::{FourierSums, Periodic};
+pub use stick_slip::{
+    ContactState, FrictionContact, NormalLoad, StickSlipBalance, StickSlipProblem,
+    default_stick_slip_samples, solve_stick_slip,
+};

@@ -270,6 +270,15 @@ pub fn brake_params(scene: &Scene) -> Result<BrakeParams> {
                 static_ratio,
                 decay_speed,
             },
+            ContactLawSetting::RegularizedCoulomb {
+                regularization_speed,
+                static_ratio,
+                static_speed,
+            } => LawSpec::RegularizedCoulomb {
+                regularization_speed,
+                static_ratio,
+                static_speed,
+            },
         },
         pairing_tolerance: PairingTolerance::Absolute(scene.pairing_tolerance()?),
         piston_force: scene.piston_force()?,

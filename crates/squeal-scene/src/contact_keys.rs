@@ -242,6 +242,9 @@ impl Scene {
         let Some(v) = &self.file.contact.law else {
             return Ok(ContactLawSetting::PenaltyCoulomb);
         };
+        if let Some(law) = self.regularized_coulomb_law() {
+            return law;
+        }
         let usage = "must be \"penalty-coulomb\" or { kind = \"velocity-dependent\", static_ratio = 1.2, decay_speed_m_per_s = 0.5 } (r = mu_static/mu_dynamic > 0, v0 > 0 in m/s)";
         let table = match v.get_ref() {
             toml::Value::String(s) if s == "penalty-coulomb" => {

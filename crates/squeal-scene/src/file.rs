@@ -276,6 +276,16 @@ pub enum ContactLawSetting {
         /// `v0` (m/s).
         decay_speed: f64,
     },
+    /// `F_t = μ F_n s(|v|) tanh(v / v_reg)`, `s(v) = 1 + (r - 1) e^(-v/v_s)`
+    /// (`stick_slip_keys`).
+    RegularizedCoulomb {
+        /// `v_reg` (m/s).
+        regularization_speed: f64,
+        /// `r = μ_s / μ`.
+        static_ratio: f64,
+        /// `v_s` (m/s).
+        static_speed: f64,
+    },
 }
 
 /// The pairs' initial gaps a scene asks for (`[contact] initial_gap`, `close_initial_gaps`).

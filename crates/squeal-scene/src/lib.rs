@@ -57,6 +57,7 @@ pub use file::{
 };
 
 mod contact_keys;
+mod stick_slip_keys;
 
 pub mod assembly;
 
