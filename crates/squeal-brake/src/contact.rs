@@ -38,7 +38,7 @@ pub mod penalty_coulomb;
 pub mod regularized_coulomb;
 pub mod velocity_dependent;
 
-pub use penalty_coulomb::{PenaltyCoulomb, cubic_penalty};
+pub use penalty_coulomb::{PenaltyCoulomb, cubic_penalty, speed_shaped_response};
 pub use regularized_coulomb::{DEFAULT_REGULARIZATION_SPEED, RegularizedCoulomb};
 pub use velocity_dependent::VelocityDependent;
 

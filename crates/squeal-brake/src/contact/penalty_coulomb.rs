@@ -24,6 +24,26 @@ pub fn cubic_penalty(delta: f64, k_linear: f64, k_cubic: f64) -> (f64, f64) {
     }
 }
 
+/// The response of eq (8)'s penalty with friction `F_t = μ s(v) F_n`, where `s(v)` and
+/// `ds/dv` (`shape`) say how the coefficient changes with the slip velocity `v`: the laws
+/// whose friction depends on the sliding speed differ only in `s`.
+pub fn speed_shaped_response(
+    mu: f64,
+    k: &Kinematics,
+    k_linear: f64,
+    k_cubic: f64,
+    (s, ds): (f64, f64),
+) -> Response {
+    let (f, kt) = cubic_penalty(k.penetration, k_linear, k_cubic);
+    Response {
+        normal: f,
+        tangential: mu * s * f,
+        normal_derivatives: [kt, 0.0, 0.0],
+        tangential_derivatives: [mu * s * kt, 0.0, mu * ds * f],
+        tangential_mu: s * f,
+    }
+}
+
 /// The paper's contact element, eqs (8)–(10): cubic penalty contact `F_n = k_l δ + k_nl δ³`
 /// (zero when open) and Coulomb friction in permanent sliding `F_t = μ F_n`, independent of
 /// the velocities.

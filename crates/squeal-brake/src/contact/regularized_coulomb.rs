@@ -30,7 +30,7 @@
 //! `∂F_t/∂δ = μ k_t s τ`, `∂F_t/∂v = μ F_n (s'(|v|) sign(v) τ + s (1 - τ²) / v_reg)`,
 //! `∂F_t/∂μ = F_n s τ`, `s'(v) = -(r - 1) e^(-v/v_s) / v_s`.
 
-use super::{ContactLaw, Kinematics, Parameter, Response, cubic_penalty};
+use super::{ContactLaw, Kinematics, Parameter, Response, speed_shaped_response};
 
 /// The default regularization velocity `v_reg` (m/s).
 pub const DEFAULT_REGULARIZATION_SPEED: f64 = 1.0e-3;
@@ -77,15 +77,8 @@ impl RegularizedCoulomb {
 
 impl ContactLaw for RegularizedCoulomb {
     fn response(&self, mu: f64, k: &Kinematics) -> Response {
-        let (f, kt) = cubic_penalty(k.penetration, self.k_linear, self.k_cubic);
-        let (s, ds) = self.shape(k.slip_velocity);
-        Response {
-            normal: f,
-            tangential: mu * s * f,
-            normal_derivatives: [kt, 0.0, 0.0],
-            tangential_derivatives: [mu * s * kt, 0.0, mu * ds * f],
-            tangential_mu: s * f,
-        }
+        let shape = self.shape(k.slip_velocity);
+        speed_shaped_response(mu, k, self.k_linear, self.k_cubic, shape)
     }
 
     fn uses_slip_velocity(&self) -> bool {

@@ -29,7 +29,7 @@
 //! `crates/squeal-pipeline/tests/contact_law.rs` the direction of the change on the bundled
 //! brake.
 
-use super::{ContactLaw, Kinematics, Parameter, Response, cubic_penalty};
+use super::{ContactLaw, Kinematics, Parameter, Response, speed_shaped_response};
 
 /// Penalty contact (eq 8) with the speed-dependent friction of the module documentation.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,15 +55,8 @@ impl VelocityDependent {
 
 impl ContactLaw for VelocityDependent {
     fn response(&self, mu: f64, k: &Kinematics) -> Response {
-        let (f, kt) = cubic_penalty(k.penetration, self.k_linear, self.k_cubic);
-        let (s, ds) = self.shape(k.slip_velocity);
-        Response {
-            normal: f,
-            tangential: mu * s * f,
-            normal_derivatives: [kt, 0.0, 0.0],
-            tangential_derivatives: [mu * s * kt, 0.0, mu * ds * f],
-            tangential_mu: s * f,
-        }
+        let shape = self.shape(k.slip_velocity);
+        speed_shaped_response(mu, k, self.k_linear, self.k_cubic, shape)
     }
 
     fn uses_slip_velocity(&self) -> bool {
