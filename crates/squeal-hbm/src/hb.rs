@@ -636,10 +636,24 @@ pub fn solve_autonomous<L: DynamicStiffness, F: NonlinearForce>(
     omega0: f64,
     options: &LmOptions,
 ) -> Result<HbSolution, HbmError> {
+    let len = hb.layout().len();
+    let z0 = autonomous_start(&hb.layout(), phase, u0, omega0)?;
+    let mut problem = AutonomousProblem::new(hb, phase)?;
+    let report = lm::solve(&mut problem, &z0, options).map_err(from_lm)?;
+    Ok(autonomous_solution(report, len))
+}
+
+/// The unknowns `[U, ω]` an autonomous solve starts from: the guess checked (its length, finite
+/// values, a positive frequency) and shifted in time so that it meets the phase condition.
+pub(crate) fn autonomous_start(
+    layout: &HarmonicLayout,
+    phase: PhaseCondition,
+    u0: &[f64],
+    omega0: f64,
+) -> Result<Vec<f64>, HbmError> {
     if !(omega0.is_finite() && omega0 > 0.0) {
         return Err(HbmError::BadFrequency { omega: omega0 });
     }
-    let layout = hb.layout();
     layout.check_len("initial guess", u0.len())?;
     if u0.iter().any(|v| !v.is_finite()) {
         return Err(HbmError::NonFiniteInput {
@@ -652,14 +666,17 @@ pub fn solve_autonomous<L: DynamicStiffness, F: NonlinearForce>(
         layout.align_phase(&mut z0, dof)?;
     }
     z0.push(omega0);
-    let mut problem = AutonomousProblem::new(hb, phase)?;
-    let report = lm::solve(&mut problem, &z0, options).map_err(from_lm)?;
-    let len = layout.len();
-    Ok(HbSolution {
+    Ok(z0)
+}
+
+/// The coefficients and frequency of an autonomous solve's last iterate (`len` coefficients,
+/// then ω).
+pub(crate) fn autonomous_solution(report: lm::LmReport, len: usize) -> HbSolution {
+    HbSolution {
         coeffs: report.x[..len].to_vec(),
         omega: report.x[len],
         report,
-    })
+    }
 }
 
 /// Solves the forced system at the excitation frequency `omega` from the guess `u0`.

@@ -100,7 +100,9 @@ use faer::{Mat, MatMut};
 
 use crate::HbmError;
 use crate::force::NonlinearForce;
-use crate::hb::{HarmonicBalance, HbSolution, PhaseCondition, from_lm};
+use crate::hb::{
+    HarmonicBalance, HbSolution, PhaseCondition, autonomous_solution, autonomous_start, from_lm,
+};
 use crate::layout::HarmonicLayout;
 use crate::linear::DynamicStiffness;
 use crate::lm::{self, LeastSquaresProblem, LmOptions};
@@ -782,28 +784,9 @@ pub fn solve_stick_slip<L: DynamicStiffness, F: NonlinearForce>(
     force_scale: f64,
     options: &LmOptions,
 ) -> Result<HbSolution, HbmError> {
-    if !(omega0.is_finite() && omega0 > 0.0) {
-        return Err(HbmError::BadFrequency { omega: omega0 });
-    }
-    let layout = ssb.layout();
-    layout.check_len("initial guess", u0.len())?;
-    if u0.iter().any(|v| !v.is_finite()) {
-        return Err(HbmError::NonFiniteInput {
-            what: "initial guess",
-        });
-    }
-    let PhaseCondition::FirstSineZero { dof } = phase;
-    let mut z0 = u0.to_vec();
-    if layout.amplitude(&z0, 1, dof).is_some_and(|a| a > 0.0) {
-        layout.align_phase(&mut z0, dof)?;
-    }
-    z0.push(omega0);
+    let len = ssb.layout().len();
+    let z0 = autonomous_start(&ssb.layout(), phase, u0, omega0)?;
     let mut problem = StickSlipProblem::new(ssb, phase, force_scale)?;
     let report = lm::solve(&mut problem, &z0, options).map_err(from_lm)?;
-    let len = layout.len();
-    Ok(HbSolution {
-        coeffs: report.x[..len].to_vec(),
-        omega: report.x[len],
-        report,
-    })
+    Ok(autonomous_solution(report, len))
 }
