@@ -125,21 +125,26 @@ impl Default for BranchOptions {
             range: (0.5, 1.3),
             start_offset: 1e-4,
             max_closure: None,
-            continuation: {
-                let mut o = ContinuationOptions::default();
-                o.initial_step = 0.02;
-                o.min_step = 1e-6;
-                o.max_step = 0.1;
-                o.target_iterations = 4;
-                o.max_iterations = 12;
-                o.tolerance = 1e-9;
-                o.step_tolerance = 1e-9;
-                o.parameter_range = (f64::NEG_INFINITY, f64::INFINITY);
-                o.max_points = 400;
-                o
-            },
+            continuation: continuation_in_mu(400),
         }
     }
+}
+
+/// The continuation settings of a branch in μ/μ0 (cycles or tori): steps of 0.02 μ0 at most
+/// 0.1, four corrector iterations aimed at, twelve at most, converged to 1e-9; at most
+/// `max_points` points.
+pub(crate) fn continuation_in_mu(max_points: usize) -> ContinuationOptions {
+    let mut o = ContinuationOptions::default();
+    o.initial_step = 0.02;
+    o.min_step = 1e-6;
+    o.max_step = 0.1;
+    o.target_iterations = 4;
+    o.max_iterations = 12;
+    o.tolerance = 1e-9;
+    o.step_tolerance = 1e-9;
+    o.parameter_range = (f64::NEG_INFINITY, f64::INFINITY);
+    o.max_points = max_points;
+    o
 }
 
 /// One pair's normal closure (penetration `δ`, positive when closed) over a cycle.

@@ -291,19 +291,7 @@ impl Default for TorusOptions {
             start_amplitude: 0.02,
             envelope_periods: 300,
             envelope_samples: 64,
-            continuation: {
-                let mut o = ContinuationOptions::default();
-                o.initial_step = 0.02;
-                o.min_step = 1e-6;
-                o.max_step = 0.1;
-                o.target_iterations = 4;
-                o.max_iterations = 12;
-                o.tolerance = 1e-9;
-                o.step_tolerance = 1e-9;
-                o.parameter_range = (f64::NEG_INFINITY, f64::INFINITY);
-                o.max_points = 60;
-                o
-            },
+            continuation: crate::branch::continuation_in_mu(60),
         }
     }
 }
