@@ -69,15 +69,11 @@ impl MaterialArgs {
     /// Parses `SET=E,nu,rho` entries given in `units`, in SI; a modulus or density no
     /// structural solid has is warned about on stderr.
     pub fn overrides_in(&self, units: &Units) -> Result<Vec<(String, ElasticMaterial)>> {
-        let mut out = Vec::new();
-        for (set, m) in self.overrides()? {
-            let (si, warnings) = squeal_pipeline::mesh_info::material_in(&set, m, units);
-            for w in warnings {
-                eprintln!("warning: {w}");
-            }
-            out.push((set, si));
+        let (si, warnings) = squeal_pipeline::mesh_info::materials_in(&self.overrides()?, units);
+        for w in warnings {
+            eprintln!("warning: {w}");
         }
-        Ok(out)
+        Ok(si)
     }
 
     /// Parses `SET=E,nu,rho` entries.

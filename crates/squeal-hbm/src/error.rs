@@ -165,3 +165,22 @@ impl HbmError {
         }
     }
 }
+
+impl HbmError {
+    /// `Ok` when `got == expected`, else [`HbmError::Dimension`] naming `what`.
+    pub fn check_dimension(
+        what: &'static str,
+        expected: usize,
+        got: usize,
+    ) -> Result<(), HbmError> {
+        if got == expected {
+            Ok(())
+        } else {
+            Err(HbmError::Dimension {
+                what,
+                expected,
+                got,
+            })
+        }
+    }
+}

@@ -208,26 +208,12 @@ impl HarmonicLayout {
 
     fn check(&self, u: &[f64], out: &[f64]) -> Result<(), HbmError> {
         self.check_len("coefficients", u.len())?;
-        if out.len() != self.n_dofs {
-            return Err(HbmError::Dimension {
-                what: "output (one value per dof)",
-                expected: self.n_dofs,
-                got: out.len(),
-            });
-        }
-        Ok(())
+        HbmError::check_dimension("output (one value per dof)", self.n_dofs, out.len())
     }
 
     /// An error naming `what` unless `got` is the layout's length.
     pub fn check_len(&self, what: &'static str, got: usize) -> Result<(), HbmError> {
-        if got != self.len() {
-            return Err(HbmError::Dimension {
-                what,
-                expected: self.len(),
-                got,
-            });
-        }
-        Ok(())
+        HbmError::check_dimension(what, self.len(), got)
     }
 }
 

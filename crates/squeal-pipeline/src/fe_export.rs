@@ -67,12 +67,8 @@ pub fn export(req: &ExportRequest) -> Result<ExportReport> {
     let mut read = crate::mesh_info::read_mesh(&req.mesh)?;
     let mut warnings: Vec<String> = read.warnings.iter().map(|w| w.to_string()).collect();
     warnings.extend(read_in(&req.mesh, &mut read, &req.units));
-    let mut overrides = Vec::with_capacity(req.materials.len());
-    for (set, m) in &req.materials {
-        let (si, w) = crate::mesh_info::material_in(set, *m, &req.units);
-        warnings.extend(w);
-        overrides.push((set.clone(), si));
-    }
+    let (overrides, w) = crate::mesh_info::materials_in(&req.materials, &req.units);
+    warnings.extend(w);
     let mesh = read.mesh;
     let materials = MaterialTable::from_mesh(&mesh, &overrides).map_err(|e| {
         PipelineError::input(

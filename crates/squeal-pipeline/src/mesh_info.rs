@@ -119,6 +119,23 @@ pub fn material_in(
     (si, warnings)
 }
 
+/// Every `--material` of `list` in SI ([`material_in`]), and the warnings about them.
+pub fn materials_in(
+    list: &[(String, ElasticMaterial)],
+    units: &UnitSystem,
+) -> (Vec<(String, ElasticMaterial)>, Vec<String>) {
+    let mut warnings = Vec::new();
+    let si = list
+        .iter()
+        .map(|(set, m)| {
+            let (si, w) = material_in(set, *m, units);
+            warnings.extend(w);
+            (set.clone(), si)
+        })
+        .collect();
+    (si, warnings)
+}
+
 /// One mesh's summary, and whether the quality checks found errors. `read` is in SI (read in
 /// `units`, [`read_in`]); the summary says in which system the file was read.
 pub fn summary_text(
