@@ -10,6 +10,10 @@
 //! most correction terms, tolerance of its check). More modes grow the reduced brake
 //! with the number of eigenvalues in the band nearly fixed; a finer grid grows it with the
 //! contact (three interface dofs per patch and part, one pair per patch).
+//!
+//! A case may instead name a scene file, `PATH.toml[:METHODS[:TWEAKS]]` (e.g. the ventilated
+//! brake with nodal contact), swept with its global modal damping (no pair damping) and its band; `n=N` among the tweaks sets
+//! the number of friction values (default 201).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -85,12 +89,27 @@ fn main() {
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for case in cases {
         let mut it = case.split(':');
-        let grid = it
+        let scene_file = case
+            .split(':')
             .next()
-            .and_then(|g| g.split_once('x'))
-            .and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?)))
-            .unwrap_or((3, 3));
-        let modes: usize = it.next().and_then(|m| m.parse().ok()).unwrap_or(50);
+            .filter(|p| p.ends_with(".toml"))
+            .map(std::path::PathBuf::from);
+        if scene_file.is_some() {
+            it.next();
+        }
+        let grid = if scene_file.is_some() {
+            None
+        } else {
+            it.next()
+        }
+        .and_then(|g| g.split_once('x'))
+        .and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?)))
+        .unwrap_or((3, 3));
+        let modes: usize = if scene_file.is_some() {
+            0
+        } else {
+            it.next().and_then(|m| m.parse().ok()).unwrap_or(50)
+        };
         let methods = it.next().unwrap_or("projected");
         // Projection options: `cut=F` (first cut-off / band top), `comp=Z` (compression of
         // the correction vectors), `terms=T`, comma-separated.
@@ -99,8 +118,23 @@ fn main() {
             "squeal-sweep-scaling-{}x{}-{modes}",
             grid.0, grid.1
         ));
+        let the_scene = match &scene_file {
+            Some(path) => {
+                let text = std::fs::read_to_string(path).expect("the scene file reads");
+                Scene::parse(path, text).expect("the scene parses")
+            }
+            None => scene(grid, modes),
+        };
+        let out = match &scene_file {
+            Some(path) => std::env::temp_dir().join(format!(
+                "squeal-sweep-scaling-{}",
+                path.file_stem()
+                    .map_or("scene".into(), |s| s.to_string_lossy())
+            )),
+            None => out,
+        };
         let t = Instant::now();
-        let model = build(&scene(grid, modes), &out, &quiet).expect("the model builds");
+        let model = build(&the_scene, &out, &quiet).expect("the model builds");
         eprintln!("{case}: model built in {:.1?}", t.elapsed());
         let brake = &model.brake;
         let damping = Damping {
@@ -113,7 +147,12 @@ fn main() {
             "  reference: equilibrium {:.2} s, modal basis {:.2} s, damping {:.2} s",
             phases[0], phases[1], phases[2]
         );
-        let mus = common::mus(0.0, 1.0, 201);
+        let points = tweaks
+            .split(',')
+            .filter_map(|t| t.split_once('='))
+            .find(|(k, _)| *k == "n")
+            .map_or(201, |(_, v)| v.parse().expect("n=N: a count"));
+        let mus = common::mus(0.0, 1.0, points);
         for method in methods.split('+') {
             let m = match method {
                 "dense" => SweepMethod::Dense,
@@ -133,6 +172,7 @@ fn main() {
                     "comp" => opts.projection.compression = v,
                     "terms" => opts.projection.correction_terms = v as usize,
                     "tol" => opts.projection.tolerance = v,
+                    "n" => {}
                     _ => panic!("unknown projection option {key}"),
                 }
             }
@@ -153,9 +193,12 @@ fn main() {
                 .as_ref()
                 .map_or((f64::NAN, f64::NAN), |h| (h.mu0, h.frequency_hz));
             println!(
-                "| {}x{} | {modes} | {} | {} | {method} {tweaks} | {ts:.2} | {t_ref:.2} | {in_band} | {kept} | {mu0:.8} | {f0:.3} |",
-                grid.0,
-                grid.1,
+                "| {} | {modes} | {} | {} | {method} {tweaks} | {ts:.2} | {t_ref:.2} | {in_band} | {kept} | {mu0:.8} | {f0:.3} |",
+                scene_file
+                    .as_ref()
+                    .map_or(format!("{}x{}", grid.0, grid.1), |p| p
+                        .file_stem()
+                        .map_or("scene".into(), |s| s.to_string_lossy().into_owned())),
                 brake.size(),
                 brake.pairs.len()
             );
