@@ -16,10 +16,10 @@
 //! full model and of each reduced brake in that band (Hz): the split of a near-degenerate
 //! pair.
 
-use squeal_brake::analysis::{DampingSpec, PairChoice, stability};
+use squeal_brake::analysis::stability;
 use squeal_pipeline::full::full_brake;
 use squeal_pipeline::full::onset::{
-    FullOnset, FullOptions, full_onset, mode_band, reduced_onset, spectrum_at,
+    FullOnset, FullOptions, full_onset, mode_band, reduced_onset, spectrum_at, undamped,
 };
 use squeal_pipeline::full::run::band_of;
 use squeal_pipeline::model::{Model, model_on, quiet};
@@ -60,14 +60,6 @@ fn interface_of(s: &str) -> Result<Interface, Error> {
         "node" => Interface::Node,
         other => return Err(format!("no interface {other}").into()),
     })
-}
-
-fn undamped() -> DampingSpec {
-    DampingSpec {
-        global_ratio: 0.0,
-        pair: PairChoice::Auto,
-        pair_ratios: [0.0, 0.0],
-    }
 }
 
 /// The reduced brake's eigenvalues at μ = 0 with frequencies in `band` (Hz).
