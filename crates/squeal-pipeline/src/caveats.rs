@@ -68,7 +68,7 @@ impl fmt::Display for Caveat {
             ),
             Caveat::NearDegenerate { modes, hz, split } => write!(
                 f,
-                "the coalescing modes #{} ({:.1} Hz) and #{} ({:.1} Hz) are {:.3} % apart (below {} %): any friction couples them, and mu0 rests on their split, which the mesh, the contact discretization and the kept modes set (mu0 is about proportional to it: an error e in one frequency moves mu0 by about {:.0} e); check it with squeal stability --full or squeal study --kind convergence",
+                "the coalescing modes #{} ({:.1} Hz) and #{} ({:.1} Hz) are {:.3} % apart (below {} %): any friction couples them, and mu0 rests on their split, which the mesh, the contact discretization and the kept modes set (mu0 is about proportional to it: a relative error e in either frequency moves mu0 by about {:.0} e, relative); check it with squeal stability --full or squeal study --kind convergence",
                 modes.0,
                 hz.0,
                 modes.1,
