@@ -38,6 +38,13 @@ fn an_undamped_coalescence_is_flagged_and_the_damped_brake_is_not() {
     let (text, json) = stability("undamped", &undamped);
     assert!(text.contains("warning: the model has no damping"), "{text}");
     assert!(text.contains("no finite dRe(lambda)/dmu"), "{text}");
+    // No slope anywhere: the sensitivities (first-order perturbation of a simple eigenvalue)
+    // are not attempted at a double one.
+    assert!(!text.contains("dRe(lambda)/dmu = "), "{text}");
+    assert!(
+        text.contains("sensitivities of mu0 not computed: at an undamped coalescence"),
+        "{text}"
+    );
     assert!(!text.contains("(goes unstable)"), "{text}");
     let kinds: Vec<&str> = json["caveats"]
         .as_array()

@@ -5,7 +5,9 @@
 //!   coalescence (a Krein collision): at μ0 two eigenvalues meet on the imaginary axis and
 //!   split into `λ = ± s √(μ − μ0) + i ω`, so that `Re λ` has no finite slope at μ0 (any slope
 //!   printed is that of the sweep's step) and the two modes of the pair grow and decay alike:
-//!   which of them is "the unstable mode" is not defined by the model.
+//!   which of them is "the unstable mode" is not defined by the model. The critical
+//!   eigenvalue is double, so neither the sensitivities (first-order perturbation of a simple
+//!   eigenvalue: not computed) nor the Hopf normal form (printed as indicative) apply.
 //! - **A near-degenerate pair.** Two frictionless modes closer than
 //!   [`NEAR_DEGENERATE_SPLIT`] of their frequency (a disc's doublet that the pads barely
 //!   split) are coupled by any friction: the smaller their split, the smaller μ0, and the split
@@ -16,6 +18,7 @@
 //!   [`BAND_TOP_FRACTION`] of it rests on the modes that the truncation treats worst.
 
 use crate::model::Model;
+use crate::reduce::ModeChoice;
 use squeal_brake::analysis::LinearStability as Stability;
 use std::fmt;
 
@@ -61,17 +64,18 @@ impl fmt::Display for Caveat {
         match self {
             Caveat::Undamped => write!(
                 f,
-                "the model has no damping: mu0 is a coalescence, where Re(lambda) grows like sqrt(mu - mu0) (no finite slope) and the two modes of the pair grow and decay alike; give [damping] to model the brake's"
+                "the model has no damping: mu0 is a coalescence, where Re(lambda) grows like sqrt(mu - mu0) (no finite slope), the two modes of the pair grow and decay alike, and the Hopf normal form (criticality, branch) assumes a simple eigenvalue, which a coalescence is not: take them as indicative; give [damping] to model the brake's"
             ),
             Caveat::NearDegenerate { modes, hz, split } => write!(
                 f,
-                "the coalescing modes #{} ({:.1} Hz) and #{} ({:.1} Hz) are {:.3} % apart (below {} %): any friction couples them, and mu0 rests on their split, which the mesh, the contact discretization and the kept modes set; check it with squeal study --kind convergence",
+                "the coalescing modes #{} ({:.1} Hz) and #{} ({:.1} Hz) are {:.3} % apart (below {} %): any friction couples them, and mu0 rests on their split, which the mesh, the contact discretization and the kept modes set (mu0 is about proportional to it: a relative error e in either frequency moves mu0 by about {:.0} e, relative); check it with squeal stability --full or squeal study --kind convergence",
                 modes.0,
                 hz.0,
                 modes.1,
                 hz.1,
                 100.0 * split,
-                100.0 * NEAR_DEGENERATE_SPLIT
+                100.0 * NEAR_DEGENERATE_SPLIT,
+                1.0 / split
             ),
             Caveat::NearBandTop {
                 hopf_hz,
@@ -120,6 +124,38 @@ pub fn caveats(m: &Model, st: &Stability) -> Vec<Caveat> {
 pub fn near_degenerate(modes: (usize, usize), hz: (f64, f64)) -> Option<Caveat> {
     let split = (hz.1 - hz.0).abs() / (0.5 * (hz.0 + hz.1));
     (split < NEAR_DEGENERATE_SPLIT).then_some(Caveat::NearDegenerate { modes, hz, split })
+}
+
+/// What the reduced model kept and why, one line: each part's fixed-interface modes, the
+/// highest kept frequency, and the rule that chose them. The reduced brake's μ0 against the
+/// full model with the kept modes: docs/reduction.md, "Reduced against full: the kept modes".
+pub fn kept_modes_text(m: &Model) -> String {
+    let parts: Vec<String> = m
+        .rom
+        .parts
+        .iter()
+        .map(|p| {
+            let hz = &p.info.fixed_interface_hz;
+            format!(
+                "{} {} (up to {:.0} Hz)",
+                p.info.name,
+                hz.len(),
+                hz.last().copied().unwrap_or(0.0)
+            )
+        })
+        .collect();
+    let build = m.rom.parts.first().and_then(|p| p.info.build.as_ref());
+    let rule = match build.map(|b| b.modes) {
+        Some(ModeChoice::Fixed(n)) => format!("the {n} lowest of each part"),
+        Some(ModeChoice::Auto { fmax_hz, factor }) => {
+            format!("every mode below {factor} x {fmax_hz:.0} Hz")
+        }
+        None => "as the reduced model was made".to_string(),
+    };
+    format!(
+        "kept fixed-interface modes: {} ({rule}); squeal stability --full measures what they cost mu0\n",
+        parts.join(", ")
+    )
 }
 
 /// The caveats as lines `warning: ...`, empty when there are none.

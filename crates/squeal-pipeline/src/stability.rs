@@ -248,6 +248,7 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
             ", user band {a:.0}..{b:.0} Hz"
         ))
     );
+    out.push_str(&crate::caveats::kept_modes_text(s));
     let outside: Vec<_> = sw.crossings.iter().filter(|c| !c.in_band).collect();
     for c in sw.crossings.iter().filter(|c| c.in_band) {
         let _ = writeln!(
@@ -651,7 +652,18 @@ pub fn write_makeup(
     // The sensitivities need the unstable mode followed to the Hopf point; where that fails
     // (an undamped coalescence, a bracket too wide) the rest of the stage stands, and the
     // output says why they are missing.
-    match sensitivities::compute(m, st) {
+    // Undamped, μ0 is a coalescence: the critical eigenvalue is double, first-order
+    // perturbation (the sensitivities' dλ/ds) does not apply and no slope is printed.
+    let computed = if undamped(st) && st.sweep.hopf.is_some() {
+        let _ = writeln!(
+            out,
+            "sensitivities of mu0 not computed: at an undamped coalescence the critical eigenvalue is double and Re(lambda) has no finite derivative (give [damping] for them)"
+        );
+        Ok(None)
+    } else {
+        sensitivities::compute(m, st)
+    };
+    match computed {
         Ok(Some(r)) => {
             sensitivities::write(dir, &r)?;
             out.push_str(&sensitivities::text(&r, 10));

@@ -27,6 +27,19 @@
 //! reduction does not reproduce goes unstable first), and the onset of the reduced brake's
 //! unstable mode, the full model searched only within `mode_width` of its frequency (the
 //! Craig–Bampton error of that mode's μ0).
+//!
+//! **When the first onsets differ.** Undamped, a pair of modes `ω1 < ω2` coupled by friction
+//! coalesces where the coupling closes their gap: for the pair alone `λ² + ω1²`, `λ² + ω2²`
+//! with a friction coupling `μ κ₁₂`, `μ κ₂₁` off the diagonal (of opposite signs: the friction
+//! stiffness is not symmetric), `ω² = (ω1² + ω2²)/2 ± √(((ω2² − ω1²)/2)² + μ² κ₁₂ κ₂₁)` turns
+//! complex at `μ0 = |ω2² − ω1²| / (2 √(−κ₁₂ κ₂₁)) ≈ ω δ / √(−κ₁₂ κ₂₁)` with `δ = ω2 − ω1`:
+//! proportional to the split. A
+//! near-degenerate disc doublet (split `δ`, a few 1e-6 of its frequency on the bundled coarse
+//! brake) therefore has a μ0 whose relative error is the relative error of `δ`, and the
+//! reduced brake's split is off by the Craig–Bampton errors of the two modes, which do not
+//! cancel: matching such a μ0 to 1e-3 needs the two frequencies to `1e-3 δ`. When the full
+//! model's first onset is another mode than the reduced brake's, [`pair_split`] gives the two
+//! modes nearest its frequency at μ = 0 in both models, so the output says which split is off.
 
 use super::FullBrake;
 use crate::error::{PipelineError, Result};
@@ -301,20 +314,87 @@ pub fn mode_band(frequency_hz: f64, band: (f64, f64), opts: &FullOptions) -> (f6
     (lo, hi)
 }
 
-/// The reduced brake's μ0 over `mus` without modal damping (module docs).
-pub fn reduced_onset(model: &Model, mus: &[f64]) -> Result<Option<ReducedOnset>> {
-    let t = Instant::now();
-    let undamped = DampingSpec {
+/// No modal damping at all (module docs: it has no full-model counterpart).
+pub fn undamped() -> DampingSpec {
+    DampingSpec {
         global_ratio: 0.0,
         pair: PairChoice::Auto,
         pair_ratios: [0.0, 0.0],
-    };
-    let st = squeal_brake::analysis::stability(&model.brake, &undamped, mus, &model.sweep)?;
+    }
+}
+
+/// The reduced brake's μ0 over `mus` without modal damping (module docs).
+pub fn reduced_onset(model: &Model, mus: &[f64]) -> Result<Option<ReducedOnset>> {
+    let t = Instant::now();
+    let st = squeal_brake::analysis::stability(&model.brake, &undamped(), mus, &model.sweep)?;
     Ok(st.sweep.hopf.map(|h| ReducedOnset {
         mu0: h.mu0,
         frequency_hz: h.frequency_hz,
         seconds: t.elapsed().as_secs_f64(),
     }))
+}
+
+/// The two modes nearest a frequency at μ = 0, in the full model and in the reduced brake
+/// (module docs, "When the first onsets differ").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairSplit {
+    /// The onset's frequency (Hz).
+    pub onset_hz: f64,
+    /// The full model's two eigenfrequencies nearest it at μ = 0 (Hz), ascending.
+    pub full_hz: Option<(f64, f64)>,
+    /// The reduced brake's two frictionless frequencies nearest it (Hz), ascending.
+    pub reduced_hz: Option<(f64, f64)>,
+}
+
+/// The two of `hz` nearest `f`, ascending.
+fn nearest_two(hz: &[f64], f: f64) -> Option<(f64, f64)> {
+    let mut by: Vec<f64> = hz.to_vec();
+    by.sort_by(|a, b| (a - f).abs().total_cmp(&(b - f).abs()));
+    match by[..] {
+        [a, b, ..] => Some((a.min(b), a.max(b))),
+        _ => None,
+    }
+}
+
+/// The split of the pair at `onset_hz` at μ = 0: the full model's spectrum within
+/// `track_width` of it and the reduced brake's frictionless modes.
+pub fn pair_split(
+    full: &FullBrake,
+    model: &Model,
+    onset_hz: f64,
+    opts: &FullOptions,
+) -> Result<PairSplit> {
+    let band = (
+        onset_hz * (1.0 - opts.track_width),
+        onset_hz * (1.0 + opts.track_width),
+    );
+    let (s, _) = spectrum_at(full, model, 0.0, band, None, &opts.quadratic, &|_, _| {})?;
+    let full_hz: Vec<f64> = s.values().iter().map(|l| l.im / TAU).collect();
+    let st = squeal_brake::analysis::stability(&model.brake, &undamped(), &[0.0], &model.sweep)?;
+    let reduced_hz: Vec<f64> = st.reference.basis.omega.iter().map(|w| w / TAU).collect();
+    Ok(PairSplit {
+        onset_hz,
+        full_hz: nearest_two(&full_hz, onset_hz),
+        reduced_hz: nearest_two(&reduced_hz, onset_hz),
+    })
+}
+
+/// The lines saying which split of [`PairSplit`] is off.
+pub fn split_text(p: &PairSplit) -> String {
+    let pair = |h: Option<(f64, f64)>| {
+        h.map_or("none".to_string(), |(a, b)| {
+            format!(
+                "{a:.3} and {b:.3} Hz (split {:.2e})",
+                (b - a) / (0.5 * (a + b))
+            )
+        })
+    };
+    format!(
+        "  the full model's first onset ({:.1} Hz) is not the reduced brake's mode: at mu = 0 its two modes nearest it are {} in the full model, {} in the reduced brake; undamped, a pair coalesces at a friction proportional to its split, which the kept modes, the mesh and the contact discretization set (docs/reduction.md)\n",
+        p.onset_hz,
+        pair(p.full_hz),
+        pair(p.reduced_hz)
+    )
 }
 
 /// The table of the reduced brake's and the full model's μ0 and frequency, with the relative
@@ -372,4 +452,32 @@ pub fn comparison_text(
         out.push_str(&format!("  reduced sweep: {:.1} s\n", r.seconds));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_pair_nearest_an_onset_is_its_two_nearest_modes_in_order() {
+        // The coarse brake's 12.4 kHz pair at mu = 0 (full model) and the 50-mode brake's
+        // modes of the same ranks (docs/reduction.md).
+        let full = [12430.162, 12430.242, 12676.111];
+        assert_eq!(nearest_two(&full, 12430.201), Some((12430.162, 12430.242)));
+        let reduced = [12871.0, 12623.708, 12471.163];
+        assert_eq!(
+            nearest_two(&reduced, 12430.201),
+            Some((12471.163, 12623.708))
+        );
+        assert_eq!(nearest_two(&[1.0], 1.0), None);
+        let text = split_text(&PairSplit {
+            onset_hz: 12430.201,
+            full_hz: nearest_two(&full, 12430.201),
+            reduced_hz: None,
+        });
+        assert!(
+            text.contains("12430.162 and 12430.242 Hz (split 6.44e-6) in the full model, none in the reduced brake"),
+            "{text}"
+        );
+    }
 }

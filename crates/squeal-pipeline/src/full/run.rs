@@ -4,7 +4,8 @@
 
 use super::full_brake;
 use super::onset::{
-    FullOptions, comparison_text, full_onset, mode_band, reduced_onset, spectrum_at,
+    FullOnset, FullOptions, comparison_text, full_onset, mode_band, pair_split, reduced_onset,
+    spectrum_at, split_text,
 };
 use crate::Pipeline;
 use crate::error::Result;
@@ -20,6 +21,12 @@ pub fn band_of(m: &Model) -> (f64, f64) {
     let b = m.sweep.band;
     let (lo, hi) = b.user.unwrap_or((0.0, b.valid_max_hz));
     (lo, hi.min(b.valid_max_hz))
+}
+
+/// Whether the full model's first onset `f` is another mode than the reduced brake's `r`
+/// (farther than the options' `mode_width` from its frequency, or the reduced brake has none).
+fn other_mode(r: Option<&super::onset::ReducedOnset>, f: &FullOnset, opts: &FullOptions) -> bool {
+    r.is_none_or(|r| (f.frequency_hz / r.frequency_hz - 1.0).abs() > opts.mode_width)
 }
 
 /// The full model's check of `p`'s scene: at `at` (a friction value) its eigenvalues in the
@@ -97,6 +104,9 @@ pub fn full_check(p: &Pipeline, at: Option<f64>) -> Result<String> {
             };
             let _ = writeln!(out, "band {:.0}..{:.0} Hz", band.0, band.1);
             out.push_str(&comparison_text(r.as_ref(), f.as_ref(), mode.as_ref()));
+            if let Some(f) = f.as_ref().filter(|f| other_mode(r.as_ref(), f, &opts)) {
+                out.push_str(&split_text(&pair_split(&full, m, f.frequency_hz, &opts)?));
+            }
         }
     }
     let path = p.out.join("stability").join("full.txt");

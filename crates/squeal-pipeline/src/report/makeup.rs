@@ -69,7 +69,13 @@ pub fn section(
             "Reduced coordinates of the parts".to_string(),
         ),
     ];
-    if let Some(s) = sensitivities::compute(m, st)? {
+    // Undamped, μ0 is a coalescence (a double eigenvalue): no slope, no sensitivities.
+    let ranked = if crate::caveats::undamped(st) {
+        None
+    } else {
+        sensitivities::compute(m, st)?
+    };
+    if let Some(s) = ranked {
         let mut t = Table::new([
             "change by +1 %",
             "μ0 moves by",
