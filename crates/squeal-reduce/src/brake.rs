@@ -107,6 +107,8 @@ pub struct PartInput {
     pub ties: Vec<crate::tie::Tie>,
     /// Springs to ground on node sets ([`crate::tie`]).
     pub supports: Vec<crate::tie::Support>,
+    /// Springs between node sets of the part or to ground ([`crate::springs`]).
+    pub springs: Vec<crate::springs::Spring>,
     /// Materials by element set, applied after the mesh's own sections (a `.msh` has none).
     pub material_overrides: Vec<(String, ElasticMaterial)>,
     /// How the part is held: node sets and their clamped directions.
@@ -147,6 +149,7 @@ impl PartInput {
             elset: Vec::new(),
             ties: Vec::new(),
             supports: Vec::new(),
+            springs: Vec::new(),
             material_overrides: Vec::new(),
             restraints: vec![Restraint::clamp("CLAMP")],
             skew_restraints: Vec::new(),
@@ -169,6 +172,7 @@ impl PartInput {
             elset: Vec::new(),
             ties: Vec::new(),
             supports: Vec::new(),
+            springs: Vec::new(),
             material_overrides: Vec::new(),
             restraints: vec![Restraint::set("ABUTMENT", [true, true, false])],
             skew_restraints: Vec::new(),
@@ -380,6 +384,7 @@ impl BrakeInputs {
             elset: input.elset.clone(),
             ties: input.ties.clone(),
             supports: input.supports.clone(),
+            springs: input.springs.clone(),
         }
     }
 
@@ -502,6 +507,7 @@ impl BrakeInputs {
             },
             ties: input.ties.clone(),
             supports: input.supports.clone(),
+            springs: input.springs.clone(),
         }
     }
 }
