@@ -46,6 +46,11 @@ pub use pairing::{PairingTolerance, check_sets, contact_positions, pair_contact_
 mod load;
 #[allow(unused_imports)]
 use load::*;
+
+mod kept;
+#[allow(unused_imports)]
+use kept::*;
+pub use kept::{forget_kept, kept_dir};
 pub use load::{
     LoadedPart, backend_name, load_part, load_part_in, load_part_of, refuse_mesh_errors,
     refuse_shortened_set,
@@ -548,8 +553,10 @@ pub struct PartReport {
     pub warnings: Vec<String>,
     /// Time spent reading and hashing the mesh.
     pub read_time: Duration,
-    /// What [`crate::craig_bampton::reduce_part`] did and cost.
+    /// What [`crate::craig_bampton::reduce_part`] did and cost (empty when `reused`).
     pub reduce: ReduceReport,
+    /// Taken from the reductions an earlier run kept ([`reduce_brake_keeping`]), not reduced.
+    pub reused: bool,
 }
 
 impl PartReport {
@@ -591,6 +598,19 @@ pub fn reduce_brake_loaded(
     inputs: &BrakeInputs,
     disc: LoadedPart,
     pads: Vec<LoadedPart>,
+    progress: &mut dyn FnMut(&str, Stage),
+) -> Result<(ReducedModel, BrakeReport), ReduceError> {
+    reduce_brake_keeping(inputs, disc, pads, None, progress)
+}
+
+/// [`reduce_brake_loaded`], keeping finished reductions in the folder `keep` when another
+/// part fails, and taking parts kept there by an earlier run instead of reducing them again
+/// ([`kept`](self::kept_dir)'s module docs). `None`: nothing kept or taken.
+pub fn reduce_brake_keeping(
+    inputs: &BrakeInputs,
+    disc: LoadedPart,
+    pads: Vec<LoadedPart>,
+    keep: Option<&Path>,
     progress: &mut dyn FnMut(&str, Stage),
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     let t0 = Instant::now();
@@ -664,11 +684,23 @@ pub fn reduce_brake_loaded(
         tolerance = f64::max(tolerance, t);
     }
     let opts = inputs.reduce_options();
+    // Parts an earlier run finished and kept, still standing for them.
+    let taken: Vec<Option<ReducedPart>> = loaded
+        .iter()
+        .zip(&parts)
+        .map(|(part, (name, input))| {
+            keep.and_then(|dir| take_kept(dir, name, input, inputs, &part.info.sha256))
+        })
+        .collect();
     let (tx, rx) = mpsc::channel::<(usize, Stage)>();
     let slots: Vec<Mutex<Option<Reduced>>> = parts.iter().map(|_| Mutex::new(None)).collect();
     rayon::in_place_scope(|scope| {
-        for (k, ((part, (name, input)), slot)) in
-            loaded.into_iter().zip(&parts).zip(&slots).enumerate()
+        for (k, (((part, (name, input)), slot), taken)) in loaded
+            .into_iter()
+            .zip(&parts)
+            .zip(&slots)
+            .zip(taken)
+            .enumerate()
         {
             let tx = tx.clone();
             let opts = &opts;
@@ -677,23 +709,48 @@ pub fn reduce_brake_loaded(
                     // The receiver lives until every part is done.
                     let _ = tx.send((k, stage));
                 };
-                let reduced = reduce_loaded(inputs, name, input, part, opts, &mut tell);
+                let reduced = match taken {
+                    Some(kept) => Ok((kept, reused_report(name, part))),
+                    None => reduce_loaded(inputs, name, input, part, opts, &mut tell),
+                };
                 *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(reduced);
             });
         }
         drop(tx);
         relay(&rx, &mut |k, stage| progress(parts[k].0, stage));
     });
-    let mut reduced_parts = Vec::with_capacity(parts.len());
-    let mut reports = Vec::with_capacity(parts.len());
+    let mut results = Vec::with_capacity(parts.len());
     for (slot, (_, input)) in slots.into_iter().zip(&parts) {
         let reduced = slot.into_inner().unwrap_or_else(PoisonError::into_inner);
-        let (part, report) = reduced
-            .ok_or_else(|| ReduceError::Invalid {
-                part: "brake".into(),
-                what: "a part's reduction ended without a result".into(),
-            })?
-            .map_err(in_mesh(input))?;
+        results.push(
+            reduced
+                .ok_or_else(|| ReduceError::Invalid {
+                    part: "brake".into(),
+                    what: "a part's reduction ended without a result".into(),
+                })
+                .and_then(|r| r)
+                .map_err(in_mesh(input)),
+        );
+    }
+    let (done, failed): (Vec<_>, Vec<_>) = results.into_iter().partition(Result::is_ok);
+    let done: Vec<(ReducedPart, PartReport)> = done.into_iter().flatten().collect();
+    if let Some(Err(e)) = failed.into_iter().next() {
+        // Keep what finished (and was not taken from the folder already) for the next run.
+        if let Some(dir) = keep {
+            let fresh: Vec<&ReducedPart> = done
+                .iter()
+                .filter(|(_, report)| !report.reused)
+                .map(|(part, _)| part)
+                .collect();
+            if !fresh.is_empty() {
+                keep_parts(dir, &fresh)?;
+            }
+        }
+        return Err(e);
+    }
+    let mut reduced_parts = Vec::with_capacity(parts.len());
+    let mut reports = Vec::with_capacity(parts.len());
+    for (part, report) in done {
         reduced_parts.push(part);
         reports.push(report);
     }
@@ -712,6 +769,18 @@ pub fn reduce_brake_loaded(
         total: t0.elapsed() + read,
     };
     Ok((model, report))
+}
+
+/// The report of part `name` taken from the kept reductions instead of reduced.
+fn reused_report(name: &str, loaded: LoadedPart) -> PartReport {
+    PartReport {
+        name: name.into(),
+        mesh: loaded.info,
+        warnings: loaded.warnings,
+        read_time: loaded.read_time,
+        reduce: ReduceReport::default(),
+        reused: true,
+    }
 }
 
 /// A reduced part and its report, or why not.
@@ -736,6 +805,7 @@ fn reduce_loaded(
         warnings: loaded.warnings,
         read_time: loaded.read_time,
         reduce,
+        reused: false,
     };
     Ok((part, report))
 }

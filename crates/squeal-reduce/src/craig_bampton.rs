@@ -228,7 +228,7 @@ impl Stage {
 }
 
 /// What the reduction of one part did and cost.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct ReduceReport {
     /// Free dofs of the part (all dofs but the restrained ones).
     pub free_dofs: usize,
