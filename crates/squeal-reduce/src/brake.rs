@@ -50,11 +50,14 @@ use load::*;
 mod kept;
 #[allow(unused_imports)]
 use kept::*;
+
+mod relay;
 pub use kept::{forget_kept, kept_dir};
 pub use load::{
     LoadedPart, backend_name, load_part, load_part_in, load_part_of, refuse_mesh_errors,
     refuse_shortened_set,
 };
+use relay::relay;
 
 /// The version written into every `.rom` file; a file made by another version is stale. The
 /// suffix is the revision of the numbers a reduction produces: bump it with every change that
@@ -748,12 +751,7 @@ pub fn reduce_brake_keeping(
         }
         return Err(e);
     }
-    let mut reduced_parts = Vec::with_capacity(parts.len());
-    let mut reports = Vec::with_capacity(parts.len());
-    for (part, report) in done {
-        reduced_parts.push(part);
-        reports.push(report);
-    }
+    let (mut reduced_parts, reports): (Vec<_>, Vec<_>) = done.into_iter().unzip();
     if !projections.is_empty() {
         pairs = attach_projections(&mut reduced_parts, projections)?;
     }
@@ -769,18 +767,6 @@ pub fn reduce_brake_keeping(
         total: t0.elapsed() + read,
     };
     Ok((model, report))
-}
-
-/// The report of part `name` taken from the kept reductions instead of reduced.
-fn reused_report(name: &str, loaded: LoadedPart) -> PartReport {
-    PartReport {
-        name: name.into(),
-        mesh: loaded.info,
-        warnings: loaded.warnings,
-        read_time: loaded.read_time,
-        reduce: ReduceReport::default(),
-        reused: true,
-    }
 }
 
 /// A reduced part and its report, or why not.
@@ -808,41 +794,4 @@ fn reduce_loaded(
         reused: false,
     };
     Ok((part, report))
-}
-
-/// Hands the parts' progress messages to `progress` on this thread, in the order each part
-/// sent them, until every part has finished. A thread of the rayon pool (a caller inside
-/// `ThreadPool::install`) runs pending work between messages instead of blocking the pool.
-fn relay(rx: &mpsc::Receiver<(usize, Stage)>, progress: &mut dyn FnMut(usize, Stage)) {
-    let worker = rayon::current_thread_index().is_some();
-    loop {
-        let next = if worker {
-            next_helping(rx)
-        } else {
-            rx.recv().ok()
-        };
-        match next {
-            Some((name, stage)) => progress(name, stage),
-            None => return,
-        }
-    }
-}
-
-/// The next message, running pending pool work while there is none (None: every sender is
-/// gone).
-fn next_helping(rx: &mpsc::Receiver<(usize, Stage)>) -> Option<(usize, Stage)> {
-    loop {
-        match rx.try_recv() {
-            Ok(m) => return Some(m),
-            Err(mpsc::TryRecvError::Disconnected) => return None,
-            Err(mpsc::TryRecvError::Empty) => {}
-        }
-        if rayon::yield_now() != Some(rayon::Yield::Executed) {
-            match rx.recv_timeout(Duration::from_millis(2)) {
-                Ok(m) => return Some(m),
-                Err(mpsc::RecvTimeoutError::Disconnected) => return None,
-                Err(mpsc::RecvTimeoutError::Timeout) => {}
-            }
-        }
-    }
 }

@@ -27,6 +27,22 @@
 //!   held over its back face, a mount's bolted face. It is the `[[supports]]` law
 //!   ([`crate::tie`]) with a local frame.
 //!
+//! - **`Normal`**: a sliding contact held closed about the equilibrium — a pad's abutment on
+//!   the bracket. Each node `n` of the set (a face) gets the share `α_n k` (tributary area) of
+//!   the normal stiffness `k` (the first stiffness; the other two must be 0) along the normal
+//!   `ν` of the face it bears on, and none across it: `K += Σ_n α_n k (ν · (u_n − u_m))²`, where
+//!   `u_m = Σ_i N_i(ξ_n) u_i` is the motion of the point of the master face `to` the node
+//!   projects onto (the nodal contact's projection, [`Surface::project`], so non-matching
+//!   meshes bear; `ν` the master's normal there), or `u_m = 0` and `ν` the node's own face
+//!   normal against a rigid (ground) bracket. The tangential direction is free: the linear
+//!   model about the equilibrium of a pad that slides on its abutment under the drag (the
+//!   sliding abutment of Sinou's and Kung's brake models; a stuck abutment would be a `Mean`
+//!   or `Area` spring along all three axes). Friction on the abutment would add a tangential
+//!   force `μ_a F_a` that depends on the abutment's normal load at the equilibrium, which the
+//!   linear model does not carry; it is not built. Projection tolerance: a node lying farther
+//!   than 1 % of the master face's extent from it, or beyond its edge, is refused (as a
+//!   tie's default, [`crate::tie`]).
+//!
 //! A rigid part of mass `m` on a `Mean` or `Area` spring `k` to ground along `e` moves at
 //! `ω² = k / m` along `e`; two rigid parts on a `Mean` spring between them at
 //! `ω² = k (1/m_a + 1/m_b)`. The held-part check ([`crate::held`]) counts each term `c_d` as a
@@ -39,7 +55,7 @@
 
 use crate::error::ReduceError;
 use crate::interface::InterfaceError;
-use crate::interface::nodal::face_nodes;
+use crate::interface::nodal::{Surface, face_nodes};
 use squeal_mesh::Mesh;
 
 /// How a spring's end takes its motion from its node set (module docs).
@@ -50,6 +66,9 @@ pub enum Spread {
     Mean,
     /// Shared over the set's nodes by tributary area (to ground only).
     Area,
+    /// Along the normal of the face borne on only, shared by tributary area: a sliding
+    /// abutment (module docs).
+    Normal,
 }
 
 /// A spring of a part (module docs).
@@ -138,6 +157,12 @@ fn check(s: &Spring) -> Result<(), ReduceError> {
             }
         }
     }
+    if s.spread == Spread::Normal && (k[1] != 0.0 || k[2] != 0.0 || s.axes.is_some()) {
+        return Err(spring_error(
+            s,
+            "a sliding abutment (normal spread) has one stiffness, along the normal of the face it bears on: give [k, 0, 0] and no axes",
+        ));
+    }
     if s.spread == Spread::Area && s.to.is_some() {
         return Err(spring_error(
             s,
@@ -154,6 +179,10 @@ pub fn spring_terms(mesh: &Mesh, springs: &[Spring]) -> Result<Vec<SpringTerm>, 
     let mut out = Vec::new();
     for s in springs {
         check(s)?;
+        if s.spread == Spread::Normal {
+            out.extend(normal_terms(mesh, s)?);
+            continue;
+        }
         let axes = s.axes.unwrap_or(GLOBAL);
         let a = shares(mesh, &s.set)?;
         let b = match &s.to {
@@ -161,21 +190,70 @@ pub fn spring_terms(mesh: &Mesh, springs: &[Spring]) -> Result<Vec<SpringTerm>, 
             None => Vec::new(),
         };
         for (e, &k) in axes.iter().zip(&s.stiffness).filter(|(_, k)| **k > 0.0) {
-            match s.spread {
-                Spread::Area => out.extend(a.iter().map(|&(n, w)| SpringTerm {
+            if s.spread == Spread::Area {
+                out.extend(a.iter().map(|&(n, w)| SpringTerm {
                     k: k * w,
                     entries: vec![(n, *e)],
-                })),
-                Spread::Mean => out.push(SpringTerm {
+                }));
+            } else {
+                out.push(SpringTerm {
                     k,
                     entries: a
                         .iter()
                         .map(|&(n, w)| (n, e.map(|x| w * x)))
                         .chain(b.iter().map(|&(n, w)| (n, e.map(|x| -w * x))))
                         .collect(),
-                }),
+                });
             }
         }
+    }
+    Ok(out)
+}
+
+/// The terms of a sliding abutment (`Spread::Normal`, module docs).
+fn normal_terms(mesh: &Mesh, s: &Spring) -> Result<Vec<SpringTerm>, ReduceError> {
+    let face = face_nodes(mesh, &s.set)?;
+    if face.is_empty() {
+        return Err(spring_error(
+            s,
+            "a sliding abutment needs a face: the set has no boundary faces",
+        ));
+    }
+    let total: f64 = face.iter().map(|f| f.area).sum();
+    let k = s.stiffness[0];
+    let Some(to) = &s.to else {
+        return Ok(face
+            .iter()
+            .map(|f| SpringTerm {
+                k: k * f.area / total,
+                entries: vec![(f.node, f.normal)],
+            })
+            .collect());
+    };
+    let surface = Surface::new(mesh, to)?;
+    let master = mesh
+        .node_set(to)
+        .ok_or_else(|| InterfaceError::MissingSet(to.clone()))?;
+    let tolerance = 0.01 * crate::tie::extent(mesh, master);
+    let mut out = Vec::with_capacity(face.len());
+    for f in &face {
+        let p = surface.project(mesh.nodes[f.node as usize]);
+        if p.distance > tolerance || p.outside > tolerance {
+            return Err(spring_error(
+                s,
+                format!(
+                    "node {} lies {:.3e} m from the face it bears on ({:.3e} m beyond its edge), more than 1 % of that face's extent ({tolerance:.3e} m): check the sets",
+                    mesh.node_ids[f.node as usize], p.distance, p.outside
+                ),
+            ));
+        }
+        let nu = p.normal;
+        let mut entries = vec![(f.node, nu)];
+        entries.extend(p.weights.iter().map(|&(i, w)| (i, nu.map(|x| -w * x))));
+        out.push(SpringTerm {
+            k: k * f.area / total,
+            entries,
+        });
     }
     Ok(out)
 }

@@ -487,3 +487,74 @@ fn springs_are_checked() {
         .sum();
     assert!((total - 1.0).abs() < 1e-14, "{total}");
 }
+
+/// A 20 mm steel cube (the pad) bearing with its x = 20 mm face on a clamped steel block (the
+/// bracket) through a sliding abutment of normal stiffness `k_n`, and held on a foundation
+/// along y and z under its bottom face: it moves along x at `sqrt(k_n / m)`, and along z at
+/// `sqrt(k_z / m)` whatever `k_n` (the abutment does not hold it across its normal).
+#[test]
+fn a_cube_slides_on_its_abutment_and_bears_along_the_normal_only() {
+    use squeal_reduce::springs::{Spread, Spring};
+    let a = 0.02;
+    let pad = box_tet10_origin([0.0; 3], [a, a, a], [2, 2, 2]);
+    // The bracket meshed otherwise (3 x 3 cells on the face borne on against 2 x 2).
+    let bracket = box_tet10_origin([a, 0.0, 0.0], [a, a, a], [1, 3, 3]);
+    let mut m = merged(&pad, &bracket);
+    add_node_set(&mut m, "TIP", [0.0, 0.0, a]);
+    let mass = STEEL.2 * a * a * a;
+    let k_of = |hz: f64| mass * (2.0 * std::f64::consts::PI * hz).powi(2);
+    let (fx, fy, fz) = (100.0, 60.0, 150.0);
+    let abutment = Spring {
+        set: "A_XMAX".into(),
+        to: Some("B_XMIN".into()),
+        stiffness: [k_of(fx), 0.0, 0.0],
+        axes: None,
+        spread: Spread::Normal,
+    };
+    let foundation = Spring {
+        set: "A_ZMIN".into(),
+        to: None,
+        stiffness: [0.0, k_of(fy), k_of(fz)],
+        axes: None,
+        spread: Spread::Area,
+    };
+    let spec_with = |springs: Vec<Spring>| PartSpec {
+        springs,
+        ..spec("B_XMAX", vec![], vec![], 30)
+    };
+    let nearest = |f: &[f64], f0: f64| {
+        f.iter()
+            .copied()
+            .min_by(|x, y| (x - f0).abs().total_cmp(&(y - f0).abs()))
+            .unwrap()
+    };
+    let f = frequencies(&reduce(
+        &m,
+        &spec_with(vec![abutment.clone(), foundation.clone()]),
+    ));
+    let (along, across) = (nearest(&f, fx), nearest(&f, fz));
+    eprintln!(
+        "sliding abutment: along the normal {along:.6} Hz (sqrt(k_n/m): {fx}), vertical {across:.6} Hz (sqrt(k_z/m): {fz}); lowest {:?}",
+        &f[..6]
+    );
+    // Elastic coupling of the cube and the bracket: (f / f_elastic)² ≈ (150 / 80000)² ≈ 4e-6.
+    for (got, want) in [(along, fx), (across, fz)] {
+        assert!(
+            (got / want - 1.0).abs() < 1e-4,
+            "{got} Hz against {want} Hz"
+        );
+    }
+    // Stuck instead (the same stiffness along all three axes between the faces' means): the
+    // vertical mode is stiffened away from sqrt(k_z / m).
+    let stuck = Spring {
+        stiffness: [k_of(fx); 3],
+        spread: Spread::Mean,
+        ..abutment
+    };
+    let f = frequencies(&reduce(&m, &spec_with(vec![stuck, foundation])));
+    assert!(
+        f.iter().all(|x| (x / fz - 1.0).abs() > 1e-2),
+        "a stuck abutment must move the vertical mode: {:?}",
+        &f[..8]
+    );
+}

@@ -11,7 +11,10 @@
 //!                                     # force/length)
 //! axes = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]   # optional: three orthogonal directions
 //! spread = "mean"         # "mean" (default): between the sets' area-weighted mean motions;
-//!                         # "area": shared over the set by tributary area (to ground only)
+//!                         # "area": shared over the set by tributary area (to ground only);
+//!                         # "normal": a sliding abutment, stiffness [k, 0, 0] along the
+//!                         # normal of the face `to` (or of the set's own face against a rigid
+//!                         # bracket), free across it
 //! ```
 //!
 //! `axes` are made unit length and then orthonormal (Gram–Schmidt, in the order given); two
@@ -51,6 +54,8 @@ pub enum SpringSpread {
     Mean,
     /// Shared by tributary area, to ground.
     Area,
+    /// A sliding abutment: along the normal of the face borne on, by tributary area.
+    Normal,
 }
 
 /// A spring, typed: its part, the rules of its ends, stiffness in N/m, orthonormal axes.
@@ -149,14 +154,29 @@ impl Scene {
             let spread = match s.spread.as_ref().map(|v| (v, v.get_ref().trim())) {
                 None | Some((_, "mean")) => SpringSpread::Mean,
                 Some((_, "area")) => SpringSpread::Area,
+                Some((_, "normal")) => SpringSpread::Normal,
                 Some((v, other)) => {
                     return Err(self.error_at(
                         &key("spread"),
                         v,
-                        format!("'{other}' is not \"mean\" or \"area\""),
+                        format!("'{other}' is not \"mean\", \"area\" or \"normal\""),
                     ));
                 }
             };
+            if spread == SpringSpread::Normal && (stiffness[1] != 0.0 || stiffness[2] != 0.0) {
+                return Err(self.error_at(
+                    &key("stiffness"),
+                    &s.stiffness,
+                    "a sliding abutment (spread = \"normal\") has one stiffness, along the normal: give [k, 0, 0]",
+                ));
+            }
+            if let (SpringSpread::Normal, Some(a)) = (spread, &s.axes) {
+                return Err(self.error_at(
+                    &key("axes"),
+                    a,
+                    "a sliding abutment takes the normal of the face it bears on: leave out axes",
+                ));
+            }
             if spread == SpringSpread::Area
                 && let (Some(v), Some(_)) = (&s.spread, &to)
             {

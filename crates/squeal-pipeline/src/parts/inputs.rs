@@ -141,6 +141,9 @@ fn add_supports_and_ties(
                     squeal_scene::springs::SpringSpread::Area => {
                         squeal_reduce::springs::Spread::Area
                     }
+                    squeal_scene::springs::SpringSpread::Normal => {
+                        squeal_reduce::springs::Spread::Normal
+                    }
                 },
             });
         }

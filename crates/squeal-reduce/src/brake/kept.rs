@@ -74,6 +74,18 @@ pub(super) fn keep_parts(dir: &Path, parts: &[&ReducedPart]) -> Result<Vec<PathB
     Ok(written)
 }
 
+/// The report of part `name` taken from the kept reductions instead of reduced.
+pub(super) fn reused_report(name: &str, loaded: LoadedPart) -> PartReport {
+    PartReport {
+        name: name.into(),
+        mesh: loaded.info,
+        warnings: loaded.warnings,
+        read_time: loaded.read_time,
+        reduce: ReduceReport::default(),
+        reused: true,
+    }
+}
+
 /// Removes the kept reductions in `dir` (none there is not an error).
 pub fn forget_kept(dir: &Path) -> std::io::Result<()> {
     match std::fs::remove_dir_all(dir) {
