@@ -21,7 +21,6 @@ use squeal_mesh::Mesh;
 use squeal_mesh::units::UnitSystem;
 use squeal_reduce::brake::{
     BrakeInputs, Freshness, ModeChoice, PadInput, PairingTolerance, PartInput, freshness,
-    reduce_brake_loaded,
 };
 use squeal_reduce::craig_bampton::Stage;
 use squeal_reduce::rom::{InterfaceKind, ReducedModel};
@@ -209,14 +208,33 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
             .join(" and ")
     ));
     let t = std::time::Instant::now();
-    let (rom, _) = reduce_brake_loaded(
+    // Finished part reductions are kept beside the model when another part fails, and taken
+    // up by the next run (squeal_reduce::brake::reduce_brake_keeping).
+    let kept = squeal_reduce::brake::kept_dir(&rom_path);
+    let (rom, report) = squeal_reduce::brake::reduce_brake_keeping(
         &inputs,
         parts.disc,
         parts.pads.into_iter().map(|p| p.1).collect(),
+        Some(&kept),
         &mut |part: &str, stage: Stage| {
             log(&format!("  {part}: {}", stage.label()));
         },
-    )?;
+    )
+    .inspect_err(|_| {
+        if kept.exists() {
+            log(&format!(
+                "reduced model: the parts that finished are kept in {}; the next run takes them instead of reducing them again",
+                kept.display()
+            ));
+        }
+    })?;
+    for p in report.parts.iter().filter(|p| p.reused) {
+        log(&format!(
+            "  {}: taken from {} (kept by an earlier run)",
+            p.name,
+            kept.display()
+        ));
+    }
     log(&format!(
         "  reduced to {} dofs in {:.1} s",
         rom.size(),
@@ -226,6 +244,10 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
         path: rom_path.clone(),
         error,
     })?;
+    // The whole model holds them now.
+    if let Err(e) = squeal_reduce::brake::forget_kept(&kept) {
+        log(&format!("warning: cannot remove {}: {e}", kept.display()));
+    }
     Ok((rom, rom_path))
 }
 

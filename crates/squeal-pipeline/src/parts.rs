@@ -101,8 +101,9 @@ pub struct SceneParts {
     pub sets: Vec<ChosenSet>,
     /// The scene's materials (SI), by element set.
     pub materials: Vec<(String, ElasticMaterial)>,
-    /// The sets of `[[supports]]` and `[[ties]]` (keys `supports.<k>.set`,
-    /// `ties.<k>.slave`, `ties.<k>.master`), added to their parts' meshes.
+    /// The sets of `[[supports]]`, `[[ties]]` and `[[springs]]` (keys `supports.<k>.set`,
+    /// `ties.<k>.slave`, `ties.<k>.master`, `springs.<k>.set`, `springs.<k>.to`), added to
+    /// their parts' meshes.
     pub assembly_sets: Vec<ChosenSet>,
 }
 
@@ -438,6 +439,10 @@ fn choose_assembly_sets(scene: &Scene, meshes: &mut [(&str, &mut Mesh)]) -> Resu
     for t in scene.ties()? {
         wanted.push((t.part.clone(), t.slave));
         wanted.push((t.part, t.master));
+    }
+    for s in scene.springs()? {
+        wanted.push((s.part.clone(), s.set));
+        wanted.extend(s.to.map(|to| (s.part, to)));
     }
     let mut out = Vec::with_capacity(wanted.len());
     for (part, rule) in wanted {

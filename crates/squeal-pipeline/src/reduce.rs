@@ -7,7 +7,7 @@
 use crate::error::{PipelineError, Result};
 use crate::model::Log;
 use crate::parts::{brake_inputs, load_parts};
-use squeal_reduce::brake::{BrakeInputs, reduce_brake, reduce_brake_loaded};
+use squeal_reduce::brake::{BrakeInputs, reduce_brake};
 use squeal_reduce::interface::Axis;
 use squeal_reduce::summary::summary_text;
 use squeal_scene::Scene;
@@ -113,11 +113,15 @@ pub fn reduce(
     {
         squeal_io::check_writable(dir)?;
     }
+    // Finished part reductions kept beside the output when another part fails, taken up by
+    // the next run (squeal_reduce::brake::reduce_brake_keeping).
+    let kept = squeal_reduce::brake::kept_dir(&request.output);
     let (model, report) = match loaded {
-        Some(parts) => reduce_brake_loaded(
+        Some(parts) => squeal_reduce::brake::reduce_brake_keeping(
             &inputs,
             parts.disc,
             parts.pads.into_iter().map(|p| p.1).collect(),
+            Some(&kept),
             stage,
         ),
         None => reduce_brake(&inputs, stage),
@@ -130,6 +134,9 @@ pub fn reduce(
             path: request.output.clone(),
             error,
         })?;
+    if let Err(e) = squeal_reduce::brake::forget_kept(&kept) {
+        log(&format!("warning: cannot remove {}: {e}", kept.display()));
+    }
     let exported = if request.export_mtx {
         export_mtx(&model, &request.output)?
     } else {

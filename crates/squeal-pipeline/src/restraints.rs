@@ -72,7 +72,7 @@ fn scene_hint(name: &str, parts: &SceneParts, pads: usize) -> String {
         format!("pads.{name}.abutments_hold")
     };
     format!(
-        "the {name} is held by {} in the directions of {hold} (radial and tangential by default) and pressed by {}; give the pistons as several footprints or points (circles = [...] or points = [...], one per piston, away from the axes above), or hold abutments away from those axes along the axis too ({hold} = [\"axial\", \"radial\", \"tangential\"])",
+        "the {name} is held by {} in the directions of {hold} (radial and tangential by default) and pressed by {}; give the pistons as several footprints or points (circles = [...] or points = [...], one per piston, away from the axes above), or hold abutments away from those axes along the axis too ({hold} = [\"axial\", \"radial\", \"tangential\"]), or back the pad with a stiffness over a face ([[supports]], or [[springs]] with spread = \"area\")",
         key(2),
         key(1)
     )

@@ -110,3 +110,39 @@ fn a_pad_held_over_its_back_face_by_a_support_stiffness_builds() {
     assert_eq!(record.supports.len(), 1);
     assert_eq!(record.supports[0].stiffness, [0.0, 0.0, 5.0e9]);
 }
+
+/// `[[springs]]` to ground spread by area along z (axes given, permuted) is the support of the
+/// same stiffness: the same terms `k w_n (e_z · u_n)²` added to `K`, so the pad's reduced
+/// matrices are the same bits; a spring between the pistons' and the abutments' mean motions
+/// (the pad's own sets, in tilted axes) holds no more than its rotations and changes `K̂`.
+#[test]
+fn a_spring_spread_by_area_is_the_support_bit_for_bit() {
+    let base = bundled_scene("coarse");
+    let held = format!(
+        "{}\n[sets.pad]\npistons = {BACK_FACE}\nabutments = {BACK_FACE}\n",
+        base.text
+    );
+    let support = format!(
+        "{held}\n[[supports]]\npart = \"pad\"\nset = {BACK_FACE}\nstiffness = [0.0, 0.0, 5.0e9]\n"
+    );
+    let spring = format!(
+        "{held}\n[[springs]]\npart = \"pad\"\nset = {BACK_FACE}\nstiffness = [0.0, 5.0e9, 0.0]\naxes = [[1, 0, 0], [0, 0, 1], [0, -1, 0]]\nspread = \"area\"\n"
+    );
+    let build_of = |text: String, tag: &str| {
+        let scene = Scene::parse(&base.path, text).unwrap();
+        match build(&scene, &out(tag), &quiet) {
+            Ok(m) => m,
+            Err(e) => panic!("{e}"),
+        }
+    };
+    let a = build_of(support, "support");
+    let b = build_of(spring, "spring");
+    let (p, q) = (&a.rom.parts[1], &b.rom.parts[1]);
+    assert!(
+        p.k == q.k && p.m == q.m,
+        "the pad's reduced matrices differ"
+    );
+    let record = q.info.build.as_ref().unwrap();
+    assert_eq!(record.springs.len(), 1);
+    assert_eq!(record.springs[0].stiffness, [0.0, 5.0e9, 0.0]);
+}

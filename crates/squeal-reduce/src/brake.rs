@@ -46,10 +46,18 @@ pub use pairing::{PairingTolerance, check_sets, contact_positions, pair_contact_
 mod load;
 #[allow(unused_imports)]
 use load::*;
+
+mod kept;
+#[allow(unused_imports)]
+use kept::*;
+
+mod relay;
+pub use kept::{forget_kept, kept_dir};
 pub use load::{
     LoadedPart, backend_name, load_part, load_part_in, load_part_of, refuse_mesh_errors,
     refuse_shortened_set,
 };
+use relay::relay;
 
 /// The version written into every `.rom` file; a file made by another version is stale. The
 /// suffix is the revision of the numbers a reduction produces: bump it with every change that
@@ -107,6 +115,8 @@ pub struct PartInput {
     pub ties: Vec<crate::tie::Tie>,
     /// Springs to ground on node sets ([`crate::tie`]).
     pub supports: Vec<crate::tie::Support>,
+    /// Springs between node sets of the part or to ground ([`crate::springs`]).
+    pub springs: Vec<crate::springs::Spring>,
     /// Materials by element set, applied after the mesh's own sections (a `.msh` has none).
     pub material_overrides: Vec<(String, ElasticMaterial)>,
     /// How the part is held: node sets and their clamped directions.
@@ -147,6 +157,7 @@ impl PartInput {
             elset: Vec::new(),
             ties: Vec::new(),
             supports: Vec::new(),
+            springs: Vec::new(),
             material_overrides: Vec::new(),
             restraints: vec![Restraint::clamp("CLAMP")],
             skew_restraints: Vec::new(),
@@ -169,6 +180,7 @@ impl PartInput {
             elset: Vec::new(),
             ties: Vec::new(),
             supports: Vec::new(),
+            springs: Vec::new(),
             material_overrides: Vec::new(),
             restraints: vec![Restraint::set("ABUTMENT", [true, true, false])],
             skew_restraints: Vec::new(),
@@ -380,6 +392,7 @@ impl BrakeInputs {
             elset: input.elset.clone(),
             ties: input.ties.clone(),
             supports: input.supports.clone(),
+            springs: input.springs.clone(),
         }
     }
 
@@ -502,6 +515,7 @@ impl BrakeInputs {
             },
             ties: input.ties.clone(),
             supports: input.supports.clone(),
+            springs: input.springs.clone(),
         }
     }
 }
@@ -542,8 +556,10 @@ pub struct PartReport {
     pub warnings: Vec<String>,
     /// Time spent reading and hashing the mesh.
     pub read_time: Duration,
-    /// What [`crate::craig_bampton::reduce_part`] did and cost.
+    /// What [`crate::craig_bampton::reduce_part`] did and cost (empty when `reused`).
     pub reduce: ReduceReport,
+    /// Taken from the reductions an earlier run kept ([`reduce_brake_keeping`]), not reduced.
+    pub reused: bool,
 }
 
 impl PartReport {
@@ -585,6 +601,19 @@ pub fn reduce_brake_loaded(
     inputs: &BrakeInputs,
     disc: LoadedPart,
     pads: Vec<LoadedPart>,
+    progress: &mut dyn FnMut(&str, Stage),
+) -> Result<(ReducedModel, BrakeReport), ReduceError> {
+    reduce_brake_keeping(inputs, disc, pads, None, progress)
+}
+
+/// [`reduce_brake_loaded`], keeping finished reductions in the folder `keep` when another
+/// part fails, and taking parts kept there by an earlier run instead of reducing them again
+/// ([`kept`](self::kept_dir)'s module docs). `None`: nothing kept or taken.
+pub fn reduce_brake_keeping(
+    inputs: &BrakeInputs,
+    disc: LoadedPart,
+    pads: Vec<LoadedPart>,
+    keep: Option<&Path>,
     progress: &mut dyn FnMut(&str, Stage),
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     let t0 = Instant::now();
@@ -658,11 +687,23 @@ pub fn reduce_brake_loaded(
         tolerance = f64::max(tolerance, t);
     }
     let opts = inputs.reduce_options();
+    // Parts an earlier run finished and kept, still standing for them.
+    let taken: Vec<Option<ReducedPart>> = loaded
+        .iter()
+        .zip(&parts)
+        .map(|(part, (name, input))| {
+            keep.and_then(|dir| take_kept(dir, name, input, inputs, &part.info.sha256))
+        })
+        .collect();
     let (tx, rx) = mpsc::channel::<(usize, Stage)>();
     let slots: Vec<Mutex<Option<Reduced>>> = parts.iter().map(|_| Mutex::new(None)).collect();
     rayon::in_place_scope(|scope| {
-        for (k, ((part, (name, input)), slot)) in
-            loaded.into_iter().zip(&parts).zip(&slots).enumerate()
+        for (k, (((part, (name, input)), slot), taken)) in loaded
+            .into_iter()
+            .zip(&parts)
+            .zip(&slots)
+            .zip(taken)
+            .enumerate()
         {
             let tx = tx.clone();
             let opts = &opts;
@@ -671,26 +712,46 @@ pub fn reduce_brake_loaded(
                     // The receiver lives until every part is done.
                     let _ = tx.send((k, stage));
                 };
-                let reduced = reduce_loaded(inputs, name, input, part, opts, &mut tell);
+                let reduced = match taken {
+                    Some(kept) => Ok((kept, reused_report(name, part))),
+                    None => reduce_loaded(inputs, name, input, part, opts, &mut tell),
+                };
                 *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(reduced);
             });
         }
         drop(tx);
         relay(&rx, &mut |k, stage| progress(parts[k].0, stage));
     });
-    let mut reduced_parts = Vec::with_capacity(parts.len());
-    let mut reports = Vec::with_capacity(parts.len());
+    let mut results = Vec::with_capacity(parts.len());
     for (slot, (_, input)) in slots.into_iter().zip(&parts) {
         let reduced = slot.into_inner().unwrap_or_else(PoisonError::into_inner);
-        let (part, report) = reduced
-            .ok_or_else(|| ReduceError::Invalid {
-                part: "brake".into(),
-                what: "a part's reduction ended without a result".into(),
-            })?
-            .map_err(in_mesh(input))?;
-        reduced_parts.push(part);
-        reports.push(report);
+        results.push(
+            reduced
+                .ok_or_else(|| ReduceError::Invalid {
+                    part: "brake".into(),
+                    what: "a part's reduction ended without a result".into(),
+                })
+                .and_then(|r| r)
+                .map_err(in_mesh(input)),
+        );
     }
+    let (done, failed): (Vec<_>, Vec<_>) = results.into_iter().partition(Result::is_ok);
+    let done: Vec<(ReducedPart, PartReport)> = done.into_iter().flatten().collect();
+    if let Some(Err(e)) = failed.into_iter().next() {
+        // Keep what finished (and was not taken from the folder already) for the next run.
+        if let Some(dir) = keep {
+            let fresh: Vec<&ReducedPart> = done
+                .iter()
+                .filter(|(_, report)| !report.reused)
+                .map(|(part, _)| part)
+                .collect();
+            if !fresh.is_empty() {
+                keep_parts(dir, &fresh)?;
+            }
+        }
+        return Err(e);
+    }
+    let (mut reduced_parts, reports): (Vec<_>, Vec<_>) = done.into_iter().unzip();
     if !projections.is_empty() {
         pairs = attach_projections(&mut reduced_parts, projections)?;
     }
@@ -730,43 +791,7 @@ fn reduce_loaded(
         warnings: loaded.warnings,
         read_time: loaded.read_time,
         reduce,
+        reused: false,
     };
     Ok((part, report))
-}
-
-/// Hands the parts' progress messages to `progress` on this thread, in the order each part
-/// sent them, until every part has finished. A thread of the rayon pool (a caller inside
-/// `ThreadPool::install`) runs pending work between messages instead of blocking the pool.
-fn relay(rx: &mpsc::Receiver<(usize, Stage)>, progress: &mut dyn FnMut(usize, Stage)) {
-    let worker = rayon::current_thread_index().is_some();
-    loop {
-        let next = if worker {
-            next_helping(rx)
-        } else {
-            rx.recv().ok()
-        };
-        match next {
-            Some((name, stage)) => progress(name, stage),
-            None => return,
-        }
-    }
-}
-
-/// The next message, running pending pool work while there is none (None: every sender is
-/// gone).
-fn next_helping(rx: &mpsc::Receiver<(usize, Stage)>) -> Option<(usize, Stage)> {
-    loop {
-        match rx.try_recv() {
-            Ok(m) => return Some(m),
-            Err(mpsc::TryRecvError::Disconnected) => return None,
-            Err(mpsc::TryRecvError::Empty) => {}
-        }
-        if rayon::yield_now() != Some(rayon::Yield::Executed) {
-            match rx.recv_timeout(Duration::from_millis(2)) {
-                Ok(m) => return Some(m),
-                Err(mpsc::RecvTimeoutError::Disconnected) => return None,
-                Err(mpsc::RecvTimeoutError::Timeout) => {}
-            }
-        }
-    }
 }

@@ -133,6 +133,9 @@ pub struct PartSpec {
     pub ties: Vec<crate::tie::Tie>,
     /// Springs to ground on node sets, added to `K` before the reduction ([`crate::tie`]).
     pub supports: Vec<crate::tie::Support>,
+    /// Springs between node sets of the part or to ground, in global or local axes, added to
+    /// `K` before the reduction ([`crate::springs`]).
+    pub springs: Vec<crate::springs::Spring>,
 }
 
 impl PartSpec {
@@ -225,7 +228,7 @@ impl Stage {
 }
 
 /// What the reduction of one part did and cost.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct ReduceReport {
     /// Free dofs of the part (all dofs but the restrained ones).
     pub free_dofs: usize,
@@ -311,6 +314,28 @@ impl FreeDofs<'_> {
         (0..3)
             .filter(|&d| w[d] != 0.0)
             .map(|d| Some((self.free_dof(node, d)?, w[d])))
+            .collect()
+    }
+
+    /// The row `w · u` of node `node` on the free coordinates with the share of `w` along
+    /// restrained directions left out (their motion is zero): for springs, which may reach a
+    /// held node.
+    pub(crate) fn along_free(&self, node: u32, w: [f64; 3]) -> Vec<(usize, f64)> {
+        if let Some(t) = &self.transform
+            && let Some(kept) = t.kept(node)
+        {
+            let size = w.iter().map(|x| x.abs()).fold(0.0, f64::max);
+            return kept
+                .iter()
+                .filter_map(|&(dof, e)| {
+                    let c: f64 = (0..3).map(|d| w[d] * e[d]).sum();
+                    (c.abs() > 1e-12 * size).then_some((dof, c))
+                })
+                .collect();
+        }
+        (0..3)
+            .filter(|&d| w[d] != 0.0)
+            .filter_map(|d| Some((self.free_dof(node, d)?, w[d])))
             .collect()
     }
 
@@ -421,6 +446,10 @@ pub fn reduce_part(
     if !springs.is_empty() {
         system.k = add_springs(&system.k, &free, &springs);
     }
+    let spring_terms = crate::springs::spring_terms(mesh, &spec.springs)?;
+    if !spring_terms.is_empty() {
+        system.k = add_spring_terms(mesh, &system.k, &free, &ties, &spring_terms)?;
+    }
     clock(Stage::Assemble, t, &mut timings);
 
     progress(Stage::Interface);
@@ -445,7 +474,8 @@ pub fn reduce_part(
     };
     let factor = SparseCholesky::factorize_with(k_vv.as_ref(), &chol).map_err(|e| match e {
         EigError::NotPositiveDefinite { .. } => {
-            let free_motions = crate::held::free_motions_of(mesh, &free, &held, &rows, &springs);
+            let free_motions =
+                crate::held::free_motions_of(mesh, &free, &held, &rows, &springs, &spring_terms);
             match free_motions.is_empty() {
                 false => crate::held::not_held(spec, &free_motions),
                 true => ReduceError::NotConnected {
@@ -616,6 +646,38 @@ fn add_springs(
         }
     }
     with_added(k, added)
+}
+
+/// `K` plus the springs' rank-one terms `k c cᵀ` ([`crate::springs`]) on the free coordinates:
+/// each entry `w · u_n` through the node's free dofs (a node in its own axes through its kept
+/// coordinates), a restrained direction's share left out (its motion is zero). A tied (slave)
+/// node is refused: its motion is its masters'.
+fn add_spring_terms(
+    mesh: &Mesh,
+    k: &SparseColMat<usize, f64>,
+    free: &FreeDofs,
+    ties: &std::collections::BTreeMap<u32, Vec<(u32, f64)>>,
+    terms: &[crate::springs::SpringTerm],
+) -> Result<SparseColMat<usize, f64>, ReduceError> {
+    let mut added: Vec<Vec<(usize, f64)>> = vec![Vec::new(); k.ncols()];
+    for term in terms {
+        let mut c: Vec<(usize, f64)> = Vec::new();
+        for &(node, w) in &term.entries {
+            if ties.contains_key(&node) {
+                return Err(ReduceError::Options(format!(
+                    "node {} carries a spring and is tied (on a slave surface): put the spring on the master surface",
+                    mesh.node_ids[node as usize]
+                )));
+            }
+            c.extend(free.along_free(node, w));
+        }
+        for &(j, cj) in &c {
+            for &(i, ci) in &c {
+                added[j].push((i, term.k * ci * cj));
+            }
+        }
+    }
+    Ok(with_added(k, added))
 }
 
 /// Natural frequency (Hz) of an eigenvalue `ω²` (negative round-off clipped to 0).

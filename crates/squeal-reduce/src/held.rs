@@ -16,7 +16,9 @@
 //!   dof `w` at `x`): the same row;
 //! - a footprint's mean motion `Σ_k c_k w_k · u(x_k) = 0`;
 //! - a support's spring along `e_d` at node `x` ([`crate::tie`]): `e_d · u(x) = 0`, since
-//!   the spring adds `k (e_d · u)²` to the energy.
+//!   the spring adds `k (e_d · u)²` to the energy;
+//! - a spring's term `k (c · u)²` ([`crate::springs`]): `Σ_n w_n · u(x_n) = 0` (a spring
+//!   between two sets of the part cancels on translations and holds rotations only).
 //!
 //! (A contact patch's mean motion is a constraint on the interior, not part of `K_vv`: it does
 //! not hold the part there.) These are the rows `a` of a matrix `A` on the six unknowns
@@ -109,7 +111,8 @@ pub fn free_motions(mesh: &Mesh, spec: &PartSpec) -> Result<Vec<FreeMotion>, Red
     };
     let (_, rows) = boundary_rows(mesh, &free, spec)?;
     let springs = crate::tie::support_springs(mesh, &spec.supports)?;
-    Ok(free_motions_of(mesh, &free, &held, &rows, &springs))
+    let terms = crate::springs::spring_terms(mesh, &spec.springs)?;
+    Ok(free_motions_of(mesh, &free, &held, &rows, &springs, &terms))
 }
 
 /// [`free_motions`], as an error naming them and what to add when there are any.
@@ -173,6 +176,7 @@ pub(crate) fn free_motions_of(
     held: &HeldNodes,
     rows: &[Row],
     springs: &std::collections::BTreeMap<u32, [f64; 3]>,
+    terms: &[crate::springs::SpringTerm],
 ) -> Vec<FreeMotion> {
     let used = mesh.used_nodes();
     let (centre, length) = centre_and_length(mesh, &used);
@@ -217,6 +221,24 @@ pub(crate) fn free_motions_of(
     for (&node, k) in springs {
         for d in (0..3).filter(|&d| k[d] > 0.0) {
             add(row_of(node, unit_axis(d)));
+        }
+    }
+    // A spring's term `k (c · u)²` holds the motions with `c · u ≠ 0` ([`crate::springs`]):
+    // between two sets of the part, not its translations.
+    for term in terms {
+        let mut a = [0.0; 6];
+        for &(node, w) in &term.entries {
+            let b = row_of(node, w);
+            (0..6).for_each(|i| a[i] += b[i]);
+        }
+        // Cancelled to round-off (a translation between two sets of the part): holds nothing.
+        let size: f64 = term
+            .entries
+            .iter()
+            .map(|e| e.1.iter().map(|x| x.abs()).sum::<f64>())
+            .sum();
+        if a.iter().map(|x| x.abs()).sum::<f64>() > 1e-12 * size {
+            add(a);
         }
     }
     let physical = physical_coordinates(free);

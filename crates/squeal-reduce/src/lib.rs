@@ -13,6 +13,7 @@ pub mod held;
 pub mod interface;
 pub mod interface_modes;
 pub mod rom;
+pub mod springs;
 pub mod summary;
 pub mod tie;
 

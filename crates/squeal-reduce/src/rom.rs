@@ -395,6 +395,10 @@ pub struct BuildRecord {
     /// Springs to ground (absent when there are none, and in older files).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub supports: Vec<crate::tie::Support>,
+    /// Springs between node sets or to ground (absent when there are none, and in older
+    /// files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub springs: Vec<crate::springs::Spring>,
 }
 
 /// The JSON header stored in `__metadata__.squeal`.

@@ -124,7 +124,7 @@ fn tie_error(tie: &Tie, message: String) -> ReduceError {
 }
 
 /// The diagonal of the bounding box of `nodes`.
-fn extent(mesh: &Mesh, nodes: &[u32]) -> f64 {
+pub(crate) fn extent(mesh: &Mesh, nodes: &[u32]) -> f64 {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for &n in nodes {

@@ -159,6 +159,7 @@ fn bar_spec(contact: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec
         modes,
         ties: Vec::new(),
         supports: Vec::new(),
+        springs: Vec::new(),
     }
 }
 

@@ -49,6 +49,7 @@ fn spec(restraints: Vec<Restraint>, footprints: Vec<String>, pistons: Option<&st
         modes: 4,
         ties: Vec::new(),
         supports: Vec::new(),
+        springs: Vec::new(),
     }
 }
 

@@ -51,6 +51,7 @@ fn spec(name: &str, interface: InterfaceKind) -> (squeal_mesh::Mesh, PartSpec) {
         modes: 50,
         ties: Vec::new(),
         supports: Vec::new(),
+        springs: Vec::new(),
     };
     (mesh, spec)
 }

@@ -74,7 +74,7 @@ pub struct TieSpec {
 
 impl Scene {
     /// The part names a support or tie may name: `disc` and the pads'.
-    fn check_part(&self, key: &str, part: &Spanned<String>) -> Result<String> {
+    pub(crate) fn check_part(&self, key: &str, part: &Spanned<String>) -> Result<String> {
         let names: Vec<String> = std::iter::once("disc".to_string())
             .chain(self.pads()?.into_iter().map(|p| p.0))
             .collect();

@@ -49,6 +49,9 @@ pub struct SceneFile {
     /// `[[ties]]`: tied interfaces inside a part ([`crate::assembly`]).
     #[serde(default)]
     pub ties: Vec<crate::assembly::TieSection>,
+    /// `[[springs]]`: springs between node sets of a part or to ground ([`crate::springs`]).
+    #[serde(default)]
+    pub springs: Vec<crate::springs::SpringSection>,
 }
 
 /// `[pads.<name>]`: one pad of a brake with several (an inboard pad pushed by the pistons, an

@@ -60,6 +60,7 @@ mod contact_keys;
 mod stick_slip_keys;
 
 pub mod assembly;
+pub mod springs;
 
 /// What is wrong with a scene file, with the file and, where a value is at fault, its key and
 /// line.
@@ -380,6 +381,7 @@ impl Scene {
         self.check_elsets()?;
         self.supports()?;
         self.ties()?;
+        self.springs()?;
         Ok(())
     }
 

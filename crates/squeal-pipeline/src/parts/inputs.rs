@@ -95,7 +95,7 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
     Ok(inputs)
 }
 
-/// The scene's `[[supports]]` and `[[ties]]` on their parts, by the node sets chosen for them
+/// The scene's `[[supports]]`, `[[ties]]` and `[[springs]]` on their parts, by the node sets chosen for them
 /// ([`SceneParts::assembly_sets`]).
 fn add_supports_and_ties(
     scene: &Scene,
@@ -124,6 +124,27 @@ fn add_supports_and_ties(
                 slave: name_of(&t.slave.key),
                 master: name_of(&t.master.key),
                 tolerance: t.tolerance,
+            });
+        }
+    }
+    for s in scene.springs()? {
+        if let Some(p) = part_mut(inputs, &s.part) {
+            p.springs.push(squeal_reduce::springs::Spring {
+                set: name_of(&s.set.key),
+                to: s.to.as_ref().map(|to| name_of(&to.key)),
+                stiffness: s.stiffness,
+                axes: s.axes,
+                spread: match s.spread {
+                    squeal_scene::springs::SpringSpread::Mean => {
+                        squeal_reduce::springs::Spread::Mean
+                    }
+                    squeal_scene::springs::SpringSpread::Area => {
+                        squeal_reduce::springs::Spread::Area
+                    }
+                    squeal_scene::springs::SpringSpread::Normal => {
+                        squeal_reduce::springs::Spread::Normal
+                    }
+                },
             });
         }
     }

@@ -1,6 +1,7 @@
 //! Whether a cached reduced model still answers its inputs, and if not, why (the header's input hashes and build record against the scene's).
 
 use super::*;
+use crate::rom::PartInfo;
 
 /// Whether a `.rom` file can stand for given inputs.
 #[derive(Clone, Debug, PartialEq)]
@@ -66,40 +67,53 @@ pub fn stale_reasons(header: &RomHeader, inputs: &BrakeInputs, hashes: &[String]
         ));
     }
     for ((name, input), hash) in parts.into_iter().zip(hashes) {
-        let Some(info) = header.parts.iter().find(|p| p.name == name) else {
-            reasons.push(format!("no part named {name}"));
-            continue;
-        };
-        if &info.mesh.sha256 != hash {
-            reasons.push(format!(
-                "{name}: mesh {} changed (SHA-256 {} in the file, {} now)",
-                input.mesh.display(),
-                short(&info.mesh.sha256),
-                short(hash)
-            ));
+        match header.parts.iter().find(|p| p.name == name) {
+            None => reasons.push(format!("no part named {name}")),
+            Some(info) => reasons.extend(part_reasons(info, name, input, inputs, hash)),
         }
-        if info.interface != inputs.interface {
-            reasons.push(format!(
-                "{name}: interface \"{}\" in the file, \"{}\" asked for ([model] interface)",
-                info.interface.name(),
-                inputs.interface.name()
-            ));
-        }
-        match &info.build {
-            None => reasons.push(format!("{name}: the file does not record its options")),
-            Some(b) => {
-                let want = inputs.record(input);
-                if *b != want {
-                    reasons.push(format!(
-                        "{name}: options differ ({})",
-                        record_differences(b, &want).join("; ")
-                    ));
-                }
+    }
+    reasons
+}
+
+/// Why part `info` of a file does not stand for part `name` of `inputs` (`input`, whose mesh
+/// hashes to `hash`): mesh, interface, build record, basis; empty if it does.
+pub(super) fn part_reasons(
+    info: &PartInfo,
+    name: &str,
+    input: &PartInput,
+    inputs: &BrakeInputs,
+    hash: &str,
+) -> Vec<String> {
+    let mut reasons = Vec::new();
+    if info.mesh.sha256 != hash {
+        reasons.push(format!(
+            "{name}: mesh {} changed (SHA-256 {} in the file, {} now)",
+            input.mesh.display(),
+            short(&info.mesh.sha256),
+            short(hash)
+        ));
+    }
+    if info.interface != inputs.interface {
+        reasons.push(format!(
+            "{name}: interface \"{}\" in the file, \"{}\" asked for ([model] interface)",
+            info.interface.name(),
+            inputs.interface.name()
+        ));
+    }
+    match &info.build {
+        None => reasons.push(format!("{name}: the file does not record its options")),
+        Some(b) => {
+            let want = inputs.record(input);
+            if *b != want {
+                reasons.push(format!(
+                    "{name}: options differ ({})",
+                    record_differences(b, &want).join("; ")
+                ));
             }
         }
-        if inputs.keep_basis && !info.has_basis {
-            reasons.push(format!("{name}: the file holds no basis"));
-        }
+    }
+    if inputs.keep_basis && !info.has_basis {
+        reasons.push(format!("{name}: the file holds no basis"));
     }
     reasons
 }
