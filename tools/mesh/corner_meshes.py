@@ -258,7 +258,7 @@ def build(level_: Level) -> tuple[Model, dict]:
 
         nset(f"{side}_FRICTION", p, at(0.028))
         nset(f"{side}_BACK", p, at(0.044))
-        nset(f"{side}_ABUTMENT", p, lambda r, t, z: abs(tdeg(t) - 60) < eps or abs(tdeg(t) - 120) < eps)
+        nset(f"{side}_ABUTMENT", p, lambda r, t, z, s=side: (abs(tdeg(t) - 60) < eps or abs(tdeg(t) - 120) < eps) and level(s, z) > 0.038 - eps)
         nset(f"{side}_SHIM_FRONT", p + "_shim", at(0.044))
         nset(f"{side}_SHIM_BACK", p + "_shim", at(0.046))
 
