@@ -33,7 +33,7 @@ pub enum Shape {
     Quad8,
 }
 
-/// A boundary face of a surface: its shape and node indices (the first `len()` of `nodes`;
+/// A boundary face of a surface: its shape and node indices (the first `node_count()` of `nodes`;
 /// a triangle's last two are unused).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub struct SurfaceFace {
@@ -94,19 +94,19 @@ impl SurfaceFace {
     }
 
     /// Number of nodes (6 or 8).
-    pub fn len(&self) -> usize {
-        self.shape.len()
+    pub fn node_count(&self) -> usize {
+        self.shape.node_count()
     }
 
     /// The face's node indices.
     pub fn nodes(&self) -> &[u32] {
-        &self.nodes[..self.len()]
+        &self.nodes[..self.node_count()]
     }
 
     /// The nodes' coordinates (a triangle's last two zero).
     pub fn coords(&self, mesh: &squeal_mesh::Mesh) -> [[f64; 3]; 8] {
         std::array::from_fn(|i| {
-            if i < self.len() {
+            if i < self.node_count() {
                 mesh.nodes[self.nodes[i] as usize]
             } else {
                 [0.0; 3]
@@ -117,7 +117,7 @@ impl SurfaceFace {
 
 impl Shape {
     /// Number of nodes.
-    pub fn len(self) -> usize {
+    pub fn node_count(self) -> usize {
         match self {
             Shape::Tri6 => 6,
             Shape::Quad8 => 8,
@@ -281,7 +281,7 @@ pub fn quad8_shape(s: f64, t: f64) -> Values {
 pub fn tangents(shape: Shape, x: &[[f64; 3]; 8], st: [f64; 2]) -> ([f64; 8], [[f64; 3]; 3]) {
     let (n, ds, dt) = shape.values(st);
     let (mut xs, mut xt, mut xp) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-    for k in 0..shape.len() {
+    for k in 0..shape.node_count() {
         for d in 0..3 {
             xs[d] += ds[k] * x[k][d];
             xt[d] += dt[k] * x[k][d];

@@ -209,5 +209,5 @@ fn patches_of_a_quad8_face_match_the_face_split_as_triangles() {
 fn a_surface_face_keeps_its_nodes() {
     let f = SurfaceFace::tri6([1, 2, 3, 4, 5, 6]);
     assert_eq!(f.nodes(), &[1, 2, 3, 4, 5, 6]);
-    assert_eq!(SurfaceFace::quad8([0; 8]).len(), 8);
+    assert_eq!(SurfaceFace::quad8([0; 8]).node_count(), 8);
 }
