@@ -41,8 +41,11 @@ pub struct RadiatingSurface {
     pub faces: Vec<u32>,
     /// Number of nodes of the node list the faces index.
     pub node_count: usize,
-    /// The face rule's shape values, one row of `nodes_per_face` per rule point.
+    /// The face rules' shape values, one row of `nodes_per_face` per rule point, rule after
+    /// rule (a rule of fewer nodes padded with zeros).
     pub shape: Vec<f64>,
+    /// Each face's rule (index into the rules the surface was made with; all 0 for one rule).
+    pub face_rule: Vec<u8>,
     /// Rule points per face.
     pub points_per_face: usize,
     /// Every quadrature point, face after face.
@@ -54,24 +57,67 @@ impl RadiatingSurface {
     /// `nodes`, integrated with `rule`.
     pub fn new(nodes: &[[f64; 3]], faces: &[u32], rule: &FaceRule) -> Result<Self> {
         let npf = rule.nodes;
-        if npf == 0 || !faces.len().is_multiple_of(npf) {
+        let count = faces.len() / npf.max(1);
+        Self::with_rules(
+            nodes,
+            faces,
+            npf,
+            std::slice::from_ref(rule),
+            &vec![0; count],
+        )
+    }
+
+    /// The surface of faces of several shapes: `nodes_per_face` node indices per face, face
+    /// after face, face `f` integrated with `rules[face_rule[f]]`. A rule of fewer nodes than
+    /// `nodes_per_face` reads the face's first nodes (the others, any valid node, get shape
+    /// value 0: e.g. a 6-node triangle padded to 8 with its first node, beside 8-node
+    /// quadrilaterals). Every rule must have the same number of points (e.g.
+    /// [`FaceRule::tri6_gauss`]`(3)` and [`FaceRule::quad8`]`(3)`, nine each, both exact to
+    /// degree 4 on their reference domain).
+    pub fn with_rules(
+        nodes: &[[f64; 3]],
+        faces: &[u32],
+        nodes_per_face: usize,
+        rules: &[FaceRule],
+        face_rule: &[u8],
+    ) -> Result<Self> {
+        let npf = nodes_per_face;
+        let n_faces = face_rule.len();
+        if npf == 0 || faces.len() != n_faces * npf {
             return Err(AcousticsError::Length {
                 what: "face node list",
-                expected: faces.len().div_ceil(npf.max(1)) * npf.max(1),
+                expected: n_faces * npf.max(1),
                 got: faces.len(),
             });
         }
-        for p in &rule.points {
-            if p.shape.len() != npf || p.gradient.len() != npf {
+        let nq = rules.first().map_or(0, |r| r.points.len());
+        for rule in rules {
+            if rule.points.len() != nq || rule.nodes > npf {
                 return Err(AcousticsError::Rule(format!(
-                    "a point has {} shape values for {npf}-node faces",
-                    p.shape.len()
+                    "a rule of {} points on {}-node faces among rules of {nq} points on {npf}-node faces",
+                    rule.points.len(),
+                    rule.nodes
                 )));
             }
+            for p in &rule.points {
+                if p.shape.len() != rule.nodes || p.gradient.len() != rule.nodes {
+                    return Err(AcousticsError::Rule(format!(
+                        "a point has {} shape values for {}-node faces",
+                        p.shape.len(),
+                        rule.nodes
+                    )));
+                }
+            }
         }
-        let n_faces = faces.len() / npf;
-        let mut points = Vec::with_capacity(n_faces * rule.points.len());
+        if let Some(&r) = face_rule.iter().find(|&&r| r as usize >= rules.len()) {
+            return Err(AcousticsError::Rule(format!(
+                "a face names rule {r} of {}",
+                rules.len()
+            )));
+        }
+        let mut points = Vec::with_capacity(n_faces * nq);
         for f in 0..n_faces {
+            let rule = &rules[face_rule[f] as usize];
             let face = &faces[f * npf..(f + 1) * npf];
             let mut x = Vec::with_capacity(npf);
             for &n in face {
@@ -86,7 +132,7 @@ impl RadiatingSurface {
             }
             for (q, rp) in rule.points.iter().enumerate() {
                 let (mut y, mut a, mut b) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-                for i in 0..npf {
+                for i in 0..rule.nodes {
                     for d in 0..3 {
                         y[d] += rp.shape[i] * x[i][d];
                         a[d] += rp.gradient[i][0] * x[i][d];
@@ -110,12 +156,18 @@ impl RadiatingSurface {
                 });
             }
         }
+        let shape = rules
+            .iter()
+            .flat_map(|r| r.points.iter())
+            .flat_map(|p| (0..npf).map(|i| p.shape.get(i).copied().unwrap_or(0.0)))
+            .collect();
         Ok(Self {
             nodes_per_face: npf,
             faces: faces.to_vec(),
             node_count: nodes.len(),
-            shape: rule.points.iter().flat_map(|p| p.shape.clone()).collect(),
-            points_per_face: rule.points.len(),
+            shape,
+            face_rule: face_rule.to_vec(),
+            points_per_face: nq,
             points,
         })
     }
@@ -142,7 +194,8 @@ impl RadiatingSurface {
                     .enumerate()
                     .map(|(k, p)| {
                         let (f, q) = (p.face as usize, k % nq);
-                        let n = &self.shape[q * npf..(q + 1) * npf];
+                        let row = self.face_rule[f] as usize * nq + q;
+                        let n = &self.shape[row * npf..(row + 1) * npf];
                         (0..npf).map(|i| vn[f * npf + i] * n[i]).sum()
                     })
                     .collect())
@@ -155,7 +208,8 @@ impl RadiatingSurface {
                     .enumerate()
                     .map(|(k, p)| {
                         let (f, q) = (p.face as usize, k % nq);
-                        let n = &self.shape[q * npf..(q + 1) * npf];
+                        let row = self.face_rule[f] as usize * nq + q;
+                        let n = &self.shape[row * npf..(row + 1) * npf];
                         let mut s = Complex64::new(0.0, 0.0);
                         for i in 0..npf {
                             let ui = &u[self.faces[f * npf + i] as usize];

@@ -8,10 +8,15 @@
 //! nodes of a face selection are all six nodes of its faces.
 //!
 //! Hexahedra, wedges and pyramids have 8-node quadrilateral faces: they count in the
-//! boundary test (a triangle shared with a pyramid is interior), but the selections here
-//! read triangles only. [`boundary_quads`] lists the quadrilaterals on the boundary and
-//! [`triangles_only`] refuses, with an [`UnsupportedFace`] error, a node set that covers one,
-//! so that code built on triangles says so instead of missing part of a surface.
+//! boundary test (a triangle shared with a pyramid is interior). [`boundary_quads`] lists the
+//! quadrilaterals on the boundary. A geometric [`Rule`] selects a quadrilateral when both its
+//! corner triangles `v0 v1 v2` and `v0 v2 v3` meet the rule (on the surface by their corners,
+//! facing by their corner normals, in the box by all eight nodes, in the circle by their
+//! corner centroids) and adds its eight nodes to the selection's nodes; the selection's
+//! `faces` stay the triangles (the reports' face counts and areas are the triangles'). A rule
+//! naming a node set takes the set's nodes whatever its faces. [`triangles_only`] refuses,
+//! with an [`UnsupportedFace`] error, a node set that covers a quadrilateral, for code that
+//! reads triangles only.
 //!
 //! Every description of a selection a user writes (a surface, a box, an angle, a tolerance)
 //! is checked before use; a description that cannot select anything sensible (an axis of
@@ -248,6 +253,35 @@ pub fn boundary_quads(mesh: &Mesh) -> Vec<[u32; 8]> {
         .filter(|(_, (_, f, _))| f.kind() == FaceKind::Quad8)
         .map(|(_, (_, _, n))| n)
         .collect()
+}
+
+/// The quadrilateral boundary faces of `mesh` whose eight nodes are all in `nodes` (all of
+/// them with `None`); none for a mesh of tetrahedra.
+fn quads_of(mesh: &Mesh, nodes: Option<&[u32]>) -> Vec<[u32; 8]> {
+    if mesh.blocks.len() == mesh.blocks.tet10.len() {
+        return Vec::new();
+    }
+    let mut member = vec![nodes.is_none(); mesh.num_nodes()];
+    for &n in nodes.unwrap_or(&[]) {
+        if let Some(m) = member.get_mut(n as usize) {
+            *m = true;
+        }
+    }
+    boundary_quads(mesh)
+        .into_iter()
+        .filter(|q| q.iter().all(|&n| member[n as usize]))
+        .collect()
+}
+
+/// A quadrilateral `[v0, v1, v2, v3, m01, m12, m23, m30]` as its two corner triangles
+/// `v0 v1 v2` and `v0 v2 v3`, outward, each with the midside nodes of its two quadrilateral
+/// edges (and `v0` in the slot of the diagonal's, which has no node): between them they
+/// hold the quadrilateral's eight nodes, so that a test on every node (a box) tests them all.
+fn quad_halves(q: &[u32; 8]) -> [Face; 2] {
+    [
+        [q[0], q[1], q[2], q[4], q[5], q[0]],
+        [q[0], q[2], q[3], q[6], q[7], q[0]],
+    ]
 }
 
 /// An [`UnsupportedFace`] error naming `reader` if a quadrilateral boundary face has all its
@@ -497,6 +531,23 @@ impl Rule {
         Ok(())
     }
 
+    /// The faces among `faces` that meet the rule's geometric criteria.
+    fn filter(&self, mesh: &Mesh, mut faces: Vec<Face>) -> Result<Vec<Face>, SelectError> {
+        if let Some(s) = &self.surface {
+            faces = faces_on(mesh, &faces, s, self.tolerance)?;
+        }
+        if let Some((min, max)) = self.bbox {
+            faces = faces_in_box(mesh, &faces, min, max)?;
+        }
+        if let Some((d, angle)) = self.facing {
+            faces = faces_facing(mesh, &faces, |_| d, angle)?;
+        }
+        if let Some(c) = self.circle {
+            faces.retain(|f| in_circle(mesh, f, &c, self.tolerance));
+        }
+        Ok(faces)
+    }
+
     /// The faces and nodes of `mesh` the rule selects; `boundary` are the mesh's
     /// [`boundary_faces`] (computed once by the caller for several rules).
     pub fn apply(&self, mesh: &Mesh, boundary: &[Face]) -> Result<Selection, SelectError> {
@@ -528,19 +579,20 @@ impl Rule {
                     .unwrap_or_else(|| face_nodes(boundary)),
             });
         }
-        if let Some(s) = &self.surface {
-            faces = faces_on(mesh, &faces, s, self.tolerance)?;
+        let quads = quads_of(mesh, named);
+        faces = self.filter(mesh, faces)?;
+        let mut nodes = face_nodes(&faces);
+        if !quads.is_empty() {
+            // A quadrilateral is selected when both its corner triangles are (module docs).
+            let halves: Vec<Face> = quads.iter().flat_map(quad_halves).collect();
+            let mut kept = self.filter(mesh, halves)?;
+            kept.sort_unstable();
+            let selected =
+                |q: &[u32; 8]| quad_halves(q).iter().all(|h| kept.binary_search(h).is_ok());
+            nodes.extend(quads.iter().filter(|q| selected(q)).flatten());
+            nodes.sort_unstable();
+            nodes.dedup();
         }
-        if let Some((min, max)) = self.bbox {
-            faces = faces_in_box(mesh, &faces, min, max)?;
-        }
-        if let Some((d, angle)) = self.facing {
-            faces = faces_facing(mesh, &faces, |_| d, angle)?;
-        }
-        if let Some(c) = self.circle {
-            faces.retain(|f| in_circle(mesh, f, &c, self.tolerance));
-        }
-        let nodes = face_nodes(&faces);
         if let Some(p) = self.nearest {
             let d = |n: u32| {
                 let q = sub(mesh.nodes[n as usize], p);

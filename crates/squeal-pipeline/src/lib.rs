@@ -49,6 +49,7 @@ pub mod restraints;
 pub mod scene_sets;
 pub mod shapes;
 pub mod sound;
+mod sound_quads;
 pub mod stability;
 pub mod stages;
 pub mod study;

@@ -515,11 +515,8 @@ pub fn choose_sets(
     pads: &mut [(&str, &mut Mesh)],
 ) -> Result<Vec<ChosenSet>> {
     let rules = scene.set_rules()?;
-    // The rules select 6-node triangles: a surface of quadrilaterals would be missed.
-    select::triangles_only(disc, None, "the selection of the disc's sets")?;
-    for (name, pad) in pads.iter() {
-        select::triangles_only(pad, None, &format!("the selection of pad {name}'s sets"))?;
-    }
+    // Geometric rules select 6-node triangles and refuse a surface of quadrilaterals
+    // (`Rule::apply`); node sets of the mesh are taken whatever their faces.
     let disc_faces = select::boundary_faces(disc);
     let count = pads.len();
     let mut chosen: Vec<ChosenSet> = Vec::with_capacity(1 + 4 * count);

@@ -113,6 +113,7 @@ impl BrakeSurface {
         let sp = crate::parts::load_parts(scene, log)?;
         let mut nodes: Vec<[f64; 3]> = Vec::new();
         let mut faces: Vec<u32> = Vec::new();
+        let mut quads: Vec<u32> = Vec::new();
         let mut parts = Vec::new();
         let mut faces_per_part = Vec::new();
         let mut mesh_nodes = Vec::new();
@@ -131,19 +132,27 @@ impl BrakeSurface {
                 part: if name == "disc" { "disc" } else { "pad" },
             })?;
             let radiating = radiating_faces(&sp, mesh, &name, npads);
+            let radiating_quads = crate::sound_quads::radiating_quads(&sp, mesh, &name, npads);
             let first_node = nodes.len();
-            let (local, part_faces) = renumber(&radiating, first_node);
+            let (local, part_faces, part_quads) =
+                crate::sound_quads::renumber(&radiating, &radiating_quads, first_node);
             nodes.extend(local.iter().map(|&n| mesh.nodes[n as usize]));
             mesh_nodes.extend(local.iter().map(|&n| (parts.len(), n)));
             faces.extend(part_faces);
+            quads.extend(part_quads);
             parts.push(SurfacePart {
                 rows: basis_rows(rp, mesh, &local)?,
                 range,
                 first_node,
             });
-            faces_per_part.push((name, radiating.len()));
+            faces_per_part.push((name, radiating.len() + radiating_quads.len()));
         }
-        let surface = RadiatingSurface::new(&nodes, &faces, &FaceRule::tri6()).map_err(acoustic)?;
+        let surface = if quads.is_empty() {
+            RadiatingSurface::new(&nodes, &faces, &FaceRule::tri6())
+        } else {
+            crate::sound_quads::mixed_surface(&nodes, &faces, &quads)
+        }
+        .map_err(acoustic)?;
         let microphone = default_microphone(scene, &sp)?;
         Ok(Self {
             surface,
@@ -291,17 +300,6 @@ fn sorted(f: &Face) -> [u32; 3] {
     let mut k = [f[0], f[1], f[2]];
     k.sort_unstable();
     k
-}
-
-/// The faces' nodes (sorted mesh indices) and the faces renumbered onto them from `first`.
-fn renumber(faces: &[Face], first: usize) -> (Vec<u32>, Vec<u32>) {
-    let local = select::face_nodes(faces);
-    let faces = faces
-        .iter()
-        // Every node of a face is in `local`, made from the same faces.
-        .flat_map(|f| f.map(|n| (first + local.binary_search(&n).unwrap_or(0)) as u32))
-        .collect();
-    (local, faces)
 }
 
 /// The basis rows of `nodes` (mesh indices), three per node, zero where restrained.

@@ -37,7 +37,10 @@
 
 use squeal_element::geometry::{cross, dot, norm, sub};
 mod clip;
+pub mod face;
 pub mod nodal;
+
+use face::{Shape, SurfaceFace};
 
 use squeal_mesh::Mesh;
 use std::collections::HashMap;
@@ -53,7 +56,9 @@ pub enum InterfaceError {
     EmptySet(String),
     /// The contact-face set does not cover a whole element face anywhere, so there is no
     /// surface to cut into patches.
-    #[error("node set {set} has no boundary triangle: no element face has all six nodes in it")]
+    #[error(
+        "node set {set} has no boundary face: no element face has all its nodes (six of a triangle, eight of a quadrilateral) in it"
+    )]
     NoFaces {
         /// The contact-face node set.
         set: String,
@@ -73,10 +78,6 @@ pub enum InterfaceError {
         /// Patches around the axis.
         angular: usize,
     },
-    /// The contact face covers an element face that is not a 6-node triangle (a hexahedron's
-    /// quadrilateral): not yet supported.
-    #[error(transparent)]
-    Face(#[from] squeal_mesh::select::UnsupportedFace),
     /// The axis direction given is the zero vector.
     #[error("the disc axis has zero length")]
     BadAxis,
@@ -211,7 +212,7 @@ pub fn patches(
     angular: usize,
     axis: &Axis,
 ) -> Result<Vec<Patch>, InterfaceError> {
-    let (nodes, triangles) = face_triangles(mesh, face_set)?;
+    let (nodes, faces) = face_triangles(mesh, face_set)?;
     let mean = mean_point(nodes.iter().map(|&n| mesh.nodes[n as usize]));
     let frame = Frame::new(axis, sub(mean, axis.origin))?;
     let grid = PolarGrid::spanning(
@@ -224,31 +225,10 @@ pub fn patches(
     let mut acc: Vec<PatchSums> = (0..grid.radial * grid.angular)
         .map(|_| PatchSums::default())
         .collect();
-    for tri in &triangles {
-        let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
-        let cuts = grid.cuts_crossing(&x);
-        if cuts.levels.is_empty() {
-            acc[grid.cell_of(triangle_centroid(&x))].add_triangle(tri, &x);
-            continue;
-        }
-        // The triangle's pieces, summed apart and added to their patches once.
-        let mut pieces: Vec<(usize, PieceSums)> = Vec::new();
-        clip::split_quadrature(&cuts.planar, &cuts.levels, &rules, |q: clip::Point| {
-            let ring = cuts.rings_beyond + q.radial_beyond;
-            let sector = cuts.sectors_beyond + q.angular_beyond;
-            let cell = ring * grid.angular + sector;
-            let k = match pieces.iter().position(|p| p.0 == cell) {
-                Some(k) => k,
-                None => {
-                    pieces.push((cell, PieceSums::default()));
-                    pieces.len() - 1
-                }
-            };
-            let (n, xp, dn) = map_point(&x, q.st);
-            pieces[k].1.add_point(&n, xp, dn, q.weight);
-        });
-        for (cell, piece) in pieces {
-            acc[cell].add_piece(tri, &piece);
+    for face in &faces {
+        let x = face.coords(mesh);
+        for half in halves(face.shape) {
+            add_half(&grid, &rules, &mut acc, face, &x, &half);
         }
     }
     acc.into_iter()
@@ -272,11 +252,10 @@ pub fn patches(
 /// `r = Σ_k w_k u_k`, `w_k = (1/A) ∫ N_k dA` (the RBE3 idea): a force `F` on `r` is the
 /// consistent nodal load of the pressure `F / A` over the footprint, `F w_k` at node `k`.
 pub fn footprint(mesh: &Mesh, face_set: &str) -> Result<Patch, InterfaceError> {
-    let (_, triangles) = face_triangles(mesh, face_set)?;
+    let (_, faces) = face_triangles(mesh, face_set)?;
     let mut sums = PatchSums::default();
-    for tri in &triangles {
-        let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
-        sums.add_triangle(tri, &x);
+    for face in &faces {
+        sums.add_face(face, &face.coords(mesh));
     }
     Ok(sums.finish(1))
 }
@@ -422,23 +401,15 @@ pub fn tributary_areas(
     face_set: &str,
     nodes: &[u32],
 ) -> Result<Vec<(f64, [f64; 3])>, InterfaceError> {
-    let (_, triangles) = face_triangles(mesh, face_set)?;
+    let (_, faces) = face_triangles(mesh, face_set)?;
     let centres: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.nodes[n as usize]).collect();
     let mut areas = vec![0.0; nodes.len()];
     let mut normals = vec![[0.0; 3]; nodes.len()];
-    for tri in &triangles {
-        let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
-        for (s, t, w) in DUNAVANT4 {
-            let (n, ds, dt) = tri6_shape(s, t);
-            let (mut xs, mut xt, mut xp) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-            for a in 0..6 {
-                for d in 0..3 {
-                    xs[d] += ds[a] * x[a][d];
-                    xt[d] += dt[a] * x[a][d];
-                    xp[d] += n[a] * x[a][d];
-                }
-            }
-            let dn = scale(cross(xs, xt), 0.5 * w);
+    for f in &faces {
+        let x = f.coords(mesh);
+        for (st, w) in f.shape.rule() {
+            let (_, xp, dn) = face::map_point(f.shape, &x, st);
+            let dn = scale(dn, w);
             let da = norm(dn);
             let nearest = centres
                 .iter()
@@ -471,19 +442,19 @@ struct PatchSums {
 }
 
 impl PatchSums {
-    /// Adds `∫ N_k dA` and `∫ x dA` of one 6-node triangle (degree-4 Dunavant rule: exact for
-    /// the shape functions times the area Jacobian of a flat triangle, curved edges included,
-    /// and accurate to the mesh's order on a curved face).
-    fn add_triangle(&mut self, nodes: &[u32; 6], x: &[[f64; 3]; 6]) {
-        for (s, t, w) in DUNAVANT4 {
-            let (n, xp, dn) = map_point(x, [s, t]);
-            self.add_point(nodes, &n, xp, dn, 0.5 * w);
+    /// Adds `∫ N_k dA` and `∫ x dA` of one face (its rule, [`Shape::rule`]: exact for the
+    /// shape functions times the area Jacobian of a flat face, curved edges included, and
+    /// accurate to the mesh's order on a curved face).
+    fn add_face(&mut self, face: &SurfaceFace, x: &[[f64; 3]; 8]) {
+        for (st, w) in face.shape.rule() {
+            let (n, xp, dn) = face::map_point(face.shape, x, st);
+            self.add_point(face, &n, xp, dn, w);
         }
     }
 
-    /// Adds one quadrature point of a triangle with `nodes`: shape function values `n`,
-    /// position `xp`, `dn = ∂x/∂s × ∂x/∂t` and reference weight `w` (`dA = w |dn|`).
-    fn add_point(&mut self, nodes: &[u32; 6], n: &[f64; 6], xp: [f64; 3], dn: [f64; 3], w: f64) {
+    /// Adds one quadrature point of a face: shape function values `n`, position `xp`,
+    /// `dn = ∂x/∂s × ∂x/∂t` and reference weight `w` (`dA = w |dn|`).
+    fn add_point(&mut self, face: &SurfaceFace, n: &[f64; 8], xp: [f64; 3], dn: [f64; 3], w: f64) {
         let da = w * norm(dn);
         self.area += da;
         for d in 0..3 {
@@ -492,20 +463,20 @@ impl PatchSums {
         for d in 0..3 {
             self.moment[d] += da * xp[d];
         }
-        for a in 0..6 {
-            *self.weights.entry(nodes[a]).or_default() += da * n[a];
+        for (a, &node) in face.nodes().iter().enumerate() {
+            *self.weights.entry(node).or_default() += da * n[a];
         }
     }
 
-    /// Adds a piece of the triangle with `nodes`.
-    fn add_piece(&mut self, nodes: &[u32; 6], piece: &PieceSums) {
+    /// Adds a piece of a face.
+    fn add_piece(&mut self, face: &SurfaceFace, piece: &PieceSums) {
         self.area += piece.area;
         for d in 0..3 {
             self.normal[d] += piece.normal[d];
             self.moment[d] += piece.moment[d];
         }
-        for a in 0..6 {
-            *self.weights.entry(nodes[a]).or_default() += piece.weights[a];
+        for (a, &node) in face.nodes().iter().enumerate() {
+            *self.weights.entry(node).or_default() += piece.weights[a];
         }
     }
 
@@ -533,19 +504,19 @@ struct PieceSums {
     area: f64,
     moment: [f64; 3],
     normal: [f64; 3],
-    weights: [f64; 6],
+    weights: [f64; 8],
 }
 
 impl PieceSums {
     /// Adds one quadrature point, as [`PatchSums::add_point`].
-    fn add_point(&mut self, n: &[f64; 6], xp: [f64; 3], dn: [f64; 3], w: f64) {
+    fn add_point(&mut self, n: &[f64; 8], xp: [f64; 3], dn: [f64; 3], w: f64) {
         let da = w * norm(dn);
         self.area += da;
         for d in 0..3 {
             self.normal[d] += w * dn[d];
             self.moment[d] += da * xp[d];
         }
-        for a in 0..6 {
+        for a in 0..8 {
             self.weights[a] += da * n[a];
         }
     }
@@ -608,23 +579,6 @@ fn tri6_shape(s: f64, t: f64) -> ([f64; 6], [f64; 6], [f64; 6]) {
     (n, ds, dt)
 }
 
-/// The 6-node triangle `x` at reference point `st`: shape function values, position and
-/// `∂x/∂s × ∂x/∂t` (the area element's normal times its reference-to-physical area ratio).
-fn map_point(x: &[[f64; 3]; 6], st: [f64; 2]) -> ([f64; 6], [f64; 3], [f64; 3]) {
-    let (n, ds, dt) = tri6_shape(st[0], st[1]);
-    let mut xs = [0.0; 3];
-    let mut xt = [0.0; 3];
-    let mut xp = [0.0; 3];
-    for a in 0..6 {
-        for d in 0..3 {
-            xs[d] += ds[a] * x[a][d];
-            xt[d] += dt[a] * x[a][d];
-            xp[d] += n[a] * x[a][d];
-        }
-    }
-    (n, xp, cross(xs, xt))
-}
-
 fn triangle_centroid(x: &[[f64; 3]; 6]) -> [f64; 3] {
     let (n, _, _) = tri6_shape(1.0 / 3.0, 1.0 / 3.0);
     let mut c = [0.0; 3];
@@ -636,33 +590,126 @@ fn triangle_centroid(x: &[[f64; 3]; 6]) -> [f64; 3] {
     c
 }
 
-/// The nodes of face set `face_set` and its boundary triangles; an error when the set is
-/// missing, empty or holds no boundary face.
+/// The nodes of face set `face_set` and its boundary faces (6-node triangles and 8-node
+/// quadrilaterals); an error when the set is missing, empty or holds no boundary face.
 fn face_triangles<'m>(
     mesh: &'m Mesh,
     face_set: &str,
-) -> Result<(&'m [u32], Vec<[u32; 6]>), InterfaceError> {
+) -> Result<(&'m [u32], Vec<SurfaceFace>), InterfaceError> {
     let nodes = mesh
         .node_set(face_set)
         .ok_or_else(|| InterfaceError::MissingSet(face_set.into()))?;
     if nodes.is_empty() {
         return Err(InterfaceError::EmptySet(face_set.into()));
     }
-    squeal_mesh::select::triangles_only(mesh, Some(nodes), "the contact interface")?;
-    let triangles = boundary_triangles(mesh, nodes);
-    if triangles.is_empty() {
+    let faces = boundary_faces_of(mesh, nodes);
+    if faces.is_empty() {
         return Err(InterfaceError::NoFaces {
             set: face_set.into(),
         });
     }
-    Ok((nodes, triangles))
+    Ok((nodes, faces))
 }
 
-/// Element faces (6-node triangles, tet10::FACES order) whose six nodes are all in `set` and
-/// that belong to a single element (boundary faces).
-fn boundary_triangles(mesh: &Mesh, set: &[u32]) -> Vec<[u32; 6]> {
-    use squeal_mesh::select::{boundary_faces, faces_of_set};
-    faces_of_set(mesh, &boundary_faces(mesh), set)
+/// Element faces whose nodes are all in `set` and that belong to a single element (boundary
+/// faces): the 6-node triangles (in the order of [`squeal_mesh::select::boundary_faces`]),
+/// then the 8-node quadrilaterals (of [`squeal_mesh::select::boundary_quads`]).
+pub fn boundary_faces_of(mesh: &Mesh, set: &[u32]) -> Vec<SurfaceFace> {
+    use squeal_mesh::select::{boundary_faces, boundary_quads, faces_of_set};
+    let mut out: Vec<SurfaceFace> = faces_of_set(mesh, &boundary_faces(mesh), set)
+        .into_iter()
+        .map(SurfaceFace::tri6)
+        .collect();
+    if mesh.blocks.len() == mesh.blocks.tet10.len() {
+        return out;
+    }
+    let mut member = vec![false; mesh.num_nodes()];
+    for &n in set {
+        if let Some(m) = member.get_mut(n as usize) {
+            *m = true;
+        }
+    }
+    out.extend(
+        boundary_quads(mesh)
+            .into_iter()
+            .filter(|q| q.iter().all(|&n| member[n as usize]))
+            .map(SurfaceFace::quad8),
+    );
+    out
+}
+
+/// The reference triangles a face is integrated and clipped on, in the face's own reference
+/// coordinates: the triangle itself, or the quadrilateral's two halves across its diagonal
+/// from `(−1, −1)` to `(1, 1)`.
+fn halves(shape: Shape) -> Vec<[[f64; 2]; 3]> {
+    match shape {
+        Shape::Tri6 => vec![[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]],
+        Shape::Quad8 => vec![
+            [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0]],
+            [[-1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]],
+        ],
+    }
+}
+
+/// Adds the part of `face` over the reference triangle `half` (see [`halves`]) to the patches.
+///
+/// The grid's cuts are tested on, and clipped against, the 6-node triangle through the face's
+/// points at the six nodes of `half` (for a 6-node face, the face itself; for a quadrilateral,
+/// its half interpolated quadratically: exact where the quadrilateral's map is quadratic on the
+/// half, as on a parallelogram, and otherwise placing a cut within the map's cubic remainder,
+/// an error of the mesh's order). Every quadrature point is then mapped by the face's own map,
+/// so `Σ_k C_pk = 1` and the centroids hold as for triangles (module docs).
+fn add_half(
+    grid: &PolarGrid,
+    rules: &clip::Rules,
+    acc: &mut [PatchSums],
+    face: &SurfaceFace,
+    x: &[[f64; 3]; 8],
+    half: &[[f64; 2]; 3],
+) {
+    let e1 = [half[1][0] - half[0][0], half[1][1] - half[0][1]];
+    let e2 = [half[2][0] - half[0][0], half[2][1] - half[0][1]];
+    let jac = (e1[0] * e2[1] - e1[1] * e2[0]).abs();
+    let to_face = |st: [f64; 2]| [0, 1].map(|i| half[0][i] + st[0] * e1[i] + st[1] * e2[i]);
+    let x6: [[f64; 3]; 6] = match face.shape {
+        Shape::Tri6 => std::array::from_fn(|i| x[i]),
+        Shape::Quad8 => std::array::from_fn(|i| {
+            let r = Shape::Tri6.reference()[i];
+            face::map_point(face.shape, x, to_face(r)).1
+        }),
+    };
+    let cuts = grid.cuts_crossing(&x6);
+    if cuts.levels.is_empty() {
+        let cell = &mut acc[grid.cell_of(triangle_centroid(&x6))];
+        if face.shape == Shape::Tri6 {
+            cell.add_face(face, x);
+        } else {
+            for (s, t, w) in DUNAVANT4 {
+                let (n, xp, dn) = face::map_point(face.shape, x, to_face([s, t]));
+                cell.add_point(face, &n, xp, dn, 0.5 * w * jac);
+            }
+        }
+        return;
+    }
+    // The half's pieces, summed apart and added to their patches once.
+    let mut pieces: Vec<(usize, PieceSums)> = Vec::new();
+    clip::split_quadrature(&cuts.planar, &cuts.levels, rules, |q: clip::Point| {
+        let ring = cuts.rings_beyond + q.radial_beyond;
+        let sector = cuts.sectors_beyond + q.angular_beyond;
+        let cell = ring * grid.angular + sector;
+        let k = match pieces.iter().position(|p| p.0 == cell) {
+            Some(k) => k,
+            None => {
+                pieces.push((cell, PieceSums::default()));
+                pieces.len() - 1
+            }
+        };
+        let (n, xp, dn) = face::map_point(face.shape, x, to_face(q.st));
+        pieces[k].1.add_point(&n, xp, dn, q.weight * jac);
+    });
+    for (cell, piece) in pieces {
+        acc[cell].add_piece(face, &piece);
+    }
 }
 
 fn mean_point(points: impl Iterator<Item = [f64; 3]>) -> [f64; 3] {
@@ -684,5 +731,7 @@ fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
     let n = norm(a);
     (n > 0.0 && n.is_finite()).then(|| scale(a, 1.0 / n))
 }
+#[cfg(test)]
+mod quad_tests;
 #[cfg(test)]
 mod tests;

@@ -10,9 +10,10 @@
 
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::{Mat, Par, Side};
+use squeal_element::ElementKind;
 use squeal_fe::{ElasticMaterial, MaterialTable, Restraint};
 use squeal_mesh::Mesh;
-use squeal_mesh::generate::box_tet10_origin;
+use squeal_mesh::generate::{box_solid, box_tet10_origin};
 use squeal_reduce::craig_bampton::{PartSpec, ReduceOptions, reduce_part};
 use squeal_reduce::interface::Axis;
 use squeal_reduce::rom::{InterfaceKind, MeshInfo, ReducedPart};
@@ -36,6 +37,9 @@ fn merged(a: &Mesh, b: &Mesh) -> Mesh {
     m.blocks
         .tet10
         .extend(b.blocks.tet10.iter().map(|c| c.map(|n| n + off_n)));
+    m.blocks
+        .hex20
+        .extend(b.blocks.hex20.iter().map(|c| c.map(|n| n + off_n)));
     m.element_ids.extend(b.element_ids.iter().map(|i| i + id_e));
     m.node_sets = a
         .node_sets
@@ -556,5 +560,84 @@ fn a_cube_slides_on_its_abutment_and_bears_along_the_normal_only() {
         f.iter().all(|x| (x / fz - 1.0).abs() > 1e-2),
         "a stuck abutment must move the vertical mode: {:?}",
         &f[..8]
+    );
+}
+
+/// A hex20 box of `lengths` and `cells` moved by `origin`.
+fn hex_box(origin: [f64; 3], lengths: [f64; 3], cells: [usize; 3]) -> Mesh {
+    let mut m = box_solid(ElementKind::Hex20, lengths, cells);
+    for x in &mut m.nodes {
+        *x = std::array::from_fn(|d| x[d] + origin[d]);
+    }
+    m
+}
+
+/// The block of hex20 elements as one mesh and as two halves tied on their 8-node faces (the
+/// right half's x = 20 mm face, slave, to the left half's, master).
+fn hex_blocks(a: [usize; 3], b: [usize; 3], one: [usize; 3]) -> [(Mesh, PartSpec); 2] {
+    let mut whole = hex_box([0.0; 3], [0.04, 0.02, 0.02], one);
+    add_node_set(&mut whole, "TIP", [0.04, 0.0, 0.0]);
+    let left = hex_box([0.0; 3], [0.02, 0.02, 0.02], a);
+    let right = hex_box([0.02, 0.0, 0.0], [0.02, 0.02, 0.02], b);
+    let mut tied = merged(&left, &right);
+    add_node_set(&mut tied, "TIP", [0.04, 0.0, 0.0]);
+    let tie = Tie {
+        slave: "B_XMIN".into(),
+        master: "A_XMAX".into(),
+        tolerance: None,
+    };
+    [
+        (whole, spec("XMIN", vec![], vec![], 20)),
+        (tied, spec("A_XMIN", vec![tie], vec![], 20)),
+    ]
+}
+
+#[test]
+fn a_hex20_block_tied_on_quad8_faces_is_the_block_meshed_as_one() {
+    // Matching meshes: every slave node of the 8-node faces projects onto a master node
+    // (weight 1, the others below 1e-12 dropped), so the tie is the shared node and the
+    // reduced models agree to round-off, as for tet10 (1e-9: the eigensolver's tolerance).
+    let [(one, s1), (tied, s2)] = hex_blocks([2, 2, 2], [2, 2, 2], [4, 2, 2]);
+    let (p, q) = (reduce(&one, &s1), reduce(&tied, &s2));
+    let (f1, f2) = (frequencies(&p), frequencies(&q));
+    let fixed = worst_relative(&p.info.fixed_interface_hz, &q.info.fixed_interface_hz, 20);
+    let reduced = worst_relative(&f1[..10], &f2[..10], 10);
+    eprintln!(
+        "hex20 matching tie: first frequencies {:.3} / {:.3} Hz; worst relative difference: fixed-interface {fixed:.2e}, reduced model {reduced:.2e}",
+        f1[0], f2[0]
+    );
+    // The slave face's 21 nodes (2 x 2 quad8: 9 corners, 12 midsides) are extra dofs.
+    assert_eq!(q.info.full_dofs, p.info.full_dofs + 3 * 21);
+    assert!(
+        fixed < 1e-9,
+        "fixed-interface frequencies differ by {fixed:.2e}"
+    );
+    assert!(
+        reduced < 1e-9,
+        "reduced-model frequencies differ by {reduced:.2e}"
+    );
+}
+
+#[test]
+fn a_hex20_block_tied_on_non_matching_quad8_faces_is_within_the_meshes_own_error() {
+    // The right half finer (3 x 3 quadrilaterals on the tie face against 2 x 2): the slave
+    // nodes fall inside the master's 8-node faces. The tied block must be nearer the finer
+    // one-mesh block than the coarser one-mesh block is (the tie adds no error beyond the
+    // meshes' own).
+    let [_, (tied, s)] = hex_blocks([2, 2, 2], [2, 3, 3], [4, 2, 2]);
+    let tied = frequencies(&reduce(&tied, &s));
+    let [(coarse, s), _] = hex_blocks([2, 2, 2], [2, 2, 2], [4, 2, 2]);
+    let coarse = frequencies(&reduce(&coarse, &s));
+    let [(fine, s), _] = hex_blocks([2, 3, 3], [2, 3, 3], [4, 3, 3]);
+    let fine = frequencies(&reduce(&fine, &s));
+    let mesh_error = worst_relative(&coarse, &fine, 6);
+    let tie_error = worst_relative(&tied, &fine, 6);
+    eprintln!(
+        "hex20 non-matching tie: first frequencies tied {:.3}, one mesh 2x2 {:.3}, 3x3 {:.3} Hz; worst of the first six: tied vs 3x3 {tie_error:.2e}, 2x2 vs 3x3 {mesh_error:.2e}",
+        tied[0], coarse[0], fine[0]
+    );
+    assert!(
+        tie_error < mesh_error,
+        "tied block off by {tie_error:.2e}, more than the meshes' own {mesh_error:.2e}"
     );
 }

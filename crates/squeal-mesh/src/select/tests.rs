@@ -275,3 +275,48 @@ fn a_rule_is_a_named_set_or_the_faces_meeting_all_its_criteria() {
         Err(SelectError::BadDiameter(0.0))
     );
 }
+
+#[test]
+fn geometric_rules_select_the_quadrilaterals_of_hexahedra_and_wedges() {
+    // A box of hex20 (quadrilaterals only) and of wedge15 (triangles on z = 0 and z = top,
+    // quadrilaterals on the sides): each face of the box chosen by plane and facing, by a box
+    // and by a circle is exactly the generator's node set of that face.
+    use crate::generate::box_solid;
+    use squeal_element::ElementKind;
+    for kind in [ElementKind::Hex20, ElementKind::Wedge15] {
+        let mesh = box_solid(kind, [1.0, 2.0, 0.5], [2, 3, 2]);
+        let boundary = boundary_faces(&mesh);
+        let on = |point: [f64; 3], normal: [f64; 3]| Rule {
+            surface: Some(Surface::Plane { point, normal }),
+            facing: Some((normal, 1.0)),
+            tolerance: 1e-9,
+            ..Rule::default()
+        };
+        for (name, point, normal) in [
+            ("XMAX", [1.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+            ("YMIN", [0.0, 0.0, 0.0], [0.0, -1.0, 0.0]),
+            ("ZMAX", [0.0, 0.0, 0.5], [0.0, 0.0, 1.0]),
+        ] {
+            let s = on(point, normal).apply(&mesh, &boundary).unwrap();
+            assert_eq!(s.nodes, mesh.node_set(name).unwrap(), "{kind} {name}");
+        }
+        let xmin = Rule {
+            bbox: Some(([-1.0; 3], [0.0, 9.0, 9.0])),
+            ..Rule::default()
+        };
+        let s = xmin.apply(&mesh, &boundary).unwrap();
+        assert_eq!(s.nodes, mesh.node_set("XMIN").unwrap(), "{kind} box");
+        // A circle holding the whole x = 1 face (its corner centroids within 1.2 m of its
+        // centre) selects it and nothing of the faces beside it (not in its plane).
+        let circle = Rule {
+            circle: Some(Circle {
+                centre: [1.0, 1.0, 0.25],
+                diameter: 2.4,
+            }),
+            tolerance: 1e-9,
+            ..Rule::default()
+        };
+        let s = circle.apply(&mesh, &boundary).unwrap();
+        assert_eq!(s.nodes, mesh.node_set("XMAX").unwrap(), "{kind} circle");
+    }
+}

@@ -4,7 +4,8 @@
 //! This is node-to-surface contact (Wriggers, *Computational Contact Mechanics*, 2nd ed.,
 //! Springer 2006, Sec. 4.1 and 9.1; Laursen, *Computational Contact and Impact Mechanics*,
 //! 2002, Ch. 5): the pad is the slave side, its face nodes `x_k`; the disc is the master
-//! surface, its 6-node boundary triangles `X(s, t) = Σ_a N_a(s, t) X_a` over the disc's
+//! surface, its boundary faces (6-node triangles and 8-node quadrilaterals)
+//! `X(s, t) = Σ_a N_a(s, t) X_a` over the disc's
 //! contact face. Each pad node is paired with its closest-point projection `y_k = X(s̄, t̄)`,
 //!
 //! `(x_k − X(s̄, t̄)) · ∂X/∂s = (x_k − X(s̄, t̄)) · ∂X/∂t = 0`,
@@ -53,18 +54,45 @@
 //! # Tributary areas
 //!
 //! Each pad node stands for a share `A_k` of the pad's face: its spring is `κ A_k` (eq 8's
-//! stiffness per unit area). The consistent nodal areas `∫ N_k dA` of 6-node triangles are
-//! zero at the corners of a flat triangle (and negative on a distorted one), which would
-//! leave every corner node without a spring, free to pass through the disc. The areas are
-//! lumped instead: each triangle is split at its edge midpoints into four (in reference
-//! coordinates: the 6-node triangle's own sub-triangles), and each node takes a third of the
-//! area of each sub-triangle it is a corner of (`A/12` at a corner and `A/4` at a midside node
-//! of a flat triangle). They are positive, and they partition the face: `Σ_k A_k` is the face's
-//! area to round-off (each sub-triangle's area integrated by the degree-4 rule, exact on a
-//! flat face). A node's normal is the area-weighted mean outward normal over the same
-//! sub-triangles.
+//! stiffness per unit area). The consistent nodal areas `∫ N_k dA` are the nodal loads of a
+//! uniform unit pressure, and for quadratic faces they are not all positive:
+//!
+//! - on a flat 6-node triangle of area `A`, `∫ N_k dA = 0` at the corners and `A/3` at the
+//!   midside nodes (`∫ L_i (2 L_i − 1) dA = 2·A/6 − A/3 = 0`, `∫ 4 L_a L_b dA = 4·A/12`);
+//! - on a flat 8-node quadrilateral (a parallelogram of area `A`, `dA = A/4 ds dt`),
+//!   `∫ N_k dA = −A/12` at the corners and `A/3` at the midside nodes
+//!   (`¼∫∫ ¼(1+s)(1+t)(s+t−1) ds dt·A/4·4 = −A/12`, `¼∫∫ ½(1−s²)(1+t) ds dt·A = A/3`, and
+//!   `4·(−A/12) + 4·A/3 = A`).
+//!
+//! Springs `κ ∫ N_k dA` would leave every triangle's corner without a spring, free to pass
+//! through the disc, and put negative springs (a softening, unstable foundation) at every
+//! quadrilateral's corners. The areas are lumped instead, on sub-cells of each face cut at its
+//! edge midpoints ([`super::face::Shape::subcells`]), each shared equally by its nodes:
+//!
+//! - a 6-node triangle splits into four triangles (in reference coordinates: its own
+//!   sub-triangles); each node takes a third of each sub-triangle it is a corner of: `A/12` at
+//!   a corner and `A/4` at a midside node of a flat triangle (`3·A/12 + 3·A/4 = A`);
+//! - an 8-node quadrilateral splits into four corner triangles `[v_k, m_k, m_{k−1}]` (each
+//!   `A/8` of a parallelogram) and the central square through its four midside nodes (`A/2`);
+//!   each corner triangle's area goes a third to each of its three nodes, the central square's
+//!   a quarter to each midside node: `A/24` at a corner and `2·A/24 + A/8 = 5A/24` at a
+//!   midside node of a parallelogram (`4·A/24 + 4·5A/24 = A`).
+//!
+//! They are positive, and they partition the face: `Σ_k A_k` is the face's area to round-off
+//! (each sub-cell's area integrated by the degree-4 rule, exact on a flat face of either
+//! shape: the area element of a flat serendipity map is a polynomial of degree ≤ 4). A node's
+//! normal is the area-weighted mean outward normal over the same sub-cells.
+//!
+//! # Quadrilateral faces
+//!
+//! A disc or pad of hexahedra (or the quadrilateral sides of wedges and pyramids) has 8-node
+//! faces; the projection onto them is the same closest-point problem on the serendipity map
+//! ([`super::face`]): Gauss–Newton from the square's centre for the interior stationary
+//! point, else the closest point of its four quadratic edges. A surface may mix both shapes
+//! (a wedge-and-hexahedron disc).
 
-use super::{DUNAVANT4, InterfaceError, dot, face_triangles, map_point, norm, sub, unit};
+use super::face::{self, Shape, SurfaceFace};
+use super::{DUNAVANT4, InterfaceError, dot, face_triangles, norm, sub, unit};
 use squeal_mesh::Mesh;
 use std::collections::BTreeMap;
 
@@ -73,8 +101,8 @@ use std::collections::BTreeMap;
 /// entries, five of them round-off.
 const NEGLIGIBLE_WEIGHT: f64 = 1e-12;
 
-/// A projection inside a triangle is accepted when its area coordinates are not below this
-/// (round-off of a point on an edge).
+/// A projection inside a face is accepted when its reference coordinates are not beyond the
+/// domain by more than this (round-off of a point on an edge).
 const INSIDE_TOLERANCE: f64 = 1e-10;
 
 /// Less than this share of the pad's face (by area) projecting inside the disc face means
@@ -86,39 +114,27 @@ pub const MIN_FACING_SHARE: f64 = 0.5;
 pub struct FaceNode {
     /// Node index in the mesh.
     pub node: u32,
-    /// Tributary area (m²): a third of each sub-triangle it is a corner of (module docs).
+    /// Tributary area (m²): its share of each sub-cell it is a node of (module docs).
     pub area: f64,
-    /// Unit outward normal: the area-weighted mean over those sub-triangles.
+    /// Unit outward normal: the area-weighted mean over those sub-cells.
     pub normal: [f64; 3],
 }
 
-/// Reference coordinates of the six nodes `[v0, v1, v2, m01, m12, m20]`.
-const REFERENCE: [[f64; 2]; 6] = [
-    [0.0, 0.0],
-    [1.0, 0.0],
-    [0.0, 1.0],
-    [0.5, 0.0],
-    [0.5, 0.5],
-    [0.0, 0.5],
-];
-
-/// The four sub-triangles of a 6-node triangle, as local node indices.
-const SUBTRIANGLES: [[usize; 3]; 4] = [[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]];
-
-/// The nodes of the boundary triangles of `face_set`, in node order, with their lumped
+/// The nodes of the boundary faces of `face_set`, in node order, with their lumped
 /// tributary areas and normals (module docs).
 pub fn face_nodes(mesh: &Mesh, face_set: &str) -> Result<Vec<FaceNode>, InterfaceError> {
-    let (_, triangles) = face_triangles(mesh, face_set)?;
+    let (_, faces) = face_triangles(mesh, face_set)?;
     let mut acc: BTreeMap<u32, (f64, [f64; 3])> = BTreeMap::new();
-    for tri in &triangles {
-        let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
-        for sub_tri in SUBTRIANGLES {
-            let (area, normal) = subtriangle_integrals(&x, sub_tri.map(|k| REFERENCE[k]));
-            for k in sub_tri {
-                let e = acc.entry(tri[k]).or_insert((0.0, [0.0; 3]));
-                e.0 += area / 3.0;
+    for f in &faces {
+        let x = f.coords(mesh);
+        for (cell, sharing) in f.shape.subcells() {
+            let (area, normal) = subtriangle_integrals(f.shape, &x, cell);
+            let parts = sharing.len() as f64;
+            for k in sharing {
+                let e = acc.entry(f.nodes[k]).or_insert((0.0, [0.0; 3]));
+                e.0 += area / parts;
                 for d in 0..3 {
-                    e.1[d] += normal[d] / 3.0;
+                    e.1[d] += normal[d] / parts;
                 }
             }
         }
@@ -133,16 +149,16 @@ pub fn face_nodes(mesh: &Mesh, face_set: &str) -> Result<Vec<FaceNode>, Interfac
         .collect())
 }
 
-/// `∫ dA` and `∫ n dA` over the part of the 6-node triangle `x` whose reference coordinates
-/// form the triangle `q` (degree-4 rule mapped onto it).
-fn subtriangle_integrals(x: &[[f64; 3]; 6], q: [[f64; 2]; 3]) -> (f64, [f64; 3]) {
+/// `∫ dA` and `∫ n dA` over the part of the face `x` whose reference coordinates form the
+/// triangle `q` (degree-4 rule mapped onto it).
+fn subtriangle_integrals(shape: Shape, x: &[[f64; 3]; 8], q: [[f64; 2]; 3]) -> (f64, [f64; 3]) {
     let e1 = [q[1][0] - q[0][0], q[1][1] - q[0][1]];
     let e2 = [q[2][0] - q[0][0], q[2][1] - q[0][1]];
     let jac = (e1[0] * e2[1] - e1[1] * e2[0]).abs();
     let (mut area, mut normal) = (0.0, [0.0; 3]);
     for (a, b, w) in DUNAVANT4 {
         let st = [0, 1].map(|i| q[0][i] + a * e1[i] + b * e2[i]);
-        let (_, _, dn) = map_point(x, st);
+        let (_, _, dn) = face::map_point(shape, x, st);
         let weight = 0.5 * w * jac;
         area += weight * norm(dn);
         for d in 0..3 {
@@ -152,12 +168,11 @@ fn subtriangle_integrals(x: &[[f64; 3]; 6], q: [[f64; 2]; 3]) -> (f64, [f64; 3])
     (area, normal)
 }
 
-/// A contact face ready for closest-point queries: its triangles, their nodes' coordinates
-/// and a box around each (holding the curved triangle: the box of its quadratic Bézier
-/// control points).
+/// A contact face ready for closest-point queries: its faces, their nodes' coordinates and a
+/// box around each (holding the curved face: the box of its Bézier control points).
 pub struct Surface {
-    triangles: Vec<[u32; 6]>,
-    coords: Vec<[[f64; 3]; 6]>,
+    faces: Vec<SurfaceFace>,
+    coords: Vec<[[f64; 3]; 8]>,
     boxes: Vec<[[f64; 3]; 2]>,
 }
 
@@ -175,31 +190,32 @@ pub struct Projection {
     pub distance: f64,
     /// `n · (x − X)`: the gap along the face's normal (m), positive off the face.
     pub gap: f64,
-    /// 0 when the projection falls inside the face's triangles; else the length of `x − X`
+    /// 0 when the projection falls inside the face's faces; else the length of `x − X`
     /// in the face's tangent plane at `X`: how far beyond the face's boundary `x` lies (m).
     pub outside: f64,
 }
 
 impl Surface {
-    /// The boundary triangles of `face_set`.
+    /// The boundary faces of `face_set`.
     pub fn new(mesh: &Mesh, face_set: &str) -> Result<Self, InterfaceError> {
-        let (_, triangles) = face_triangles(mesh, face_set)?;
-        let coords: Vec<[[f64; 3]; 6]> = triangles
+        let (_, faces) = face_triangles(mesh, face_set)?;
+        let coords: Vec<[[f64; 3]; 8]> = faces.iter().map(|f| f.coords(mesh)).collect();
+        let boxes = faces
             .iter()
-            .map(|t| std::array::from_fn(|i| mesh.nodes[t[i] as usize]))
+            .zip(&coords)
+            .map(|(f, x)| bezier_box(f.shape, x))
             .collect();
-        let boxes = coords.iter().map(bezier_box).collect();
         Ok(Self {
-            triangles,
+            faces,
             coords,
             boxes,
         })
     }
 
-    /// The closest point of the face to `x` (module docs): over the triangles in order of
-    /// the distance to their boxes, until a box lies farther than the best point found; ties
-    /// go to the triangle first in that order (then by index), so the result does not depend
-    /// on anything but the meshes.
+    /// The closest point of the face to `x` (module docs): over the faces in order of the
+    /// distance to their boxes, until a box lies farther than the best point found; ties go
+    /// to the face first in that order (then by index), so the result does not depend on
+    /// anything but the meshes.
     pub fn project(&self, x: [f64; 3]) -> Projection {
         let mut order: Vec<(f64, usize)> = self
             .boxes
@@ -213,16 +229,18 @@ impl Surface {
             if best.is_some_and(|b| lower > b.0) {
                 break;
             }
-            let (st, inside) = closest_on_triangle(&self.coords[i], x);
-            let (_, xp, _) = map_point(&self.coords[i], st);
+            let shape = self.faces[i].shape;
+            let (st, inside) = closest_on_face(shape, &self.coords[i], x);
+            let (_, xp, _) = face::map_point(shape, &self.coords[i], st);
             let d = norm(sub(x, xp));
             if best.is_none_or(|b| d < b.0) {
                 best = Some((d, i, st, inside));
             }
         }
-        // A surface has at least one triangle (`face_triangles` refuses an empty one).
+        // A surface has at least one face (`face_triangles` refuses an empty one).
         let (distance, i, st, inside) = best.unwrap_or((f64::INFINITY, 0, [0.0; 2], false));
-        let (n, point, dn) = map_point(&self.coords[i], st);
+        let shape = self.faces[i].shape;
+        let (n, point, dn) = face::map_point(shape, &self.coords[i], st);
         let normal = unit(dn).unwrap_or([0.0; 3]);
         let gap = dot(normal, sub(x, point));
         let outside = if inside {
@@ -233,7 +251,7 @@ impl Surface {
         Projection {
             point,
             normal,
-            weights: row(&self.triangles[i], &n),
+            weights: row(self.faces[i].nodes(), &n),
             distance,
             gap,
             outside,
@@ -242,7 +260,7 @@ impl Surface {
 }
 
 /// The kept shape-function weights of one point, by node (module docs).
-fn row(nodes: &[u32; 6], n: &[f64; 6]) -> Vec<(u32, f64)> {
+fn row(nodes: &[u32], n: &[f64; 8]) -> Vec<(u32, f64)> {
     let mut kept: Vec<(u32, f64)> = nodes
         .iter()
         .zip(n)
@@ -257,23 +275,37 @@ fn row(nodes: &[u32; 6], n: &[f64; 6]) -> Vec<(u32, f64)> {
     kept
 }
 
-/// The box of the quadratic triangle's Bézier control points (the nodes at the corners,
-/// `2 m − (a + b)/2` for an edge `a, b` with midside node `m`): by the convex-hull property it
-/// holds the whole curved triangle.
-fn bezier_box(x: &[[f64; 3]; 6]) -> [[f64; 3]; 2] {
-    let edges = [(0, 1, 3), (1, 2, 4), (2, 0, 5)];
-    let mut pts = vec![x[0], x[1], x[2]];
-    for (a, b, m) in edges {
-        pts.push(std::array::from_fn(|d| {
-            2.0 * x[m][d] - 0.5 * (x[a][d] + x[b][d])
-        }));
+/// A box holding the curved face: of its corners and, for each edge `a, b` with midside
+/// node `m`, the quadratic edge's Bézier control point `2 m − (a + b)/2` (by the
+/// convex-hull property it holds the edge), widened for a quadrilateral by its interior's
+/// bulge beyond its edges.
+///
+/// A 6-node triangle is a quadratic Bézier triangle whose control points are these, so the
+/// box holds it. The serendipity quadrilateral's interior is the bilinear blend of its edges
+/// (Coons' patch) less the bilinear interpolant of its corners; the blend lies within the
+/// boxes of its edges plus the difference between its edges' and its corners' bilinear parts,
+/// which is bounded by the largest edge bulge `|2 m − (a + b)|/2`: the box is widened by that
+/// on every side.
+fn bezier_box(shape: Shape, x: &[[f64; 3]; 8]) -> [[f64; 3]; 2] {
+    let corners = match shape {
+        Shape::Tri6 => 3,
+        Shape::Quad8 => 4,
+    };
+    let mut pts: Vec<[f64; 3]> = x[..corners].to_vec();
+    let mut bulge: f64 = 0.0;
+    for k in 0..corners {
+        let (a, b, m) = (k, (k + 1) % corners, corners + k);
+        let p: [f64; 3] = std::array::from_fn(|d| 2.0 * x[m][d] - 0.5 * (x[a][d] + x[b][d]));
+        bulge = bulge.max(norm(sub(p, x[m])));
+        pts.push(p);
     }
+    let widen = if shape == Shape::Quad8 { bulge } else { 0.0 };
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in pts {
         for d in 0..3 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
+            lo[d] = lo[d].min(p[d] - widen);
+            hi[d] = hi[d].max(p[d] + widen);
         }
     }
     [lo, hi]
@@ -289,22 +321,17 @@ fn box_distance(b: &[[f64; 3]; 2], x: [f64; 3]) -> f64 {
     s.sqrt()
 }
 
-/// The reference coordinates of the point of the 6-node triangle `x` closest to `p`, and
-/// whether it is an interior stationary point (else the closest point of its edges).
-fn closest_on_triangle(x: &[[f64; 3]; 6], p: [f64; 3]) -> ([f64; 2], bool) {
-    if let Some(st) = interior_projection(x, p) {
+/// The reference coordinates of the point of the face `x` closest to `p`, and whether it is
+/// an interior stationary point (else the closest point of its edges).
+fn closest_on_face(shape: Shape, x: &[[f64; 3]; 8], p: [f64; 3]) -> ([f64; 2], bool) {
+    if let Some(st) = interior_projection(shape, x, p) {
         return (st, true);
     }
-    // The constrained minimum lies on an edge: the best of the three edges' minima.
-    let edges: [([f64; 2], [f64; 2]); 3] = [
-        ([0.0, 0.0], [1.0, 0.0]),
-        ([1.0, 0.0], [0.0, 1.0]),
-        ([0.0, 1.0], [0.0, 0.0]),
-    ];
+    // The constrained minimum lies on an edge: the best of the edges' minima.
     let mut best = ([0.0; 2], f64::INFINITY);
-    for (a, b) in edges {
-        let st = closest_on_edge(x, p, a, b);
-        let (_, xp, _) = map_point(x, st);
+    for (a, b) in shape.edges() {
+        let st = closest_on_edge(shape, x, p, a, b);
+        let (_, xp, _) = face::map_point(shape, x, st);
         let d = norm(sub(p, xp));
         if d < best.1 {
             best = (st, d);
@@ -313,13 +340,15 @@ fn closest_on_triangle(x: &[[f64; 3]; 6], p: [f64; 3]) -> ([f64; 2], bool) {
     (best.0, false)
 }
 
-/// Gauss–Newton on the stationarity of `|p − X(s, t)|²` from the centroid: the interior
-/// projection, if it converges inside the triangle. On a flat triangle with straight edges
-/// `X` is affine and one step lands on it.
-fn interior_projection(x: &[[f64; 3]; 6], p: [f64; 3]) -> Option<[f64; 2]> {
-    let mut st = [1.0 / 3.0, 1.0 / 3.0];
+/// Gauss–Newton on the stationarity of `|p − X(s, t)|²` from the reference domain's centre:
+/// the interior projection, if it converges inside the face. On a flat triangle with straight
+/// edges `X` is affine and one step lands on it; on a quadrilateral (bilinear at least) it
+/// converges quadratically near a point where `x − X` is small against the face's curvature
+/// radius.
+fn interior_projection(shape: Shape, x: &[[f64; 3]; 8], p: [f64; 3]) -> Option<[f64; 2]> {
+    let mut st = shape.centre();
     for _ in 0..30 {
-        let (xs, xt, xp) = tangents(x, st);
+        let (_, [xp, xs, xt]) = face::tangents(shape, x, st);
         let r = sub(p, xp);
         let (a, b, c) = (dot(xs, xs), dot(xs, xt), dot(xt, xt));
         let (f, g) = (dot(xs, r), dot(xt, r));
@@ -329,46 +358,43 @@ fn interior_projection(x: &[[f64; 3]; 6], p: [f64; 3]) -> Option<[f64; 2]> {
         }
         let step = [(c * f - b * g) / det, (a * g - b * f) / det];
         st = [st[0] + step[0], st[1] + step[1]];
-        // Keep the iterate near the triangle: far outside, the quadratic map may fold.
-        st = st.map(|v| v.clamp(-1.0, 2.0));
+        st = shape.keep(st);
         if step[0].abs().max(step[1].abs()) <= 1e-14 {
-            let inside = st[0] >= -INSIDE_TOLERANCE
-                && st[1] >= -INSIDE_TOLERANCE
-                && st[0] + st[1] <= 1.0 + INSIDE_TOLERANCE;
-            return inside.then(|| {
-                // A point on an edge within round-off is put on it.
-                let s = st[0].max(0.0);
-                let t = st[1].max(0.0);
-                let over = (s + t - 1.0).max(0.0);
-                [s - 0.5 * over, t - 0.5 * over]
-            });
+            let inside = shape.contains(st, INSIDE_TOLERANCE);
+            // A point on an edge within round-off is put on it.
+            return inside.then(|| shape.clamp(st));
         }
     }
     None
 }
 
-/// The point of the triangle's edge from reference point `a` to `b` closest to `p`: Newton's
+/// The point of the face's edge from reference point `a` to `b` closest to `p`: Newton's
 /// method on `(X(τ) − p) · X'(τ) = 0` along the (quadratic) edge, kept in `[0, 1]`, compared
 /// with the edge's ends.
-fn closest_on_edge(x: &[[f64; 3]; 6], p: [f64; 3], a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+fn closest_on_edge(
+    shape: Shape,
+    x: &[[f64; 3]; 8],
+    p: [f64; 3],
+    a: [f64; 2],
+    b: [f64; 2],
+) -> [f64; 2] {
     let at = |tau: f64| [a[0] + tau * (b[0] - a[0]), a[1] + tau * (b[1] - a[1])];
     let e = [b[0] - a[0], b[1] - a[1]];
     let dist = |tau: f64| {
-        let (_, xp, _) = map_point(x, at(tau));
+        let (_, xp, _) = face::map_point(shape, x, at(tau));
         norm(sub(p, xp))
     };
+    // X is quadratic along the edge: its second derivative is constant, from the difference
+    // of the first derivatives at the ends.
+    let (_, [_, xs0, xt0]) = face::tangents(shape, x, a);
+    let (_, [_, xs1, xt1]) = face::tangents(shape, x, b);
+    let d2: [f64; 3] = std::array::from_fn(|k| (xs1[k] - xs0[k]) * e[0] + (xt1[k] - xt0[k]) * e[1]);
     let mut tau = 0.5;
     for _ in 0..30 {
-        let (xs, xt, xp) = tangents(x, at(tau));
+        let (_, [xp, xs, xt]) = face::tangents(shape, x, at(tau));
         let d1: [f64; 3] = std::array::from_fn(|k| xs[k] * e[0] + xt[k] * e[1]);
         let r = sub(xp, p);
         let g = dot(r, d1);
-        // X is quadratic along the edge: its second derivative is constant, from the
-        // difference of the first derivatives at the ends.
-        let (xs0, xt0, _) = tangents(x, a);
-        let (xs1, xt1, _) = tangents(x, b);
-        let d2: [f64; 3] =
-            std::array::from_fn(|k| (xs1[k] - xs0[k]) * e[0] + (xt1[k] - xt0[k]) * e[1]);
         let h = dot(d1, d1) + dot(r, d2);
         if h.is_nan() || h <= 0.0 {
             break;
@@ -385,20 +411,6 @@ fn closest_on_edge(x: &[[f64; 3]; 6], p: [f64; 3], a: [f64; 2], b: [f64; 2]) -> 
         .min_by(|u, v| u.0.total_cmp(&v.0))
         .map_or(tau, |m| m.1);
     at(best)
-}
-
-/// `∂X/∂s`, `∂X/∂t` and `X` of the 6-node triangle `x` at `st`.
-fn tangents(x: &[[f64; 3]; 6], st: [f64; 2]) -> ([f64; 3], [f64; 3], [f64; 3]) {
-    let (n, ds, dt) = super::tri6_shape(st[0], st[1]);
-    let (mut xs, mut xt, mut xp) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-    for k in 0..6 {
-        for d in 0..3 {
-            xs[d] += ds[k] * x[k][d];
-            xt[d] += dt[k] * x[k][d];
-            xp[d] += n[k] * x[k][d];
-        }
-    }
-    (xs, xt, xp)
 }
 
 /// A pad face node paired with its projection onto the disc face.

@@ -12,13 +12,14 @@ fn whole_triangle_patches(mesh: &Mesh, face_set: &str, grid: [usize; 2]) -> Vec<
     let mut acc: Vec<PatchSums> = (0..grid.radial * grid.angular)
         .map(|_| PatchSums::default())
         .collect();
-    for tri in &boundary_triangles(mesh, nodes) {
-        let x: [[f64; 3]; 6] = std::array::from_fn(|i| mesh.nodes[tri[i] as usize]);
+    for face in &boundary_faces_of(mesh, nodes) {
+        let x8 = face.coords(mesh);
+        let x: [[f64; 3]; 6] = std::array::from_fn(|i| x8[i]);
         assert!(
             grid.cuts_crossing(&x).levels.is_empty(),
-            "a cut crosses {tri:?}"
+            "a cut crosses {face:?}"
         );
-        acc[grid.cell_of(triangle_centroid(&x))].add_triangle(tri, &x);
+        acc[grid.cell_of(triangle_centroid(&x))].add_face(face, &x8);
     }
     acc.into_iter()
         .enumerate()
