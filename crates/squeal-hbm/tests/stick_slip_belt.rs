@@ -65,6 +65,7 @@ fn belt(
         mu: MU_K,
         static_ratio: MU_S / MU_K,
         epsilon,
+        contact_mass: M,
     };
     StickSlipBalance::new(hb, vec![contact], samples).unwrap()
 }
@@ -129,31 +130,57 @@ fn solve(h: usize, epsilon: f64) -> Option<(f64, f64, f64, usize)> {
 #[test]
 fn dlft_cycle_against_the_closed_form() {
     let e = exact();
+    let hs = [5usize, 10, 20, 30, 40, 50];
     let mut errors = Vec::new();
-    for (h, tol) in [(5, 4e-2), (10, 1.5e-2)] {
-        let (t, mean, stick, it) =
-            solve(h, 1.0e3).expect("DLFT converges from the closed form's coefficients");
+    println!("H | period error | mean error | stick fraction (exact {:.4}) | iterations", e.stick_fraction);
+    for h in hs {
+        let (t, mean, stick, it) = solve(h, 300.0)
+            .unwrap_or_else(|| panic!("H {h}: DLFT converges from the closed form's coefficients"));
         let (et, em, es) = (
             t / e.period - 1.0,
             mean / e.mean - 1.0,
             stick - e.stick_fraction,
         );
-        println!(
-            "H {h}: period {et:.3e}, mean {em:.3e}, stick fraction {stick:.4} ({es:+.4}), {it} iterations"
-        );
-        // The cycle's acceleration jumps at both transitions: its coefficients decay like k^-3
-        // and the truncated cycle's period misses by a few percent at H = 5 and about 1 % at
-        // H = 10 (measured 3.1e-2 and 1.2e-2).
-        assert!(et.abs() < tol, "H {h}: period error {et:e}");
-        assert!(em.abs() < 1e-3, "H {h}: mean error {em:e}");
+        println!("{h} | {et:.3e} | {em:.3e} | {stick:.4} ({es:+.4}) | {it}");
+        // The force jumps at breakaway: a Galerkin truncation converges about like 1/H
+        // (measured 1.79e-2 at H = 5 to 3.41e-3 at H = 50).
+        assert!(et.abs() < 2.0e-2, "H {h}: period error {et:e}");
+        assert!(em.abs() < 2.0e-3, "H {h}: mean error {em:e}");
+        // One sample is 1/1024 of the period at H = 20..30, 1/2048 at 40..50; measured within
+        // 0.0015 of the exact fraction from H = 10.
+        let stick_tol = if h >= 10 { 4e-3 } else { 1e-2 };
         assert!(
-            es.abs() < 0.06,
+            es.abs() < stick_tol,
             "H {h}: stick fraction {stick} against {}",
             e.stick_fraction
         );
         errors.push(et.abs());
     }
-    assert!(errors[1] < errors[0], "more harmonics, closer: {errors:?}");
+    assert!(
+        errors.windows(2).all(|w| w[1] < w[0]),
+        "more harmonics, closer: {errors:?}"
+    );
+    // Convergence rate from H = 20 to 50 (measured 0.88): at least first order in 1/H^0.7.
+    let rate = (errors[2] / errors[5]).ln() / (50.0f64 / 20.0).ln();
+    println!("rate H^-{rate:.2} from H = 20 to 50");
+    assert!(rate > 0.7, "rate {rate}");
+    assert!(errors[5] < 5.0e-3, "H 50: {:e}", errors[5]);
+}
+
+/// The converged cycle does not depend on the penalty ε beyond the truncation error: at
+/// H = 50 every ε from 1e2 to 3e3 N·s/m (the contact's m ω is 94) converges within 5e-3 of the
+/// closed-form period (measured -4.79e-3 … -1.44e-3).
+#[test]
+fn dlft_penalty_leaves_the_cycle_within_the_truncation_error() {
+    let e = exact();
+    for eps in [1.0e2, 3.0e2, 1.0e3, 3.0e3] {
+        let (t, _, stick, _) =
+            solve(50, eps).unwrap_or_else(|| panic!("ε {eps}: DLFT converges at H = 50"));
+        let et = t / e.period - 1.0;
+        println!("ε {eps:.0}: period error {et:.3e}, stick fraction {stick:.4}");
+        assert!(et.abs() < 5.0e-3, "ε {eps}: period error {et:e}");
+        assert!((stick - e.stick_fraction).abs() < 4e-3, "ε {eps}: stick {stick}");
+    }
 }
 
 #[test]
