@@ -212,13 +212,23 @@ fn dlft_cycle_against_event_driven_integration() {
         let mut ssb = balance(h, 3.0e3);
         let u0 = coeffs(&r, h);
         let phase = PhaseCondition::FirstSineZero { dof: 0 };
-        let sol = solve_stick_slip(&mut ssb, phase, &u0, 2.0 * PI / r.period, N0, &LmOptions::default())
-            .unwrap_or_else(|e| panic!("H {h}: DLFT does not converge: {e}"));
+        let sol = solve_stick_slip(
+            &mut ssb,
+            phase,
+            &u0,
+            2.0 * PI / r.period,
+            N0,
+            &LmOptions::default(),
+        )
+        .unwrap_or_else(|e| panic!("H {h}: DLFT does not converge: {e}"));
         let a1 = (sol.coeffs[2].powi(2) + sol.coeffs[4].powi(2)).sqrt();
         let r1 = (u0[2].powi(2) + u0[4].powi(2)).sqrt();
         let (et, ea) = (sol.period() / r.period - 1.0, a1 / r1 - 1.0);
         let stick = ssb.stick_fractions()[0];
-        println!("{h} | {et:.3e} | {ea:.3e} | {stick:.4} | {}", sol.report.iterations);
+        println!(
+            "{h} | {et:.3e} | {ea:.3e} | {stick:.4} | {}",
+            sol.report.iterations
+        );
         // Measured: period -3.2e-4, -6.7e-5, 1.7e-7, 1.2e-5, -1.5e-6; amplitude -5.0e-3,
         // -9.6e-4, 2.1e-4, 4.1e-4, 9.9e-5 (H = 10…50). The force's kinks and the normal
         // load's jump at the transitions limit the truncation to about 1/H.

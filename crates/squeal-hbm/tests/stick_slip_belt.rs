@@ -132,7 +132,10 @@ fn dlft_cycle_against_the_closed_form() {
     let e = exact();
     let hs = [5usize, 10, 20, 30, 40, 50];
     let mut errors = Vec::new();
-    println!("H | period error | mean error | stick fraction (exact {:.4}) | iterations", e.stick_fraction);
+    println!(
+        "H | period error | mean error | stick fraction (exact {:.4}) | iterations",
+        e.stick_fraction
+    );
     for h in hs {
         let (t, mean, stick, it) = solve(h, 300.0)
             .unwrap_or_else(|| panic!("H {h}: DLFT converges from the closed form's coefficients"));
@@ -179,7 +182,10 @@ fn dlft_penalty_leaves_the_cycle_within_the_truncation_error() {
         let et = t / e.period - 1.0;
         println!("ε {eps:.0}: period error {et:.3e}, stick fraction {stick:.4}");
         assert!(et.abs() < 5.0e-3, "ε {eps}: period error {et:e}");
-        assert!((stick - e.stick_fraction).abs() < 4e-3, "ε {eps}: stick {stick}");
+        assert!(
+            (stick - e.stick_fraction).abs() < 4e-3,
+            "ε {eps}: stick {stick}"
+        );
     }
 }
 
