@@ -30,6 +30,13 @@
 //!   kinetic one: a smooth element that sticks and slips, for cycles whose sliding margin falls
 //!   below 1.
 //!
+//! Exact Coulomb stick–slip (no regularization velocity) is not a pointwise element: the
+//! stuck force is a Lagrange multiplier of the whole harmonic balance. It lives in
+//! `squeal_hbm::stick_slip` (dynamic Lagrangian frequency–time method, Nacivet et al., JSV 265,
+//! 2003), verified against the mass on a belt's closed form and an event-driven integration of
+//! the 2-dof friction oscillator (docs/verification.md, Stick–slip); the brake's CHBM and
+//! `squeal branch` do not use it yet and fall back on [`RegularizedCoulomb`].
+//!
 //! A scene chooses one for every pair by a [`LawSpec`] (`[contact] law`); a law written
 //! outside the crate (`crates/squeal-chbm/examples/user_contact_law.rs`) plugs in the same way
 //! without touching any other file.
