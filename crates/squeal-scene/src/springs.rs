@@ -254,7 +254,11 @@ mod tests {
             ),
             (
                 "stiffness = [1, 1, 1]\nspread = \"rigid\"\n",
-                "is not \"mean\" or \"area\"",
+                "is not \"mean\", \"area\" or \"normal\"",
+            ),
+            (
+                "stiffness = [1, 1, 0]\nspread = \"normal\"\n",
+                "give [k, 0, 0]",
             ),
             (
                 "stiffness = [1, 1, 1]\naxes = [[1, 0, 0], [1, 1, 0], [0, 0, 1]]\n",
