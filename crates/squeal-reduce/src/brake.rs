@@ -608,7 +608,8 @@ pub fn reduce_brake_loaded(
 
 /// [`reduce_brake_loaded`], keeping finished reductions in the folder `keep` when another
 /// part fails, and taking parts kept there by an earlier run instead of reducing them again
-/// ([`kept`](self::kept_dir)'s module docs). `None`: nothing kept or taken.
+/// ([`kept_dir`]; the kept reductions' docs are in `brake/kept.rs`). `None`: nothing kept or
+/// taken.
 pub fn reduce_brake_keeping(
     inputs: &BrakeInputs,
     disc: LoadedPart,

@@ -144,7 +144,7 @@ fn check(s: &Spring) -> Result<(), ReduceError> {
             for j in 0..3 {
                 let d: f64 = (0..3).map(|c| a[i][c] * a[j][c]).sum();
                 let want = if i == j { 1.0 } else { 0.0 };
-                if !((d - want).abs() <= ORTHONORMAL) {
+                if (d - want).abs() > ORTHONORMAL || d.is_nan() {
                     return Err(spring_error(
                         s,
                         format!(
