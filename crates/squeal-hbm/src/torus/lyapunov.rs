@@ -29,8 +29,10 @@
 //!
 //! **Accuracy and verdict.** Finite-time exponents err by `O(1/T)`. Two measures of that error
 //! come with the answer: the two exponents nearest zero (exactly zero in the limit) and the
-//! difference between the estimate over the second half of the record and over all of it;
-//! RK4's own error adds `(h ρ)⁵ / (120 h)` (its local error on the fastest mode, per time). The
+//! difference between the estimate over the second half of the record and over all of it.
+//! RK4's own error is not part of it: its bound on the fastest rate, `(h ρ)⁵ / (120 h)`
+//! ([`LyapunovSpectrum::step_error`]), is far too pessimistic for the slow exponents of a
+//! stiff system; it is checked by halving the step. The
 //! torus is [`TorusStability::Attracting`] when the largest of the other exponents is below
 //! minus that error, [`TorusStability::Unstable`] when above it, otherwise
 //! [`TorusStability::Undecided`] (near a bifurcation of the torus, where an exponent crosses
@@ -140,9 +142,11 @@ impl LyapunovSpectrum {
         hr.powi(5) / (120.0 * self.step)
     }
 
-    /// The error of the estimate: the largest of the tangent exponents' distance from zero,
-    /// the change between the second half's estimate and the whole record's, and
-    /// [`Self::step_error`].
+    /// The error of the finite-time estimate: the larger of the tangent exponents' distance
+    /// from zero and the change between the second half's estimate and the whole record's.
+    /// RK4's own error is not in it ([`Self::step_error`] bounds it for the fastest rate,
+    /// far too pessimistically for the slow exponents of a stiff system; check it by halving
+    /// [`LyapunovOptions::steps_per_period`]).
     pub fn uncertainty(&self) -> f64 {
         let t = self.tangent();
         let drift = self
@@ -155,7 +159,6 @@ impl LyapunovSpectrum {
             .abs()
             .max(self.exponents[t[1]].abs())
             .max(drift)
-            .max(self.step_error())
     }
 
     /// The verdict (module docs).
