@@ -154,7 +154,10 @@ fn check(sys: Coupled, verdict: TorusStability) {
         .fold(0.0, f64::max);
     // Finite-time exponents err by O(1/T): the bounded oscillation of log |v| along the torus
     // over T ≈ 2500 time units, a few 1e-4 here; RK4 at h ≈ 0.2 adds ~(h ρ)^4 / T, far less.
-    assert!(err < 2e-3, "exponents {got:?} vs closed form {want:?}: {err:.2e}");
+    assert!(
+        err < 2e-3,
+        "exponents {got:?} vs closed form {want:?}: {err:.2e}"
+    );
     // The finite-time uncertainty leaves out RK4's error (measured here: 1.7e-5 and 1.3e-4 at
     // h ≈ 0.2, about (h λ)⁵/(120 h)); with RK4's bound added it covers the actual error.
     assert!(
@@ -208,7 +211,5 @@ fn bad_options_are_errors() {
     assert!(lyapunov_exponents(&mut along, [1.0, 0.6], &o).is_err());
     o.exponents = 5;
     assert!(lyapunov_exponents(&mut along, [1.0, 0.6], &o).is_err());
-    assert!(
-        lyapunov_exponents(&mut along, [f64::NAN, 0.6], &LyapunovOptions::default()).is_err()
-    );
+    assert!(lyapunov_exponents(&mut along, [f64::NAN, 0.6], &LyapunovOptions::default()).is_err());
 }

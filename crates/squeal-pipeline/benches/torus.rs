@@ -49,7 +49,9 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
         tori.len(),
         t_branch + t_tori
     );
-    println!("| NS (mu0) | mu/mu0 | f1 (Hz) | f2 (Hz) | swing min..max (um) | exponents (1/s) | transverse +- error (1/s) | stability |");
+    println!(
+        "| NS (mu0) | mu/mu0 | f1 (Hz) | f2 (Hz) | swing min..max (um) | exponents (1/s) | transverse +- error (1/s) | stability |"
+    );
     println!("|---|---|---|---|---|---|---|---|");
     for run in &tori {
         match &run.result {
@@ -65,7 +67,11 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
             let f = pt.frequencies_hz();
             let (ex, tr, v) = match s {
                 Ok(s) => (
-                    s.exponents.iter().map(|x| format!("{x:.2}")).collect::<Vec<_>>().join(", "),
+                    s.exponents
+                        .iter()
+                        .map(|x| format!("{x:.2}"))
+                        .collect::<Vec<_>>()
+                        .join(", "),
                     format!("{:.2} +- {:.2}", s.transverse(), s.uncertainty()),
                     s.stability().to_string(),
                 ),

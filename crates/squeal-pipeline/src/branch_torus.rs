@@ -97,8 +97,12 @@ impl TorusRun {
     /// The converged tori with their stability, in order.
     pub fn points(
         &self,
-    ) -> impl Iterator<Item = (&squeal_chbm::torus::TorusPoint, &Result<LyapunovSpectrum, String>)>
-    {
+    ) -> impl Iterator<
+        Item = (
+            &squeal_chbm::torus::TorusPoint,
+            &Result<LyapunovSpectrum, String>,
+        ),
+    > {
         self.result
             .as_ref()
             .map(|b| b.points.iter().zip(&self.stability))
@@ -301,7 +305,12 @@ pub fn table(a: &BranchAnalysis) -> Table {
     .map(String::from)
     .to_vec();
     for k in 1..=n_pairs {
-        for q in ["swing_min_m", "swing_max_m", "closure_min_m", "closure_max_m"] {
+        for q in [
+            "swing_min_m",
+            "swing_max_m",
+            "closure_min_m",
+            "closure_max_m",
+        ] {
             header.push(format!("pair{k}_{q}"));
         }
     }
@@ -452,8 +461,11 @@ pub fn add_to_figure(
                 line(&|p| 1e6 * p.pairs[pair].envelope.swing_min),
                 line(&|p| 1e6 * p.pairs[pair].envelope.swing_max),
             );
-            amp.series
-                .push(Series::line(name, hi).with_color(c).with_dash(Dash::DashDot));
+            amp.series.push(
+                Series::line(name, hi)
+                    .with_color(c)
+                    .with_dash(Dash::DashDot),
+            );
             amp.series
                 .push(Series::line("", lo).with_color(c).with_dash(Dash::DashDot));
             freq.series.push(

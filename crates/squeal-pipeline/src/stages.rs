@@ -105,7 +105,10 @@ pub fn branch_stage_with(
     if torus.enabled {
         let t = Instant::now();
         a.tori = crate::branch_torus::follow(m, st, &a, opts, torus, p.log());
-        p.record("torus branches and their stability", t.elapsed().as_secs_f64());
+        p.record(
+            "torus branches and their stability",
+            t.elapsed().as_secs_f64(),
+        );
     }
     let t = Instant::now();
     (a.levels, a.microphone) =

@@ -29,7 +29,10 @@ fn coarse_brake_branch_continues_onto_the_torus() {
     let a = stages::branch_stage_with(&p, &opts, &[], &plan)
         .unwrap()
         .expect("the coarse brake has a Hopf point");
-    assert!(!a.tori.is_empty(), "the coarse brake has a Neimark-Sacker point");
+    assert!(
+        !a.tori.is_empty(),
+        "the coarse brake has a Neimark-Sacker point"
+    );
     let run = &a.tori[0];
     let b = run.result.as_ref().expect("the torus branch converges");
     assert!(b.points.len() >= 4, "only {} tori", b.points.len());
@@ -44,7 +47,11 @@ fn coarse_brake_branch_continues_onto_the_torus() {
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     for (row, pt) in rows.iter().zip(&b.points) {
         let f: f64 = row[col("f2_hz")].parse().unwrap();
-        assert_eq!(f, pt.frequencies_hz()[1], "the CSV prints the value exactly");
+        assert_eq!(
+            f,
+            pt.frequencies_hz()[1],
+            "the CSV prints the value exactly"
+        );
         assert!(!row[col("stability")].is_empty());
     }
     let json: serde_json::Value = serde_json::from_str(
@@ -137,5 +144,4 @@ fn coarse_brake_branch_continues_onto_the_torus() {
     for x in &f2 {
         assert!(rel(*x, f2[0]) < 1e-4, "f2 {x} against {}", f2[0]);
     }
-
 }

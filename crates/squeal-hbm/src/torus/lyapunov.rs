@@ -179,7 +179,9 @@ impl LyapunovSpectrum {
 fn spectral_radius<S: TorusVariational>(sys: &S) -> f64 {
     let n = sys.dim();
     // A fixed start with every component nonzero (results do not depend on any seed).
-    let mut v: Vec<f64> = (0..n).map(|i| 1.0 + 0.5 * ((i * 7919) % 13) as f64).collect();
+    let mut v: Vec<f64> = (0..n)
+        .map(|i| 1.0 + 0.5 * ((i * 7919) % 13) as f64)
+        .collect();
     normalize(&mut v);
     let mut w = vec![0.0; n];
     let m = 60;
@@ -265,12 +267,21 @@ pub fn lyapunov_exponents<S: TorusVariational>(
     let mut v = vec![0.0; n * k];
     for c in 0..k {
         for i in 0..n {
-            v[c * n + i] = if (i + c) % k == 0 { 1.0 } else { 0.1 / (1 + i) as f64 };
+            v[c * n + i] = if (i + c) % k == 0 {
+                1.0
+            } else {
+                0.1 / (1 + i) as f64
+            };
         }
     }
     let mut logs = vec![0.0; k];
     orthonormalize(&mut v, n, &mut logs);
-    let (mut k1, mut k2, mut k3, mut k4) = (vec![0.0; n * k], vec![0.0; n * k], vec![0.0; n * k], vec![0.0; n * k]);
+    let (mut k1, mut k2, mut k3, mut k4) = (
+        vec![0.0; n * k],
+        vec![0.0; n * k],
+        vec![0.0; n * k],
+        vec![0.0; n * k],
+    );
     let mut tmp = vec![0.0; n * k];
     let (mut sum, mut sum_half) = (vec![0.0; k], vec![0.0; k]);
     let (start, total) = (opts.transient * per, (opts.transient + opts.periods) * per);
