@@ -206,8 +206,10 @@ fn bad_options_are_errors() {
         sys,
         jac: [[0.0; 4]; 4],
     };
-    let mut o = LyapunovOptions::default();
-    o.exponents = 2;
+    let mut o = LyapunovOptions {
+        exponents: 2,
+        ..LyapunovOptions::default()
+    };
     assert!(lyapunov_exponents(&mut along, [1.0, 0.6], &o).is_err());
     o.exponents = 5;
     assert!(lyapunov_exponents(&mut along, [1.0, 0.6], &o).is_err());

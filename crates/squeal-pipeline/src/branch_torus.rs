@@ -143,8 +143,10 @@ fn follow_one(
 ) -> TorusRun {
     let mu0 = a.mu0();
     let harmonics = a.branch.points[ns.after_point].harmonics;
-    let mut topts = TorusOptions::default();
-    topts.truncation = Some(plan.truncation.unwrap_or(default_truncation(harmonics)));
+    let mut topts = TorusOptions {
+        truncation: Some(plan.truncation.unwrap_or(default_truncation(harmonics))),
+        ..TorusOptions::default()
+    };
     topts.continuation.max_points = plan.max_points;
     topts.continuation.parameter_range = (opts.range.0 * mu0, opts.range.1 * mu0);
     log(&format!(
