@@ -1,10 +1,13 @@
 //! `squeal branch`: where and how loud the brake squeals. The branch of limit cycles from the
-//! Hopf point in μ, through its folds, with each cycle's Floquet stability (issue 10).
+//! Hopf point in μ, through its folds, with each cycle's Floquet stability (issue 10), and past
+//! each Neimark–Sacker point the torus branch with each torus' stability (issue 24).
 
 use crate::commands::stability::pipeline;
 use anyhow::{Result, bail};
 use clap::Args;
+
 use squeal_pipeline::branch::{BranchOptions, Harmonics};
+use squeal_pipeline::branch_torus::{TorusPlan, Truncation};
 use squeal_pipeline::{Pipeline, branch, stages};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -37,6 +40,20 @@ pub struct BranchArgs {
     /// .toml: out/meshes/brake for meshes/brake.toml)
     #[arg(long, short)]
     pub out: Option<PathBuf>,
+    /// Stop at the Neimark-Sacker points (default: follow the torus branch born at each, with
+    /// each torus' stability from its Lyapunov exponents)
+    #[arg(long)]
+    pub no_torus: bool,
+    /// The tori's 2-D Fourier basis as the box |k1| <= H1, |k2| <= H2 (default: H1 the
+    /// cycle's harmonics at the Neimark-Sacker point, H2 = 2)
+    #[arg(long, value_name = "H1,H2", value_delimiter = ',')]
+    pub torus_box: Vec<usize>,
+    /// Most tori on each torus branch
+    #[arg(long, default_value_t = 60)]
+    pub torus_points: usize,
+    /// Skip the tori's Lyapunov exponents (their stability is then "not computed")
+    #[arg(long)]
+    pub no_torus_stability: bool,
     #[arg(long, value_name = "X,Y,Z", help = crate::commands::mic::HELP, allow_hyphen_values = true, value_parser = squeal_pipeline::sound::parse_microphone)]
     pub mic: Vec<[f64; 3]>,
 }
@@ -78,23 +95,56 @@ pub fn options(args: &BranchArgs) -> Result<BranchOptions> {
     Ok(o)
 }
 
+/// The torus plan from the command line, checked before any work.
+pub fn torus_plan(args: &BranchArgs) -> Result<TorusPlan> {
+    let mut plan = TorusPlan {
+        enabled: !args.no_torus,
+        ..TorusPlan::default()
+    };
+    match args.torus_box[..] {
+        [] => {}
+        [h1, h2] if (1..=50).contains(&h1) && (1..=20).contains(&h2) => {
+            plan.truncation = Some(Truncation::Box(h1, h2))
+        }
+        _ => bail!(
+            "--torus-box takes two orders H1,H2 with H1 in 1..=50 and H2 in 1..=20 (got {})",
+            args.torus_box
+                .iter()
+                .map(|h| h.to_string())
+                .collect::<Vec<_>>()
+                .join(",")
+        ),
+    }
+    if args.torus_points < 2 {
+        bail!("--torus-points must be at least 2");
+    }
+    plan.max_points = args.torus_points;
+    if args.no_torus_stability {
+        plan.lyapunov = None;
+    }
+    Ok(plan)
+}
+
 pub fn run(args: BranchArgs) -> Result<ExitCode> {
     let opts = options(&args)?;
+    let plan = torus_plan(&args)?;
     let mut p = pipeline(&args.scene, &args.out, &None)?;
     crate::commands::mic::apply(&mut p, &args.mic)?;
-    Ok(if write(&p, &opts, &args.at)?.is_some() {
+    Ok(if write(&p, &opts, &args.at, &plan)?.is_some() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(3)
     })
 }
 
-/// Follows the branch of `p` and writes `<out>/branch`, with the cycles at `at` × μ0
-/// ([`stages::branch_stage`]); `None` when there is no Hopf point.
+/// Follows the branch of `p` and writes `<out>/branch`, with the cycles at `at` × μ0 and the
+/// torus branches of `plan` ([`stages::branch_stage_with`]); `None` when there is no Hopf
+/// point.
 pub fn write(
     p: &Pipeline,
     opts: &BranchOptions,
     at: &[f64],
+    plan: &TorusPlan,
 ) -> Result<Option<branch::BranchAnalysis>> {
-    Ok(stages::branch_stage(p, opts, at)?)
+    Ok(stages::branch_stage_with(p, opts, at, plan)?)
 }

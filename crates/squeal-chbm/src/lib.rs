@@ -47,6 +47,7 @@ pub mod start;
 pub mod system;
 pub mod timeint;
 pub mod torus;
+pub mod torus_stability;
 
 pub use solve::{
     ChbmError, ChbmOptions, ChbmSolution, ChbmStart, Guess, Outcome, RESTART_AMPLITUDES,

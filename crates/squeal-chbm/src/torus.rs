@@ -32,10 +32,9 @@
 //! envelope, the smallest and largest peak-to-peak swing over one fast period
 //! ([`squeal_hbm::torus::measure::envelope`], the same measure a time integration gets).
 //!
-//! **Stability of the tori: not computed.** Neither Lyapunov exponents nor a quasi-periodic
-//! Floquet (Hill) analysis is implemented; a torus point says nothing about its stability. The
-//! time integration of the verification (docs/verification.md) is the only evidence that the
-//! tori it checks are attracting.
+//! **Stability of the tori.** By their Lyapunov exponents along the known flow:
+//! [`crate::torus_stability`] (the method and why not a quasi-periodic Floquet analysis:
+//! [`squeal_hbm::torus::lyapunov`]).
 
 use crate::bifurcation::{Bifurcation, BifurcationKind};
 use crate::branch::{BranchOptions, BranchPoint, LimitCycleBranch, cycles_at};

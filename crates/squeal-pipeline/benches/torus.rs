@@ -7,6 +7,11 @@
 //! `medium` (default), `h2=N` (the basis' order in the second angle, default 2), `h1=N` (in
 //! the first, default the cycle's harmonics), `points=N` (tori at the most, default 30),
 //! `step=s` (the torus continuation's largest step, default 0.1)).
+//!
+//! With `pipeline=1` it times instead what `squeal branch` computes (without the sound
+//! levels and files): `branch::analyse` (the branch with Hill's multipliers) and
+//! `branch_torus::follow` with the default plan (every Neimark–Sacker point's torus branch,
+//! each torus' Lyapunov exponents), and prints each torus' verdict.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -24,6 +29,67 @@ fn arg(name: &str) -> Option<String> {
     std::env::args().find_map(|a| a.strip_prefix(&format!("{name}=")).map(String::from))
 }
 
+/// What `squeal branch` computes, timed (module docs).
+fn as_squeal_branch(p: &Pipeline, level: &str) {
+    use squeal_pipeline::branch::{self, HillOptions as Hill};
+    use squeal_pipeline::branch_torus::{self, TorusPlan};
+    let (m, st) = (p.model().unwrap(), p.stability().unwrap());
+    let opts = BranchOptions::default();
+    let t0 = Instant::now();
+    let a = branch::analyse(m, st, &opts, &Hill::default(), &[], &quiet)
+        .unwrap()
+        .unwrap();
+    let t_branch = t0.elapsed().as_secs_f64();
+    let t1 = Instant::now();
+    let log = |s: &str| eprintln!("{s}");
+    let tori = branch_torus::follow(m, st, &a, &opts, &TorusPlan::default(), &log);
+    let t_tori = t1.elapsed().as_secs_f64();
+    println!(
+        "{level} brake as squeal branch: branch with Hill {t_branch:.2} s, {} torus branches with Lyapunov exponents {t_tori:.2} s, whole {:.2} s",
+        tori.len(),
+        t_branch + t_tori
+    );
+    println!(
+        "| NS (mu0) | mu/mu0 | f1 (Hz) | f2 (Hz) | swing min..max (um) | exponents (1/s) | transverse +- error (1/s) | stability |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    for run in &tori {
+        match &run.result {
+            Err(e) => println!("| {:.5} | failed: {e} |||||||", run.ns.parameter / a.mu0()),
+            Ok(b) => eprintln!(
+                "torus branch {:.2} s, exponents {:.2} s",
+                b.time.as_secs_f64(),
+                run.stability_time.as_secs_f64()
+            ),
+        }
+        for (pt, s) in run.points() {
+            let (_, e) = pt.loudest();
+            let f = pt.frequencies_hz();
+            let (ex, tr, v) = match s {
+                Ok(s) => (
+                    s.exponents
+                        .iter()
+                        .map(|x| format!("{x:.2}"))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    format!("{:.2} +- {:.2}", s.transverse(), s.uncertainty()),
+                    s.stability().to_string(),
+                ),
+                Err(e) => (String::new(), String::new(), e.clone()),
+            };
+            println!(
+                "| {:.5} | {:.5} | {:.3} | {:.3} | {:.3}..{:.3} | {ex} | {tr} | {v} |",
+                run.ns.parameter / a.mu0(),
+                pt.mu / a.mu0(),
+                f[0],
+                f[1],
+                1e6 * e.swing_min,
+                1e6 * e.swing_max
+            );
+        }
+    }
+}
+
 fn main() {
     faer::set_global_parallelism(faer::Par::Seq);
     let level = arg("level").unwrap_or_else(|| "medium".into());
@@ -35,6 +101,10 @@ fn main() {
         "{level} brake and sweep in {:.1?} (not timed below)",
         t.elapsed()
     );
+    if arg("pipeline").is_some() {
+        as_squeal_branch(&p, &level);
+        return;
+    }
     let nf = stability::normal_form(m, st).unwrap().unwrap();
     let mb = ModalBrake::new(&m.brake, &st.reference, nf.mu0);
 

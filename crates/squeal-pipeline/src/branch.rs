@@ -53,6 +53,9 @@ pub struct BranchAnalysis {
     pub levels: Vec<f64>,
     /// The microphone the levels are taken at (m), when they were computed.
     pub microphone: Option<[f64; 3]>,
+    /// The torus branches from the Neimark–Sacker points ([`crate::branch_torus`]); empty
+    /// when not followed.
+    pub tori: Vec<crate::branch_torus::TorusRun>,
 }
 
 /// A cycle of the branch at a friction value asked for.
@@ -189,6 +192,7 @@ pub fn analyse(
         at: cycles,
         levels: Vec::new(),
         microphone: None,
+        tori: Vec::new(),
     }))
 }
 
@@ -337,6 +341,7 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
         out.push_str(&crate::sound::squeal_level_text(a, &a.levels));
     }
     out.push_str(&t.to_text());
+    out.push_str(&crate::branch_torus::summary_text(a));
     out
 }
 
@@ -468,6 +473,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
             "unstable_before_after": [bi.unstable.0, bi.unstable.1],
         })).collect::<Vec<_>>(),
         "microphone_m": a.microphone,
+        "tori": crate::branch_torus::json(a),
         "cycles_at": a.at.iter().map(|c| {
             let f = c.floquet.as_ref().ok();
             serde_json::json!({
@@ -636,11 +642,13 @@ pub fn figure(a: &BranchAnalysis) -> Figure {
             fmt_sig(mu0, 4)
         ),
     };
+    let torus_f2 = crate::branch_torus::add_to_figure(a, pair, &mut amp, &mut freq);
     let zoom = zoomed(&amp, a);
     let mut panels = vec![amp];
     panels.extend(zoom);
     panels.push(freq);
     panels.push(open);
+    panels.extend(torus_f2);
     Figure {
         title,
         layout: Layout::Grid { columns: 2 },
@@ -682,6 +690,9 @@ fn zoomed(amp: &Panel, a: &BranchAnalysis) -> Option<Panel> {
 pub fn write(dir: &Path, a: &BranchAnalysis) -> Result<()> {
     crate::study::create_dir(dir)?;
     table(a).write_csv(&dir.join("branch.csv"))?;
+    if !a.tori.is_empty() {
+        crate::branch_torus::table(a).write_csv(&dir.join("branch_torus.csv"))?;
+    }
     squeal_io::atomic_write_bytes(
         &dir.join("branch.json"),
         json_text(&json(a), "the branch")?.as_bytes(),

@@ -74,6 +74,17 @@ pub fn branch_stage(
     opts: &BranchOptions,
     at: &[f64],
 ) -> Result<Option<BranchAnalysis>> {
+    branch_stage_with(p, opts, at, &crate::branch_torus::TorusPlan::off())
+}
+
+/// [`branch_stage`] continuing past the Neimark–Sacker points onto the torus branches as
+/// `torus` says ([`crate::branch_torus`]).
+pub fn branch_stage_with(
+    p: &Pipeline,
+    opts: &BranchOptions,
+    at: &[f64],
+    torus: &crate::branch_torus::TorusPlan,
+) -> Result<Option<BranchAnalysis>> {
     let m = p.model()?;
     let st = p
         .stability()
@@ -91,6 +102,14 @@ pub fn branch_stage(
         return Ok(None);
     };
     p.record("branch and its stability", t.elapsed().as_secs_f64());
+    if torus.enabled {
+        let t = Instant::now();
+        a.tori = crate::branch_torus::follow(m, st, &a, opts, torus, p.log());
+        p.record(
+            "torus branches and their stability",
+            t.elapsed().as_secs_f64(),
+        );
+    }
     let t = Instant::now();
     (a.levels, a.microphone) =
         crate::sound::branch_levels_or_log(&p.scene, m, st, &a, opts.samples, &p.sound, p.log());

@@ -19,6 +19,7 @@
 //! * [`start_from_cycle`]: the start at a Neimark–Sacker point from the cycle and the critical
 //!   Floquet vector (computed here from the same equations, by inverse iteration on the
 //!   modulation's block of the Jacobian: Hill's matrix in real form).
+//! * [`lyapunov`]: the torus' stability from its Lyapunov exponents along the known flow.
 //! * [`measure`]: the amplitude envelope and the spectral peaks, measured alike on a torus'
 //!   signal and on a time integration.
 //!
@@ -36,6 +37,7 @@ mod balance;
 mod basis;
 mod force;
 mod linear;
+pub mod lyapunov;
 pub mod measure;
 mod start;
 
