@@ -40,6 +40,7 @@ pub mod error;
 pub mod harmonic;
 pub mod hopf;
 pub mod interface_reduced;
+pub mod interface_system;
 pub mod linearized;
 pub mod modal;
 pub mod modal_brake;

@@ -22,7 +22,7 @@ use squeal_reduce::interface_modes::{
     InterfaceModes, characteristic_constraint_modes_loaded, transformed_part,
 };
 use squeal_scene::Scene;
-use squeal_scene::reduction::InterfaceModeCount;
+use squeal_scene::reduction::{InterfaceBasis, InterfaceModeCount};
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -32,8 +32,10 @@ pub const FIRST_LEVEL: usize = 10;
 /// One count of CC modes and what the brake gave with it.
 #[derive(Clone, Debug)]
 pub struct InterfaceLevel {
-    /// CC modes kept per part (disc, then the pads).
+    /// Face vectors kept per part (disc, then the pads).
     pub kept: Vec<usize>,
+    /// What the basis held at this level, in words.
+    pub basis: String,
     /// The brake's reduced size.
     pub dofs: usize,
     /// μ0 and its frequency (Hz), when the sweep found a Hopf point (`"auto"` only).
@@ -47,6 +49,8 @@ pub struct InterfaceLevel {
 /// What the interface reduction kept, and why.
 #[derive(Clone, Debug)]
 pub struct InterfaceSummary {
+    /// The basis, in words.
+    pub method: String,
     /// The parts' names and their contact-face dofs before the reduction.
     pub face_dofs: Vec<(String, usize)>,
     /// The brake's size before the reduction.
@@ -78,21 +82,27 @@ impl InterfaceSummary {
             .collect();
         let _ = writeln!(
             out,
-            "interface reduction: characteristic constraint modes of each contact face ({}); {} dofs instead of {}: {}",
+            "interface reduction: {} ({}; {}); {} dofs instead of {}: {}",
+            self.method,
+            self.chosen().basis,
             parts.join(", "),
             self.chosen().dofs,
             self.dofs_before,
             self.reason
         );
         if self.levels.iter().any(|l| l.swept) {
-            let _ = writeln!(out, "  CC modes per part | dofs | mu0 | frequency (Hz) | s");
+            let _ = writeln!(
+                out,
+                "  basis | face vectors per part | dofs | mu0 | frequency (Hz) | s"
+            );
             for l in &self.levels {
                 let (mu, f) = l.hopf.map_or(("-".into(), "-".into()), |(m, f)| {
                     (format!("{m:.6}"), format!("{f:.2}"))
                 });
                 let _ = writeln!(
                     out,
-                    "  {} | {} | {mu} | {f} | {:.1}",
+                    "  {} | {} | {} | {mu} | {f} | {:.1}",
+                    l.basis,
                     l.kept
                         .iter()
                         .map(usize::to_string)
@@ -109,7 +119,7 @@ impl InterfaceSummary {
     /// Its record in `summary.json`.
     pub fn json(&self) -> serde_json::Value {
         serde_json::json!({
-            "method": "characteristic constraint modes of each part's contact face (Castanier, Tan & Pierre 2001)",
+            "method": self.method,
             "contact_face_dofs": self.face_dofs.iter().map(|(n, d)| serde_json::json!({"part": n, "dofs": d})).collect::<Vec<_>>(),
             "dofs_before": self.dofs_before,
             "dofs": self.chosen().dofs,
@@ -118,6 +128,7 @@ impl InterfaceSummary {
             "reason": self.reason,
             "levels": self.levels.iter().map(|l| serde_json::json!({
                 "kept_per_part": l.kept,
+                "basis": l.basis,
                 "dofs": l.dofs,
                 "mu0": l.hopf.map(|h| h.0),
                 "frequency_hz": l.hopf.map(|h| h.1),
@@ -128,11 +139,25 @@ impl InterfaceSummary {
     }
 }
 
+/// One candidate of an interface reduction: the model, the face vectors kept per part and
+/// what they are.
+pub struct Candidate {
+    /// The reduced model.
+    pub model: Model,
+    /// Face vectors kept per part (disc, then the pads).
+    pub kept: Vec<usize>,
+    /// What the basis holds, in words.
+    pub basis: String,
+}
+
 /// The model with the scene's interface reduction applied (the model itself without one).
 pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
     let Some(choice) = scene.interface_reduction()? else {
         return Ok(model);
     };
+    if choice.basis == InterfaceBasis::System {
+        return crate::interface_system::apply(scene, model, log, choice.modes);
+    }
     let t = Instant::now();
     let modes = loaded_modes(&model)?;
     log(&format!(
@@ -146,95 +171,146 @@ pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
     ));
     let most = modes.iter().map(InterfaceModes::count).max().unwrap_or(0);
     let face_dofs = modes.iter().map(|m| (m.part.clone(), m.count())).collect();
-    let dofs_before = model.brake.size();
-    let summary =
-        |levels: Vec<InterfaceLevel>, chosen: usize, reason: String, tol| InterfaceSummary {
-            face_dofs,
-            dofs_before,
-            tolerance: tol,
-            levels,
-            chosen,
-            reason,
-        };
+    let head = Head {
+        method: "characteristic constraint modes of each part's contact face (Castanier, Tan & Pierre 2001)".into(),
+        face_dofs,
+    };
+    let candidate = |k: usize| -> Result<Candidate> {
+        Ok(Candidate {
+            model: at_count(&model, &modes, k)?,
+            kept: kept(&modes, k),
+            basis: format!("{k} CC modes per part"),
+        })
+    };
     match choice.modes {
         InterfaceModeCount::Fixed(k) => {
-            let t = Instant::now();
-            let mut m = at_count(&model, &modes, k)?;
-            let level = InterfaceLevel {
-                kept: kept(&modes, k),
-                dofs: m.brake.size(),
-                hopf: None,
-                swept: false,
-                seconds: t.elapsed().as_secs_f64(),
-            };
             let reason = format!("interface_modes = {k} in {}", scene.path.display());
-            m.interface = Some(summary(vec![level], 0, reason, None));
-            Ok(m)
+            fixed(&model, head, candidate(k)?, reason)
         }
         InterfaceModeCount::Auto { tolerance } => {
-            let mus = scene.mu_values()?;
-            let mut levels: Vec<InterfaceLevel> = Vec::new();
-            let mut k = FIRST_LEVEL.min(most);
-            let mut previous: Option<Vec<f64>> = None;
-            loop {
-                let t = Instant::now();
-                let m = at_count(&model, &modes, k)?;
-                let st = crate::stability::analyse(&m, &mus)?;
-                let hopf = st.sweep.hopf.as_ref().map(|h| (h.mu0, h.frequency_hz));
-                let tau = std::f64::consts::TAU;
-                let frictionless: Vec<f64> = st
-                    .reference
-                    .basis
-                    .omega
-                    .iter()
-                    .map(|w| w / tau)
-                    .filter(|&f| m.sweep.band.contains(f))
-                    .collect();
-                let level = InterfaceLevel {
-                    kept: kept(&modes, k),
-                    dofs: m.brake.size(),
-                    hopf,
-                    swept: true,
-                    seconds: t.elapsed().as_secs_f64(),
-                };
-                log(&format!(
-                    "  {} CC modes per part, {} dofs: {} ({:.1} s)",
-                    k,
-                    level.dofs,
-                    hopf.map_or("no Hopf point".into(), |(mu, f)| format!(
-                        "mu0 = {mu:.6} at {f:.2} Hz"
-                    )),
-                    level.seconds
-                ));
-                let settled = previous
-                    .as_ref()
-                    .filter(|prev| same_frequencies(prev, &frictionless, tolerance))
-                    .and(levels.last())
-                    .and_then(|prev| agree(prev.hopf, hopf, tolerance));
-                previous = Some(frictionless);
-                levels.push(level);
-                let i = levels.len() - 1;
-                if let Some(why) = settled {
-                    let reason = format!(
-                        "the smallest count of {FIRST_LEVEL}, {}, ... per part at which the frictionless frequencies in the band and the Hopf point settled: {why} from the count before (tolerance {tolerance:e}, [reduction] interface_tolerance)",
-                        2 * FIRST_LEVEL
-                    );
-                    let mut m = m;
-                    m.interface = Some(summary(levels, i, reason, Some(tolerance)));
-                    return Ok(m);
-                }
-                if k >= most {
-                    let reason = format!(
-                        "no count below every CC mode settled to {tolerance:e}: all kept (the unreduced-interface model in other coordinates)"
-                    );
-                    let mut m = m;
-                    m.interface = Some(summary(levels, i, reason, Some(tolerance)));
-                    return Ok(m);
-                }
-                k = (2 * k).min(most);
-            }
+            let levels = std::iter::successors(Some(FIRST_LEVEL.min(most)), |&k| {
+                (k < most).then(|| (2 * k).min(most))
+            })
+            .map(candidate);
+            let what = format!("{FIRST_LEVEL}, {}, ... CC modes per part", 2 * FIRST_LEVEL);
+            auto(scene, &model, log, head, levels, tolerance, &what)
         }
     }
+}
+
+/// The parts of a summary known before any level: the method and the faces' sizes.
+pub struct Head {
+    /// The basis, in words (with its reference).
+    pub method: String,
+    /// Each part's name and contact-face dofs.
+    pub face_dofs: Vec<(String, usize)>,
+}
+
+/// A fixed count: the candidate, not swept.
+pub fn fixed(model: &Model, head: Head, c: Candidate, reason: String) -> Result<Model> {
+    let t = Instant::now();
+    let level = InterfaceLevel {
+        kept: c.kept,
+        basis: c.basis,
+        dofs: c.model.brake.size(),
+        hopf: None,
+        swept: false,
+        seconds: t.elapsed().as_secs_f64(),
+    };
+    let mut m = c.model;
+    m.interface = Some(InterfaceSummary {
+        method: head.method,
+        face_dofs: head.face_dofs,
+        dofs_before: model.brake.size(),
+        tolerance: None,
+        levels: vec![level],
+        chosen: 0,
+        reason,
+    });
+    Ok(m)
+}
+
+/// `"auto"`: sweeps each candidate of `levels` in turn (ascending) and keeps the first whose
+/// frictionless in-band frequencies, μ0 and μ0's frequency moved by less than `tolerance`
+/// from the one before, or the last.
+pub fn auto(
+    scene: &Scene,
+    model: &Model,
+    log: Log,
+    head: Head,
+    levels: impl Iterator<Item = Result<Candidate>>,
+    tolerance: f64,
+    what: &str,
+) -> Result<Model> {
+    let mus = scene.mu_values()?;
+    let mut done: Vec<InterfaceLevel> = Vec::new();
+    let mut previous: Option<Vec<f64>> = None;
+    let mut last: Option<Model> = None;
+    let finish = |m: Model, done: Vec<InterfaceLevel>, reason: String| {
+        let mut m = m;
+        m.interface = Some(InterfaceSummary {
+            method: head.method.clone(),
+            face_dofs: head.face_dofs.clone(),
+            dofs_before: model.brake.size(),
+            tolerance: Some(tolerance),
+            chosen: done.len() - 1,
+            levels: done,
+            reason,
+        });
+        m
+    };
+    for c in levels {
+        let t = Instant::now();
+        let c = c?;
+        let m = c.model;
+        let st = crate::stability::analyse(&m, &mus)?;
+        let hopf = st.sweep.hopf.as_ref().map(|h| (h.mu0, h.frequency_hz));
+        let tau = std::f64::consts::TAU;
+        let frictionless: Vec<f64> = st
+            .reference
+            .basis
+            .omega
+            .iter()
+            .map(|w| w / tau)
+            .filter(|&f| m.sweep.band.contains(f))
+            .collect();
+        let level = InterfaceLevel {
+            kept: c.kept,
+            basis: c.basis,
+            dofs: m.brake.size(),
+            hopf,
+            swept: true,
+            seconds: t.elapsed().as_secs_f64(),
+        };
+        log(&format!(
+            "  {}, {} dofs: {} ({:.1} s)",
+            level.basis,
+            level.dofs,
+            hopf.map_or("no Hopf point".into(), |(mu, f)| format!(
+                "mu0 = {mu:.6} at {f:.2} Hz"
+            )),
+            level.seconds
+        ));
+        let settled = previous
+            .as_ref()
+            .filter(|prev| same_frequencies(prev, &frictionless, tolerance))
+            .and(done.last())
+            .and_then(|prev| agree(prev.hopf, hopf, tolerance));
+        previous = Some(frictionless);
+        done.push(level);
+        if let Some(why) = settled {
+            let reason = format!(
+                "the first of {what} at which the frictionless frequencies in the band and the Hopf point settled: {why} from the one before (tolerance {tolerance:e}, [reduction] interface_tolerance)"
+            );
+            return Ok(finish(m, done, reason));
+        }
+        last = Some(m);
+    }
+    let m = last.ok_or(PipelineError::NoPart { part: "disc" })?;
+    let reason = format!(
+        "none of {what} settled to {tolerance:e} before the last: the last kept (the most the basis offers)"
+    );
+    Ok(finish(m, done, reason))
 }
 
 /// Each part's CC modes with the contact springs' tangent stiffness at the frictionless
@@ -302,7 +378,17 @@ fn kept(modes: &[InterfaceModes], k: usize) -> Vec<usize> {
 /// The model on `k` CC modes per part: its brake projected, its reduced parts (their matrices
 /// and bases, for the shapes on the meshes) in the same coordinates.
 pub fn at_count(model: &Model, modes: &[InterfaceModes], k: usize) -> Result<Model> {
-    let blocks: Vec<_> = modes.iter().map(|m| m.transformation(k)).collect();
+    let blocks: Vec<(String, faer::Mat<f64>)> = modes
+        .iter()
+        .map(|m| (m.part.clone(), m.transformation(k)))
+        .collect();
+    at_blocks(model, &blocks)
+}
+
+/// The model in the coordinates `q_I = T_I q'_I` of each part, `blocks` holding each part's
+/// name and `T_I` (rows: the part's reduced dofs): its brake projected, its reduced parts
+/// (their matrices and bases, for the shapes on the meshes) in the same coordinates.
+pub fn at_blocks(model: &Model, blocks: &[(String, faer::Mat<f64>)]) -> Result<Model> {
     // The brake's parts in the layout's order, each with its block.
     let order: Vec<&str> = std::iter::once("disc")
         .chain(model.layout.pads.iter().map(|p| p.0.as_str()))
@@ -310,10 +396,10 @@ pub fn at_count(model: &Model, modes: &[InterfaceModes], k: usize) -> Result<Mod
     let ordered = order
         .iter()
         .map(|name| {
-            modes
+            blocks
                 .iter()
-                .position(|m| m.part == *name)
-                .map(|i| blocks[i].clone())
+                .find(|b| b.0 == *name)
+                .map(|b| b.1.clone())
                 .ok_or(PipelineError::NoPart { part: "pad" })
         })
         .collect::<Result<Vec<_>>>()?;
@@ -330,8 +416,12 @@ pub fn at_count(model: &Model, modes: &[InterfaceModes], k: usize) -> Result<Mod
         sweep.method = SweepMethod::Dense;
     }
     let mut rom = model.rom.clone();
-    for (part, block) in rom.parts.iter_mut().zip(&blocks) {
-        *part = transformed_part(part, block);
+    for part in rom.parts.iter_mut() {
+        let block = blocks
+            .iter()
+            .find(|b| b.0 == part.info.name)
+            .ok_or(PipelineError::NoPart { part: "pad" })?;
+        *part = transformed_part(part, &block.1);
     }
     Ok(Model {
         rom,

@@ -148,10 +148,22 @@ pub fn characteristic_constraint_modes_loaded(
     solve_lower_triangular_in_place(l.as_ref(), x.as_mut(), Par::Seq);
     let mut a = x.transpose().to_owned();
     solve_lower_triangular_in_place(l.as_ref(), a.as_mut(), Par::Seq);
-    let a = Mat::from_fn(nc, nc, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
+    // faer 0.24.4's dense self-adjoint eigensolver loses accuracy above ~128 rows when the
+    // matrix norm is far from 1 (the brake's `modal_basis` says the same): unscaled, the
+    // coarse disc face's lowest 40 CC modes came out with relative residuals up to 0.95, so
+    // "the lowest k" were not the lowest and the brake's error stalled near 2e-2. Solved at
+    // unit max-norm, each pair's residual is checked.
+    let scale = a.norm_max().max(f64::MIN_POSITIVE);
+    let a = Mat::from_fn(nc, nc, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]) / scale);
     let evd = a
         .self_adjoint_eigen(Side::Lower)
         .map_err(|_| invalid("the dense eigensolver of the CC modes did not converge".into()))?;
+    let worst = largest_residual(&a, evd.U(), evd.S());
+    if !(worst <= RESIDUAL_TOLERANCE) {
+        return Err(invalid(format!(
+            "the CC modes' eigenpairs are inaccurate (largest residual {worst:.1e} of the unit-norm pencil)"
+        )));
+    }
     let mut psi = evd.U().to_owned();
     solve_upper_triangular_in_place(l.transpose(), psi.as_mut(), Par::Seq);
     // A sign per mode, so that results do not depend on the eigensolver's: the largest entry
@@ -170,7 +182,7 @@ pub fn characteristic_constraint_modes_loaded(
             }
         }
     }
-    let lambda = (0..nc).map(|j| evd.S()[j]).collect();
+    let lambda = (0..nc).map(|j| evd.S()[j] * scale).collect();
     Ok(InterfaceModes {
         part: part.info.name.clone(),
         face_dofs: c,
@@ -178,6 +190,27 @@ pub fn characteristic_constraint_modes_loaded(
         lambda,
         size: part.size(),
     })
+}
+
+/// Largest residual `‖A y − s y‖` of an eigendecomposition of a symmetric `A` of unit max-norm
+/// accepted for the CC modes (the brake's own modal basis asks 1e-12 of its smaller pencils).
+pub const RESIDUAL_TOLERANCE: f64 = 1e-10;
+
+/// Largest `‖A y_j − s_j y_j‖` over the eigenpairs.
+fn largest_residual(
+    a: &Mat<f64>,
+    y: faer::MatRef<'_, f64>,
+    s: faer::diag::DiagRef<'_, f64>,
+) -> f64 {
+    let ay = a * y;
+    (0..a.nrows())
+        .map(|j| {
+            (0..a.nrows())
+                .map(|i| (ay[(i, j)] - s[j] * y[(i, j)]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .fold(0.0, f64::max)
 }
 
 impl InterfaceModes {
@@ -232,4 +265,99 @@ pub fn transformed_part(part: &ReducedPart, t: &Mat<f64>) -> ReducedPart {
             values: &b.values * t,
         }),
     }
+}
+
+/// Relative size below which a direction of the Gram matrix `Vᵀ M̂_cc V` of face vectors is
+/// taken as already spanned by the others (its square root: 1e-5 of the largest, in the
+/// `M̂_cc` norm of unit-normalized columns) and dropped.
+pub const SPAN_TOLERANCE: f64 = 1e-10;
+
+/// The face basis spanned by `vectors` (one column per vector over `part`'s contact-face
+/// dofs, in [`face_dofs`] order; e.g. the face motion of the assembled brake's modes): each
+/// column scaled to unit `M̂_cc` norm, `M̂_cc`-orthonormalized through the eigenvectors of its
+/// Gram matrix `G = Vᵀ M̂_cc V = Q D Qᵀ` (directions with `d < SPAN_TOLERANCE · d_max` dropped:
+/// a face restriction of system vectors is often rank-deficient), `W = V Q D^{-1/2}`, then the
+/// Rayleigh–Ritz modes of the face partition on that span, `(Wᵀ K̂_cc W) y = λ y`, `Ψ = W Y`,
+/// lowest first. The result is used as the part's [`InterfaceModes`], all of them kept.
+pub fn face_basis(part: &ReducedPart, vectors: &Mat<f64>) -> Result<InterfaceModes, ReduceError> {
+    let name = part.info.name.clone();
+    let invalid = |what: String| ReduceError::Invalid {
+        part: name.clone(),
+        what,
+    };
+    let c = face_dofs(part);
+    let (nc, nv) = (c.len(), vectors.ncols());
+    if nc == 0 || vectors.nrows() != nc || nv == 0 {
+        return Err(invalid(format!(
+            "{nv} face vectors of {} rows for {nc} contact-face dofs",
+            vectors.nrows()
+        )));
+    }
+    let sym = |a: &Mat<f64>| Mat::from_fn(nc, nc, |i, j| 0.5 * (a[(c[i], c[j])] + a[(c[j], c[i])]));
+    let (k, m) = (sym(&part.k), sym(&part.m));
+    let mv = &m * vectors;
+    let norm: Vec<f64> = (0..nv)
+        .map(|j| {
+            (0..nc)
+                .map(|i| vectors[(i, j)] * mv[(i, j)])
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    let v = Mat::from_fn(nc, nv, |i, j| {
+        if norm[j] > 0.0 {
+            vectors[(i, j)] / norm[j]
+        } else {
+            0.0
+        }
+    });
+    let g = v.transpose() * (&m * &v);
+    let (d, q) =
+        symmetric_eigen(&g).ok_or_else(|| invalid("the face vectors' Gram matrix".into()))?;
+    let top = d.iter().cloned().fold(0.0, f64::max);
+    let kept: Vec<usize> = (0..nv).filter(|&j| d[j] > SPAN_TOLERANCE * top).collect();
+    let w = Mat::from_fn(nc, kept.len(), |i, col| {
+        let j = kept[col];
+        (0..nv).map(|l| v[(i, l)] * q[(l, j)]).sum::<f64>() / d[j].sqrt()
+    });
+    let a = w.transpose() * (&k * &w);
+    let (lambda, y) =
+        symmetric_eigen(&a).ok_or_else(|| invalid("the face basis' Rayleigh–Ritz modes".into()))?;
+    let mut psi = &w * &y;
+    for j in 0..psi.ncols() {
+        let (mut big, mut at) = (0.0f64, 0);
+        for i in 0..nc {
+            if psi[(i, j)].abs() > big {
+                big = psi[(i, j)].abs();
+                at = i;
+            }
+        }
+        if psi[(at, j)] < 0.0 {
+            for i in 0..nc {
+                psi[(i, j)] = -psi[(i, j)];
+            }
+        }
+    }
+    Ok(InterfaceModes {
+        part: part.info.name.clone(),
+        face_dofs: c,
+        psi,
+        lambda,
+        size: part.size(),
+    })
+}
+
+/// Eigenvalues (ascending) and eigenvectors of a symmetric matrix, solved at unit max-norm and
+/// checked to [`RESIDUAL_TOLERANCE`]; `None` when the solver fails or is inaccurate.
+fn symmetric_eigen(a: &Mat<f64>) -> Option<(Vec<f64>, Mat<f64>)> {
+    let n = a.nrows();
+    let scale = a.norm_max().max(f64::MIN_POSITIVE);
+    let s = Mat::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]) / scale);
+    let evd = s.self_adjoint_eigen(Side::Lower).ok()?;
+    (largest_residual(&s, evd.U(), evd.S()) <= RESIDUAL_TOLERANCE).then(|| {
+        (
+            (0..n).map(|j| evd.S()[j] * scale).collect(),
+            evd.U().to_owned(),
+        )
+    })
 }

@@ -2,8 +2,10 @@
 //!
 //! ```toml
 //! [reduction]
-//! interface = "cc"            # "none" (the default) or "cc": characteristic constraint modes
-//!                             # of each part's contact face (nodal contact only)
+//! interface = "system"        # "none" (the default); "system": each contact face's motion
+//!                             # restricted to that of the assembled brake's real modes,
+//!                             # friction residual and static vectors; "cc": characteristic
+//!                             # constraint modes of each part's contact face (nodal contact)
 //! interface_modes = "auto"    # "auto" (by convergence of mu0 and its frequency) or a number
 //!                             # of CC modes per part
 //! interface_tolerance = 1e-3  # "auto": the relative change of mu0 and of its frequency
@@ -64,35 +66,48 @@ pub enum InterfaceModeCount {
     Fixed(usize),
 }
 
+/// Which vectors span the contact faces' motion.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InterfaceBasis {
+    /// Characteristic constraint modes of each part's face (`"cc"`).
+    Cc,
+    /// The face rows of the assembled brake's real modes, friction residual and static
+    /// vectors (`"system"`).
+    System,
+}
+
 /// The interface reduction a scene asks for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct InterfaceReduction {
     /// How many modes.
     pub modes: InterfaceModeCount,
+    /// Which basis.
+    pub basis: InterfaceBasis,
 }
 
 impl Scene {
     /// `[reduction] interface`: `None` without an interface reduction, else its mode count.
     pub fn interface_reduction(&self) -> Result<Option<InterfaceReduction>> {
         let r = &self.file.reduction;
-        match r.interface.get_ref().as_str() {
+        let basis = match r.interface.get_ref().as_str() {
             "none" => return Ok(None),
-            "cc" => {}
+            "cc" => InterfaceBasis::Cc,
+            "system" => InterfaceBasis::System,
             other => {
                 return Err(self.error_at(
                     "reduction.interface",
                     &r.interface,
-                    format!("'{other}' is not 'none' or 'cc'"),
+                    format!("'{other}' is not 'none', 'system' or 'cc'"),
                 ));
             }
-        }
+        };
         let iface = self.file.model.interface.get_ref();
         if iface != "nodal" && iface != "node" {
             return Err(self.error_at(
                 "reduction.interface",
                 &r.interface,
                 format!(
-                    "\"cc\" reduces contact faces kept node by node: it needs model.interface = \"nodal\" (this scene has \"{iface}\")"
+                    "an interface reduction reduces contact faces kept node by node: it needs model.interface = \"nodal\" (this scene has \"{iface}\")"
                 ),
             ));
         }
@@ -116,6 +131,6 @@ impl Scene {
                 ));
             }
         };
-        Ok(Some(InterfaceReduction { modes }))
+        Ok(Some(InterfaceReduction { modes, basis }))
     }
 }

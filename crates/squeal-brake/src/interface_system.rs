@@ -1,0 +1,173 @@
+//! System vectors for the interface reduction: the assembled brake's real modes at the
+//! frictionless static equilibrium, the static response to each in-band mode's friction
+//! forces, and the equilibrium with its first derivative in μ — the basis commercial complex
+//! eigenvalue analysis projects onto, here used only for the contact faces' motion.
+//!
+//! # The vectors
+//!
+//! With `x_0` the static equilibrium at μ = 0 (eq (14)) and `K_t0 = K + K_NL(x_0, 0)` its
+//! symmetric tangent (eq (20), the normal springs `Σ_p k_t,p g_p g_pᵀ`), the real modes
+//! `K_t0 φ_j = ω_j² M φ_j` are the frictionless brake's. Friction adds, eqs (18)–(19),
+//! `μ K_f` with `K_f = Σ_p k_t,p h_p g_pᵀ` (the tangential force of each pair's normal
+//! spring), so a mode's friction forces `K_f φ_j` load the brake in directions the modes need
+//! not span; their static response
+//!
+//! `r_j = K_t0⁻¹ K_f φ_j`  (one per in-band mode)
+//!
+//! is the first correction of the mode under friction (the residual vectors of modal
+//! truncation augmentation: Dickens, Nakagawa & Wittbrodt, Comput. Struct. 62(6), 1997). The
+//! static equilibrium moves with μ (`K x + Σ_p F_n,p (g_p + μ h_p) = F_piston`); at μ = 0 it is
+//! `x_0` and it moves first as
+//!
+//! `dx/dμ = −K_t0⁻¹ Σ_p F_n,p(x_0) h_p`,
+//!
+//! so `x_0` and `dx/dμ` join the vectors: with them in the span the reduced brake's
+//! frictionless equilibrium is the unreduced one, and its tangent springs with it.
+//!
+//! Every vector depends on μ only through these two terms: the basis is computed once, at
+//! μ = 0, and the sweep's μ-dependence (equilibrium and friction coupling) is carried by the
+//! residual and static vectors. The brake's coordinates are not replaced by these vectors:
+//! each part keeps its fixed-interface modes and pistons, and only its contact face's motion
+//! is restricted to the span of the vectors' face rows (the pipeline's `interface` module,
+//! [`squeal_reduce::interface_modes::face_basis`]); that span holds every vector, so the
+//! reduced brake reproduces its in-band frictionless modes exactly and is a Rayleigh–Ritz
+//! projection of the unreduced-interface brake.
+
+use crate::equilibrium::{NewtonOptions, static_equilibrium};
+use crate::error::BrakeError;
+use crate::modal::{ModalBasis, modal_basis};
+use crate::model::Brake;
+use faer::Mat;
+use faer::linalg::solvers::Solve;
+
+/// The system vectors of a brake, computed once.
+#[derive(Clone, Debug)]
+pub struct SystemVectors {
+    /// The real modes at the frictionless equilibrium (`K_t0`, `M`), ascending.
+    pub modes: ModalBasis,
+    /// `r_j = K_t0⁻¹ K_f φ_j` for the lowest `residuals.ncols()` modes (columns).
+    pub residuals: Mat<f64>,
+    /// `x_0` and `dx/dμ` at μ = 0.
+    pub statics: [Vec<f64>; 2],
+}
+
+/// The system vectors of `brake`, with friction residual vectors for its modes up to
+/// `residuals_to_hz` (the band's top).
+pub fn system_vectors(
+    brake: &Brake,
+    newton: &NewtonOptions,
+    residuals_to_hz: f64,
+) -> Result<SystemVectors, BrakeError> {
+    let n = brake.size();
+    let eq = static_equilibrium(brake, 0.0, None, newton)?;
+    let kt0 = brake.tangent_stiffness(&eq.x, 0.0);
+    let kt0 = Mat::from_fn(n, n, |i, j| 0.5 * (kt0[(i, j)] + kt0[(j, i)]));
+    let modes = modal_basis(&brake.m, &kt0)?;
+    // K_f = ∂F_nl/∂x at μ = 1 less at μ = 0: the friction part of eq (19).
+    let (j1, _) = brake.nonlinear_jacobian(&eq.x, 1.0, false);
+    let (j0, _) = brake.nonlinear_jacobian(&eq.x, 0.0, false);
+    let kf = &j1 - &j0;
+    let tau = std::f64::consts::TAU;
+    let r = modes
+        .omega
+        .iter()
+        .filter(|w| **w / tau <= residuals_to_hz)
+        .count();
+    let phi = Mat::from_fn(n, r, |i, j| modes.phi[(i, j)]);
+    let lu = kt0.partial_piv_lu();
+    let residuals = lu.solve(&(&kf * &phi));
+    // Σ F_n h at x_0: the nonlinear force at μ = 1 less at μ = 0.
+    let (mut f1, mut f0) = (vec![0.0; n], vec![0.0; n]);
+    brake.add_nonlinear_force(&eq.x, None, 1.0, &mut f1);
+    brake.add_nonlinear_force(&eq.x, None, 0.0, &mut f0);
+    let ft = Mat::from_fn(n, 1, |i, _| f0[i] - f1[i]);
+    let dx = lu.solve(&ft);
+    let finite = |a: &Mat<f64>| (0..a.ncols()).all(|j| (0..n).all(|i| a[(i, j)].is_finite()));
+    if !finite(&residuals) || !finite(&dx) {
+        return Err(BrakeError::StiffnessNotPositive);
+    }
+    Ok(SystemVectors {
+        modes,
+        residuals,
+        statics: [eq.x, (0..n).map(|i| dx[(i, 0)]).collect()],
+    })
+}
+
+impl SystemVectors {
+    /// The columns `[φ_1 … φ_modes, r_1 … r_residuals, x_0, dx/dμ]` (`n × (modes + residuals
+    /// + 2)`, `modes` and `residuals` at most as many as there are).
+    pub fn columns(&self, modes: usize, residuals: usize) -> Mat<f64> {
+        let n = self.modes.phi.nrows();
+        let modes = modes.min(self.modes.phi.ncols());
+        let residuals = residuals.min(self.residuals.ncols());
+        Mat::from_fn(n, modes + residuals + 2, |i, j| {
+            if j < modes {
+                self.modes.phi[(i, j)]
+            } else if j < modes + residuals {
+                self.residuals[(i, j - modes)]
+            } else {
+                self.statics[j - modes - residuals][i]
+            }
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::ContactPair;
+
+    /// dofs: 0 disc x, 1 disc z, 2 pad x, 3 pad z; normal +z, sliding +x; penalty springs.
+    fn one_pair() -> ContactPair {
+        ContactPair {
+            disc_point: 0,
+            pad_point: 0,
+            position: [0.0; 3],
+            normal_direction: [0.0, 0.0, 1.0],
+            sliding_direction: [1.0, 0.0, 0.0],
+            normal: vec![(1, 1.0), (3, -1.0)],
+            tangent: vec![(0, 1.0), (2, -1.0)],
+            initial_gap: 0.0,
+            surface_speed: None,
+            law: std::sync::Arc::new(crate::contact::PenaltyCoulomb {
+                k_linear: 2e6,
+                k_cubic: 3e15,
+            }),
+        }
+    }
+
+    /// One pair between a disc dof and a pad dof along the normal and the sliding direction:
+    /// the residual of each mode is `K_t0⁻¹ K_f φ`, checked by applying `K_t0`.
+    #[test]
+    fn residuals_solve_the_friction_load() {
+        let n = 4;
+        let k = Mat::from_fn(n, n, |i, j| if i == j { 2e6 + 1e5 * i as f64 } else { 0.0 });
+        let m = Mat::from_fn(n, n, |i, j| if i == j { 1.0 + 0.5 * i as f64 } else { 0.0 });
+        let mut f = vec![0.0; n];
+        f[3] = -100.0;
+        let brake = Brake {
+            m,
+            k,
+            f_piston: f,
+            pairs: vec![one_pair()],
+        };
+        let v = system_vectors(&brake, &NewtonOptions::default(), f64::INFINITY).unwrap();
+        assert_eq!(v.residuals.ncols(), 4);
+        let eq = static_equilibrium(&brake, 0.0, None, &NewtonOptions::default()).unwrap();
+        let kt0 = brake.tangent_stiffness(&eq.x, 0.0);
+        let (j1, _) = brake.nonlinear_jacobian(&eq.x, 1.0, false);
+        let kf = &j1 - &brake.nonlinear_jacobian(&eq.x, 0.0, false).0;
+        for j in 0..4 {
+            let phi = Mat::from_fn(n, 1, |i, _| v.modes.phi[(i, j)]);
+            let r = Mat::from_fn(n, 1, |i, _| v.residuals[(i, j)]);
+            let lhs = &kt0 * &r;
+            let rhs = &kf * &phi;
+            let scale = rhs.norm_max().max(1e-300);
+            // A 4 x 4 LU solve: round-off of a few ulps of the O(k) entries.
+            assert!((&lhs - &rhs).norm_max() <= 1e-12 * scale * 1e3, "{j}");
+        }
+        // The static vector is the equilibrium.
+        assert_eq!(v.statics[0], eq.x);
+        assert_eq!(v.columns(9, 2).ncols(), 4 + 2 + 2);
+    }
+}

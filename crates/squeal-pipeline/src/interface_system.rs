@@ -1,0 +1,125 @@
+//! `[reduction] interface = "system"`: each part's contact-face motion restricted to that of
+//! the assembled brake's real modes at the frictionless static equilibrium, of their friction
+//! residual vectors and of the static equilibrium and its derivative in μ (the vectors and
+//! their maths: `squeal_brake::interface_system`; the face basis:
+//! `squeal_reduce::interface_modes::face_basis`; the projection, contact forces still
+//! evaluated at every pair: `squeal_brake::interface_reduced`).
+//!
+//! **Why not the CC modes.** Measured on the coarse nodal brake (docs/reduction.md): the
+//! characteristic constraint modes of each face, free, loaded by the contact springs or of
+//! the assembled boundary, converge slowly (largest in-band frequency error 5e-3 with 320 of
+//! 1065 per part, μ0 off by 5e-3 with 160); the face motion of the brake's own in-band modes
+//! spans what they need exactly (frequencies to 2e-7, μ0 to 2e-4 with 61 modes).
+//!
+//! **How many.** `interface_modes = n`: the `n` lowest real modes, with the friction residual
+//! vectors of those in the band. `"auto"`: the in-band modes alone, then with their friction
+//! residual vectors, then the modes up to 2, 4, … times the band's top with those residuals,
+//! sweeping each and keeping the first whose frictionless frequencies, μ0 and μ0's frequency
+//! moved by less than `interface_tolerance` from the one before.
+
+use crate::error::Result;
+use crate::interface::{Candidate, Head, at_count, auto, fixed};
+use crate::model::{Log, Model};
+use squeal_brake::interface_system::{SystemVectors, system_vectors};
+use squeal_reduce::interface_modes::{InterfaceModes, face_basis, face_dofs};
+use squeal_scene::Scene;
+use squeal_scene::reduction::InterfaceModeCount;
+use std::time::Instant;
+
+/// The model with a `"system"` interface reduction.
+pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -> Result<Model> {
+    let t = Instant::now();
+    let top = band_top(&model);
+    let tau = std::f64::consts::TAU;
+    let below = |v: &SystemVectors, f: f64| v.modes.omega.iter().filter(|w| **w / tau <= f).count();
+    let vectors = system_vectors(&model.brake, &model.sweep.newton, top)?;
+    let in_band = vectors.residuals.ncols();
+    log(&format!(
+        "interface reduction: {} real modes of the brake ({in_band} below {top:.0} Hz) with their friction residual and static vectors in {:.1} s",
+        vectors.modes.omega.len(),
+        t.elapsed().as_secs_f64()
+    ));
+    let face_dofs = model
+        .rom
+        .parts
+        .iter()
+        .map(|p| (p.info.name.clone(), face_dofs(p).len()))
+        .collect();
+    let head = Head {
+        method: "the face motion of the assembled brake's real modes at the frictionless equilibrium, their friction residual vectors and the static equilibrium with its derivative in mu".into(),
+        face_dofs,
+    };
+    let total = vectors.modes.omega.len();
+    let candidate = |modes: usize, residuals: usize| -> Result<Candidate> {
+        let bases = face_bases(&model, &vectors, modes, residuals)?;
+        Ok(Candidate {
+            model: at_count(&model, &bases, usize::MAX)?,
+            kept: bases.iter().map(InterfaceModes::count).collect(),
+            basis: format!(
+                "{modes} brake modes + {residuals} friction residuals + 2 static vectors"
+            ),
+        })
+    };
+    match count {
+        InterfaceModeCount::Fixed(n) => {
+            let n = n.min(total);
+            let reason = format!("interface_modes = {n} in {}", scene.path.display());
+            fixed(&model, head, candidate(n, n.min(in_band))?, reason)
+        }
+        InterfaceModeCount::Auto { tolerance } => {
+            // (modes, residuals): the band alone, with residuals, then 2, 4, ... times its top.
+            let mut steps = vec![(in_band, 0), (in_band, in_band)];
+            let mut factor = 2.0;
+            while *steps.last().map(|s| &s.0).unwrap_or(&total) < total {
+                steps.push((below(&vectors, factor * top).max(in_band), in_band));
+                factor *= 2.0;
+            }
+            steps.dedup();
+            let what = format!(
+                "the {in_band} in-band brake modes, then with their friction residuals, then the modes below 2, 4, ... x {top:.0} Hz"
+            );
+            let levels = steps.into_iter().map(|(m, r)| candidate(m, r));
+            auto(scene, &model, log, head, levels, tolerance, &what)
+        }
+    }
+}
+
+/// The band's top (Hz): the scene's band's upper end, or the valid band's when lower.
+fn band_top(model: &Model) -> f64 {
+    let b = model.sweep.band;
+    b.user
+        .map_or(b.valid_max_hz, |(_, hi)| hi.min(b.valid_max_hz))
+}
+
+/// Each part's face basis: the face rows of the system vectors, M̂_cc-orthonormalized.
+pub fn face_bases(
+    model: &Model,
+    vectors: &SystemVectors,
+    modes: usize,
+    residuals: usize,
+) -> Result<Vec<InterfaceModes>> {
+    let columns = vectors.columns(modes, residuals);
+    model
+        .rom
+        .parts
+        .iter()
+        .map(|part| {
+            let start = if part.info.name == "disc" {
+                model.layout.disc.start
+            } else {
+                model
+                    .layout
+                    .pads
+                    .iter()
+                    .find(|p| p.0 == part.info.name)
+                    .map(|p| p.1.start)
+                    .ok_or(crate::error::PipelineError::NoPart { part: "pad" })?
+            };
+            let rows = face_dofs(part);
+            let v = faer::Mat::from_fn(rows.len(), columns.ncols(), |i, j| {
+                columns[(start + rows[i], j)]
+            });
+            Ok(face_basis(part, &v)?)
+        })
+        .collect()
+}
