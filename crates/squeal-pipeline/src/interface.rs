@@ -1,5 +1,6 @@
 //! `[reduction] interface = "cc"`: the brake on each part's characteristic constraint (CC)
-//! modes instead of its contact face's nodal dofs (the maths and the choice of basis:
+//! modes instead of its contact face's nodal dofs (`"system"`, the face motion of the brake's
+//! own modes, is in `crate::interface_system` and shares [`auto`] and [`at_count`] from here) (the maths and the choice of basis:
 //! `squeal_reduce::interface_modes`; the brake's projection, contact forces still evaluated at
 //! every pair: `squeal_brake::interface_reduced`).
 //!
