@@ -85,6 +85,19 @@ pub fn of_mode(m: &Model, st: &Stability, mu: f64, lambda: c64, q: &[c64]) -> Co
             continue;
         };
         let mut constraint = 0.0;
+        // An interface reduction changed the part's coordinates ([reduction] interface): its
+        // labels no longer name them (their count differs), so the part is one contributor.
+        if part.info.dofs.len() != r.len() {
+            reduced.push(Contributor {
+                name: format!("{name} (interface-reduced coordinates)"),
+                part: name.clone(),
+                frequency_hz: None,
+                share: c[r.clone()].iter().sum(),
+                coefficient: None,
+                nodal_diameters: None,
+            });
+            continue;
+        }
         for (k, label) in part.info.dofs.iter().enumerate() {
             match label {
                 DofLabel::Mode { mode } => reduced.push(Contributor {
