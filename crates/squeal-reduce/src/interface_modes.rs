@@ -166,22 +166,7 @@ pub fn characteristic_constraint_modes_loaded(
     }
     let mut psi = evd.U().to_owned();
     solve_upper_triangular_in_place(l.transpose(), psi.as_mut(), Par::Seq);
-    // A sign per mode, so that results do not depend on the eigensolver's: the largest entry
-    // positive.
-    for j in 0..nc {
-        let (mut big, mut at) = (0.0f64, 0);
-        for i in 0..nc {
-            if psi[(i, j)].abs() > big {
-                big = psi[(i, j)].abs();
-                at = i;
-            }
-        }
-        if psi[(at, j)] < 0.0 {
-            for i in 0..nc {
-                psi[(i, j)] = -psi[(i, j)];
-            }
-        }
-    }
+    fix_signs(&mut psi);
     let lambda = (0..nc).map(|j| evd.S()[j] * scale).collect();
     Ok(InterfaceModes {
         part: part.info.name.clone(),
@@ -324,20 +309,7 @@ pub fn face_basis(part: &ReducedPart, vectors: &Mat<f64>) -> Result<InterfaceMod
     let (lambda, y) =
         symmetric_eigen(&a).ok_or_else(|| invalid("the face basis' Rayleigh–Ritz modes".into()))?;
     let mut psi = &w * &y;
-    for j in 0..psi.ncols() {
-        let (mut big, mut at) = (0.0f64, 0);
-        for i in 0..nc {
-            if psi[(i, j)].abs() > big {
-                big = psi[(i, j)].abs();
-                at = i;
-            }
-        }
-        if psi[(at, j)] < 0.0 {
-            for i in 0..nc {
-                psi[(i, j)] = -psi[(i, j)];
-            }
-        }
-    }
+    fix_signs(&mut psi);
     Ok(InterfaceModes {
         part: part.info.name.clone(),
         face_dofs: c,
@@ -360,4 +332,24 @@ fn symmetric_eigen(a: &Mat<f64>) -> Option<(Vec<f64>, Mat<f64>)> {
             evd.U().to_owned(),
         )
     })
+}
+
+/// A sign per column, so that results do not depend on the eigensolver's: the largest entry
+/// positive.
+fn fix_signs(psi: &mut Mat<f64>) {
+    let n = psi.nrows();
+    for j in 0..psi.ncols() {
+        let (mut big, mut at) = (0.0f64, 0);
+        for i in 0..n {
+            if psi[(i, j)].abs() > big {
+                big = psi[(i, j)].abs();
+                at = i;
+            }
+        }
+        if psi[(at, j)] < 0.0 {
+            for i in 0..n {
+                psi[(i, j)] = -psi[(i, j)];
+            }
+        }
+    }
 }
