@@ -264,8 +264,9 @@ pub enum BrakeError {
         value: f64,
     },
     /// The dense refinement of a crossing ended on a bracket whose ends do not straddle the
-    /// threshold, or across which the real part still differs by more than `1e-6 |λ|` (a jump
-    /// between modes rather than a root, or
+    /// threshold, or across which the real part still differs by more than `1e-6 |λ|` and than
+    /// the square-root onset of an undamped coalescence allows (a jump between modes rather
+    /// than a root, or
     /// [`SweepOptions::max_refinements`](crate::sweep::SweepOptions::max_refinements) used up).
     #[error(
         "the Hopf point could not be resolved: across the bracket [{:.10}, {:.10}] the real part jumps from {:.3e} to {:.3e} 1/s instead of crossing zero (the modes could not be followed; sweep with finer friction steps)",

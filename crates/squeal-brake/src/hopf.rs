@@ -310,6 +310,18 @@ fn follow(from: &Spectrum, j: usize, to: &Spectrum) -> usize {
     best.1
 }
 
+/// The largest change of the real part across a closed bracket of `width` in μ that still
+/// counts as a root, for an eigenvalue of modulus `size`: `1e-6 |λ|` where `Re λ` crosses zero
+/// with a finite slope (a Hopf point of a damped brake: over a bracket of 1e-8 the change is
+/// the slope times 1e-8, far below), or `0.1 |λ| √width` where it rises as a square root (the
+/// coalescence of an undamped pair, `Re λ ≈ s √(μ − μ0)`, whose change over any bracket
+/// straddling μ0 is up to `s √width`; `s` is a fraction of `|λ|`, 0.045 |λ| on the bundled
+/// brake's 4.1 kHz pair). A jump between two modes does not shrink with the bracket and
+/// exceeds both once the bracket is closed.
+fn resolved_jump(size: f64, width: f64) -> f64 {
+    (1e-6 * size).max(0.1 * size * width.max(0.0).sqrt())
+}
+
 /// Refines a crossing by the Illinois variant of regula falsi on the larger real part of the
 /// crossing branch and its partner (as [`crate::hopf`] does, for the same reason: where two
 /// modes coalesce, either may carry the instability), keeping a bracket. Both are followed by
@@ -403,9 +415,8 @@ pub(crate) fn regula_falsi(
             side = -1;
         }
     }
-    if !(lo.f <= 0.0 && hi.f > 0.0)
-        || hi.f - lo.f > 1e-6 * hi.point.spectrum.values[hi.modes[hi.top]].norm()
-    {
+    let size = hi.point.spectrum.values[hi.modes[hi.top]].norm();
+    if !(lo.f <= 0.0 && hi.f > 0.0) || hi.f - lo.f > resolved_jump(size, hi.mu - lo.mu) {
         return Err(BrakeError::HopfNotResolved {
             bracket: (lo.mu, hi.mu),
             real_parts: (lo.f + tau, hi.f + tau),
@@ -423,4 +434,23 @@ pub(crate) fn regula_falsi(
         index,
         point: hi.point,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::resolved_jump;
+
+    #[test]
+    fn a_square_root_onset_is_a_root_and_a_jump_between_modes_is_not() {
+        // The bundled brake's undamped 4.1 kHz pair: |λ| = 2.55e4 1/s, Re λ ≈ 1139 √(μ − μ0)
+        // (0.111 1/s across the bracket of 9.5e-9 the refinement closed on).
+        let (size, width): (f64, f64) = (2.55e4, 9.5e-9);
+        assert!(1139.0 * width.sqrt() <= resolved_jump(size, width));
+        // A damped Hopf point's finite slope (1.7e3 1/s per unit μ) over the same bracket.
+        assert!(1.7e3 * width <= resolved_jump(size, width));
+        // Two modes 1 1/s apart in real part: no bracket closes on them.
+        assert!(1.0 > resolved_jump(size, width));
+        // A jump of 1e-6 |λ| is a root at any width, as before.
+        assert_eq!(resolved_jump(size, 0.0), 1e-6 * size);
+    }
 }
