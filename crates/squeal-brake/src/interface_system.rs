@@ -115,26 +115,6 @@ impl SystemVectors {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::ContactPair;
-
-    /// dofs: 0 disc x, 1 disc z, 2 pad x, 3 pad z; normal +z, sliding +x; penalty springs.
-    fn one_pair() -> ContactPair {
-        ContactPair {
-            disc_point: 0,
-            pad_point: 0,
-            position: [0.0; 3],
-            normal_direction: [0.0, 0.0, 1.0],
-            sliding_direction: [1.0, 0.0, 0.0],
-            normal: vec![(1, 1.0), (3, -1.0)],
-            tangent: vec![(0, 1.0), (2, -1.0)],
-            initial_gap: 0.0,
-            surface_speed: None,
-            law: std::sync::Arc::new(crate::contact::PenaltyCoulomb {
-                k_linear: 2e6,
-                k_cubic: 3e15,
-            }),
-        }
-    }
 
     /// One pair between a disc dof and a pad dof along the normal and the sliding direction:
     /// the residual of each mode is `K_t0⁻¹ K_f φ`, checked by applying `K_t0`.
@@ -149,7 +129,7 @@ mod tests {
             m,
             k,
             f_piston: f,
-            pairs: vec![one_pair()],
+            pairs: vec![crate::model::tests::one_pair(0.0)],
         };
         let v = system_vectors(&brake, &NewtonOptions::default(), f64::INFINITY).unwrap();
         assert_eq!(v.residuals.ncols(), 4);

@@ -321,7 +321,7 @@ impl Brake {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::contact::PenaltyCoulomb;
     use std::sync::Arc;

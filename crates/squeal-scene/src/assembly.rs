@@ -74,6 +74,25 @@ pub struct TieSpec {
 
 impl Scene {
     /// The part names a support or tie may name: `disc` and the pads'.
+    /// Three spring stiffnesses (`along`: what they act along, for the message), each finite
+    /// and `>= 0`, not all zero.
+    pub(crate) fn check_stiffness(
+        &self,
+        key: &str,
+        stiffness: &Spanned<[f64; 3]>,
+        along: &str,
+    ) -> Result<[f64; 3]> {
+        let k = *stiffness.get_ref();
+        if k.iter().any(|x| !(x.is_finite() && *x >= 0.0)) || k.iter().all(|x| *x == 0.0) {
+            return Err(self.error_at(
+                key,
+                stiffness,
+                format!("must be three stiffnesses >= 0 ({along}), not all zero"),
+            ));
+        }
+        Ok(k)
+    }
+
     pub(crate) fn check_part(&self, key: &str, part: &Spanned<String>) -> Result<String> {
         let names: Vec<String> = std::iter::once("disc".to_string())
             .chain(self.pads()?.into_iter().map(|p| p.0))
@@ -97,16 +116,7 @@ impl Scene {
         for (k, s) in self.file.supports.iter().enumerate() {
             let key = |f: &str| format!("supports.{}.{f}", k + 1);
             let part = self.check_part(&key("part"), &s.part)?;
-            let stiffness = *s.stiffness.get_ref();
-            if stiffness.iter().any(|x| !(x.is_finite() && *x >= 0.0))
-                || stiffness.iter().all(|x| *x == 0.0)
-            {
-                return Err(self.error_at(
-                    &key("stiffness"),
-                    &s.stiffness,
-                    "must be three stiffnesses >= 0 (x, y, z), not all zero",
-                ));
-            }
+            let stiffness = self.check_stiffness(&key("stiffness"), &s.stiffness, "x, y, z")?;
             let set = self
                 .set_rule(&key("set"), Some(&s.set), false)?
                 .ok_or_else(|| self.error_at(&key("set"), &s.set, "must select a node set"))?;

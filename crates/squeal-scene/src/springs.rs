@@ -126,16 +126,8 @@ impl Scene {
                 ));
             }
             let part = self.check_part(&key("part"), &s.part)?;
-            let stiffness = *s.stiffness.get_ref();
-            if stiffness.iter().any(|x| !(x.is_finite() && *x >= 0.0))
-                || stiffness.iter().all(|x| *x == 0.0)
-            {
-                return Err(self.error_at(
-                    &key("stiffness"),
-                    &s.stiffness,
-                    "must be three stiffnesses >= 0 (along the axes), not all zero",
-                ));
-            }
+            let stiffness =
+                self.check_stiffness(&key("stiffness"), &s.stiffness, "along the axes")?;
             let axes = match &s.axes {
                 Some(a) => {
                     Some(orthonormal(*a.get_ref()).map_err(|m| self.error_at(&key("axes"), a, m))?)
