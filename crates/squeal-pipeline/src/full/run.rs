@@ -30,8 +30,10 @@ fn other_mode(r: Option<&super::onset::ReducedOnset>, f: &FullOnset, opts: &Full
 }
 
 /// The full model's check of `p`'s scene: at `at` (a friction value) its eigenvalues in the
-/// band, else its μ0 against the reduced brake's over the pipeline's friction values. Returns
-/// the text written to `<out>/stability/full.txt`; each spectrum is a line of `p`'s log.
+/// band, else its μ0 against the reduced brake's over the pipeline's friction values. Writes
+/// the whole text to `<out>/stability/full.txt` and returns it without its first line, the
+/// model's size, which already went to `p`'s log when the model was assembled (each spectrum
+/// is a line of the log too).
 pub fn full_check(p: &Pipeline, at: Option<f64>) -> Result<String> {
     let log = p.log();
     let m = p.model()?;
@@ -55,6 +57,7 @@ pub fn full_check(p: &Pipeline, at: Option<f64>) -> Result<String> {
         m.brake.size()
     );
     log(out.trim_end());
+    let header = out.len();
     let band = band_of(m);
     let opts = FullOptions::default();
     match at {
@@ -112,5 +115,5 @@ pub fn full_check(p: &Pipeline, at: Option<f64>) -> Result<String> {
     let path = p.out.join("stability").join("full.txt");
     squeal_io::atomic_write(&path, |w| w.write_all(out.as_bytes()))?;
     let _ = writeln!(out, "written to {}", path.display());
-    Ok(out)
+    Ok(out.split_off(header))
 }
