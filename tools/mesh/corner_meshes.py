@@ -4,7 +4,13 @@ mesh) with a shim each (a mesh of its own, to be tied to the backplate), a calip
 a bracket (anchor) in 10-node tetrahedra, written as ONE Abaqus .inp with element and node sets
 and the same model as Nastran bulk data (.bdf, by inp_to_bdf_cdb.py).
 
-  python3 tools/mesh/corner_meshes.py [--levels coarse fine] [--out meshes/corner]
+  python3 tools/mesh/corner_meshes.py [--levels coarse medium fine] [--out meshes/corner]
+                                      [--disc tet10]
+
+`--disc tet10` writes the same corner with the disc in 10-node tetrahedra (each cell split as
+the other parts' cells, the Kuhn split, nodes on the same map), as corner_LEVEL_tetdisc.inp: the
+check that the disc meshed in hex20 and in tet10 converges to the same frequencies (issue 21's
+verification; crates/squeal-reduce/examples/disc_elements.rs, docs/verification.md).
 
 Every part is a structured mesh in cylindrical coordinates (r, theta, z) about the z axis: a
 grid of cells, some of them kept, each cell a hexahedron (disc), two wedges (the disc's bore
@@ -66,7 +72,7 @@ class Level:
     refine: int  # each cell of the coarse grid split into refine^3
 
 
-LEVELS = {"coarse": Level("coarse", 1), "fine": Level("fine", 3)}
+LEVELS = {"coarse": Level("coarse", 1), "medium": Level("medium", 2), "fine": Level("fine", 3)}
 
 
 def refined(edges: list[float], n: int) -> list[float]:
@@ -194,7 +200,9 @@ def level(side: str, z: float) -> float:
     return z if side == "INBOARD" else 0.028 - z
 
 
-def build(level_: Level) -> tuple[Model, dict]:
+def build(level_: Level, disc_elements: str = "hex20") -> tuple[Model, dict]:
+    """The corner at level_, its disc in disc_elements ("hex20": hexahedra with a ring of
+    wedges at the bore; "tet10": every disc cell split in six tetrahedra)."""
     m = Model()
     n = level_.refine
     sets_by_part: dict = {}
@@ -207,7 +215,12 @@ def build(level_: Level) -> tuple[Model, dict]:
         channel = 0.009 < z < 0.019
         return not channel or int(t // 10.0) % 2 == 0
 
-    add_cells(m, disc, "DISC", in_disc, lambda i, j, k: "wedge" if disc.edges[0][i] < 0.09 - 1e-12 else "hex")
+    def disc_kind(i, j, k):
+        if disc_elements == "tet10":
+            return "tet"
+        return "wedge" if disc.edges[0][i] < 0.09 - 1e-12 else "hex"
+
+    add_cells(m, disc, "DISC", in_disc, disc_kind)
 
     pad_t = refined([60.0 + 10.0 * j for j in range(7)], n)
     pad_r = refined([0.095, 0.12, 0.145], n)
@@ -337,10 +350,16 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--levels", nargs="+", default=["coarse"], choices=sorted(LEVELS))
     ap.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "..", "meshes", "corner"))
+    ap.add_argument("--disc", default="hex20", choices=["hex20", "tet10"],
+                    help="the disc's elements (tet10: written as corner_LEVEL_tetdisc.inp, .inp only)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     for name in args.levels:
-        m, _ = build(LEVELS[name])
+        m, _ = build(LEVELS[name], args.disc)
+        if args.disc == "tet10":
+            counts = write_inp(m, os.path.join(args.out, f"corner_{name}_tetdisc.inp"), name)
+            print(name, "tet10 disc", counts)
+            continue
         inp = os.path.join(args.out, f"corner_{name}.inp")
         counts = write_inp(m, inp, name)
         mesh = inp_to_bdf_cdb.read_inp(inp)

@@ -59,6 +59,33 @@ class CornerTest(unittest.TestCase):
         for part in ("LINING", "BACKPLATE", "SHIM"):
             self.assertEqual(kinds[("INBOARD_" + part, "C3D10")], 2 * 6 * 6)
 
+    def test_the_tet10_disc_fills_the_same_cells_on_the_same_map(self):
+        # --disc tet10: every disc cell of the hex20 corner split in six positive tetrahedra,
+        # the other parts unchanged, and every node the hex20 disc has placed at the same point
+        # (the tetrahedra add only the face- and cell-diagonal midside nodes), so the two
+        # meshes describe one geometry.
+        tet, _ = cm.build(cm.LEVELS["coarse"], "tet10")
+        coords = {v[0]: v[1] for v in tet.nodes.values()}
+        hexes = sum(1 for _, ty, _, s in self.model.elements if s == "DISC" and ty == "C3D20")
+        wedges = sum(1 for _, ty, _, s in self.model.elements if s == "DISC" and ty == "C3D15")
+        disc = [e for e in tet.elements if e[3] == "DISC"]
+        self.assertTrue(all(ty == "C3D10" for _, ty, _, _ in disc))
+        self.assertEqual(len(disc), 6 * (hexes + wedges // 2))
+        for eid, _, ns, _ in disc:
+            self.assertGreater(signed_volume([coords[n] for n in ns[:4]]), 0.0, eid)
+        # Node ids follow the order nodes are made in; compare by the generator's node keys.
+        def disc_nodes(model):
+            key = {v[0]: (k, v[1]) for k, v in model.nodes.items()}
+            return dict(key[n] for _, _, ns, s in model.elements if s == "DISC" for n in ns)
+        hex_disc, tet_disc = disc_nodes(self.model), disc_nodes(tet)
+        self.assertLess(len(hex_disc), len(tet_disc))
+        for k, x in hex_disc.items():
+            self.assertEqual(tet_disc[k], x, k)
+        def others(model):
+            key = {v[0]: k for k, v in model.nodes.items()}
+            return [(ty, [key[n] for n in ns], s) for _, ty, ns, s in model.elements if s != "DISC"]
+        self.assertEqual(others(self.model), others(tet))
+
     def test_tied_faces_and_contact_faces_coincide(self):
         # Each shim's front face lies on its backplate's back face, node for node (a matching
         # tie); each friction face lies on the disc's face under it (within 1e-12 m).
