@@ -20,14 +20,21 @@
 //! Each file's element set `DISC` is taken as a part, clamped on `DISC_CLAMP` (the bore), and
 //! its `COUNT` lowest frequencies are computed by shift-invert Lanczos on the assembled K and M
 //! (the solver squeal's Craig–Bampton reduction uses). The files are given in pairs (hex20,
-//! tet10) from coarse to fine; the table gives each pair's frequencies and their relative gap
-//! `tet10/hex20 − 1`. Both elements are conforming displacement elements with exact consistent
-//! mass, so their frequencies are upper bounds that fall with refinement; if both converge to
-//! the same limit the gap shrinks at each level.
+//! tet10) from coarse to fine. Each hex20 mode is matched with the tet10 mode of largest MAC
+//! on the nodes both meshes share (every hex20 node is a tet10 node at the same point; the
+//! tetrahedra add the face- and cell-diagonal midside nodes), so modes that change order
+//! between the meshes are still compared with their own kind; a disc's doublets are two modes
+//! of one frequency in any rotation, so a doublet member may match either tet10 member, whose
+//! frequencies are equal to the doublet's split. The table gives the pair's frequencies, the
+//! MAC and the relative gap `tet10/hex20 − 1`. Both elements are conforming displacement
+//! elements with exact consistent mass, so their frequencies are upper bounds that fall with
+//! refinement; if both converge to the same limit the gap shrinks at each level.
 
+use faer::Mat;
 use squeal_eigs::{EigOptions, lowest_modes};
 use squeal_fe::{DofMap, MaterialTable, Restraint, assemble};
 use squeal_reduce::craig_bampton::hz;
+use std::collections::HashMap;
 use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -35,8 +42,16 @@ use std::time::Instant;
 /// How many of the clamped disc's lowest frequencies are compared.
 const COUNT: usize = 24;
 
-/// The lowest `COUNT` frequencies (Hz) of the clamped disc in `path`, and its node count.
-fn frequencies(path: &Path) -> Result<(Vec<f64>, usize), String> {
+/// The clamped disc of one file: its lowest `COUNT` frequencies (Hz), and each mode's
+/// displacements (x, y, z) at every node, by the node's position.
+struct Disc {
+    hz: Vec<f64>,
+    nodes: usize,
+    shapes: HashMap<[u64; 3], Vec<[f64; 3]>>,
+}
+
+/// The modes of the clamped disc in `path`.
+fn frequencies(path: &Path) -> Result<Disc, String> {
     let read = squeal_mesh::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let disc = read
         .mesh
@@ -51,10 +66,62 @@ fn frequencies(path: &Path) -> Result<(Vec<f64>, usize), String> {
     opts.shift = -4e5;
     let modes = lowest_modes(system.k.as_ref(), system.m.as_ref(), COUNT, &opts)
         .map_err(|e| e.to_string())?;
-    Ok((
-        modes.values.iter().map(|&w2| hz(w2)).collect(),
-        disc.num_nodes(),
-    ))
+    Ok(Disc {
+        hz: modes.values.iter().map(|&w2| hz(w2)).collect(),
+        nodes: disc.num_nodes(),
+        shapes: shapes(&disc, &dofs, &modes.vectors),
+    })
+}
+
+/// Each node's displacements in every mode, keyed by the bits of its coordinates (both
+/// meshes of a level write a shared node with the same digits, so it parses to the same bits).
+fn shapes(
+    mesh: &squeal_mesh::Mesh,
+    dofs: &DofMap,
+    vectors: &Mat<f64>,
+) -> HashMap<[u64; 3], Vec<[f64; 3]>> {
+    let mut out = HashMap::new();
+    for (n, x) in mesh.nodes.iter().enumerate() {
+        let u = (0..vectors.ncols())
+            .map(|j| {
+                let mut v = [0.0; 3];
+                for (d, vd) in v.iter_mut().enumerate() {
+                    if let Some(i) = dofs.free_dof(n as u32, d) {
+                        *vd = vectors[(i, j)];
+                    }
+                }
+                v
+            })
+            .collect();
+        out.insert(x.map(f64::to_bits), u);
+    }
+    out
+}
+
+/// MAC of `a`'s mode `i` and `b`'s mode `j` over the nodes both have.
+fn mac(a: &Disc, i: usize, b: &Disc, j: usize) -> f64 {
+    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
+    for (key, ua) in &a.shapes {
+        if let Some(ub) = b.shapes.get(key) {
+            for d in 0..3 {
+                ab += ua[i][d] * ub[j][d];
+                aa += ua[i][d] * ua[i][d];
+                bb += ub[j][d] * ub[j][d];
+            }
+        }
+    }
+    ab * ab / (aa * bb)
+}
+
+/// For each of `hex`'s modes, the `tet` mode of largest MAC and that MAC.
+fn matches(hex: &Disc, tet: &Disc) -> Vec<(usize, f64)> {
+    (0..hex.hz.len())
+        .map(|i| {
+            (0..tet.hz.len())
+                .map(|j| (j, mac(hex, i, tet, j)))
+                .fold((0, -1.0), |best, c| if c.1 > best.1 { c } else { best })
+        })
+        .collect()
 }
 
 fn main() -> ExitCode {
@@ -69,12 +136,13 @@ fn main() -> ExitCode {
         for f in pair {
             let t = Instant::now();
             match frequencies(Path::new(f)) {
-                Ok((fr, nodes)) => {
+                Ok(disc) => {
                     eprintln!(
-                        "{f}: {nodes} disc nodes, {COUNT} modes in {:.1} s",
+                        "{f}: {} disc nodes, {COUNT} modes in {:.1} s",
+                        disc.nodes,
                         t.elapsed().as_secs_f64()
                     );
-                    both.push((fr, nodes));
+                    both.push(disc);
                 }
                 Err(e) => {
                     eprintln!("error: {e}");
@@ -82,26 +150,31 @@ fn main() -> ExitCode {
                 }
             }
         }
-        levels.push(both);
+        let m = matches(&both[0], &both[1]);
+        levels.push((both, m));
     }
     let mut head = String::from("| mode |");
     let mut rule = String::from("|---|");
-    for (k, l) in levels.iter().enumerate() {
+    for (k, (l, _)) in levels.iter().enumerate() {
         head.push_str(&format!(
-            " L{k} hex20 ({} n) | L{k} tet10 ({} n) | gap |",
-            l[0].1, l[1].1
+            " L{k} hex20 ({} n) | L{k} tet10 ({} n) | MAC | gap |",
+            l[0].nodes, l[1].nodes
         ));
-        rule.push_str("---|---|---|");
+        rule.push_str("---|---|---|---|");
     }
     println!("{head}\n{rule}");
     let mut worst = vec![0.0_f64; levels.len()];
     for m in 0..COUNT {
         let mut row = format!("| {} |", m + 1);
-        for (k, l) in levels.iter().enumerate() {
-            let (h, t) = (l[0].0[m], l[1].0[m]);
+        for (k, (l, pairs)) in levels.iter().enumerate() {
+            let (j, mac) = pairs[m];
+            let (h, t) = (l[0].hz[m], l[1].hz[j]);
             let gap = t / h - 1.0;
             worst[k] = worst[k].max(gap.abs());
-            row.push_str(&format!(" {h:.2} | {t:.2} | {gap:+.2e} |"));
+            row.push_str(&format!(
+                " {h:.2} | {t:.2} (#{}) | {mac:.3} | {gap:+.2e} |",
+                j + 1
+            ));
         }
         println!("{row}");
     }
