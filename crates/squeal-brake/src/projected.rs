@@ -48,7 +48,11 @@
 //! [`ProjectionOptions::tolerance`], else a correction term is added, then `f_c` grows by
 //! [`ProjectionOptions::growth`], and the check is repeated (at worst up to every mode: the
 //! projection is then the brake itself).
-//! What was kept and checked is reported in [`Projection`].
+//! What was kept and checked is reported in [`Projection`]. A basis of as many vectors as the
+//! brake has modes (the kept modes and as many independent correction vectors as modes
+//! dropped: a brake with more contact directions than dofs, such as an interface-reduced one
+//! with nodal contact) spans them all; its projection is a change of coordinates with the
+//! brake's own eigenvalues, and is not checked (0 values compared, deviation 0).
 //!
 //! A projection cannot hold an eigenvalue of the unprojected brake that is absent from it; one
 //! would have to come from a mode above the cut-off pulled into the band by the contact, which
@@ -63,7 +67,7 @@ use crate::linearized::{Coupling, LinearizedBrake};
 use crate::model::Brake;
 use crate::spectrum::{Reference, Ritz, Spectrum, modal_spectrum};
 use crate::sweep::{
-    SweepOptions, SweepPoint, SweepProgress, SweepStats, SweepTimings, SweptPoints, track_by,
+    SweepOptions, SweepPoint, SweepProgress, SweepStats, SweepTimings, SweptPoints, crossed_in_band,
 };
 use crate::tracking::match_modes_blocked;
 use faer::linalg::matmul::matmul;
@@ -239,8 +243,16 @@ pub(crate) fn choose(
     loop {
         let m = modes_below(omega, cutoff).min(n);
         let b = basis(lr, reference, m, terms, compression)?;
-        let (deviation, count) = deviation(lr, &b, &couplings, opts)?;
         let s = b.ritz.residual.ncols();
+        // A basis of as many orthonormal vectors as the brake has modes spans them all: the
+        // projection is a change of coordinates, with the brake's own eigenvalues (the case of
+        // a brake with more contact directions than dofs, e.g. an interface-reduced one), and
+        // is not checked.
+        let (deviation, count) = if m + s == n {
+            (0.0, 0)
+        } else {
+            deviation(lr, &b, &couplings, opts)?
+        };
         out.trials.push(Trial {
             kept_modes: m,
             residual_vectors: s,
@@ -249,7 +261,7 @@ pub(crate) fn choose(
         });
         (out.kept_modes, out.residual_vectors, out.cutoff_hz) = (m, s, hz(m));
         (out.deviation, out.checked_values, out.basis) = (deviation, count, b);
-        if deviation <= opts.projection.tolerance || m == n {
+        if deviation <= opts.projection.tolerance || m == n || m + s == n {
             return Ok(out);
         }
         // One more correction term first (4P more vectors at most: cheaper than the modes a
@@ -538,6 +550,9 @@ const CHUNK: usize = 8;
 
 /// Points and branches of the projected sweep: equilibria in turn, projected spectra (in
 /// parallel, each alone: the bits do not depend on the thread count), branches by correlation.
+/// With `stop_at = Some(τ)` the sweep ends with the chunk in which a branch first crosses
+/// `Re λ = τ` in the band (the points and branches up to there are the whole sweep's: each
+/// step's matching depends only on the points before it).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn points(
     brake: &Brake,
@@ -546,10 +561,12 @@ pub(crate) fn points(
     p: &Projection,
     mus: &[f64],
     opts: &SweepOptions,
+    stop_at: Option<f64>,
     progress: SweepProgress,
     timings: &mut SweepTimings,
 ) -> Result<SweptPoints, BrakeError> {
     let mut points: Vec<SweepPoint> = Vec::with_capacity(mus.len());
+    let mut branches: Vec<Vec<usize>> = Vec::new();
     for chunk in mus.chunks(CHUNK) {
         let t = Instant::now();
         let mut equilibria: Vec<Equilibrium> = Vec::with_capacity(chunk.len());
@@ -578,25 +595,43 @@ pub(crate) fn points(
             .map(|eq| spectrum(lr, p, &lr.coupling(brake, eq)))
             .collect::<Result<_, _>>()?;
         timings.spectra += t.elapsed();
-        points.extend(
-            equilibria
-                .into_iter()
-                .zip(spectra)
-                .map(|(equilibrium, spectrum)| SweepPoint {
-                    equilibrium,
-                    spectrum,
-                }),
-        );
+        let mut crossed = false;
+        for (equilibrium, spectrum) in equilibria.into_iter().zip(spectra) {
+            points.push(SweepPoint {
+                equilibrium,
+                spectrum,
+            });
+            let t = Instant::now();
+            extend_branches(&mut branches, &points);
+            timings.tracking += t.elapsed();
+            crossed |= stop_at.is_some_and(|tau| crossed_in_band(&points, &branches, opts, tau));
+        }
         progress(points.len(), mus.len());
+        if crossed {
+            break;
+        }
     }
-    let t = Instant::now();
-    let branches = track_by(&points, match_modes_blocked);
-    timings.tracking = t.elapsed();
     let stats = SweepStats {
         dense: points.len(),
         ..SweepStats::default()
     };
     Ok((points, branches, stats))
+}
+
+/// The branches of `points` with its last point matched to the one before (as
+/// `crate::sweep::track_by` does for all of them at once, with the blocked correlation).
+fn extend_branches(branches: &mut Vec<Vec<usize>>, points: &[SweepPoint]) {
+    let k = points.len() - 1;
+    if k == 0 {
+        let n = points[0].spectrum.values.len();
+        *branches = (0..n).map(|b| vec![b]).collect();
+        return;
+    }
+    let m = match_modes_blocked(&points[k - 1].spectrum, &points[k].spectrum);
+    for br in branches.iter_mut() {
+        let prev = br[k - 1];
+        br.push(m[prev]);
+    }
 }
 
 /// The equilibrium at `mu` from `from` (from scratch without), its Newton steps solved in the

@@ -287,8 +287,9 @@ pub fn sweep_with(
 }
 
 /// [`sweep`] up to the first in-band crossing only: with continuation the points end at the
-/// first one past it (the same points as the whole sweep's up to there), which is all the Hopf
-/// point and its coalescing partner need; the dense and projected methods sweep all of `mus`.
+/// first one past it, with the projected method at the end of the chunk of friction values
+/// that holds it (the same points as the whole sweep's up to there), which is all the Hopf
+/// point and its coalescing partner need; the dense method sweeps all of `mus`.
 pub fn sweep_to_hopf(
     brake: &Brake,
     reference: &Reference,
@@ -342,7 +343,7 @@ fn sweep_until(
     let t = &mut timings;
     let (points, branches, stats) = match (&projection, low_rank) {
         (Some(p), _) => {
-            crate::projected::points(brake, reference, &lin, p, mus, opts, progress, t)?
+            crate::projected::points(brake, reference, &lin, p, mus, opts, stop, progress, t)?
         }
         (None, Some(lr)) => {
             let start = Instant::now();
@@ -513,7 +514,7 @@ fn continued_points(
 
 /// Whether a branch crossed `Re λ = τ` in the band between the last two points (the test of
 /// [`crossings`] on the last interval).
-fn crossed_in_band(
+pub(crate) fn crossed_in_band(
     points: &[SweepPoint],
     branches: &[Vec<usize>],
     opts: &SweepOptions,

@@ -13,7 +13,8 @@
 //!
 //! A case may instead name a scene file, `PATH.toml[:METHODS[:TWEAKS]]` (e.g. the ventilated
 //! brake with nodal contact), swept with its global modal damping (no pair damping) and its band; `n=N` among the tweaks sets
-//! the number of friction values (default 201).
+//! the number of friction values (default 201). Its interface reduction (nodal contact's
+//! default `"system"`) is printed with the time of each level tried.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -136,6 +137,11 @@ fn main() {
         let t = Instant::now();
         let model = build(&the_scene, &out, &quiet).expect("the model builds");
         eprintln!("{case}: model built in {:.1?}", t.elapsed());
+        // What an interface reduction kept and why (nodal contact's default), with its levels'
+        // times.
+        if let Some(i) = &model.interface {
+            eprint!("{}", i.text());
+        }
         let brake = &model.brake;
         let damping = Damping {
             global_ratio: model.damping.global_ratio,

@@ -43,6 +43,10 @@ pub struct InterfaceLevel {
     pub hopf: Option<(f64, f64)>,
     /// Whether the stability sweep ran at this count.
     pub swept: bool,
+    /// `"system"`'s `"auto"`: the largest relative change of an in-band eigenvalue from the
+    /// level before at the checked friction values (`crate::interface_check`); `None` for the
+    /// first level and for the other choices.
+    pub change: Option<f64>,
     /// Seconds to build this count's brake and sweep it.
     pub seconds: f64,
 }
@@ -64,6 +68,9 @@ pub struct InterfaceSummary {
     pub chosen: usize,
     /// Why that count.
     pub reason: String,
+    /// The friction values the levels' eigenvalues were compared at (`"system"`'s `"auto"`;
+    /// empty when the levels were swept or the count was fixed).
+    pub checked_mus: Vec<f64>,
 }
 
 impl InterfaceSummary {
@@ -91,6 +98,23 @@ impl InterfaceSummary {
             self.dofs_before,
             self.reason
         );
+        if !self.checked_mus.is_empty() {
+            let _ = writeln!(
+                out,
+                "  basis | face vectors per part | dofs | change of the in-band eigenvalues | s"
+            );
+            for l in &self.levels {
+                let _ = writeln!(
+                    out,
+                    "  {} | {} | {} | {} | {:.1}",
+                    l.basis,
+                    joined(&l.kept),
+                    l.dofs,
+                    l.change.map_or("-".into(), |d| format!("{d:.2e}")),
+                    l.seconds
+                );
+            }
+        }
         if self.levels.iter().any(|l| l.swept) {
             let _ = writeln!(
                 out,
@@ -127,6 +151,7 @@ impl InterfaceSummary {
             "kept_per_part": self.chosen().kept,
             "tolerance": self.tolerance,
             "reason": self.reason,
+            "checked_mus": self.checked_mus,
             "levels": self.levels.iter().map(|l| serde_json::json!({
                 "kept_per_part": l.kept,
                 "basis": l.basis,
@@ -134,10 +159,19 @@ impl InterfaceSummary {
                 "mu0": l.hopf.map(|h| h.0),
                 "frequency_hz": l.hopf.map(|h| h.1),
                 "swept": l.swept,
+                "eigenvalue_change": l.change,
                 "seconds": l.seconds,
             })).collect::<Vec<_>>(),
         })
     }
+}
+
+/// `1+2+3`.
+fn joined(kept: &[usize]) -> String {
+    kept.iter()
+        .map(usize::to_string)
+        .collect::<Vec<_>>()
+        .join("+")
 }
 
 /// One candidate of an interface reduction: the model, the face vectors kept per part and
@@ -216,6 +250,7 @@ pub fn fixed(model: &Model, head: Head, c: Candidate, reason: String) -> Result<
         dofs: c.model.brake.size(),
         hopf: None,
         swept: false,
+        change: None,
         seconds: t.elapsed().as_secs_f64(),
     };
     let mut m = c.model;
@@ -227,6 +262,7 @@ pub fn fixed(model: &Model, head: Head, c: Candidate, reason: String) -> Result<
         levels: vec![level],
         chosen: 0,
         reason,
+        checked_mus: Vec::new(),
     });
     Ok(m)
 }
@@ -257,6 +293,7 @@ pub fn auto(
             chosen: done.len() - 1,
             levels: done,
             reason,
+            checked_mus: Vec::new(),
         });
         m
     };
@@ -281,6 +318,7 @@ pub fn auto(
             dofs: m.brake.size(),
             hopf,
             swept: true,
+            change: None,
             seconds: t.elapsed().as_secs_f64(),
         };
         log(&format!(

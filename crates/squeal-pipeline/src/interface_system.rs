@@ -14,11 +14,12 @@
 //! **How many.** `interface_modes = n`: the `n` lowest real modes, with the friction residual
 //! vectors of those in the band. `"auto"`: the in-band modes alone, then with their friction
 //! residual vectors, then the modes up to 2, 4, … times the band's top with those residuals,
-//! sweeping each and keeping the first whose frictionless frequencies, μ0 and μ0's frequency
-//! moved by less than `interface_tolerance` from the one before.
+//! keeping the first whose in-band eigenvalues at the sweep's first, middle and last friction
+//! value moved by less than `interface_tolerance` (default 1e-5, relative) from the level
+//! before (`crate::interface_check`: no sweep per level).
 
 use crate::error::Result;
-use crate::interface::{Candidate, Head, at_count, auto, fixed};
+use crate::interface::{Candidate, Head, at_count, fixed};
 use crate::model::{Log, Model};
 use squeal_brake::interface_system::{SystemVectors, system_vectors};
 use squeal_reduce::interface_modes::{InterfaceModes, face_basis, face_dofs};
@@ -79,7 +80,8 @@ pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -
                 "the {in_band} in-band brake modes, then with their friction residuals, then the modes below 2, 4, ... x {top:.0} Hz"
             );
             let levels = steps.into_iter().map(|(m, r)| candidate(m, r));
-            auto(scene, &model, log, head, levels, tolerance, &what)
+            let mus = scene.mu_values()?;
+            crate::interface_check::auto(&model, &mus, log, head, levels, tolerance, &what)
         }
     }
 }

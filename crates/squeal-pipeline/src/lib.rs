@@ -38,6 +38,7 @@ pub mod fe_export;
 pub mod folder;
 pub mod full;
 pub mod interface;
+pub mod interface_check;
 pub mod interface_system;
 pub mod mesh_info;
 pub mod model;

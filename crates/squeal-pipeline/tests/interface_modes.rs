@@ -29,6 +29,9 @@ fn coarse_nodal_scene() -> Scene {
         assert!(text.contains(from), "brake.toml lost '{from}'");
         text = text.replacen(from, to, 1);
     }
+    // The unreduced interface (every face node's dofs kept): nodal contact's default is the
+    // `"system"` interface reduction.
+    text.push_str("\n[reduction]\ninterface = \"none\"\n");
     Scene::parse(&dir.join("brake_coarse_nodal.toml"), text).unwrap()
 }
 
@@ -157,6 +160,56 @@ fn system_basis_reproduces_the_unreduced_interface_brake() {
     assert!((h.mu0 - 0.39662).abs() <= 1e-3 * 0.39662, "{}", h.mu0);
     assert!(
         (h.frequency_hz - 4106.7).abs() <= 1e-3 * 4106.7,
+        "{}",
+        h.frequency_hz
+    );
+}
+
+/// Nodal contact without a `[reduction]` section: the `"system"` interface reduction with its
+/// level chosen by comparing the in-band eigenvalues of consecutive levels at the sweep's first,
+/// middle and last friction value (no sweep per level), and the kept level's μ0 against the
+/// unreduced-interface brake's.
+#[test]
+fn nodal_contact_defaults_to_the_system_basis_chosen_by_its_eigenvalues() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes");
+    let scene = coarse_nodal_scene();
+    let text = scene
+        .text
+        .replacen("\n[reduction]\ninterface = \"none\"\n", "", 1);
+    let scene = Scene::parse(&dir.join("brake_coarse_nodal_default.toml"), text).unwrap();
+    let out = std::env::temp_dir().join(format!("squeal-sysdef-{}", std::process::id()));
+    let m = build(&scene, &out, &quiet).unwrap();
+    let s = m
+        .interface
+        .as_ref()
+        .expect("an interface reduction by default");
+    eprintln!("{}", s.text());
+    assert_eq!(s.dofs_before, 2234);
+    assert_eq!(s.tolerance, Some(1e-3));
+    assert_eq!(s.checked_mus.len(), 3);
+    // At least two levels compared; the kept one moved by at most the tolerance from the one
+    // before, unless it is the last the basis offers.
+    assert!(s.levels.len() >= 2, "{} levels", s.levels.len());
+    let chosen = s.chosen();
+    assert_eq!(s.chosen, s.levels.len() - 1);
+    assert!(chosen.change.is_some_and(|d| d <= 1e-3), "{}", s.reason);
+    assert!(chosen.dofs < 500, "{}", chosen.dofs);
+    // μ0 of the unreduced-interface brake on mu = 0.3..0.6/31: 0.39662 at 4106.7 Hz (5 digits,
+    // docs/reduction.md); the (61 modes + 61 residuals) level gave 0.396608 (-3.0e-5) and the
+    // larger ones within 6e-5. Asserted to 1e-4 relative: the reduction's error measured here
+    // (3.0e-5) plus the reference's rounding (1.3e-5), with room for the next level (6e-5).
+    let mus: Vec<f64> = (0..31).map(|i| 0.3 + 0.01 * i as f64).collect();
+    let st = squeal_pipeline::stability::analyse(&m, &mus).unwrap();
+    let h = st.sweep.hopf.expect("a Hopf point in mu = 0.3..0.6");
+    eprintln!(
+        "default system basis: {} dofs, mu0 = {:.6} at {:.2} Hz",
+        m.brake.size(),
+        h.mu0,
+        h.frequency_hz
+    );
+    assert!((h.mu0 - 0.39662).abs() <= 1e-4 * 0.39662, "{}", h.mu0);
+    assert!(
+        (h.frequency_hz - 4106.7).abs() <= 1e-4 * 4106.7,
         "{}",
         h.frequency_hz
     );

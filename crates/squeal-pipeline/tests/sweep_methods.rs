@@ -70,6 +70,39 @@ fn the_sweep_to_the_hopf_point_is_the_whole_sweeps_beginning() {
 }
 
 #[test]
+fn the_projected_sweep_to_the_hopf_point_is_the_whole_projected_sweeps_beginning() {
+    // The projected `sweep_to_hopf` ends with the chunk of 8 friction values (spectra computed
+    // together) that holds the first in-band crossing: its points, branches and Hopf point must
+    // be the whole projected sweep's, bit for bit (same projection, same matching of each point
+    // to the one before).
+    use squeal_brake::sweep::sweep_to_hopf;
+    let c = common::coarse();
+    let mus = common::mus(0.0, 1.0, 101);
+    let mut opts = common::options(c);
+    opts.method = SweepMethod::Projected;
+    let whole = sweep(&c.model.brake, &c.reference, &mus, &opts).unwrap();
+    let early = sweep_to_hopf(&c.model.brake, &c.reference, &mus, &opts).unwrap();
+    let first = whole.crossings.iter().find(|x| x.in_band).unwrap();
+    let end = ((first.k + 1) / 8 + 1) * 8;
+    assert_eq!(
+        early.points.len(),
+        end.min(mus.len()),
+        "crossing at {}",
+        first.k
+    );
+    assert!(early.points.len() < whole.points.len());
+    for (k, (a, b)) in early.points.iter().zip(&whole.points).enumerate() {
+        assert_eq!(a.spectrum.values, b.spectrum.values, "point {k}");
+    }
+    for (a, b) in early.branches.iter().zip(&whole.branches) {
+        assert_eq!(a[..], b[..early.points.len()]);
+    }
+    let (he, hw) = (early.hopf.unwrap(), whole.hopf.unwrap());
+    assert_eq!(he.mu0.to_bits(), hw.mu0.to_bits());
+    assert_eq!((he.branch, he.partner), (hw.branch, hw.partner));
+}
+
+#[test]
 fn the_projected_sweep_agrees_with_continuation_within_its_checked_tolerance() {
     // The coarse brake projected on its modes below 1.5 x 16 kHz plus the static correction
     // of the others (105 + 18 vectors of 158 dofs): its check against the unprojected brake

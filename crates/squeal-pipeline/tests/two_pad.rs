@@ -392,6 +392,9 @@ fn coarse_nodal_scene() -> Scene {
         assert!(text.contains(from), "brake.toml lost '{from}'");
         text = text.replacen(from, to, 1);
     }
+    // The unreduced interface (every face node's dofs kept): nodal contact's default is the
+    // `"system"` interface reduction.
+    text.push_str("\n[reduction]\ninterface = \"none\"\n");
     Scene::parse(&dir.join("brake_coarse_nodal.toml"), text).unwrap()
 }
 

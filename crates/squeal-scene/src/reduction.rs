@@ -2,64 +2,76 @@
 //!
 //! ```toml
 //! [reduction]
-//! interface = "system"        # "none" (the default); "system": each contact face's motion
-//!                             # restricted to that of the assembled brake's real modes,
-//!                             # friction residual and static vectors; "cc": characteristic
-//!                             # constraint modes of each part's contact face (nodal contact)
-//! interface_modes = "auto"    # "auto" (by convergence of mu0 and its frequency) or a number
-//!                             # of CC modes per part
-//! interface_tolerance = 1e-3  # "auto": the relative change of mu0 and of its frequency
-//!                             # between two counts below which the larger count is kept
+//! interface = "system"        # "none"; "system": each contact face's motion restricted to
+//!                             # that of the assembled brake's real modes, friction residual
+//!                             # and static vectors; "cc": characteristic constraint modes of
+//!                             # each part's contact face. Default: "system" with nodal
+//!                             # contact, "none" with patch contact (nothing to reduce)
+//! interface_modes = "auto"    # "auto" (by convergence) or a number of modes
+//! interface_tolerance = 1e-3  # "auto": "system", the relative change of the in-band
+//!                             # eigenvalues at the sweep's first, middle and last friction
+//!                             # value between two levels; "cc", of mu0 and its frequency
+//!                             # between two counts
 //! ```
+//!
+//! **Why `"system"` is the default with nodal contact.** Nodal contact keeps every contact
+//! node's dofs as Craig–Bampton boundary, so the reduced brake grows with the pairs (2234 dofs
+//! on the coarse one-pad brake, 2939 on the medium ventilated one); the `"system"` basis keeps
+//! each face's motion to the brake's in-band real modes, their friction residuals and the
+//! static vectors (267 and 510 dofs), with μ0 within 3e-5 and 1e-6 of the unreduced-interface
+//! brake's on the coarse one-pad and ventilated brakes, and its level is chosen by comparing
+//! eigenvalues at three friction values instead of whole sweeps (docs/reduction.md, "Interface
+//! reduction").
 
 use crate::{Result, Scene};
 use serde::Deserialize;
 use toml::Spanned;
 
-/// Default relative tolerance of the interface modes' convergence.
+/// Default relative tolerance of the interface modes' convergence: `"cc"`, the change of μ0
+/// and its frequency between two counts; `"system"`, the largest change of an in-band
+/// eigenvalue, `|Δλ| / |λ|`, between two levels at the checked friction values (measured on
+/// the medium ventilated brake: 2.6e-4 from the in-band modes alone to those with their
+/// friction residuals, while μ0 moved by 6e-6: docs/reduction.md).
 pub const DEFAULT_INTERFACE_TOLERANCE: f64 = 1e-3;
 
 /// `[reduction]` as written.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ReductionSection {
-    /// `"none"` or `"cc"`.
-    #[serde(default = "default_interface")]
-    pub interface: Spanned<String>,
+    /// `"none"`, `"system"` or `"cc"`; absent: `"system"` with nodal contact, else `"none"`.
+    #[serde(default)]
+    pub interface: Option<Spanned<String>>,
     /// `"auto"` or a positive number of CC modes per part.
     #[serde(default = "default_modes")]
     pub interface_modes: Spanned<toml::Value>,
-    /// Relative tolerance of `"auto"`.
-    #[serde(default = "default_tolerance")]
-    pub interface_tolerance: Spanned<f64>,
+    /// Relative tolerance of `"auto"` (absent: the basis's default).
+    #[serde(default)]
+    pub interface_tolerance: Option<Spanned<f64>>,
 }
 
 impl Default for ReductionSection {
     fn default() -> Self {
         Self {
-            interface: default_interface(),
+            interface: None,
             interface_modes: default_modes(),
-            interface_tolerance: default_tolerance(),
+            interface_tolerance: None,
         }
     }
 }
 
-fn default_interface() -> Spanned<String> {
-    Spanned::new(0..0, "none".into())
-}
 fn default_modes() -> Spanned<toml::Value> {
     Spanned::new(0..0, toml::Value::String("auto".into()))
-}
-fn default_tolerance() -> Spanned<f64> {
-    Spanned::new(0..0, DEFAULT_INTERFACE_TOLERANCE)
 }
 
 /// How many CC modes each part keeps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum InterfaceModeCount {
-    /// Doubled until μ0 and its frequency change by less than `tolerance` (relative).
+    /// By convergence: `"cc"` doubles its count until μ0 and its frequency change by less than
+    /// `tolerance` (relative); `"system"` adds to its basis until the in-band eigenvalues at
+    /// three friction values change by less than `tolerance` (relative).
     Auto {
-        /// Relative change of μ0 and of its frequency.
+        /// Relative change of μ0 and of its frequency (`"cc"`), of the eigenvalues
+        /// (`"system"`).
         tolerance: f64,
     },
     /// This many per part (at most the part's contact-face dofs).
@@ -87,38 +99,65 @@ pub struct InterfaceReduction {
 
 impl Scene {
     /// `[reduction] interface`: `None` without an interface reduction, else its mode count.
+    /// Absent, nodal contact takes `"system"` with `"auto"` (module documentation) and patch
+    /// contact none.
     pub fn interface_reduction(&self) -> Result<Option<InterfaceReduction>> {
         let r = &self.file.reduction;
-        let basis = match r.interface.get_ref().as_str() {
+        let iface = self.file.model.interface.get_ref();
+        let nodal = iface == "nodal" || iface == "node";
+        let Some(written) = &r.interface else {
+            if !nodal {
+                return Ok(None);
+            }
+            return self.interface_count().map(|modes| {
+                Some(InterfaceReduction {
+                    modes,
+                    basis: InterfaceBasis::System,
+                })
+            });
+        };
+        let basis = match written.get_ref().as_str() {
             "none" => return Ok(None),
             "cc" => InterfaceBasis::Cc,
             "system" => InterfaceBasis::System,
             other => {
                 return Err(self.error_at(
                     "reduction.interface",
-                    &r.interface,
+                    written,
                     format!("'{other}' is not 'none', 'system' or 'cc'"),
                 ));
             }
         };
-        let iface = self.file.model.interface.get_ref();
-        if iface != "nodal" && iface != "node" {
+        if !nodal {
             return Err(self.error_at(
                 "reduction.interface",
-                &r.interface,
+                written,
                 format!(
                     "an interface reduction reduces contact faces kept node by node: it needs model.interface = \"nodal\" (this scene has \"{iface}\")"
                 ),
             ));
         }
-        let tolerance = *r.interface_tolerance.get_ref();
-        if !(tolerance > 0.0 && tolerance <= 0.1) {
-            return Err(self.error_at(
-                "reduction.interface_tolerance",
-                &r.interface_tolerance,
-                format!("must be in (0, 0.1] (got {tolerance})"),
-            ));
-        }
+        let modes = self.interface_count()?;
+        Ok(Some(InterfaceReduction { modes, basis }))
+    }
+
+    /// `interface_modes` and `interface_tolerance` (its default when absent).
+    fn interface_count(&self) -> Result<InterfaceModeCount> {
+        let r = &self.file.reduction;
+        let tolerance = match &r.interface_tolerance {
+            None => DEFAULT_INTERFACE_TOLERANCE,
+            Some(t) => {
+                let tolerance = *t.get_ref();
+                if !(tolerance > 0.0 && tolerance <= 0.1) {
+                    return Err(self.error_at(
+                        "reduction.interface_tolerance",
+                        t,
+                        format!("must be in (0, 0.1] (got {tolerance})"),
+                    ));
+                }
+                tolerance
+            }
+        };
         let v = &r.interface_modes;
         let modes = match v.get_ref() {
             toml::Value::String(s) if s == "auto" => InterfaceModeCount::Auto { tolerance },
@@ -131,6 +170,6 @@ impl Scene {
                 ));
             }
         };
-        Ok(Some(InterfaceReduction { modes, basis }))
+        Ok(modes)
     }
 }
