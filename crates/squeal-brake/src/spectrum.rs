@@ -233,6 +233,22 @@ pub fn eigenvalues_of(
     Ok(upper_half(&s, n).into_iter().map(|k| s[k]).collect())
 }
 
+/// [`eigenvalues_of`] for given frequencies `ω_j` (the whole modal basis's, without its
+/// shapes).
+pub fn modal_eigenvalues(
+    omega: &[f64],
+    damping: &ModalDamping,
+    dk: &Mat<f64>,
+    dc: Option<&Mat<f64>>,
+) -> Result<Vec<c64>, BrakeError> {
+    let a = state_matrix_of(omega, damping, dk, dc);
+    let (s, _) = real_eigen(&a, false)?;
+    Ok(upper_half(&s, omega.len())
+        .into_iter()
+        .map(|k| s[k])
+        .collect())
+}
+
 /// Indices of the `n` eigenvalues of largest imaginary part (one of each conjugate pair),
 /// ascending in `Im λ`, ties by index.
 fn upper_half(s: &[c64], n: usize) -> Vec<usize> {

@@ -17,15 +17,16 @@
 //! `λ'` the nearest eigenvalue of the other level at the same `μ_c`, measures how much level
 //! `i` moved from level `i - 1`. The first level with `δ_i <= tolerance` is kept (the larger of
 //! the two that agree), else the last. The tolerance (`[reduction] interface_tolerance`,
-//! default 1e-3) bounds the change of every in-band frequency and growth rate at the checked
-//! friction values, relative to `|λ|`; μ0 moves much less. Measured on the medium ventilated
-//! brake (2939 dofs before, 89 in-band modes): `δ` = 2.6e-4 from the in-band modes alone (378
-//! dofs) to those with their friction residuals (510 dofs), while μ0 moved by 6.0e-6 between
-//! the same two levels; the next levels (749, 1462, 2031, 2276 dofs) moved by 1.7e-4, 1.4e-5,
-//! 1.2e-5, 4.6e-6: the largest changes are of eigenvalues far from the onset (at μ = 0.5 and
-//! 1), which converge as slowly as a modal truncation, so a tolerance near the projected
-//! sweep's own (1e-5) would keep most of the unreduced brake for a μ0 that has long settled
-//! (docs/reduction.md, "The default with nodal contact").
+//! default [`squeal_scene::reduction::DEFAULT_SYSTEM_TOLERANCE`], 5e-3) bounds the change of
+//! every in-band frequency and growth rate at the checked friction values, relative to `|λ|`;
+//! μ0 moves much less. Measured from the in-band modes alone to those with their friction
+//! residuals: `δ` = 2.1e-3, 1.5e-4, 2.6e-4 on the coarse one-pad, coarse ventilated and medium
+//! ventilated nodal brakes, while μ0 moved by 2.2e-4, 7e-5, 6e-6; the next levels of the medium
+//! brake (749, 1462, 2031, 2276 dofs) moved by 1.7e-4, 1.4e-5, 1.2e-5, 4.6e-6: the largest
+//! changes are of eigenvalues far from the onset (at μ = 0.5 and 1), which converge as slowly
+//! as a modal truncation, so a tolerance near the projected sweep's own (1e-5) would keep most
+//! of the unreduced brake for a μ0 that has long settled (docs/reduction.md, "The default with
+//! nodal contact").
 //!
 //! What it checks: the whole in-band spectrum at both ends and the middle of the sweep, where
 //! the sweep's μ0 comes from. What it does not: the eigenvalues between the checked friction

@@ -15,7 +15,7 @@
 //! vectors of those in the band. `"auto"`: the in-band modes alone, then with their friction
 //! residual vectors, then the modes up to 2, 4, … times the band's top with those residuals,
 //! keeping the first whose in-band eigenvalues at the sweep's first, middle and last friction
-//! value moved by less than `interface_tolerance` (default 1e-5, relative) from the level
+//! value moved by less than `interface_tolerance` (default 5e-3, relative) from the level
 //! before (`crate::interface_check`: no sweep per level).
 
 use crate::error::Result;

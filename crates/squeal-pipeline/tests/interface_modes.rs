@@ -185,15 +185,17 @@ fn nodal_contact_defaults_to_the_system_basis_chosen_by_its_eigenvalues() {
         .expect("an interface reduction by default");
     eprintln!("{}", s.text());
     assert_eq!(s.dofs_before, 2234);
-    assert_eq!(s.tolerance, Some(1e-3));
+    assert_eq!(s.tolerance, Some(5e-3));
     assert_eq!(s.checked_mus.len(), 3);
     // At least two levels compared; the kept one moved by at most the tolerance from the one
     // before, unless it is the last the basis offers.
     assert!(s.levels.len() >= 2, "{} levels", s.levels.len());
     let chosen = s.chosen();
     assert_eq!(s.chosen, s.levels.len() - 1);
-    assert!(chosen.change.is_some_and(|d| d <= 1e-3), "{}", s.reason);
-    assert!(chosen.dofs < 500, "{}", chosen.dofs);
+    assert!(chosen.change.is_some_and(|d| d <= 5e-3), "{}", s.reason);
+    // Measured: 2.14e-3 from the 61 in-band modes with statics (206 dofs) to those with their
+    // friction residuals (267 dofs), kept.
+    assert_eq!(chosen.dofs, 267, "{}", s.reason);
     // μ0 of the unreduced-interface brake on mu = 0.3..0.6/31: 0.39662 at 4106.7 Hz (5 digits,
     // docs/reduction.md); the (61 modes + 61 residuals) level gave 0.396608 (-3.0e-5) and the
     // larger ones within 6e-5. Asserted to 1e-4 relative: the reduction's error measured here
