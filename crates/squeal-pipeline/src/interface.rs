@@ -241,6 +241,29 @@ pub struct Head {
     pub face_dofs: Vec<(String, usize)>,
 }
 
+impl Head {
+    /// The summary of a choice among `levels` (tried in order, the last one kept).
+    pub fn summary(
+        &self,
+        dofs_before: usize,
+        tolerance: Option<f64>,
+        levels: Vec<InterfaceLevel>,
+        reason: String,
+        checked_mus: Vec<f64>,
+    ) -> InterfaceSummary {
+        InterfaceSummary {
+            method: self.method.clone(),
+            face_dofs: self.face_dofs.clone(),
+            dofs_before,
+            tolerance,
+            chosen: levels.len().saturating_sub(1),
+            levels,
+            reason,
+            checked_mus,
+        }
+    }
+}
+
 /// A fixed count: the candidate, not swept.
 pub fn fixed(model: &Model, head: Head, c: Candidate, reason: String) -> Result<Model> {
     let t = Instant::now();
@@ -254,16 +277,7 @@ pub fn fixed(model: &Model, head: Head, c: Candidate, reason: String) -> Result<
         seconds: t.elapsed().as_secs_f64(),
     };
     let mut m = c.model;
-    m.interface = Some(InterfaceSummary {
-        method: head.method,
-        face_dofs: head.face_dofs,
-        dofs_before: model.brake.size(),
-        tolerance: None,
-        levels: vec![level],
-        chosen: 0,
-        reason,
-        checked_mus: Vec::new(),
-    });
+    m.interface = Some(head.summary(model.brake.size(), None, vec![level], reason, Vec::new()));
     Ok(m)
 }
 
@@ -285,16 +299,13 @@ pub fn auto(
     let mut last: Option<Model> = None;
     let finish = |m: Model, done: Vec<InterfaceLevel>, reason: String| {
         let mut m = m;
-        m.interface = Some(InterfaceSummary {
-            method: head.method.clone(),
-            face_dofs: head.face_dofs.clone(),
-            dofs_before: model.brake.size(),
-            tolerance: Some(tolerance),
-            chosen: done.len() - 1,
-            levels: done,
+        m.interface = Some(head.summary(
+            model.brake.size(),
+            Some(tolerance),
+            done,
             reason,
-            checked_mus: Vec::new(),
-        });
+            Vec::new(),
+        ));
         m
     };
     for c in levels {

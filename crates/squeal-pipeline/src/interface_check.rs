@@ -42,7 +42,7 @@
 //! level before.
 
 use crate::error::Result;
-use crate::interface::{Candidate, Head, InterfaceLevel, InterfaceSummary};
+use crate::interface::{Candidate, Head, InterfaceLevel};
 use crate::model::{Log, Model};
 use faer::c64;
 use squeal_brake::equilibrium::{Equilibrium, static_equilibrium};
@@ -170,16 +170,7 @@ pub fn auto(
             list(&checked)
         );
     }
-    m.interface = Some(InterfaceSummary {
-        method: head.method,
-        face_dofs: head.face_dofs,
-        dofs_before: model.brake.size(),
-        tolerance: Some(tolerance),
-        chosen: done.len() - 1,
-        levels: done,
-        checked_mus: checked,
-        reason,
-    });
+    m.interface = Some(head.summary(model.brake.size(), Some(tolerance), done, reason, checked));
     Ok(m)
 }
 
