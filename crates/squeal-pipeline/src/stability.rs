@@ -131,35 +131,42 @@ pub fn criticality_text(m: &Model, st: &Stability, nf: &NormalForm) -> String {
     out
 }
 
-/// The contact pairs as formed: points, distance, area and element parameters.
+/// The contact pairs as formed: points, distance, area and element parameters, one line per
+/// pair up to [`pairs::LISTED_PAIRS`] pairs; beyond, one summary line per pad (nodal contact
+/// on a fine mesh has thousands of pairs: every pair is in `equilibrium.csv` and
+/// `summary.json`).
 pub fn pairs_text(s: &Model) -> String {
     let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "contact pairs (disc point, pad point, distance, area, geometric gap, k_l, k_nl):"
-    );
-    let mut pad = "";
-    for p in &s.pairs {
-        if s.layout.pads.len() > 1 && p.pad != pad {
-            pad = &p.pad;
-            let _ = writeln!(out, "  {pad}:");
-        }
-        let params: Vec<String> = p
-            .law
-            .parameters()
-            .iter()
-            .map(|(_, v, unit)| format!("{v:.4e} {unit}"))
-            .collect();
+    if s.pairs.len() > pairs::LISTED_PAIRS {
+        out.push_str(&pairs::formed_summary(s));
+    } else {
         let _ = writeln!(
             out,
-            "  {:>2} {:>2}  {:.1e} m  {} m^2  {:+.1e} m  {}",
-            p.disc_point + 1,
-            p.pad_point + 1,
-            p.distance,
-            p.area.map_or("-".into(), |a| format!("{a:.4e}")),
-            p.geometric_gap,
-            params.join("  ")
+            "contact pairs (disc point, pad point, distance, area, geometric gap, k_l, k_nl):"
         );
+        let mut pad = "";
+        for p in &s.pairs {
+            if s.layout.pads.len() > 1 && p.pad != pad {
+                pad = &p.pad;
+                let _ = writeln!(out, "  {pad}:");
+            }
+            let params: Vec<String> = p
+                .law
+                .parameters()
+                .iter()
+                .map(|(_, v, unit)| format!("{v:.4e} {unit}"))
+                .collect();
+            let _ = writeln!(
+                out,
+                "  {:>2} {:>2}  {:.1e} m  {} m^2  {:+.1e} m  {}",
+                p.disc_point + 1,
+                p.pad_point + 1,
+                p.distance,
+                p.area.map_or("-".into(), |a| format!("{a:.4e}")),
+                p.geometric_gap,
+                params.join("  ")
+            );
+        }
     }
     let _ = writeln!(
         out,

@@ -114,6 +114,10 @@ pub fn equilibrium_text(m: &Model, eq: &Equilibrium) -> String {
             per_pad.join(", ")
         );
     }
+    if m.pairs.len() > LISTED_PAIRS {
+        out.push_str(&equilibrium_summary(m, eq));
+        return out;
+    }
     let _ = writeln!(
         out,
         "  pair  initial gap (um)  closure (um)  normal force (N)"
@@ -131,6 +135,106 @@ pub fn equilibrium_text(m: &Model, eq: &Equilibrium) -> String {
             } else {
                 "  open"
             }
+        );
+    }
+    out
+}
+
+/// Above this many contact pairs `squeal stability` prints one summary line per pad instead
+/// of a line per pair (the pairs are in `equilibrium.csv` and `summary.json`).
+pub const LISTED_PAIRS: usize = 40;
+
+/// The pads' names in the order of the pairs (one unnamed pad: `""`).
+fn pad_names(m: &Model) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    for p in &m.pairs {
+        if !names.contains(&p.pad.as_str()) {
+            names.push(&p.pad);
+        }
+    }
+    names
+}
+
+/// The range `[min, max]` of `values` as text with `unit` and the format `f`.
+fn range(values: impl Iterator<Item = f64>, f: impl Fn(f64) -> String) -> String {
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    });
+    if lo > hi {
+        return "-".into();
+    }
+    format!("{} .. {}", f(lo), f(hi))
+}
+
+/// The pairs as formed, one line per pad: count, largest projection distance, total area,
+/// the geometric gaps' range and each law parameter's range.
+pub fn formed_summary(m: &Model) -> String {
+    let mut out = format!(
+        "contact pairs: {} (a line per pad; every pair in equilibrium.csv and summary.json)\n",
+        m.pairs.len()
+    );
+    for name in pad_names(m) {
+        let pairs: Vec<_> = m.pairs.iter().filter(|p| p.pad == name).collect();
+        let distance = pairs.iter().map(|p| p.distance).fold(0.0, f64::max);
+        let area: f64 = pairs.iter().filter_map(|p| p.area).sum();
+        let params = pairs.first().map_or(Vec::new(), |p| p.law.parameters());
+        let laws: Vec<String> = params
+            .iter()
+            .enumerate()
+            .map(|(k, (what, _, unit))| {
+                let vals = pairs.iter().map(|p| p.law.parameters()[k].1);
+                format!("{what} {} {unit}", range(vals, |v| format!("{v:.4e}")))
+            })
+            .collect();
+        let _ = writeln!(
+            out,
+            "  {}{} pairs, projection distance <= {:.1e} m, area {:.4e} m^2, geometric gap {} m; {}",
+            if name.is_empty() {
+                String::new()
+            } else {
+                format!("{name}: ")
+            },
+            pairs.len(),
+            distance,
+            area,
+            range(pairs.iter().map(|p| p.geometric_gap), |v| format!(
+                "{v:+.1e}"
+            )),
+            laws.join(", ")
+        );
+    }
+    out
+}
+
+/// The equilibrium's pairs, one line per pad: closed pairs, the initial gaps', closures' and
+/// normal forces' ranges.
+fn equilibrium_summary(m: &Model, eq: &Equilibrium) -> String {
+    let mut out = String::new();
+    for name in pad_names(m) {
+        let ids: Vec<usize> = (0..m.pairs.len())
+            .filter(|&p| m.pairs[p].pad == name)
+            .collect();
+        let closed = ids.iter().filter(|&&p| eq.penetrations[p] > 0.0).count();
+        let _ = writeln!(
+            out,
+            "  {}{} of {} pairs closed; initial gap {} um, closure {} um, normal force {} N (every pair in equilibrium.csv)",
+            if name.is_empty() {
+                String::new()
+            } else {
+                format!("{name}: ")
+            },
+            closed,
+            ids.len(),
+            range(
+                ids.iter().map(|&p| m.pairs[p].initial_gap * 1e6),
+                |v| format!("{v:.3}")
+            ),
+            range(ids.iter().map(|&p| eq.penetrations[p] * 1e6), |v| format!(
+                "{v:.3}"
+            )),
+            range(ids.iter().map(|&p| eq.normal_forces[p]), |v| format!(
+                "{v:.2}"
+            )),
         );
     }
     out
