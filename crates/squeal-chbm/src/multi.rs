@@ -58,6 +58,8 @@
 
 pub mod linearization;
 pub mod periodic;
+pub mod quasi;
+pub mod check;
 pub mod reference;
 
 use crate::solve::ChbmStart;
