@@ -74,6 +74,14 @@ pub enum TorusError {
         /// The bifurcation's parameter.
         mu: f64,
     },
+    /// Newton did not converge to a torus on which both unstable modes move.
+    #[error(
+        "no two-mode torus at mu = {mu:.6}: Newton from the start (each mode's cycle or eigenvector, at every trial amplitude) converged to no torus on which both modes move"
+    )]
+    TwoModeStart {
+        /// The friction coefficient.
+        mu: f64,
+    },
 }
 
 /// `(Q_E, Q_R)` of `mb` (module docs): the same spaces as Hill's Woodbury solve.

@@ -25,7 +25,7 @@
 //! ([`super::periodic::mode_cycles`]), cycle `j`'s harmonic `h` placed on the wave `h e_j` and
 //! the means added as deviations from the static solution, or, when a cycle did not converge,
 //! the static solution plus each unstable eigenvector scaled as eq (48) scales one (its largest
-//! normal motion against the smallest static penetration). Both are scaled by each of
+//! normal motion against the smallest static penetration), mode by mode. Both are scaled by each of
 //! [`TwoModeOptions::amplitudes`] in turn until Newton converges to a root with both modes
 //! moving. A two-mode torus that this misses can be reached by [`follow_two_mode`] in μ from
 //! one that converged.
@@ -36,7 +36,7 @@
 
 use super::linearization::{MultiLinearization, Sample};
 use super::periodic::eigenvalues_under;
-use crate::solve::{ChbmSolution, ChbmStart};
+use crate::solve::{ChbmSolution, ChbmStart, Outcome};
 use crate::torus::{
     BrakeFamily, TorusError, TorusPoint, TorusOptions, family, modal_harmonics, reduce_cycle,
     summary, weights,
@@ -56,7 +56,8 @@ pub struct TwoModeOptions {
     pub truncation: Truncation,
     /// The AFT grid (default: [`squeal_hbm::torus::default_grid`]).
     pub grid: Option<[usize; 2]>,
-    /// Factors on the start's oscillating part, tried in turn.
+    /// Factors on the start's oscillating part, tried in turn (on both modes, or, when one
+    /// starts from its cycle and the other from its eigenvector, on the eigenvector only).
     pub amplitudes: Vec<f64>,
     /// The Newton corrector (its tolerance and iteration limit) and, for
     /// [`follow_two_mode`], the continuation.
@@ -74,7 +75,7 @@ impl Default for TwoModeOptions {
         Self {
             truncation: Truncation::Box(3, 3),
             grid: None,
-            amplitudes: vec![1.0, 0.7, 0.5, 1.4, 0.3],
+            amplitudes: vec![1.0, 0.7, 0.5, 1.4, 0.3, 0.1, 0.03],
             continuation,
             envelope_periods: 300,
             envelope_samples: 64,
@@ -102,6 +103,8 @@ pub enum TwoModeGuess {
     Cycles,
     /// The static solution plus both unstable eigenvectors (eq 48 scaling).
     Eigenvectors,
+    /// One mode's CHBM cycle and the other's eigenvector (its cycle did not converge).
+    Mixed,
     /// The previous torus of a branch in μ.
     Branch,
 }
@@ -111,6 +114,7 @@ impl std::fmt::Display for TwoModeGuess {
         f.write_str(match self {
             Self::Cycles => "the two modes' CHBM cycles superposed",
             Self::Eigenvectors => "the two unstable eigenvectors (eq 48)",
+            Self::Mixed => "one mode's CHBM cycle and the other's eigenvector",
             Self::Branch => "the previous torus of the branch",
         })
     }
@@ -204,13 +208,14 @@ fn eigenvector_part(mb: &ModalBrake, qr: &Mat<f64>, s: &ChbmStart) -> Vec<Vec<c6
     vec![vec![c64::new(0.0, 0.0); psi.len()], psi.iter().map(|v| v * p).collect()]
 }
 
-/// The coefficients of the start on `basis`, the oscillations scaled by `a`, each mode's phase
+/// The coefficients of the start on `basis`, mode `j`'s oscillation scaled by `factors[j]`, each mode's phase
 /// turned so that its first harmonic is real on its phase coordinate `d[j]`.
-fn start_coeffs(basis: &TorusBasis, parts: &Parts, a: f64, d: [usize; 2]) -> Vec<f64> {
+fn start_coeffs(basis: &TorusBasis, parts: &Parts, factors: [f64; 2], d: [usize; 2]) -> Vec<f64> {
     let nr = parts.y0.len();
     let mut u = vec![0.0; basis.len()];
     u[..nr].copy_from_slice(&parts.y0);
     for (j, m) in parts.modes.iter().enumerate() {
+        let a = factors[j];
         let z = m[1][d[j]];
         let rot = if z.norm() > 0.0 { z.conj() / z.norm() } else { c64::new(1.0, 0.0) };
         for (h, yh) in m.iter().enumerate() {
@@ -242,12 +247,12 @@ fn start_coeffs(basis: &TorusBasis, parts: &Parts, a: f64, d: [usize; 2]) -> Vec
 }
 
 /// The torus of the two unstable modes `starts` (two, from [`super::unstable_modes`]) of
-/// `mb`'s brake at `mb.mu`, from their CHBM cycles `cycles` when both converged, else from
-/// the eigenvectors (module docs).
+/// `mb`'s brake at `mb.mu`, each mode started from its CHBM cycle in `cycles` when that
+/// converged, else from its eigenvector (module docs).
 pub fn two_mode_torus(
     mb: &ModalBrake,
     starts: &[ChbmStart],
-    cycles: Option<[&ChbmSolution; 2]>,
+    cycles: [Option<&ChbmSolution>; 2],
     opts: &TwoModeOptions,
 ) -> Result<TwoModeTorus, TorusError> {
     let [s1, s2] = starts else {
@@ -259,21 +264,21 @@ pub fn two_mode_torus(
     let qr = force.qr().to_owned();
     let xeq: Vec<c64> = s1.equilibrium.iter().map(|&v| c64::new(v, 0.0)).collect();
     let y0: Vec<f64> = reduce_dofs(mb, &qr, &xeq).iter().map(|v| v.re).collect();
-    let (modes, guess, omega) = match cycles {
-        Some([c1, c2]) => (
-            [
-                cycle_parts(mb, force, &y0, c1)?,
-                cycle_parts(mb, force, &y0, c2)?,
-            ],
-            TwoModeGuess::Cycles,
-            [c1.omega, c2.omega],
-        ),
-        None => (
-            [eigenvector_part(mb, &qr, s1), eigenvector_part(mb, &qr, s2)],
-            TwoModeGuess::Eigenvectors,
-            [s1.lambda.im, s2.lambda.im],
-        ),
+    let part = |c: Option<&ChbmSolution>, s: &ChbmStart| -> Result<(Vec<Vec<c64>>, f64), HbmError> {
+        match c {
+            Some(c) if c.outcome == Outcome::LimitCycle => Ok((cycle_parts(mb, force, &y0, c)?, c.omega)),
+            _ => Ok((eigenvector_part(mb, &qr, s), s.lambda.im)),
+        }
     };
+    let (p1, w1) = part(cycles[0], s1)?;
+    let (p2, w2) = part(cycles[1], s2)?;
+    let from_cycle = cycles.map(|c| c.is_some_and(|c| c.outcome == Outcome::LimitCycle));
+    let guess = match from_cycle {
+        [true, true] => TwoModeGuess::Cycles,
+        [false, false] => TwoModeGuess::Eigenvectors,
+        _ => TwoModeGuess::Mixed,
+    };
+    let (modes, omega) = ([p1, p2], [w1, w2]);
     let parts = Parts { y0, modes };
     let d = [largest(&parts.modes[0][1]), largest(&parts.modes[1][1])];
     let scale = parts.modes[0][1][d[0]]
@@ -286,7 +291,12 @@ pub fn two_mode_torus(
     let l = basis.len();
     let topts = opts.torus_options();
     for &a in &opts.amplitudes {
-        let mut z = start_coeffs(&basis, &parts, a, d);
+        // A converged cycle is kept as it is when the other mode starts from its eigenvector.
+        let factors = match guess {
+            TwoModeGuess::Mixed => from_cycle.map(|c| if c { 1.0 } else { a }),
+            _ => [a, a],
+        };
+        let mut z = start_coeffs(&basis, &parts, factors, d);
         z.extend([omega[0], omega[1], mb.mu]);
         let Some(p) = correct_at_mu(&mut fam, &z, scale, &topts.continuation)? else {
             continue;
@@ -298,7 +308,7 @@ pub fn two_mode_torus(
         debug_assert_eq!(t.point.coeffs.len(), l);
         return Ok(t);
     }
-    Err(TorusError::Start { mu: mb.mu })
+    Err(TorusError::TwoModeStart { mu: mb.mu })
 }
 
 /// Newton at fixed μ (`z`'s last entry) from `z`.
@@ -395,7 +405,7 @@ pub fn follow_two_mode(
     let mut topts = opts.torus_options();
     topts.continuation.parameter_range = range;
     let Some(p0) = correct_at_mu(&mut fam, &z, torus.scale, &topts.continuation)? else {
-        return Err(TorusError::Start { mu: torus.point.mu });
+        return Err(TorusError::TwoModeStart { mu: torus.point.mu });
     };
     let w = weights(torus.scale, torus.point.omega[0], torus.point.mu);
     let (mut out, mut failure) = (Vec::new(), None);
