@@ -38,7 +38,7 @@ use super::linearization::{MultiLinearization, Sample};
 use super::periodic::eigenvalues_under;
 use crate::solve::{ChbmSolution, ChbmStart, Outcome};
 use crate::torus::{
-    BrakeFamily, TorusError, TorusPoint, TorusOptions, family, modal_harmonics, reduce_cycle,
+    BrakeFamily, TorusError, TorusOptions, TorusPoint, family, modal_harmonics, reduce_cycle,
     summary, weights,
 };
 use faer::{Mat, c64};
@@ -205,7 +205,10 @@ fn eigenvector_part(mb: &ModalBrake, qr: &Mat<f64>, s: &ChbmStart) -> Vec<Vec<c6
     } else {
         0.0
     };
-    vec![vec![c64::new(0.0, 0.0); psi.len()], psi.iter().map(|v| v * p).collect()]
+    vec![
+        vec![c64::new(0.0, 0.0); psi.len()],
+        psi.iter().map(|v| v * p).collect(),
+    ]
 }
 
 /// The coefficients of the start on `basis`, mode `j`'s oscillation scaled by `factors[j]`, each mode's phase
@@ -217,7 +220,11 @@ fn start_coeffs(basis: &TorusBasis, parts: &Parts, factors: [f64; 2], d: [usize;
     for (j, m) in parts.modes.iter().enumerate() {
         let a = factors[j];
         let z = m[1][d[j]];
-        let rot = if z.norm() > 0.0 { z.conj() / z.norm() } else { c64::new(1.0, 0.0) };
+        let rot = if z.norm() > 0.0 {
+            z.conj() / z.norm()
+        } else {
+            c64::new(1.0, 0.0)
+        };
         for (h, yh) in m.iter().enumerate() {
             if h == 0 {
                 for i in 0..nr {
@@ -256,7 +263,9 @@ pub fn two_mode_torus(
     opts: &TwoModeOptions,
 ) -> Result<TwoModeTorus, TorusError> {
     let [s1, s2] = starts else {
-        return Err(HbmError::BadOption("the two-mode torus needs exactly two unstable modes").into());
+        return Err(
+            HbmError::BadOption("the two-mode torus needs exactly two unstable modes").into(),
+        );
     };
     let balance = crate::torus::brake_torus(mb, opts.truncation, opts.grid)?;
     let basis = balance.basis().clone();
@@ -264,12 +273,15 @@ pub fn two_mode_torus(
     let qr = force.qr().to_owned();
     let xeq: Vec<c64> = s1.equilibrium.iter().map(|&v| c64::new(v, 0.0)).collect();
     let y0: Vec<f64> = reduce_dofs(mb, &qr, &xeq).iter().map(|v| v.re).collect();
-    let part = |c: Option<&ChbmSolution>, s: &ChbmStart| -> Result<(Vec<Vec<c64>>, f64), HbmError> {
-        match c {
-            Some(c) if c.outcome == Outcome::LimitCycle => Ok((cycle_parts(mb, force, &y0, c)?, c.omega)),
-            _ => Ok((eigenvector_part(mb, &qr, s), s.lambda.im)),
-        }
-    };
+    let part =
+        |c: Option<&ChbmSolution>, s: &ChbmStart| -> Result<(Vec<Vec<c64>>, f64), HbmError> {
+            match c {
+                Some(c) if c.outcome == Outcome::LimitCycle => {
+                    Ok((cycle_parts(mb, force, &y0, c)?, c.omega))
+                }
+                _ => Ok((eigenvector_part(mb, &qr, s), s.lambda.im)),
+            }
+        };
     let (p1, w1) = part(cycles[0], s1)?;
     let (p2, w2) = part(cycles[1], s2)?;
     let from_cycle = cycles.map(|c| c.is_some_and(|c| c.outcome == Outcome::LimitCycle));
@@ -347,7 +359,8 @@ fn accept(
     ];
     let moving = |k: [i64; 2]| {
         basis.element(k).is_some_and(|(e, _)| {
-            (0..basis.n_dofs()).any(|i| basis.amplitude(&point.coeffs, e, i).unwrap_or(0.0) > 1e-6 * scale)
+            (0..basis.n_dofs())
+                .any(|i| basis.amplitude(&point.coeffs, e, i).unwrap_or(0.0) > 1e-6 * scale)
         })
     };
     if !(moving([1, 0]) && moving([0, 1])) {
@@ -379,7 +392,13 @@ fn closure_harmonic(
         return Ok(0.0);
     };
     let g: Vec<f64> = (0..qr.ncols())
-        .map(|c| mb.pairs[pair].normal.iter().map(|&(i, a)| a * qr[(i, c)]).sum())
+        .map(|c| {
+            mb.pairs[pair]
+                .normal
+                .iter()
+                .map(|&(i, a)| a * qr[(i, c)])
+                .sum()
+        })
         .collect();
     let part = |p| -> f64 {
         (0..g.len())
@@ -399,7 +418,13 @@ pub fn follow_two_mode(
 ) -> Result<Vec<TwoModeTorus>, TorusError> {
     let mut mbp = mb.clone();
     mbp.mu = torus.point.mu;
-    let mut fam = family(&mbp, torus.basis.truncation(), Some(torus.grid), torus.phase, torus.scale)?;
+    let mut fam = family(
+        &mbp,
+        torus.basis.truncation(),
+        Some(torus.grid),
+        torus.phase,
+        torus.scale,
+    )?;
     let mut z = torus.point.coeffs.clone();
     z.extend([torus.point.omega[0], torus.point.omega[1], torus.point.mu]);
     let mut topts = opts.torus_options();
@@ -411,14 +436,25 @@ pub fn follow_two_mode(
     let (mut out, mut failure) = (Vec::new(), None);
     continuation::continue_from(&mut fam, p0, &w, &topts.continuation, |p| {
         let r = summary(mb, &torus.basis, p, &topts).and_then(|pt| {
-            accept(mb, &torus.basis, torus.grid, torus.phase, torus.scale, pt, TwoModeGuess::Branch, 1.0)
+            accept(
+                mb,
+                &torus.basis,
+                torus.grid,
+                torus.phase,
+                torus.scale,
+                pt,
+                TwoModeGuess::Branch,
+                1.0,
+            )
         });
         match r {
             Ok(Some(t)) => {
                 out.push(t);
                 Control::Continue
             }
-            Ok(None) => Control::Stop("a mode's amplitude vanished: the torus ends on a cycle".into()),
+            Ok(None) => {
+                Control::Stop("a mode's amplitude vanished: the torus ends on a cycle".into())
+            }
             Err(e) => {
                 failure = Some(e);
                 Control::Stop("a torus point could not be summarized".into())
@@ -436,14 +472,23 @@ pub fn follow_two_mode(
 pub fn torus_samples(mb: &ModalBrake, t: &TwoModeTorus, n: usize) -> Result<Vec<Sample>, HbmError> {
     let mut mbp = mb.clone();
     mbp.mu = t.point.mu;
-    let (basis, q) = modal_harmonics(&mbp, t.basis.truncation(), Some(t.grid), &t.point.coeffs, t.point.omega)?;
+    let (basis, q) = modal_harmonics(
+        &mbp,
+        t.basis.truncation(),
+        Some(t.grid),
+        &t.point.coeffs,
+        t.point.omega,
+    )?;
     let modes = mbp.modes();
     let mut out = Vec::with_capacity(n * n);
     let (mut qx, mut qv) = (vec![0.0; modes], vec![0.0; modes]);
     let (mut x, mut v) = (vec![0.0; mbp.nl()], vec![0.0; mbp.nl()]);
     for i in 0..n {
         for j in 0..n {
-            let th = [2.0 * PI * i as f64 / n as f64, 2.0 * PI * j as f64 / n as f64];
+            let th = [
+                2.0 * PI * i as f64 / n as f64,
+                2.0 * PI * j as f64 / n as f64,
+            ];
             qx.fill(0.0);
             qv.fill(0.0);
             for (e, qe) in q.iter().enumerate() {
