@@ -49,6 +49,11 @@ pub struct ChbmArgs {
     pub no_vtu: bool,
     #[arg(long, value_name = "X,Y,Z", help = crate::commands::mic::HELP, allow_hyphen_values = true, value_parser = squeal_pipeline::sound::parse_microphone)]
     pub mic: Vec<[f64; 3]>,
+    /// Where two modes are unstable at mu: the generalized CHBM (each mode's cycle with Hill's
+    /// verdict, the two-mode quasi-periodic torus with its Lyapunov exponents) instead of one
+    /// cycle; written to <out>/chbm/two_mode.txt
+    #[arg(long)]
+    pub two_mode: bool,
 }
 
 /// The limit cycle the command line asks for: the scene's ([`CyclePlan::of_scene`]) with the
@@ -120,6 +125,17 @@ pub fn run(args: ChbmArgs) -> Result<ExitCode> {
     }
     let mut p = pipeline(&args.scene, &args.out, &None)?;
     let plan = plan(&p, &args)?;
+    if args.two_mode {
+        let mu = p.cycle_mu(plan.at)?;
+        let r = squeal_pipeline::two_mode::two_mode(&p, mu, plan.options.harmonics)?;
+        print!("{}", squeal_pipeline::two_mode::report_text(&r));
+        squeal_pipeline::two_mode::write(&p.out.join("chbm"), &r)?;
+        return Ok(if r.torus.is_ok() {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::from(3)
+        });
+    }
     crate::commands::mic::apply(&mut p, &args.mic)?;
     let lc = solve(&p, &plan, !args.no_vtu)?;
     Ok(if lc.cycle().is_some() {

@@ -1,8 +1,7 @@
 //! Several unstable modes at one friction level: the generalized CHBM of Coudeyras, Nacivet &
 //! Sinou ("Periodic and quasi-periodic solutions for multi-instabilities involved in brake
-//! squeal", JSV 328, 2009, 520–540), the periodic part and the constraints; the two-frequency
-//! harmonic balance the quasi-periodic answer needs is the torus method of `squeal-hbm`
-//! (built apart) and is not here.
+//! squeal", JSV 328, 2009, 520–540): the periodic part, the constraints, and the
+//! quasi-periodic answer ([`quasi`], on the torus method of `squeal_hbm::torus`).
 //!
 //! **The constraint, one per unstable eigenvalue.** CHBM (section 4 of the paper) adds to the
 //! harmonic balance (46) the condition (47) that the eigenvalue `λ` of the system linearized
@@ -47,17 +46,18 @@
 //! solution perturbed along every unstable mode, and the spectrum of its steady state
 //! (frequencies, amplitudes, whether one mode dies out).
 //!
-//! **Not here yet.** The quasi-periodic solve: the two-frequency harmonic balance (the torus
-//! method of `squeal-hbm`, built apart) with, as its extra rows, the residuals of
-//! [`linearization::ModeConstraints`] evaluated on [`linearization::MultiLinearization`]
-//! made from its AFT grid's samples (each sample's phases `(θ_1, θ_2)`), started from the
-//! superposition of the mode cycles of [`periodic`] (as `tests/multi.rs` builds the exact
-//! torus of two uncoupled oscillators) or from eq (48) once per mode. The constraint rows'
-//! gradient (the analogue of the analytic one of [`squeal_hbm::ReLambda`]) is not written:
-//! until it is, a solve differentiates them numerically.
+//! **The quasi-periodic case** ([`quasi`]): the torus balance with one base frequency per mode,
+//! both amplitudes unknown and one phase condition per angle; its roots where both modes move
+//! are the generalized CHBM's solutions (the constraints hold there exactly, as shown above),
+//! and [`quasi::torus_constraints`] evaluates them on the root as a check. Started from the
+//! mode cycles of [`periodic`] where they converged, else from eq (48) once per mode. The
+//! constraint rows' gradient is not written: the solve does not need them (see [`quasi`]).
+//! [`check`] compares a torus with a BDF run started on it.
 
+pub mod check;
 pub mod linearization;
 pub mod periodic;
+pub mod quasi;
 pub mod reference;
 
 use crate::solve::ChbmStart;

@@ -74,6 +74,14 @@ pub enum TorusError {
         /// The bifurcation's parameter.
         mu: f64,
     },
+    /// Newton did not converge to a torus on which both unstable modes move.
+    #[error(
+        "no two-mode torus at mu = {mu:.6}: Newton from the start (each mode's cycle or eigenvector, at every trial amplitude) converged to no torus on which both modes move"
+    )]
+    TwoModeStart {
+        /// The friction coefficient.
+        mu: f64,
+    },
 }
 
 /// `(Q_E, Q_R)` of `mb` (module docs): the same spaces as Hill's Woodbury solve.
@@ -107,6 +115,11 @@ impl ReducedContact {
     /// Sets μ.
     pub fn set_mu(&mut self, mu: f64) {
         self.mb.mu = mu;
+    }
+
+    /// `Q_R`: the reduced coordinates are `y = Q_Rᵀ x_n`.
+    pub(crate) fn qr(&self) -> &Mat<f64> {
+        &self.qr
     }
 
     fn lift(&self, y: &[f64]) -> Vec<f64> {
@@ -253,7 +266,7 @@ pub fn brake_torus(
 }
 
 /// The reduced coordinates `Q_Rᵀ` of a cycle's nonlinear-dof coefficients, block by block.
-fn reduce_cycle(force: &ReducedContact, layout: &HarmonicLayout, u: &[f64]) -> Vec<f64> {
+pub(crate) fn reduce_cycle(force: &ReducedContact, layout: &HarmonicLayout, u: &[f64]) -> Vec<f64> {
     let (nn, nr) = (layout.n_dofs(), force.qr.ncols());
     let mut out = Vec::with_capacity(nr * layout.n_blocks());
     for b in 0..layout.n_blocks() {
@@ -411,7 +424,7 @@ pub fn closures_along_flow(
     Ok(out)
 }
 
-fn summary(
+pub(crate) fn summary(
     mb: &ModalBrake,
     basis: &TorusBasis,
     p: &Point,
@@ -510,7 +523,7 @@ pub fn follow_torus(
 }
 
 /// The unknowns' weights: `1/scale` for `U`, `1/ω1` for both frequencies, `1/μ`.
-fn weights(scale: f64, omega1: f64, mu: f64) -> impl Fn(&HarmonicLayout) -> Vec<f64> {
+pub(crate) fn weights(scale: f64, omega1: f64, mu: f64) -> impl Fn(&HarmonicLayout) -> Vec<f64> {
     move |layout: &HarmonicLayout| {
         let mut w = vec![1.0 / scale; layout.len() + 3];
         w[layout.len()] = 1.0 / omega1;
@@ -529,7 +542,7 @@ struct TorusStartPoint {
 
 /// The brake's family on `truncation` at the row level `scale` with the phase conditions
 /// `phase` (wave numbers and dofs).
-fn family(
+pub(crate) fn family(
     mb: &ModalBrake,
     truncation: Truncation,
     grid: Option<[usize; 2]>,
@@ -562,7 +575,7 @@ fn family(
     )
 }
 
-type BrakeFamily =
+pub(crate) type BrakeFamily =
     TorusFamily<BrakeReceptance, ReducedContact, fn(&mut BrakeTorus, f64) -> Result<(), HbmError>>;
 
 fn set_mu(b: &mut BrakeTorus, mu: f64) -> Result<(), HbmError> {
@@ -709,6 +722,36 @@ pub fn modal_state(
     omega: [f64; 2],
     theta: [f64; 2],
 ) -> Result<Vec<f64>, HbmError> {
+    let (basis, harmonics) = modal_harmonics(mb, truncation, grid, coeffs, omega)?;
+    let n = mb.modes();
+    let mut q = vec![0.0; n];
+    let mut v = vec![0.0; n];
+    for (e, qe_amp) in harmonics.iter().enumerate() {
+        let w = basis.frequency(e, omega);
+        let k = basis.wave(e);
+        // x = Re(Q e^{i k·θ}), ẋ = Re(i w Q e^{i k·θ}).
+        let phase = k[0] as f64 * theta[0] + k[1] as f64 * theta[1];
+        let rot = c64::new(phase.cos(), phase.sin());
+        for j in 0..n {
+            let z = qe_amp[j] * rot;
+            q[j] += z.re;
+            v[j] += (c64::new(0.0, w) * z).re;
+        }
+    }
+    q.extend(v);
+    Ok(q)
+}
+
+/// Each Fourier element's modal amplitudes `q_e = Δ(iw_e)⁻¹ (Φᵀ F_piston δ_e0 - Φ_nᵀ Q_E c_e)`
+/// of the torus `coeffs` (reduced coordinates) of `mb`'s brake, with the basis: the motion of
+/// every mode is `q(θ) = Re Σ_e q_e e^{i k_e·θ}` (the torus analogue of eq 35).
+pub fn modal_harmonics(
+    mb: &ModalBrake,
+    truncation: Truncation,
+    grid: Option<[usize; 2]>,
+    coeffs: &[f64],
+    omega: [f64; 2],
+) -> Result<(TorusBasis, Vec<Vec<c64>>), HbmError> {
     let mut balance = brake_torus(mb, truncation, grid)?;
     let basis = balance.basis().clone();
     let mut r = vec![0.0; basis.len()];
@@ -718,11 +761,9 @@ pub fn modal_state(
     let (n, ne) = (mb.modes(), qe.ncols());
     // Φ_nᵀ Q_E (modes × q_E).
     let pe = mb.phi_n.transpose() * &qe;
-    let mut q = vec![0.0; n];
-    let mut v = vec![0.0; n];
+    let mut out = Vec::with_capacity(basis.n_waves());
     for e in 0..basis.n_waves() {
         let w = basis.frequency(e, omega);
-        let k = basis.wave(e);
         let cplx: Vec<c64> = (0..ne)
             .map(|i| {
                 let cc = c[(2 * e).saturating_sub(1) * ne + i];
@@ -739,16 +780,7 @@ pub fn modal_state(
             }
         }
         let solver = ModalSolver::new(&mb.omega, &mb.damping, c64::new(0.0, w));
-        let qe_amp = solver.solve_vec(&rhs);
-        // x = Re(Q e^{i k·θ}), ẋ = Re(i w Q e^{i k·θ}).
-        let phase = k[0] as f64 * theta[0] + k[1] as f64 * theta[1];
-        let rot = c64::new(phase.cos(), phase.sin());
-        for j in 0..n {
-            let z = qe_amp[j] * rot;
-            q[j] += z.re;
-            v[j] += (c64::new(0.0, w) * z).re;
-        }
+        out.push(solver.solve_vec(&rhs));
     }
-    q.extend(v);
-    Ok(q)
+    Ok((basis, out))
 }

@@ -56,6 +56,7 @@ mod sound_quads;
 pub mod stability;
 pub mod stages;
 pub mod study;
+pub mod two_mode;
 
 pub use error::{PipelineError, Result};
 

@@ -172,7 +172,20 @@ pub fn eigenvalues_on_cycle(
             why: e.to_string(),
         }
     })?;
-    let (k0, c0) = reference_jacobian(&force, x0);
+    eigenvalues_under(mb, &force, &lin, x0, lambdas0)
+}
+
+/// The eigenvalues continuing each of `lambdas0` (static, at the equilibrium `x0` of the
+/// force's dofs) under the linearization `lin` of a motion, each followed by its own tracker
+/// along `J₀ + t (N - J₀)`, `t = 0.1, 0.2, …, 1` (as [`eigenvalues_on_cycle`]).
+pub fn eigenvalues_under(
+    mb: &ModalBrake,
+    force: &ContactForce,
+    lin: &MultiLinearization,
+    x0: &[f64],
+    lambdas0: &[c64],
+) -> Result<Vec<c64>, HbmError> {
+    let (k0, c0) = reference_jacobian(force, x0);
     let n = k0.nrows();
     let empty = Mat::<f64>::zeros(n, 0);
     lambdas0
