@@ -179,6 +179,19 @@ pub fn point_margin(
     sliding_margin_of(&mb.pairs, &all, &c, speeds)
 }
 
+/// The sliding margin of every point of `branch`, a branch of `mb`.
+pub fn branch_margins(
+    mb: &ModalBrake,
+    branch: &LimitCycleBranch,
+) -> Result<Vec<SlidingMargin>, StickError> {
+    let speeds = surface_speeds(mb)?;
+    Ok(branch
+        .points
+        .iter()
+        .map(|p| point_margin(mb, p, &speeds))
+        .collect::<Result<Vec<_>, _>>()?)
+}
+
 /// `mb` with every pair's element made to stick with the regularization velocity `v_reg`.
 pub fn sticking_brake(mb: &ModalBrake, v_reg: f64) -> Result<ModalBrake, StickError> {
     if !(v_reg.is_finite() && v_reg > 0.0) {
@@ -221,11 +234,7 @@ pub fn follow_sticking(
         ));
     }
     let speeds = surface_speeds(mb)?;
-    let margins = branch
-        .points
-        .iter()
-        .map(|p| point_margin(mb, p, &speeds))
-        .collect::<Result<Vec<_>, _>>()?;
+    let margins = branch_margins(mb, branch)?;
     let Some(first) = margins.iter().position(|m| !m.sliding()) else {
         return Ok(None);
     };

@@ -58,7 +58,7 @@ pub struct BranchAnalysis {
     pub tori: Vec<crate::branch_torus::TorusRun>,
     /// Where the sliding margin falls below 1: the branch with sticking contact and the
     /// recomputed cycles ([`crate::branch_stick`]); `None` when not computed.
-    pub stick: Option<crate::branch_stick::StickBranch>,
+    pub stick: Option<crate::branch_stick::StickRun>,
 }
 
 /// A cycle of the branch at a friction value asked for.
@@ -699,7 +699,7 @@ pub fn write(dir: &Path, a: &BranchAnalysis) -> Result<()> {
     if !a.tori.is_empty() {
         crate::branch_torus::table(a).write_csv(&dir.join("branch_torus.csv"))?;
     }
-    if let Some(s) = &a.stick {
+    if let Some(s) = a.stick.as_ref().and_then(|r| r.sticking.as_ref()) {
         crate::branch_stick::table(s).write_csv(&dir.join("branch_stick.csv"))?;
     }
     squeal_io::atomic_write_bytes(

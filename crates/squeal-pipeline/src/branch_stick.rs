@@ -11,14 +11,24 @@ use crate::model::{Log, Model};
 use squeal_brake::analysis::LinearStability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::branch::BranchOptions;
-use squeal_chbm::stick_branch::follow_sticking;
+use squeal_chbm::physics::SlidingMargin;
 pub use squeal_chbm::stick_branch::{StickBranch, StickCycle, StickOptions};
+use squeal_chbm::stick_branch::{branch_margins, follow_sticking};
 use squeal_report::Table;
 use squeal_report::format::fmt_sig;
 use std::fmt::Write as _;
 
-/// The sticking part of the branch of `a` (`None`: the scene gives no disc speed, or every
-/// cycle slides; a failure is logged and gives `None` too).
+/// The sliding margins along a branch and, where one falls below 1, the sticking part.
+pub struct StickRun {
+    /// The sliding margin of every point of the permanent-sliding branch.
+    pub margins: Vec<SlidingMargin>,
+    /// The branch with sticking contact (`None`: every margin is at least 1, or it failed and
+    /// the failure was logged).
+    pub sticking: Option<StickBranch>,
+}
+
+/// The margins and the sticking part of the branch of `a` (`None`: the scene gives no disc
+/// speed, or the margins could not be measured, which is logged).
 pub fn recompute(
     m: &Model,
     st: &LinearStability,
@@ -26,12 +36,21 @@ pub fn recompute(
     opts: &BranchOptions,
     stick: &StickOptions,
     log: Log,
-) -> Option<StickBranch> {
+) -> Option<StickRun> {
     if m.disc.is_none() || m.brake.pairs.iter().any(|p| p.surface_speed.is_none()) {
         return None;
     }
     let mb = ModalBrake::new(&m.brake, &st.reference, a.mu0());
-    match follow_sticking(&mb, &a.branch, opts, stick) {
+    let margins = match branch_margins(&mb, &a.branch) {
+        Ok(g) => g,
+        Err(e) => {
+            log(&format!(
+                "stick-slip: the sliding margins could not be measured: {e}"
+            ));
+            return None;
+        }
+    };
+    let sticking = match follow_sticking(&mb, &a.branch, opts, stick) {
         Ok(s) => s,
         Err(e) => {
             log(&format!(
@@ -39,7 +58,8 @@ pub fn recompute(
             ));
             None
         }
-    }
+    };
+    Some(StickRun { margins, sticking })
 }
 
 /// The law's description for reports.
@@ -65,10 +85,27 @@ fn closures(a: &BranchAnalysis, c: &StickCycle) -> (usize, f64, Option<f64>) {
 /// What `squeal branch` prints about stick–slip (nothing without a disc speed).
 pub fn summary_text(a: &BranchAnalysis) -> String {
     let mut out = String::new();
-    let Some(s) = &a.stick else {
+    let Some(run) = &a.stick else {
         return out;
     };
     let mu0 = a.mu0();
+    let Some(s) = &run.sticking else {
+        if let Some((i, g)) = run
+            .margins
+            .iter()
+            .enumerate()
+            .min_by(|x, y| x.1.min.total_cmp(&y.1.min))
+        {
+            let _ = writeln!(
+                out,
+                "stick-slip: the sliding margin (disc surface speed / largest tangential vibration velocity) stays above 1 along the branch, smallest {:.3} at point {i} ({:.5} mu0, pair {}): permanent sliding (eq 9) holds, no cycle recomputed",
+                g.min,
+                a.branch.points[i].parameter / mu0,
+                g.pair + 1
+            );
+        }
+        return out;
+    };
     let first = s
         .margins
         .iter()
@@ -161,10 +198,18 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
 
 /// `branch.json`'s `stick_slip` (null without a disc speed or when every cycle slides).
 pub fn json(a: &BranchAnalysis) -> serde_json::Value {
-    let Some(s) = &a.stick else {
+    let Some(run) = &a.stick else {
         return serde_json::Value::Null;
     };
+    let Some(s) = &run.sticking else {
+        return serde_json::json!({
+            "margins": run.margins.iter().map(|m| m.min).collect::<Vec<_>>(),
+            "margin_pairs": run.margins.iter().map(|m| m.pair + 1).collect::<Vec<_>>(),
+            "recomputed": false,
+        });
+    };
     serde_json::json!({
+        "recomputed": true,
         "law": "regularized Coulomb: each pair's element F_t(|v|) tanh(v / v_reg)",
         "regularization_speed_m_per_s": s.regularization_speed,
         "slowest_surface_speed_m_per_s": s.slowest_surface_speed,

@@ -37,6 +37,7 @@ fn coarse_brake_at_5_kmh_sticks_and_the_branch_is_recomputed() {
     let s = a
         .stick
         .as_ref()
+        .and_then(|r| r.sticking.as_ref())
         .expect("the margin falls below 1 at 5 km/h");
     for (i, m) in s.margins.iter().enumerate() {
         eprintln!(
@@ -77,5 +78,59 @@ fn coarse_brake_at_5_kmh_sticks_and_the_branch_is_recomputed() {
                 );
             }
         }
+    }
+}
+
+#[test]
+fn a_stable_sticking_cycle_at_3_kmh_against_time_integration() {
+    faer::set_global_parallelism(faer::Par::Seq);
+    let out = std::env::temp_dir().join("squeal-test-stick-coarse-3");
+    let _ = std::fs::remove_dir_all(&out);
+    let p = Pipeline::new(scene(3.0), out.clone(), &quiet).unwrap();
+    let mut opts = BranchOptions::default();
+    opts.range = (0.5, 1.08);
+    let a = stages::branch_stage(&p, &opts, &[])
+        .unwrap()
+        .expect("the coarse brake has a Hopf point");
+    eprintln!("{}", squeal_pipeline::branch::summary_text(&a));
+    let s = a
+        .stick
+        .as_ref()
+        .and_then(|r| r.sticking.as_ref())
+        .expect("the margin falls below 1 at 3 km/h");
+    let m = p.model().unwrap();
+    let st = p.stability().unwrap();
+    let mb = ModalBrake::new(&m.brake, &st.reference, a.mu0());
+    let smb = squeal_chbm::stick_branch::sticking_brake(&mb, s.regularization_speed).unwrap();
+    let c = s
+        .cycles
+        .iter()
+        .rev()
+        .find(|c| {
+            matches!(&c.floquet, Some(Ok(f)) if f.stability() == squeal_chbm::floquet::CycleStability::Stable)
+        })
+        .expect("a stable sticking cycle");
+    let q = c.cycle.as_ref().unwrap();
+    for rtol in [1e-6, 1e-7] {
+        let mut o = squeal_chbm::timeint::TiOptions::default();
+        o.rtol = rtol;
+        o.harmonics = 24;
+        o.samples_per_cycle = 128;
+        let t = std::time::Instant::now();
+        let r = squeal_chbm::stick_check::check_against_integration(&smb, q, Some(s.samples), &o)
+            .unwrap();
+        eprintln!(
+            "point {} (mu/mu0 {:.5}, margin {:.4}), rtol {rtol}: HB period {:.9e} p2p {:.5e}; TI period {:?} p2p {:?}; {} steps, {:.1} s, failure {:?}",
+            c.point,
+            c.mu / a.mu0(),
+            c.stick_margin.as_ref().unwrap().min,
+            r.hb_period,
+            r.hb_closure,
+            r.ti_period,
+            r.ti_closure,
+            r.run.stats.steps,
+            t.elapsed().as_secs_f64(),
+            r.run.failure
+        );
     }
 }
