@@ -130,6 +130,20 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
         s.time.as_secs_f64(),
         s.branch.stop
     );
+    let t = cycles_table(a, s);
+    let _ = writeln!(
+        out,
+        "  {} cycles of the branch recomputed with the sticking law (loudest pair's closure):",
+        s.cycles.len()
+    );
+    out.push_str(&t.to_text());
+    out
+}
+
+/// The recomputed cycles: margin, frequency and closure before and after, the new margin and
+/// the stability before -> after.
+pub fn cycles_table(a: &BranchAnalysis, s: &StickBranch) -> Table {
+    let mu0 = a.mu0();
     let mut t = Table::new([
         "point",
         "mu/mu0",
@@ -159,7 +173,7 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
                 format!("{:.4}", q.frequency_hz()),
                 format!("{:+.2e}", q.omega / p.omega - 1.0),
                 fmt_sig(sp2p.unwrap_or(f64::NAN) * 1e6, 4),
-                format!("{:+.1}%", 100.0 * (sp2p.unwrap_or(f64::NAN) / p2p - 1.0)),
+                format!("{:+.2}%", 100.0 * (sp2p.unwrap_or(f64::NAN) / p2p - 1.0)),
                 c.stick_margin
                     .as_ref()
                     .map_or("-".into(), |m| format!("{:.3}", m.min)),
@@ -187,13 +201,26 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
             format!("{before} -> {after}"),
         ]);
     }
-    let _ = writeln!(
-        out,
-        "  {} cycles of the branch recomputed with the sticking law (loudest pair's closure):",
-        s.cycles.len()
-    );
-    out.push_str(&t.to_text());
-    out
+    t
+}
+
+/// The report's paragraph on stick-slip and the table of recomputed cycles (`None` without
+/// a disc speed).
+pub fn report_part(a: &BranchAnalysis) -> Option<(String, Option<Table>)> {
+    a.stick.as_ref()?;
+    let text = summary_text(a);
+    let head: Vec<&str> = text
+        .lines()
+        .take_while(|l| !l.starts_with("point"))
+        .filter(|l| !l.trim_start().ends_with("(loudest pair's closure):"))
+        .map(str::trim)
+        .collect();
+    let table = a
+        .stick
+        .as_ref()
+        .and_then(|r| r.sticking.as_ref())
+        .map(|s| cycles_table(a, s));
+    Some((head.join(" "), table))
 }
 
 /// `branch.json`'s `stick_slip` (null without a disc speed or when every cycle slides).
