@@ -29,6 +29,9 @@
 //!   the slip velocity ([`RegularizedCoulomb`]), optionally with a static coefficient above the
 //!   kinetic one: a smooth element that sticks and slips, for cycles whose sliding margin falls
 //!   below 1.
+//! - [`sticking`]: any of these permanent-sliding elements made to stick ([`Sticking`]): its
+//!   friction force at `|v|` times `tanh(v / v_reg)`; `squeal branch` switches a brake's pairs
+//!   to it where a cycle's sliding margin falls below 1 (`squeal_chbm::stick_branch`).
 //!
 //! Exact Coulomb stick–slip (no regularization velocity) is not a pointwise element: the
 //! stuck force is a Lagrange multiplier of the whole harmonic balance. It lives in
@@ -43,10 +46,12 @@
 
 pub mod penalty_coulomb;
 pub mod regularized_coulomb;
+pub mod sticking;
 pub mod velocity_dependent;
 
 pub use penalty_coulomb::{PenaltyCoulomb, cubic_penalty, speed_shaped_response};
 pub use regularized_coulomb::{DEFAULT_REGULARIZATION_SPEED, RegularizedCoulomb};
+pub use sticking::Sticking;
 pub use velocity_dependent::VelocityDependent;
 
 use std::fmt::Debug;

@@ -28,6 +28,9 @@
 //! - [`multi`]: several unstable modes at one μ (the generalized CHBM of Coudeyras, Nacivet &
 //!   Sinou 2009): one constraint per unstable eigenvalue, each mode's cycle and which one
 //!   attracts, and the reference time integration from all of them with its spectrum.
+//! - [`stick_branch`]: where a cycle's sliding margin falls below 1, the branch continued with
+//!   contact elements that stick (regularized Coulomb) and the cycles recomputed;
+//!   [`stick_check`]: such a cycle against BDF time integration of the same law.
 
 #![warn(missing_docs)]
 // Index loops over dofs and harmonics read like the formulas they implement.
@@ -44,6 +47,8 @@ pub mod physics;
 pub mod shooting;
 pub mod solve;
 pub mod start;
+pub mod stick_branch;
+pub mod stick_check;
 pub mod system;
 pub mod timeint;
 pub mod torus;

@@ -56,6 +56,9 @@ pub struct BranchAnalysis {
     /// The torus branches from the Neimark–Sacker points ([`crate::branch_torus`]); empty
     /// when not followed.
     pub tori: Vec<crate::branch_torus::TorusRun>,
+    /// Where the sliding margin falls below 1: the branch with sticking contact and the
+    /// recomputed cycles ([`crate::branch_stick`]); `None` when not computed.
+    pub stick: Option<crate::branch_stick::StickRun>,
 }
 
 /// A cycle of the branch at a friction value asked for.
@@ -193,6 +196,7 @@ pub fn analyse(
         levels: Vec::new(),
         microphone: None,
         tori: Vec::new(),
+        stick: None,
     }))
 }
 
@@ -342,6 +346,7 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
     }
     out.push_str(&t.to_text());
     out.push_str(&crate::branch_torus::summary_text(a));
+    out.push_str(&crate::branch_stick::summary_text(a));
     out
 }
 
@@ -474,6 +479,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
         })).collect::<Vec<_>>(),
         "microphone_m": a.microphone,
         "tori": crate::branch_torus::json(a),
+        "stick_slip": crate::branch_stick::json(a),
         "cycles_at": a.at.iter().map(|c| {
             let f = c.floquet.as_ref().ok();
             serde_json::json!({
@@ -692,6 +698,9 @@ pub fn write(dir: &Path, a: &BranchAnalysis) -> Result<()> {
     table(a).write_csv(&dir.join("branch.csv"))?;
     if !a.tori.is_empty() {
         crate::branch_torus::table(a).write_csv(&dir.join("branch_torus.csv"))?;
+    }
+    if let Some(s) = a.stick.as_ref().and_then(|r| r.sticking.as_ref()) {
+        crate::branch_stick::table(s).write_csv(&dir.join("branch_stick.csv"))?;
     }
     squeal_io::atomic_write_bytes(
         &dir.join("branch.json"),

@@ -111,6 +111,11 @@ pub fn branch_stage_with(
         );
     }
     let t = Instant::now();
+    a.stick = crate::branch_stick::recompute(m, st, &a, opts, &Default::default(), p.log());
+    if a.stick.is_some() {
+        p.record("branch with sticking contact", t.elapsed().as_secs_f64());
+    }
+    let t = Instant::now();
     (a.levels, a.microphone) =
         crate::sound::branch_levels_or_log(&p.scene, m, st, &a, opts.samples, &p.sound, p.log());
     p.record("sound of the branch's cycles", t.elapsed().as_secs_f64());

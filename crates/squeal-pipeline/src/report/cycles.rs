@@ -183,6 +183,28 @@ pub(super) fn branch_section(branch: Option<&crate::branch::BranchAnalysis>) -> 
             verdict,
         ]);
     }
+    let mut tables = vec![
+        (
+            events,
+            "Folds and stability changes along the branch".into(),
+        ),
+        (
+            pts.align_numbers_right(),
+            "Cycles along the branch (a selection; every one is in branch.csv)".into(),
+        ),
+    ];
+    let mut after: String =
+        "Hill's method's own error is the trivial exponent's distance from zero (column \
+                hill_error_per_s of branch.csv); a cycle whose leading exponent is within it is \
+                reported as marginal."
+            .into();
+    if let Some((text, table)) = crate::branch_stick::report_part(a) {
+        after.push_str("\n\n");
+        after.push_str(&text);
+        if let Some(t) = table {
+            tables.push((t, "Cycles recomputed with contact that sticks (branch/branch_stick.csv: the sticking branch)".into()));
+        }
+    }
     Section {
         heading: "Branch of limit cycles and their stability".into(),
         text: format!(
@@ -204,20 +226,8 @@ pub(super) fn branch_section(branch: Option<&crate::branch::BranchAnalysis>) -> 
              unstable dashed"
                 .into(),
         )],
-        tables: vec![
-            (
-                events,
-                "Folds and stability changes along the branch".into(),
-            ),
-            (
-                pts.align_numbers_right(),
-                "Cycles along the branch (a selection; every one is in branch.csv)".into(),
-            ),
-        ],
-        after: "Hill's method's own error is the trivial exponent's distance from zero (column \
-                hill_error_per_s of branch.csv); a cycle whose leading exponent is within it is \
-                reported as marginal."
-            .into(),
+        tables,
+        after,
     }
 }
 
