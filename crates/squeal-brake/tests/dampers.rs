@@ -124,7 +124,10 @@ fn small_dampers_move_each_eigenvalue_by_half_phi_c_phi() {
     let mut errors = Vec::new();
     for scale in [1.0, 0.5] {
         let c = dashpots(scale);
-        let values = eigenvalues(&linear(m.clone(), k.clone(), Some(c.clone())), &Damping::default());
+        let values = eigenvalues(
+            &linear(m.clone(), k.clone(), Some(c.clone())),
+            &Damping::default(),
+        );
         let mut worst: f64 = 0.0;
         for (j, l) in values.iter().enumerate() {
             let pj = phi.col(j);
@@ -219,5 +222,9 @@ fn a_physical_damping_matrix_gives_the_routh_hurwitz_threshold() {
     // 1e-13 μ*; asserted 1e-10.
     assert!((h.mu0 / exact - 1.0).abs() < 1e-10, "{} vs {exact}", h.mu0);
     let f = delta3(exact).1.sqrt() / (2.0 * std::f64::consts::PI);
-    assert!((h.frequency_hz / f - 1.0).abs() < 1e-9, "{} vs {f}", h.frequency_hz);
+    assert!(
+        (h.frequency_hz / f - 1.0).abs() < 1e-9,
+        "{} vs {f}",
+        h.frequency_hz
+    );
 }

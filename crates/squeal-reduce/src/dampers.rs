@@ -109,11 +109,17 @@ pub fn reduced_damping(
                 }
             }
         }
+        // The lower triangle, mirrored below: symmetric to the bit.
         for j in 0..n {
             let f = term.k * r[j];
-            for i in 0..n {
+            for i in j..n {
                 c[(i, j)] += f * r[i];
             }
+        }
+    }
+    for j in 0..n {
+        for i in 0..j {
+            c[(i, j)] = c[(j, i)];
         }
     }
     Ok(c)
