@@ -55,8 +55,10 @@ fn spec(supports: Vec<Support>, modes: usize) -> PartSpec {
 fn reduce(mesh: &Mesh, spec: &PartSpec, keep_basis: bool) -> ReducedPart {
     let steel = MaterialTable::uniform(mesh, ElasticMaterial::isotropic(STEEL.0, STEEL.1, STEEL.2))
         .unwrap();
-    let mut o = ReduceOptions::default();
-    o.keep_basis = keep_basis;
+    let o = ReduceOptions {
+        keep_basis,
+        ..Default::default()
+    };
     reduce_part(mesh, &steel, spec, &o, &mut |_| {}).unwrap().0
 }
 
