@@ -574,6 +574,7 @@ pub fn assemble(
         m: block_diag(&blocks.iter().map(|p| &p.m).collect::<Vec<_>>()),
         k: block_diag(&blocks.iter().map(|p| &p.k).collect::<Vec<_>>()),
         f_piston,
+        c: None,
         pairs,
     };
     brake.validate()?;

@@ -5,6 +5,22 @@
 //! see [`crate::linearized`]). [`ModalDamping::Full`] admits any `D`, e.g. a physical damping
 //! matrix `C` projected on the modes (`D = Φᵀ C Φ`), which is not diagonal when the parts'
 //! loss factors differ; the analyses then fall back on dense linear algebra.
+//!
+//! **Physical dampers.** Viscous dampers between node sets or to ground (`[[dampers]]`) make a
+//! physical damping matrix `C_phys` on the parts' meshes; the Craig–Bampton basis `T` of each
+//! part projects it, `Ĉ = Tᵀ C_phys T`, as eqs (6)–(7) project `K` and `M`, and the reduced
+//! brake carries it ([`crate::model::Brake::c`]). In the frictionless modal coordinates it
+//! adds `Φᵀ Ĉ Φ` to eq (12)'s `D` ([`ModalDamping::plus_projected`]): eq (11) reads
+//! `M ẍ + (C_modal + Ĉ) ẋ + K x + F_nl = F` with `C_modal = M Φ D_modal Φᵀ M`. `Φᵀ Ĉ Φ` is
+//! full in general (a damper couples the modes whose shapes move its ends), so `D` becomes
+//! [`ModalDamping::Full`]. This is done once, where the reference forms `D`
+//! ([`crate::sweep::reference`]): the complex eigenvalues, the Hopf point, the harmonic
+//! balance, the time integration and the Floquet analyses all take `D` from there.
+//!
+//! First-order check: for a mass-normalized mode `φ_j` of frequency `ω_j` with
+//! `D_modal = 0`, a small `Ĉ` moves its eigenvalue `±i ω_j` by
+//! `Δλ = −½ φ_jᵀ Ĉ φ_j + O(|Ĉ|²)` (the quadratic eigenproblem `(λ² + λ D + Ω²) q = 0`
+//! differentiated at `D = 0`: `2 λ dλ + λ D_jj = 0`).
 
 use faer::Mat;
 
@@ -87,6 +103,16 @@ impl ModalDamping {
         out
     }
 
+    /// `D + Φᵀ C Φ` (symmetrized), full: a physical damping matrix `C` on the dofs of which
+    /// `Φ`'s rows are (module docs).
+    pub fn plus_projected(&self, phi: &Mat<f64>, c: &Mat<f64>) -> ModalDamping {
+        let p = phi.transpose() * (c * phi);
+        let n = self.size();
+        ModalDamping::Full(Mat::from_fn(n, n, |i, j| {
+            self.entry(i, j) + 0.5 * (p[(i, j)] + p[(j, i)])
+        }))
+    }
+
     /// The leading `m × m` block of `D` (the damping among the first `m` modes).
     pub fn leading(&self, m: usize) -> ModalDamping {
         match self {
@@ -140,5 +166,18 @@ mod tests {
         assert_eq!(d.trace_of_square(), f.trace_of_square());
         assert_eq!(d.with_added(&[(1, 0.5)]).entry(1, 1), 2.5);
         assert_eq!(f.with_added(&[(1, 0.5)]).entry(1, 1), 2.5);
+    }
+
+    #[test]
+    fn a_projected_damping_matrix_adds_phi_t_c_phi() {
+        // Φ = [[1, 1], [0, 2]], C = [[2, -1], [-1, 3]]: Φᵀ C Φ = [[2, 0], [0, 10]] (by hand:
+        // C Φ = [[2, 0], [-1, 5]], Φᵀ (C Φ) = [[2, 0], [0, 10]]); all exact in binary.
+        let phi = Mat::from_fn(2, 2, |i, j| [[1.0, 1.0], [0.0, 2.0]][i][j]);
+        let c = Mat::from_fn(2, 2, |i, j| [[2.0, -1.0], [-1.0, 3.0]][i][j]);
+        let d = ModalDamping::Diagonal(vec![0.5, 0.25]).plus_projected(&phi, &c);
+        assert!(d.diagonal().is_none());
+        for (i, j, want) in [(0, 0, 2.5), (0, 1, 0.0), (1, 0, 0.0), (1, 1, 10.25)] {
+            assert_eq!(d.entry(i, j), want, "({i}, {j})");
+        }
     }
 }

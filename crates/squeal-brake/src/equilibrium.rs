@@ -411,6 +411,7 @@ mod tests {
             m: Mat::identity(4, 4),
             k,
             f_piston: vec![0.0, -force, 0.0, 0.0],
+            c: None,
             pairs: vec![pair],
         }
     }
@@ -484,6 +485,7 @@ mod tests {
             m: Mat::identity(1, 1),
             k: Mat::from_fn(1, 1, |_, _| k_spring),
             f_piston: vec![-force],
+            c: None,
             pairs,
         }
     }

@@ -102,6 +102,7 @@ pub fn project_brake(
         m: symmetric(project(&brake.m)),
         k: symmetric(project(&brake.k)),
         f_piston,
+        c: brake.c.as_ref().map(|c| symmetric(project(c))),
         pairs,
     };
     let layout = Layout {
@@ -157,6 +158,7 @@ mod tests {
             m,
             k,
             f_piston: f,
+            c: None,
             pairs: vec![pair],
         };
         let layout = Layout {

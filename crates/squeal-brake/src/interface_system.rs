@@ -129,6 +129,7 @@ mod tests {
             m,
             k,
             f_piston: f,
+            c: None,
             pairs: vec![crate::model::tests::one_pair(0.0)],
         };
         let v = system_vectors(&brake, &NewtonOptions::default(), f64::INFINITY).unwrap();

@@ -190,6 +190,12 @@ pub struct Brake {
     pub f_piston: Vec<f64>,
     /// The disc–pad contact pairs whose forces make `F_nl` of eq (10).
     pub pairs: Vec<ContactPair>,
+    /// A physical viscous damping matrix `C` of the reduced brake (N s/m on point dofs),
+    /// symmetric: the dampers between sets and to ground projected by the parts' Craig–Bampton
+    /// bases (`squeal_reduce::dampers`); `None`: none. It is added to the modal damping of
+    /// eq (12) where the reduced damping matrix is formed, [`crate::sweep::reference`]
+    /// (`D = D_modal + Φᵀ C Φ`), so every analysis that takes `D` from the reference sees it.
+    pub c: Option<Mat<f64>>,
 }
 
 impl Brake {
@@ -213,6 +219,20 @@ impl Brake {
                     expected: n,
                     got,
                 });
+            }
+        }
+        if let Some(c) = &self.c {
+            for (what, got) in [
+                ("damping matrix rows", c.nrows()),
+                ("damping matrix columns", c.ncols()),
+            ] {
+                if got != n {
+                    return Err(BrakeError::Dimension {
+                        what,
+                        expected: n,
+                        got,
+                    });
+                }
             }
         }
         if self.f_piston.len() != n {
@@ -350,6 +370,7 @@ pub(crate) mod tests {
             m: Mat::identity(4, 4),
             k: Mat::identity(4, 4),
             f_piston: vec![0.0; 4],
+            c: None,
             pairs: vec![one_pair(-1e-5)],
         }
     }

@@ -243,7 +243,9 @@ impl Sweep {
     }
 }
 
-/// The frictionless reference of eq (12): equilibrium at μ = 0, modal basis, damping.
+/// The frictionless reference of eq (12): equilibrium at μ = 0, modal basis, damping (the
+/// modal damping of `damping` plus the brake's physical dampers projected on the modes,
+/// [`crate::damping`]).
 pub fn reference(
     brake: &Brake,
     damping: &Damping,
@@ -252,7 +254,18 @@ pub fn reference(
     let eq = static_equilibrium(brake, 0.0, None, newton)?;
     let kt0 = brake.tangent_stiffness(&eq.x, 0.0);
     let basis = modal_basis(&brake.m, &kt0)?;
-    let d = damping.modal(&basis)?;
+    let mut d = damping.modal(&basis)?;
+    // The dampers' physical damping, projected on the modes (crate::damping).
+    if let Some(c) = &brake.c {
+        if c.nrows() != basis.phi.nrows() || c.ncols() != basis.phi.nrows() {
+            return Err(BrakeError::Dimension {
+                what: "damping matrix",
+                expected: basis.phi.nrows(),
+                got: c.nrows().max(c.ncols()),
+            });
+        }
+        d = d.plus_projected(&basis.phi, c);
+    }
     Ok(Reference {
         equilibrium: eq,
         kt0,

@@ -50,6 +50,7 @@ fn brake(speed: Option<f64>) -> Brake {
         k: Mat::from_fn(2, 2, |i, j| [[KT, 0.0], [0.0, KN]][i][j]),
         // The load presses the pad (dof 1, normal +e1) on the disc: along -n.
         f_piston: vec![0.0, -LOAD],
+        c: None,
         pairs: vec![ContactPair {
             disc_point: 0,
             pad_point: 0,

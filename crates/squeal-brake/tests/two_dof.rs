@@ -56,6 +56,7 @@ impl Case {
             m,
             k,
             f_piston: vec![0.0, 0.0],
+            c: None,
             pairs: vec![pair],
         }
     }

@@ -89,9 +89,12 @@ impl fmt::Display for Caveat {
     }
 }
 
-/// Whether a damping has no damping at all.
+/// Whether a damping has no damping at all (no modal damping, and no dampers: the
+/// reference's `D` is zero).
 pub fn undamped(st: &Stability) -> bool {
-    st.damping.global_ratio == 0.0 && st.damping.extra.iter().all(|&(_, d)| d == 0.0)
+    st.damping.global_ratio == 0.0
+        && st.damping.extra.iter().all(|&(_, d)| d == 0.0)
+        && st.reference.damping.max_abs() == 0.0
 }
 
 /// The caveats of a stability result (none when it has no Hopf point).

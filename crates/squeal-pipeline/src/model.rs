@@ -413,7 +413,9 @@ pub fn at_damping_key(scene: &Scene, e: PipelineError) -> PipelineError {
 /// The reduced model (cached) and the brake of a scene.
 pub fn build(scene: &Scene, out: &Path, log: Log) -> Result<Model> {
     let (rom, rom_path) = reduced_model(scene, out, log)?;
-    crate::interface::apply(scene, model_on(scene, rom, rom_path)?, log)
+    let mut model = model_on(scene, rom, rom_path)?;
+    crate::dampers::apply(scene, &mut model, log)?;
+    crate::interface::apply(scene, model, log)
 }
 
 /// The default output folder of a scene: `out/` and the scene's path relative to the working

@@ -444,6 +444,10 @@ fn choose_assembly_sets(scene: &Scene, meshes: &mut [(&str, &mut Mesh)]) -> Resu
         wanted.push((s.part.clone(), s.set));
         wanted.extend(s.to.map(|to| (s.part, to)));
     }
+    for d in scene.dampers()? {
+        wanted.push((d.part.clone(), d.set));
+        wanted.extend(d.to.map(|to| (d.part, to)));
+    }
     let mut out = Vec::with_capacity(wanted.len());
     for (part, rule) in wanted {
         let Some((_, mesh)) = meshes.iter_mut().find(|m| m.0 == part) else {

@@ -6,7 +6,8 @@
 use crate::error::Result;
 use crate::parts::{ChosenSet, Origin, SceneParts};
 use squeal_mesh::Mesh;
-use squeal_mesh::select::summarize;
+use squeal_mesh::select::{Selection, boundary_quads, summarize};
+use squeal_reduce::interface::face::{Shape, SurfaceFace, map_point};
 use squeal_scene::Scene;
 use std::fmt::Write;
 use std::path::Path;
@@ -87,22 +88,62 @@ fn set_text(s: &mut String, parts: &SceneParts, c: &ChosenSet) {
             );
             continue;
         }
-        if piece.faces.is_empty() {
-            outln!(s, "{label}{} nodes, no boundary face", piece.nodes.len());
-            continue;
-        }
-        let sum = summarize(mesh, &piece.faces);
-        outln!(
-            s,
-            "{label}{} nodes, {} faces, area {:.6e}, centroid [{:.6}, {:.6}, {:.6}]",
-            piece.nodes.len(),
-            sum.faces,
-            sum.area,
-            sum.centroid[0],
-            sum.centroid[1],
-            sum.centroid[2]
-        );
+        outln!(s, "{label}{}", piece_text(mesh, piece));
     }
+}
+
+/// A piece's nodes and boundary faces: its 6-node triangles and the 8-node quadrilaterals
+/// (of hex20, wedge15, pyramid13 elements) whose nodes are all in it, with their area and
+/// area centroid.
+fn piece_text(mesh: &Mesh, piece: &Selection) -> String {
+    let quads = quads_in(mesh, &piece.nodes);
+    if piece.faces.is_empty() && quads.is_empty() {
+        return format!("{} nodes, no boundary face", piece.nodes.len());
+    }
+    let tri = summarize(mesh, &piece.faces);
+    let (mut area, mut moment) = (tri.area, tri.centroid.map(|c| c * tri.area));
+    if piece.faces.is_empty() {
+        moment = [0.0; 3];
+    }
+    for q in &quads {
+        let x = SurfaceFace::quad8(*q).coords(mesh);
+        for (st, w) in Shape::Quad8.rule() {
+            let (_, p, n) = map_point(Shape::Quad8, &x, st);
+            let da = w * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            area += da;
+            for d in 0..3 {
+                moment[d] += da * p[d];
+            }
+        }
+    }
+    let c = moment.map(|m| m / area);
+    format!(
+        "{} nodes, {} faces, area {:.6e}, centroid [{:.6}, {:.6}, {:.6}]",
+        piece.nodes.len(),
+        tri.faces + quads.len(),
+        area,
+        c[0],
+        c[1],
+        c[2]
+    )
+}
+
+/// The 8-node quadrilateral boundary faces with all their nodes in `nodes`; none on a mesh of
+/// tetrahedra.
+fn quads_in(mesh: &Mesh, nodes: &[u32]) -> Vec<[u32; 8]> {
+    if mesh.blocks.len() == mesh.blocks.tet10.len() {
+        return Vec::new();
+    }
+    let mut member = vec![false; mesh.num_nodes()];
+    for &n in nodes {
+        if let Some(m) = member.get_mut(n as usize) {
+            *m = true;
+        }
+    }
+    boundary_quads(mesh)
+        .into_iter()
+        .filter(|q| q.iter().all(|&n| member[n as usize]))
+        .collect()
 }
 
 fn materials_text(s: &mut String, parts: &SceneParts) {
@@ -203,4 +244,46 @@ pub fn merged(parts: &SceneParts) -> Mesh {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use squeal_mesh::ElementKind;
+    use squeal_mesh::generate::box_solid;
+
+    /// A named node set on the x = 0 face of a hex20 box (0.02 x 0.03 x 0.04 m, 2 x 3 x 4
+    /// cells): its 12 quadrilateral faces, area 0.03 * 0.04 and centroid [0, 0.015, 0.02]
+    /// (flat faces: the 3 x 3 Gauss rule integrates their area exactly, so round-off only).
+    #[test]
+    fn a_set_of_quadrilateral_faces_is_counted_with_its_area() {
+        let mesh = box_solid(ElementKind::Hex20, [0.02, 0.03, 0.04], [2, 3, 4]);
+        let nodes: Vec<u32> = (0..mesh.num_nodes() as u32)
+            .filter(|&n| mesh.nodes[n as usize][0].abs() < 1e-12)
+            .collect();
+        let piece = Selection {
+            faces: Vec::new(),
+            nodes,
+        };
+        let text = piece_text(&mesh, &piece);
+        // 3 x 4 cells on the face: corner grid 4 x 5, midside nodes 3 x 5 + 4 x 4: 51 nodes.
+        assert!(text.starts_with("51 nodes, 12 faces, area "), "{text}");
+        let area: f64 = text
+            .split("area ")
+            .nth(1)
+            .and_then(|t| t.split(',').next())
+            .and_then(|t| t.parse().ok())
+            .unwrap();
+        // Printed to 7 significant digits.
+        assert!((area / (0.03 * 0.04) - 1.0).abs() < 1e-6, "{text}");
+        assert!(
+            text.ends_with("centroid [0.000000, 0.015000, 0.020000]"),
+            "{text}"
+        );
+        let none = Selection {
+            faces: Vec::new(),
+            nodes: vec![0],
+        };
+        assert_eq!(piece_text(&mesh, &none), "1 nodes, no boundary face");
+    }
 }

@@ -7,6 +7,7 @@
 pub mod brake;
 pub mod check;
 pub mod craig_bampton;
+pub mod dampers;
 pub mod error;
 pub mod export;
 pub mod held;

@@ -49,9 +49,9 @@
 //! row on the rigid motions: a spring between two sets of one part does not hold its
 //! translations (the ends move together) but may hold its rotations.
 //!
-//! Viscous dampers on the same ends are not built: the reduced brake carries no damping matrix
-//! of its own (its damping is modal, eqs (12)–(13)), and a dashpot's `C` would have to be
-//! reduced with the same basis and enter eq. (11) beside it.
+//! Viscous dampers on the same ends and spreads are [`crate::dampers`]: the same terms with a
+//! damping coefficient in the stiffness's place, projected by the part's Craig–Bampton basis
+//! after the reduction instead of added before it.
 
 use crate::error::ReduceError;
 use crate::interface::InterfaceError;
@@ -100,9 +100,42 @@ pub struct SpringTerm {
 /// How far the axes may be from orthonormal (round-off of three written unit vectors).
 const ORTHONORMAL: f64 = 1e-9;
 
-fn spring_error(s: &Spring, message: impl std::fmt::Display) -> ReduceError {
+/// What a [`Spring`] stands for in messages: a spring (stiffness, N/m) or a damper (its
+/// damping coefficient in the stiffness's place, N s/m; [`crate::dampers`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Element {
+    /// A spring.
+    Spring,
+    /// A viscous damper.
+    Damper,
+}
+
+impl Element {
+    fn noun(self) -> &'static str {
+        match self {
+            Element::Spring => "spring",
+            Element::Damper => "damper",
+        }
+    }
+
+    fn value(self) -> &'static str {
+        match self {
+            Element::Spring => "stiffness",
+            Element::Damper => "damping",
+        }
+    }
+
+    fn unit(self) -> &'static str {
+        match self {
+            Element::Spring => "N/m",
+            Element::Damper => "N s/m",
+        }
+    }
+}
+
+fn spring_error(e: Element, s: &Spring, message: impl std::fmt::Display) -> ReduceError {
     let to = s.to.as_deref().unwrap_or("ground");
-    ReduceError::Options(format!("spring from {} to {to}: {message}", s.set))
+    ReduceError::Options(format!("{} from {} to {to}: {message}", e.noun(), s.set))
 }
 
 /// The shares `α_n` of a set's nodes: tributary areas over the set's area when it is a face,
@@ -128,14 +161,19 @@ fn shares(mesh: &Mesh, set: &str) -> Result<Vec<(u32, f64)>, ReduceError> {
 
 /// Checks a spring's numbers: stiffnesses finite, `>= 0`, not all zero; axes orthonormal; an
 /// `Area` spring goes to ground.
-fn check(s: &Spring) -> Result<(), ReduceError> {
+fn check(e: Element, s: &Spring) -> Result<(), ReduceError> {
     let k = s.stiffness;
     if k.iter().any(|x| !(x.is_finite() && *x >= 0.0)) || k.iter().all(|x| *x == 0.0) {
         return Err(spring_error(
+            e,
             s,
             format!(
-                "stiffness [{}, {}, {}] N/m must be three values >= 0, not all zero",
-                k[0], k[1], k[2]
+                "{} [{}, {}, {}] {} must be three values >= 0, not all zero",
+                e.value(),
+                k[0],
+                k[1],
+                k[2],
+                e.unit()
             ),
         ));
     }
@@ -146,6 +184,7 @@ fn check(s: &Spring) -> Result<(), ReduceError> {
                 let want = if i == j { 1.0 } else { 0.0 };
                 if (d - want).abs() > ORTHONORMAL || d.is_nan() {
                     return Err(spring_error(
+                        e,
                         s,
                         format!(
                             "axes {} and {} have dot product {d:.3e}, not {want}: give three orthonormal unit vectors",
@@ -159,14 +198,22 @@ fn check(s: &Spring) -> Result<(), ReduceError> {
     }
     if s.spread == Spread::Normal && (k[1] != 0.0 || k[2] != 0.0 || s.axes.is_some()) {
         return Err(spring_error(
+            e,
             s,
-            "a sliding abutment (normal spread) has one stiffness, along the normal of the face it bears on: give [k, 0, 0] and no axes",
+            format!(
+                "a sliding abutment (normal spread) has one {}, along the normal of the face it bears on: give [value, 0, 0] and no axes",
+                e.value()
+            ),
         ));
     }
     if s.spread == Spread::Area && s.to.is_some() {
         return Err(spring_error(
+            e,
             s,
-            "a spring spread by area goes to ground; between two sets use the mean spread",
+            format!(
+                "a {} spread by area goes to ground; between two sets use the mean spread",
+                e.noun()
+            ),
         ));
     }
     Ok(())
@@ -175,12 +222,21 @@ fn check(s: &Spring) -> Result<(), ReduceError> {
 /// The rank-one terms of `springs` on `mesh` (module docs), spring by spring, axis by axis
 /// (axes without stiffness left out).
 pub fn spring_terms(mesh: &Mesh, springs: &[Spring]) -> Result<Vec<SpringTerm>, ReduceError> {
+    terms_of(Element::Spring, mesh, springs)
+}
+
+/// [`spring_terms`] of springs or dampers (`e`, for the messages).
+pub(crate) fn terms_of(
+    e: Element,
+    mesh: &Mesh,
+    springs: &[Spring],
+) -> Result<Vec<SpringTerm>, ReduceError> {
     const GLOBAL: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let mut out = Vec::new();
     for s in springs {
-        check(s)?;
+        check(e, s)?;
         if s.spread == Spread::Normal {
-            out.extend(normal_terms(mesh, s)?);
+            out.extend(normal_terms(e, mesh, s)?);
             continue;
         }
         let axes = s.axes.unwrap_or(GLOBAL);
@@ -211,10 +267,11 @@ pub fn spring_terms(mesh: &Mesh, springs: &[Spring]) -> Result<Vec<SpringTerm>, 
 }
 
 /// The terms of a sliding abutment (`Spread::Normal`, module docs).
-fn normal_terms(mesh: &Mesh, s: &Spring) -> Result<Vec<SpringTerm>, ReduceError> {
+fn normal_terms(e: Element, mesh: &Mesh, s: &Spring) -> Result<Vec<SpringTerm>, ReduceError> {
     let face = face_nodes(mesh, &s.set)?;
     if face.is_empty() {
         return Err(spring_error(
+            e,
             s,
             "a sliding abutment needs a face: the set has no boundary faces",
         ));
@@ -240,6 +297,7 @@ fn normal_terms(mesh: &Mesh, s: &Spring) -> Result<Vec<SpringTerm>, ReduceError>
         let p = surface.project(mesh.nodes[f.node as usize]);
         if p.distance > tolerance || p.outside > tolerance {
             return Err(spring_error(
+                e,
                 s,
                 format!(
                     "node {} lies {:.3e} m from the face it bears on ({:.3e} m beyond its edge), more than 1 % of that face's extent ({tolerance:.3e} m): check the sets",

@@ -52,6 +52,10 @@ pub struct SceneFile {
     /// `[[springs]]`: springs between node sets of a part or to ground ([`crate::springs`]).
     #[serde(default)]
     pub springs: Vec<crate::springs::SpringSection>,
+    /// `[[dampers]]`: viscous dampers between node sets of a part or to ground
+    /// ([`crate::dampers`]).
+    #[serde(default)]
+    pub dampers: Vec<crate::dampers::DamperSection>,
 }
 
 /// `[pads.<name>]`: one pad of a brake with several (an inboard pad pushed by the pistons, an

@@ -60,6 +60,7 @@ mod contact_keys;
 mod stick_slip_keys;
 
 pub mod assembly;
+pub mod dampers;
 pub mod springs;
 
 /// What is wrong with a scene file, with the file and, where a value is at fault, its key and
@@ -382,6 +383,7 @@ impl Scene {
         self.supports()?;
         self.ties()?;
         self.springs()?;
+        self.dampers()?;
         Ok(())
     }
 

@@ -19,8 +19,8 @@
 //!
 //! `axes` are made unit length and then orthonormal (Gram–Schmidt, in the order given); two
 //! given directions more than 1e-6 from orthogonal (cosine) are refused. Viscous damping on
-//! a spring (`damping`) is refused with the reason: the reduced brake has no damping matrix of
-//! its own to carry it yet.
+//! a spring (`damping`) is refused with the way to give it: a `[[dampers]]` entry on the same
+//! ends ([`crate::dampers`]).
 
 use crate::sets::SetRule;
 use crate::{Result, Scene};
@@ -83,7 +83,7 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 /// The axes made orthonormal (Gram–Schmidt in the order given), or what is wrong with them.
-fn orthonormal(axes: [[f64; 3]; 3]) -> std::result::Result<[[f64; 3]; 3], String> {
+pub(crate) fn orthonormal(axes: [[f64; 3]; 3]) -> std::result::Result<[[f64; 3]; 3], String> {
     let mut out = [[0.0; 3]; 3];
     for (i, a) in axes.iter().enumerate() {
         let n = dot(*a, *a).sqrt();
@@ -122,7 +122,7 @@ impl Scene {
                 return Err(self.error_at(
                     &key("damping"),
                     d,
-                    "viscous dampers are not built yet (the reduced brake's damping is modal, [damping]); leave it out",
+                    "a spring has no damping: give the dashpot as a [[dampers]] entry with the same part, set, to, axes and spread (damping = [..] in N s/m), as a Nastran CBUSH's B or an Abaqus DASHPOT beside the spring",
                 ));
             }
             let part = self.check_part(&key("part"), &s.part)?;

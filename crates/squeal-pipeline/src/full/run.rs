@@ -36,6 +36,12 @@ fn other_mode(r: Option<&super::onset::ReducedOnset>, f: &FullOnset, opts: &Full
 /// is a line of the log too).
 pub fn full_check(p: &Pipeline, at: Option<f64>) -> Result<String> {
     let log = p.log();
+    if !p.scene.dampers()?.is_empty() {
+        return Err(crate::error::PipelineError::input(
+            "[[dampers]]",
+            "the full model (--full) does not carry dampers yet: it compares the brake without damping on both sides; leave [[dampers]] out of the scene for --full",
+        ));
+    }
     let m = p.model()?;
     let t = Instant::now();
     let parts = load_parts(&p.scene, log)?;

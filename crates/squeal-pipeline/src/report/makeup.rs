@@ -73,7 +73,14 @@ pub fn section(
     let ranked = if crate::caveats::undamped(st) {
         None
     } else {
-        sensitivities::compute(m, st)?
+        match sensitivities::compute(m, st) {
+            // Dampers make D full: the sensitivities are not computed (the stability stage's
+            // text says so), the report goes on without them.
+            Err(crate::error::PipelineError::Brake(
+                squeal_brake::BrakeError::NeedsDiagonalDamping { .. },
+            )) => None,
+            other => other?,
+        }
     };
     if let Some(s) = ranked {
         let mut t = Table::new([
