@@ -56,7 +56,9 @@ mod relay;
 mod bodies;
 #[allow(unused_imports)]
 use bodies::*;
-pub use bodies::{connection_reasons, require_held_coupled, resolve_connections};
+pub use bodies::{
+    connection_reasons, free_motions_coupled, require_held_coupled, resolve_connections,
+};
 pub use kept::{forget_kept, kept_dir};
 pub use load::{
     LoadedPart, backend_name, load_part, load_part_in, load_part_of, refuse_mesh_errors,

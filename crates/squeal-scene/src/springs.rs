@@ -83,7 +83,7 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 /// The axes made orthonormal (Gram–Schmidt in the order given), or what is wrong with them.
-fn orthonormal(axes: [[f64; 3]; 3]) -> std::result::Result<[[f64; 3]; 3], String> {
+pub(crate) fn orthonormal(axes: [[f64; 3]; 3]) -> std::result::Result<[[f64; 3]; 3], String> {
     let mut out = [[0.0; 3]; 3];
     for (i, a) in axes.iter().enumerate() {
         let n = dot(*a, *a).sqrt();

@@ -93,6 +93,19 @@ pub fn require_held_coupled(
     spec: &PartSpec,
     couplings: &[CouplingSet],
 ) -> Result<(), ReduceError> {
+    let motions = free_motions_coupled(mesh, spec, couplings)?;
+    match motions.is_empty() {
+        true => Ok(()),
+        false => Err(crate::held::not_held(spec, &motions)),
+    }
+}
+
+/// [`crate::held::free_motions`] with the part's coupling sets' six rows each counted.
+pub fn free_motions_coupled(
+    mesh: &Mesh,
+    spec: &PartSpec,
+    couplings: &[CouplingSet],
+) -> Result<Vec<crate::held::FreeMotion>, ReduceError> {
     let mut held = HeldNodes::new(mesh, &spec.restraints, &skew_restraints(mesh, spec)?)?;
     piston_frames(mesh, spec, &mut held)?;
     let dofmap = DofMap::new(mesh, &held.restraints)?;
@@ -104,11 +117,9 @@ pub fn require_held_coupled(
     coupling_rows(mesh, &free, spec, couplings, &mut points, &mut rows)?;
     let springs = crate::tie::support_springs(mesh, &spec.supports)?;
     let terms = crate::springs::spring_terms(mesh, &spec.springs)?;
-    let motions = crate::held::free_motions_of(mesh, &free, &held, &rows, &springs, &terms);
-    match motions.is_empty() {
-        true => Ok(()),
-        false => Err(crate::held::not_held(spec, &motions)),
-    }
+    Ok(crate::held::free_motions_of(
+        mesh, &free, &held, &rows, &springs, &terms,
+    ))
 }
 
 /// The connections of `inputs` on the reduced parts: each end's coupling point (the part's
