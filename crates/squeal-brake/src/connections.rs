@@ -79,13 +79,16 @@ pub fn add_connections(
 ) -> Result<(), BrakeError> {
     for c in &rom.connections {
         let (a, ca) = end_dofs(&c.name, &c.a, parts)?;
-        let b = c
-            .b
-            .as_ref()
-            .map(|b| end_dofs(&c.name, b, parts))
-            .transpose()?;
+        let b =
+            c.b.as_ref()
+                .map(|b| end_dofs(&c.name, b, parts))
+                .transpose()?;
         let kc = connection_stiffness(c, ca, b.map(|x| x.1));
-        let dofs: Vec<usize> = a.iter().chain(b.iter().flat_map(|x| x.0.iter())).copied().collect();
+        let dofs: Vec<usize> = a
+            .iter()
+            .chain(b.iter().flat_map(|x| x.0.iter()))
+            .copied()
+            .collect();
         for (i, &di) in dofs.iter().enumerate() {
             for (j, &dj) in dofs.iter().enumerate() {
                 k[(di, dj)] += kc[i][j];

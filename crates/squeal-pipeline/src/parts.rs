@@ -37,9 +37,9 @@ mod materials;
 use materials::*;
 
 mod bodies;
-pub use bodies::{add_bodies, refuse_bodies, refuse_bodies_in};
 #[allow(unused_imports)]
 use bodies::*;
+pub use bodies::{add_bodies, refuse_bodies, refuse_bodies_in};
 
 /// Where a chosen set comes from.
 #[derive(Clone, Debug, PartialEq)]

@@ -22,9 +22,9 @@ pub fn check_held(scene: &Scene, parts: &SceneParts, inputs: &BrakeInputs) -> Re
         let spec = inputs.spec(name, input, part.info.clone());
         let free = squeal_reduce::brake::free_motions_coupled(&part.mesh, &spec, &input.couplings)
             .map_err(|e| ReduceError::InMesh {
-            path: input.mesh.clone(),
-            error: Box::new(e),
-        })?;
+                path: input.mesh.clone(),
+                error: Box::new(e),
+            })?;
         if free.is_empty() {
             continue;
         }

@@ -156,7 +156,10 @@ fn coupling_dofs(p: &ReducedPart, point: usize, offset: usize) -> Vec<usize> {
     let mut out = vec![usize::MAX; 6];
     for (k, l) in p.info.dofs.iter().enumerate() {
         match *l {
-            DofLabel::Point { point: q, direction } if q == point => {
+            DofLabel::Point {
+                point: q,
+                direction,
+            } if q == point => {
                 out[usize::from(direction)] = offset + k;
             }
             DofLabel::Rotation { point: q, axis } if q == point => {

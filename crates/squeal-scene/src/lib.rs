@@ -60,8 +60,8 @@ mod contact_keys;
 mod stick_slip_keys;
 
 pub mod assembly;
-pub mod springs;
 pub mod parts_keys;
+pub mod springs;
 
 /// What is wrong with a scene file, with the file and, where a value is at fault, its key and
 /// line.

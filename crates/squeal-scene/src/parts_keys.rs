@@ -181,7 +181,10 @@ impl Scene {
                 None => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
             };
             out.push(ConnectorSpec {
-                name: c.name.clone().unwrap_or_else(|| format!("connectors.{}", k + 1)),
+                name: c
+                    .name
+                    .clone()
+                    .unwrap_or_else(|| format!("connectors.{}", k + 1)),
                 part,
                 set,
                 to,

@@ -5,7 +5,9 @@
 
 use super::*;
 use crate::coupling::{Connection, ConnectionInput, CouplingSet, End};
-use crate::craig_bampton::{FreeDofs, boundary_rows, coupling_rows, piston_frames, skew_restraints};
+use crate::craig_bampton::{
+    FreeDofs, boundary_rows, coupling_rows, piston_frames, skew_restraints,
+};
 use squeal_fe::DofMap;
 use squeal_fe::frames::{DofTransform, HeldNodes};
 
@@ -15,8 +17,7 @@ use squeal_fe::frames::{DofTransform, HeldNodes};
 pub(super) fn validate_bodies(inputs: &BrakeInputs) -> Result<(), ReduceError> {
     let bad = |what: String| Err(ReduceError::Options(what));
     for (i, b) in inputs.bodies.iter().enumerate() {
-        if b.name.is_empty() || b.name == "disc" || inputs.pads.iter().any(|p| p.name == b.name)
-        {
+        if b.name.is_empty() || b.name == "disc" || inputs.pads.iter().any(|p| p.name == b.name) {
             return bad(format!(
                 "a part cannot be named '{}' (the disc and the pads have that name)",
                 b.name
@@ -186,7 +187,10 @@ pub fn connection_reasons(stored: &[Connection], inputs: &BrakeInputs) -> Vec<St
             && s.load == c.load
     };
     let ok = stored.len() == inputs.connections.len()
-        && stored.iter().zip(&inputs.connections).all(|(s, c)| same(s, c));
+        && stored
+            .iter()
+            .zip(&inputs.connections)
+            .all(|(s, c)| same(s, c));
     match ok {
         true => Vec::new(),
         false => vec![format!(
