@@ -122,9 +122,9 @@ fn full(a: &Mesh, b: &Mesh, c: &Connection) -> Vec<f64> {
         for row in mean.rows(mesh) {
             let mut r = Vec::new();
             for (node, w) in row {
-                for d in 0..3 {
+                for (d, &c) in w.iter().enumerate() {
                     if let Some(f) = dofmap.free_dof(node, d) {
-                        r.push((offset + f, w[d]));
+                        r.push((offset + f, c));
                     }
                 }
             }
