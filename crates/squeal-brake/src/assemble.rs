@@ -459,7 +459,8 @@ pub fn assemble(
             .push((p.info.name.clone(), start..start + p.size()));
         start += p.size();
     }
-    let n = start;
+    // The bodies (a caliper, a bracket) after the last pad: dofs `layout.all_pads().end..n`.
+    let n = start + rom.bodies().iter().map(|b| b.size()).sum::<usize>();
     let scene_normal = params
         .normal
         .map(|n| unit(n, "contact normal"))
@@ -569,14 +570,18 @@ pub fn assemble(
         };
         pair.initial_gap = r.initial_gap;
     }
-    let blocks: Vec<&ReducedPart> = std::iter::once(disc).chain(pads.iter().copied()).collect();
-    let brake = Brake {
+    let blocks: Vec<&ReducedPart> = std::iter::once(disc)
+        .chain(pads.iter().copied())
+        .chain(rom.bodies())
+        .collect();
+    let mut brake = Brake {
         m: block_diag(&blocks.iter().map(|p| &p.m).collect::<Vec<_>>()),
         k: block_diag(&blocks.iter().map(|p| &p.k).collect::<Vec<_>>()),
         f_piston,
         c: None,
         pairs,
     };
+    crate::connections::add_connections(rom, &blocks, &mut brake.k, &mut brake.f_piston)?;
     brake.validate()?;
     Ok((brake, layout, report))
 }

@@ -250,6 +250,15 @@ pub enum BrakeError {
     /// piston.
     #[error("the pad has no piston points: the load has nowhere to act")]
     NoPistons,
+    /// [`assemble`](crate::assemble::assemble): a connection between parts names a part or a
+    /// coupling point the reduced model does not have ([`crate::connections`]).
+    #[error("connection {name}: {what} (reduce the model again)")]
+    Connection {
+        /// The connection's name.
+        name: String,
+        /// What is missing.
+        what: String,
+    },
     /// [`assemble`](crate::assemble::assemble): the disc's and the pad's contact points could
     /// not be paired ([`squeal_reduce::brake::pair_contact_points`]).
     #[error(transparent)]

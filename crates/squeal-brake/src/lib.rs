@@ -30,6 +30,7 @@
 
 pub mod analysis;
 pub mod assemble;
+pub mod connections;
 pub mod contact;
 pub mod continuation;
 pub mod criticality;

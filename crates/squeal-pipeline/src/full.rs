@@ -125,6 +125,7 @@ fn full_parts(parts: &SceneParts, inputs: &BrakeInputs) -> Result<Vec<FullPart>>
 
 /// The full model of the brake `model` (reduced from `parts` with `inputs`).
 pub fn full_brake(parts: &SceneParts, inputs: &BrakeInputs, model: &Model) -> Result<FullBrake> {
+    crate::parts::refuse_bodies("the full model (--full)", inputs)?;
     let full = full_parts(parts, inputs)?;
     let n = full.last().map_or(0, |p| p.offset + p.system.num_dofs());
     let (mut kt, mut mt) = (Vec::new(), Vec::new());

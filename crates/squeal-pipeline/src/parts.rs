@@ -36,6 +36,11 @@ mod materials;
 #[allow(unused_imports)]
 use materials::*;
 
+mod bodies;
+#[allow(unused_imports)]
+use bodies::*;
+pub use bodies::{add_bodies, refuse_bodies, refuse_bodies_in};
+
 /// Where a chosen set comes from.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Origin {
@@ -105,6 +110,8 @@ pub struct SceneParts {
     /// `ties.<k>.slave`, `ties.<k>.master`, `springs.<k>.set`, `springs.<k>.to`), added to
     /// their parts' meshes.
     pub assembly_sets: Vec<ChosenSet>,
+    /// The parts of `[parts.<name>]` (a caliper, a bracket) with their names, in name order.
+    pub bodies: Vec<(String, LoadedPart)>,
 }
 
 impl SceneParts {
@@ -392,6 +399,7 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
     for w in scene.plausibility_warnings()? {
         log(&format!("warning: {w}"));
     }
+    let mut bodies = load_bodies(scene, &units, log)?;
     let sets = {
         let mut meshes: Vec<(&str, &mut Mesh)> = pads
             .iter_mut()
@@ -411,6 +419,7 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
     let assembly_sets = {
         let mut meshes: Vec<(&str, &mut Mesh)> = std::iter::once(("disc", &mut disc.mesh))
             .chain(pads.iter_mut().map(|(n, p)| (n.as_str(), &mut p.mesh)))
+            .chain(bodies.iter_mut().map(|(n, p)| (n.as_str(), &mut p.mesh)))
             .collect();
         choose_assembly_sets(scene, &mut meshes)?
     };
@@ -426,6 +435,7 @@ pub fn load_parts(scene: &Scene, log: Log) -> Result<SceneParts> {
         sets,
         materials,
         assembly_sets,
+        bodies,
     })
 }
 
@@ -447,6 +457,10 @@ fn choose_assembly_sets(scene: &Scene, meshes: &mut [(&str, &mut Mesh)]) -> Resu
     for d in scene.dampers()? {
         wanted.push((d.part.clone(), d.set));
         wanted.extend(d.to.map(|to| (d.part, to)));
+    }
+    for c in scene.connectors()? {
+        wanted.push((c.part, c.set));
+        wanted.extend(c.to);
     }
     let mut out = Vec::with_capacity(wanted.len());
     for (part, rule) in wanted {

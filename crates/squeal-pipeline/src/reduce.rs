@@ -120,7 +120,12 @@ pub fn reduce(
         Some(parts) => squeal_reduce::brake::reduce_brake_keeping(
             &inputs,
             parts.disc,
-            parts.pads.into_iter().map(|p| p.1).collect(),
+            parts
+                .pads
+                .into_iter()
+                .chain(parts.bodies)
+                .map(|p| p.1)
+                .collect(),
             Some(&kept),
             stage,
         ),

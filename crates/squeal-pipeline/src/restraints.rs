@@ -10,7 +10,7 @@ use crate::error::{PipelineError, Result};
 use crate::parts::{ChosenSet, Origin, SceneParts, pad_key};
 use squeal_reduce::ReduceError;
 use squeal_reduce::brake::BrakeInputs;
-use squeal_reduce::held::{free_motions, not_held};
+use squeal_reduce::held::not_held;
 use squeal_scene::Scene;
 
 /// Refuses the first part of `inputs` (disc, then the pads) whose restraints and boundary
@@ -20,10 +20,11 @@ pub fn check_held(scene: &Scene, parts: &SceneParts, inputs: &BrakeInputs) -> Re
     let loaded = parts.all();
     for ((name, input), (_, part)) in inputs.parts().into_iter().zip(loaded) {
         let spec = inputs.spec(name, input, part.info.clone());
-        let free = free_motions(&part.mesh, &spec).map_err(|e| ReduceError::InMesh {
-            path: input.mesh.clone(),
-            error: Box::new(e),
-        })?;
+        let free = squeal_reduce::brake::free_motions_coupled(&part.mesh, &spec, &input.couplings)
+            .map_err(|e| ReduceError::InMesh {
+                path: input.mesh.clone(),
+                error: Box::new(e),
+            })?;
         if free.is_empty() {
             continue;
         }

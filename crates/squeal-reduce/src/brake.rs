@@ -2,7 +2,7 @@
 //!
 //! [`reduce_brake`] reads both meshes (recording their SHA-256), checks that every disc
 //! contact point faces a pad contact point, then reduces the disc and the pad with
-//! [`reduce_part`] at the same time, as two tasks of the rayon pool (each part's own parallel
+//! [`reduce_part`](crate::craig_bampton::reduce_part) at the same time, as two tasks of the rayon pool (each part's own parallel
 //! work shares the pool with the other's; the results do not depend on the thread count). With [`BrakeInputs::default`] (the bundled setup: disc clamped on `CLAMP`,
 //! pad held in-plane on `ABUTMENT` with its `PISTON` nodes' normal dof kept, nine contact points
 //! per part, 50 fixed-interface modes) the result is the paper's 158-dof brake:
@@ -12,7 +12,7 @@
 //! existing `.rom` still matches given inputs (mesh hashes, options, tool version).
 
 use crate::craig_bampton::{
-    PartSpec, ReduceError, ReduceOptions, ReduceReport, Stage, reduce_part,
+    PartSpec, ReduceError, ReduceOptions, ReduceReport, Stage, reduce_part_coupled,
 };
 use crate::interface::nodal::{NodalPair, face_nodes, project_pad};
 use crate::interface::{Axis, InterfaceError, contact_nodes, patches};
@@ -52,6 +52,13 @@ mod kept;
 use kept::*;
 
 mod relay;
+
+mod bodies;
+#[allow(unused_imports)]
+use bodies::*;
+pub use bodies::{
+    connection_reasons, free_motions_coupled, require_held_coupled, resolve_connections,
+};
 pub use kept::{forget_kept, kept_dir};
 pub use load::{
     LoadedPart, backend_name, load_part, load_part_in, load_part_of, refuse_mesh_errors,
@@ -147,6 +154,9 @@ pub struct PartInput {
     /// The unit system the mesh file is written in; [`load_part`]'s caller converts it to SI
     /// ([`reduce_brake`] does), and the `.rom` records it.
     pub units: UnitSystem,
+    /// Node sets kept as coupling points, six mean-motion dofs each, where connections to
+    /// other parts act ([`crate::coupling`]).
+    pub couplings: Vec<crate::coupling::CouplingSet>,
 }
 
 impl PartInput {
@@ -169,6 +179,7 @@ impl PartInput {
             facing: None,
             extra_surfaces: Vec::new(),
             units: UnitSystem::default(),
+            couplings: Vec::new(),
         }
     }
 
@@ -192,6 +203,7 @@ impl PartInput {
             facing: None,
             extra_surfaces: Vec::new(),
             units: UnitSystem::default(),
+            couplings: Vec::new(),
         }
     }
 }
@@ -261,6 +273,11 @@ pub struct BrakeInputs {
     /// Contact points pair when closer than this fraction of the smallest distance between
     /// two of the disc's contact points.
     pub pairing_tolerance: f64,
+    /// Further parts (a caliper, a bracket): role body, held by their restraints and their
+    /// coupling sets, reduced like the others ([`crate::coupling`]).
+    pub bodies: Vec<PadInput>,
+    /// Springs between coupling points of two parts or to ground.
+    pub connections: Vec<crate::coupling::ConnectionInput>,
     /// Parallelism of the sparse factorizations (the rest runs on rayon in fixed-size
     /// blocks). Their bits do not depend on it; faer's dense kernels on small matrices, which
     /// follow `faer::get_global_parallelism()`, do: set that to `Par::Seq` for results that
@@ -289,6 +306,8 @@ impl Default for BrakeInputs {
             orthonormalize: true,
             keep_basis: true,
             pairing_tolerance: DEFAULT_PAIRING_TOLERANCE,
+            bodies: Vec::new(),
+            connections: Vec::new(),
             par: Par::rayon(0),
         }
     }
@@ -345,10 +364,11 @@ impl BrakeInputs {
         Ok(self)
     }
 
-    /// The parts with their names, disc first, then the pads in order.
+    /// The parts with their names, disc first, then the pads, then the bodies in order.
     pub fn parts(&self) -> Vec<(&str, &PartInput)> {
         std::iter::once(("disc", &self.disc))
             .chain(self.pads.iter().map(|p| (p.name.as_str(), &p.part)))
+            .chain(self.bodies.iter().map(|p| (p.name.as_str(), &p.part)))
             .collect()
     }
 
@@ -393,6 +413,7 @@ impl BrakeInputs {
             ties: input.ties.clone(),
             supports: input.supports.clone(),
             springs: input.springs.clone(),
+            couplings: input.couplings.clone(),
         }
     }
 
@@ -463,7 +484,7 @@ impl BrakeInputs {
                 self.eig_tol
             ));
         }
-        Ok(())
+        validate_bodies(self)
     }
 
     fn reduce_options(&self) -> ReduceOptions {
@@ -491,6 +512,8 @@ impl BrakeInputs {
             name: name.into(),
             role: if name == "disc" {
                 PartRole::Disc
+            } else if self.bodies.iter().any(|b| b.name == name) {
+                PartRole::Body
             } else {
                 PartRole::Pad
             },
@@ -592,11 +615,16 @@ pub fn reduce_brake(
         let p = &pad.part;
         pads.push(load_part_of(&p.mesh, &p.elset, &p.units)?);
     }
+    for body in &inputs.bodies {
+        progress(&body.name, Stage::Read);
+        let p = &body.part;
+        pads.push(load_part_of(&p.mesh, &p.elset, &p.units)?);
+    }
     reduce_brake_loaded(inputs, disc, pads, progress)
 }
 
-/// [`reduce_brake`] on meshes already read, the pads in the order of `inputs.pads` (the mesh
-/// paths of `inputs` are not opened).
+/// [`reduce_brake`] on meshes already read, the pads in the order of `inputs.pads`, then the
+/// bodies in the order of `inputs.bodies` (the mesh paths of `inputs` are not opened).
 pub fn reduce_brake_loaded(
     inputs: &BrakeInputs,
     disc: LoadedPart,
@@ -619,11 +647,12 @@ pub fn reduce_brake_keeping(
 ) -> Result<(ReducedModel, BrakeReport), ReduceError> {
     let t0 = Instant::now();
     inputs.validate()?;
-    if pads.len() != inputs.pads.len() {
+    if pads.len() != inputs.pads.len() + inputs.bodies.len() {
         return Err(ReduceError::Options(format!(
-            "{} pad meshes read for {} pads",
+            "{} pad and body meshes read for {} pads and {} bodies",
             pads.len(),
-            inputs.pads.len()
+            inputs.pads.len(),
+            inputs.bodies.len()
         )));
     }
     // Errors in a part name its mesh file.
@@ -637,13 +666,16 @@ pub fn reduce_brake_keeping(
     let loaded: Vec<LoadedPart> = std::iter::once(disc).chain(pads).collect();
     let parts = inputs.parts();
     for (part, (name, input)) in loaded.iter().zip(&parts) {
-        check_sets(&part.mesh, name, input, inputs).map_err(in_mesh(input))?;
+        match inputs.bodies.iter().any(|b| b.name == *name) {
+            true => check_body_sets(&part.mesh, input).map_err(in_mesh(input))?,
+            false => check_sets(&part.mesh, name, input, inputs).map_err(in_mesh(input))?,
+        }
     }
     // Every part held before any part is reduced (a pad left free no longer costs the disc's
     // reduction first).
     for (part, (name, input)) in loaded.iter().zip(&parts) {
         let spec = inputs.spec(name, input, part.info.clone());
-        crate::held::require_held(&part.mesh, &spec).map_err(in_mesh(input))?;
+        require_held_coupled(&part.mesh, &spec, &input.couplings).map_err(in_mesh(input))?;
     }
     let mut pairs = Vec::new();
     let mut tolerance = 0.0;
@@ -756,9 +788,11 @@ pub fn reduce_brake_keeping(
     if !projections.is_empty() {
         pairs = attach_projections(&mut reduced_parts, projections)?;
     }
+    let connections = resolve_connections(inputs, &reduced_parts)?;
     let model = ReducedModel {
         tool_version: TOOL_VERSION.into(),
         parts: reduced_parts,
+        connections,
     };
     let read: Duration = reports.iter().map(|r| r.read_time).sum();
     let report = BrakeReport {
@@ -784,7 +818,14 @@ fn reduce_loaded(
 ) -> Reduced {
     let materials = MaterialTable::from_mesh(&loaded.mesh, &input.material_overrides)?;
     let spec = inputs.spec(name, input, loaded.info.clone());
-    let (mut part, reduce) = reduce_part(&loaded.mesh, &materials, &spec, opts, progress)?;
+    let (mut part, reduce) = reduce_part_coupled(
+        &loaded.mesh,
+        &materials,
+        &spec,
+        &input.couplings,
+        opts,
+        progress,
+    )?;
     part.info.build = Some(inputs.record(input));
     let report = PartReport {
         name: name.into(),

@@ -74,6 +74,8 @@ mod boundary;
 #[allow(unused_imports)]
 use boundary::*;
 
+mod coupled;
+pub(crate) use coupled::coupling_rows;
 mod fixed;
 pub(crate) use boundary::boundary_rows;
 #[allow(unused_imports)]
@@ -413,6 +415,20 @@ pub fn reduce_part(
     opts: &ReduceOptions,
     progress: &mut dyn FnMut(Stage),
 ) -> Result<(ReducedPart, ReduceReport), ReduceError> {
+    reduce_part_coupled(mesh, materials, spec, &[], opts, progress)
+}
+
+/// [`reduce_part`] with coupling sets: each node set of `couplings` keeps its mean motion,
+/// six boundary coordinates appended after the contact and piston points
+/// ([`crate::coupling`]).
+pub fn reduce_part_coupled(
+    mesh: &Mesh,
+    materials: &MaterialTable,
+    spec: &PartSpec,
+    couplings: &[crate::coupling::CouplingSet],
+    opts: &ReduceOptions,
+    progress: &mut dyn FnMut(Stage),
+) -> Result<(ReducedPart, ReduceReport), ReduceError> {
     let part = spec.name.clone();
     let eigen = |source: EigError| ReduceError::Eigen {
         part: part.clone(),
@@ -454,7 +470,8 @@ pub fn reduce_part(
 
     progress(Stage::Interface);
     let t = Instant::now();
-    let (points, rows) = boundary_rows(mesh, &free, spec)?;
+    let (mut points, mut rows) = boundary_rows(mesh, &free, spec)?;
+    coupled::coupling_rows(mesh, &free, spec, couplings, &mut points, &mut rows)?;
     let split = Split::new(&rows, free.num_free(), &part)?;
     // The stiffness factored: K, or K' = K + Σ ρ_f c_fᵀ c_f with footprints (module docs).
     let held_k = footprint_springs(&system.k, &rows, &split);

@@ -61,6 +61,27 @@ fn write_dof_labels(w: &mut dyn Write, part: &ReducedPart) -> std::io::Result<()
                 (point, d)
             }
             DofLabel::Along { point, direction } => (point, direction),
+            // A coupling point's rotation about a coordinate axis (rad): kind `rotation`.
+            DofLabel::Rotation { point, axis } => {
+                let mut d = [0.0; 3];
+                if let Some(x) = d.get_mut(usize::from(axis)) {
+                    *x = 1.0;
+                }
+                let at = part.info.points.get(point).map_or([0.0; 3], |p| p.position);
+                writeln!(
+                    w,
+                    "{row},rotation,{},,{},{},{},{},{:e},{:e},{:e}",
+                    point + 1,
+                    axis + 1,
+                    d[0],
+                    d[1],
+                    d[2],
+                    at[0],
+                    at[1],
+                    at[2]
+                )?;
+                continue;
+            }
         };
         let Some(p) = part.info.points.get(point) else {
             return Err(std::io::Error::other(format!(
@@ -72,6 +93,7 @@ fn write_dof_labels(w: &mut dyn Write, part: &ReducedPart) -> std::io::Result<()
             crate::rom::PointRole::Contact => "contact",
             crate::rom::PointRole::Piston => "piston",
             crate::rom::PointRole::Face => "face",
+            crate::rom::PointRole::Coupling => "coupling",
         };
         let axis = direction
             .iter()

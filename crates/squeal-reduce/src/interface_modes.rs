@@ -103,7 +103,7 @@ pub fn face_dofs(part: &ReducedPart) -> Vec<usize> {
             DofLabel::Point { point, .. } | DofLabel::Along { point, .. } => points
                 .get(*point)
                 .is_some_and(|p| matches!(p.role, PointRole::Contact | PointRole::Face)),
-            DofLabel::Mode { .. } => false,
+            DofLabel::Mode { .. } | DofLabel::Rotation { .. } => false,
         })
         .map(|(d, _)| d)
         .collect()

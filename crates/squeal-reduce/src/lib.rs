@@ -6,6 +6,7 @@
 
 pub mod brake;
 pub mod check;
+pub mod coupling;
 pub mod craig_bampton;
 pub mod dampers;
 pub mod error;

@@ -34,9 +34,12 @@ pub const FORMAT: &str = "squeal-rom";
 /// Version of the format written by this code; readers refuse newer versions.
 /// Version 2 added `has_basis` and `build` to each part; version 3 each part's `role`, each
 /// point's `normal` and `surface`, node-interface points' tributary `area`, and dofs along a
-/// point's normal (`along`). Files of versions 1 and 2 still read (their parts are a disc and
-/// a pad, by name); a scene reduces them again ([`crate::brake::freshness`]).
-pub const VERSION: u32 = 3;
+/// point's normal (`along`). Version 4 added parts of role `body` (a caliper, a bracket),
+/// points of role `coupling` (a node set's mean motion, six dofs: three translations and
+/// three `rotation` dofs) and the header's `connections` between parts
+/// ([`crate::coupling`]). Files of versions 1 to 3 still read (their parts are a disc and
+/// pads); a scene reduces them again ([`crate::brake::freshness`]).
+pub const VERSION: u32 = 4;
 
 /// Largest JSON header accepted when reading (the header of the fine brake is about 20 kB).
 const MAX_HEADER_BYTES: u64 = 64 << 20;
@@ -122,6 +125,9 @@ pub enum PartRole {
     Disc,
     /// A pad: contact points on its friction face, loaded on its back (pistons or fingers).
     Pad,
+    /// Any further part (a caliper, a bracket, a knuckle): no contact with the disc, tied to
+    /// the other parts by [`crate::coupling::Connection`]s at its coupling points (version 4).
+    Body,
 }
 
 /// What a retained interface point is for.
@@ -136,6 +142,9 @@ pub enum PointRole {
     /// A node of the disc's contact face kept as a boundary point (nodal interface): the disc's
     /// contact points are combinations of these ([`InterfacePoint::projected`]).
     Face,
+    /// A node set's mean motion ([`crate::coupling`]): three translations and three rotations,
+    /// where a connection to another part or to ground acts (version 4).
+    Coupling,
 }
 
 /// A retained interface point.
@@ -212,6 +221,14 @@ pub enum DofLabel {
         point: usize,
         /// Unit vector of the motion.
         direction: [f64; 3],
+    },
+    /// Rotation (rad) of coupling point `point` about coordinate axis `axis` (0 = x): the
+    /// least-squares rigid rotation of its node set ([`crate::coupling`], version 4).
+    Rotation {
+        /// Index of the point in [`PartInfo::points`].
+        point: usize,
+        /// Axis: 0 = x, 1 = y, 2 = z.
+        axis: u8,
     },
 }
 
@@ -399,6 +416,9 @@ pub struct BuildRecord {
     /// files).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub springs: Vec<crate::springs::Spring>,
+    /// Node sets kept as coupling points (absent when there are none, and in older files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub couplings: Vec<crate::coupling::CouplingSet>,
 }
 
 /// The JSON header stored in `__metadata__.squeal`.
@@ -418,6 +438,10 @@ pub struct RomHeader {
     /// without the check.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub arrays_crc32: Option<String>,
+    /// Springs between the parts' coupling points or to ground (version 4; absent when there
+    /// are none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub connections: Vec<crate::coupling::Connection>,
 }
 
 /// The basis `[T_C T_phi]` on the part's free dofs, with each row's node id and direction.
@@ -458,6 +482,8 @@ pub struct ReducedModel {
     pub tool_version: String,
     /// The parts.
     pub parts: Vec<ReducedPart>,
+    /// Springs between the parts' coupling points or to ground ([`crate::coupling`]).
+    pub connections: Vec<crate::coupling::Connection>,
 }
 
 impl ReducedModel {
@@ -466,11 +492,19 @@ impl ReducedModel {
         self.parts.iter().find(|p| p.info.name == name)
     }
 
-    /// The pads, in the order of their dofs (every part but the disc).
+    /// The pads, in the order of their dofs (the parts of role pad).
     pub fn pads(&self) -> Vec<&ReducedPart> {
         self.parts
             .iter()
             .filter(|p| p.info.role() == PartRole::Pad)
+            .collect()
+    }
+
+    /// The parts of role body (a caliper, a bracket), in the order of their dofs.
+    pub fn bodies(&self) -> Vec<&ReducedPart> {
+        self.parts
+            .iter()
+            .filter(|p| p.info.role() == PartRole::Body)
             .collect()
     }
 
@@ -534,6 +568,7 @@ impl ReducedModel {
                 })
                 .collect(),
             arrays_crc32: Some(format!("{:08x}", crc.0.finalize())),
+            connections: self.connections.clone(),
         };
         let json =
             serde_json::to_string(&header).map_err(|e| RomError::Serialize(e.to_string()))?;
@@ -644,6 +679,7 @@ impl ReducedModel {
         Ok(ReducedModel {
             tool_version: header.tool_version,
             parts,
+            connections: header.connections,
         })
     }
 }

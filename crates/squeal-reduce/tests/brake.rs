@@ -227,6 +227,9 @@ fn matrix_market_export_reads_back_exactly_with_labelled_rows() {
                     let d: Vec<f64> = row[5..8].iter().map(|s| s.parse().unwrap()).collect();
                     assert_eq!(d, direction.to_vec());
                 }
+                DofLabel::Rotation { axis, .. } => {
+                    assert_eq!((row[1], row[4]), ("rotation", (axis + 1).to_string().as_str()));
+                }
             }
         }
     }

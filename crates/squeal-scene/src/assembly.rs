@@ -96,6 +96,7 @@ impl Scene {
     pub(crate) fn check_part(&self, key: &str, part: &Spanned<String>) -> Result<String> {
         let names: Vec<String> = std::iter::once("disc".to_string())
             .chain(self.pads()?.into_iter().map(|p| p.0))
+            .chain(self.bodies().into_iter().map(|p| p.0))
             .collect();
         let name = part.get_ref().trim();
         if !names.iter().any(|n| n == name) {

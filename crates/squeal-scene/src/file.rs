@@ -56,6 +56,13 @@ pub struct SceneFile {
     /// ([`crate::dampers`]).
     #[serde(default)]
     pub dampers: Vec<crate::dampers::DamperSection>,
+    /// `[parts.<name>]`: parts beyond the disc and the pads ([`crate::parts_keys`]).
+    #[serde(default)]
+    pub parts: std::collections::BTreeMap<String, crate::parts_keys::BodySection>,
+    /// `[[connectors]]`: springs between node sets of two parts or to ground
+    /// ([`crate::parts_keys`]).
+    #[serde(default)]
+    pub connectors: Vec<crate::parts_keys::ConnectorSection>,
 }
 
 /// `[pads.<name>]`: one pad of a brake with several (an inboard pad pushed by the pistons, an

@@ -61,6 +61,7 @@ mod stick_slip_keys;
 
 pub mod assembly;
 pub mod dampers;
+pub mod parts_keys;
 pub mod springs;
 
 /// What is wrong with a scene file, with the file and, where a value is at fault, its key and
@@ -252,6 +253,7 @@ impl Scene {
     pub fn mesh_files(&self) -> Result<Vec<PathBuf>> {
         let mut files = vec![self.resolve(&self.file.model.disc)];
         files.extend(self.pads()?.iter().map(|(_, p)| self.resolve(p)));
+        files.extend(self.bodies().iter().map(|(_, p)| self.resolve(p)));
         Ok(files)
     }
 

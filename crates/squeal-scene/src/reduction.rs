@@ -107,13 +107,15 @@ pub struct InterfaceReduction {
 impl Scene {
     /// `[reduction] interface`: `None` without an interface reduction, else its mode count.
     /// Absent, nodal contact takes `"system"` with `"auto"` (module documentation) and patch
-    /// contact none.
+    /// contact none; so does a brake with parts beyond the disc and the pads (`[parts.*]`,
+    /// `[[connectors]]`), which no interface reduction carries yet.
     pub fn interface_reduction(&self) -> Result<Option<InterfaceReduction>> {
         let r = &self.file.reduction;
         let iface = self.file.model.interface.get_ref();
         let nodal = iface == "nodal" || iface == "node";
         let Some(written) = &r.interface else {
-            if !nodal {
+            let bodies = !self.file.parts.is_empty() || !self.file.connectors.is_empty();
+            if !nodal || bodies {
                 return Ok(None);
             }
             return self.interface_count(InterfaceBasis::System).map(|modes| {

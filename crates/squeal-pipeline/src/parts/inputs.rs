@@ -91,6 +91,7 @@ pub fn brake_inputs(scene: &Scene, parts: &SceneParts) -> Result<BrakeInputs> {
         }
     }
     inputs.grid = scene.patch_grid()?;
+    add_bodies(scene, parts, &mut inputs)?;
     add_supports_and_ties(scene, parts, &mut inputs)?;
     Ok(inputs)
 }
@@ -329,8 +330,8 @@ pub(super) fn nearest_to_patches(
     Ok(out)
 }
 
-/// The part named `name` of `inputs` (`disc` or a pad's name).
-fn part_mut<'a>(
+/// The part named `name` of `inputs` (`disc`, a pad's or a body's name).
+pub(super) fn part_mut<'a>(
     inputs: &'a mut BrakeInputs,
     name: &str,
 ) -> Option<&'a mut squeal_reduce::brake::PartInput> {
@@ -340,6 +341,7 @@ fn part_mut<'a>(
     inputs
         .pads
         .iter_mut()
+        .chain(inputs.bodies.iter_mut())
         .find(|p| p.name == name)
         .map(|p| &mut p.part)
 }

@@ -72,6 +72,7 @@ pub fn stale_reasons(header: &RomHeader, inputs: &BrakeInputs, hashes: &[String]
             Some(info) => reasons.extend(part_reasons(info, name, input, inputs, hash)),
         }
     }
+    reasons.extend(connection_reasons(&header.connections, inputs));
     reasons
 }
 

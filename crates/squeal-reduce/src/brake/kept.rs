@@ -67,6 +67,7 @@ pub(super) fn keep_parts(dir: &Path, parts: &[&ReducedPart]) -> Result<Vec<PathB
         let model = ReducedModel {
             tool_version: TOOL_VERSION.into(),
             parts: vec![(*part).clone()],
+            connections: Vec::new(),
         };
         model.write(&path)?;
         written.push(path);

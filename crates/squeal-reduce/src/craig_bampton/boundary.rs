@@ -19,7 +19,12 @@ pub(crate) fn boundary_rows(
         position: mesh.nodes[node as usize],
         direction: AXES[d],
     };
-    for surface in spec.surfaces() {
+    // A body (a caliper, a bracket) touches no disc: its boundary is its coupling sets.
+    let surfaces = match spec.role {
+        PartRole::Body => Vec::new(),
+        _ => spec.surfaces(),
+    };
+    for surface in surfaces {
         match spec.interface {
             InterfaceKind::Node => {
                 let nodes = contact_nodes(mesh, &surface.contact_set, &spec.axis)?;
@@ -65,7 +70,7 @@ pub(crate) fn boundary_rows(
                 // ([`crate::interface::nodal`]; the brake adds those).
                 let role = match spec.role {
                     PartRole::Disc => PointRole::Face,
-                    PartRole::Pad => PointRole::Contact,
+                    PartRole::Pad | PartRole::Body => PointRole::Contact,
                 };
                 for node in face_nodes(mesh, &surface.contact_face_set)? {
                     let p = points.len();

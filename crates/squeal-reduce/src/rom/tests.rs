@@ -63,6 +63,7 @@ fn sample() -> ReducedModel {
             m,
             basis: Some(basis),
         }],
+        connections: Vec::new(),
     }
 }
 
