@@ -228,7 +228,10 @@ fn matrix_market_export_reads_back_exactly_with_labelled_rows() {
                     assert_eq!(d, direction.to_vec());
                 }
                 DofLabel::Rotation { axis, .. } => {
-                    assert_eq!((row[1], row[4]), ("rotation", (axis + 1).to_string().as_str()));
+                    assert_eq!(
+                        (row[1], row[4]),
+                        ("rotation", (axis + 1).to_string().as_str())
+                    );
                 }
             }
         }

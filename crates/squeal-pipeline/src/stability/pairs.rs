@@ -114,6 +114,7 @@ pub fn equilibrium_text(m: &Model, eq: &Equilibrium) -> String {
             per_pad.join(", ")
         );
     }
+    out.push_str(&clamp_warning(m, eq));
     if m.pairs.len() > LISTED_PAIRS {
         out.push_str(&equilibrium_summary(m, eq));
         return out;
@@ -138,6 +139,43 @@ pub fn equilibrium_text(m: &Model, eq: &Equilibrium) -> String {
         );
     }
     out
+}
+
+/// How far a pad's contact resultant may be from its clamp force before the run warns.
+const CLAMP_TOLERANCE: f64 = 0.01;
+
+/// A `warning:` line when a pad's contact resultant at the equilibrium differs from the clamp
+/// force by more than [`CLAMP_TOLERANCE`]: the clamp then also goes through something else
+/// (a connector or spring on the load path, a support), and the contact stiffness is that of
+/// another load. Empty when every pad carries its clamp force.
+fn clamp_warning(m: &Model, eq: &Equilibrium) -> String {
+    let clamp = m.params.piston_force;
+    if clamp <= 0.0 {
+        return String::new();
+    }
+    let off: Vec<String> = pad_names(m)
+        .into_iter()
+        .filter_map(|name| {
+            let f: f64 = m
+                .pairs
+                .iter()
+                .zip(&eq.normal_forces)
+                .filter(|(p, _)| p.pad == name)
+                .map(|(_, f)| f)
+                .sum();
+            ((f / clamp - 1.0).abs() > CLAMP_TOLERANCE).then(|| {
+                let who = if name.is_empty() { "the pad" } else { name };
+                format!("{who} {f:.1} N")
+            })
+        })
+        .collect();
+    if off.is_empty() {
+        return String::new();
+    }
+    format!(
+        "warning: the contact carries {} of the clamp force {clamp:.1} N per pad: part of the clamp goes another way (a connector, spring or support on the load path: a connector's stiffness acts in the static solve too), so the contact stiffness and mu0 are those of another load\n",
+        off.join(", ")
+    )
 }
 
 /// Above this many contact pairs `squeal stability` prints one summary line per pad instead
