@@ -22,7 +22,7 @@
 //! of `[damping]`, in every analysis.
 
 use crate::sets::SetRule;
-use crate::springs::{SpringSpread, orthonormal};
+use crate::springs::{Ends, SpringSpread, Wording};
 use crate::{Result, Scene};
 use serde::Deserialize;
 use toml::Spanned;
@@ -79,63 +79,28 @@ impl Scene {
                     "must be three damping coefficients >= 0 (N s/m along the axes), not all zero",
                 ));
             }
-            let axes = match &s.axes {
-                Some(a) => {
-                    Some(orthonormal(*a.get_ref()).map_err(|m| self.error_at(&key("axes"), a, m))?)
-                }
-                None => None,
-            };
-            let rule = |f: &str, v: &Spanned<toml::Value>| {
-                self.set_rule(&key(f), Some(v), false)?
-                    .ok_or_else(|| self.error_at(&key(f), v, "must select a node set"))
-            };
-            let to = match &s.to {
-                Some(v) if v.get_ref().as_str() == Some("ground") => None,
-                Some(v) => Some(rule("to", v)?),
-                None => None,
-            };
-            let spread = match s.spread.as_ref().map(|v| (v, v.get_ref().trim())) {
-                None | Some((_, "mean")) => SpringSpread::Mean,
-                Some((_, "area")) => SpringSpread::Area,
-                Some((_, "normal")) => SpringSpread::Normal,
-                Some((v, other)) => {
-                    return Err(self.error_at(
-                        &key("spread"),
-                        v,
-                        format!("'{other}' is not \"mean\", \"area\" or \"normal\""),
-                    ));
-                }
-            };
-            if spread == SpringSpread::Normal && (c[1] != 0.0 || c[2] != 0.0) {
-                return Err(self.error_at(
-                    &key("damping"),
-                    &s.damping,
-                    "a damper on a sliding abutment (spread = \"normal\") acts along the normal only: give [c, 0, 0]",
-                ));
-            }
-            if let (SpringSpread::Normal, Some(a)) = (spread, &s.axes) {
-                return Err(self.error_at(
-                    &key("axes"),
-                    a,
-                    "a damper on a sliding abutment takes the normal of the face it bears on: leave out axes",
-                ));
-            }
-            if spread == SpringSpread::Area
-                && let (Some(v), Some(_)) = (&s.spread, &to)
-            {
-                return Err(self.error_at(
-                    &key("spread"),
-                    v,
-                    "a damper spread by area goes to ground: leave out `to`, or use spread = \"mean\" between two sets",
-                ));
-            }
+            let ends = self.ends(
+                &key,
+                Ends {
+                    set: &s.set,
+                    to: &s.to,
+                    axes: &s.axes,
+                    spread: &s.spread,
+                    values: (&s.damping, "damping", c),
+                },
+                &Wording {
+                    normal_values: "a damper on a sliding abutment (spread = \"normal\") acts along the normal only: give [c, 0, 0]",
+                    normal_axes: "a damper on a sliding abutment takes the normal of the face it bears on: leave out axes",
+                    area_to: "a damper spread by area goes to ground: leave out `to`, or use spread = \"mean\" between two sets",
+                },
+            )?;
             out.push(DamperSpec {
                 part,
-                set: rule("set", &s.set)?,
-                to,
+                set: ends.set,
+                to: ends.to,
                 damping: c.map(|x| x * per_speed),
-                axes,
-                spread,
+                axes: ends.axes,
+                spread: ends.spread,
             });
         }
         Ok(out)

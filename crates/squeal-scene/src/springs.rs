@@ -110,7 +110,90 @@ pub(crate) fn orthonormal(axes: [[f64; 3]; 3]) -> std::result::Result<[[f64; 3];
     Ok(out)
 }
 
+/// The parts of a `[[springs]]` or `[[dampers]]` entry that both share: its ends, axes and
+/// spread, and its three values (`(span, key, values)`: stiffness or damping).
+pub(crate) struct Ends<'a> {
+    pub set: &'a Spanned<toml::Value>,
+    pub to: &'a Option<Spanned<toml::Value>>,
+    pub axes: &'a Option<Spanned<[[f64; 3]; 3]>>,
+    pub spread: &'a Option<Spanned<String>>,
+    pub values: (&'a Spanned<[f64; 3]>, &'static str, [f64; 3]),
+}
+
+/// The messages of [`Scene::ends`] that name the kind of entry.
+pub(crate) struct Wording {
+    /// A sliding abutment given values across its normal.
+    pub normal_values: &'static str,
+    /// A sliding abutment given axes.
+    pub normal_axes: &'static str,
+    /// An area spread given a second end.
+    pub area_to: &'static str,
+}
+
+/// [`Ends`], typed.
+pub(crate) struct TypedEnds {
+    pub set: SetRule,
+    pub to: Option<SetRule>,
+    pub axes: Option<[[f64; 3]; 3]>,
+    pub spread: SpringSpread,
+}
+
 impl Scene {
+    /// The ends, axes and spread of the entry whose keys `key` names, checked together (a
+    /// sliding abutment has one value, along the normal it finds, and no axes; an area spread
+    /// goes to ground).
+    pub(crate) fn ends(
+        &self,
+        key: &dyn Fn(&str) -> String,
+        e: Ends<'_>,
+        w: &Wording,
+    ) -> Result<TypedEnds> {
+        let axes = match e.axes {
+            Some(a) => {
+                Some(orthonormal(*a.get_ref()).map_err(|m| self.error_at(&key("axes"), a, m))?)
+            }
+            None => None,
+        };
+        let rule = |f: &str, v: &Spanned<toml::Value>| {
+            self.set_rule(&key(f), Some(v), false)?
+                .ok_or_else(|| self.error_at(&key(f), v, "must select a node set"))
+        };
+        let to = match e.to {
+            Some(v) if v.get_ref().as_str() == Some("ground") => None,
+            Some(v) => Some(rule("to", v)?),
+            None => None,
+        };
+        let spread = match e.spread.as_ref().map(|v| (v, v.get_ref().trim())) {
+            None | Some((_, "mean")) => SpringSpread::Mean,
+            Some((_, "area")) => SpringSpread::Area,
+            Some((_, "normal")) => SpringSpread::Normal,
+            Some((v, other)) => {
+                return Err(self.error_at(
+                    &key("spread"),
+                    v,
+                    format!("'{other}' is not \"mean\", \"area\" or \"normal\""),
+                ));
+            }
+        };
+        let (span, name, values) = e.values;
+        if spread == SpringSpread::Normal && (values[1] != 0.0 || values[2] != 0.0) {
+            return Err(self.error_at(&key(name), span, w.normal_values));
+        }
+        if let (SpringSpread::Normal, Some(a)) = (spread, e.axes) {
+            return Err(self.error_at(&key("axes"), a, w.normal_axes));
+        }
+        if spread == SpringSpread::Area
+            && let (Some(v), Some(_)) = (e.spread, &to)
+        {
+            return Err(self.error_at(&key("spread"), v, w.area_to));
+        }
+        Ok(TypedEnds {
+            set: rule("set", e.set)?,
+            to,
+            axes,
+            spread,
+        })
+    }
     /// `[[springs]]`, typed, in the order written.
     pub fn springs(&self) -> Result<Vec<SpringSpec>> {
         let u = self.units()?;
@@ -128,63 +211,28 @@ impl Scene {
             let part = self.check_part(&key("part"), &s.part)?;
             let stiffness =
                 self.check_stiffness(&key("stiffness"), &s.stiffness, "along the axes")?;
-            let axes = match &s.axes {
-                Some(a) => {
-                    Some(orthonormal(*a.get_ref()).map_err(|m| self.error_at(&key("axes"), a, m))?)
-                }
-                None => None,
-            };
-            let rule = |f: &str, v: &Spanned<toml::Value>| {
-                self.set_rule(&key(f), Some(v), false)?
-                    .ok_or_else(|| self.error_at(&key(f), v, "must select a node set"))
-            };
-            let to = match &s.to {
-                Some(v) if v.get_ref().as_str() == Some("ground") => None,
-                Some(v) => Some(rule("to", v)?),
-                None => None,
-            };
-            let spread = match s.spread.as_ref().map(|v| (v, v.get_ref().trim())) {
-                None | Some((_, "mean")) => SpringSpread::Mean,
-                Some((_, "area")) => SpringSpread::Area,
-                Some((_, "normal")) => SpringSpread::Normal,
-                Some((v, other)) => {
-                    return Err(self.error_at(
-                        &key("spread"),
-                        v,
-                        format!("'{other}' is not \"mean\", \"area\" or \"normal\""),
-                    ));
-                }
-            };
-            if spread == SpringSpread::Normal && (stiffness[1] != 0.0 || stiffness[2] != 0.0) {
-                return Err(self.error_at(
-                    &key("stiffness"),
-                    &s.stiffness,
-                    "a sliding abutment (spread = \"normal\") has one stiffness, along the normal: give [k, 0, 0]",
-                ));
-            }
-            if let (SpringSpread::Normal, Some(a)) = (spread, &s.axes) {
-                return Err(self.error_at(
-                    &key("axes"),
-                    a,
-                    "a sliding abutment takes the normal of the face it bears on: leave out axes",
-                ));
-            }
-            if spread == SpringSpread::Area
-                && let (Some(v), Some(_)) = (&s.spread, &to)
-            {
-                return Err(self.error_at(
-                    &key("spread"),
-                    v,
-                    "a spring spread by area goes to ground: leave out `to`, or use spread = \"mean\" between two sets",
-                ));
-            }
+            let ends = self.ends(
+                &key,
+                Ends {
+                    set: &s.set,
+                    to: &s.to,
+                    axes: &s.axes,
+                    spread: &s.spread,
+                    values: (&s.stiffness, "stiffness", stiffness),
+                },
+                &Wording {
+                    normal_values: "a sliding abutment (spread = \"normal\") has one stiffness, along the normal: give [k, 0, 0]",
+                    normal_axes: "a sliding abutment takes the normal of the face it bears on: leave out axes",
+                    area_to: "a spring spread by area goes to ground: leave out `to`, or use spread = \"mean\" between two sets",
+                },
+            )?;
             out.push(SpringSpec {
                 part,
-                set: rule("set", &s.set)?,
-                to,
+                set: ends.set,
+                to: ends.to,
                 stiffness: stiffness.map(|x| x * per_length),
-                axes,
-                spread,
+                axes: ends.axes,
+                spread: ends.spread,
             });
         }
         Ok(out)
