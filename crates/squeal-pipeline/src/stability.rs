@@ -132,7 +132,7 @@ pub fn criticality_text(m: &Model, st: &Stability, nf: &NormalForm) -> String {
 }
 
 /// The contact pairs as formed: points, distance, area and element parameters, one line per
-/// pair up to [`pairs::LISTED_PAIRS`] pairs; beyond, one summary line per pad (nodal contact
+/// pair up to 40 pairs; beyond, one summary line per pad (nodal contact
 /// on a fine mesh has thousands of pairs: every pair is in `equilibrium.csv` and
 /// `summary.json`).
 pub fn pairs_text(s: &Model) -> String {

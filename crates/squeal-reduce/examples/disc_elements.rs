@@ -126,7 +126,7 @@ fn matches(hex: &Disc, tet: &Disc) -> Vec<(usize, f64)> {
 
 fn main() -> ExitCode {
     let files: Vec<String> = std::env::args().skip(1).collect();
-    if files.is_empty() || files.len() % 2 != 0 {
+    if files.is_empty() || !files.len().is_multiple_of(2) {
         eprintln!("usage: disc_elements HEX20_COARSE TET10_COARSE [HEX20_NEXT TET10_NEXT ...]");
         return ExitCode::FAILURE;
     }

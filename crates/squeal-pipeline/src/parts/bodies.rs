@@ -153,7 +153,7 @@ fn not_yet(step: &str) -> PipelineError {
     }
 }
 
-/// Refuses `step` on inputs with further parts or connectors ([`not_yet`]).
+/// Refuses `step` on inputs with further parts or connectors.
 pub fn refuse_bodies(step: &str, inputs: &BrakeInputs) -> Result<()> {
     match inputs.bodies.is_empty() && inputs.connections.is_empty() {
         true => Ok(()),
@@ -161,7 +161,7 @@ pub fn refuse_bodies(step: &str, inputs: &BrakeInputs) -> Result<()> {
     }
 }
 
-/// Refuses `step` on a reduced model with further parts or connections ([`not_yet`]).
+/// Refuses `step` on a reduced model with further parts or connections.
 pub fn refuse_bodies_in(step: &str, rom: &squeal_reduce::rom::ReducedModel) -> Result<()> {
     match rom.bodies().is_empty() && rom.connections.is_empty() {
         true => Ok(()),
