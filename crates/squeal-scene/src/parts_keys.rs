@@ -58,7 +58,7 @@ pub struct ConnectorSection {
     pub to_set: Option<Spanned<toml::Value>>,
     /// Stiffness along the axes.
     pub stiffness: Spanned<[f64; 3]>,
-    /// Rotational stiffness about the axes (N m/rad, or the [units] force × length).
+    /// Rotational stiffness about the axes (N m/rad, or the `[units]` force × length).
     pub rotational_stiffness: Option<Spanned<[f64; 3]>>,
     /// The axes (default x, y, z).
     pub axes: Option<Spanned<[[f64; 3]; 3]>>,
