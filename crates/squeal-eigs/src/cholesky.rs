@@ -492,7 +492,7 @@ pub(crate) fn analyze_with(
         _ => SymmetricOrdering::Amd,
     };
     factorize_symbolic_cholesky(pattern, Side::Lower, ordering, params)
-        .map_err(|e| fail(format!("{e:?}")))
+        .map_err(|e| fail(crate::faer_error::describe_faer(e)))
 }
 
 /// A 64-bit hash (FNV-1a over the column pointers and row indices) of a

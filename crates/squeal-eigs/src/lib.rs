@@ -36,6 +36,7 @@ mod cholesky;
 mod constraint;
 pub mod dense;
 mod error;
+pub mod faer_error;
 mod inertia;
 mod lanczos;
 pub mod model_problems;

@@ -260,7 +260,7 @@ fn order_leaf(g: &Graph, ids: &[u32], out: &mut Vec<u32>) -> Result<(), EigError
         amd::Control::default(),
         MemStack::new(&mut mem),
     )
-    .map_err(|e| fail(&format!("{e:?}")))?;
+    .map_err(|e| fail(&crate::faer_error::describe_faer(e)))?;
     out.extend(perm.iter().map(|&p| ids[p]));
     Ok(())
 }

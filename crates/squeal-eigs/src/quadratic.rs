@@ -164,7 +164,10 @@ impl<'a> QuadraticPencil<'a> {
         }
         push(self.m, sigma * sigma);
         SparseColMat::try_new_from_triplets(n, n, &t).map_err(|e| EigError::Factorization {
-            what: format!("Q(sigma) from triplets: {e}"),
+            what: format!(
+                "Q(sigma) from triplets: {}",
+                crate::faer_error::describe_creation(e)
+            ),
         })
     }
 
@@ -200,7 +203,10 @@ impl<'p, 'a> ShiftInvert<'p, 'a> {
     fn new(pencil: &'p QuadraticPencil<'a>, sigma: c64) -> Result<Self, EigError> {
         let q = pencil.at(sigma)?;
         let lu = q.sp_lu().map_err(|e| EigError::Factorization {
-            what: format!("LU of K + sigma C + sigma^2 M at sigma = {sigma}: {e:?}"),
+            what: format!(
+                "LU of K + sigma C + sigma^2 M at sigma = {sigma}: {}",
+                crate::faer_error::describe_lu(e)
+            ),
         })?;
         Ok(Self { pencil, sigma, lu })
     }

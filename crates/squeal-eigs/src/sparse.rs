@@ -81,7 +81,10 @@ fn unsorted_asymmetry(
         .transpose()
         .to_col_major()
         .map_err(|e| EigError::Factorization {
-            what: format!("transpose of {name}: {e:?}"),
+            what: format!(
+                "transpose of {name}: {}",
+                crate::faer_error::describe_faer(e)
+            ),
         })?;
     let t = t.as_ref();
     for j in 0..n {

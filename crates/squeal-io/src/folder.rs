@@ -165,7 +165,11 @@ impl Manifest {
         if m.format != FORMAT {
             return Err(FolderError::Manifest {
                 path,
-                message: format!("format {:?}", m.format),
+                message: format!(
+                    "format '{}', not '{FORMAT}': the folder was written by another version of \
+                     squeal; write to a fresh folder",
+                    m.format
+                ),
             });
         }
         Ok(m)

@@ -80,7 +80,11 @@ pub enum SelectError {
         known: String,
     },
     /// A box's minimum exceeds its maximum along an axis.
-    #[error("the box's minimum {min:?} exceeds its maximum {max:?} along axis {axis}")]
+    #[error(
+        "the box's minimum ({}, {}, {}) exceeds its maximum ({}, {}, {}) along axis {axis}: give \
+         min below max",
+        min[0], min[1], min[2], max[0], max[1], max[2]
+    )]
     EmptyBox {
         /// The lower corner.
         min: [f64; 3],

@@ -601,7 +601,10 @@ pub fn choose_sets(
                         from_default(
                             part,
                             &key,
-                            format!("faces facing {n:?} under the {name}'s friction face"),
+                            format!(
+                                "faces facing ({:.3}, {:.3}, {:.3}) under the {name}'s friction face",
+                                n[0], n[1], n[2]
+                            ),
                             faces,
                         )?
                     }

@@ -625,8 +625,11 @@ impl<'a> Reader<'a> {
             let y = if identity { x } else { placement.apply(x) };
             if !y.iter().all(|v| v.is_finite()) {
                 let w = format!(
-                    "node {id} of instance {} is placed at {y:?}, not a finite point",
-                    prefix.trim_end_matches('.')
+                    "node {id} of instance {} is placed at ({}, {}, {}), not a finite point",
+                    prefix.trim_end_matches('.'),
+                    y[0],
+                    y[1],
+                    y[2]
                 );
                 return Err(self.err(self.instance_loc(t), w));
             }

@@ -99,9 +99,9 @@ pub(super) fn read_mat(
     let t = st.tensor(name).map_err(|e| format!("array {name}: {e}"))?;
     if t.dtype() != Dtype::F64 || t.shape().len() != 2 {
         return Err(format!(
-            "array {name}: expected a 2-D F64 array, found {:?} {:?}",
+            "array {name}: expected a 2-D F64 array, found {} of shape {}",
             t.dtype(),
-            t.shape()
+            shape_text(t.shape())
         ));
     }
     let (r, c) = (t.shape()[0], t.shape()[1]);
@@ -109,7 +109,8 @@ pub(super) fn read_mat(
         && s != (r, c)
     {
         return Err(format!(
-            "array {name}: expected shape {s:?}, found ({r}, {c})"
+            "array {name}: expected shape ({}, {}), found ({r}, {c})",
+            s.0, s.1
         ));
     }
     let data = t.data();
@@ -128,9 +129,9 @@ pub(super) fn read_vec(
     let t = st.tensor(name).map_err(|e| format!("array {name}: {e}"))?;
     if t.dtype() != dtype || t.shape() != [len] {
         return Err(format!(
-            "array {name}: expected {dtype:?} [{len}], found {:?} {:?}",
+            "array {name}: expected {dtype} of shape ({len}), found {} of shape {}",
             t.dtype(),
-            t.shape()
+            shape_text(t.shape())
         ));
     }
     Ok(t.data().to_vec())
@@ -145,4 +146,10 @@ pub fn sha256_file(path: &Path) -> Result<String, RomError> {
     })?;
     let digest = Sha256::digest(&bytes);
     Ok(digest.iter().map(|b| format!("{b:02x}")).collect())
+}
+
+/// A tensor's shape as `(a, b, …)`.
+fn shape_text(shape: &[usize]) -> String {
+    let dims: Vec<String> = shape.iter().map(|d| d.to_string()).collect();
+    format!("({})", dims.join(", "))
 }
