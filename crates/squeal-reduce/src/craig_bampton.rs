@@ -28,6 +28,12 @@
 //!   and `C Φ = 0`). For the node interface there are no constraint rows and this is the
 //!   paper's partition into `u_B` and `u_I`.
 //!
+//! With thousands of boundary coordinates (the nodal interface's face nodes) `Ψ` is the bulk
+//! of the memory: the fixed-interface modes are solved first, `B` is allocated once at its
+//! size, the constraint modes are solved into its first columns in blocks, and eqs (6)–(7)
+//! are formed in blocks of columns of the lower triangle, `K̂_BB` as the Schur complement on
+//! the boundary rows' dofs ([`blocked`]).
+//!
 //! A piston's footprint keeps one coordinate, its area-weighted mean motion along the piston
 //! direction `r_f = c_f u = Σ_k w_k n · u_k` ([`crate::interface::footprint`]), a constraint row
 //! like a contact patch's. With only constraint rows along the normal (footprints and patches)
