@@ -32,7 +32,7 @@
 //! of the memory: the fixed-interface modes are solved first, `B` is allocated once at its
 //! size, the constraint modes are solved into its first columns in blocks, and eqs (6)–(7)
 //! are formed in blocks of columns of the lower triangle, `K̂_BB` as the Schur complement on
-//! the boundary rows' dofs ([`blocked`]).
+//! the boundary rows' dofs (the private module `blocked`, `craig_bampton/blocked.rs`).
 //!
 //! A piston's footprint keeps one coordinate, its area-weighted mean motion along the piston
 //! direction `r_f = c_f u = Σ_k w_k n · u_k` ([`crate::interface::footprint`]), a constraint row
@@ -513,7 +513,7 @@ pub fn reduce_part_coupled(
     clock(Stage::Factor, t, &mut timings);
 
     // The fixed-interface modes first, so that the basis `[Ψ, Φ]` is allocated once at its
-    // size and the constraint modes are solved straight into it ([`blocked`]); the deferred
+    // size and the constraint modes are solved straight into it (`blocked`); the deferred
     // Sturm check, which frees the factor, after the constraint modes.
     let t = Instant::now();
     let constrained = match constraints.is_empty() {
