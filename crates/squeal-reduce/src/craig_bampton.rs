@@ -215,8 +215,8 @@ impl Stage {
         Stage::Assemble,
         Stage::Interface,
         Stage::Factor,
-        Stage::ConstraintModes,
         Stage::Eigensolve,
+        Stage::ConstraintModes,
         Stage::Project,
         Stage::Write,
     ];
@@ -546,7 +546,7 @@ pub fn reduce_part_coupled(
         )
         .map_err(eigen)?;
     drop(constrained);
-    timings.push((Stage::ConstraintModes, constrained_time + t.elapsed()));
+    let constraint_modes_time = constrained_time + t.elapsed();
 
     let t = Instant::now();
     let mut modes = match modes.deferred {
@@ -557,6 +557,7 @@ pub fn reduce_part_coupled(
         true => check_deferred(modes, factor, k_vv, m_vv, &constraints, spec, opts)?,
     };
     timings.push((Stage::Eigensolve, eigensolve_time + t.elapsed()));
+    timings.push((Stage::ConstraintModes, constraint_modes_time));
 
     progress(Stage::Project);
     let t = Instant::now();
