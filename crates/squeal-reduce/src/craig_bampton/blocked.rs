@@ -27,10 +27,12 @@
 //! dofs `S` that the boundary rows `C` touch (the eliminated dofs and the constraint rows'
 //! entries). Hence `K̂_BB = Ψᵀ K Ψ = Ψ_Sᵀ (K Ψ)_S`, for the node interface
 //! `K_BB − K_Bv K_vv⁻¹ K_vB`: `(K Ψ)_S` is `|S|` sparse rows of `K` times `Ψ`, and the dense
-//! product has `|S|` rows instead of `n`. The coupling `K̂_NB = Φᵀ K Ψ = Φ_Sᵀ (K Ψ)_S` is
-//! formed the same way (zero up to round-off, eq (6): `C Φ = 0`), and the modal block
-//! `K̂_NN = Φᵀ K Φ` from all rows. The two forms differ by `Ψ_vᵀ r` with `r` the interior
-//! residual of the solves, round-off.
+//! product has `|S|` rows instead of `n`. The two forms differ by `Ψ_vᵀ r` with `r` the
+//! interior residual of the solves, round-off. The modal columns are formed from all rows:
+//! `K̂_NN = Φᵀ K Φ` and the coupling `K̂_NB = Φᵀ K Ψ = (K Φ)ᵀ Ψ` (`n_M n_B N` multiply-adds),
+//! so that the reported coupling, zero in exact arithmetic (eq (6): `K Ψ = Cᵀ Λ`, `C Φ = 0`),
+//! still measures the solves' round-off (on `S` alone it would be exactly zero for eliminated
+//! boundary dofs, where `Φ` vanishes).
 //!
 //! Every sum runs in an order fixed by the block sizes, not by the thread count: the result
 //! is the same bits for any number of threads.
@@ -148,32 +150,34 @@ pub(super) fn project_blocked(
     let mut k_hat = Mat::<f64>::zeros(n, n);
     let mut m_hat = Mat::<f64>::zeros(n, n);
     let b_support = Mat::from_fn(support.len(), n, |i, j| basis[(support[i], j)]);
-    lower_blocks(
-        k,
-        basis,
-        Some((support, b_support.as_ref())),
-        0..nb,
-        block,
-        &mut k_hat,
-    );
+    let schur = Some((support, b_support.as_ref()));
+    lower_blocks(k, basis, schur, 0..nb, (None, nb), block, &mut k_hat);
     drop(b_support);
-    lower_blocks(k, basis, None, nb..n, block, &mut k_hat);
-    lower_blocks(m, basis, None, 0..n, block, &mut m_hat);
+    // The modal columns from all rows, from the top row: `K̂_NN` and the coupling `K̂_BN`
+    // above it, moved below the diagonal for `mirror`.
+    lower_blocks(k, basis, None, nb..n, (Some(0), n), block, &mut k_hat);
+    for j in nb..n {
+        for i in 0..nb {
+            k_hat[(j, i)] = k_hat[(i, j)];
+        }
+    }
+    lower_blocks(m, basis, None, 0..n, (None, n), block, &mut m_hat);
     (mirror(k_hat), mirror(m_hat))
 }
 
-/// The lower triangle of `Bᵀ X B` in the columns `cols`, a block `J` of `block` columns at a
-/// time: `W = (X B_J)` on the rows `rows` (all when `None`; then the rows of `B` they select,
-/// given as a dense copy) and `out[j ≥ j0, J] = B_rowsᵀ[j ≥ j0, :] W`.
+/// The lower triangle of `Bᵀ X B` in the columns `cols`, a block `J` (first column `j0`) of
+/// `block` columns at a time, rows `out_rows = (start, end)` (`start` the diagonal `j0` when
+/// `None`): `W = (X B_J)` on the rows `rows` of `X` (all when `None`; else with the rows of `B`
+/// they select, given as a dense copy) and `out[start ≤ j < end, J] = B_rowsᵀ[j, :] W`.
 fn lower_blocks(
     x: &SparseColMat<usize, f64>,
     basis: MatRef<'_, f64>,
     rows: Option<(&[usize], MatRef<'_, f64>)>,
     cols: std::ops::Range<usize>,
+    out_rows: (Option<usize>, usize),
     block: usize,
     out: &mut Mat<f64>,
 ) {
-    let n = basis.ncols();
     let xr = x.as_ref();
     let mut j0 = cols.start;
     while j0 < cols.end {
@@ -198,15 +202,16 @@ fn lower_blocks(
                     .sum();
             }
         });
-        // out[j0.., J] = left[:, j0..]ᵀ W, OUT_ROWS rows of out per task.
-        let target = out.as_mut().submatrix_mut(j0, j0, n - j0, j1 - j0);
+        // out[top..row_end, J] = left[:, top..row_end]ᵀ W, OUT_ROWS rows of out per task.
+        let (top, row_end) = (out_rows.0.unwrap_or(j0), out_rows.1);
+        let target = out.as_mut().submatrix_mut(top, j0, row_end - top, j1 - j0);
         let mut pieces = Vec::new();
         let mut rest = target;
-        let mut start = j0;
+        let mut start = top;
         while rest.nrows() > 0 {
             let len = OUT_ROWS.min(rest.nrows());
-            let (top, bottom) = rest.split_at_row_mut(len);
-            pieces.push((start, top));
+            let (piece, bottom) = rest.split_at_row_mut(len);
+            pieces.push((start, piece));
             rest = bottom;
             start += len;
         }
