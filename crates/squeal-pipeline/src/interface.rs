@@ -465,14 +465,26 @@ pub fn at_blocks(model: &Model, blocks: &[(String, faer::Mat<f64>)]) -> Result<M
     {
         sweep.method = SweepMethod::Dense;
     }
-    let mut rom = model.rom.clone();
-    for part in rom.parts.iter_mut() {
-        let block = blocks
-            .iter()
-            .find(|b| b.0 == part.info.name)
-            .ok_or(PipelineError::NoPart { part: "pad" })?;
-        *part = transformed_part(part, &block.1);
-    }
+    // Each part's `Φ T` from the model's own part, not from a clone of the whole model: a
+    // nodal disc's basis `Φ` is gigabytes (docs/benchmarks.md, the Craig–Bampton step with
+    // thousands of boundary points).
+    let parts = model
+        .rom
+        .parts
+        .iter()
+        .map(|part| {
+            let block = blocks
+                .iter()
+                .find(|b| b.0 == part.info.name)
+                .ok_or(PipelineError::NoPart { part: "pad" })?;
+            Ok(transformed_part(part, &block.1))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let rom = squeal_reduce::rom::ReducedModel {
+        tool_version: model.rom.tool_version.clone(),
+        parts,
+        connections: model.rom.connections.clone(),
+    };
     Ok(Model {
         rom,
         rom_path: model.rom_path.clone(),

@@ -28,6 +28,12 @@
 //!   and `C Φ = 0`). For the node interface there are no constraint rows and this is the
 //!   paper's partition into `u_B` and `u_I`.
 //!
+//! With thousands of boundary coordinates (the nodal interface's face nodes) `Ψ` is the bulk
+//! of the memory: the fixed-interface modes are solved first, `B` is allocated once at its
+//! size, the constraint modes are solved into its first columns in blocks, and eqs (6)–(7)
+//! are formed in blocks of columns of the lower triangle, `K̂_BB` as the Schur complement on
+//! the boundary rows' dofs (the private module `blocked`, `craig_bampton/blocked.rs`).
+//!
 //! A piston's footprint keeps one coordinate, its area-weighted mean motion along the piston
 //! direction `r_f = c_f u = Σ_k w_k n · u_k` ([`crate::interface::footprint`]), a constraint row
 //! like a contact patch's. With only constraint rows along the normal (footprints and patches)
@@ -76,6 +82,7 @@ use boundary::*;
 
 mod coupled;
 pub(crate) use coupled::coupling_rows;
+mod blocked;
 mod fixed;
 pub(crate) use boundary::boundary_rows;
 #[allow(unused_imports)]
@@ -208,8 +215,8 @@ impl Stage {
         Stage::Assemble,
         Stage::Interface,
         Stage::Factor,
-        Stage::ConstraintModes,
         Stage::Eigensolve,
+        Stage::ConstraintModes,
         Stage::Project,
         Stage::Write,
     ];
@@ -505,16 +512,15 @@ pub fn reduce_part_coupled(
     })?;
     clock(Stage::Factor, t, &mut timings);
 
-    progress(Stage::ConstraintModes);
+    // The fixed-interface modes first, so that the basis `[Ψ, Φ]` is allocated once at its
+    // size and the constraint modes are solved straight into it (`blocked`); the deferred
+    // Sturm check, which frees the factor, after the constraint modes.
     let t = Instant::now();
     let constrained = match constraints.is_empty() {
         true => None,
         false => Some(ConstrainedFactor::new(&factor, &constraints).map_err(eigen)?),
     };
-    let psi_v = split
-        .constraint_modes(k_factored, &factor, constrained.as_ref())
-        .map_err(eigen)?;
-    clock(Stage::ConstraintModes, t, &mut timings);
+    let constrained_time = t.elapsed();
 
     progress(Stage::Eigensolve);
     let t = Instant::now();
@@ -522,30 +528,52 @@ pub fn reduce_part_coupled(
     let sturm = sturm_placement(opts, &factor_stats, spec.modes);
     let modes =
         fixed_interface_modes(k_vv, m_vv, &factor, constrained.as_ref(), spec, opts, sturm)?;
-    drop(constrained);
-    let modes = match modes.deferred {
-        false => modes,
-        true => check_deferred(modes, factor, k_vv, m_vv, &constraints, spec, opts)?,
-    };
-    clock(Stage::Eigensolve, t, &mut timings);
+    let eigensolve_time = t.elapsed();
 
-    progress(Stage::Project);
+    progress(Stage::ConstraintModes);
     let t = Instant::now();
     let nb = rows.len();
     let nm = modes.values.len();
     let n = nb + nm;
     let mut basis = try_zeros(free.num_free(), n, &part)?;
-    for b in 0..nb {
-        split.expand_into(psi_v.col(b), basis.col_mut(b));
-        if let Some((m, inv)) = split.eliminated_dof(b) {
-            basis[(m, b)] = inv;
+    split
+        .constraint_modes_into(
+            k_factored,
+            &factor,
+            constrained.as_ref(),
+            basis.as_mut(),
+            blocked::MODE_BLOCK,
+        )
+        .map_err(eigen)?;
+    drop(constrained);
+    let constraint_modes_time = constrained_time + t.elapsed();
+
+    let t = Instant::now();
+    let mut modes = match modes.deferred {
+        false => {
+            drop(factor);
+            modes
         }
-    }
-    drop(psi_v);
+        true => check_deferred(modes, factor, k_vv, m_vv, &constraints, spec, opts)?,
+    };
+    timings.push((Stage::Eigensolve, eigensolve_time + t.elapsed()));
+    timings.push((Stage::ConstraintModes, constraint_modes_time));
+
+    progress(Stage::Project);
+    let t = Instant::now();
     for j in 0..nm {
         split.expand_into(modes.vectors.col(j), basis.col_mut(nb + j));
     }
-    let (mut k_hat, mut m_hat) = project_pair(&system.k, &system.m, &basis);
+    modes.vectors = Mat::zeros(0, 0);
+    let support = split.support(&rows);
+    let (mut k_hat, mut m_hat) = blocked::project_blocked(
+        &system.k,
+        &system.m,
+        basis.as_ref(),
+        nb,
+        &support,
+        blocked::PROJECT_BLOCK,
+    );
     let modal_mass_deviation = max_deviation_from_identity(&m_hat, nb);
     if opts.orthonormalize && nm > 0 {
         orthonormalize_modes(&mut basis, &mut k_hat, &mut m_hat, nb, &part)?;

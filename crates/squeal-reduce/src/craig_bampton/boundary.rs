@@ -440,7 +440,9 @@ impl Split {
         Constraints::new(self.interior.len(), self.constraint_rows.clone())
     }
 
-    /// The dof of an eliminated boundary row and `1 / c`.
+    /// The dof of an eliminated boundary row and `1 / c` (the blocked constraint modes read
+    /// [`RowKind`] directly; the unblocked reference in their test uses this).
+    #[cfg(test)]
     pub(super) fn eliminated_dof(&self, b: usize) -> Option<(usize, f64)> {
         match self.kinds[b] {
             RowKind::Eliminated { dof, inv } => Some((dof, inv)),
@@ -450,7 +452,9 @@ impl Split {
 
     /// Eq (3): the interior part of the constraint modes, one column per boundary row (see the
     /// module documentation), from the factor of `K_vv` and, if there are constraint rows, its
-    /// constrained form.
+    /// constrained form, all at once: the reference of the blocked
+    /// [`Split::constraint_modes_into`] in its test.
+    #[cfg(test)]
     pub(super) fn constraint_modes(
         &self,
         k: &SparseColMat<usize, f64>,
@@ -561,7 +565,9 @@ pub(super) const ROW_BLOCK: usize = 4096;
 /// triangles stored) and dense `B`, symmetrized. Blocks of rows run in parallel: in each, a
 /// row `i` of `X B` sums the stored entries of column `i` of `X` (its row `i`) in stored
 /// order, and the block adds `B_blockᵀ (X B)_block`; the blocks' sums are added in order.
-/// The result is the same bits for any number of threads.
+/// The result is the same bits for any number of threads. The reference of the blocked
+/// [`super::blocked::project_blocked`] in its test (that one holds no row-major copy of `B`).
+#[cfg(test)]
 pub(super) fn project_pair(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
