@@ -579,9 +579,16 @@ pub fn assemble(
         k: block_diag(&blocks.iter().map(|p| &p.k).collect::<Vec<_>>()),
         f_piston,
         c: None,
+        k_vibration: None,
         pairs,
     };
-    crate::connections::add_connections(rom, &blocks, &mut brake.k, &mut brake.f_piston)?;
+    crate::connections::add_connections(
+        rom,
+        &blocks,
+        &mut brake.k,
+        &mut brake.k_vibration,
+        &mut brake.f_piston,
+    )?;
     brake.validate()?;
     Ok((brake, layout, report))
 }

@@ -10,6 +10,10 @@
 //! opposite to the one `F_piston` puts on the pad's load point, at that point (so the moment
 //! `(c_a − c_b) × (−F)` on the second end's rotations): the pressure in the bore pushes the
 //! caliper back as hard as it pushes the pad.
+//!
+//! A connection that acts on the vibration only (`vibration_only`: a piston's seal and fluid
+//! column) adds its `K_c` to `K` and to `K_vib` (`Brake::k_vibration`), which the static
+//! equilibrium and the 0th harmonic take back out ([`crate::vibration_only`]).
 
 use crate::error::BrakeError;
 use faer::Mat;
@@ -69,12 +73,14 @@ fn end_dofs(
     Ok((dofs, point.position))
 }
 
-/// Adds every connection of `rom` to `k` and the reactions of those carrying the clamp force
+/// Adds every connection of `rom` to `k`, those acting on the vibration only to `k_vibration`
+/// as well (made when the first comes), and the reactions of those carrying the clamp force
 /// to `f` (module docs); `parts` are the brake's parts in the order of their dofs.
 pub fn add_connections(
     rom: &ReducedModel,
     parts: &[&ReducedPart],
     k: &mut Mat<f64>,
+    k_vibration: &mut Option<Mat<f64>>,
     f: &mut [f64],
 ) -> Result<(), BrakeError> {
     for c in &rom.connections {
@@ -92,6 +98,14 @@ pub fn add_connections(
         for (i, &di) in dofs.iter().enumerate() {
             for (j, &dj) in dofs.iter().enumerate() {
                 k[(di, dj)] += kc[i][j];
+            }
+        }
+        if c.vibration_only {
+            let kv = k_vibration.get_or_insert_with(|| Mat::zeros(k.nrows(), k.ncols()));
+            for (i, &di) in dofs.iter().enumerate() {
+                for (j, &dj) in dofs.iter().enumerate() {
+                    kv[(di, dj)] += kc[i][j];
+                }
             }
         }
         if c.load {

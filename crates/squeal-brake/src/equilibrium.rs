@@ -290,6 +290,13 @@ pub fn static_equilibrium_with(
     opts: &NewtonOptions,
     tangent: Option<TangentSolve>,
 ) -> Result<Equilibrium, BrakeError> {
+    // A vibration-only stiffness is not in eq (14) ([`crate::vibration_only`]); the given
+    // tangent solve knows only the whole `K`.
+    let statics = crate::vibration_only::static_brake(brake);
+    let (brake, tangent) = match &statics {
+        Some(b) => (b, None),
+        None => (brake, tangent),
+    };
     let (solved, iterations, load_steps, rejected) = match start {
         Some(x0) => {
             let (s, it) = newton_at(brake, mu, 1.0, x0.to_vec(), false, opts, tangent);
@@ -412,6 +419,7 @@ mod tests {
             k,
             f_piston: vec![0.0, -force, 0.0, 0.0],
             c: None,
+            k_vibration: None,
             pairs: vec![pair],
         }
     }
@@ -486,6 +494,7 @@ mod tests {
             k: Mat::from_fn(1, 1, |_, _| k_spring),
             f_piston: vec![-force],
             c: None,
+            k_vibration: None,
             pairs,
         }
     }

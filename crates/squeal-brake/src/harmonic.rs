@@ -247,8 +247,15 @@ impl CondensedStiffness {
             product: Mat::zeros(rows, if diagonal { nn } else { 0 }),
             solvers: Vec::new(),
         };
-        // Λ_eq,0 = (Φ_n Ω⁻² Φ_nᵀ)⁻¹, real and independent of ω.
-        let h0 = s.receptance(c64::new(0.0, 0.0));
+        // Λ_eq,0 = (Φ_n Ω⁻² Φ_nᵀ)⁻¹, real and independent of ω (Ω⁻² → S with a
+        // vibration-only stiffness, crate::vibration_only).
+        let h0 = match &mb.statics {
+            Some(st) => {
+                let h = st.receptance(&mb.phi_n);
+                Mat::from_fn(nn, nn, |i, j| c64::new(h[(i, j)], 0.0))
+            }
+            None => s.receptance(c64::new(0.0, 0.0)),
+        };
         s.z[0] = invert(&h0);
         s
     }
@@ -509,13 +516,16 @@ pub fn condensed_load(
     layout: &HarmonicLayout,
 ) -> Vec<f64> {
     let n = mb.nl();
-    let xn: Vec<f64> = (0..n)
-        .map(|i| {
-            (0..mb.modes())
-                .map(|j| mb.phi_n[(i, j)] * mb.load[j] / mb.omega[j].powi(2))
-                .sum()
-        })
-        .collect();
+    let xn: Vec<f64> = match &mb.statics {
+        Some(st) => st.load_on_nonlinear(&mb.phi_n),
+        None => (0..n)
+            .map(|i| {
+                (0..mb.modes())
+                    .map(|j| mb.phi_n[(i, j)] * mb.load[j] / mb.omega[j].powi(2))
+                    .sum()
+            })
+            .collect(),
+    };
     let z0 = &stiffness.z[0];
     let mut f = vec![0.0; layout.len()];
     for i in 0..n {
@@ -556,7 +566,13 @@ pub fn recover(mb: &ModalBrake, omega: f64, g: &[f64], layout_nl: &HarmonicLayou
                 r
             })
             .collect();
-        let q = ModalSolver::new(&mb.omega, &mb.damping, c64::new(0.0, w)).solve_vec(&rhs);
+        let q = match (&mb.statics, k) {
+            (Some(st), 0) => {
+                let g0: Vec<f64> = gk.iter().map(|v| v.re).collect();
+                st.mean(&g0).into_iter().map(|v| c64::new(v, 0.0)).collect()
+            }
+            _ => ModalSolver::new(&mb.omega, &mb.damping, c64::new(0.0, w)).solve_vec(&rhs),
+        };
         for d in 0..n {
             let x: c64 = (0..n).map(|j| q[j] * mb.phi[(d, j)]).sum();
             if k == 0 {

@@ -103,6 +103,7 @@ pub fn project_brake(
         k: symmetric(project(&brake.k)),
         f_piston,
         c: brake.c.as_ref().map(|c| symmetric(project(c))),
+        k_vibration: brake.k_vibration.as_ref().map(|k| symmetric(project(k))),
         pairs,
     };
     let layout = Layout {
@@ -159,6 +160,7 @@ mod tests {
             k,
             f_piston: f,
             c: None,
+            k_vibration: None,
             pairs: vec![pair],
         };
         let layout = Layout {

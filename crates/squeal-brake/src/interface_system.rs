@@ -130,6 +130,7 @@ mod tests {
             k,
             f_piston: f,
             c: None,
+            k_vibration: None,
             pairs: vec![crate::model::tests::one_pair(0.0)],
         };
         let v = system_vectors(&brake, &NewtonOptions::default(), f64::INFINITY).unwrap();

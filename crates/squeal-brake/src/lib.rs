@@ -23,6 +23,8 @@
 //! - [`hopf`]: the Hopf point by Newton's method on the continued eigenvalue.
 //! - [`studies`]: parametric studies (pressure, contact stiffness, pair damping), the
 //!   damping-induced destabilization at small friction, and mode-shape measures.
+//! - [`vibration_only`]: stiffness acting on the vibration about the equilibrium only (a
+//!   hydraulic piston), out of eq (14) and of the harmonic balance's 0th harmonic.
 
 #![warn(missing_docs)]
 // Index loops over dofs read like the formulas they implement.
@@ -53,6 +55,7 @@ pub mod spectrum;
 pub mod studies;
 pub mod sweep;
 pub mod tracking;
+pub mod vibration_only;
 
 pub use contact::{ContactLaw, Kinematics, Law, PenaltyCoulomb, Response};
 pub use damping::ModalDamping;

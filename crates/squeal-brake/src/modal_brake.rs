@@ -39,8 +39,12 @@ pub struct ModalBrake {
     pub k_reference: Vec<f64>,
     /// `K_s` on the nonlinear dofs (`n_nl × n_nl`, symmetric).
     pub k_s: Mat<f64>,
-    /// Modal piston load `Φᵀ F_piston`.
+    /// Modal piston load `Φᵀ F_piston` (`Φᵀ (F_piston + K_vib x_0)` with a vibration-only
+    /// stiffness `K_vib`: its time-domain rest position, [`crate::vibration_only`]).
     pub load: Vec<f64>,
+    /// The 0th harmonic's static flexibility when the brake has a vibration-only stiffness
+    /// ([`crate::vibration_only`]); `None`: `Ω⁻²`.
+    pub statics: Option<crate::vibration_only::ModalStatics>,
 }
 
 impl ModalBrake {
@@ -68,9 +72,30 @@ impl ModalBrake {
                 }
             }
         }
-        let load = (0..n)
-            .map(|j| (0..n).map(|i| phi[(i, j)] * brake.f_piston[i]).sum())
-            .collect();
+        let modal = |f: &[f64]| -> Vec<f64> {
+            (0..n)
+                .map(|j| (0..n).map(|i| phi[(i, j)] * f[i]).sum())
+                .collect()
+        };
+        let load = modal(&brake.f_piston);
+        let (load, statics) = match &brake.k_vibration {
+            None => (load, None),
+            Some(kv) => {
+                let statics = crate::vibration_only::ModalStatics::new(
+                    &phi,
+                    &phi_n,
+                    &reference.basis.omega,
+                    kv,
+                    &load,
+                );
+                // The time domain's rest position of the spring: the reference's x_0.
+                let mut f = brake.f_piston.clone();
+                for (i, fi) in f.iter_mut().enumerate() {
+                    *fi += (0..n).map(|j| kv[(i, j)] * x0[j]).sum::<f64>();
+                }
+                (modal(&f), Some(statics))
+            }
+        };
         Self {
             mu,
             omega: reference.basis.omega.clone(),
@@ -82,6 +107,7 @@ impl ModalBrake {
             k_reference,
             k_s,
             load,
+            statics,
         }
     }
 

@@ -196,6 +196,12 @@ pub struct Brake {
     /// eq (12) where the reduced damping matrix is formed, [`crate::sweep::reference`]
     /// (`D = D_modal + Φᵀ C Φ`), so every analysis that takes `D` from the reference sees it.
     pub c: Option<Mat<f64>>,
+    /// The part of `k` that acts on the vibration about the static equilibrium only (the
+    /// `vibration_only` connections: a hydraulic piston's seal and fluid column), `None`:
+    /// none. It is in `k` (so the linearized brake of eqs (18)–(20) and the harmonics
+    /// `k >= 1` of the harmonic balance see it) and taken out of the static equilibrium of
+    /// eq (14) and of the 0th harmonic ([`crate::vibration_only`]).
+    pub k_vibration: Option<Mat<f64>>,
 }
 
 impl Brake {
@@ -219,6 +225,20 @@ impl Brake {
                     expected: n,
                     got,
                 });
+            }
+        }
+        if let Some(kv) = &self.k_vibration {
+            for (what, got) in [
+                ("vibration-only stiffness rows", kv.nrows()),
+                ("vibration-only stiffness columns", kv.ncols()),
+            ] {
+                if got != n {
+                    return Err(BrakeError::Dimension {
+                        what,
+                        expected: n,
+                        got,
+                    });
+                }
             }
         }
         if let Some(c) = &self.c {
@@ -371,6 +391,7 @@ pub(crate) mod tests {
             k: Mat::identity(4, 4),
             f_piston: vec![0.0; 4],
             c: None,
+            k_vibration: None,
             pairs: vec![one_pair(-1e-5)],
         }
     }

@@ -47,6 +47,7 @@ fn linear(m: Mat<f64>, k: Mat<f64>, c: Option<Mat<f64>>) -> Brake {
         k,
         f_piston: vec![0.0; n],
         c,
+        k_vibration: None,
         pairs: vec![pair],
     }
 }
@@ -187,6 +188,7 @@ fn a_physical_damping_matrix_gives_the_routh_hurwitz_threshold() {
         k: Mat::from_fn(2, 2, |i, j| [[k11, k12], [k12, k22 - kh]][i][j]),
         f_piston: vec![0.0; 2],
         c: Some(Mat::from_fn(2, 2, |i, j| [[c1, c12], [c12, c2]][i][j])),
+        k_vibration: None,
         pairs: vec![pair],
     };
     let r = reference(&brake, &Damping::default(), &NewtonOptions::default()).unwrap();

@@ -51,6 +51,7 @@ fn brake(speed: Option<f64>) -> Brake {
         // The load presses the pad (dof 1, normal +e1) on the disc: along -n.
         f_piston: vec![0.0, -LOAD],
         c: None,
+        k_vibration: None,
         pairs: vec![ContactPair {
             disc_point: 0,
             pad_point: 0,

@@ -57,6 +57,7 @@ impl Case {
             k,
             f_piston: vec![0.0, 0.0],
             c: None,
+            k_vibration: None,
             pairs: vec![pair],
         }
     }

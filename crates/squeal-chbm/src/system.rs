@@ -221,6 +221,7 @@ impl SystemBuilder {
         let brake = Brake {
             f_piston: self.load.unwrap_or_else(|| vec![0.0; n]),
             c: None,
+            k_vibration: None,
             m: self.m,
             k: self.k,
             pairs: self.pairs,

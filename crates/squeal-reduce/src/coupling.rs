@@ -43,6 +43,16 @@
 //! (a force `−F` on its translations and the moment `(c_a − c_b) × (−F)` on its rotations), so
 //! that the hydraulic pressure between the caliper's bore and the piston is a pair of internal
 //! forces: the assembly's loads stay self-equilibrated and the caliper floats on its guides.
+//!
+//! # Springs on the vibration only (`vibration_only`)
+//!
+//! A caliper's clamp is pressure-controlled: the pad's load is the line pressure times the
+//! piston area whatever the piston's stiffness, while the piston seal and the fluid column
+//! resist the piston's vibration (a dynamic stiffness). A connection marked `vibration_only`
+//! adds its `K_c` to the stiffness of the vibration about the static equilibrium (the
+//! linearized eqs (18)–(20), the harmonics `k >= 1` of the harmonic balance) but not to the
+//! static equilibrium of eq (14) nor to the 0th harmonic; `squeal_brake` keeps it apart
+//! (`Brake::k_vibration`).
 
 use crate::ReduceError;
 use crate::interface::{InterfaceError, footprint};
@@ -201,6 +211,9 @@ pub struct Connection {
     /// Carries the clamp force: `a` is a pad's load point (module docs).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub load: bool,
+    /// Acts on the vibration about the static equilibrium only, not in eq (14) (module docs).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub vibration_only: bool,
 }
 
 /// A connection as given, its ends by part and set (resolved to points after the reduction).
@@ -220,6 +233,8 @@ pub struct ConnectionInput {
     pub axes: [[f64; 3]; 3],
     /// Carries the clamp force (`a` a pad's load set).
     pub load: bool,
+    /// Acts on the vibration about the static equilibrium only.
+    pub vibration_only: bool,
 }
 
 /// `G = [I  −[r]×]` (3 × 6): the motion at offset `r` from a point of translation `t` and
@@ -302,6 +317,7 @@ mod tests {
             rotational: [1e3, 2e3, 5e3],
             axes: [[1.0, 0.0, 0.0], [0.0, 0.6, 0.8], [0.0, -0.8, 0.6]],
             load: false,
+            vibration_only: false,
         };
         let (ca, cb) = ([0.1, 0.02, -0.03], [0.13, -0.01, 0.05]);
         let k = connection_stiffness(&c, ca, Some(cb));

@@ -66,6 +66,7 @@ fn blocks() -> (Mesh, Mesh, Connection) {
         rotational: [1e3, 2e3, 3e3],
         axes: [[1.0, 0.0, 0.0], [0.0, 0.6, 0.8], [0.0, -0.8, 0.6]],
         load: false,
+        vibration_only: false,
     };
     (a, b, c)
 }

@@ -16,7 +16,21 @@
 //! stiffness = [5.0e7, 5.0e7, 2.0e8]          # N/m along the axes (or [units] force/length)
 //! rotational_stiffness = [1.0e3, 1.0e3, 0.0] # N m/rad about the axes (default 0)
 //! axes = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]   # optional: three orthogonal directions
+//! vibration_only = true        # optional: the spring acts on the vibration only (below)
 //! ```
+//!
+//! `vibration_only = true` makes the connector's stiffness act on the vibration about the
+//! static equilibrium only (the linearized brake, eqs (18)–(20), and the harmonics `k >= 1`
+//! of the harmonic balance), not on the static equilibrium of eq (14) nor on the 0th
+//! harmonic: a hydraulic piston, whose load on the pad is the line pressure times its area
+//! whatever its stiffness, while the seal and the fluid column resist its vibration. It is
+//! the spring of an Abaqus `*CONNECTOR` present only in the linear perturbation steps
+//! (`*FREQUENCY`, `*COMPLEX FREQUENCY`) after the `*STATIC` preload step, or a Nastran
+//! `CBUSH` whose `PBUSHT` gives the stiffness at frequency and 0 at rest. The default is
+//! `false`: an elastic connector acts in the static step as well, as `CBUSH` and
+//! `*CONNECTOR` do in every tool, and a finger (steel on the backplate) does. A static
+//! problem left free by it (a floating caliper whose pistons and fingers are both
+//! `vibration_only`) is singular: keep the fingers' stiffness static.
 //!
 //! Each set a connector names is kept by its part as a coupling point: its area-weighted
 //! mean translation and least-squares rotation, six reduced dofs however many nodes it has.
@@ -62,6 +76,8 @@ pub struct ConnectorSection {
     pub rotational_stiffness: Option<Spanned<[f64; 3]>>,
     /// The axes (default x, y, z).
     pub axes: Option<Spanned<[[f64; 3]; 3]>>,
+    /// The spring acts on the vibration about the static equilibrium only (default false).
+    pub vibration_only: Option<bool>,
 }
 
 /// A connector, typed: its ends' parts and set rules, stiffnesses in SI, orthonormal axes.
@@ -81,6 +97,9 @@ pub struct ConnectorSpec {
     pub rotational: [f64; 3],
     /// Orthonormal axes (rows).
     pub axes: [[f64; 3]; 3],
+    /// `vibration_only`: the stiffness acts on the vibration about the static equilibrium
+    /// only, not on the static equilibrium (the clamp force).
+    pub vibration_only: bool,
 }
 
 impl Scene {
@@ -191,6 +210,7 @@ impl Scene {
                 stiffness: stiffness.map(|x| x * per_length),
                 rotational: rotational.map(|x| x * per_radian),
                 axes,
+                vibration_only: c.vibration_only.unwrap_or(false),
             });
         }
         Ok(out)

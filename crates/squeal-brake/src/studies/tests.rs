@@ -132,6 +132,7 @@ fn scaling_changes_only_the_piston_force_and_the_contact_stiffness() {
         k: Mat::from_fn(2, 2, |i, j| if i == j { 1e6 } else { 0.0 }),
         f_piston: vec![0.0, -300.0],
         c: None,
+        k_vibration: None,
         pairs: vec![ContactPair {
             disc_point: 0,
             pad_point: 0,

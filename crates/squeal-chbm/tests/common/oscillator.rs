@@ -55,6 +55,7 @@ pub fn brake(k_linear: f64, k_cubic: f64) -> Brake {
         k: Mat::from_fn(2, 2, |i, j| [[K11, K12], [K12, K22]][i][j]),
         f_piston: vec![0.0, 0.0],
         c: None,
+        k_vibration: None,
         pairs: vec![pair],
     }
 }

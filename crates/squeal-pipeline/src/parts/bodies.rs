@@ -138,6 +138,7 @@ pub fn add_bodies(scene: &Scene, parts: &SceneParts, inputs: &mut BrakeInputs) -
             rotational: c.rotational,
             axes: c.axes,
             load,
+            vibration_only: c.vibration_only,
         });
     }
     Ok(())

@@ -169,6 +169,7 @@ pub fn resolve_connections(
                 rotational: c.rotational,
                 axes: c.axes,
                 load: c.load,
+                vibration_only: c.vibration_only,
             })
         })
         .collect()
@@ -185,6 +186,7 @@ pub fn connection_reasons(stored: &[Connection], inputs: &BrakeInputs) -> Vec<St
             && s.rotational == c.rotational
             && s.axes == c.axes
             && s.load == c.load
+            && s.vibration_only == c.vibration_only
     };
     let ok = stored.len() == inputs.connections.len()
         && stored
