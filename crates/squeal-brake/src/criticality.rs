@@ -18,7 +18,8 @@
 //! **In the brake's terms.** With the quadratic eigenpair `T(iω0) x = 0`, `yᴴ T(iω0) = 0` of
 //! [`crate::linearized`], `q = [x; iω0 x]` and `p = [(-iω0 + C̃ᵀ) y; y]`, and `⟨p, q⟩ =
 //! yᴴ T'(iω0) x` (normalized to 1). `B` and `C` act on the velocity rows only, so the inverses
-//! reduce to `A⁻¹ [0; r] = [-T(0)⁻¹ r; 0]` and `(2iω0 - A)⁻¹ [0; r] = [u; 2iω0 u]` with
+//! reduce to `A⁻¹ [0; r] = [-T(0)⁻¹ r; 0]` (with a vibration-only stiffness `K_vib` left out
+//! of `T(0)`, as the harmonic balance's mean has it: [`crate::vibration_only`]) and `(2iω0 - A)⁻¹ [0; r] = [u; 2iω0 u]` with
 //! `u = T(2iω0)⁻¹ r`, solved with the linearized brake's factorization. Each pair's force
 //! `F_n g + F_t h` depends on `s = (δ, δ', v)`, linear in the state, so
 //! `B(a, b) = -Φᵀ Σ_p (g_p ∂²F_n + h_p ∂²F_t)[s_a, s_b]` and likewise `C` with third
@@ -386,7 +387,16 @@ pub fn normal_form_with(
     let term_c = inner(&forms.c(&q, &q, &qb));
     // A⁻¹ [0; B(q, q̄)] = [-T(0)⁻¹ B(q, q̄); 0].
     let r1 = forms.b(&q, &qb);
-    let u1 = solve(&lin, &c, c64::new(0.0, 0.0), &r1);
+    // The mean's response: without a vibration-only stiffness, as the 0th harmonic.
+    let u1 = match &brake.k_vibration {
+        Some(kv) => crate::vibration_only::solve_static(
+            &reference.basis.phi,
+            kv,
+            |b| solve(&lin, &c, c64::new(0.0, 0.0), b),
+            &r1,
+        ),
+        None => solve(&lin, &c, c64::new(0.0, 0.0), &r1),
+    };
     let s1 = forms.physical(
         &times(&u1, c64::new(-1.0, 0.0)),
         &vec![c64::new(0.0, 0.0); n],

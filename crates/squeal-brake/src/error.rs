@@ -368,6 +368,15 @@ pub enum BrakeError {
         /// Which analysis.
         analysis: &'static str,
     },
+    /// An analysis not yet written for a stiffness acting on the vibration only
+    /// ([`crate::vibration_only`]).
+    #[error(
+        "{analysis} does not take connectors with vibration_only = true yet (their equilibrium's derivatives would use the whole stiffness): run it without that key"
+    )]
+    VibrationOnly {
+        /// Which analysis.
+        analysis: &'static str,
+    },
     /// [`scaled_brake`](crate::studies::scaled_brake): a pressure or stiffness factor is not
     /// a finite positive number.
     #[error("the {what} must be a positive number (got {value})")]

@@ -252,6 +252,11 @@ impl<'a> Sensitivities<'a> {
         lr: &'a LinearizedBrake,
         state: &'a HopfState,
     ) -> Result<Self, BrakeError> {
+        if brake.k_vibration.is_some() {
+            return Err(BrakeError::VibrationOnly {
+                analysis: "the sensitivities",
+            });
+        }
         let d = lr
             .damping
             .diagonal()

@@ -38,8 +38,8 @@
 //! it differs from eq (14)'s by `K_vib`'s share of the equilibrium's shift with μ.
 
 use crate::model::Brake;
-use faer::Mat;
 use faer::linalg::solvers::Solve;
+use faer::{Mat, c64};
 
 /// The brake whose stiffness is `K_st = K − K_vib` and without vibration-only stiffness: the
 /// one whose eq (14) is the static equilibrium (module docs); `None` when `brake` has no
@@ -91,7 +91,11 @@ impl ModalStatics {
         // U = Φ_vᵀ (n × m); A⁻¹ = Ω⁻².
         let u = Mat::from_fn(n, m, |j, a| phi[(dofs[a], j)]);
         let inv_a: Vec<f64> = omega.iter().map(|w| 1.0 / (w * w)).collect();
-        let w = Mat::from_fn(m, m, |a, b| (0..n).map(|j| u[(j, a)] * inv_a[j] * u[(j, b)]).sum::<f64>());
+        let w = Mat::from_fn(m, m, |a, b| {
+            (0..n)
+                .map(|j| u[(j, a)] * inv_a[j] * u[(j, b)])
+                .sum::<f64>()
+        });
         let cap = Mat::<f64>::identity(m, m) - &kvv * &w;
         let lu = cap.partial_piv_lu();
         // S B for the columns of B (n × c).
@@ -119,7 +123,11 @@ impl ModalStatics {
     /// `Φ_n S Φᵀ F_piston`: the nonlinear dofs' static displacement under the load alone.
     pub fn load_on_nonlinear(&self, phi_n: &Mat<f64>) -> Vec<f64> {
         (0..phi_n.nrows())
-            .map(|i| (0..self.load.len()).map(|j| phi_n[(i, j)] * self.load[j]).sum())
+            .map(|i| {
+                (0..self.load.len())
+                    .map(|j| phi_n[(i, j)] * self.load[j])
+                    .sum()
+            })
             .collect()
     }
 
@@ -136,9 +144,82 @@ impl ModalStatics {
     }
 }
 
+/// `(T − Φᵀ K_vib Φ)⁻¹ b` in modal coordinates from a solver `solve` of `T` (complex), by the
+/// Woodbury identity of the module docs with `A = T`: `m + 1` solves with `T` and an `m × m`
+/// factorization. The zero-frequency solve of the normal form ([`crate::criticality`]) with
+/// the vibration-only stiffness out, as the harmonic balance's 0th harmonic has it.
+pub fn solve_static(
+    phi: &Mat<f64>,
+    k_vib: &Mat<f64>,
+    solve: impl Fn(&[c64]) -> Vec<c64>,
+    b: &[c64],
+) -> Vec<c64> {
+    let n = b.len();
+    let dofs = support(k_vib);
+    let m = dofs.len();
+    let kvv = Mat::from_fn(m, m, |a, c| c64::new(k_vib[(dofs[a], dofs[c])], 0.0));
+    // Y = T⁻¹ U, U = Φ_vᵀ (n × m).
+    let columns: Vec<Vec<c64>> = (0..m)
+        .map(|a| {
+            solve(
+                &(0..n)
+                    .map(|j| c64::new(phi[(dofs[a], j)], 0.0))
+                    .collect::<Vec<_>>(),
+            )
+        })
+        .collect();
+    let y = Mat::from_fn(n, m, |j, a| columns[a][j]);
+    let z = solve(b);
+    // W = Uᵀ Y, Uᵀ z.
+    let ut = |v: &dyn Fn(usize) -> c64, a: usize| -> c64 {
+        (0..n).map(|j| v(j) * phi[(dofs[a], j)]).sum()
+    };
+    let w = Mat::from_fn(m, m, |a, c| ut(&|j| y[(j, c)], a));
+    let utz = Mat::from_fn(m, 1, |a, _| ut(&|j| z[j], a));
+    let cap = Mat::<c64>::identity(m, m) - &kvv * &w;
+    let t = cap.partial_piv_lu().solve(&kvv * &utz);
+    let yt = &y * &t;
+    (0..n).map(|j| z[j] + yt[(j, 0)]).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The complex solve against the dense `(T − Φᵀ K_vib Φ)⁻¹ b` for a complex diagonal `T`:
+    /// 1e-12 of the solution's size (a 5 × 5 solve's round-off).
+    #[test]
+    fn the_static_solve_matches_the_dense_one() {
+        let n = 5;
+        let t: Vec<c64> = (0..n)
+            .map(|j| c64::new(1e4 * (j as f64 + 1.0), 300.0 * j as f64))
+            .collect();
+        let phi = Mat::from_fn(n, n, |i, j| {
+            ((i * 3 + j * 2) % 5) as f64 * 0.2 + f64::from(u8::from(i == j))
+        });
+        let mut kv = Mat::zeros(n, n);
+        for (a, c, v) in [(0, 0, 4e3), (2, 2, 4e3), (0, 2, -4e3), (2, 0, -4e3)] {
+            kv[(a, c)] = v;
+        }
+        let b: Vec<c64> = (0..n).map(|j| c64::new(j as f64 - 2.0, 0.5)).collect();
+        let got = solve_static(
+            &phi,
+            &kv,
+            |v| v.iter().zip(&t).map(|(a, d)| a / d).collect(),
+            &b,
+        );
+        let v = phi.transpose() * &kv * &phi;
+        let a = Mat::from_fn(n, n, |i, j| {
+            (if i == j { t[i] } else { c64::new(0.0, 0.0) }) - c64::new(v[(i, j)], 0.0)
+        });
+        let want = a.partial_piv_lu().solve(Mat::from_fn(n, 1, |i, _| b[i]));
+        let size = (0..n).map(|i| want[(i, 0)].norm()).fold(0.0, f64::max);
+        for i in 0..n {
+            assert!((got[i] - want[(i, 0)]).norm() <= 1e-12 * size, "{i}");
+        }
+        // The spring matters.
+        assert!((got[0] - b[0] / t[0]).norm() > 1e-6 * size);
+    }
 
     /// `S` by Woodbury against the dense inverse of `Ω² − Φᵀ K_vib Φ` on a 5-dof system:
     /// equal to 1e-12 relative (round-off of a 5 × 5 solve with a condition of about 10).
@@ -147,7 +228,9 @@ mod tests {
         let n = 5;
         let omega: Vec<f64> = (0..n).map(|j| 100.0 * (j as f64 + 1.0)).collect();
         // Any invertible Φ: the identity need not be M-orthonormal here, S is algebraic.
-        let phi = Mat::from_fn(n, n, |i, j| ((i * 7 + j * 3) % 5) as f64 * 0.1 + f64::from(u8::from(i == j)));
+        let phi = Mat::from_fn(n, n, |i, j| {
+            ((i * 7 + j * 3) % 5) as f64 * 0.1 + f64::from(u8::from(i == j))
+        });
         let mut kv = Mat::zeros(n, n);
         // One spring of 3e3 between dofs 1 and 3.
         for (a, b, v) in [(1, 1, 3e3), (3, 3, 3e3), (1, 3, -3e3), (3, 1, -3e3)] {
@@ -172,7 +255,10 @@ mod tests {
             .flat_map(|j| [want_flex[(j, 0)], want_flex[(j, 1)]])
             .fold(0.0, |a: f64, b| a.max(b.abs()));
         for j in 0..n {
-            assert!((s.load[j] - want_load[j]).abs() <= 1e-12 * scale_load, "load {j}");
+            assert!(
+                (s.load[j] - want_load[j]).abs() <= 1e-12 * scale_load,
+                "load {j}"
+            );
             for i in 0..2 {
                 let d = s.flex_n[(j, i)] - want_flex[(j, i)];
                 assert!(d.abs() <= 1e-12 * scale_flex, "flex {j} {i}");

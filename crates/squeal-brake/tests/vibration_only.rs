@@ -69,7 +69,11 @@ fn brake(with: f64, vibration: bool) -> Brake {
     };
     Brake {
         m: Mat::from_fn(5, 5, |i, j| {
-            if i == j { [2.0, 2.0, 0.5, 0.5, 1.5][i] } else { 0.0 }
+            if i == j {
+                [2.0, 2.0, 0.5, 0.5, 1.5][i]
+            } else {
+                0.0
+            }
         }),
         k,
         // The pad pushed towards the disc (-z), the caliper pushed back.
@@ -137,7 +141,9 @@ fn the_spectrum_is_the_stiff_brake_about_the_soft_equilibrium() {
         damping: r.damping.clone(),
         basis,
     };
-    let want = spectrum(&everywhere, &stiff_reference, &eq_without).unwrap().values;
+    let want = spectrum(&everywhere, &stiff_reference, &eq_without)
+        .unwrap()
+        .values;
     assert_eq!(got.len(), want.len());
     for w in &want {
         let near = got
@@ -169,7 +175,11 @@ fn the_mean_is_the_static_equilibrium() {
     let z0 = cs.block(0);
     for i in 0..nn {
         let lhs: f64 = (0..nn).map(|j| z0[(i, j)].re * xn[j]).sum::<f64>() + g[i];
-        assert!((lhs - f_eq[i]).abs() <= 1e-9 * F, "row {i}: {lhs} vs {}", f_eq[i]);
+        assert!(
+            (lhs - f_eq[i]).abs() <= 1e-9 * F,
+            "row {i}: {lhs} vs {}",
+            f_eq[i]
+        );
     }
     // Eq (35): every dof's mean from G.
     let mut gh = vec![0.0; layout.len()];
