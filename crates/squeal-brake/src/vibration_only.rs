@@ -33,9 +33,10 @@
 //!
 //! **Time domain.** The equations of [`crate::dynamics`] have no harmonics: there the spring
 //! acts about the frictionless equilibrium `x_0` of the reference, `K_vib (x − x_0)`, i.e. the
-//! modal load is `Φᵀ (F_piston + K_vib x_0)` ([`ModalBrake::load`]
-//! (crate::modal_brake::ModalBrake::load)); at μ = 0 its static solution is `x_0`, at other μ
-//! it differs from eq (14)'s by `K_vib`'s share of the equilibrium's shift with μ.
+//! modal load is `Φᵀ (F_piston + K_vib x_0)`
+//! ([`ModalBrake::load`](crate::modal_brake::ModalBrake::load)); at μ = 0 its static solution
+//! is `x_0`, at other μ it differs from eq (14)'s by `K_vib`'s share of the equilibrium's
+//! shift with μ.
 
 use crate::model::Brake;
 use faer::linalg::solvers::Solve;
