@@ -127,14 +127,24 @@ fn check(reduced: &[f64], full: &[f64], top: f64, tol: f64) -> f64 {
 
 #[test]
 fn corner_with_caliper_and_bracket_frictionless_modes_match_the_full_model() {
+    // Measured (40 modes per part; the lowest 40 modes, 32.6 Hz … 4096.7 Hz): every reduced
+    // frequency at or above the full one (the smallest gap +4.6e-8, the caliper's 32.6 Hz
+    // slide on its guide pins); from 1 kHz up the largest +1.07e-3 (mode 36, 3710 Hz).
+    // Asserted 2.7e-3, 2.5 times the measured: the Craig–Bampton truncation, as on the
+    // two-pad brake (`--test two_pad`). A left-out tie or connector is off by far more (a
+    // loose shim or a free caliper changes the spectrum by order one).
     let (reduced, full, _) = frequencies("brake_caliper.toml", 40);
-    check(&reduced, &full, 6000.0, 1.0);
+    check(&reduced, &full, 6000.0, 2.7e-3);
 }
 
 #[test]
 fn corner_frictionless_modes_match_the_full_model() {
+    // Measured (40 modes per part, 2011 … 10615 Hz): every reduced frequency at or above the
+    // full one (smallest +1.9e-6); up to 6 kHz the largest +2.74e-3 (mode 13, 4057 Hz), up
+    // to 10.6 kHz +9.4e-3. Asserted 7e-3 up to 6 kHz, 2.5 times the measured (the
+    // Craig–Bampton truncation).
     let (reduced, full, _) = frequencies("brake.toml", 40);
-    check(&reduced, &full, 6000.0, 1.0);
+    check(&reduced, &full, 6000.0, 7e-3);
 }
 
 #[test]
