@@ -174,7 +174,7 @@ fn push_outer(a: &SparseVec, b: &SparseVec, f: f64, out: &mut Vec<Triplet<usize,
 }
 
 impl FullBrake {
-    /// The model with the scene's dampers in its damping ([`parts::damping`]); `parts` the
+    /// The model with the scene's dampers in its damping (module [`parts`]); `parts` the
     /// scene's parts it was built from.
     pub fn with_dampers(mut self, scene: &squeal_scene::Scene, parts: &SceneParts) -> Result<Self> {
         self.damping = parts::damping(scene, &self.parts, parts)?;

@@ -33,6 +33,9 @@ use squeal_reduce::dampers::Damper;
 use squeal_scene::Scene;
 use std::collections::BTreeMap;
 
+/// Sparse rows on the full model's coordinates.
+type Rows = Vec<Vec<(usize, f64)>>;
+
 /// The mesh of part `name`: the disc, a pad or a further part.
 pub(super) fn loaded<'a>(parts: &'a SceneParts, name: &str) -> Result<&'a LoadedPart> {
     parts
@@ -50,7 +53,7 @@ fn end_rows(
     parts: &SceneParts,
     inputs: &BrakeInputs,
     model: &Model,
-) -> Result<(Vec<Vec<(usize, f64)>>, [f64; 3])> {
+) -> Result<(Rows, [f64; 3])> {
     let what = |e: &dyn std::fmt::Display| {
         full_error(format!(
             "connector {}: the {}'s set {}: {e}",
