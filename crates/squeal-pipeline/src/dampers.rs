@@ -25,32 +25,11 @@ pub fn apply(scene: &Scene, model: &mut Model, log: Log) -> Result<()> {
         return Ok(());
     }
     let parts = crate::parts::load_parts(scene, log)?;
-    let name_of = |key: &str| {
-        parts
-            .assembly_sets
-            .iter()
-            .find(|c| c.key == key)
-            .map(|c| c.name.clone())
-            .unwrap_or_default()
-    };
+    refuse_body_dampers(&specs, &parts)?;
     let n = model.brake.size();
     let mut c = Mat::<f64>::zeros(n, n);
     for (name, loaded) in parts.all() {
-        let dampers: Vec<Damper> = specs
-            .iter()
-            .filter(|d| d.part == name)
-            .map(|d| Damper {
-                set: name_of(&d.set.key),
-                to: d.to.as_ref().map(|to| name_of(&to.key)),
-                damping: d.damping,
-                axes: d.axes,
-                spread: match d.spread {
-                    SpringSpread::Mean => Spread::Mean,
-                    SpringSpread::Area => Spread::Area,
-                    SpringSpread::Normal => Spread::Normal,
-                },
-            })
-            .collect();
+        let dampers = part_dampers(&specs, &parts, name);
         if dampers.is_empty() {
             continue;
         }
@@ -97,4 +76,54 @@ pub fn apply(scene: &Scene, model: &mut Model, log: Log) -> Result<()> {
     }
     model.brake.c = Some(c);
     Ok(())
+}
+
+/// The scene's dampers on part `name`, their sets by the names chosen for them
+/// ([`crate::parts::SceneParts::assembly_sets`]).
+pub fn part_dampers(
+    specs: &[squeal_scene::dampers::DamperSpec],
+    parts: &crate::parts::SceneParts,
+    name: &str,
+) -> Vec<Damper> {
+    let name_of = |key: &str| {
+        parts
+            .assembly_sets
+            .iter()
+            .find(|c| c.key == key)
+            .map(|c| c.name.clone())
+            .unwrap_or_default()
+    };
+    specs
+        .iter()
+        .filter(|d| d.part == name)
+        .map(|d| Damper {
+            set: name_of(&d.set.key),
+            to: d.to.as_ref().map(|to| name_of(&to.key)),
+            damping: d.damping,
+            axes: d.axes,
+            spread: match d.spread {
+                SpringSpread::Mean => Spread::Mean,
+                SpringSpread::Area => Spread::Area,
+                SpringSpread::Normal => Spread::Normal,
+            },
+        })
+        .collect()
+}
+
+/// Refuses a damper on a further part (`[parts.<name>]`): the brake's damping is projected on
+/// the disc's and the pads' bases only, so it would be left out of every analysis.
+fn refuse_body_dampers(
+    specs: &[squeal_scene::dampers::DamperSpec],
+    parts: &crate::parts::SceneParts,
+) -> Result<()> {
+    match specs
+        .iter()
+        .find(|d| parts.bodies.iter().any(|b| b.0 == d.part))
+    {
+        Some(d) => Err(damper_error(format!(
+            "a damper on the further part {} (dampers.part = \"{}\"): dampers are projected on the disc's and the pads' Craig–Bampton bases only, so it would be left out of the model; put it on the disc or a pad, or leave it out",
+            d.part, d.part
+        ))),
+        None => Ok(()),
+    }
 }

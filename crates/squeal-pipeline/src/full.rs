@@ -2,8 +2,12 @@
 //! by the contact pairs of the reduced brake, as the reference the reduction is measured
 //! against (issue 20, item 5; `squeal stability --full`).
 //!
-//! **Model.** Each part's `K` and `M` (squeal-fe, on the part's mesh with the reduction's own
-//! restraints: the same [`BrakeInputs`]) are stacked block-diagonally. Each contact pair `p`
+//! **Model.** Each part's `K` and `M` (the disc, the pads and the further parts of
+//! `[parts.<name>]`) are assembled as the reduction assembles them before it reduces
+//! ([`squeal_reduce::unreduced`], from the same [`BrakeInputs`]: the restraints, those in node
+//! frames, the ties eliminated by the same projection, the supports' and `[[springs]]`'
+//! stiffness) and stacked block-diagonally; the connectors between parts add `Cᵀ K_c C` on
+//! their coupling sets' mean-motion rows and the dampers their `C_d` ([`parts`]). Each contact pair `p`
 //! of the reduced brake gets its vectors `g_p` (along the pair normal `n_p`) and `h_p` (along
 //! the sliding direction `s_p`) over the full model's dofs, with the weights the reduction
 //! uses: for a patch pair the disc patch's area-weighted mean motion minus the pad patch's
@@ -29,6 +33,7 @@
 //! near the band by shift-invert Arnoldi ([`squeal_eigs::quadratic`]).
 
 pub mod onset;
+pub mod parts;
 pub mod run;
 
 use crate::error::{PipelineError, Result};
@@ -38,21 +43,24 @@ use faer::sparse::{SparseColMat, Triplet};
 use squeal_brake::assemble::Pairing;
 use squeal_brake::contact::Response;
 use squeal_brake::model::SparseVec;
-use squeal_fe::{DofMap, MaterialTable, System, assemble};
+use squeal_fe::MaterialTable;
 use squeal_reduce::brake::BrakeInputs;
+use squeal_reduce::craig_bampton::PartSpec;
 use squeal_reduce::interface::{Patch, patches};
+use squeal_reduce::unreduced::{Coordinates, UnreducedPart, unreduced_part};
 use std::collections::HashMap;
 
 /// A real sparse matrix of the full model.
 type Sparse = SparseColMat<usize, f64>;
-/// One part of the full model: its free dofs, matrices and place in the stacked model.
+/// One part of the full model: its matrices on its kept coordinates and its place in the
+/// stacked model.
 pub struct FullPart {
-    /// The part's name (`disc`, or the pad's).
+    /// The part's name (`disc`, a pad's or a further part's).
     pub name: String,
-    /// Its free dofs.
-    pub dofmap: DofMap,
-    /// Its `K` and `M`.
-    pub system: System,
+    /// Its `K'`, `M'` on its kept coordinates, as the reduction assembles them.
+    pub unreduced: UnreducedPart,
+    /// What the reduction reduces it with.
+    pub spec: PartSpec,
     /// Its first dof in the full model.
     pub offset: usize,
 }
@@ -69,17 +77,24 @@ pub struct FullBrake {
     pub normal: Vec<SparseVec>,
     /// `h_p` of each pair (along the sliding direction).
     pub tangent: Vec<SparseVec>,
+    /// The dampers' `C_d` ([`parts`]); `None` without any.
+    pub damping: Option<SparseColMat<usize, f64>>,
 }
 
 /// Components of a direction below 64 ε are dropped, as the reduced brake drops them.
 const NEGLIGIBLE: f64 = 64.0 * f64::EPSILON;
 
-fn full_error(message: impl std::fmt::Display) -> PipelineError {
+/// `w` with its components below [`NEGLIGIBLE`] set to zero.
+fn kept(w: [f64; 3]) -> [f64; 3] {
+    w.map(|x| if x.abs() > NEGLIGIBLE { x } else { 0.0 })
+}
+
+pub(crate) fn full_error(message: impl std::fmt::Display) -> PipelineError {
     PipelineError::input("the full model", message)
 }
 
 /// A stacked block of `a` at `offset` as triplets.
-fn push_block(
+pub(crate) fn push_block(
     a: &SparseColMat<usize, f64>,
     offset: usize,
     out: &mut Vec<Triplet<usize, usize, f64>>,
@@ -91,31 +106,24 @@ fn push_block(
     }
 }
 
-/// The parts of the full model on `parts`' meshes with `inputs`' restraints and materials.
+/// The parts of the full model on `parts`' meshes with `inputs`' restraints, materials,
+/// ties, supports and springs, assembled as the reduction assembles them.
 fn full_parts(parts: &SceneParts, inputs: &BrakeInputs) -> Result<Vec<FullPart>> {
     let mut full = Vec::new();
     let mut offset = 0;
     for (name, input) in inputs.parts() {
-        if !input.skew_restraints.is_empty() {
-            return Err(full_error(format!(
-                "the {name}'s restraints in node frames (about an axis other than x, y, z) are \
-                 not built in the full model yet: give the brake an axis along x, y or z"
-            )));
-        }
-        let mesh = &parts
-            .part(name)
-            .ok_or_else(|| full_error(format!("no mesh for the part {name}")))?
-            .mesh;
-        let context = |e: squeal_fe::FeError| full_error(format!("the {name}: {e}"));
+        let loaded = parts::loaded(parts, name)?;
+        let mesh = &loaded.mesh;
         let materials = MaterialTable::from_mesh(mesh, &input.material_overrides)
             .map_err(|e| full_error(format!("the {name}'s materials: {e}")))?;
-        let dofmap = DofMap::new(mesh, &input.restraints).map_err(context)?;
-        let system = assemble(mesh, &materials, &dofmap).map_err(context)?;
-        let n = system.num_dofs();
+        let spec = inputs.spec(name, input, loaded.info.clone());
+        let unreduced = unreduced_part(mesh, &materials, &spec)
+            .map_err(|e| full_error(format!("the {name}: {e}")))?;
+        let n = unreduced.num_free();
         full.push(FullPart {
             name: name.to_string(),
-            dofmap,
-            system,
+            unreduced,
+            spec,
             offset,
         });
         offset += n;
@@ -125,14 +133,14 @@ fn full_parts(parts: &SceneParts, inputs: &BrakeInputs) -> Result<Vec<FullPart>>
 
 /// The full model of the brake `model` (reduced from `parts` with `inputs`).
 pub fn full_brake(parts: &SceneParts, inputs: &BrakeInputs, model: &Model) -> Result<FullBrake> {
-    crate::parts::refuse_bodies("the full model (--full)", inputs)?;
     let full = full_parts(parts, inputs)?;
-    let n = full.last().map_or(0, |p| p.offset + p.system.num_dofs());
+    let n = full.last().map_or(0, |p| p.offset + p.unreduced.num_free());
     let (mut kt, mut mt) = (Vec::new(), Vec::new());
     for p in &full {
-        push_block(&p.system.k, p.offset, &mut kt);
-        push_block(&p.system.m, p.offset, &mut mt);
+        push_block(&p.unreduced.system.k, p.offset, &mut kt);
+        push_block(&p.unreduced.system.m, p.offset, &mut mt);
     }
+    parts::connector_triplets(&full, parts, inputs, model, &mut kt)?;
     let mut vectors = PairVectors::new(parts, inputs, model, &full)?;
     let (mut normal, mut tangent) = (Vec::new(), Vec::new());
     for pairing in &model.pairs {
@@ -149,6 +157,7 @@ pub fn full_brake(parts: &SceneParts, inputs: &BrakeInputs, model: &Model) -> Re
         parts: full,
         normal,
         tangent,
+        damping: None,
     })
 }
 
@@ -165,6 +174,13 @@ fn push_outer(a: &SparseVec, b: &SparseVec, f: f64, out: &mut Vec<Triplet<usize,
 }
 
 impl FullBrake {
+    /// The model with the scene's dampers in its damping (module [`parts`]); `parts` the
+    /// scene's parts it was built from.
+    pub fn with_dampers(mut self, scene: &squeal_scene::Scene, parts: &SceneParts) -> Result<Self> {
+        self.damping = parts::damping(scene, &self.parts, parts)?;
+        Ok(self)
+    }
+
     /// Number of dofs.
     pub fn size(&self) -> usize {
         self.k.nrows()
@@ -184,8 +200,8 @@ impl FullBrake {
             .map_err(|e| full_error(format!("the tangent stiffness: {e}")))
     }
 
-    /// `K_t(μ)` and `C(μ)` (module docs) from each pair's element response at the state;
-    /// `C` is `None` when no element depends on the velocities.
+    /// `K_t(μ)` and `C(μ) + C_d` (module docs, [`parts`]) from each pair's element response at
+    /// the state; `None` when no element depends on the velocities and there is no damper.
     pub fn linearized(&self, responses: &[Response]) -> Result<(Sparse, Option<Sparse>)> {
         if responses.len() != self.normal.len() {
             return Err(full_error(format!(
@@ -201,9 +217,12 @@ impl FullBrake {
             .collect();
         let k = self.stiffness(&a, &b)?;
         if !responses.iter().any(|r| r.has_velocity_terms()) {
-            return Ok((k, None));
+            return Ok((k, self.damping.clone()));
         }
         let mut t = Vec::new();
+        if let Some(d) = &self.damping {
+            push_block(d, 0, &mut t);
+        }
         for (r, (g, h)) in responses.iter().zip(self.normal.iter().zip(&self.tangent)) {
             let [_, n_r, n_v] = r.normal_derivatives;
             let [_, t_r, t_v] = r.tangential_derivatives;
@@ -226,6 +245,8 @@ struct PairVectors<'a> {
     inputs: &'a BrakeInputs,
     model: &'a Model,
     full: &'a [FullPart],
+    /// Each part's kept coordinates, in `full`'s order.
+    coordinates: Vec<Coordinates<'a>>,
     /// Node id → node index, by part.
     nodes: HashMap<&'a str, HashMap<u64, u32>>,
     /// Patches by (part, face set).
@@ -252,28 +273,30 @@ impl<'a> PairVectors<'a> {
             inputs,
             model,
             full,
+            coordinates: full.iter().map(|p| p.unreduced.coordinates()).collect(),
             nodes,
             patches: HashMap::new(),
         })
     }
 
-    fn part(&self, name: &str) -> Result<&'a FullPart> {
-        self.full
+    /// The motion `w · u` of node index `node` of part `name` (`w` a unit vector) on the full
+    /// model's coordinates, scaled by `scale`: the reduction's row of a contact point.
+    fn along(&self, name: &str, node: u32, w: [f64; 3], scale: f64) -> Result<SparseVec> {
+        let k = self
+            .full
             .iter()
-            .find(|p| p.name == name)
-            .ok_or_else(|| full_error(format!("no part {name}")))
-    }
-
-    /// The full model's dof of node index `node` of part `name` along `d`.
-    fn dof(&self, name: &str, node: u32, d: usize) -> Result<usize> {
-        let fp = self.part(name)?;
-        let dof = fp.dofmap.free_dof(node, d).ok_or_else(|| {
+            .position(|p| p.name == name)
+            .ok_or_else(|| full_error(format!("no part {name}")))?;
+        let row = self.coordinates[k].along(node, w).ok_or_else(|| {
             full_error(format!(
-                "a contact node of the {name} (index {node}) is held along axis {d}: contact \
-                 nodes must be free"
+                "a contact node of the {name} (index {node}) is held or tied along the pair's direction: contact nodes must be free"
             ))
         })?;
-        Ok(fp.offset + dof)
+        let offset = self.full[k].offset;
+        Ok(row
+            .into_iter()
+            .map(|(i, v)| (offset + i, scale * v))
+            .collect())
     }
 
     /// The node index of node `id` of part `name`.
@@ -336,14 +359,13 @@ impl<'a> PairVectors<'a> {
             .ok_or_else(|| full_error("a nodal pair without its projection"))?;
         let pad_id = point_node(&pad.info.points, pairing.pad_point, &pairing.pad)?;
         let pad_node = self.node(&pairing.pad, pad_id)?;
+        let w = kept(w);
         let mut g = Vec::new();
-        for d in (0..3).filter(|&d| w[d].abs() > NEGLIGIBLE) {
-            for &(k, wk) in &proj.weights {
-                let node = self.node("disc", point_node(&disc.info.points, k, "disc")?)?;
-                g.push((self.dof("disc", node, d)?, wk * w[d]));
-            }
-            g.push((self.dof(&pairing.pad, pad_node, d)?, -w[d]));
+        for &(k, wk) in &proj.weights {
+            let node = self.node("disc", point_node(&disc.info.points, k, "disc")?)?;
+            g.extend(self.along("disc", node, w, wk)?);
         }
+        g.extend(self.along(&pairing.pad, pad_node, w, -1.0)?);
         Ok(g)
     }
 
@@ -399,15 +421,14 @@ impl<'a> PairVectors<'a> {
                  other meshes or another patch grid?",
             ));
         }
+        let w = kept(w);
         let mut g = Vec::new();
         for (part, weights, sign) in [
             ("disc", &disc_patch.weights, 1.0),
             (pairing.pad.as_str(), &pad_patch.weights, -1.0),
         ] {
             for &(node, wn) in weights {
-                for d in (0..3).filter(|&d| w[d].abs() > NEGLIGIBLE) {
-                    g.push((self.dof(part, node, d)?, sign * wn * w[d]));
-                }
+                g.extend(self.along(part, node, w, sign * wn)?);
             }
         }
         Ok(g)

@@ -160,7 +160,10 @@ pub fn check_outputs(scene: &Scene, out: &Path) -> Result<()> {
     let rom = rom_path(scene, out);
     squeal_io::require_extension(&rom, "rom", "the reduced model (.rom)")?;
     let files = scene.input_files()?;
-    let inputs: Vec<(&Path, &str)> = files.iter().map(|(p, w)| (p.as_path(), *w)).collect();
+    let inputs: Vec<(&Path, &str)> = files
+        .iter()
+        .map(|(p, w)| (p.as_path(), w.as_str()))
+        .collect();
     squeal_io::refuse_inputs(&rom, &inputs)?;
     squeal_io::check_writable(out)?;
     if let Some(dir) = rom.parent().filter(|d| !d.as_os_str().is_empty()) {

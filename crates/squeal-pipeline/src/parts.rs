@@ -41,6 +41,8 @@ mod bodies;
 use bodies::*;
 pub use bodies::{add_bodies, refuse_bodies, refuse_bodies_in};
 
+pub mod left_out;
+
 /// Where a chosen set comes from.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Origin {

@@ -95,13 +95,26 @@ pub fn reduce(
         }
         ReduceSource::Meshes(pair) => (mesh_pair_inputs(pair, request)?, None, None),
     };
-    let mut read: Vec<(&Path, &str)> = vec![(inputs.disc.mesh.as_path(), "disc mesh")];
-    read.extend(
-        inputs
-            .pads
-            .iter()
-            .map(|p| (p.part.mesh.as_path(), "pad mesh")),
-    );
+    // What each input is, named: `pad mesh` (`inboard pad mesh` with several pads), and a
+    // further part's by its name (`caliper mesh`).
+    let one_pad = inputs.pads.len() == 1;
+    let labels: Vec<(&Path, String)> =
+        std::iter::once((inputs.disc.mesh.as_path(), "disc mesh".into()))
+            .chain(inputs.pads.iter().map(|p| {
+                let what = match one_pad {
+                    true => "pad mesh".to_string(),
+                    false => format!("{} pad mesh", p.name),
+                };
+                (p.part.mesh.as_path(), what)
+            }))
+            .chain(
+                inputs
+                    .bodies
+                    .iter()
+                    .map(|b| (b.part.mesh.as_path(), format!("{} mesh", b.name))),
+            )
+            .collect();
+    let mut read: Vec<(&Path, &str)> = labels.iter().map(|(p, w)| (*p, w.as_str())).collect();
     if let Some(path) = scene_file {
         read.push((path, "scene file"));
     }

@@ -23,7 +23,10 @@ macro_rules! outln {
 pub fn check_vtu_output(scene: &Scene, vtu: &Path) -> Result<()> {
     squeal_io::require_extension(vtu, "vtu", "VTK XML unstructured grids (.vtu)")?;
     let files = scene.input_files()?;
-    let inputs: Vec<(&Path, &str)> = files.iter().map(|(p, w)| (p.as_path(), *w)).collect();
+    let inputs: Vec<(&Path, &str)> = files
+        .iter()
+        .map(|(p, w)| (p.as_path(), w.as_str()))
+        .collect();
     squeal_io::refuse_inputs(vtu, &inputs)?;
     Ok(())
 }

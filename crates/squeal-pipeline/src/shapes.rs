@@ -155,6 +155,10 @@ pub struct Meshes {
 impl Meshes {
     /// Reads every mesh of `m`.
     pub fn read(m: &crate::model::Model, log: crate::model::Log) -> Result<Self> {
+        let what = "the pictures and VTU files";
+        if let Some(w) = crate::parts::left_out::left_out(&m.rom, what) {
+            log(&w);
+        }
         Ok(Self {
             disc: m.read_mesh(&m.disc_mesh, log)?,
             pads: m

@@ -121,7 +121,19 @@ impl BrakeSurface {
         let mut names = vec![("disc".to_string(), m.layout.disc.clone())];
         names.extend(m.layout.pads.iter().cloned());
         if let Some(keep) = scene.sound()?.radiating {
+            if let Some(b) = keep.iter().find(|k| sp.bodies.iter().any(|b| b.0 == **k)) {
+                return Err(PipelineError::input(
+                    "[sound] radiating",
+                    format!(
+                        "the further part {b} does not radiate yet (the sound model takes the disc's and the pads' surfaces): leave it out of radiating"
+                    ),
+                ));
+            }
             names.retain(|(n, _)| keep.contains(n));
+        }
+        if let Some(w) = crate::parts::left_out::left_out(&m.rom, "the sound's radiating surfaces")
+        {
+            log(&w);
         }
         for (name, range) in names {
             let mesh = &sp

@@ -196,8 +196,9 @@ pub fn disc_share(s: &Model, x: &[faer::c64]) -> f64 {
     part_shares(s, x).first().map_or(0.0, |p| p.1)
 }
 
-/// Kinetic-energy share `x_pᴴ M_pp x_p / Σ` of each part (disc, then the pads) in a mode
-/// `x` (reduced brake coordinates; the parts are not coupled through M).
+/// Kinetic-energy share `x_pᴴ M_pp x_p / Σ` of each part (disc, then the pads, then the
+/// further parts together) in a mode `x` (reduced brake coordinates; the parts are not
+/// coupled through M).
 pub fn part_shares(s: &Model, x: &[faer::c64]) -> Vec<(String, f64)> {
     let m = &s.brake.m;
     let energy = |r: std::ops::Range<usize>| -> f64 {
@@ -209,10 +210,26 @@ pub fn part_shares(s: &Model, x: &[faer::c64]) -> Vec<(String, f64)> {
         }
         e
     };
-    let parts: Vec<(String, f64)> = std::iter::once(("disc".to_string(), s.layout.disc.clone()))
-        .chain(s.layout.pads.iter().cloned())
-        .map(|(name, r)| (name, energy(r)))
-        .collect();
+    let mut parts: Vec<(String, f64)> =
+        std::iter::once(("disc".to_string(), s.layout.disc.clone()))
+            .chain(s.layout.pads.iter().cloned())
+            .map(|(name, r)| (name, energy(r)))
+            .collect();
+    // The further parts' dofs follow the pads' (`[parts.<name>]`): their energy counts in the
+    // total, as one share, so that the disc's and the pads' are not overstated.
+    let rest = s.layout.all_pads().end..m.nrows();
+    if !rest.is_empty() {
+        let names: Vec<&str> = s
+            .rom
+            .bodies()
+            .iter()
+            .map(|p| p.info.name.as_str())
+            .collect();
+        parts.push((
+            format!("further parts ({})", names.join(", ")),
+            energy(rest),
+        ));
+    }
     let total = parts
         .iter()
         .map(|p| p.1)

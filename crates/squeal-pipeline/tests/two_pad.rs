@@ -240,14 +240,15 @@ fn frictionless_frequencies_match_the_full_model_and_the_clamp_force_balances() 
             full.parts
                 .iter()
                 .map(|p| {
-                    let n = p.system.num_dofs();
+                    let n = p.unreduced.system.num_dofs();
                     let v = |i: usize| modes.vectors[(p.offset + i, j)];
                     (0..n)
                         .map(|c| {
-                            p.system
+                            p.unreduced
+                                .system
                                 .m
                                 .row_idx_of_col(c)
-                                .zip(p.system.m.val_of_col(c))
+                                .zip(p.unreduced.system.m.val_of_col(c))
                                 .map(|(i, &m)| v(i) * m * v(c))
                                 .sum::<f64>()
                         })
@@ -283,7 +284,7 @@ fn frictionless_frequencies_match_the_full_model_and_the_clamp_force_balances() 
         full_k.nrows(),
         full.parts
             .iter()
-            .map(|p| format!("{} {}", p.name, p.system.num_dofs()))
+            .map(|p| format!("{} {}", p.name, p.unreduced.system.num_dofs()))
             .collect::<Vec<_>>()
             .join(", "),
         full_k.val().len(),

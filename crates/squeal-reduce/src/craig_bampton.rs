@@ -303,7 +303,7 @@ impl FreeDofs<'_> {
     /// `w · e_j` (coefficients below 1e-12 are round-off of the axes and dropped, so that a
     /// node whose first axis is `w` gives a single entry). `None` when `w` has a part the
     /// node's free motions do not reach (a restrained direction).
-    fn along(&self, node: u32, w: [f64; 3]) -> Option<Vec<(usize, f64)>> {
+    pub(crate) fn along(&self, node: u32, w: [f64; 3]) -> Option<Vec<(usize, f64)>> {
         if let Some(t) = &self.transform
             && let Some(kept) = t.kept(node)
         {
@@ -649,7 +649,7 @@ pub fn reduce_part_coupled(
 
 /// Refuses a tied (slave) node that is restrained or in axes of its own: its motion is its
 /// masters' (module docs of [`crate::tie`]).
-fn refuse_held_slaves(
+pub(crate) fn refuse_held_slaves(
     mesh: &Mesh,
     dofmap: &DofMap,
     held: &HeldNodes,
@@ -670,7 +670,7 @@ fn refuse_held_slaves(
 /// `K` plus the supports' springs: `k_d (w · u)²` for each supported node and direction
 /// `w = e_d` with `k_d > 0`, on the free coordinates (a node in its own axes through its kept
 /// coordinates; a restrained direction holds already and adds nothing).
-fn add_springs(
+pub(crate) fn add_springs(
     k: &SparseColMat<usize, f64>,
     free: &FreeDofs,
     springs: &std::collections::BTreeMap<u32, [f64; 3]>,
@@ -697,7 +697,7 @@ fn add_springs(
 /// each entry `w · u_n` through the node's free dofs (a node in its own axes through its kept
 /// coordinates), a restrained direction's share left out (its motion is zero). A tied (slave)
 /// node is refused: its motion is its masters'.
-fn add_spring_terms(
+pub(crate) fn add_spring_terms(
     mesh: &Mesh,
     k: &SparseColMat<usize, f64>,
     free: &FreeDofs,

@@ -18,5 +18,6 @@ pub mod rom;
 pub mod springs;
 pub mod summary;
 pub mod tie;
+pub mod unreduced;
 
 pub use error::ReduceError;

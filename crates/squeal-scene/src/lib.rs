@@ -257,18 +257,30 @@ impl Scene {
         Ok(files)
     }
 
-    /// The files the scene reads with what each is (`scene file`, `disc mesh`, `pad mesh`):
-    /// what an output must not overwrite.
-    pub fn input_files(&self) -> Result<Vec<(PathBuf, &'static str)>> {
-        let meshes = self.mesh_files()?;
-        Ok(std::iter::once((self.path.clone(), "scene file"))
-            .chain(
-                meshes
-                    .into_iter()
-                    .enumerate()
-                    .map(|(i, p)| (p, if i == 0 { "disc mesh" } else { "pad mesh" })),
-            )
-            .collect())
+    /// The files the scene reads with what each is (`scene file`, `disc mesh`, `pad mesh` (a
+    /// pad's, named with several pads: `inboard pad mesh`), `caliper mesh` for a further part
+    /// `[parts.caliper]`): what an output must not overwrite.
+    pub fn input_files(&self) -> Result<Vec<(PathBuf, String)>> {
+        let pads = self.pads()?;
+        let one = pads.len() == 1;
+        let mut out = vec![
+            (self.path.clone(), "scene file".to_string()),
+            (self.resolve(&self.file.model.disc), "disc mesh".to_string()),
+        ];
+        out.extend(pads.iter().map(|(name, p)| {
+            let what = if one {
+                "pad mesh".to_string()
+            } else {
+                format!("{name} pad mesh")
+            };
+            (self.resolve(p), what)
+        }));
+        out.extend(
+            self.bodies()
+                .iter()
+                .map(|(name, p)| (self.resolve(p), format!("{name} mesh"))),
+        );
+        Ok(out)
     }
 
     fn validate(&self) -> Result<()> {

@@ -36,21 +36,15 @@ fn other_mode(r: Option<&super::onset::ReducedOnset>, f: &FullOnset, opts: &Full
 /// is a line of the log too).
 pub fn full_check(p: &Pipeline, at: Option<f64>) -> Result<String> {
     let log = p.log();
-    if !p.scene.dampers()?.is_empty() {
-        return Err(crate::error::PipelineError::input(
-            "[[dampers]]",
-            "the full model (--full) does not carry dampers yet: it compares the brake without damping on both sides; leave [[dampers]] out of the scene for --full",
-        ));
-    }
     let m = p.model()?;
     let t = Instant::now();
     let parts = load_parts(&p.scene, log)?;
     let inputs = brake_inputs(&p.scene, &parts)?;
-    let full = full_brake(&parts, &inputs, m)?;
+    let full = full_brake(&parts, &inputs, m)?.with_dampers(&p.scene, &parts)?;
     let sizes: Vec<String> = full
         .parts
         .iter()
-        .map(|q| format!("{} {}", q.name, q.system.num_dofs()))
+        .map(|q| format!("{} {}", q.name, q.unreduced.num_free()))
         .collect();
     let mut out = String::new();
     let _ = writeln!(

@@ -40,6 +40,7 @@ fn variant(scene: &Scene, level: &str, interface: Interface, dir: &Path) -> Resu
 /// The disc and pad mesh files of every level, checked to exist (before the first, slow,
 /// reduction starts).
 pub(super) fn level_meshes(scene: &Scene, levels: &[String]) -> Result<Vec<PathBuf>> {
+    crate::parts::left_out::refuse_levels(scene)?;
     if levels.is_empty() {
         return Err(PipelineError::input(
             "--levels",
