@@ -44,6 +44,7 @@
 //! outside the crate (`crates/squeal-chbm/examples/user_contact_law.rs`) plugs in the same way
 //! without touching any other file.
 
+pub mod dlft;
 pub mod penalty_coulomb;
 pub mod regularized_coulomb;
 pub mod sticking;

@@ -260,6 +260,11 @@ impl CondensedStiffness {
         s
     }
 
+    /// `Λ_eq,0`, the static condensed stiffness (real, stored as complex).
+    pub fn static_block(&self) -> &Mat<c64> {
+        &self.z[0]
+    }
+
     /// `H_nn(λ) = Φ_n Δ(λ)⁻¹ Φ_nᵀ`.
     pub fn receptance(&self, l: c64) -> Mat<c64> {
         let solver = ModalSolver::new(&self.omega_j, &self.damping, l);
