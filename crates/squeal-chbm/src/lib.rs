@@ -49,6 +49,7 @@ pub mod solve;
 pub mod start;
 pub mod stick_branch;
 pub mod stick_check;
+pub mod stick_dlft;
 pub mod system;
 pub mod timeint;
 pub mod torus;

@@ -71,6 +71,9 @@ pub enum StickError {
     /// The harmonic balance or the continuation.
     #[error(transparent)]
     Chbm(#[from] ChbmError),
+    /// The exact stick–slip law (DLFT) cannot be set up on the brake.
+    #[error(transparent)]
+    Dlft(#[from] squeal_brake::contact::dlft::DlftError),
 }
 
 impl From<HbmError> for StickError {
