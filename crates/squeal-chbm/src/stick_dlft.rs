@@ -60,6 +60,9 @@ pub struct DlftCycle {
     /// The cycle's sliding margin (below 1 where the pair outruns the disc; a pair that sticks
     /// has margin 1 to the solve's accuracy).
     pub margin: SlidingMargin,
+    /// Fraction of the period each pair is closed and slides backwards (`δ > 0`, `γ < 0`: the
+    /// friction reverses), on [`crate::branch::PAIR_SAMPLES`] samples.
+    pub reversed_fractions: Vec<f64>,
     /// ε of every pair (N·s/m).
     pub epsilon: Vec<f64>,
     /// Time samples of the friction forces.
@@ -77,6 +80,32 @@ fn force_scale(mb: &ModalBrake, u: &[f64]) -> f64 {
         .map(|p| p.response(x0, None, 0.0).normal.abs())
         .fold(0.0, f64::max)
         .max(1e-12)
+}
+
+/// Fraction of the period each pair of `mb` is closed with a negative slip velocity, for the
+/// cycle `u` of angular frequency `omega`.
+pub fn reversed_fractions(
+    mb: &ModalBrake,
+    layout: &HarmonicLayout,
+    u: &[f64],
+    omega: f64,
+) -> Result<Vec<f64>, StickError> {
+    let n = crate::branch::PAIR_SAMPLES;
+    surface_speeds(mb)?;
+    let (mut x, mut v) = (vec![0.0; layout.n_dofs()], vec![0.0; layout.n_dofs()]);
+    let mut out = vec![0.0; mb.pairs.len()];
+    for j in 0..n {
+        let theta = 2.0 * std::f64::consts::PI * j as f64 / n as f64;
+        layout.displacement_at(u, theta, &mut x)?;
+        layout.velocity_at(u, omega, theta, &mut v)?;
+        for (p, o) in mb.pairs.iter().zip(out.iter_mut()) {
+            let slip = p.surface_speed.unwrap_or(0.0) + p.tangent.iter().map(|&(i, h)| h * v[i]).sum::<f64>();
+            if p.penetration(&x) > 0.0 && slip < 0.0 {
+                *o += 1.0 / n as f64;
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// The brake's DLFT balance for the guess `g` at `mu` with `opts`.
@@ -145,7 +174,9 @@ pub fn dlft_cycle(
         residual,
     };
     let margin = point_margin(&mbp, &point, &speeds)?;
+    let reversed_fractions = reversed_fractions(mb, &layout, &point.nl_coeffs, point.omega)?;
     Ok(DlftCycle {
+        reversed_fractions,
         stick_fractions: b.stick_fractions(),
         margin,
         epsilon,

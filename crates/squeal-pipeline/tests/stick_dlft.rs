@@ -60,36 +60,40 @@ fn regularized_cycles_approach_the_dlft_ones_at_3_kmh() {
         let Some(q) = c.cycle.as_ref() else { continue };
         let (pair, _) = q.loudest();
         let slide = &a.branch.points[c.point];
-        for h in [24, 36] {
+        let mut dl = Vec::new();
+        for (h, g, name) in [(24, slide, "sliding"), (24, q, "reg V/20"), (36, slide, "sliding")] {
             let mut o = DlftOptions::default();
             o.harmonics = Some(h);
             let t = std::time::Instant::now();
-            let d = dlft_cycle(&mb, c.mu, q, phase, &o).unwrap();
+            let d = dlft_cycle(&mb, c.mu, g, phase, &o).unwrap();
             let (df, dp) = diff(&d.point, q, pair);
             let (sf, sp) = diff(&d.point, slide, pair);
             eprintln!(
-                "mu/mu0 {:.4} H {h}: DLFT f {:.4} Hz p2p {:.3} um, vs reg V/20 {df:+.2e} {dp:+.2e}, vs sliding {sf:+.2e} {sp:+.2e}; stick {:?}, margin {:.4}, converged {} res {:.1e} it {} ({:.1} s)",
+                "mu/mu0 {:.4} H {h} from {name}: DLFT f {:.5} Hz p2p {:.4} um, vs reg V/20 {df:+.2e} {dp:+.2e}, vs sliding {sf:+.2e} {sp:+.2e}; stick {:?} reversed {:?}, margin {:.4}, converged {} res {:.1e} it {} ({:.1} s)",
                 c.mu / a.mu0(),
                 d.point.frequency_hz(),
                 d.point.pairs[pair].peak_to_peak() * 1e6,
                 d.stick_fractions.iter().map(|x| format!("{x:.3}")).collect::<Vec<_>>(),
+                d.reversed_fractions.iter().map(|x| format!("{x:.3}")).collect::<Vec<_>>(),
                 d.margin.min,
                 d.converged,
                 d.point.residual,
                 d.point.iterations,
                 t.elapsed().as_secs_f64()
             );
+            dl.push(d);
         }
+        let d = &dl[0].point;
         let mut guess = q.clone();
-        for frac in [0.025, 0.0125] {
+        for frac in [0.05, 0.025, 0.0125, 0.00625] {
             let o = DlftOptions::default();
             let t = std::time::Instant::now();
             let (r, ok) =
                 regularized_cycle(&mb, c.mu, frac * s.slowest_surface_speed, &guess, phase, &o)
                     .unwrap();
-            let (df, dp) = diff(&r, q, pair);
+            let (df, dp) = diff(&r, d, pair);
             eprintln!(
-                "   reg V*{frac}: f {:.4} Hz p2p {:.3} um, vs V/20 {df:+.2e} {dp:+.2e}, converged {ok} it {} ({:.1} s)",
+                "   reg V*{frac}: f {:.5} Hz p2p {:.4} um, minus DLFT {df:+.2e} {dp:+.2e}, converged {ok} it {} ({:.1} s)",
                 r.frequency_hz(),
                 r.pairs[pair].peak_to_peak() * 1e6,
                 r.iterations,

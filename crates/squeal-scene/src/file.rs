@@ -276,6 +276,9 @@ pub struct ContactSection {
     /// The contact law ([`Scene::contact_law`]): `"penalty-coulomb"` (the default) or a table
     /// `{ kind = "velocity-dependent", static_ratio, decay_speed_m_per_s }`.
     pub law: Option<Spanned<toml::Value>>,
+    /// The law that replaces permanent sliding where a cycle's sliding margin falls below 1
+    /// ([`Scene::stick_slip_law`]): `"regularized"` (the default) or `"dlft"`.
+    pub stick_slip: Option<Spanned<toml::Value>>,
 }
 
 /// The contact law a scene asks for (`[contact] law`); both use eq (8)'s penalty.
@@ -299,6 +302,22 @@ pub enum ContactLawSetting {
         static_ratio: f64,
         /// `v_s` (m/s).
         static_speed: f64,
+    },
+}
+
+/// The law that treats stick–slip where a cycle's sliding margin falls below 1
+/// (`[contact] stick_slip`, `stick_law_keys`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum StickSlipSetting {
+    /// Each pair's element made to stick with `tanh(v / v_reg)` (the branch's `v_reg`: a
+    /// twentieth of the slowest pair's disc surface speed).
+    #[default]
+    Regularized,
+    /// Exact Coulomb stick–slip by the dynamic Lagrangian frequency–time method, its penalty
+    /// the default times `epsilon_factor`.
+    Dlft {
+        /// Factor on the default penalty ε (any positive value: the same converged cycle).
+        epsilon_factor: f64,
     },
 }
 

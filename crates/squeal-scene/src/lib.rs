@@ -55,9 +55,11 @@ pub use file::{
     DEFAULT_CYCLE_MU_RATIO, DampingSection, DiscSection, FrictionSection, GapSetting, ModelSection,
     PadSection, PistonSection, Rotation, RotationSection, SceneFile, Sliding, StabilitySection,
 };
+pub use file::StickSlipSetting;
 
 mod contact_keys;
 mod stick_slip_keys;
+mod stick_law_keys;
 
 pub mod assembly;
 pub mod dampers;
