@@ -37,8 +37,9 @@
 //! stuck force is a Lagrange multiplier of the whole harmonic balance. It lives in
 //! `squeal_hbm::stick_slip` (dynamic Lagrangian frequency–time method, Nacivet et al., JSV 265,
 //! 2003), verified against the mass on a belt's closed form and an event-driven integration of
-//! the 2-dof friction oscillator (docs/verification.md, Stick–slip); the brake's CHBM and
-//! `squeal branch` do not use it yet and fall back on [`RegularizedCoulomb`].
+//! the 2-dof friction oscillator (docs/verification.md, Stick–slip); [`dlft`] makes every pair
+//! of the brake such a contact of its condensed harmonic balance (a scene's
+//! `[contact] stick_slip = "dlft"`).
 //!
 //! A scene chooses one for every pair by a [`LawSpec`] (`[contact] law`); a law written
 //! outside the crate (`crates/squeal-chbm/examples/user_contact_law.rs`) plugs in the same way

@@ -32,11 +32,9 @@
 //! Floquet exponents (Hill's method with the sticking elements' velocity terms,
 //! [`crate::floquet`]).
 //!
-//! An exact stick–slip treatment (the dynamic Lagrangian of `squeal_hbm::stick_slip`) needs a
-//! stuck force per pair as an unknown of the harmonic balance; the brake's condensed harmonic
-//! balance has none (its unknowns are the nonlinear dofs' displacements only), so the brake
-//! uses the regularized law; `squeal_hbm::stick_slip` stays verified on the belt and the 2-dof
-//! oscillator only.
+//! The branch's continuation and Floquet exponents need a smooth law, so the branch uses the
+//! regularized one; exact stick–slip (the dynamic Lagrangian, `squeal_brake::contact::dlft`)
+//! recomputes cycles at fixed μ ([`crate::stick_dlft`]).
 
 use crate::bifurcation::cycle_of;
 use crate::branch::{

@@ -339,7 +339,7 @@ pub fn sliding_text(m: &std::result::Result<Option<SlidingMargin>, String>) -> S
             if m.sliding() {
                 ""
             } else {
-                "\n  WARNING: below 1 the pad sticks to the disc for part of the cycle: stick-slip is outside the model (permanent sliding), this cycle is not physical"
+                "\n  WARNING: below 1 the pad sticks to the disc for part of the cycle: this permanent-sliding cycle is not physical there; it is recomputed below with the scene's stick-slip law ([contact] stick_slip)"
             }
         ),
     }

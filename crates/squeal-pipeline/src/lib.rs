@@ -34,6 +34,7 @@ pub mod caveats;
 pub mod chbm;
 pub mod compare;
 pub mod cycle;
+pub mod cycle_stick;
 pub mod dampers;
 mod error;
 pub mod fe_export;

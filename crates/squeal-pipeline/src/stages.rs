@@ -229,6 +229,11 @@ fn write_solution(
     }
     let dir = p.out.join("chbm");
     chbm::write_solution(&dir, m, mu, sol)?;
+    if sol.outcome == Outcome::LimitCycle
+        && let Some(t) = crate::cycle_stick::stage(p, mu, sol, &dir)?
+    {
+        tell(p, &t);
+    }
     if vtu
         && matches!(
             sol.outcome,

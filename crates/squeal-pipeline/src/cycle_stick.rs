@@ -1,0 +1,206 @@
+//! `squeal chbm` and `squeal run`'s single limit cycle where the pads stick (issue 24, item 4):
+//! when the scene gives the disc's speed and the CHBM cycle's sliding margin is below 1, the
+//! permanent-sliding law is wrong for part of the period, and the cycle is recomputed at the
+//! same μ with the scene's stick–slip law (`[contact] stick_slip`), as `squeal branch` does
+//! for its cycles ([`crate::branch_stick`]):
+//!
+//! - `"regularized"` (the default): each pair's element made to stick, `F_t(|v|) tanh(v /
+//!   v_reg)` with `v_reg` a twentieth of the slowest pair's disc speed, 24 harmonics and the
+//!   branch's AFT samples ([`squeal_chbm::stick_dlft::regularized_cycle`]);
+//! - `"dlft"`: exact Coulomb stick–slip by the dynamic Lagrangian frequency–time method
+//!   ([`squeal_chbm::stick_dlft::dlft_cycle`], docs/stick_slip.md), 24 harmonics.
+//!
+//! Both start from the CHBM cycle (permanent sliding) at fixed μ. The text says which law, the
+//! new frequency and loudest closure with their changes, the new margin and, for DLFT, how
+//! much of the period each pair sticks and whether the solve met its tolerance;
+//! `<out>/chbm/stick_slip.json` has the same.
+
+use crate::error::{Result, json_text};
+use crate::model::Model;
+use squeal_brake::modal_brake::ModalBrake;
+use squeal_chbm::ChbmSolution;
+use squeal_chbm::branch::{BranchPoint, pair_cycles};
+use squeal_chbm::physics::SlidingMargin;
+use squeal_chbm::stick_branch::{StickOptions, point_margin, surface_speeds};
+use squeal_chbm::stick_dlft::{DlftOptions, dlft_cycle, regularized_cycle};
+use squeal_hbm::{HarmonicLayout, PhaseCondition};
+use squeal_scene::StickSlipSetting;
+use std::path::Path;
+
+/// Harmonics of the recomputed cycle (the branch's sticking default).
+const HARMONICS: usize = 24;
+
+/// The single cycle recomputed with the stick–slip law.
+pub struct CycleStick {
+    /// The law, in words.
+    pub law: String,
+    /// The CHBM cycle (permanent sliding) as a point, and its margin.
+    pub sliding: BranchPoint,
+    /// Its sliding margin (below 1).
+    pub margin: SlidingMargin,
+    /// The recomputed cycle.
+    pub cycle: BranchPoint,
+    /// Its sliding margin.
+    pub stick_margin: SlidingMargin,
+    /// DLFT only: the fraction of the period each pair sticks.
+    pub stick_fractions: Option<Vec<f64>>,
+    /// Whether the solve met its residual tolerance (the residual is in `cycle`).
+    pub converged: bool,
+}
+
+/// The CHBM solution `sol` at `mu` as a branch point of `mb`.
+fn as_point(mb: &ModalBrake, mu: f64, sol: &ChbmSolution) -> Result<BranchPoint> {
+    let layout = HarmonicLayout::new(mb.nl(), sol.harmonics).map_err(squeal_chbm::ChbmError::from)?;
+    Ok(BranchPoint {
+        parameter: mu,
+        omega: sol.omega,
+        harmonics: sol.harmonics,
+        pairs: pair_cycles(mb, &layout, &sol.nl_coeffs),
+        truncation: squeal_chbm::branch::truncation(&layout, &sol.nl_coeffs),
+        nl_coeffs: sol.nl_coeffs.clone(),
+        parameter_rate: 0.0,
+        iterations: sol.iterations,
+        residual: 0.0,
+    })
+}
+
+/// The cycle `sol` at `mu` recomputed with `law` when its sliding margin is below 1 (`Ok(None)`:
+/// no disc speed, or the margin is at least 1).
+pub fn recompute(
+    m: &Model,
+    reference: &squeal_brake::spectrum::Reference,
+    law: StickSlipSetting,
+    mu: f64,
+    sol: &ChbmSolution,
+) -> std::result::Result<Option<CycleStick>, String> {
+    if m.disc.is_none() || m.brake.pairs.iter().any(|p| p.surface_speed.is_none()) {
+        return Ok(None);
+    }
+    let mb = ModalBrake::new(&m.brake, reference, mu);
+    let err = |e: &dyn std::fmt::Display| e.to_string();
+    let speeds = surface_speeds(&mb).map_err(|e| err(&e))?;
+    let sliding = as_point(&mb, mu, sol).map_err(|e| err(&e))?;
+    let margin = point_margin(&mb, &sliding, &speeds).map_err(|e| err(&e))?;
+    if margin.sliding() {
+        return Ok(None);
+    }
+    let layout = HarmonicLayout::new(mb.nl(), sol.harmonics).map_err(|e| err(&e))?;
+    let PhaseCondition::FirstSineZero { dof } =
+        PhaseCondition::strongest_dof(&layout, &sol.nl_coeffs).map_err(|e| err(&e))?;
+    let mut o = DlftOptions::default();
+    o.harmonics = Some(HARMONICS);
+    let (law_text, cycle, converged, fractions) = match law {
+        StickSlipSetting::Regularized => {
+            let v_min = speeds.iter().copied().fold(f64::INFINITY, f64::min);
+            let v_reg = StickOptions::default().regularization * v_min;
+            o.samples = Some(StickOptions::default().samples_for(HARMONICS));
+            let (c, ok) =
+                regularized_cycle(&mb, mu, v_reg, &sliding, dof, &o).map_err(|e| err(&e))?;
+            let text = format!(
+                "regularized Coulomb (each pair's element F_t(|v|) tanh(v/v_reg)), v_reg = {v_reg:.4e} m/s (1/20 of the slowest pair's disc speed), {HARMONICS} harmonics"
+            );
+            (text, c, ok, None)
+        }
+        StickSlipSetting::Dlft { epsilon_factor } => {
+            o.epsilon_factor = epsilon_factor;
+            let d = dlft_cycle(&mb, mu, &sliding, dof, &o).map_err(|e| err(&e))?;
+            let text = format!(
+                "exact Coulomb stick-slip (dynamic Lagrangian frequency-time method, Nacivet et al. 2003), {HARMONICS} harmonics, {} samples, penalty {epsilon_factor} x default",
+                d.samples
+            );
+            (text, d.point, d.converged, Some(d.stick_fractions))
+        }
+    };
+    let stick_margin = point_margin(&mb, &cycle, &speeds).map_err(|e| err(&e))?;
+    Ok(Some(CycleStick {
+        law: law_text,
+        sliding,
+        margin,
+        cycle,
+        stick_margin,
+        stick_fractions: fractions,
+        converged,
+    }))
+}
+
+/// What the recomputation found, for the terminal.
+pub fn text(c: &CycleStick) -> String {
+    let (pair, p2p) = c.sliding.loudest();
+    let q = &c.cycle;
+    let p2q = q.pairs[pair].peak_to_peak();
+    let mut s = format!(
+        "stick-slip: the sliding margin {:.3} is below 1, so the cycle is recomputed at the same mu with {}:\n  {:.4} Hz (permanent sliding {:.4} Hz, {:+.2e}), pair {} {:.3} um peak to peak (was {:.3} um, {:+.2} %), sliding margin {:.3}",
+        c.margin.min,
+        c.law,
+        q.frequency_hz(),
+        c.sliding.frequency_hz(),
+        q.omega / c.sliding.omega - 1.0,
+        pair + 1,
+        p2q * 1e6,
+        p2p * 1e6,
+        100.0 * (p2q / p2p - 1.0),
+        c.stick_margin.min,
+    );
+    if let Some(f) = &c.stick_fractions {
+        let most = f.iter().copied().fold(0.0, f64::max);
+        s += &format!(", pairs stick up to {:.1} % of the period", 100.0 * most);
+    }
+    if !c.converged {
+        s += &format!(
+            "\n  NOTE: the solve stopped short of its tolerance (relative residual {:.1e}): the recomputed cycle is approximate",
+            q.residual
+        );
+    }
+    s.push('\n');
+    s
+}
+
+/// `stick_slip.json` in `dir`.
+pub fn write(dir: &Path, c: &CycleStick) -> Result<()> {
+    let (pair, _) = c.sliding.loudest();
+    let json = serde_json::json!({
+        "law": c.law,
+        "margin_before": c.margin.min,
+        "margin_after": c.stick_margin.min,
+        "frequency_hz_before": c.sliding.frequency_hz(),
+        "frequency_hz_after": c.cycle.frequency_hz(),
+        "loudest_pair": pair + 1,
+        "peak_to_peak_m_before": c.sliding.pairs[pair].peak_to_peak(),
+        "peak_to_peak_m_after": c.cycle.pairs[pair].peak_to_peak(),
+        "stick_fractions": c.stick_fractions,
+        "converged": c.converged,
+        "relative_residual": c.cycle.residual,
+        "harmonics": c.cycle.harmonics,
+        "layout": "nl_coefficients[b * n_nl + dof] on the nonlinear dofs, blocks b = [0c, 1c, 1s, 2c, 2s, ...] (eq 25)",
+        "nl_coefficients": c.cycle.nl_coeffs,
+    });
+    squeal_io::atomic_write_bytes(
+        &dir.join("stick_slip.json"),
+        json_text(&json, "the stick-slip cycle")?.as_bytes(),
+    )?;
+    Ok(())
+}
+
+/// The single-cycle stage's part: the cycle `sol` of `p` at `mu` recomputed with the scene's
+/// stick–slip law when its margin is below 1, written to `dir`; the text to tell (`None`:
+/// nothing to recompute). A recomputation that fails is told, not an error of the stage.
+pub fn stage(
+    p: &crate::Pipeline,
+    mu: f64,
+    sol: &ChbmSolution,
+    dir: &Path,
+) -> Result<Option<String>> {
+    let law = p.scene.stick_slip_law()?;
+    let m = p.model()?;
+    let st = p.stability()?;
+    match recompute(m, &st.reference, law, mu, sol) {
+        Ok(None) => Ok(None),
+        Ok(Some(c)) => {
+            write(dir, &c)?;
+            Ok(Some(text(&c)))
+        }
+        Err(e) => Ok(Some(format!(
+            "stick-slip: the sliding margin is below 1 but the cycle could not be recomputed with the stick-slip law: {e}\n"
+        ))),
+    }
+}
