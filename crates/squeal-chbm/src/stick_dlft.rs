@@ -99,7 +99,8 @@ pub fn reversed_fractions(
         layout.displacement_at(u, theta, &mut x)?;
         layout.velocity_at(u, omega, theta, &mut v)?;
         for (p, o) in mb.pairs.iter().zip(out.iter_mut()) {
-            let slip = p.surface_speed.unwrap_or(0.0) + p.tangent.iter().map(|&(i, h)| h * v[i]).sum::<f64>();
+            let slip = p.surface_speed.unwrap_or(0.0)
+                + p.tangent.iter().map(|&(i, h)| h * v[i]).sum::<f64>();
             if p.penetration(&x) > 0.0 && slip < 0.0 {
                 *o += 1.0 / n as f64;
             }
@@ -151,9 +152,12 @@ pub fn dlft_cycle(
     let (coeffs, omega, iterations, converged) =
         match solve_stick_slip(&mut b, phase, &u0, guess.omega, scale, &opts.lm) {
             Ok(s) => (s.coeffs, s.omega, s.report.iterations, true),
-            Err(squeal_hbm::HbmError::NotConverged { report }) => {
-                (report.x[..len].to_vec(), report.x[len], report.iterations, false)
-            }
+            Err(squeal_hbm::HbmError::NotConverged { report }) => (
+                report.x[..len].to_vec(),
+                report.x[len],
+                report.iterations,
+                false,
+            ),
             Err(e) => return Err(e.into()),
         };
     // The states of the solution itself (the last evaluation may be a rejected trial).
@@ -214,8 +218,12 @@ pub fn regularized_cycle(
     };
     z0.push(guess.omega);
     let phase = PhaseCondition::FirstSineZero { dof: phase_dof };
-    let mut problem =
-        squeal_hbm::AutonomousProblem::constrained(&mut hb, phase, squeal_hbm::Unconstrained, scales)?;
+    let mut problem = squeal_hbm::AutonomousProblem::constrained(
+        &mut hb,
+        phase,
+        squeal_hbm::Unconstrained,
+        scales,
+    )?;
     let (report, converged) = match squeal_hbm::lm::solve(&mut problem, &z0, &opts.lm) {
         Ok(r) => (r, true),
         Err(squeal_hbm::LmError::NotConverged { report }) => (*report, false),

@@ -25,6 +25,9 @@ pub struct StickRun {
     /// The branch with sticking contact (`None`: every margin is at least 1, or it failed and
     /// the failure was logged).
     pub sticking: Option<StickBranch>,
+    /// The recomputed cycles with exact stick–slip, when the scene asks for it
+    /// (`[contact] stick_slip = "dlft"`, [`crate::branch_dlft`]).
+    pub dlft: Option<Vec<crate::branch_dlft::DlftRow>>,
 }
 
 /// The margins and the sticking part of the branch of `a` (`None`: the scene gives no disc
@@ -59,7 +62,11 @@ pub fn recompute(
             None
         }
     };
-    Some(StickRun { margins, sticking })
+    Some(StickRun {
+        margins,
+        sticking,
+        dlft: None,
+    })
 }
 
 /// The law's description for reports.
@@ -137,6 +144,9 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
         s.cycles.len()
     );
     out.push_str(&t.to_text());
+    if let Some(rows) = &run.dlft {
+        out.push_str(&crate::branch_dlft::text(a, rows));
+    }
     out
 }
 

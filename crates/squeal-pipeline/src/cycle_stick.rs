@@ -50,7 +50,8 @@ pub struct CycleStick {
 
 /// The CHBM solution `sol` at `mu` as a branch point of `mb`.
 fn as_point(mb: &ModalBrake, mu: f64, sol: &ChbmSolution) -> Result<BranchPoint> {
-    let layout = HarmonicLayout::new(mb.nl(), sol.harmonics).map_err(squeal_chbm::ChbmError::from)?;
+    let layout =
+        HarmonicLayout::new(mb.nl(), sol.harmonics).map_err(squeal_chbm::ChbmError::from)?;
     Ok(BranchPoint {
         parameter: mu,
         omega: sol.omega,

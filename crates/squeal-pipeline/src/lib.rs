@@ -28,6 +28,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod branch;
+pub mod branch_dlft;
 pub mod branch_stick;
 pub mod branch_torus;
 pub mod caveats;

@@ -112,6 +112,10 @@ pub fn branch_stage_with(
     }
     let t = Instant::now();
     a.stick = crate::branch_stick::recompute(m, st, &a, opts, &Default::default(), p.log());
+    let dlft = crate::branch_dlft::recompute(m, st, &a, p.scene.stick_slip_law()?);
+    if let Some(r) = a.stick.as_mut() {
+        r.dlft = dlft;
+    }
     if a.stick.is_some() {
         p.record("branch with sticking contact", t.elapsed().as_secs_f64());
     }

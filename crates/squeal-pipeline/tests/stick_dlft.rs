@@ -38,7 +38,12 @@ fn regularized_cycles_approach_the_dlft_ones_at_3_kmh() {
     faer::set_global_parallelism(faer::Par::Seq);
     let out = std::env::temp_dir().join("squeal-test-dlft-coarse-3");
     let _ = std::fs::remove_dir_all(&out);
-    let p = Pipeline::new(scene(3.0), out.clone(), &quiet).unwrap();
+    // The scene asks for exact stick-slip: the branch stage solves its recomputed cycles by DLFT.
+    let base = scene(3.0);
+    let text = base
+        .text
+        .replacen("[contact]\n", "[contact]\nstick_slip = \"dlft\"\n", 1);
+    let p = Pipeline::new(Scene::parse(&base.path, text).unwrap(), out.clone(), &quiet).unwrap();
     let mut opts = BranchOptions::default();
     opts.range = (0.5, 1.08);
     let t = std::time::Instant::now();
@@ -51,6 +56,15 @@ fn regularized_cycles_approach_the_dlft_ones_at_3_kmh() {
         .as_ref()
         .and_then(|r| r.sticking.as_ref())
         .expect("the margin falls below 1 at 3 km/h");
+    let summary = squeal_pipeline::branch::summary_text(&a);
+    eprintln!("{summary}");
+    assert!(summary.contains("exact Coulomb stick-slip"), "{summary}");
+    let rows = a
+        .stick
+        .as_ref()
+        .and_then(|r| r.dlft.as_ref())
+        .expect("DLFT rows");
+    assert_eq!(rows.len(), s.cycles.len());
     let m = p.model().unwrap();
     let st = p.stability().unwrap();
     let mb = ModalBrake::new(&m.brake, &st.reference, a.mu0());
@@ -59,12 +73,17 @@ fn regularized_cycles_approach_the_dlft_ones_at_3_kmh() {
     // The first two recomputed cycles (1.0364 and 1.0452 mu0, margins 0.98 and 0.97), where
     // DLFT converges from the permanent-sliding cycle (docs/stick_slip.md: past them it stops
     // at a relative residual of 1e-3, reported there as undone).
-    let cycles: Vec<_> = s.cycles.iter().filter(|c| c.cycle.is_some()).take(2).collect();
+    let cycles: Vec<_> = s
+        .cycles
+        .iter()
+        .filter(|c| c.cycle.is_some())
+        .take(2)
+        .collect();
     assert_eq!(cycles.len(), 2, "two recomputed cycles");
     // Measured errors of the regularized cycle against DLFT at v_reg = V/20, V/40, V/80, V/160:
     // frequency 3.9e-4, 9.6e-5, 1.6e-5, 1.8e-7 and 6.2e-4, 2.1e-4, 7.1e-5, 2.6e-5.
     let mut errors = Vec::new();
-    for c in cycles {
+    for (c, row) in cycles.into_iter().zip(rows) {
         let q = c.cycle.as_ref().unwrap();
         let (pair, _) = q.loudest();
         let slide = &a.branch.points[c.point];
@@ -72,6 +91,9 @@ fn regularized_cycles_approach_the_dlft_ones_at_3_kmh() {
         o.harmonics = Some(24);
         let t = std::time::Instant::now();
         let d = dlft_cycle(&mb, c.mu, slide, phase, &o).unwrap();
+        // The branch stage's DLFT cycle is this one: same solve, same bits.
+        let r = row.cycle.as_ref().unwrap();
+        assert_eq!(r.point.omega.to_bits(), d.point.omega.to_bits());
         eprintln!(
             "mu/mu0 {:.4}: DLFT f {:.5} Hz p2p {:.4} um, stick {:?}, reversed {:?}, margin {:.4}, residual {:.1e} ({:.1} s)",
             c.mu / a.mu0(),
@@ -84,19 +106,20 @@ fn regularized_cycles_approach_the_dlft_ones_at_3_kmh() {
             t.elapsed().as_secs_f64()
         );
         // Converged: measured 1.0e-11 and 1.6e-12 of the largest pair's normal force.
-        assert!(d.point.residual < 1e-9, "DLFT residual {}", d.point.residual);
+        assert!(
+            d.point.residual < 1e-9,
+            "DLFT residual {}",
+            d.point.residual
+        );
         let mut guess = q.clone();
         let mut e = Vec::new();
         for frac in [0.05, 0.025, 0.0125, 0.00625] {
-            let (r, ok) = regularized_cycle(
-                &mb,
-                c.mu,
-                frac * s.slowest_surface_speed,
-                &guess,
-                phase,
-                &DlftOptions::default(),
-            )
-            .unwrap();
+            // The branch's samples for its 24 harmonics (1024), as the DLFT balance's.
+            let mut o = DlftOptions::default();
+            o.samples = Some(s.samples);
+            let (r, ok) =
+                regularized_cycle(&mb, c.mu, frac * s.slowest_surface_speed, &guess, phase, &o)
+                    .unwrap();
             assert!(ok, "regularized cycle at V*{frac} converged");
             let (df, dp) = diff(&r, &d.point, pair);
             eprintln!("   regularized V*{frac}: minus DLFT {df:+.2e} in f, {dp:+.2e} in closure");

@@ -48,6 +48,7 @@ use fit::*;
 pub use fit::{Fit, fit_cubic, parse_range};
 
 mod file;
+pub use file::StickSlipSetting;
 #[allow(unused_imports)]
 use file::*;
 pub use file::{
@@ -55,11 +56,10 @@ pub use file::{
     DEFAULT_CYCLE_MU_RATIO, DampingSection, DiscSection, FrictionSection, GapSetting, ModelSection,
     PadSection, PistonSection, Rotation, RotationSection, SceneFile, Sliding, StabilitySection,
 };
-pub use file::StickSlipSetting;
 
 mod contact_keys;
-mod stick_slip_keys;
 mod stick_law_keys;
+mod stick_slip_keys;
 
 pub mod assembly;
 pub mod dampers;

@@ -65,7 +65,10 @@ mod tests {
 
     #[test]
     fn the_stick_slip_law_is_read_and_bad_values_name_the_key() {
-        assert_eq!(law("\"regularized\"").unwrap(), StickSlipSetting::Regularized);
+        assert_eq!(
+            law("\"regularized\"").unwrap(),
+            StickSlipSetting::Regularized
+        );
         assert_eq!(
             law("\"dlft\"").unwrap(),
             StickSlipSetting::Dlft {
@@ -84,7 +87,10 @@ mod tests {
             "{ kind = \"dlft\", eps = 1 }",
         ] {
             let e = law(bad).unwrap_err().to_string();
-            assert!(e.contains("contact.stick_slip") && e.contains("dlft"), "{e}");
+            assert!(
+                e.contains("contact.stick_slip") && e.contains("dlft"),
+                "{e}"
+            );
         }
     }
 }

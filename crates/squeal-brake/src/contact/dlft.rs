@@ -208,7 +208,9 @@ pub fn brake_dlft(
     omega: f64,
 ) -> Result<BrakeDlft, DlftError> {
     if !(omega.is_finite() && omega > 0.0) {
-        return Err(DlftError::BadOption("the angular frequency must be positive"));
+        return Err(DlftError::BadOption(
+            "the angular frequency must be positive",
+        ));
     }
     let layout = HarmonicLayout::new(mb.nl(), harmonics)?;
     let free = frictionless(mb);
