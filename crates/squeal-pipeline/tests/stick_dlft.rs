@@ -159,11 +159,15 @@ fn the_single_cycle_below_margin_1_is_recomputed_with_the_scenes_law() {
         &quiet,
     )
     .unwrap();
-    assert!(sol.outcome == squeal_chbm::Outcome::LimitCycle, "CHBM converged");
+    assert!(
+        sol.outcome == squeal_chbm::Outcome::LimitCycle,
+        "CHBM converged"
+    );
     for (law, f_ref) in [
-        // DLFT at this mu: 3989.71583 Hz (`regularized_cycles_approach_the_dlft_ones_at_3_kmh`);
-        // the regularized law at V/20: 3991.28207 Hz. 1e-6: both solves converge to 1e-10 and
-        // start from a cycle of the same branch, so they land on the same root.
+        // At the branch's point (1.0364 mu0 to 4 digits) DLFT gives 3989.71583 Hz and the
+        // regularized law at V/20 3991.28207 Hz (`regularized_cycles_approach_the_dlft_ones_at_3_kmh`).
+        // 2e-5: the rounding of mu (5e-5 mu0) moves the frequency by 1.2e-5 (-945 Hz per mu0
+        // along the branch); the two laws differ by 3.9e-4, so each lands on its own law's root.
         (
             squeal_scene::StickSlipSetting::Dlft {
                 epsilon_factor: 1.0,
@@ -179,7 +183,7 @@ fn the_single_cycle_below_margin_1_is_recomputed_with_the_scenes_law() {
         eprintln!("{text}");
         assert!(c.margin.min < 1.0 && c.converged, "{text}");
         assert!(
-            (c.cycle.frequency_hz() / f_ref - 1.0).abs() < 1e-6,
+            (c.cycle.frequency_hz() / f_ref - 1.0).abs() < 2e-5,
             "{} Hz against {f_ref}",
             c.cycle.frequency_hz()
         );
