@@ -81,7 +81,7 @@ fn regularized_cycles_approach_the_dlft_ones_at_3_kmh() {
         .collect();
     assert_eq!(cycles.len(), 2, "two recomputed cycles");
     // Measured errors of the regularized cycle against DLFT at v_reg = V/20, V/40, V/80, V/160:
-    // frequency 3.9e-4, 9.6e-5, 1.6e-5, 1.8e-7 and 6.2e-4, 2.1e-4, 7.1e-5, 2.6e-5.
+    // frequency 3.9e-4, 9.6e-5, 1.5e-5, 6.3e-7 and 6.2e-4, 2.1e-4, 7.1e-5, 2.6e-5.
     let mut errors = Vec::new();
     for (c, row) in cycles.into_iter().zip(rows) {
         let q = c.cycle.as_ref().unwrap();
@@ -130,9 +130,9 @@ fn regularized_cycles_approach_the_dlft_ones_at_3_kmh() {
     }
     for e in &errors {
         // The regularized cycles approach DLFT: every halving of v_reg divides both errors by
-        // at least 1.8 (measured 2.07 to 88: about first order once the pads stick, faster when
+        // at least 1.8 (measured 2.1 to 24: about first order once the pads stick, faster when
         // the slip only nears zero), and at V/160 they are below 5e-5 in frequency (measured
-        // 1.8e-7, 2.6e-5) and 1e-3 in closure (4e-7, 8.6e-4).
+        // 6.3e-7, 2.6e-5) and 1e-3 in closure (1.5e-5, 8.6e-4).
         for w in e.windows(2) {
             assert!(w[1].0 < 0.56 * w[0].0 && w[1].1 < 0.56 * w[0].1, "{e:?}");
         }
