@@ -11,7 +11,14 @@
 //! With `pipeline=1` it times instead what `squeal branch` computes (without the sound
 //! levels and files): `branch::analyse` (the branch with Hill's multipliers) and
 //! `branch_torus::follow` with the default plan (every Neimark–Sacker point's torus branch,
-//! each torus' Lyapunov exponents), and prints each torus' verdict.
+//! each torus' transverse Lyapunov exponents), and prints each torus' verdict. Options:
+//! `spp=N` (the exponents' fewest RK4 steps per fast period, default 32), `max=N` (most
+//! counted fast periods, default 400), `vectors=N` (transverse exponents, default 2), and
+//! `compare=1`: each torus' exponents also by the standard method
+//! ([`squeal_chbm::torus_stability::torus_lyapunov`], all 4 exponents integrated) with
+//! today's controls (200 fast periods after 20, 32 steps per period at the least) and as a
+//! reference with twice the steps and four times the record (64 steps per period, 800 periods
+//! after 80), and the differences.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -35,6 +42,17 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
     use squeal_pipeline::branch_torus::{self, TorusPlan};
     let (m, st) = (p.model().unwrap(), p.stability().unwrap());
     let opts = BranchOptions::default();
+    let mut plan = TorusPlan::default();
+    if let Some(lo) = plan.lyapunov.as_mut() {
+        let num = |name: &str, d: usize| arg(name).map_or(d, |s| s.parse().unwrap());
+        lo.steps_per_period = num("spp", lo.steps_per_period);
+        lo.max_periods = num("max", lo.max_periods);
+        lo.exponents = num("vectors", lo.exponents);
+        lo.transient = num("transient", lo.transient);
+        if let Some(c) = arg("carry") {
+            lo.carry_tangents = c == "1";
+        }
+    }
     let t0 = Instant::now();
     let a = branch::analyse(m, st, &opts, &Hill::default(), &[], &quiet)
         .unwrap()
@@ -42,7 +60,7 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
     let t_branch = t0.elapsed().as_secs_f64();
     let t1 = Instant::now();
     let log = |s: &str| eprintln!("{s}");
-    let tori = branch_torus::follow(m, st, &a, &opts, &TorusPlan::default(), &log);
+    let tori = branch_torus::follow(m, st, &a, &opts, &plan, &log);
     let t_tori = t1.elapsed().as_secs_f64();
     println!(
         "{level} brake as squeal branch: branch with Hill {t_branch:.2} s, {} torus branches with Lyapunov exponents {t_tori:.2} s, whole {:.2} s",
@@ -50,9 +68,9 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
         t_branch + t_tori
     );
     println!(
-        "| NS (mu0) | mu/mu0 | f1 (Hz) | f2 (Hz) | swing min..max (um) | exponents (1/s) | transverse +- error (1/s) | stability |"
+        "| NS (mu0) | mu/mu0 | f1 (Hz) | f2 (Hz) | swing min..max (um) | transverse exponents (1/s) | largest +- error (1/s) | periods | stability |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|");
     for run in &tori {
         match &run.result {
             Err(e) => println!("| {:.5} | failed: {e} |||||||", run.ns.parameter / a.mu0()),
@@ -73,7 +91,7 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
                         .collect::<Vec<_>>()
                         .join(", "),
                     format!("{:.2} +- {:.2}", s.transverse(), s.uncertainty()),
-                    s.stability().to_string(),
+                    format!("{} | {}", s.periods, s.stability()),
                 ),
                 Err(e) => (String::new(), String::new(), e.clone()),
             };
@@ -88,6 +106,92 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
             );
         }
     }
+    if arg("compare").is_some() {
+        compare(m, st, a.mu0(), &tori);
+    }
+}
+
+/// Each torus' exponents by the standard method, today's controls and the reference's, against
+/// the transverse exponents (module docs).
+fn compare(
+    m: &squeal_pipeline::model::Model,
+    st: &squeal_brake::analysis::LinearStability,
+    mu0: f64,
+    tori: &[squeal_pipeline::branch_torus::TorusRun],
+) {
+    use squeal_chbm::torus_stability::torus_lyapunov;
+    use squeal_hbm::torus::lyapunov::LyapunovOptions;
+    let mb = ModalBrake::new(&m.brake, &st.reference, mu0);
+    let today = squeal_pipeline::branch_torus::lyapunov_defaults();
+    let reference = LyapunovOptions {
+        exponents: 4,
+        periods: 800,
+        transient: 80,
+        steps_per_period: 64,
+        max_rate: None,
+    };
+    println!(
+        "| mu/mu0 | new: largest transverse +- error | today (4 exponents, 200 periods) | reference (64 steps/period, 800 periods) | new - reference | today - reference | verdicts new / today / reference |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    let (mut worst, mut agree, mut n, mut t_today, mut t_ref) = (0.0f64, 0, 0, 0.0, 0.0);
+    for run in tori {
+        let Ok(b) = &run.result else { continue };
+        for (p, s) in run.points() {
+            let Ok(s) = s else { continue };
+            let mut flow =
+                squeal_chbm::torus_stability::BrakeTangentFlow::new(&mb, &b.basis, Some(b.grid), p)
+                    .unwrap();
+            let defect: Vec<String> = [[0.0, 0.0], [1.0, 2.0], [2.5, 4.0]]
+                .iter()
+                .map(|&th| {
+                    let d = squeal_hbm::torus::transverse::tangent_defect(&mut flow, p.omega, th)
+                        .unwrap();
+                    format!("{:.1}/{:.1}", d[0], d[1])
+                })
+                .collect();
+            eprintln!(
+                "{:.5} mu0: tangent defect |dT/dt - J T|/|T| (1/s) at 3 angles: {}",
+                p.mu / mu0,
+                defect.join(", ")
+            );
+            let t = Instant::now();
+            let td = torus_lyapunov(&mb, &b.basis, p, &today).unwrap();
+            t_today += t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let rf = torus_lyapunov(&mb, &b.basis, p, &reference).unwrap();
+            t_ref += t.elapsed().as_secs_f64();
+            let d = s.transverse() - rf.transverse();
+            worst = worst.max(d.abs() / (s.uncertainty() + rf.uncertainty()));
+            n += 1;
+            if s.stability() == rf.stability() {
+                agree += 1;
+            }
+            println!(
+                "| {:.5} | {:.2} +- {:.2} | {:.2} +- {:.2} | {:.2} +- {:.2} (exponents {}) | {:.2} | {:.2} | {} / {} / {} |",
+                p.mu / mu0,
+                s.transverse(),
+                s.uncertainty(),
+                td.transverse(),
+                td.uncertainty(),
+                rf.transverse(),
+                rf.uncertainty(),
+                rf.exponents
+                    .iter()
+                    .map(|x| format!("{x:.2}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                d,
+                td.transverse() - rf.transverse(),
+                s.stability(),
+                td.stability(),
+                rf.stability()
+            );
+        }
+    }
+    println!(
+        "{n} tori: verdicts new = reference on {agree}; largest |new - reference| / (error new + error reference) = {worst:.3}; today's method {t_today:.2} s, reference {t_ref:.2} s"
+    );
 }
 
 fn main() {

@@ -22,10 +22,11 @@ use squeal_brake::analysis::LinearStability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::bifurcation::{Bifurcation, BifurcationKind};
 use squeal_chbm::torus::{TorusBranch, TorusOptions, follow_torus};
-use squeal_chbm::torus_stability::torus_lyapunov;
+use squeal_chbm::torus_stability::torus_transverse;
 /// The tori's 2-D Fourier basis, as the command line sets it.
 pub use squeal_hbm::torus::Truncation;
-use squeal_hbm::torus::lyapunov::{LyapunovOptions, LyapunovSpectrum};
+use squeal_hbm::torus::lyapunov::LyapunovOptions;
+use squeal_hbm::torus::transverse::{TransverseOptions, TransverseSpectrum};
 use squeal_report::format::fmt_sig;
 use squeal_report::{Dash, Panel, Rgb, Series, Table};
 use std::fmt::Write as _;
@@ -40,8 +41,9 @@ pub struct TorusPlan {
     pub truncation: Option<Truncation>,
     /// Most tori on each torus branch.
     pub max_points: usize,
-    /// The Lyapunov exponents' controls; `None`: the tori's stability is not computed.
-    pub lyapunov: Option<LyapunovOptions>,
+    /// The transverse Lyapunov exponents' controls; `None`: the tori's stability is not
+    /// computed.
+    pub lyapunov: Option<TransverseOptions>,
 }
 
 impl Default for TorusPlan {
@@ -50,7 +52,7 @@ impl Default for TorusPlan {
             enabled: true,
             truncation: None,
             max_points: 60,
-            lyapunov: Some(lyapunov_defaults()),
+            lyapunov: Some(TransverseOptions::default()),
         }
     }
 }
@@ -65,7 +67,10 @@ impl TorusPlan {
     }
 }
 
-/// The Lyapunov controls `squeal branch` uses: 4 exponents over 200 fast periods after 20.
+/// The standard method's controls (every exponent integrated, the torus' two included): 4
+/// exponents over 200 fast periods after 20. `squeal branch` uses the transverse exponents
+/// instead ([`TransverseOptions::default`]: the torus' tangents known, 2 transverse exponents
+/// for as long as the verdict needs).
 pub fn lyapunov_defaults() -> LyapunovOptions {
     LyapunovOptions {
         exponents: 4,
@@ -88,7 +93,7 @@ pub struct TorusRun {
     /// The branch, or why it failed.
     pub result: Result<TorusBranch, String>,
     /// Each torus' exponents (in the order of the branch's points), or why they failed.
-    pub stability: Vec<Result<LyapunovSpectrum, String>>,
+    pub stability: Vec<Result<TransverseSpectrum, String>>,
     /// Wall time of the exponents.
     pub stability_time: Duration,
 }
@@ -100,7 +105,7 @@ impl TorusRun {
     ) -> impl Iterator<
         Item = (
             &squeal_chbm::torus::TorusPoint,
-            &Result<LyapunovSpectrum, String>,
+            &Result<TransverseSpectrum, String>,
         ),
     > {
         self.result
@@ -182,7 +187,9 @@ fn follow_one(
         .points
         .iter()
         .map(|p| match &plan.lyapunov {
-            Some(lo) => torus_lyapunov(mb, &b.basis, p, lo).map_err(|e| e.to_string()),
+            Some(lo) => {
+                torus_transverse(mb, &b.basis, Some(b.grid), p, lo).map_err(|e| e.to_string())
+            }
             None => Err("not asked for".into()),
         })
         .collect();
@@ -206,7 +213,7 @@ pub fn truncation_text(t: Truncation) -> String {
 }
 
 /// The verdict of a torus' exponents in words, and its numbers.
-fn verdict(s: &Result<LyapunovSpectrum, String>) -> (String, Option<(f64, f64)>) {
+fn verdict(s: &Result<TransverseSpectrum, String>) -> (String, Option<(f64, f64)>) {
     match s {
         Ok(s) => (
             s.stability().to_string(),
@@ -302,7 +309,7 @@ pub fn table(a: &BranchAnalysis) -> Table {
         "stability",
         "transverse_exponent_per_s",
         "exponent_error_per_s",
-        "exponents_per_s",
+        "transverse_exponents_per_s",
     ]
     .map(String::from)
     .to_vec();
@@ -359,7 +366,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
             let head = serde_json::json!({
                 "ns_mu": run.ns.parameter,
                 "ns_second_frequency_hz": run.ns.torus_frequency_hz(),
-                "stability_method": "Lyapunov exponents of the linearized modal equations along the torus (RK4, Gram-Schmidt every step; Benettin et al. 1980); stable when the largest exponent across the torus is below minus its error",
+                "stability_method": "transverse Lyapunov exponents of the linearized modal equations along the torus, the torus' two tangent directions known in closed form and projected off once per fast period (RK4; Benettin et al. 1980); error: the largest deviation of the cumulative log growth from its straight line, over the record; the run stops once the largest exponent exceeds twice its error; stable when the largest exponent across the torus is below minus its error, unstable when above it, otherwise not decided",
             });
             let mut obj = head.as_object().cloned().unwrap_or_default();
             match &run.result {
@@ -389,7 +396,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
 fn point_json(
     a: &BranchAnalysis,
     p: &squeal_chbm::torus::TorusPoint,
-    s: &Result<LyapunovSpectrum, String>,
+    s: &Result<TransverseSpectrum, String>,
 ) -> serde_json::Value {
     let (v, num) = verdict(s);
     serde_json::json!({
@@ -405,14 +412,14 @@ fn point_json(
         "stability": v,
         "transverse_exponent_per_s": num.map(|x| x.0),
         "exponent_error_per_s": num.map(|x| x.1),
-        "exponents_per_s": s.as_ref().ok().map(|s| s.exponents.clone()),
+        "transverse_exponents_per_s": s.as_ref().ok().map(|s| s.exponents.clone()),
     })
 }
 
 /// Colours of the torus band: stable, unstable, not decided.
 const TORUS: [Rgb; 3] = [Rgb(44, 160, 44), Rgb(255, 127, 14), Rgb(127, 127, 127)];
 
-fn colour(s: &Result<LyapunovSpectrum, String>) -> (usize, &'static str) {
+fn colour(s: &Result<TransverseSpectrum, String>) -> (usize, &'static str) {
     use squeal_hbm::torus::lyapunov::TorusStability as T;
     match s.as_ref().map(|s| s.stability()) {
         Ok(T::Attracting) => (0, "torus, stable: swing min..max"),
