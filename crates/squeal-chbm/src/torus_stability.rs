@@ -293,7 +293,7 @@ impl TorusTangents for BrakeTangentFlow {
 
 /// The Lyapunov exponents of the torus `point` (on `basis`) of `mb`'s brake, in 1/s, by the
 /// standard method ([`squeal_hbm::torus::lyapunov`]: every exponent integrated, the tangent
-/// ones included).
+/// ones included): what `squeal branch` uses.
 pub fn torus_lyapunov(
     mb: &ModalBrake,
     basis: &TorusBasis,
@@ -306,7 +306,8 @@ pub fn torus_lyapunov(
 
 /// The largest transverse Lyapunov exponents of the torus `point` (on `basis`, AFT grid
 /// `grid`) of `mb`'s brake, in 1/s, with the torus' tangent directions known
-/// ([`squeal_hbm::torus::transverse`]): what `squeal branch` uses.
+/// ([`squeal_hbm::torus::transverse`]). Not what `squeal branch` uses: on the medium brake its
+/// short records misjudged tori (docs/benchmarks.md); `squeal branch` uses [`torus_lyapunov`].
 pub fn torus_transverse(
     mb: &ModalBrake,
     basis: &TorusBasis,

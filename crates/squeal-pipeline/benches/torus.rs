@@ -11,14 +11,15 @@
 //! With `pipeline=1` it times instead what `squeal branch` computes (without the sound
 //! levels and files): `branch::analyse` (the branch with Hill's multipliers) and
 //! `branch_torus::follow` with the default plan (every Neimark–Sacker point's torus branch,
-//! each torus' transverse Lyapunov exponents), and prints each torus' verdict. Options:
-//! `spp=N` (the exponents' fewest RK4 steps per fast period, default 32), `max=N` (most
-//! counted fast periods, default 400), `vectors=N` (transverse exponents, default 2), and
-//! `compare=1`: each torus' exponents also by the standard method
-//! ([`squeal_chbm::torus_stability::torus_lyapunov`], all 4 exponents integrated) with
-//! today's controls (200 fast periods after 20, 32 steps per period at the least) and as a
-//! reference with twice the steps and four times the record (64 steps per period, 800 periods
-//! after 80), and the differences.
+//! each torus' Lyapunov exponents), and prints each torus' verdict. Options: `spp=N`,
+//! `periods=N`, `transient=N` (the exponents' fewest RK4 steps per fast period, counted and
+//! dropped fast periods; default 32, 200, 20), and `compare=1`: each torus' exponents also by
+//! the standard method with the reference's controls (twice the steps and four times the
+//! record: 64 steps per period, 800 periods after 80) and by the transverse method
+//! ([`squeal_chbm::torus_stability::torus_transverse`]; `carry=0|1`, `ttransient=N`,
+//! `max=N`, `min=N`, `margin=X`, `vectors=N` its controls), the tangent defect of the torus,
+//! and the differences (`noref=1`: the standard method's own record stands in for the
+//! reference).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -46,12 +47,8 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
     if let Some(lo) = plan.lyapunov.as_mut() {
         let num = |name: &str, d: usize| arg(name).map_or(d, |s| s.parse().unwrap());
         lo.steps_per_period = num("spp", lo.steps_per_period);
-        lo.max_periods = num("max", lo.max_periods);
-        lo.exponents = num("vectors", lo.exponents);
+        lo.periods = num("periods", lo.periods);
         lo.transient = num("transient", lo.transient);
-        if let Some(c) = arg("carry") {
-            lo.carry_tangents = c == "1";
-        }
     }
     let t0 = Instant::now();
     let a = branch::analyse(m, st, &opts, &Hill::default(), &[], &quiet)
@@ -68,7 +65,7 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
         t_branch + t_tori
     );
     println!(
-        "| NS (mu0) | mu/mu0 | f1 (Hz) | f2 (Hz) | swing min..max (um) | transverse exponents (1/s) | largest +- error (1/s) | periods | stability |"
+        "| NS (mu0) | mu/mu0 | f1 (Hz) | f2 (Hz) | swing min..max (um) | exponents (1/s) | largest across +- error (1/s) | RK4 steps | stability |"
     );
     println!("|---|---|---|---|---|---|---|---|---|");
     for run in &tori {
@@ -91,7 +88,7 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
                         .collect::<Vec<_>>()
                         .join(", "),
                     format!("{:.2} +- {:.2}", s.transverse(), s.uncertainty()),
-                    format!("{} | {}", s.periods, s.stability()),
+                    format!("{} | {}", s.steps, s.stability()),
                 ),
                 Err(e) => (String::new(), String::new(), e.clone()),
             };
@@ -122,7 +119,19 @@ fn compare(
     use squeal_chbm::torus_stability::torus_lyapunov;
     use squeal_hbm::torus::lyapunov::LyapunovOptions;
     let mb = ModalBrake::new(&m.brake, &st.reference, mu0);
-    let today = squeal_pipeline::branch_torus::lyapunov_defaults();
+    use squeal_hbm::torus::transverse::TransverseOptions;
+    let mut topts = TransverseOptions::default();
+    {
+        let num = |name: &str, d: usize| arg(name).map_or(d, |s| s.parse().unwrap());
+        topts.max_periods = num("max", topts.max_periods);
+        topts.exponents = num("vectors", topts.exponents);
+        topts.transient = num("ttransient", topts.transient);
+        topts.min_periods = num("min", topts.min_periods);
+        topts.margin = arg("margin").map_or(topts.margin, |s| s.parse().unwrap());
+        if let Some(c) = arg("carry") {
+            topts.carry_tangents = c == "1";
+        }
+    }
     let reference = LyapunovOptions {
         exponents: 4,
         periods: 800,
@@ -131,14 +140,22 @@ fn compare(
         max_rate: None,
     };
     println!(
-        "| mu/mu0 | new: largest transverse +- error | today (4 exponents, 200 periods) | reference (64 steps/period, 800 periods) | new - reference | today - reference | verdicts new / today / reference |"
+        "| mu/mu0 | transverse method: largest +- error | standard (4 exponents, 200 periods) | reference (64 steps/period, 800 periods) | new - reference | today - reference | verdicts new / today / reference |"
     );
     println!("|---|---|---|---|---|---|---|");
     let (mut worst, mut agree, mut n, mut t_today, mut t_ref) = (0.0f64, 0, 0, 0.0, 0.0);
     for run in tori {
         let Ok(b) = &run.result else { continue };
         for (p, s) in run.points() {
-            let Ok(s) = s else { continue };
+            let Ok(td) = s else { continue };
+            let s = squeal_chbm::torus_stability::torus_transverse(
+                &mb,
+                &b.basis,
+                Some(b.grid),
+                p,
+                &topts,
+            )
+            .unwrap();
             let mut flow =
                 squeal_chbm::torus_stability::BrakeTangentFlow::new(&mb, &b.basis, Some(b.grid), p)
                     .unwrap();
@@ -155,11 +172,13 @@ fn compare(
                 p.mu / mu0,
                 defect.join(", ")
             );
+            t_today += run.stability_time.as_secs_f64() / run.stability.len().max(1) as f64;
             let t = Instant::now();
-            let td = torus_lyapunov(&mb, &b.basis, p, &today).unwrap();
-            t_today += t.elapsed().as_secs_f64();
-            let t = Instant::now();
-            let rf = torus_lyapunov(&mb, &b.basis, p, &reference).unwrap();
+            let rf = if arg("noref").is_some() {
+                td.clone()
+            } else {
+                torus_lyapunov(&mb, &b.basis, p, &reference).unwrap()
+            };
             t_ref += t.elapsed().as_secs_f64();
             let d = s.transverse() - rf.transverse();
             worst = worst.max(d.abs() / (s.uncertainty() + rf.uncertainty()));
@@ -168,10 +187,11 @@ fn compare(
                 agree += 1;
             }
             println!(
-                "| {:.5} | {:.2} +- {:.2} | {:.2} +- {:.2} | {:.2} +- {:.2} (exponents {}) | {:.2} | {:.2} | {} / {} / {} |",
+                "| {:.5} | {:.2} +- {:.2} ({} periods) | {:.2} +- {:.2} | {:.2} +- {:.2} (exponents {}) | {:.2} | {:.2} | {} / {} / {} |",
                 p.mu / mu0,
                 s.transverse(),
                 s.uncertainty(),
+                s.periods,
                 td.transverse(),
                 td.uncertainty(),
                 rf.transverse(),

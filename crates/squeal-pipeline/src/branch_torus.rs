@@ -22,11 +22,10 @@ use squeal_brake::analysis::LinearStability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::bifurcation::{Bifurcation, BifurcationKind};
 use squeal_chbm::torus::{TorusBranch, TorusOptions, follow_torus};
-use squeal_chbm::torus_stability::torus_transverse;
+use squeal_chbm::torus_stability::torus_lyapunov;
 /// The tori's 2-D Fourier basis, as the command line sets it.
 pub use squeal_hbm::torus::Truncation;
-use squeal_hbm::torus::lyapunov::LyapunovOptions;
-use squeal_hbm::torus::transverse::{TransverseOptions, TransverseSpectrum};
+use squeal_hbm::torus::lyapunov::{LyapunovOptions, LyapunovSpectrum};
 use squeal_report::format::fmt_sig;
 use squeal_report::{Dash, Panel, Rgb, Series, Table};
 use std::fmt::Write as _;
@@ -41,9 +40,8 @@ pub struct TorusPlan {
     pub truncation: Option<Truncation>,
     /// Most tori on each torus branch.
     pub max_points: usize,
-    /// The transverse Lyapunov exponents' controls; `None`: the tori's stability is not
-    /// computed.
-    pub lyapunov: Option<TransverseOptions>,
+    /// The Lyapunov exponents' controls; `None`: the tori's stability is not computed.
+    pub lyapunov: Option<LyapunovOptions>,
 }
 
 impl Default for TorusPlan {
@@ -52,7 +50,7 @@ impl Default for TorusPlan {
             enabled: true,
             truncation: None,
             max_points: 60,
-            lyapunov: Some(TransverseOptions::default()),
+            lyapunov: Some(lyapunov_defaults()),
         }
     }
 }
@@ -67,10 +65,7 @@ impl TorusPlan {
     }
 }
 
-/// The standard method's controls (every exponent integrated, the torus' two included): 4
-/// exponents over 200 fast periods after 20. `squeal branch` uses the transverse exponents
-/// instead ([`TransverseOptions::default`]: the torus' tangents known, 2 transverse exponents
-/// for as long as the verdict needs).
+/// The Lyapunov controls `squeal branch` uses: 4 exponents over 200 fast periods after 20.
 pub fn lyapunov_defaults() -> LyapunovOptions {
     LyapunovOptions {
         exponents: 4,
@@ -93,7 +88,7 @@ pub struct TorusRun {
     /// The branch, or why it failed.
     pub result: Result<TorusBranch, String>,
     /// Each torus' exponents (in the order of the branch's points), or why they failed.
-    pub stability: Vec<Result<TransverseSpectrum, String>>,
+    pub stability: Vec<Result<LyapunovSpectrum, String>>,
     /// Wall time of the exponents.
     pub stability_time: Duration,
 }
@@ -105,7 +100,7 @@ impl TorusRun {
     ) -> impl Iterator<
         Item = (
             &squeal_chbm::torus::TorusPoint,
-            &Result<TransverseSpectrum, String>,
+            &Result<LyapunovSpectrum, String>,
         ),
     > {
         self.result
@@ -187,9 +182,7 @@ fn follow_one(
         .points
         .iter()
         .map(|p| match &plan.lyapunov {
-            Some(lo) => {
-                torus_transverse(mb, &b.basis, Some(b.grid), p, lo).map_err(|e| e.to_string())
-            }
+            Some(lo) => torus_lyapunov(mb, &b.basis, p, lo).map_err(|e| e.to_string()),
             None => Err("not asked for".into()),
         })
         .collect();
@@ -213,7 +206,7 @@ pub fn truncation_text(t: Truncation) -> String {
 }
 
 /// The verdict of a torus' exponents in words, and its numbers.
-fn verdict(s: &Result<TransverseSpectrum, String>) -> (String, Option<(f64, f64)>) {
+fn verdict(s: &Result<LyapunovSpectrum, String>) -> (String, Option<(f64, f64)>) {
     match s {
         Ok(s) => (
             s.stability().to_string(),
@@ -309,7 +302,7 @@ pub fn table(a: &BranchAnalysis) -> Table {
         "stability",
         "transverse_exponent_per_s",
         "exponent_error_per_s",
-        "transverse_exponents_per_s",
+        "exponents_per_s",
     ]
     .map(String::from)
     .to_vec();
@@ -366,7 +359,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
             let head = serde_json::json!({
                 "ns_mu": run.ns.parameter,
                 "ns_second_frequency_hz": run.ns.torus_frequency_hz(),
-                "stability_method": "transverse Lyapunov exponents of the linearized modal equations along the torus, the torus' two tangent directions known in closed form and projected off once per fast period (RK4; Benettin et al. 1980); error: the largest deviation of the cumulative log growth from its straight line, over the record; the run stops once the largest exponent exceeds twice its error; stable when the largest exponent across the torus is below minus its error, unstable when above it, otherwise not decided",
+                "stability_method": "Lyapunov exponents of the linearized modal equations along the torus (RK4, Gram-Schmidt every step; Benettin et al. 1980); stable when the largest exponent across the torus is below minus its error",
             });
             let mut obj = head.as_object().cloned().unwrap_or_default();
             match &run.result {
@@ -396,7 +389,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
 fn point_json(
     a: &BranchAnalysis,
     p: &squeal_chbm::torus::TorusPoint,
-    s: &Result<TransverseSpectrum, String>,
+    s: &Result<LyapunovSpectrum, String>,
 ) -> serde_json::Value {
     let (v, num) = verdict(s);
     serde_json::json!({
@@ -412,14 +405,14 @@ fn point_json(
         "stability": v,
         "transverse_exponent_per_s": num.map(|x| x.0),
         "exponent_error_per_s": num.map(|x| x.1),
-        "transverse_exponents_per_s": s.as_ref().ok().map(|s| s.exponents.clone()),
+        "exponents_per_s": s.as_ref().ok().map(|s| s.exponents.clone()),
     })
 }
 
 /// Colours of the torus band: stable, unstable, not decided.
 const TORUS: [Rgb; 3] = [Rgb(44, 160, 44), Rgb(255, 127, 14), Rgb(127, 127, 127)];
 
-fn colour(s: &Result<TransverseSpectrum, String>) -> (usize, &'static str) {
+fn colour(s: &Result<LyapunovSpectrum, String>) -> (usize, &'static str) {
     use squeal_hbm::torus::lyapunov::TorusStability as T;
     match s.as_ref().map(|s| s.stability()) {
         Ok(T::Attracting) => (0, "torus, stable: swing min..max"),
