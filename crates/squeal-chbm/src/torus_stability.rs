@@ -141,6 +141,19 @@ impl BrakeVariational {
     }
 }
 
+/// Work vectors up to this length live on the stack in [`BrakeVariational`]'s products.
+const SMALL: usize = 64;
+
+/// A zeroed work slice of length `len`: `stack`'s head when it fits, else `heap`.
+fn work<'a>(stack: &'a mut [f64; SMALL], heap: &'a mut Vec<f64>, len: usize) -> &'a mut [f64] {
+    if len <= SMALL {
+        &mut stack[..len]
+    } else {
+        heap.resize(len, 0.0);
+        heap
+    }
+}
+
 /// `m += a bᵀ` (`m` row-major, `a.len()` rows).
 fn add_outer(m: &mut [f64], s: f64, a: &[f64], b: &[f64]) {
     if s == 0.0 {
@@ -204,19 +217,27 @@ impl TorusVariational for BrakeVariational {
         // b = K_r (Q_Rᵀ Φ_n q) + C_r (Q_Rᵀ Φ_n q̇); out -= (Φ_nᵀ Q_E) b.
         let (ne, nr) = (self.ne, self.nr);
         let dot = |row: &[f64], x: &[f64]| row.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
-        let mut b = vec![0.0; ne];
-        let aq: Vec<f64> = self.pr.chunks_exact(n).map(|r| dot(r, q)).collect();
+        // Small work vectors on the stack (the brake's q_E, q_R are tens), else on the heap.
+        let (mut sb, mut sa) = ([0.0; SMALL], [0.0; SMALL]);
+        let (mut hb, mut ha) = (Vec::new(), Vec::new());
+        let b = work(&mut sb, &mut hb, ne);
+        let a = work(&mut sa, &mut ha, nr);
+        for (ai, r) in a.iter_mut().zip(self.pr.chunks_exact(n)) {
+            *ai = dot(r, q);
+        }
         for (bi, row) in b.iter_mut().zip(self.k.chunks_exact(nr)) {
-            *bi = dot(row, &aq);
+            *bi = dot(row, a);
         }
         if let Some(c) = &self.c {
-            let av: Vec<f64> = self.pr.chunks_exact(n).map(|r| dot(r, qd)).collect();
+            for (ai, r) in a.iter_mut().zip(self.pr.chunks_exact(n)) {
+                *ai = dot(r, qd);
+            }
             for (bi, row) in b.iter_mut().zip(c.chunks_exact(nr)) {
-                *bi += dot(row, &av);
+                *bi += dot(row, a);
             }
         }
         for (o, row) in ov.iter_mut().zip(self.pe.chunks_exact(ne)) {
-            *o -= dot(row, &b);
+            *o -= dot(row, b);
         }
     }
 }

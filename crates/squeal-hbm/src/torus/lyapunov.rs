@@ -291,9 +291,9 @@ pub fn lyapunov_exponents<S: TorusVariational>(
         [omega[0] * t, omega[1] * t]
     };
     for s in 0..total {
-        if s > 0 {
-            sys.set_angles(theta(s, 0.0))?;
-        }
+        // The angles at the step's start are set: θ = 0 before the first step, the last
+        // step's end `theta(s - 1, 1.0)` after (the same bits as `theta(s, 0.0)`: integer
+        // plus 1.0 is exact).
         apply_all(sys, &v, &mut k1, n);
         sys.set_angles(theta(s, 0.5))?;
         axpy(&v, 0.5 * h, &k1, &mut tmp);

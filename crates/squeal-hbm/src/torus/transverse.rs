@@ -3,7 +3,8 @@
 //!
 //! **Status: measured and not trusted on the brake.** On the medium bundled brake (66 tori,
 //! docs/benchmarks.md) both ways below disagreed with the reference (the standard method at
-//! twice the steps over four times the record) on 8 and 9 verdicts: the projected way is
+//! twice the steps over four times the record) on 9 (projected) and 8 (carried) verdicts,
+//! each time 5 of them a stable call on an unstable torus: the projected way is
 //! biased by the truncated torus' defect, and the carried way, stopped after 40–70 fast
 //! periods, had not aligned its vectors while its error estimate already called the
 //! exponent decided (e.g. −109.8 ± 54.7 1/s against the reference's +21.7 ± 18.5). So
@@ -31,8 +32,8 @@
 //!   plane is invariant), and half the vectors. But a truncated torus' tangents miss the
 //!   flow by the balance's defect ([`tangent_defect`]), and every projection then removes a
 //!   little of the transverse motion the flow shears into the plane: on the medium bundled
-//!   brake (Box(11, 2)) the transverse exponent came out 35–180 1/s below the reference's,
-//!   and 6 unstable tori were called stable (docs/benchmarks.md). Kept for exact tori
+//!   brake (Box(11, 2)) the transverse exponent came out up to 181 1/s below the reference's (and up to 208 above),
+//!   and 5 unstable tori were called stable (docs/benchmarks.md). Kept for exact tori
 //!   (the tests' closed-form torus) and as the measured alternative; not the default.
 //!
 //! **Integration.** RK4 with the step of [`super::lyapunov`]: `h = T1/s`, `T1 = 2π/ω1`, `s` at
@@ -54,7 +55,9 @@
 //! ([`TorusStability`]): attracting when `λ̂_3 < -e_3`, unstable when `λ̂_3 > e_3`, otherwise
 //! not decided (near a bifurcation of the torus, where `λ_3` crosses zero, no finite run
 //! decides). Unlike [`super::lyapunov`]'s uncertainty, the tangent exponents' own
-//! finite-time error is not added: it is the error of a different direction.
+//! finite-time error is not added: it is the error of a different direction. RK4's own error
+//! is not in `e` either (on the tests' torus with constant radii `e` is ~1e-15 while RK4 at
+//! `h ≈ 0.2` errs by 1e-5): check it by halving the step.
 //!
 //! **What was weighed** (measured on the medium bundled brake: docs/benchmarks.md, "The tori's
 //! stability in `squeal branch`").
