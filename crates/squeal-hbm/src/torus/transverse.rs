@@ -27,14 +27,15 @@
 //!   linearized flow carries, so a torus that is only approximately invariant (a truncated
 //!   harmonic balance) costs nothing in accuracy beyond its own approximation.
 //! * *Projected*: only `k` vectors are integrated, and at every fast-period end they are
-//!   projected off the known plane `{T_1(θ), T_2(θ)}` (twice) before Gram–Schmidt. Exact for an
-//!   exact torus (the composed projections are the projection of the whole flow, as the
+//!   projected off the known plane `{T_1(θ), T_2(θ)}` (twice) before Gram–Schmidt. Exact in exact
+//!   arithmetic for an exact torus (the composed projections are the projection of the whole flow, as the
 //!   plane is invariant), and half the vectors. But a truncated torus' tangents miss the
 //!   flow by the balance's defect ([`tangent_defect`]), and every projection then removes a
 //!   little of the transverse motion the flow shears into the plane: on the medium bundled
-//!   brake (Box(11, 2)) the transverse exponent came out up to 181 1/s below the reference's (and up to 208 above),
-//!   and 5 unstable tori were called stable (docs/benchmarks.md). Kept for exact tori
-//!   (the tests' closed-form torus) and as the measured alternative; not the default.
+//!   brake (Box(11, 2)) the transverse exponent came out up to 181 1/s below the
+//!   reference's (and up to 208 above), and 5 unstable tori were called stable (docs/benchmarks.md). Kept
+//!   (measured: on the tests' closed-form attracting torus it still erred by 4.3e-3 with an
+//!   estimate of 4e-13) as the measured alternative; not the default.
 //!
 //! **Integration.** RK4 with the step of [`super::lyapunov`]: `h = T1/s`, `T1 = 2π/ω1`, `s` at
 //! least [`TransverseOptions::steps_per_period`] and enough for `h ρ ≤ 2`. Gram–Schmidt once
