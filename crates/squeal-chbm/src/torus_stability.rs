@@ -1,5 +1,6 @@
 //! The stability of the brake's tori (issue 24, item 1): their Lyapunov exponents
-//! ([`squeal_hbm::torus::lyapunov`]) from the linearized modal equations along the torus.
+//! ([`squeal_hbm::torus::lyapunov`], [`squeal_hbm::torus::transverse`]) from the linearized
+//! modal equations along the torus.
 //!
 //! The modal equations (eq 11 with the springs moved into the linear part) are
 //! `q̈ + D q̇ + Ω² q + Φ_nᵀ G(Φ_n q, Φ_n q̇) = Φᵀ F`; in the state `(q, q̇)` their Jacobian is
@@ -10,15 +11,42 @@
 //! `ẋ_n = Q_R ẏ(θ)`, with `y(θ)` and `ẏ(θ)` from the torus' Fourier series, and
 //! `Φ_nᵀ K Φ_n = (Φ_nᵀ Q_E)(Q_Eᵀ K Q_R)(Q_Rᵀ Φ_n)`: a product by `J` costs `O(n (q_R + q_E))`
 //! instead of `O(n²)`. The exponents come out in 1/s.
+//!
+//! **The small matrix per pair.** A pair's Jacobian terms
+//! ([`squeal_brake::model::ContactPair::jacobian_terms`]) are rank one in each block:
+//! `K_p = (∂F_n/∂δ g + ∂F_t/∂δ h) gᵀ` and
+//! `C_p = (∂F_n/∂δ' g + ∂F_t/∂δ' h) gᵀ + (∂F_n/∂v g + ∂F_t/∂v h) hᵀ` (`g`, `h` the pair's
+//! normal and tangential rows), and `K = Σ_p K_p - K_s`. With the pair's projections
+//! `Q_Eᵀ g`, `Q_Eᵀ h`, `Q_Rᵀ g`, `Q_Rᵀ h` computed once, `Q_Eᵀ K Q_R` at an angle costs a few
+//! `q_E q_R` products per pair instead of forming the `n_nl × n_nl` Jacobian and two matrix
+//! products: it is the same matrix to round-off (the test `the_fast_jacobian_is_the_dense_one`
+//! in tests/multi.rs).
+//!
+//! **The torus' tangent directions** ([`squeal_hbm::torus::transverse::TorusTangents`]): the
+//! modal motion on the torus is `q(θ) = Re Σ_e q_e e^{i k_e·θ}`
+//! ([`crate::torus::modal_harmonics`], the torus analogue of eq 35), so
+//! `∂q/∂θ_i = Re Σ_e i k_{e,i} q_e e^{i k_e·θ}` and
+//! `∂q̇/∂θ_i = Re Σ_e (i k_{e,i})(i w_e) q_e e^{i k_e·θ}`, `w_e = k_e·ω`, in closed form.
 
-use crate::torus::TorusPoint;
-use faer::Mat;
+use crate::torus::{TorusPoint, modal_harmonics};
+use faer::{Mat, c64};
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_hbm::HbmError;
-use squeal_hbm::torus::TorusBasis;
 use squeal_hbm::torus::lyapunov::{
     LyapunovOptions, LyapunovSpectrum, TorusVariational, lyapunov_exponents,
 };
+use squeal_hbm::torus::transverse::{
+    TorusTangents, TransverseOptions, TransverseSpectrum, transverse_exponents,
+};
+use squeal_hbm::torus::{TorusBasis, Truncation};
+
+/// One pair's projections: `Q_Eᵀ g`, `Q_Eᵀ h` (`q_E` each), `Q_Rᵀ g`, `Q_Rᵀ h` (`q_R` each).
+struct PairProjection {
+    ge: Vec<f64>,
+    he: Vec<f64>,
+    gr: Vec<f64>,
+    hr: Vec<f64>,
+}
 
 /// The brake's modal equations linearized along a torus (module docs).
 pub struct BrakeVariational {
@@ -26,14 +54,37 @@ pub struct BrakeVariational {
     basis: TorusBasis,
     coeffs: Vec<f64>,
     omega: [f64; 2],
-    qr: Mat<f64>,
-    qe: Mat<f64>,
-    /// `Q_Rᵀ Φ_n` (`q_R × n`) and `Φ_nᵀ Q_E` (`n × q_E`).
-    pr: Mat<f64>,
-    pe: Mat<f64>,
-    /// `Q_Eᵀ K Q_R` and `Q_Eᵀ C Q_R` at the current angles.
-    k: Mat<f64>,
-    c: Option<Mat<f64>>,
+    /// `Q_R` row-major (`n_nl × q_R`).
+    qr: Vec<f64>,
+    /// `Q_Rᵀ Φ_n` row-major (`q_R × n`) and `Φ_nᵀ Q_E` row-major (`n × q_E`).
+    pr: Vec<f64>,
+    pe: Vec<f64>,
+    pairs: Vec<PairProjection>,
+    /// `Q_Eᵀ K_s Q_R` row-major.
+    spring: Vec<f64>,
+    /// `Q_Eᵀ K Q_R` and `Q_Eᵀ C Q_R` at the current angles, row-major (`q_E × q_R`).
+    k: Vec<f64>,
+    c: Option<Vec<f64>>,
+    ne: usize,
+    nr: usize,
+    /// Work: `x_n`, `ẋ_n`, `y`, `ẏ`.
+    x: Vec<f64>,
+    v: Vec<f64>,
+    y: Vec<f64>,
+    ydot: Vec<f64>,
+}
+
+fn row_major(m: &Mat<f64>) -> Vec<f64> {
+    (0..m.nrows())
+        .flat_map(|i| (0..m.ncols()).map(move |j| m[(i, j)]))
+        .collect()
+}
+
+/// `Qᵀ s` for a sparse row `s` of the nonlinear dofs.
+fn project(q: &Mat<f64>, s: &[(usize, f64)]) -> Vec<f64> {
+    (0..q.ncols())
+        .map(|k| s.iter().map(|&(i, a)| a * q[(i, k)]).sum())
+        .collect()
 }
 
 impl BrakeVariational {
@@ -48,41 +99,69 @@ impl BrakeVariational {
                 "the torus' basis does not match the brake's reduced contact coordinates",
             ));
         }
-        let pr = qr.transpose() * &mb.phi_n;
-        let pe = mb.phi_n.transpose() * &qe;
-        let (ne, nr) = (qe.ncols(), qr.ncols());
+        let (ne, nr, nn) = (qe.ncols(), qr.ncols(), qr.nrows());
+        let pairs = mb
+            .pairs
+            .iter()
+            .map(|p| PairProjection {
+                ge: project(&qe, &p.normal),
+                he: project(&qe, &p.tangent),
+                gr: project(&qr, &p.normal),
+                hr: project(&qr, &p.tangent),
+            })
+            .collect();
+        let spring = row_major(&(qe.transpose() * &mb.k_s * &qr));
+        let c = mb.velocity_dependent().then(|| vec![0.0; ne * nr]);
         Ok(Self {
             basis: basis.clone(),
             coeffs: point.coeffs.clone(),
             omega: point.omega,
-            k: Mat::zeros(ne, nr),
-            c: None,
+            pr: row_major(&(qr.transpose() * &mb.phi_n)),
+            pe: row_major(&(mb.phi_n.transpose() * &qe)),
+            qr: row_major(&qr),
+            pairs,
+            spring,
+            k: vec![0.0; ne * nr],
+            c,
+            ne,
+            nr,
+            x: vec![0.0; nn],
+            v: vec![0.0; nn],
+            y: vec![0.0; nr],
+            ydot: vec![0.0; nr],
             mb,
-            qr,
-            qe,
-            pr,
-            pe,
         })
     }
 
-    fn lift(&self, y: &[f64]) -> Vec<f64> {
-        (0..self.qr.nrows())
-            .map(|i| (0..y.len()).map(|k| self.qr[(i, k)] * y[k]).sum())
-            .collect()
-    }
-
-    /// `out -= Φ_nᵀ Q_E m Q_Rᵀ Φ_n v`.
-    fn subtract_coupling(&self, m: &Mat<f64>, v: &[f64], out: &mut [f64]) {
-        let n = v.len();
-        let a: Vec<f64> = (0..self.pr.nrows())
-            .map(|r| (0..n).map(|j| self.pr[(r, j)] * v[j]).sum())
-            .collect();
-        let b: Vec<f64> = (0..m.nrows())
-            .map(|e| (0..a.len()).map(|r| m[(e, r)] * a[r]).sum())
-            .collect();
-        for (j, o) in out.iter_mut().enumerate() {
-            *o -= (0..b.len()).map(|e| self.pe[(j, e)] * b[e]).sum::<f64>();
+    /// `out = Q_R y`.
+    fn lift(qr: &[f64], nr: usize, y: &[f64], out: &mut [f64]) {
+        for (o, row) in out.iter_mut().zip(qr.chunks_exact(nr)) {
+            *o = row.iter().zip(y).map(|(a, b)| a * b).sum();
         }
+    }
+}
+
+/// Work vectors up to this length live on the stack in [`BrakeVariational`]'s products.
+const SMALL: usize = 64;
+
+/// A zeroed work slice of length `len`: `stack`'s head when it fits, else `heap`.
+fn work<'a>(stack: &'a mut [f64; SMALL], heap: &'a mut Vec<f64>, len: usize) -> &'a mut [f64] {
+    if len <= SMALL {
+        &mut stack[..len]
+    } else {
+        heap.resize(len, 0.0);
+        heap
+    }
+}
+
+/// `m += a bᵀ` (`m` row-major, `a.len()` rows).
+fn add_outer(m: &mut [f64], s: f64, a: &[f64], b: &[f64]) {
+    if s == 0.0 {
+        return;
+    }
+    for (row, ai) in m.chunks_exact_mut(b.len()).zip(a) {
+        let f = s * ai;
+        row.iter_mut().zip(b).for_each(|(r, bj)| *r += f * bj);
     }
 }
 
@@ -92,20 +171,37 @@ impl TorusVariational for BrakeVariational {
     }
 
     fn set_angles(&mut self, theta: [f64; 2]) -> Result<(), HbmError> {
-        let nr = self.basis.n_dofs();
-        let (mut y, mut ydot) = (vec![0.0; nr], vec![0.0; nr]);
-        self.basis.displacement_at(&self.coeffs, theta, &mut y)?;
-        let x = self.lift(&y);
-        let v = if self.mb.velocity_dependent() {
+        let nr = self.nr;
+        self.basis
+            .displacement_at(&self.coeffs, theta, &mut self.y)?;
+        Self::lift(&self.qr, nr, &self.y, &mut self.x);
+        let velocity = self.c.is_some();
+        if velocity {
             self.basis
-                .velocity_at(&self.coeffs, self.omega, theta, &mut ydot)?;
-            Some(self.lift(&ydot))
-        } else {
-            None
-        };
-        let (kx, kv) = self.mb.reduced_jacobians(&x, v.as_deref());
-        self.k = self.qe.transpose() * &kx * &self.qr;
-        self.c = kv.map(|m| self.qe.transpose() * &m * &self.qr);
+                .velocity_at(&self.coeffs, self.omega, theta, &mut self.ydot)?;
+            Self::lift(&self.qr, nr, &self.ydot, &mut self.v);
+        }
+        self.k
+            .iter_mut()
+            .zip(&self.spring)
+            .for_each(|(k, s)| *k = -s);
+        if let Some(c) = self.c.as_mut() {
+            c.fill(0.0);
+        }
+        for (p, pp) in self.mb.pairs.iter().zip(&self.pairs) {
+            let kin = p.kinematics(&self.x, velocity.then_some(self.v.as_slice()));
+            let r = p.law.response(self.mb.mu, &kin);
+            let [n_d, n_r, n_v] = r.normal_derivatives;
+            let [t_d, t_r, t_v] = r.tangential_derivatives;
+            add_outer(&mut self.k, n_d, &pp.ge, &pp.gr);
+            add_outer(&mut self.k, t_d, &pp.he, &pp.gr);
+            if let Some(c) = self.c.as_mut() {
+                add_outer(c, n_r, &pp.ge, &pp.gr);
+                add_outer(c, t_r, &pp.he, &pp.gr);
+                add_outer(c, n_v, &pp.ge, &pp.hr);
+                add_outer(c, t_v, &pp.he, &pp.hr);
+            }
+        }
         Ok(())
     }
 
@@ -118,14 +214,107 @@ impl TorusVariational for BrakeVariational {
         for j in 0..n {
             ov[j] = -ov[j] - self.mb.omega[j] * self.mb.omega[j] * q[j];
         }
-        self.subtract_coupling(&self.k, q, ov);
+        // b = K_r (Q_Rᵀ Φ_n q) + C_r (Q_Rᵀ Φ_n q̇); out -= (Φ_nᵀ Q_E) b.
+        let (ne, nr) = (self.ne, self.nr);
+        let dot = |row: &[f64], x: &[f64]| row.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
+        // Small work vectors on the stack (the brake's q_E, q_R are tens), else on the heap.
+        let (mut sb, mut sa) = ([0.0; SMALL], [0.0; SMALL]);
+        let (mut hb, mut ha) = (Vec::new(), Vec::new());
+        let b = work(&mut sb, &mut hb, ne);
+        let a = work(&mut sa, &mut ha, nr);
+        for (ai, r) in a.iter_mut().zip(self.pr.chunks_exact(n)) {
+            *ai = dot(r, q);
+        }
+        for (bi, row) in b.iter_mut().zip(self.k.chunks_exact(nr)) {
+            *bi = dot(row, a);
+        }
         if let Some(c) = &self.c {
-            self.subtract_coupling(c, qd, ov);
+            for (ai, r) in a.iter_mut().zip(self.pr.chunks_exact(n)) {
+                *ai = dot(r, qd);
+            }
+            for (bi, row) in b.iter_mut().zip(c.chunks_exact(nr)) {
+                *bi += dot(row, a);
+            }
+        }
+        for (o, row) in ov.iter_mut().zip(self.pe.chunks_exact(ne)) {
+            *o -= dot(row, b);
         }
     }
 }
 
-/// The Lyapunov exponents of the torus `point` (on `basis`) of `mb`'s brake, in 1/s.
+/// [`BrakeVariational`] with the torus' tangent directions in closed form (module docs).
+pub struct BrakeTangentFlow {
+    flow: BrakeVariational,
+    /// Each Fourier element's wave numbers, frequency and modal amplitudes.
+    waves: Vec<([i64; 2], f64, Vec<c64>)>,
+}
+
+impl BrakeTangentFlow {
+    /// The linearization along the torus `point` on `basis` (AFT grid `grid`, `None`: the
+    /// basis' default) of `mb`'s brake, with the modal amplitudes of every Fourier element.
+    pub fn new(
+        mb: &ModalBrake,
+        basis: &TorusBasis,
+        grid: Option<[usize; 2]>,
+        point: &TorusPoint,
+    ) -> Result<Self, HbmError> {
+        let flow = BrakeVariational::new(mb, basis, point)?;
+        let truncation: Truncation = basis.truncation();
+        let (b, q) = modal_harmonics(&flow.mb, truncation, grid, &point.coeffs, point.omega)?;
+        let waves = q
+            .into_iter()
+            .enumerate()
+            .map(|(e, qe)| (b.wave(e), b.frequency(e, point.omega), qe))
+            .collect();
+        Ok(Self { flow, waves })
+    }
+}
+
+impl TorusVariational for BrakeTangentFlow {
+    fn dim(&self) -> usize {
+        self.flow.dim()
+    }
+
+    fn set_angles(&mut self, theta: [f64; 2]) -> Result<(), HbmError> {
+        self.flow.set_angles(theta)
+    }
+
+    fn apply(&self, v: &[f64], out: &mut [f64]) {
+        self.flow.apply(v, out)
+    }
+}
+
+impl TorusTangents for BrakeTangentFlow {
+    fn tangents(&self, theta: [f64; 2], t1: &mut [f64], t2: &mut [f64]) -> Result<(), HbmError> {
+        let n = self.flow.mb.modes();
+        HbmError::check_dimension("tangent direction", 2 * n, t1.len())?;
+        HbmError::check_dimension("tangent direction", 2 * n, t2.len())?;
+        t1.fill(0.0);
+        t2.fill(0.0);
+        for (k, w, q) in &self.waves {
+            let phase = k[0] as f64 * theta[0] + k[1] as f64 * theta[1];
+            let (s, c) = phase.sin_cos();
+            let rot = c64::new(c, s);
+            for (i, t) in [(0, &mut *t1), (1, &mut *t2)] {
+                let ki = k[i] as f64;
+                if ki == 0.0 {
+                    continue;
+                }
+                // ∂/∂θ_i of Re(q e^{iφ}) = Re(i k_i q e^{iφ}); of the velocity Re(-k_i w q e^{iφ}).
+                for j in 0..n {
+                    let z = q[j] * rot;
+                    t[j] += -ki * z.im;
+                    t[n + j] += -ki * w * z.re;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The Lyapunov exponents of the torus `point` (on `basis`) of `mb`'s brake, in 1/s, by the
+/// standard method ([`squeal_hbm::torus::lyapunov`]: every exponent integrated, the tangent
+/// ones included): what `squeal branch` uses.
 pub fn torus_lyapunov(
     mb: &ModalBrake,
     basis: &TorusBasis,
@@ -134,4 +323,19 @@ pub fn torus_lyapunov(
 ) -> Result<LyapunovSpectrum, HbmError> {
     let mut sys = BrakeVariational::new(mb, basis, point)?;
     lyapunov_exponents(&mut sys, point.omega, opts)
+}
+
+/// The largest transverse Lyapunov exponents of the torus `point` (on `basis`, AFT grid
+/// `grid`) of `mb`'s brake, in 1/s, with the torus' tangent directions known
+/// ([`squeal_hbm::torus::transverse`]). Not what `squeal branch` uses: on the medium brake its
+/// short records misjudged tori (docs/benchmarks.md); `squeal branch` uses [`torus_lyapunov`].
+pub fn torus_transverse(
+    mb: &ModalBrake,
+    basis: &TorusBasis,
+    grid: Option<[usize; 2]>,
+    point: &TorusPoint,
+    opts: &TransverseOptions,
+) -> Result<TransverseSpectrum, HbmError> {
+    let mut sys = BrakeTangentFlow::new(mb, basis, grid, point)?;
+    transverse_exponents(&mut sys, point.omega, opts)
 }

@@ -428,3 +428,71 @@ fn coupled_oscillators_settle_on_the_two_mode_torus() {
     assert!(rel(tc.bdf_envelope.swing_min, tc.torus_envelope.swing_min) < 0.01);
     assert!(rel(tc.bdf_envelope.swing_max, tc.torus_envelope.swing_max) < 0.01);
 }
+
+/// The fast linearization of `torus_stability` (the pairs' rank-one terms projected once) is
+/// the dense one, `J = [[0, I], [-Ω² - Φ_nᵀ K Φ_n, -D - Φ_nᵀ C Φ_n]]` with `K`, `C` from
+/// `reduced_jacobians` at `x_n = Φ_n q(θ)` (the torus' modal state).
+#[test]
+fn the_fast_jacobian_is_the_dense_one() {
+    use squeal_chbm::torus::modal_state;
+    use squeal_chbm::torus_stability::BrakeVariational;
+    use squeal_hbm::torus::lyapunov::TorusVariational;
+    let (_, mb, _, t, _, _) = two_mode(1.0e4, 1.03, Truncation::Box(5, 5));
+    let mut mbp = mb.clone();
+    mbp.mu = t.point.mu;
+    let mut fast = BrakeVariational::new(&mb, &t.basis, &t.point).unwrap();
+    let n = mb.modes();
+    let v: Vec<f64> = (0..2 * n)
+        .map(|i| ((i * 37 % 11) as f64 - 5.0) * 0.1)
+        .collect();
+    let (mut a, mut b) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
+    for theta in [[0.0, 0.0], [0.7, 2.1], [4.0, 5.5]] {
+        fast.set_angles(theta).unwrap();
+        fast.apply(&v, &mut a);
+        let s = modal_state(
+            &mbp,
+            t.basis.truncation(),
+            Some(t.grid),
+            &t.point.coeffs,
+            t.point.omega,
+            theta,
+        )
+        .unwrap();
+        let (mut x, mut xd) = (vec![0.0; mb.nl()], vec![0.0; mb.nl()]);
+        mb.nonlinear_part(&s[..n], &mut x);
+        mb.nonlinear_part(&s[n..], &mut xd);
+        let vel = mb.velocity_dependent().then_some(xd.as_slice());
+        let (kx, kv) = mbp.reduced_jacobians(&x, vel);
+        let (mut xq, mut xv) = (vec![0.0; mb.nl()], vec![0.0; mb.nl()]);
+        mb.nonlinear_part(&v[..n], &mut xq);
+        mb.nonlinear_part(&v[n..], &mut xv);
+        let mut g: Vec<f64> = (0..mb.nl())
+            .map(|i| (0..mb.nl()).map(|j| kx[(i, j)] * xq[j]).sum())
+            .collect();
+        if let Some(kv) = &kv {
+            for (i, gi) in g.iter_mut().enumerate() {
+                *gi += (0..mb.nl()).map(|j| kv[(i, j)] * xv[j]).sum::<f64>();
+            }
+        }
+        let mut dv = vec![0.0; n];
+        mb.damping.apply(&v[n..], &mut dv);
+        for j in 0..n {
+            b[j] = v[n + j];
+            let phig: f64 = (0..mb.nl()).map(|i| mb.phi_n[(i, j)] * g[i]).sum();
+            b[n + j] = -dv[j] - mb.omega[j] * mb.omega[j] * v[j] - phig;
+        }
+        // The torus' modal state meets Q_Rᵀ x_n = y to Newton's tolerance (~1e-9 scaled): the
+        // Jacobians agree to that, far below 1e-6 of |J v|.
+        let scale = b.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let diff = a
+            .iter()
+            .zip(&b)
+            .map(|(x, y)| (x - y).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        assert!(
+            diff < 1e-6 * scale,
+            "theta {theta:?}: |fast - dense| {diff:.2e} of {scale:.2e}"
+        );
+    }
+}

@@ -11,7 +11,15 @@
 //! With `pipeline=1` it times instead what `squeal branch` computes (without the sound
 //! levels and files): `branch::analyse` (the branch with Hill's multipliers) and
 //! `branch_torus::follow` with the default plan (every Neimark–Sacker point's torus branch,
-//! each torus' Lyapunov exponents), and prints each torus' verdict.
+//! each torus' Lyapunov exponents), and prints each torus' verdict. Options: `spp=N`,
+//! `periods=N`, `transient=N` (the exponents' fewest RK4 steps per fast period, counted and
+//! dropped fast periods; default 32, 200, 20), and `compare=1`: each torus' exponents also by
+//! the standard method with the reference's controls (twice the steps and four times the
+//! record: 64 steps per period, 800 periods after 80) and by the transverse method
+//! ([`squeal_chbm::torus_stability::torus_transverse`]; `carry=0|1`, `ttransient=N`,
+//! `max=N`, `min=N`, `margin=X`, `vectors=N` its controls), the tangent defect of the torus,
+//! and the differences (`noref=1`: the standard method's own record stands in for the
+//! reference).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -35,6 +43,13 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
     use squeal_pipeline::branch_torus::{self, TorusPlan};
     let (m, st) = (p.model().unwrap(), p.stability().unwrap());
     let opts = BranchOptions::default();
+    let mut plan = TorusPlan::default();
+    if let Some(lo) = plan.lyapunov.as_mut() {
+        let num = |name: &str, d: usize| arg(name).map_or(d, |s| s.parse().unwrap());
+        lo.steps_per_period = num("spp", lo.steps_per_period);
+        lo.periods = num("periods", lo.periods);
+        lo.transient = num("transient", lo.transient);
+    }
     let t0 = Instant::now();
     let a = branch::analyse(m, st, &opts, &Hill::default(), &[], &quiet)
         .unwrap()
@@ -42,7 +57,7 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
     let t_branch = t0.elapsed().as_secs_f64();
     let t1 = Instant::now();
     let log = |s: &str| eprintln!("{s}");
-    let tori = branch_torus::follow(m, st, &a, &opts, &TorusPlan::default(), &log);
+    let tori = branch_torus::follow(m, st, &a, &opts, &plan, &log);
     let t_tori = t1.elapsed().as_secs_f64();
     println!(
         "{level} brake as squeal branch: branch with Hill {t_branch:.2} s, {} torus branches with Lyapunov exponents {t_tori:.2} s, whole {:.2} s",
@@ -50,9 +65,9 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
         t_branch + t_tori
     );
     println!(
-        "| NS (mu0) | mu/mu0 | f1 (Hz) | f2 (Hz) | swing min..max (um) | exponents (1/s) | transverse +- error (1/s) | stability |"
+        "| NS (mu0) | mu/mu0 | f1 (Hz) | f2 (Hz) | swing min..max (um) | exponents (1/s) | largest across +- error (1/s) | RK4 steps | stability |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|");
     for run in &tori {
         match &run.result {
             Err(e) => println!("| {:.5} | failed: {e} |||||||", run.ns.parameter / a.mu0()),
@@ -73,7 +88,7 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
                         .collect::<Vec<_>>()
                         .join(", "),
                     format!("{:.2} +- {:.2}", s.transverse(), s.uncertainty()),
-                    s.stability().to_string(),
+                    format!("{} | {}", s.steps, s.stability()),
                 ),
                 Err(e) => (String::new(), String::new(), e.clone()),
             };
@@ -88,6 +103,115 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
             );
         }
     }
+    if arg("compare").is_some() {
+        compare(m, st, a.mu0(), &tori);
+    }
+}
+
+/// Each torus' exponents by the standard method, today's controls and the reference's, against
+/// the transverse exponents (module docs).
+fn compare(
+    m: &squeal_pipeline::model::Model,
+    st: &squeal_brake::analysis::LinearStability,
+    mu0: f64,
+    tori: &[squeal_pipeline::branch_torus::TorusRun],
+) {
+    use squeal_chbm::torus_stability::torus_lyapunov;
+    use squeal_hbm::torus::lyapunov::LyapunovOptions;
+    let mb = ModalBrake::new(&m.brake, &st.reference, mu0);
+    use squeal_hbm::torus::transverse::TransverseOptions;
+    let mut topts = TransverseOptions::default();
+    {
+        let num = |name: &str, d: usize| arg(name).map_or(d, |s| s.parse().unwrap());
+        topts.max_periods = num("max", topts.max_periods);
+        topts.exponents = num("vectors", topts.exponents);
+        topts.transient = num("ttransient", topts.transient);
+        topts.min_periods = num("min", topts.min_periods);
+        topts.margin = arg("margin").map_or(topts.margin, |s| s.parse().unwrap());
+        if let Some(c) = arg("carry") {
+            topts.carry_tangents = c == "1";
+        }
+    }
+    let reference = LyapunovOptions {
+        exponents: 4,
+        periods: 800,
+        transient: 80,
+        steps_per_period: 64,
+        max_rate: None,
+    };
+    println!(
+        "| mu/mu0 | transverse method: largest +- error | standard (4 exponents, 200 periods) | reference (64 steps/period, 800 periods) | new - reference | today - reference | verdicts new / today / reference |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    let (mut worst, mut agree, mut n, mut t_today, mut t_ref) = (0.0f64, 0, 0, 0.0, 0.0);
+    for run in tori {
+        let Ok(b) = &run.result else { continue };
+        for (p, s) in run.points() {
+            let Ok(td) = s else { continue };
+            let s = squeal_chbm::torus_stability::torus_transverse(
+                &mb,
+                &b.basis,
+                Some(b.grid),
+                p,
+                &topts,
+            )
+            .unwrap();
+            let mut flow =
+                squeal_chbm::torus_stability::BrakeTangentFlow::new(&mb, &b.basis, Some(b.grid), p)
+                    .unwrap();
+            let defect: Vec<String> = [[0.0, 0.0], [1.0, 2.0], [2.5, 4.0]]
+                .iter()
+                .map(|&th| {
+                    let d = squeal_hbm::torus::transverse::tangent_defect(&mut flow, p.omega, th)
+                        .unwrap();
+                    format!("{:.1}/{:.1}", d[0], d[1])
+                })
+                .collect();
+            eprintln!(
+                "{:.5} mu0: tangent defect |dT/dt - J T|/|T| (1/s) at 3 angles: {}",
+                p.mu / mu0,
+                defect.join(", ")
+            );
+            t_today += run.stability_time.as_secs_f64() / run.stability.len().max(1) as f64;
+            let t = Instant::now();
+            let rf = if arg("noref").is_some() {
+                td.clone()
+            } else {
+                torus_lyapunov(&mb, &b.basis, p, &reference).unwrap()
+            };
+            t_ref += t.elapsed().as_secs_f64();
+            let d = s.transverse() - rf.transverse();
+            worst = worst.max(d.abs() / (s.uncertainty() + rf.uncertainty()));
+            n += 1;
+            if s.stability() == rf.stability() {
+                agree += 1;
+            }
+            println!(
+                "| {:.5} | {:.2} +- {:.2} ({} periods) | {:.2} +- {:.2} | {:.2} +- {:.2} (exponents {}) | {:.2} | {:.2} | {} / {} / {} |",
+                p.mu / mu0,
+                s.transverse(),
+                s.uncertainty(),
+                s.periods,
+                td.transverse(),
+                td.uncertainty(),
+                rf.transverse(),
+                rf.uncertainty(),
+                rf.exponents
+                    .iter()
+                    .map(|x| format!("{x:.2}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                d,
+                td.transverse() - rf.transverse(),
+                s.stability(),
+                td.stability(),
+                rf.stability()
+            );
+        }
+    }
+    println!(
+        "{n} tori: verdicts new = reference on {agree}; largest |new - reference| / (error new + error reference) = {worst:.3}; today's method {t_today:.2} s, reference {t_ref:.2} s"
+    );
 }
 
 fn main() {

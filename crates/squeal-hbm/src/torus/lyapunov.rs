@@ -176,7 +176,7 @@ impl LyapunovSpectrum {
 
 /// The spectral radius of `J` at the current angles: `(|J^m v| / |v|)^(1/m)` for `m` products,
 /// which tends to it from any start with a component along the dominant eigenvectors.
-fn spectral_radius<S: TorusVariational>(sys: &S) -> f64 {
+pub(super) fn spectral_radius<S: TorusVariational>(sys: &S) -> f64 {
     let n = sys.dim();
     // A fixed start with every component nonzero (results do not depend on any seed).
     let mut v: Vec<f64> = (0..n)
@@ -199,7 +199,7 @@ fn spectral_radius<S: TorusVariational>(sys: &S) -> f64 {
 }
 
 /// Scales `v` to unit length; its old length.
-fn normalize(v: &mut [f64]) -> f64 {
+pub(super) fn normalize(v: &mut [f64]) -> f64 {
     let g = v.iter().map(|x| x * x).sum::<f64>().sqrt();
     if g > 0.0 {
         v.iter_mut().for_each(|x| *x /= g);
@@ -223,7 +223,7 @@ fn orthonormalize(v: &mut [f64], n: usize, logs: &mut [f64]) {
 }
 
 /// `out = J v` column by column.
-fn apply_all<S: TorusVariational>(sys: &S, v: &[f64], out: &mut [f64], n: usize) {
+pub(super) fn apply_all<S: TorusVariational>(sys: &S, v: &[f64], out: &mut [f64], n: usize) {
     for (vc, oc) in v.chunks_exact(n).zip(out.chunks_exact_mut(n)) {
         sys.apply(vc, oc);
     }
@@ -291,9 +291,9 @@ pub fn lyapunov_exponents<S: TorusVariational>(
         [omega[0] * t, omega[1] * t]
     };
     for s in 0..total {
-        if s > 0 {
-            sys.set_angles(theta(s, 0.0))?;
-        }
+        // The angles at the step's start are set: θ = 0 before the first step, the last
+        // step's end `theta(s - 1, 1.0)` after (the same bits as `theta(s, 0.0)`: integer
+        // plus 1.0 is exact).
         apply_all(sys, &v, &mut k1, n);
         sys.set_angles(theta(s, 0.5))?;
         axpy(&v, 0.5 * h, &k1, &mut tmp);
@@ -339,7 +339,7 @@ pub fn lyapunov_exponents<S: TorusVariational>(
 }
 
 /// `out = v + a x`.
-fn axpy(v: &[f64], a: f64, x: &[f64], out: &mut [f64]) {
+pub(super) fn axpy(v: &[f64], a: f64, x: &[f64], out: &mut [f64]) {
     for ((o, vi), xi) in out.iter_mut().zip(v).zip(x) {
         *o = vi + a * xi;
     }

@@ -20,6 +20,8 @@
 //!   Floquet vector (computed here from the same equations, by inverse iteration on the
 //!   modulation's block of the Jacobian: Hill's matrix in real form).
 //! * [`lyapunov`]: the torus' stability from its Lyapunov exponents along the known flow.
+//! * [`transverse`]: the same, the torus' own (tangent) directions known, only the transverse
+//!   exponents integrated, for as long as the verdict needs (what `squeal branch` uses).
 //! * [`measure`]: the amplitude envelope and the spectral peaks, measured alike on a torus'
 //!   signal and on a time integration.
 //!
@@ -40,6 +42,7 @@ mod linear;
 pub mod lyapunov;
 pub mod measure;
 mod start;
+pub mod transverse;
 
 pub use aft::{TorusAft, default_grid};
 pub use balance::{TorusBalance, TorusFamily, TorusPhase, TorusScales};
