@@ -37,8 +37,12 @@ use crate::equilibrium::{NewtonOptions, static_equilibrium};
 use crate::error::BrakeError;
 use crate::modal::{ModalBasis, modal_basis};
 use crate::model::Brake;
-use faer::Mat;
+use crate::partial_modes;
 use faer::linalg::solvers::Solve;
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::{Mat, Par};
 
 /// The system vectors of a brake, computed once.
 #[derive(Clone, Debug)]
@@ -52,36 +56,64 @@ pub struct SystemVectors {
 }
 
 /// The system vectors of `brake`, with friction residual vectors for its modes up to
-/// `residuals_to_hz` (the band's top).
+/// `residuals_to_hz` (the band's top), and every real mode (the whole dense decomposition).
 pub fn system_vectors(
     brake: &Brake,
     newton: &NewtonOptions,
     residuals_to_hz: f64,
 ) -> Result<SystemVectors, BrakeError> {
+    system_vectors_to(brake, newton, residuals_to_hz, f64::INFINITY)
+}
+
+/// As [`system_vectors`], with the real modes up to `modes_to_hz` at least (and up to
+/// `residuals_to_hz`): the lowest ones by the partial solve of [`crate::partial_modes`] (its
+/// Cholesky factor of `K_t0` serving the residuals' solves too) when its flop count is below
+/// half the whole decomposition's, else all of them as [`system_vectors`] computes them (the
+/// same bits). [`SystemVectors::complete`] says which.
+pub fn system_vectors_to(
+    brake: &Brake,
+    newton: &NewtonOptions,
+    residuals_to_hz: f64,
+    modes_to_hz: f64,
+) -> Result<SystemVectors, BrakeError> {
     let n = brake.size();
     let eq = static_equilibrium(brake, 0.0, None, newton)?;
     let kt0 = brake.tangent_stiffness(&eq.x, 0.0);
     let kt0 = Mat::from_fn(n, n, |i, j| 0.5 * (kt0[(i, j)] + kt0[(j, i)]));
-    let modes = modal_basis(&brake.m, &kt0)?;
+    let tau = std::f64::consts::TAU;
+    let to_hz = modes_to_hz.max(residuals_to_hz);
+    let partial = if to_hz.is_finite() {
+        let count = partial_modes::count_below(&kt0, &brake.m, (tau * to_hz).powi(2));
+        let cheaper = 2.0 * partial_modes::partial_flops(n, count) < partial_modes::dense_flops(n);
+        match (cheaper, partial_modes::cholesky(&kt0)) {
+            (true, Some(l)) => partial_modes::lowest_modes(&brake.m, &kt0, &l, count)?
+                .map(|modes| (modes, l)),
+            _ => None,
+        }
+    } else {
+        None
+    };
+    let (modes, solver) = match partial {
+        Some((modes, l)) => (modes, Factor::Cholesky(l)),
+        None => (modal_basis(&brake.m, &kt0)?, Factor::Lu(kt0.partial_piv_lu())),
+    };
     // K_f = ∂F_nl/∂x at μ = 1 less at μ = 0: the friction part of eq (19).
     let (j1, _) = brake.nonlinear_jacobian(&eq.x, 1.0, false);
     let (j0, _) = brake.nonlinear_jacobian(&eq.x, 0.0, false);
     let kf = &j1 - &j0;
-    let tau = std::f64::consts::TAU;
     let r = modes
         .omega
         .iter()
         .filter(|w| **w / tau <= residuals_to_hz)
         .count();
     let phi = Mat::from_fn(n, r, |i, j| modes.phi[(i, j)]);
-    let lu = kt0.partial_piv_lu();
-    let residuals = lu.solve(&(&kf * &phi));
+    let residuals = solver.solve(&(&kf * &phi));
     // Σ F_n h at x_0: the nonlinear force at μ = 1 less at μ = 0.
     let (mut f1, mut f0) = (vec![0.0; n], vec![0.0; n]);
     brake.add_nonlinear_force(&eq.x, None, 1.0, &mut f1);
     brake.add_nonlinear_force(&eq.x, None, 0.0, &mut f0);
     let ft = Mat::from_fn(n, 1, |i, _| f0[i] - f1[i]);
-    let dx = lu.solve(&ft);
+    let dx = solver.solve(&ft);
     let finite = |a: &Mat<f64>| (0..a.ncols()).all(|j| (0..n).all(|i| a[(i, j)].is_finite()));
     if !finite(&residuals) || !finite(&dx) {
         return Err(BrakeError::StiffnessNotPositive);
@@ -93,7 +125,36 @@ pub fn system_vectors(
     })
 }
 
+/// The factorization of `K_t0` the residual and static vectors are solved with.
+enum Factor {
+    /// The partial solve's `L` (`K_t0 = L Lᵀ`).
+    Cholesky(Mat<f64>),
+    /// The whole decomposition's path: a partial-pivoting LU.
+    Lu(faer::linalg::solvers::PartialPivLu<f64>),
+}
+
+impl Factor {
+    /// `K_t0⁻¹ b`.
+    fn solve(&self, b: &Mat<f64>) -> Mat<f64> {
+        match self {
+            Factor::Cholesky(l) => {
+                let mut x = b.clone();
+                solve_lower_triangular_in_place(l.as_ref(), x.as_mut(), Par::Seq);
+                solve_upper_triangular_in_place(l.transpose(), x.as_mut(), Par::Seq);
+                x
+            }
+            Factor::Lu(lu) => lu.solve(b),
+        }
+    }
+}
+
 impl SystemVectors {
+    /// Whether [`Self::modes`] holds every real mode of the brake (the whole decomposition),
+    /// not only the lowest ones.
+    pub fn complete(&self) -> bool {
+        self.modes.phi.ncols() == self.modes.phi.nrows()
+    }
+
     /// The columns `[φ_1 … φ_modes, r_1 … r_residuals, x_0, dx/dμ]` (`n × (modes + residuals
     /// + 2)`, `modes` and `residuals` at most as many as there are).
     pub fn columns(&self, modes: usize, residuals: usize) -> Mat<f64> {

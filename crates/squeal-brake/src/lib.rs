@@ -48,6 +48,7 @@ pub mod linearized;
 pub mod modal;
 pub mod modal_brake;
 pub mod model;
+pub mod partial_modes;
 pub mod participation;
 pub mod projected;
 pub mod sensitivity;

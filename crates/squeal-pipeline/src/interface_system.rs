@@ -21,7 +21,7 @@
 use crate::error::Result;
 use crate::interface::{Candidate, Head, at_count, fixed};
 use crate::model::{Log, Model};
-use squeal_brake::interface_system::{SystemVectors, system_vectors};
+use squeal_brake::interface_system::{SystemVectors, system_vectors, system_vectors_to};
 use squeal_reduce::interface_modes::{InterfaceModes, face_basis, face_dofs};
 use squeal_scene::Scene;
 use squeal_scene::reduction::InterfaceModeCount;
@@ -33,10 +33,22 @@ pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -
     let top = band_top(&model);
     let tau = std::f64::consts::TAU;
     let below = |v: &SystemVectors, f: f64| v.modes.omega.iter().filter(|w| **w / tau <= f).count();
-    let vectors = system_vectors(&model.brake, &model.sweep.newton, top)?;
+    let (brake, newton) = (&model.brake, &model.sweep.newton);
+    // A fixed count may ask for modes above the band: the whole decomposition. "auto" starts
+    // with the modes in the band (a partial solve where cheaper) and asks for more level by
+    // level.
+    let vectors = match count {
+        InterfaceModeCount::Fixed(_) => system_vectors(brake, newton, top)?,
+        InterfaceModeCount::Auto { .. } => system_vectors_to(brake, newton, top, top)?,
+    };
     let in_band = vectors.residuals.ncols();
+    let how = if vectors.complete() {
+        "all"
+    } else {
+        "partial eigensolve:"
+    };
     log(&format!(
-        "interface reduction: {} real modes of the brake ({in_band} below {top:.0} Hz) with their friction residual and static vectors in {:.1} s",
+        "interface reduction: {how} {} real modes of the brake ({in_band} below {top:.0} Hz) with their friction residual and static vectors in {:.1} s",
         vectors.modes.omega.len(),
         t.elapsed().as_secs_f64()
     ));
@@ -51,8 +63,8 @@ pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -
         face_dofs,
     };
     let total = vectors.modes.omega.len();
-    let candidate = |modes: usize, residuals: usize| -> Result<Candidate> {
-        let bases = face_bases(&model, &vectors, modes, residuals)?;
+    let candidate = |v: &SystemVectors, modes: usize, residuals: usize| -> Result<Candidate> {
+        let bases = face_bases(&model, v, modes, residuals)?;
         Ok(Candidate {
             model: at_count(&model, &bases, usize::MAX)?,
             kept: bases.iter().map(InterfaceModes::count).collect(),
@@ -65,21 +77,46 @@ pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -
         InterfaceModeCount::Fixed(n) => {
             let n = n.min(total);
             let reason = format!("interface_modes = {n} in {}", scene.path.display());
-            fixed(&model, head, candidate(n, n.min(in_band))?, reason)
+            fixed(&model, head, candidate(&vectors, n, n.min(in_band))?, reason)
         }
         InterfaceModeCount::Auto { tolerance } => {
-            // (modes, residuals): the band alone, with residuals, then 2, 4, ... times its top.
-            let mut steps = vec![(in_band, 0), (in_band, in_band)];
-            let mut factor = 2.0;
-            while *steps.last().map(|s| &s.0).unwrap_or(&total) < total {
-                steps.push((below(&vectors, factor * top).max(in_band), in_band));
-                factor *= 2.0;
-            }
-            steps.dedup();
+            // (modes, residuals): the band alone, with residuals, then 2, 4, ... times its top
+            // (the modes for those computed when a level asks for them).
+            let mut step = 0usize;
+            let mut factor = 1.0;
+            let mut previous = in_band;
+            let mut finished = vectors.complete() && in_band >= total;
+            let levels = std::iter::from_fn(|| -> Option<Result<Candidate>> {
+                step += 1;
+                match step {
+                    1 => return Some(candidate(&vectors, in_band, 0)),
+                    2 => return Some(candidate(&vectors, in_band, in_band)),
+                    _ => {}
+                }
+                while !finished {
+                    factor *= 2.0;
+                    let fresh;
+                    let source = if vectors.complete() {
+                        &vectors
+                    } else {
+                        match system_vectors_to(brake, newton, top, factor * top) {
+                            Ok(v) => fresh = v,
+                            Err(e) => return Some(Err(e.into())),
+                        }
+                        &fresh
+                    };
+                    let modes = below(source, factor * top).max(in_band);
+                    finished = source.complete() && modes >= source.modes.omega.len();
+                    if modes > previous {
+                        previous = modes;
+                        return Some(candidate(source, modes, in_band));
+                    }
+                }
+                None
+            });
             let what = format!(
                 "the {in_band} in-band brake modes, then with their friction residuals, then the modes below 2, 4, ... x {top:.0} Hz"
             );
-            let levels = steps.into_iter().map(|(m, r)| candidate(m, r));
             let mus = scene.mu_values()?;
             crate::interface_check::auto(&model, &mus, log, head, levels, tolerance, &what)
         }
