@@ -32,6 +32,19 @@
 //! [`squeal_reduce::interface_modes::face_basis`]); that span holds every vector, so the
 //! reduced brake reproduces its in-band frictionless modes exactly and is a Rayleigh–Ritz
 //! projection of the unreduced-interface brake.
+//!
+//! # Only the modes that are used
+//!
+//! Of the real modes only those up to the band's top (with their residuals) and, for the
+//! higher levels of `"auto"`, those up to 2, 4, … times it are used. [`system_vectors_to`]
+//! computes just these, the lowest modes of `(K_t0, M)` below a frequency, by the partial
+//! solve of [`crate::partial_modes`] (shift-invert block Lanczos on the Cholesky factor of
+//! `K_t0`, the count of modes from the inertia of `K_t0 − ω_c² M`), when its flop estimate
+//! is below half the whole decomposition's; the same Cholesky factor then solves the residual
+//! and static vectors above (one factorization of `K_t0`). The vectors are the whole
+//! decomposition's to round-off (the same count, frequencies and span:
+//! `crates/squeal-pipeline/tests/partial_system.rs`); below the estimate's break-even (small
+//! brakes) the whole decomposition is kept, with the same bits as before.
 
 use crate::equilibrium::{NewtonOptions, static_equilibrium};
 use crate::error::BrakeError;

@@ -278,3 +278,60 @@ fn converged(v: &Mat<f64>, av: &Mat<f64>, r: usize) -> Option<Mat<f64>> {
     });
     ok.then_some(y)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A dense pencil with known modes, `K = M V diag(ω²) Vᵀ M` with `V` `M`-orthonormal and an
+    /// exact doublet (modes 10 and 11 share `ω`): the count and the partial solve against the
+    /// whole decomposition of the same pencil.
+    #[test]
+    fn partial_modes_are_the_dense_ones() {
+        let n = 120;
+        // M: SPD, dense (diagonal dominant); K: the modes of a chain with a repeated value.
+        let m = Mat::from_fn(n, n, |i, j| {
+            if i == j {
+                2.0 + 0.01 * i as f64
+            } else {
+                0.3 / (1.0 + (i as f64 - j as f64).abs()).powi(2)
+            }
+        });
+        let w2: Vec<f64> = (0..n)
+            .map(|i| {
+                // A doublet: modes 9 and 10 share their value.
+                let k = if i == 10 { 9 } else { i };
+                1e6 * (1.0 + k as f64).powi(2)
+            })
+            .collect();
+        // K = M V diag(ω²) Vᵀ M with V M-orthonormal: the pencil's modes are V's columns.
+        // V = L⁻ᵀ U (M = L Lᵀ, U orthonormal) is M-orthonormal.
+        let mut v = start_block(n, n, 7);
+        orthonormalize(Mat::<f64>::zeros(n, 0).as_ref(), &mut v, &mut 8);
+        let lm = cholesky(&m).unwrap();
+        solve_upper_triangular_in_place(lm.transpose(), v.as_mut(), Par::Seq);
+        let mv = &m * &v;
+        let k = Mat::from_fn(n, n, |i, j| (0..n).map(|c| mv[(i, c)] * w2[c] * mv[(j, c)]).sum());
+        let k = symmetric(&k);
+        let cut = (1e6f64 * 30.5f64.powi(2)).sqrt();
+        let r = count_below(&k, &m, cut * cut);
+        // ω² = 1e6 (k+1)² below 1e6 · 30.5²: k = 0..29, with the doublet counted twice.
+        assert_eq!(r, 31);
+        let l = cholesky(&k).unwrap();
+        let p = lowest_modes(&m, &k, &l, r).unwrap().unwrap();
+        let d = crate::modal::modal_basis(&m, &k).unwrap();
+        for j in 0..r {
+            // Frequencies to 1e-10 relative: TOLERANCE's square is far below, the dense
+            // solve's residual 1e-12 of the unit-norm problem above.
+            assert!((p.omega[j] - d.omega[j]).abs() <= 1e-10 * d.omega[j], "{j}");
+        }
+        // Span: the partial modes lie in the dense in-band span, M-norm of what is outside.
+        let dp = Mat::from_fn(n, r, |i, j| d.phi[(i, j)]);
+        let c = dp.transpose() * (&m * &p.phi);
+        let out = &p.phi - &dp * &c;
+        let g = out.transpose() * (&m * &out);
+        let worst = (0..r).map(|j| g[(j, j)].max(0.0).sqrt()).fold(0.0, f64::max);
+        // An M-unit vector's component outside: 1e-8 (TOLERANCE over the relative gap, 0.03).
+        assert!(worst <= 1e-8, "{worst:e}");
+    }
+}

@@ -16,7 +16,11 @@
 //! residual vectors, then the modes up to 2, 4, … times the band's top with those residuals,
 //! keeping the first whose in-band eigenvalues at the sweep's first, middle and last friction
 //! value moved by less than `interface_tolerance` (default 5e-3, relative) from the level
-//! before (`crate::interface_check`: no sweep per level).
+//! before (`crate::interface_check`: no sweep per level). Under `"auto"` only the modes a
+//! level uses are computed, when it is built: those in the band first, those below 2, 4, …
+//! times its top for the later levels (`squeal_brake::interface_system::system_vectors_to`:
+//! a partial eigensolve where its flop estimate says it is cheaper, else all of them); a
+//! fixed count takes the whole decomposition.
 
 use crate::error::Result;
 use crate::interface::{Candidate, Head, at_count, fixed};

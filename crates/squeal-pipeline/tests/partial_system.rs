@@ -92,12 +92,13 @@ fn the_partial_eigensolve_gives_the_dense_in_band_modes() {
     eprintln!(
         "partial against dense, {r} in-band modes: frequencies {worst_omega:.2e}, modes' span {modes_angle:.2e}, residuals {with_residuals:.2e}"
     );
-    // Tolerances: the Ritz residuals are accepted at 1e-11 relative (partial_modes::TOLERANCE),
-    // so the frequencies agree to about its square and the span to about 1e-11 over the
-    // relative gap at the band's top; the dense solve's own residuals are 1e-12 of the
-    // unit-norm problem. Asserted 1e-10 (frequencies) and 1e-8 (spans): far below the
-    // interface check's 5e-3 and the sweep's 1e-5, far above round-off.
+    // Measured (2026-11-28): frequencies 1.3e-11, modes' span 7.2e-12, residuals 4.3e-12.
+    // Tolerances: the Ritz residuals are accepted at 1e-11 relative (partial_modes::TOLERANCE)
+    // and the dense solve's own at 1e-12 of the unit-norm problem; asserted 1e-10 for the
+    // frequencies and 1e-9 for the spans (7 and 140 times the measured values): far below
+    // the interface check's 5e-3 and the sweep's 1e-5, so a wrong count, a missed member of a
+    // doublet or an unconverged vector (1e-6 and more) fails.
     assert!(worst_omega <= 1e-10, "{worst_omega:e}");
-    assert!(modes_angle <= 1e-8, "{modes_angle:e}");
-    assert!(with_residuals <= 1e-8, "{with_residuals:e}");
+    assert!(modes_angle <= 1e-9, "{modes_angle:e}");
+    assert!(with_residuals <= 1e-9, "{with_residuals:e}");
 }
