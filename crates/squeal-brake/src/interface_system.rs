@@ -99,8 +99,9 @@ pub fn system_vectors_to(
         let count = partial_modes::count_below(&kt0, &brake.m, (tau * to_hz).powi(2));
         let cheaper = 2.0 * partial_modes::partial_flops(n, count) < partial_modes::dense_flops(n);
         match (cheaper, partial_modes::cholesky(&kt0)) {
-            (true, Some(l)) => partial_modes::lowest_modes(&brake.m, &kt0, &l, count)?
-                .map(|modes| (modes, l)),
+            (true, Some(l)) => {
+                partial_modes::lowest_modes(&brake.m, &kt0, &l, count)?.map(|modes| (modes, l))
+            }
             _ => None,
         }
     } else {
@@ -108,7 +109,10 @@ pub fn system_vectors_to(
     };
     let (modes, solver) = match partial {
         Some((modes, l)) => (modes, Factor::Cholesky(l)),
-        None => (modal_basis(&brake.m, &kt0)?, Factor::Lu(kt0.partial_piv_lu())),
+        None => (
+            modal_basis(&brake.m, &kt0)?,
+            Factor::Lu(kt0.partial_piv_lu()),
+        ),
     };
     // K_f = ∂F_nl/∂x at μ = 1 less at μ = 0: the friction part of eq (19).
     let (j1, _) = brake.nonlinear_jacobian(&eq.x, 1.0, false);

@@ -144,7 +144,14 @@ fn apply(m: &Mat<f64>, l: MatRef<'_, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
     let mut y = x.to_owned();
     solve_upper_triangular_in_place(l.transpose(), y.as_mut(), Par::Seq);
     let mut z = Mat::zeros(m.nrows(), y.ncols());
-    matmul(z.as_mut(), Accum::Replace, m.as_ref(), y.as_ref(), 1.0, Par::Seq);
+    matmul(
+        z.as_mut(),
+        Accum::Replace,
+        m.as_ref(),
+        y.as_ref(),
+        1.0,
+        Par::Seq,
+    );
     solve_lower_triangular_in_place(l, z.as_mut(), Par::Seq);
     z
 }
@@ -311,7 +318,9 @@ mod tests {
         let lm = cholesky(&m).unwrap();
         solve_upper_triangular_in_place(lm.transpose(), v.as_mut(), Par::Seq);
         let mv = &m * &v;
-        let k = Mat::from_fn(n, n, |i, j| (0..n).map(|c| mv[(i, c)] * w2[c] * mv[(j, c)]).sum());
+        let k = Mat::from_fn(n, n, |i, j| {
+            (0..n).map(|c| mv[(i, c)] * w2[c] * mv[(j, c)]).sum()
+        });
         let k = symmetric(&k);
         let cut = (1e6f64 * 30.5f64.powi(2)).sqrt();
         let r = count_below(&k, &m, cut * cut);
@@ -330,7 +339,9 @@ mod tests {
         let c = dp.transpose() * (&m * &p.phi);
         let out = &p.phi - &dp * &c;
         let g = out.transpose() * (&m * &out);
-        let worst = (0..r).map(|j| g[(j, j)].max(0.0).sqrt()).fold(0.0, f64::max);
+        let worst = (0..r)
+            .map(|j| g[(j, j)].max(0.0).sqrt())
+            .fold(0.0, f64::max);
         // An M-unit vector's component outside: 1e-8 (TOLERANCE over the relative gap, 0.03).
         assert!(worst <= 1e-8, "{worst:e}");
     }

@@ -81,7 +81,12 @@ pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -
         InterfaceModeCount::Fixed(n) => {
             let n = n.min(total);
             let reason = format!("interface_modes = {n} in {}", scene.path.display());
-            fixed(&model, head, candidate(&vectors, n, n.min(in_band))?, reason)
+            fixed(
+                &model,
+                head,
+                candidate(&vectors, n, n.min(in_band))?,
+                reason,
+            )
         }
         InterfaceModeCount::Auto { tolerance } => {
             // (modes, residuals): the band alone, with residuals, then 2, 4, ... times its top

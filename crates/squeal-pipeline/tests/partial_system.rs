@@ -87,7 +87,11 @@ fn the_partial_eigensolve_gives_the_dense_in_band_modes() {
     let (pd, pp) = (in_band(&dense), in_band(&partial));
     let c = pd.transpose() * (&brake.m * &pp);
     let diff = &partial.residuals - &dense.residuals * &c;
-    let norm = |a: &Mat<f64>| (0..a.ncols()).map(|j| a.col(j).norm_l2()).fold(0.0f64, f64::max);
+    let norm = |a: &Mat<f64>| {
+        (0..a.ncols())
+            .map(|j| a.col(j).norm_l2())
+            .fold(0.0f64, f64::max)
+    };
     let with_residuals = norm(&diff) / norm(&dense.residuals);
     eprintln!(
         "partial against dense, {r} in-band modes: frequencies {worst_omega:.2e}, modes' span {modes_angle:.2e}, residuals {with_residuals:.2e}"
