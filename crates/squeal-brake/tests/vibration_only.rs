@@ -186,13 +186,8 @@ fn the_mean_is_the_static_equilibrium() {
     gh[..nn].copy_from_slice(&g);
     let all = recover(&mb, 1000.0, &gh, &layout);
     let size = eq.x.iter().fold(0.0, |a: f64, b| a.max(b.abs()));
-    for d in 0..5 {
-        assert!(
-            (all[d] - eq.x[d]).abs() <= 1e-9 * size,
-            "dof {d}: {} vs {}",
-            all[d],
-            eq.x[d]
-        );
+    for (d, (a, x)) in all.iter().zip(&eq.x).take(5).enumerate() {
+        assert!((a - x).abs() <= 1e-9 * size, "dof {d}: {a} vs {x}");
     }
     let stiff = static_equilibrium(&brake(1.0, false), mu, None, &newton()).unwrap();
     assert!((stiff.x[3] - eq.x[3]).abs() > 1e-2 * size);
