@@ -254,14 +254,14 @@ impl<'a> Sensitivities<'a> {
     ) -> Result<Self, BrakeError> {
         if brake.k_vibration.is_some() {
             return Err(BrakeError::VibrationOnly {
-                analysis: "the sensitivities",
+                analysis: "the sensitivity analysis",
             });
         }
         let d = lr
             .damping
             .diagonal()
             .ok_or(BrakeError::NeedsDiagonalDamping {
-                analysis: "the sensitivities",
+                analysis: "the sensitivity analysis",
             })?;
         let n = lr.size();
         let (x, y, l) = (&state.pair.right, &state.pair.left, state.pair.lambda);
@@ -592,7 +592,7 @@ pub fn damping_ratios(reference: &Reference) -> Result<Vec<f64>, BrakeError> {
         .damping
         .diagonal()
         .ok_or(BrakeError::NeedsDiagonalDamping {
-            analysis: "the sensitivities",
+            analysis: "the sensitivity analysis",
         })?;
     Ok(d.iter()
         .zip(&reference.basis.omega)
