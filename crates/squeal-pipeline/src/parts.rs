@@ -39,7 +39,7 @@ use materials::*;
 mod bodies;
 #[allow(unused_imports)]
 use bodies::*;
-pub use bodies::{add_bodies, refuse_bodies, refuse_bodies_in};
+pub use bodies::{add_bodies, refuse_bodies_in};
 
 pub mod left_out;
 

@@ -10,17 +10,7 @@ use squeal_scene::Scene;
 
 /// The coarse bundled scene at `kmh` on a 0.3 m wheel.
 fn scene(kmh: f64) -> Scene {
-    let base = common::bundled_scene("coarse");
-    let text = base
-        .text
-        .replacen(
-            "# vehicle_speed_kmh = 5.0",
-            &format!("vehicle_speed_kmh = {kmh:?}"),
-            1,
-        )
-        .replacen("# rolling_radius = 0.3", "rolling_radius = 0.3", 1);
-    assert_ne!(text, base.text, "meshes/brake.toml lost its speed lines");
-    Scene::parse(&base.path, text).unwrap()
+    common::bundled_scene_at_speed(kmh)
 }
 
 /// `(df/f, d p2p / p2p)` of each recomputed cycle of `r` against the same point's of `base`

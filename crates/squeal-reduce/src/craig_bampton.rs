@@ -71,7 +71,7 @@ use squeal_fe::frames::{
     AxisDirection, DofTransform, HeldNodes, NodeFrame, RotationAxis, SkewRestraint,
     orthonormal_completion,
 };
-use squeal_fe::{DofMap, MaterialTable, Restraint, assemble};
+use squeal_fe::{DofMap, MaterialTable, Restraint};
 use squeal_mesh::Mesh;
 use std::borrow::Cow;
 use std::time::{Duration, Instant};
@@ -448,31 +448,19 @@ pub fn reduce_part_coupled(
 
     progress(Stage::Assemble);
     let t = Instant::now();
-    let mut held = HeldNodes::new(mesh, &spec.restraints, &skew_restraints(mesh, spec)?)?;
-    piston_frames(mesh, spec, &mut held)?;
-    let dofmap = DofMap::new(mesh, &held.restraints)?;
-    let ties = crate::tie::tie_constraints(mesh, &spec.ties)?;
-    refuse_held_slaves(mesh, &dofmap, &held, &ties)?;
-    let system = assemble(mesh, materials, &dofmap)?;
-    // Nodes held along skew directions and tied nodes: K' = Tᵀ K T, M' = Tᵀ M T on the kept
-    // coordinates.
+    let crate::unreduced::Assembly {
+        held,
+        dofmap,
+        transform,
+        ties: _,
+        system,
+        springs,
+        spring_terms,
+    } = crate::unreduced::assemble_kept(mesh, materials, spec)?;
     let free = FreeDofs {
         dofmap: &dofmap,
-        transform: (held.has_frames() || !ties.is_empty())
-            .then(|| DofTransform::with_ties(&dofmap, &held, &ties)),
+        transform,
     };
-    let mut system = match &free.transform {
-        Some(t) => t.system(&dofmap, &system),
-        None => system,
-    };
-    let springs = crate::tie::support_springs(mesh, &spec.supports)?;
-    if !springs.is_empty() {
-        system.k = add_springs(&system.k, &free, &springs);
-    }
-    let spring_terms = crate::springs::spring_terms(mesh, &spec.springs)?;
-    if !spring_terms.is_empty() {
-        system.k = add_spring_terms(mesh, &system.k, &free, &ties, &spring_terms)?;
-    }
     clock(Stage::Assemble, t, &mut timings);
 
     progress(Stage::Interface);

@@ -59,23 +59,43 @@ impl Coordinates<'_> {
     }
 }
 
-/// Assembles the part of `mesh` described by `spec` as the reduction does (module docs).
-pub fn unreduced_part(
+/// The assembly stage's products (module docs, steps 1–3), shared by the reduction
+/// ([`crate::craig_bampton::reduce_part_coupled`]) and [`unreduced_part`].
+pub(crate) struct Assembly {
+    /// The held nodes (restraints, node frames, piston axes).
+    pub(crate) held: HeldNodes,
+    /// The free dofs of the mesh (before the transform).
+    pub(crate) dofmap: DofMap,
+    /// The map to the kept coordinates, when some node is in its own axes or tied.
+    pub(crate) transform: Option<DofTransform>,
+    /// The tied (slave) nodes and their masters' weights.
+    pub(crate) ties: BTreeMap<u32, Vec<(u32, f64)>>,
+    /// `K'` (with the supports and springs) and `M'` on the kept coordinates.
+    pub(crate) system: System,
+    /// The supports' springs by node.
+    pub(crate) springs: BTreeMap<u32, [f64; 3]>,
+    /// The `[[springs]]`' rank-one terms.
+    pub(crate) spring_terms: Vec<crate::springs::SpringTerm>,
+}
+
+/// Steps 1–3 of the module docs for the part of `mesh` described by `spec`.
+pub(crate) fn assemble_kept(
     mesh: &Mesh,
     materials: &MaterialTable,
     spec: &PartSpec,
-) -> Result<UnreducedPart, ReduceError> {
+) -> Result<Assembly, ReduceError> {
     let mut held = HeldNodes::new(mesh, &spec.restraints, &skew_restraints(mesh, spec)?)?;
     piston_frames(mesh, spec, &mut held)?;
     let dofmap = DofMap::new(mesh, &held.restraints)?;
     let ties = crate::tie::tie_constraints(mesh, &spec.ties)?;
     refuse_held_slaves(mesh, &dofmap, &held, &ties)?;
     let system = assemble(mesh, materials, &dofmap)?;
-    let transform = (held.has_frames() || !ties.is_empty())
-        .then(|| DofTransform::with_ties(&dofmap, &held, &ties));
+    // Nodes held along skew directions and tied nodes: K' = Tᵀ K T, M' = Tᵀ M T on the kept
+    // coordinates.
     let free = FreeDofs {
         dofmap: &dofmap,
-        transform,
+        transform: (held.has_frames() || !ties.is_empty())
+            .then(|| DofTransform::with_ties(&dofmap, &held, &ties)),
     };
     let mut system = match &free.transform {
         Some(t) => t.system(&dofmap, &system),
@@ -85,16 +105,34 @@ pub fn unreduced_part(
     if !springs.is_empty() {
         system.k = add_springs(&system.k, &free, &springs);
     }
-    let terms = crate::springs::spring_terms(mesh, &spec.springs)?;
-    if !terms.is_empty() {
-        system.k = add_spring_terms(mesh, &system.k, &free, &ties, &terms)?;
+    let spring_terms = crate::springs::spring_terms(mesh, &spec.springs)?;
+    if !spring_terms.is_empty() {
+        system.k = add_spring_terms(mesh, &system.k, &free, &ties, &spring_terms)?;
     }
     let transform = free.transform;
-    Ok(UnreducedPart {
+    Ok(Assembly {
+        held,
         dofmap,
         transform,
         ties,
         system,
+        springs,
+        spring_terms,
+    })
+}
+
+/// Assembles the part of `mesh` described by `spec` as the reduction does (module docs).
+pub fn unreduced_part(
+    mesh: &Mesh,
+    materials: &MaterialTable,
+    spec: &PartSpec,
+) -> Result<UnreducedPart, ReduceError> {
+    let a = assemble_kept(mesh, materials, spec)?;
+    Ok(UnreducedPart {
+        dofmap: a.dofmap,
+        transform: a.transform,
+        ties: a.ties,
+        system: a.system,
     })
 }
 

@@ -154,14 +154,6 @@ fn not_yet(step: &str) -> PipelineError {
     }
 }
 
-/// Refuses `step` on inputs with further parts or connectors.
-pub fn refuse_bodies(step: &str, inputs: &BrakeInputs) -> Result<()> {
-    match inputs.bodies.is_empty() && inputs.connections.is_empty() {
-        true => Ok(()),
-        false => Err(not_yet(step)),
-    }
-}
-
 /// Refuses `step` on a reduced model with further parts or connections.
 pub fn refuse_bodies_in(step: &str, rom: &squeal_reduce::rom::ReducedModel) -> Result<()> {
     match rom.bodies().is_empty() && rom.connections.is_empty() {

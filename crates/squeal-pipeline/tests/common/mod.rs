@@ -25,6 +25,22 @@ pub fn bundled_scene(level: &str) -> Scene {
     bundled_scene_with(level, "")
 }
 
+/// The coarse bundled scene at `kmh` on a 0.3 m wheel (the scene's commented speed lines
+/// switched on).
+pub fn bundled_scene_at_speed(kmh: f64) -> Scene {
+    let base = bundled_scene("coarse");
+    let text = base
+        .text
+        .replacen(
+            "# vehicle_speed_kmh = 5.0",
+            &format!("vehicle_speed_kmh = {kmh:?}"),
+            1,
+        )
+        .replacen("# rolling_radius = 0.3", "rolling_radius = 0.3", 1);
+    assert_ne!(text, base.text, "meshes/brake.toml lost its speed lines");
+    Scene::parse(&base.path, text).unwrap()
+}
+
 /// [`bundled_scene`] with `contact` (TOML lines) added to its `[contact]` section.
 pub fn bundled_scene_with(level: &str, contact: &str) -> Scene {
     let path = meshes().join("brake.toml");

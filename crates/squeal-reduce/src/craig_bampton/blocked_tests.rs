@@ -2,7 +2,7 @@
 //! [`super::super::boundary`] on a small part.
 
 use super::*;
-use squeal_fe::ElasticMaterial;
+use squeal_fe::{ElasticMaterial, assemble};
 use squeal_mesh::generate::box_tet10;
 
 /// Largest entry of `a - b` over the largest of `b`.
