@@ -2,8 +2,8 @@
 //! them before it reduces (the reference the reduction is measured against, `squeal stability
 //! --full`).
 //!
-//! [`unreduced_part`] takes the steps of the assembly stage of
-//! [`crate::craig_bampton::reduce_part_coupled`], with the same functions, in the same order:
+//! [`unreduced_part`] is the assembly stage of [`crate::craig_bampton::reduce_part_coupled`]
+//! itself (both call one function), without the reduction that follows:
 //!
 //! 1. the held nodes: the part's restraints, its restraints in node frames (skew directions and
 //!    directions relative to the disc's axis) and the pistons' own axes;
