@@ -107,6 +107,10 @@ pub struct ProjectionOptions {
     /// singular value is above this fraction of the largest; `0` keeps them all (only
     /// dependent ones dropped).
     pub compression: f64,
+    /// Refine the Hopf point by Rayleigh iteration on the two followed eigenpairs
+    /// ([`crate::projected_hopf`]); `false`: a whole decomposition at each evaluation (the
+    /// former way, kept for comparison).
+    pub rayleigh_refinement: bool,
 }
 
 impl Default for ProjectionOptions {
@@ -121,6 +125,7 @@ impl Default for ProjectionOptions {
             checks: 3,
             correction_terms: 2,
             compression: 0.0,
+            rayleigh_refinement: true,
         }
     }
 }
@@ -444,35 +449,56 @@ fn project_damping(d: &ModalDamping, ritz: &Ritz) -> ModalDamping {
     }))
 }
 
-/// Column `a` (modal coordinates, `n` entries) on the basis: `[a_m; Rᵀ a_t]`.
-fn on_basis(ritz: &Ritz, a: &[f64]) -> Vec<f64> {
-    let (m, r) = (ritz.kept, &ritz.residual);
-    let mut out = a[..m].to_vec();
-    out.extend((0..r.ncols()).map(|k| {
-        let col = r.col(k);
-        (0..r.nrows()).map(|i| col[i] * a[m + i]).sum::<f64>()
-    }));
-    out
-}
-
 /// The spectrum of the projection on `b` at the coupling `c`.
 fn project(b: &Basis, c: &Coupling, n: usize) -> Result<Spectrum, BrakeError> {
-    let (v, u0, u1) = c.columns();
-    let r = c.rank();
-    let k = b.omega.len();
-    let on = |m: &[f64]| -> Vec<Vec<f64>> {
-        (0..r)
-            .map(|p| on_basis(&b.ritz, &m[p * n..(p + 1) * n]))
-            .collect()
-    };
-    let vq = on(v);
-    let product =
-        |uq: &[Vec<f64>]| Mat::from_fn(k, k, |i, j| (0..r).map(|p| uq[p][i] * vq[p][j]).sum());
-    let dk = product(&on(u0));
-    let dc = u1.map(|u1| product(&on(u1)));
+    let (dk, dc) = projected_change(b, c, n);
     let mut sp = modal_spectrum(&b.omega, &b.damping, &dk, dc.as_ref(), c.mu)?;
     sp.ritz = Some(b.ritz.clone());
     Ok(sp)
+}
+
+/// The changes `Qᵀ ΔK Q` and `Qᵀ ΔC Q` of the projection on `b` at the coupling `c`.
+fn projected_change(b: &Basis, c: &Coupling, n: usize) -> (Mat<f64>, Option<Mat<f64>>) {
+    let (v, u0, u1) = c.columns();
+    let r = c.rank();
+    let k = b.omega.len();
+    // Qᵀ X of the n x r columns X = [X_m; X_t]: [X_m; Rᵀ X_t], by blocked products
+    // (sequential: the bits do not depend on the thread count). A brake with as many
+    // contact directions as dofs (nodal contact) has r ~ n: these products cost as much as a
+    // sweep point's eigen-decomposition when summed entry by entry.
+    let (m, res) = (b.ritz.kept, &b.ritz.residual);
+    let on = |x: &[f64]| -> Mat<f64> {
+        let x = faer::MatRef::from_column_major_slice(x, n, r);
+        let mut out = Mat::<f64>::zeros(k, r);
+        out.as_mut()
+            .submatrix_mut(0, 0, m, r)
+            .copy_from(x.submatrix(0, 0, m, r));
+        matmul(
+            out.as_mut().submatrix_mut(m, 0, k - m, r),
+            Accum::Replace,
+            res.transpose(),
+            x.submatrix(m, 0, n - m, r),
+            1.0,
+            Par::Seq,
+        );
+        out
+    };
+    let vq = on(v);
+    let product = |uq: Mat<f64>| {
+        let mut out = Mat::<f64>::zeros(k, k);
+        matmul(
+            out.as_mut(),
+            Accum::Replace,
+            uq.as_ref(),
+            vq.transpose(),
+            1.0,
+            Par::Seq,
+        );
+        out
+    };
+    let dk = product(on(u0));
+    let dc = u1.map(|u1| product(on(u1)));
+    (dk, dc)
 }
 
 /// The unprojected brake's eigenvalues at each of `couplings` by a dense eigenvalue-only
@@ -570,6 +596,24 @@ pub(crate) fn spectrum(
     c: &Coupling,
 ) -> Result<Spectrum, BrakeError> {
     project(&p.basis, c, lr.size())
+}
+
+/// The projected problem of `p` at `c`: frequencies `[Ω_m, Θ]`, damping `Qᵀ D Q`, the changes
+/// `Qᵀ ΔK Q`, `Qᵀ ΔC Q`, and the basis (for [`crate::projected_hopf`]).
+pub(crate) fn problem<'a>(
+    lr: &LinearizedBrake,
+    p: &'a Projection,
+    c: &Coupling,
+) -> (
+    &'a [f64],
+    &'a ModalDamping,
+    Mat<f64>,
+    Option<Mat<f64>>,
+    Arc<Ritz>,
+) {
+    let b = &p.basis;
+    let (dk, dc) = projected_change(b, c, lr.size());
+    (&b.omega, &b.damping, dk, dc, b.ritz.clone())
 }
 
 /// The eigenpair nearest `guess` of the brake at the coupling `c`, from a projection on the

@@ -125,7 +125,7 @@ pub fn state_matrix(
 
 /// [`state_matrix`] for given frequencies `ω_j` (all of the basis, or the leading ones of a
 /// projection).
-fn state_matrix_of(
+pub(crate) fn state_matrix_of(
     w: &[f64],
     damping: &ModalDamping,
     dk: &Mat<f64>,
@@ -251,7 +251,7 @@ pub fn modal_eigenvalues(
 
 /// Indices of the `n` eigenvalues of largest imaginary part (one of each conjugate pair),
 /// ascending in `Im λ`, ties by index.
-fn upper_half(s: &[c64], n: usize) -> Vec<usize> {
+pub(crate) fn upper_half(s: &[c64], n: usize) -> Vec<usize> {
     let mut order: Vec<usize> = (0..s.len()).collect();
     order.sort_by(|&a, &b| {
         s[b].im

@@ -145,6 +145,9 @@ pub struct SweepStats {
     pub rejected: usize,
     /// Inverse-iteration steps over all branches and points.
     pub iterations: usize,
+    /// Evaluations of a projected sweep's Hopf refinement that were whole decompositions
+    /// instead of Rayleigh iterations ([`crate::projected_hopf`]).
+    pub refinement_whole: usize,
 }
 
 /// Wall time of a sweep's phases, for benchmarks (`crates/squeal-pipeline/benches`): not
@@ -382,7 +385,14 @@ fn sweep_until(
             Some(lr) => crate::hopf::refine(brake, reference, lr, &sweep, &first, opts, tau)?,
             None => None,
         };
+        // A projected sweep's refinement carries the two followed eigenpairs by Rayleigh
+        // iteration (crate::projected_hopf).
+        let rayleigh_refinement = opts.projection.rayleigh_refinement;
+        let followed = crate::projected_hopf::followed(&sweep, &first);
         let spectrum_at = |eq: &Equilibrium| match &projection {
+            Some(p) if rayleigh_refinement => {
+                crate::projected_hopf::spectrum_near(&lin, p, &lin.coupling(brake, eq), &followed)
+            }
             Some(p) => crate::projected::spectrum(&lin, p, &lin.coupling(brake, eq)),
             None => spectrum(brake, reference, eq),
         };
@@ -396,14 +406,21 @@ fn sweep_until(
         };
         sweep.hopf = match continued {
             Some(h) => Some(h),
-            None => Some(crate::hopf::regula_falsi(
-                &equilibrium_at,
-                &spectrum_at,
-                &sweep,
-                &first,
-                opts,
-                tau,
-            )?),
+            None => {
+                let mut h = crate::hopf::regula_falsi(
+                    &equilibrium_at,
+                    &spectrum_at,
+                    &sweep,
+                    &first,
+                    opts,
+                    tau,
+                )?;
+                if let Some(p) = projection.as_ref().filter(|_| rayleigh_refinement) {
+                    crate::projected_hopf::complete(brake, &lin, p, &mut h)?;
+                    sweep.stats.refinement_whole = followed.whole.get();
+                }
+                Some(h)
+            }
         };
     }
     sweep.projection = projection;

@@ -28,7 +28,7 @@ fn cost(prev: &Spectrum, i: usize, next: &Spectrum, j: usize) -> f64 {
 }
 
 /// The matching cost of eigenvalues `li`, `lj` whose modes correlate by `mac`.
-fn cost_of(li: c64, lj: c64, mac: f64) -> f64 {
+pub(crate) fn cost_of(li: c64, lj: c64, mac: f64) -> f64 {
     let d = (lj - li).norm() / (0.05 * li.norm()).max(f64::MIN_POSITIVE);
     (1.0 - mac) + d.min(1.0)
 }

@@ -7,7 +7,8 @@
 //! the fixed-interface modes per part and METHODS a `+`-separated list of `projected`,
 //! `continuation`, `dense`, `auto` (default `projected`), then optionally `:cut=F,comp=Z,terms=T,tol=E`
 //! (the projection's first cut-off over the band's top, compression of its correction vectors,
-//! most correction terms, tolerance of its check). More modes grow the reduced brake
+//! most correction terms, tolerance of its check; `rq=0` refines the Hopf point with whole
+//! decompositions, the former way, instead of Rayleigh iteration). More modes grow the reduced brake
 //! with the number of eigenvalues in the band nearly fixed; a finer grid grows it with the
 //! contact (three interface dofs per patch and part, one pair per patch).
 //!
@@ -178,6 +179,7 @@ fn main() {
                     "comp" => opts.projection.compression = v,
                     "terms" => opts.projection.correction_terms = v as usize,
                     "tol" => opts.projection.tolerance = v,
+                    "rq" => opts.projection.rayleigh_refinement = v != 0.0,
                     "n" => {}
                     _ => panic!("unknown projection option {key}"),
                 }
@@ -199,7 +201,7 @@ fn main() {
                 .as_ref()
                 .map_or((f64::NAN, f64::NAN), |h| (h.mu0, h.frequency_hz));
             println!(
-                "| {} | {modes} | {} | {} | {method} {tweaks} | {ts:.2} | {t_ref:.2} | {in_band} | {kept} | {mu0:.8} | {f0:.3} |",
+                "| {} | {modes} | {} | {} | {method} {tweaks} | {ts:.2} | {t_ref:.2} | {in_band} | {kept} | {mu0:.10} | {f0:.5} |",
                 scene_file
                     .as_ref()
                     .map_or(format!("{}x{}", grid.0, grid.1), |p| p
