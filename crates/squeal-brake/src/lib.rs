@@ -52,6 +52,7 @@ pub mod model;
 pub mod partial_modes;
 pub mod participation;
 pub mod projected;
+pub mod projected_equilibrium;
 pub mod projected_hopf;
 pub mod sensitivity;
 pub mod spectrum;

@@ -35,7 +35,16 @@
 //! starts from the linear extrapolation of the two equilibria before it (error `O(Δμ²)`: one
 //! Newton iteration per point instead of two on the 1998-dof brake, each a few passes over
 //! `n × n` matrices), from the last one when that fails. The Hopf point's regula falsi and
-//! the normal form of a large brake ([`crate::criticality`]) take the same modal steps.
+//! the normal form of a large brake ([`crate::criticality`]) take the same modal steps. On a
+//! brake with as many contact pairs as a third of its dofs (an interface-reduced brake with
+//! nodal contact) the rank-`P` solve costs more than a dense LU of `K_t`, and the steps are
+//! dense (`dense_steps_cheaper`).
+//!
+//! The Hopf point of a projected sweep is refined by regula falsi on the two followed
+//! eigenvalues, each carried from the last evaluation by Rayleigh iteration on the projected
+//! state matrix's Hessenberg form ([`crate::projected_hopf`], [`crate::hessenberg_rqi`]):
+//! a Hessenberg reduction and a few `O(k²)` solves per evaluation instead of a whole
+//! eigen-decomposition with vectors.
 //!
 //! The truncation neglects the dynamics of the dropped modes beyond the terms kept (with one,
 //! `T_tt(λ)⁻¹` against `Ω_t⁻²`, a relative `ω²/ω_t²`); it is small when they lie well above
@@ -68,10 +77,12 @@
 
 use crate::continuation::{Eigenpair, converge};
 use crate::damping::ModalDamping;
-use crate::equilibrium::{Equilibrium, NewtonOptions, static_equilibrium, static_equilibrium_with};
+use crate::equilibrium::Equilibrium;
 use crate::error::BrakeError;
 use crate::linearized::{Coupling, LinearizedBrake};
 use crate::model::Brake;
+pub(crate) use crate::projected_equilibrium::equilibrium;
+use crate::projected_equilibrium::{modal_newton, predicted};
 use crate::spectrum::{Reference, Ritz, Spectrum, modal_eigenvalues, modal_spectrum};
 use crate::sweep::{
     SweepOptions, SweepPoint, SweepProgress, SweepStats, SweepTimings, SweptPoints, crossed_in_band,
@@ -739,90 +750,4 @@ fn extend_branches(branches: &mut Vec<Vec<usize>>, points: &[SweepPoint]) {
         let prev = br[k - 1];
         br.push(m[prev]);
     }
-}
-
-/// The equilibrium at `mu` from `from` (from scratch without), its Newton steps solved in the
-/// modal basis (module documentation); the dense steps of [`static_equilibrium`] when that
-/// fails.
-pub(crate) fn equilibrium(
-    brake: &Brake,
-    reference: &Reference,
-    lr: &LinearizedBrake,
-    mu: f64,
-    from: Option<&[f64]>,
-    newton: &NewtonOptions,
-) -> Result<Equilibrium, BrakeError> {
-    // The frictionless equilibrium is a start as good as any for the first friction value,
-    // and spares the load ramp's dense steps.
-    let from = from.unwrap_or(reference.equilibrium.x.as_slice());
-    match modal_newton(brake, lr, reference, mu, from, newton) {
-        Ok(eq) => Ok(eq),
-        Err(_) => static_equilibrium(brake, mu, Some(from), newton),
-    }
-}
-
-/// The state at `mu` extrapolated linearly from the equilibria `last` and `before` it: the
-/// path `x(μ)` is smooth while the contact does not change, and the extrapolation's error
-/// (`O(Δμ²)`) saves the sweep's Newton iterations one of two.
-fn predicted(last: &Equilibrium, before: &Equilibrium, mu: f64) -> Vec<f64> {
-    let s = (mu - last.mu) / (last.mu - before.mu);
-    last.x
-        .iter()
-        .zip(&before.x)
-        .map(|(a, b)| a + s * (a - b))
-        .collect()
-}
-
-/// Newton's method for the equilibrium at `mu` from `x`, its steps solved in the modal basis
-/// (no dense fallback).
-fn modal_newton(
-    brake: &Brake,
-    lr: &LinearizedBrake,
-    reference: &Reference,
-    mu: f64,
-    x: &[f64],
-    newton: &NewtonOptions,
-) -> Result<Equilibrium, BrakeError> {
-    let phi = &reference.basis.phi;
-    let solve = |x: &[f64], b: &[f64]| modal_tangent_solve(brake, lr, phi, mu, x, b);
-    static_equilibrium_with(brake, mu, Some(x), newton, Some(&solve))
-}
-
-/// `K_t(x)⁻¹ b = Φ T(0)⁻¹ Φᵀ b`, `None` when not finite.
-fn modal_tangent_solve(
-    brake: &Brake,
-    lr: &LinearizedBrake,
-    phi: &Mat<f64>,
-    mu: f64,
-    x: &[f64],
-    b: &[f64],
-) -> Option<Vec<f64>> {
-    let n = b.len();
-    let responses = brake
-        .pairs
-        .iter()
-        .map(|p| p.response(x, None, mu))
-        .collect();
-    let c = lr.coupling_of(mu, responses, Vec::new());
-    // Φᵀ b and Φ y as blocked products (sequential: the bits do not depend on the thread
-    // count); a pass over the n x n basis is the cost of a step.
-    let product = |a: faer::MatRef<'_, f64>, v: &[f64]| -> Mat<f64> {
-        let mut out = Mat::<f64>::zeros(a.nrows(), 1);
-        matmul(
-            out.as_mut(),
-            Accum::Replace,
-            a,
-            faer::ColRef::from_slice(v).as_mat(),
-            1.0,
-            Par::Seq,
-        );
-        out
-    };
-    let pb = product(phi.transpose(), b);
-    let q: Vec<c64> = (0..n).map(|j| c64::new(pb[(j, 0)], 0.0)).collect();
-    let y = lr.factor(&c, c64::new(0.0, 0.0)).solve(lr, &c, &q);
-    let y_re: Vec<f64> = y.iter().map(|v| v.re).collect();
-    let dx = product(phi.as_ref(), &y_re);
-    let dx: Vec<f64> = (0..n).map(|i| dx[(i, 0)]).collect();
-    dx.iter().all(|v| v.is_finite()).then_some(dx)
 }

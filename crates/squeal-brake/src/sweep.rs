@@ -17,8 +17,10 @@
 //!   Illinois variant of regula falsi.
 //! - [`SweepMethod::Projected`]: the brake projected on its frictionless modes up to a cut-off
 //!   above the band, the cut-off chosen by convergence against the unprojected eigenvalues
-//!   ([`crate::projected`]); then as the dense method on the small projected problem. Its
-//!   cost grows as the cube of the number of kept modes, not of the reduced size.
+//!   ([`crate::projected`]); then as the dense method on the small projected problem, the
+//!   Hopf point refined by Rayleigh iteration on the two followed eigenpairs
+//!   ([`crate::projected_hopf`]). Its cost grows as the cube of the number of kept modes, not
+//!   of the reduced size.
 //! - [`SweepMethod::Auto`] (the default): continuation up to [`PROJECT_ABOVE`] dofs, the
 //!   projection above, where continuing every eigenpair costs `O(n⁴)` per sweep.
 

@@ -8,7 +8,7 @@ mod common;
 use squeal_brake::sweep::{SweepMethod, sweep};
 
 #[test]
-fn rayleigh_refinement_refinement_gives_the_whole_decompositions_hopf_point() {
+fn rayleigh_refinement_gives_the_whole_decompositions_hopf_point() {
     let c = common::coarse();
     let mus = common::mus(0.0, 1.0, 101);
     let mut whole = common::options(c);
