@@ -609,19 +609,18 @@ pub(crate) fn spectrum(
     project(&p.basis, c, lr.size())
 }
 
-/// The projected problem of `p` at `c`: frequencies `[Ω_m, Θ]`, damping `Qᵀ D Q`, the changes
-/// `Qᵀ ΔK Q`, `Qᵀ ΔC Q`, and the basis (for [`crate::projected_hopf`]).
-pub(crate) fn problem<'a>(
-    lr: &LinearizedBrake,
-    p: &'a Projection,
-    c: &Coupling,
-) -> (
+/// The projected problem at a coupling: frequencies `[Ω_m, Θ]`, damping `Qᵀ D Q`, the changes
+/// `Qᵀ ΔK Q`, `Qᵀ ΔC Q`, and the basis.
+pub(crate) type Problem<'a> = (
     &'a [f64],
     &'a ModalDamping,
     Mat<f64>,
     Option<Mat<f64>>,
     Arc<Ritz>,
-) {
+);
+
+/// The projected problem of `p` at `c` (for [`crate::projected_hopf`]).
+pub(crate) fn problem<'a>(lr: &LinearizedBrake, p: &'a Projection, c: &Coupling) -> Problem<'a> {
     let b = &p.basis;
     let (dk, dc) = projected_change(b, c, lr.size());
     (&b.omega, &b.damping, dk, dc, b.ritz.clone())
