@@ -2,7 +2,7 @@
 //! on its Hessenberg form: the cost of a Hessenberg reduction and a few `O(n²)` solves instead
 //! of a whole eigen-decomposition.
 //!
-//! The refinement of a Hopf point ([`crate::hopf::regula_falsi`]) reads, at each friction
+//! The refinement of a Hopf point (`crate::hopf::regula_falsi`) reads, at each friction
 //! value it tries, the eigenvalues of two branches only, which it already knows at a nearby
 //! friction value. A dense eigen-decomposition of the `2n × 2n` scaled state matrix `A` of
 //! [`crate::spectrum`] with vectors costs a Hessenberg reduction (`10/3 (2n)³`), the QR
@@ -88,7 +88,7 @@ impl HessenbergForm {
 
     /// The eigenpair `(λ, q)` reached by Rayleigh quotient iteration from the mode `q0` of
     /// eigenvalue `lambda0` (module documentation); `None` when the residual does not reach
-    /// round-off in [`MAX_STEPS`] steps.
+    /// round-off in `MAX_STEPS` steps.
     pub fn rayleigh(&self, lambda0: c64, q0: &[c64]) -> Option<(c64, Vec<c64>)> {
         let n = self.omega.len();
         let size = self.reduced.nrows();

@@ -1,7 +1,7 @@
 //! The Hopf point of a projected sweep ([`crate::projected`]) refined by Rayleigh iteration on
 //! the two followed eigenpairs instead of whole eigen-decompositions.
 //!
-//! The refinement of [`crate::hopf::regula_falsi`] evaluates the projected problem at each of
+//! The refinement of `crate::hopf::regula_falsi` evaluates the projected problem at each of
 //! its friction values only to read the real parts of two branches (the crossing one and its
 //! partner), which it follows from one evaluation to the next by [`crate::tracking`]'s cost
 //! `(1 - MAC) + min(d, 1)` (`d` the eigenvalue distance over `5 %` of `|λ|`). Each evaluation
@@ -19,7 +19,7 @@
 //! decomposition, the followed modes picked in it by the tracking cost, as before.
 //!
 //! The refinement's last point becomes the Hopf point's [`crate::sweep::Hopf::point`]: its
-//! spectrum is then computed whole ([`complete`]), so that the Hopf point carries every
+//! spectrum is then computed whole (`complete`), so that the Hopf point carries every
 //! eigenvalue and shape, as with the other methods.
 
 use crate::error::BrakeError;
@@ -48,7 +48,7 @@ pub(crate) struct Followed {
 }
 
 /// The followed branches' eigenpairs at the sweep point below crossing `c` (the crossing
-/// branch and its partner, as [`crate::hopf::regula_falsi`] follows them).
+/// branch and its partner, as `crate::hopf::regula_falsi` follows them).
 pub(crate) fn followed(sweep: &Sweep, c: &Crossing) -> Followed {
     let mut branches = vec![c.branch];
     branches.extend(partner(sweep, c));
