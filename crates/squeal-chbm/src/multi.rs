@@ -56,6 +56,7 @@
 
 pub mod check;
 pub mod linearization;
+pub mod onset;
 pub mod periodic;
 pub mod quasi;
 pub mod reference;

@@ -59,6 +59,9 @@ pub struct BranchAnalysis {
     /// Where the sliding margin falls below 1: the branch with sticking contact and the
     /// recomputed cycles ([`crate::branch_stick`]); `None` when not computed.
     pub stick: Option<crate::branch_stick::StickRun>,
+    /// A second mode unstable inside the branch's range and the generalized CHBM's answer
+    /// past its onset ([`crate::branch_two_mode`]); `None` when there is none.
+    pub two_mode: Option<crate::branch_two_mode::SecondMode>,
 }
 
 /// A cycle of the branch at a friction value asked for.
@@ -197,6 +200,7 @@ pub fn analyse(
         microphone: None,
         tori: Vec::new(),
         stick: None,
+        two_mode: None,
     }))
 }
 
@@ -347,6 +351,7 @@ pub fn summary_text(a: &BranchAnalysis) -> String {
     out.push_str(&t.to_text());
     out.push_str(&crate::branch_torus::summary_text(a));
     out.push_str(&crate::branch_stick::summary_text(a));
+    out.push_str(&crate::branch_two_mode::summary_text(a.two_mode.as_ref()));
     out
 }
 

@@ -61,6 +61,7 @@ pub mod stability;
 pub mod stages;
 pub mod study;
 pub mod two_mode;
+pub mod branch_two_mode;
 
 pub use error::{PipelineError, Result};
 

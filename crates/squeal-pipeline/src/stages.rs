@@ -111,6 +111,14 @@ pub fn branch_stage_with(
         );
     }
     let t = Instant::now();
+    a.two_mode = crate::branch_two_mode::run(p, st, &a);
+    if a.two_mode.is_some() {
+        p.record(
+            "second unstable mode: the generalized CHBM",
+            t.elapsed().as_secs_f64(),
+        );
+    }
+    let t = Instant::now();
     a.stick = crate::branch_stick::recompute(m, st, &a, opts, &Default::default(), p.log());
     let dlft = crate::branch_dlft::recompute(m, st, &a, p.scene.stick_slip_law()?);
     if let Some(r) = a.stick.as_mut() {
