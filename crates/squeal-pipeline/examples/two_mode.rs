@@ -15,8 +15,8 @@
 //! nodal diameters) from μ ≈ 0.79 on, with the squeal mode (4 kHz) unstable from μ0 = 0.4556.
 
 use squeal_chbm::floquet::HillOptions;
-use squeal_chbm::multi::periodic::{mode_cycles, verdict};
 use squeal_chbm::multi::check::{TimeCheckOptions, time_check};
+use squeal_chbm::multi::periodic::{mode_cycles, verdict};
 use squeal_chbm::multi::reference::{MultiRunOptions, integrate_modes};
 use squeal_chbm::multi::unstable_modes;
 use squeal_chbm::{ChbmOptions, RESTART_AMPLITUDES};

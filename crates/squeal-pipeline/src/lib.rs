@@ -31,6 +31,7 @@ pub mod branch;
 pub mod branch_dlft;
 pub mod branch_stick;
 pub mod branch_torus;
+pub mod branch_two_mode;
 pub mod caveats;
 pub mod chbm;
 pub mod compare;
@@ -61,7 +62,6 @@ pub mod stability;
 pub mod stages;
 pub mod study;
 pub mod two_mode;
-pub mod branch_two_mode;
 
 pub use error::{PipelineError, Result};
 
