@@ -173,16 +173,16 @@ fn torus(scene: Scene, mu: f64, harmonics: usize) -> Result<(), Box<dyn std::err
         c.wall.as_secs_f64()
     );
     let w = t.point.omega;
-    for j in 0..2 {
+    for (j, &wj) in w.iter().enumerate() {
         println!(
             "  pair {} peak near f{}: BDF {:.6} Hz, torus signal {:.6} Hz, torus {:.6} Hz; BDF against the torus {:.2e}, the measure's own {:.2e}",
             c.pair + 1,
             j + 1,
             c.bdf_omega[j] / (2.0 * PI),
             c.torus_peaks[j] / (2.0 * PI),
-            w[j] / (2.0 * PI),
-            rel(c.bdf_omega[j], w[j]),
-            rel(c.torus_peaks[j], w[j])
+            wj / (2.0 * PI),
+            rel(c.bdf_omega[j], wj),
+            rel(c.torus_peaks[j], wj)
         );
     }
     let (b, h) = (&c.bdf_envelope, &c.torus_envelope);
