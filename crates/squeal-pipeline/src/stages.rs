@@ -134,6 +134,9 @@ pub fn branch_stage_with(
     tell(p, &branch::summary_text(&a));
     let dir = p.out.join("branch");
     branch::write(&dir, &a)?;
+    if let Some(Ok(r)) = a.two_mode.as_ref().map(|s| &s.answer) {
+        crate::two_mode::write(&dir, r)?;
+    }
     tell(p, &format!("results in {}\n", dir.display()));
     Ok(Some(a))
 }
