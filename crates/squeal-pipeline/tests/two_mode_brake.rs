@@ -36,15 +36,18 @@ fn onsets_of_both_modes() {
         "{}",
         first.frequency_hz
     );
-    let o1 = refine_onset(
-        &m.brake,
-        &st.reference,
-        (first.mu_lo, first.mu_hi),
-        first.frequency_hz,
-        &m.sweep.newton,
-        1e-9,
-    )
-    .unwrap();
+    let onset = |c: &squeal_brake::sweep::Crossing| {
+        refine_onset(
+            &m.brake,
+            &st.reference,
+            (c.mu_lo, c.mu_hi),
+            c.frequency_hz,
+            &m.sweep.newton,
+            1e-9,
+        )
+        .unwrap()
+    };
+    let o1 = onset(&first);
     // Both bisections end on brackets of a few 1e-9: they must agree to 1e-7 relative.
     assert!(
         (o1.mu0 / hopf.mu0 - 1.0).abs() < 1e-7,
@@ -58,15 +61,7 @@ fn onsets_of_both_modes() {
         .iter()
         .find(|c| (c.frequency_hz - 2880.0).abs() < 5.0)
         .unwrap();
-    let o2 = refine_onset(
-        &m.brake,
-        &st.reference,
-        (second.mu_lo, second.mu_hi),
-        second.frequency_hz,
-        &m.sweep.newton,
-        1e-9,
-    )
-    .unwrap();
+    let o2 = onset(second);
     // Measured 0.23771; the bracket of the sweep is [0.237, 0.238].
     assert!((o2.mu0 - 0.23771).abs() < 1e-5, "{}", o2.mu0);
     let nf = o2.normal_form.as_ref().unwrap();
