@@ -398,27 +398,33 @@ pub fn closures_along_flow(
                 .collect()
         })
         .collect();
-    let scalar = TorusBasis::new(1, basis.truncation())?;
-    let series: Vec<Vec<f64>> = rows
-        .iter()
-        .zip(&mb.pairs)
-        .map(|(r, p)| {
-            (0..basis.n_blocks())
-                .map(|b| {
-                    let v: f64 = (0..nr).map(|k| r[k] * coeffs[b * nr + k]).sum();
-                    // The closure δ = gap offset + g·x: the offset enters the mean.
-                    if b == 0 { v - p.initial_gap } else { v }
-                })
-                .collect()
-        })
-        .collect();
-    let mut out = vec![Vec::with_capacity(samples); series.len()];
-    let mut val = [0.0];
-    for j in 0..samples {
-        let t = j as f64 * dt;
-        for (o, s) in out.iter_mut().zip(&series) {
-            scalar.displacement_at(s, [omega[0] * t, omega[1] * t], &mut val)?;
-            o.push(val[0]);
+    // The pairs' series as one basis of as many dofs as pairs (in groups that fit the
+    // largest basis): each sample's sines and cosines are computed once for the group, and
+    // each pair's value is summed in the same order as on its own (the same bits as a scalar
+    // evaluation per pair, at a ninth of the trigonometry on the bundled brake's 9 pairs).
+    let np = mb.pairs.len();
+    let mut out = vec![Vec::with_capacity(samples); np];
+    let group = (squeal_hbm::MAX_COEFFICIENTS / basis.n_blocks()).max(1);
+    for (g, (rows, pairs)) in rows.chunks(group).zip(mb.pairs.chunks(group)).enumerate() {
+        let m = rows.len();
+        let multi_basis = TorusBasis::new(m, basis.truncation())?;
+        // `multi[b * m + p]`: pair `p`'s coefficient of block `b`.
+        let multi: Vec<f64> = (0..basis.n_blocks())
+            .flat_map(|b| rows.iter().zip(pairs).map(move |(r, p)| (b, r, p)))
+            .map(|(b, r, p)| {
+                let v: f64 = (0..nr).map(|k| r[k] * coeffs[b * nr + k]).sum();
+                // The closure δ = gap offset + g·x: the offset enters the mean.
+                if b == 0 { v - p.initial_gap } else { v }
+            })
+            .collect();
+        let mut val = vec![0.0; m];
+        let outs = &mut out[g * group..g * group + m];
+        for j in 0..samples {
+            let t = j as f64 * dt;
+            multi_basis.displacement_at(&multi, [omega[0] * t, omega[1] * t], &mut val)?;
+            for (o, v) in outs.iter_mut().zip(&val) {
+                o.push(*v);
+            }
         }
     }
     Ok(out)
