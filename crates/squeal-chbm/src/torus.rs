@@ -96,12 +96,21 @@ pub struct ReducedContact {
     qr: Mat<f64>,
     pattern: Vec<(usize, usize)>,
     velocity: bool,
+    /// `K_s` row-major (`n_nl × n_nl`).
+    springs: Vec<f64>,
 }
 
+/// Rows of `K_s` [`ReducedContact::reduced_force`] sums together.
+const ROWS: usize = 4;
+
 impl ReducedContact {
-    fn new(mb: &ModalBrake, qe: Mat<f64>, qr: Mat<f64>) -> Self {
+    pub(crate) fn new(mb: &ModalBrake, qe: Mat<f64>, qr: Mat<f64>) -> Self {
         let pattern = (0..qe.ncols())
             .flat_map(|i| (0..qr.ncols()).map(move |k| (i, k)))
+            .collect();
+        let k = &mb.k_s;
+        let springs = (0..k.nrows())
+            .flat_map(|i| (0..k.ncols()).map(move |j| k[(i, j)]))
             .collect();
         Self {
             velocity: mb.velocity_dependent(),
@@ -109,6 +118,33 @@ impl ReducedContact {
             qe,
             qr,
             pattern,
+            springs,
+        }
+    }
+
+    /// `out += G(x_n)`: the contact forces minus the springs `K_s x_n`, the bits of
+    /// [`ModalBrake::add_reduced_force`] (each row's sum in the same order, from `-0.0` as
+    /// `Sum` for `f64`), with [`ROWS`] rows of `K_s` summed side by side.
+    pub(crate) fn reduced_force(&self, x: &[f64], v: Option<&[f64]>, out: &mut [f64]) {
+        squeal_brake::model::add_contact_forces(&self.mb.pairs, x, v, self.mb.mu, out);
+        let nn = x.len();
+        let mut rows = self.springs.chunks_exact(ROWS * nn);
+        let mut outs = out.chunks_exact_mut(ROWS);
+        for (block, o) in (&mut rows).zip(&mut outs) {
+            let mut acc = [-0.0; ROWS];
+            for (j, xj) in x.iter().enumerate() {
+                for l in 0..ROWS {
+                    acc[l] += block[l * nn + j] * xj;
+                }
+            }
+            o.iter_mut().zip(&acc).for_each(|(o, a)| *o -= a);
+        }
+        for (row, o) in rows
+            .remainder()
+            .chunks_exact(nn)
+            .zip(outs.into_remainder())
+        {
+            *o -= row.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
         }
     }
 
@@ -150,7 +186,7 @@ impl TorusForce for ReducedContact {
         let x = self.lift(y);
         let v = self.velocity.then(|| self.lift(ydot));
         let mut g = vec![0.0; x.len()];
-        self.mb.add_reduced_force(&x, v.as_deref(), &mut g);
+        self.reduced_force(&x, v.as_deref(), &mut g);
         let (qe, qr) = (&self.qe, &self.qr);
         for (i, fi) in f.iter_mut().enumerate() {
             *fi = (0..g.len()).map(|r| qe[(r, i)] * g[r]).sum();

@@ -431,16 +431,17 @@ mod tests {
     use crate::{Contact, FrictionSystem};
     use squeal_brake::contact::VelocityDependent;
 
-    /// Two 2-dof friction oscillators side by side: a penalty–Coulomb pair (displacement only)
-    /// and a velocity-weakening one (so the damping-like block `C` of the Jacobian is used).
+    /// Three 2-dof friction oscillators side by side: two penalty–Coulomb pairs (displacement
+    /// only) and a velocity-weakening one (so the damping-like block `C` of the Jacobian is
+    /// used); 6 nonlinear dofs, so that rows are left over after groups of 4.
     fn brake() -> ModalBrake {
-        let m = Mat::<f64>::identity(4, 4);
-        let c = Mat::from_fn(4, 4, |i, j| if i == j { 20.0 } else { 0.0 });
-        let k = Mat::from_fn(4, 4, |i, j| {
-            let d = [1.0e6, 1.0e6, 4.0e6, 1.0e7];
+        let m = Mat::<f64>::identity(6, 6);
+        let c = Mat::from_fn(6, 6, |i, j| if i == j { 20.0 } else { 0.0 });
+        let d = [1.0e6, 1.0e6, 4.0e6, 1.0e7, 1.3e6, 1.1e6];
+        let k = Mat::from_fn(6, 6, |i, j| {
             if i == j {
                 d[i]
-            } else if i / 2 == j / 2 && i < 2 {
+            } else if i / 2 == j / 2 && i / 2 != 1 {
                 1.0e5
             } else {
                 0.0
@@ -455,10 +456,13 @@ mod tests {
             decay_speed: 0.5,
         };
         let b = Contact::new(&[(3, -1.0)], &[(2, 1.0)], law).surface_speed(1.0);
+        let e = Contact::penalty_coulomb(&[(5, 1.0)], &[(4, -1.0)], 2.0e5, 5.0e11)
+            .initial_gap(-1.0e-4);
         let sys = FrictionSystem::builder(m, c, k)
             .contact(a)
             .contact(b)
-            .load(vec![0.0, 0.0, 0.0, -500.0])
+            .contact(e)
+            .load(vec![0.0, 0.0, 0.0, -500.0, 0.0, 0.0])
             .build()
             .unwrap();
         ModalBrake::new(sys.brake(), sys.reference(), 0.3)
@@ -505,6 +509,29 @@ mod tests {
                 for (i, (a, b)) in g.iter().zip(&single).enumerate() {
                     assert_eq!(a.to_bits(), b.to_bits(), "column {c}, row {i}: {a} vs {b}");
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn spring_rows_side_by_side_are_the_modal_brakes_force_bit_for_bit() {
+        let mb = brake();
+        let (qe, qr) = crate::floquet::contact_bases(&mb);
+        let rc = crate::torus::ReducedContact::new(&mb, qe, qr);
+        let nn = mb.nl();
+        assert_eq!(nn % 4, 2, "rows must be left over after the groups of 4");
+        let springs = (0..nn).flat_map(|i| (0..nn).map(move |j| (i, j)));
+        // The preloaded pairs' springs (one normal dof each: diagonal entries).
+        assert!(springs.filter(|&(i, j)| mb.k_s[(i, j)] != 0.0).count() >= 2);
+        for s in [1.0, -0.3, 2.5] {
+            let x: Vec<f64> = (0..nn).map(|i| s * 1e-5 * (i as f64 - 1.7)).collect();
+            let v: Vec<f64> = (0..nn).map(|i| s * 1e-2 * (2.0 - i as f64)).collect();
+            let (mut a, mut b) = (vec![0.0; nn], vec![0.0; nn]);
+            rc.reduced_force(&x, Some(&v), &mut a);
+            mb.add_reduced_force(&x, Some(&v), &mut b);
+            // Exactly equal (tolerance zero): the same sums in the same order.
+            for (i, (p, q)) in a.iter().zip(&b).enumerate() {
+                assert_eq!(p.to_bits(), q.to_bits(), "dof {i}: {p} vs {q}");
             }
         }
     }
