@@ -139,11 +139,7 @@ impl ReducedContact {
             }
             o.iter_mut().zip(&acc).for_each(|(o, a)| *o -= a);
         }
-        for (row, o) in rows
-            .remainder()
-            .chunks_exact(nn)
-            .zip(outs.into_remainder())
-        {
+        for (row, o) in rows.remainder().chunks_exact(nn).zip(outs.into_remainder()) {
             *o -= row.iter().zip(x).map(|(a, b)| a * b).sum::<f64>();
         }
     }

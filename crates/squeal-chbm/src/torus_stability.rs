@@ -447,8 +447,8 @@ mod tests {
                 0.0
             }
         });
-        let a = Contact::penalty_coulomb(&[(1, 1.0)], &[(0, -1.0)], 3.0e5, 7.5e11)
-            .initial_gap(-2.0e-4);
+        let a =
+            Contact::penalty_coulomb(&[(1, 1.0)], &[(0, -1.0)], 3.0e5, 7.5e11).initial_gap(-2.0e-4);
         let law = VelocityDependent {
             k_linear: 2.0e7,
             k_cubic: 0.0,
@@ -456,8 +456,8 @@ mod tests {
             decay_speed: 0.5,
         };
         let b = Contact::new(&[(3, -1.0)], &[(2, 1.0)], law).surface_speed(1.0);
-        let e = Contact::penalty_coulomb(&[(5, 1.0)], &[(4, -1.0)], 2.0e5, 5.0e11)
-            .initial_gap(-1.0e-4);
+        let e =
+            Contact::penalty_coulomb(&[(5, 1.0)], &[(4, -1.0)], 2.0e5, 5.0e11).initial_gap(-1.0e-4);
         let sys = FrictionSystem::builder(m, c, k)
             .contact(a)
             .contact(b)
@@ -490,7 +490,10 @@ mod tests {
         let (_, qr) = crate::floquet::contact_bases(&mb);
         let basis = TorusBasis::new(qr.ncols(), Truncation::Box(3, 2)).unwrap();
         let mut sys = BrakeVariational::new(&mb, &basis, &point(&basis)).unwrap();
-        assert!(sys.c.is_some(), "the velocity law must exercise J's C block");
+        assert!(
+            sys.c.is_some(),
+            "the velocity law must exercise J's C block"
+        );
         let dim = sys.dim();
         // 9 columns: two full groups of 4 and a group of 1.
         let cols = 9;
@@ -567,7 +570,12 @@ mod tests {
                     .displacement_at(&series, [p.omega[0] * t, p.omega[1] * t], &mut val)
                     .unwrap();
                 // Exactly equal (tolerance zero): the same sums in the same order.
-                assert_eq!(s.to_bits(), val[0].to_bits(), "sample {j}: {s} vs {}", val[0]);
+                assert_eq!(
+                    s.to_bits(),
+                    val[0].to_bits(),
+                    "sample {j}: {s} vs {}",
+                    val[0]
+                );
             }
         }
     }

@@ -121,7 +121,12 @@ fn dump(
 ) -> String {
     use std::fmt::Write as _;
     let mut out = String::new();
-    let v = |x: &[f64]| x.iter().map(|x| format!("{x:e}")).collect::<Vec<_>>().join(" ");
+    let v = |x: &[f64]| {
+        x.iter()
+            .map(|x| format!("{x:e}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
     for (p, f) in a.branch.points.iter().zip(&a.floquet) {
         let _ = writeln!(
             out,
@@ -166,7 +171,11 @@ fn dump(
             );
             for c in &p.pairs {
                 let e = c.envelope;
-                let _ = writeln!(out, "  pair {}", v(&[e.min, e.max, e.swing_min, e.swing_max]));
+                let _ = writeln!(
+                    out,
+                    "  pair {}",
+                    v(&[e.min, e.max, e.swing_min, e.swing_max])
+                );
             }
             match s {
                 Ok(s) => {

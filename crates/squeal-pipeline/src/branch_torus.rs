@@ -18,6 +18,7 @@
 
 use crate::branch::{BranchAnalysis, BranchOptions};
 use crate::model::{Log, Model};
+use rayon::prelude::*;
 use squeal_brake::analysis::LinearStability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::bifurcation::{Bifurcation, BifurcationKind};
@@ -26,7 +27,6 @@ use squeal_chbm::torus_stability::torus_lyapunov;
 /// The tori's 2-D Fourier basis, as the command line sets it.
 pub use squeal_hbm::torus::Truncation;
 use squeal_hbm::torus::lyapunov::{LyapunovOptions, LyapunovSpectrum};
-use rayon::prelude::*;
 use squeal_report::format::fmt_sig;
 use squeal_report::{Dash, Panel, Rgb, Series, Table};
 use std::fmt::Write as _;
