@@ -240,6 +240,84 @@ impl TorusVariational for BrakeVariational {
             *o -= dot(row, b);
         }
     }
+
+    fn apply_columns(&self, v: &[f64], out: &mut [f64]) {
+        let dim = 2 * self.mb.modes();
+        for (vg, og) in v.chunks(LANES * dim).zip(out.chunks_mut(LANES * dim)) {
+            self.apply_lanes(vg, og);
+        }
+    }
+}
+
+/// Columns [`BrakeVariational::apply_columns`] multiplies together.
+const LANES: usize = 4;
+
+/// `out[l] += Σ_t m[i, t] x[t][l]` for every row `i` of `m` (row-major, `x.len()` columns) and
+/// lane `l`, each lane summed in the order of a plain dot product from `-0.0` (what `Sum` for
+/// `f64` does): lane `l` of row `i` gets the bits of `row · x_l`. `out[i]` must hold `-0.0`
+/// for a plain product.
+fn rows_times_lanes(m: &[f64], x: &[[f64; LANES]], out: &mut [[f64; LANES]]) {
+    for (o, row) in out.iter_mut().zip(m.chunks_exact(x.len())) {
+        let mut acc = *o;
+        for (a, xt) in row.iter().zip(x) {
+            for l in 0..LANES {
+                acc[l] += a * xt[l];
+            }
+        }
+        *o = acc;
+    }
+}
+
+impl BrakeVariational {
+    /// `out = J V` for up to [`LANES`] columns `v` at once: each column the bits of
+    /// [`TorusVariational::apply`] (every sum in the same order), with each row of the
+    /// projections read once for all columns and the columns' sums independent.
+    fn apply_lanes(&self, v: &[f64], out: &mut [f64]) {
+        let n = self.mb.modes();
+        let cols = v.len() / (2 * n);
+        let (ne, nr) = (self.ne, self.nr);
+        // The columns' q and q̇ side by side: `qt[t][l]` is column l's q_t.
+        let mut qt = vec![[0.0; LANES]; n];
+        let mut qdt = vec![[0.0; LANES]; n];
+        for (l, (vc, oc)) in v
+            .chunks_exact(2 * n)
+            .zip(out.chunks_exact_mut(2 * n))
+            .enumerate()
+        {
+            let (q, qd) = vc.split_at(n);
+            let (oq, ov) = oc.split_at_mut(n);
+            oq.copy_from_slice(qd);
+            self.mb.damping.apply(qd, ov);
+            for j in 0..n {
+                ov[j] = -ov[j] - self.mb.omega[j] * self.mb.omega[j] * q[j];
+                qt[j][l] = q[j];
+                qdt[j][l] = qd[j];
+            }
+        }
+        let mut a = vec![[-0.0; LANES]; nr];
+        let mut b = vec![[-0.0; LANES]; ne];
+        rows_times_lanes(&self.pr, &qt, &mut a);
+        rows_times_lanes(&self.k, &a, &mut b);
+        if let Some(c) = &self.c {
+            a.fill([-0.0; LANES]);
+            rows_times_lanes(&self.pr, &qdt, &mut a);
+            // `b_i += row · a` adds the finished dot product, as `apply` does.
+            let mut bc = vec![[-0.0; LANES]; ne];
+            rows_times_lanes(c, &a, &mut bc);
+            for (bi, ci) in b.iter_mut().zip(&bc) {
+                for l in 0..LANES {
+                    bi[l] += ci[l];
+                }
+            }
+        }
+        let mut d = vec![[-0.0; LANES]; n];
+        rows_times_lanes(&self.pe, &b, &mut d);
+        for (l, oc) in out.chunks_exact_mut(2 * n).enumerate().take(cols) {
+            for (o, dj) in oc[n..].iter_mut().zip(&d) {
+                *o -= dj[l];
+            }
+        }
+    }
 }
 
 /// [`BrakeVariational`] with the torus' tangent directions in closed form (module docs).
@@ -281,6 +359,10 @@ impl TorusVariational for BrakeTangentFlow {
 
     fn apply(&self, v: &[f64], out: &mut [f64]) {
         self.flow.apply(v, out)
+    }
+
+    fn apply_columns(&self, v: &[f64], out: &mut [f64]) {
+        self.flow.apply_columns(v, out)
     }
 }
 
@@ -338,4 +420,163 @@ pub fn torus_transverse(
 ) -> Result<TransverseSpectrum, HbmError> {
     let mut sys = BrakeTangentFlow::new(mb, basis, grid, point)?;
     transverse_exponents(&mut sys, point.omega, opts)
+}
+
+#[cfg(test)]
+mod tests {
+    //! The grouped evaluations must give the bits of the single ones: `squeal branch`'s tori,
+    //! their envelopes and exponents must not change with how the products are grouped.
+    use super::*;
+    use crate::torus::{TorusPoint, closures_along_flow};
+    use crate::{Contact, FrictionSystem};
+    use squeal_brake::contact::VelocityDependent;
+
+    /// Three 2-dof friction oscillators side by side: two penalty–Coulomb pairs (displacement
+    /// only) and a velocity-weakening one (so the damping-like block `C` of the Jacobian is
+    /// used); 6 nonlinear dofs, so that rows are left over after groups of 4.
+    fn brake() -> ModalBrake {
+        let m = Mat::<f64>::identity(6, 6);
+        let c = Mat::from_fn(6, 6, |i, j| if i == j { 20.0 } else { 0.0 });
+        let d = [1.0e6, 1.0e6, 4.0e6, 1.0e7, 1.3e6, 1.1e6];
+        let k = Mat::from_fn(6, 6, |i, j| {
+            if i == j {
+                d[i]
+            } else if i / 2 == j / 2 && i / 2 != 1 {
+                1.0e5
+            } else {
+                0.0
+            }
+        });
+        let a =
+            Contact::penalty_coulomb(&[(1, 1.0)], &[(0, -1.0)], 3.0e5, 7.5e11).initial_gap(-2.0e-4);
+        let law = VelocityDependent {
+            k_linear: 2.0e7,
+            k_cubic: 0.0,
+            static_ratio: 1.6,
+            decay_speed: 0.5,
+        };
+        let b = Contact::new(&[(3, -1.0)], &[(2, 1.0)], law).surface_speed(1.0);
+        let e =
+            Contact::penalty_coulomb(&[(5, 1.0)], &[(4, -1.0)], 2.0e5, 5.0e11).initial_gap(-1.0e-4);
+        let sys = FrictionSystem::builder(m, c, k)
+            .contact(a)
+            .contact(b)
+            .contact(e)
+            .load(vec![0.0, 0.0, 0.0, -500.0, 0.0, 0.0])
+            .build()
+            .unwrap();
+        ModalBrake::new(sys.brake(), sys.reference(), 0.3)
+    }
+
+    /// A quasi-periodic motion in the reduced coordinates (not a torus of the brake: the
+    /// products only need some motion), with every coefficient non-zero.
+    fn point(basis: &TorusBasis) -> TorusPoint {
+        TorusPoint {
+            mu: 0.3,
+            omega: [1.1e3, 1.7e2],
+            coeffs: (0..basis.len())
+                .map(|i| 1e-5 * (((i * 7919) % 23) as f64 - 11.3) / (1 + i / 8) as f64)
+                .collect(),
+            pairs: Vec::new(),
+            iterations: 0,
+            residual: 0.0,
+            parameter_rate: 0.0,
+        }
+    }
+
+    #[test]
+    fn grouped_products_are_the_single_products_bit_for_bit() {
+        let mb = brake();
+        let (_, qr) = crate::floquet::contact_bases(&mb);
+        let basis = TorusBasis::new(qr.ncols(), Truncation::Box(3, 2)).unwrap();
+        let mut sys = BrakeVariational::new(&mb, &basis, &point(&basis)).unwrap();
+        assert!(
+            sys.c.is_some(),
+            "the velocity law must exercise J's C block"
+        );
+        let dim = sys.dim();
+        // 9 columns: two full groups of 4 and a group of 1.
+        let cols = 9;
+        let v: Vec<f64> = (0..dim * cols)
+            .map(|i| ((i * 37 % 101) as f64 - 50.0) * 1e-2)
+            .collect();
+        for theta in [[0.0, 0.0], [0.7, 2.1], [4.0, 5.5]] {
+            sys.set_angles(theta).unwrap();
+            let mut grouped = vec![f64::NAN; dim * cols];
+            sys.apply_columns(&v, &mut grouped);
+            let mut single = vec![f64::NAN; dim];
+            for c in 0..cols {
+                sys.apply(&v[c * dim..(c + 1) * dim], &mut single);
+                let g = &grouped[c * dim..(c + 1) * dim];
+                // Exactly equal (tolerance zero): the grouping must not reorder any sum.
+                for (i, (a, b)) in g.iter().zip(&single).enumerate() {
+                    assert_eq!(a.to_bits(), b.to_bits(), "column {c}, row {i}: {a} vs {b}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn spring_rows_side_by_side_are_the_modal_brakes_force_bit_for_bit() {
+        let mb = brake();
+        let (qe, qr) = crate::floquet::contact_bases(&mb);
+        let rc = crate::torus::ReducedContact::new(&mb, qe, qr);
+        let nn = mb.nl();
+        assert_eq!(nn % 4, 2, "rows must be left over after the groups of 4");
+        let springs = (0..nn).flat_map(|i| (0..nn).map(move |j| (i, j)));
+        // The preloaded pairs' springs (one normal dof each: diagonal entries).
+        assert!(springs.filter(|&(i, j)| mb.k_s[(i, j)] != 0.0).count() >= 2);
+        for s in [1.0, -0.3, 2.5] {
+            let x: Vec<f64> = (0..nn).map(|i| s * 1e-5 * (i as f64 - 1.7)).collect();
+            let v: Vec<f64> = (0..nn).map(|i| s * 1e-2 * (2.0 - i as f64)).collect();
+            let (mut a, mut b) = (vec![0.0; nn], vec![0.0; nn]);
+            rc.reduced_force(&x, Some(&v), &mut a);
+            mb.add_reduced_force(&x, Some(&v), &mut b);
+            // Exactly equal (tolerance zero): the same sums in the same order.
+            for (i, (p, q)) in a.iter().zip(&b).enumerate() {
+                assert_eq!(p.to_bits(), q.to_bits(), "dof {i}: {p} vs {q}");
+            }
+        }
+    }
+
+    #[test]
+    fn all_pairs_closures_at_once_are_each_pairs_own_bit_for_bit() {
+        let mb = brake();
+        let (_, qr) = crate::floquet::contact_bases(&mb);
+        let truncation = Truncation::Box(3, 2);
+        let basis = TorusBasis::new(qr.ncols(), truncation).unwrap();
+        let p = point(&basis);
+        let (dt, samples) = (1e-4, 50);
+        let got = closures_along_flow(&mb, &basis, &p.coeffs, p.omega, dt, samples).unwrap();
+        // Each pair on its own: its scalar series evaluated sample by sample.
+        let nr = qr.ncols();
+        let scalar = TorusBasis::new(1, truncation).unwrap();
+        assert_eq!(got.len(), mb.pairs.len());
+        for (pair, signal) in mb.pairs.iter().zip(&got) {
+            let row: Vec<f64> = (0..nr)
+                .map(|k| pair.normal.iter().map(|&(i, g)| g * qr[(i, k)]).sum())
+                .collect();
+            let series: Vec<f64> = (0..basis.n_blocks())
+                .map(|b| {
+                    let v: f64 = (0..nr).map(|k| row[k] * p.coeffs[b * nr + k]).sum();
+                    if b == 0 { v - pair.initial_gap } else { v }
+                })
+                .collect();
+            assert_eq!(signal.len(), samples);
+            let mut val = [0.0];
+            for (j, s) in signal.iter().enumerate() {
+                let t = j as f64 * dt;
+                scalar
+                    .displacement_at(&series, [p.omega[0] * t, p.omega[1] * t], &mut val)
+                    .unwrap();
+                // Exactly equal (tolerance zero): the same sums in the same order.
+                assert_eq!(
+                    s.to_bits(),
+                    val[0].to_bits(),
+                    "sample {j}: {s} vs {}",
+                    val[0]
+                );
+            }
+        }
+    }
 }

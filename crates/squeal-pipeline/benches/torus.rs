@@ -19,7 +19,7 @@
 //! ([`squeal_chbm::torus_stability::torus_transverse`]; `carry=0|1`, `ttransient=N`,
 //! `max=N`, `min=N`, `margin=X`, `vectors=N` its controls), the tangent defect of the torus,
 //! and the differences (`noref=1`: the standard method's own record stands in for the
-//! reference).
+//! reference). `dump=PATH` writes every number of the diagram in full (module docs of `dump`).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -103,9 +103,98 @@ fn as_squeal_branch(p: &Pipeline, level: &str) {
             );
         }
     }
+    if let Some(path) = arg("dump") {
+        std::fs::write(&path, dump(&a, &tori)).unwrap();
+        eprintln!("every number of the diagram written to {path}");
+    }
     if arg("compare").is_some() {
         compare(m, st, a.mu0(), &tori);
     }
+}
+
+/// Every number of the diagram (cycles, Hill's exponents, folds, bifurcations, tori, their
+/// exponents) in Rust's shortest round-trip form: two dumps are the same text exactly when the
+/// numbers are the same bits (`dump=PATH`; compare two runs with `cmp`).
+fn dump(
+    a: &squeal_pipeline::branch::BranchAnalysis,
+    tori: &[squeal_pipeline::branch_torus::TorusRun],
+) -> String {
+    use std::fmt::Write as _;
+    let mut out = String::new();
+    let v = |x: &[f64]| {
+        x.iter()
+            .map(|x| format!("{x:e}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    for (p, f) in a.branch.points.iter().zip(&a.floquet) {
+        let _ = writeln!(
+            out,
+            "cycle mu {:e} omega {:e} h {} it {} res {:e} coeffs {}",
+            p.parameter,
+            p.omega,
+            p.harmonics,
+            p.iterations,
+            p.residual,
+            v(&p.nl_coeffs)
+        );
+        if let Ok(f) = f {
+            for e in &f.exponents {
+                let _ = writeln!(out, "  hill {:e} {:e}", e.sigma.re, e.sigma.im);
+            }
+        }
+    }
+    for f in &a.branch.folds {
+        let _ = writeln!(out, "fold mu {:e}", f.parameter);
+    }
+    for b in &a.bifurcations {
+        let _ = writeln!(
+            out,
+            "bifurcation {} after {} mu {:e} sigma {:e} {:e}",
+            b.kind, b.after_point, b.parameter, b.exponent.sigma.re, b.exponent.sigma.im
+        );
+    }
+    for run in tori {
+        let _ = writeln!(out, "torus branch from {:e}", run.ns.parameter);
+        if let Err(e) = &run.result {
+            let _ = writeln!(out, "  failed: {e}");
+        }
+        for (p, s) in run.points() {
+            let _ = writeln!(
+                out,
+                "torus mu {:e} omega {} it {} res {:e} coeffs {}",
+                p.mu,
+                v(&p.omega),
+                p.iterations,
+                p.residual,
+                v(&p.coeffs)
+            );
+            for c in &p.pairs {
+                let e = c.envelope;
+                let _ = writeln!(
+                    out,
+                    "  pair {}",
+                    v(&[e.min, e.max, e.swing_min, e.swing_max])
+                );
+            }
+            match s {
+                Ok(s) => {
+                    let _ = writeln!(
+                        out,
+                        "  exponents {} second half {} steps {} verdict {}",
+                        v(&s.exponents),
+                        v(&s.second_half),
+                        s.steps,
+                        s.stability()
+                    );
+                }
+                Err(e) => {
+                    let _ = writeln!(out, "  exponents failed: {e}");
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Each torus' exponents by the standard method, today's controls and the reference's, against

@@ -18,6 +18,7 @@
 
 use crate::branch::{BranchAnalysis, BranchOptions};
 use crate::model::{Log, Model};
+use rayon::prelude::*;
 use squeal_brake::analysis::LinearStability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::bifurcation::{Bifurcation, BifurcationKind};
@@ -126,9 +127,15 @@ pub fn follow(
     }
     let mu0 = a.mu0();
     let mb = ModalBrake::new(&m.brake, &st.reference, mu0);
-    a.bifurcations
+    // The torus branches are independent, and so is every torus' stability: both run in
+    // parallel (rayon keeps the order), each one computed as on one thread, so the results are
+    // the same bits for any number of threads.
+    let ns: Vec<&Bifurcation> = a
+        .bifurcations
         .iter()
         .filter(|b| b.kind == BifurcationKind::NeimarkSacker)
+        .collect();
+    ns.into_par_iter()
         .map(|ns| follow_one(&mb, a, opts, plan, ns, log))
         .collect()
 }
@@ -165,12 +172,16 @@ fn follow_one(
     let b = match &run.result {
         Ok(b) => b,
         Err(e) => {
-            log(&format!("  torus branch failed: {e}"));
+            log(&format!(
+                "  torus branch from {:.5} mu0 failed: {e}",
+                ns.parameter / mu0
+            ));
             return run;
         }
     };
     log(&format!(
-        "  {} tori in {:.2} s on {} ({} unknowns), ended because {}",
+        "  torus branch from {:.5} mu0: {} tori in {:.2} s on {} ({} unknowns), ended because {}",
+        ns.parameter / mu0,
         b.points.len(),
         b.time.as_secs_f64(),
         truncation_text(b.basis.truncation()),
@@ -180,7 +191,7 @@ fn follow_one(
     let t = Instant::now();
     run.stability = b
         .points
-        .iter()
+        .par_iter()
         .map(|p| match &plan.lyapunov {
             Some(lo) => torus_lyapunov(mb, &b.basis, p, lo).map_err(|e| e.to_string()),
             None => Err("not asked for".into()),
@@ -189,7 +200,8 @@ fn follow_one(
     run.stability_time = t.elapsed();
     if plan.lyapunov.is_some() {
         log(&format!(
-            "  Lyapunov exponents of {} tori in {:.2} s",
+            "  torus branch from {:.5} mu0: Lyapunov exponents of {} tori in {:.2} s",
+            ns.parameter / mu0,
             b.points.len(),
             run.stability_time.as_secs_f64()
         ));

@@ -48,6 +48,16 @@ pub trait TorusVariational {
     fn set_angles(&mut self, theta: [f64; 2]) -> Result<(), HbmError>;
     /// `out = J v`.
     fn apply(&self, v: &[f64], out: &mut [f64]);
+    /// `out = J V` for the columns `v[c*n..(c+1)*n]` (`n` = [`Self::dim`]); by default
+    /// [`Self::apply`] column by column. An implementation may treat several columns at once
+    /// but must give each column the bits [`Self::apply`] gives it (the exponents must not
+    /// depend on how the products are grouped).
+    fn apply_columns(&self, v: &[f64], out: &mut [f64]) {
+        let n = self.dim();
+        for (vc, oc) in v.chunks_exact(n).zip(out.chunks_exact_mut(n)) {
+            self.apply(vc, oc);
+        }
+    }
 }
 
 /// Controls of [`lyapunov_exponents`].
@@ -222,11 +232,10 @@ fn orthonormalize(v: &mut [f64], n: usize, logs: &mut [f64]) {
     }
 }
 
-/// `out = J v` column by column.
+/// `out = J v` for the columns of `v` (each of length `n`, the state's dimension).
 pub(super) fn apply_all<S: TorusVariational>(sys: &S, v: &[f64], out: &mut [f64], n: usize) {
-    for (vc, oc) in v.chunks_exact(n).zip(out.chunks_exact_mut(n)) {
-        sys.apply(vc, oc);
-    }
+    debug_assert_eq!(n, sys.dim());
+    sys.apply_columns(v, out);
 }
 
 /// The `opts.exponents` largest Lyapunov exponents of the torus of frequencies `omega` whose
