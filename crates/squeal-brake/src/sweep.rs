@@ -382,7 +382,19 @@ fn sweep_until(
         projection: None,
         timings,
     };
-    if let Some(first) = sweep.crossings.iter().find(|c| c.in_band).copied() {
+    // Every in-band crossing of the first bracket that has one: two modes crossing between
+    // the same two friction values are both refined and the lower onset is μ0 (the sort by
+    // frequency inside a bracket says nothing about which crosses first).
+    let first_bracket: Vec<Crossing> = match sweep.crossings.iter().find(|c| c.in_band) {
+        Some(first) => sweep
+            .crossings
+            .iter()
+            .filter(|c| c.in_band && c.k == first.k)
+            .copied()
+            .collect(),
+        None => Vec::new(),
+    };
+    for first in first_bracket {
         let continued = match low_rank {
             Some(lr) => crate::hopf::refine(brake, reference, lr, &sweep, &first, opts, tau)?,
             None => None,
@@ -406,8 +418,8 @@ fn sweep_until(
             }
             None => static_equilibrium(brake, mu, Some(from), &opts.newton),
         };
-        sweep.hopf = match continued {
-            Some(h) => Some(h),
+        let refined = match continued {
+            Some(h) => h,
             None => {
                 let mut h = crate::hopf::regula_falsi(
                     &equilibrium_at,
@@ -419,11 +431,14 @@ fn sweep_until(
                 )?;
                 if let Some(p) = projection.as_ref().filter(|_| rayleigh_refinement) {
                     crate::projected_hopf::complete(brake, &lin, p, &mut h)?;
-                    sweep.stats.refinement_whole = followed.whole.get();
+                    sweep.stats.refinement_whole += followed.whole.get();
                 }
-                Some(h)
+                h
             }
         };
+        if sweep.hopf.as_ref().is_none_or(|h| refined.mu0 < h.mu0) {
+            sweep.hopf = Some(refined);
+        }
     }
     sweep.projection = projection;
     sweep.timings.refinement = start.elapsed();
