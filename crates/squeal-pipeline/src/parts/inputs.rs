@@ -120,6 +120,16 @@ fn add_supports_and_ties(
         }
     }
     for t in scene.ties()? {
+        if let Some(master_part) = &t.master_part {
+            let tie = squeal_reduce::part_tie::PartTieInput {
+                slave: (t.part.clone(), name_of(&t.slave.key)),
+                master: (master_part.clone(), name_of(&t.master.key)),
+                tolerance: t.tolerance,
+            };
+            super::bodies::keep_tie_sets(inputs, &tie);
+            inputs.part_ties.push(tie);
+            continue;
+        }
         if let Some(p) = part_mut(inputs, &t.part) {
             p.ties.push(squeal_reduce::tie::Tie {
                 slave: name_of(&t.slave.key),
