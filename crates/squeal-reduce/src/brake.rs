@@ -762,8 +762,7 @@ pub fn reduce_brake_keeping(
         pairs = attach_projections(&mut reduced_parts, projections)?;
     }
     let connections = resolve_connections(inputs, &reduced_parts)?;
-    let ties =
-        crate::part_tie::resolve_ties(&inputs.part_ties, &tie_projections, &reduced_parts)?;
+    let ties = crate::part_tie::resolve_ties(&inputs.part_ties, &tie_projections, &reduced_parts)?;
     let model = ReducedModel {
         tool_version: TOOL_VERSION.into(),
         parts: reduced_parts,

@@ -334,11 +334,13 @@ pub fn resolve_tie(
 ) -> Result<PartTie, PartTieError> {
     let (sp, mp) = (tie_points(slave), tie_points(master));
     let point = |map: &BTreeMap<u64, usize>, part: &ReducedPart, set: &str, node: u64| {
-        map.get(&node).copied().ok_or_else(|| PartTieError::NoPoint {
-            part: part.info.name.clone(),
-            node,
-            set: set.to_string(),
-        })
+        map.get(&node)
+            .copied()
+            .ok_or_else(|| PartTieError::NoPoint {
+                part: part.info.name.clone(),
+                node,
+                set: set.to_string(),
+            })
     };
     let mut links = Vec::with_capacity(projected.len());
     for (s, weights) in projected {
@@ -360,7 +362,8 @@ pub fn resolve_tie(
 
 /// Why the ties stored in a `.rom` are not those of `inputs` (empty when they are).
 pub fn tie_reasons(stored: &[PartTie], inputs: &[PartTieInput]) -> Vec<String> {
-    let same = stored.len() == inputs.len() && stored.iter().zip(inputs).all(|(s, i)| s.input == *i);
+    let same =
+        stored.len() == inputs.len() && stored.iter().zip(inputs).all(|(s, i)| s.input == *i);
     match same {
         true => Vec::new(),
         false => vec![format!(

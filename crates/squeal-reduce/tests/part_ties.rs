@@ -173,16 +173,26 @@ fn two_cubes_tied_are_the_block() {
     let free = DofMap::new(&mesh, &[Restraint::clamp("ZMIN")])
         .unwrap()
         .num_free();
-    assert_eq!(size + 2, free, "the tied model keeps the one mesh's dofs but two modes");
+    assert_eq!(
+        size + 2,
+        free,
+        "the tied model keeps the one mesh's dofs but two modes"
+    );
     for (i, (f, r)) in all.iter().zip(&reference).take(20).enumerate() {
         let e = relative(*f, *r);
-        println!("all modes: mode {}: {f:.6} Hz against {r:.6} Hz ({e:.2e})", i + 1);
+        println!(
+            "all modes: mode {}: {f:.6} Hz against {r:.6} Hz ({e:.2e})",
+            i + 1
+        );
         assert!(e.abs() < 5e-8, "mode {}: {f} against {r}", i + 1);
     }
     let (few, _) = tied([2, 2, 2], [2, 2, 2], Some(10));
     for (i, (f, r)) in few.iter().zip(&reference).take(6).enumerate() {
         let e = relative(*f, *r);
-        println!("10 modes: mode {}: {f:.6} Hz against {r:.6} Hz ({e:.2e})", i + 1);
+        println!(
+            "10 modes: mode {}: {f:.6} Hz against {r:.6} Hz ({e:.2e})",
+            i + 1
+        );
         assert!(e > -1e-9 && e < 3e-3, "mode {}: {f} against {r}", i + 1);
     }
 }
@@ -238,8 +248,14 @@ fn bad_ties_are_refused() {
         ),
         "{text}"
     );
-    assert!(text.contains("1.000e-3 m from the master surface"), "{text}");
-    assert!(text.contains("check that the two sets face each other"), "{text}");
+    assert!(
+        text.contains("1.000e-3 m from the master surface"),
+        "{text}"
+    );
+    assert!(
+        text.contains("check that the two sets face each other"),
+        "{text}"
+    );
     assert!(!text.contains('{') && !text.contains("Some("), "{text}");
     // With a tolerance above the gap, it ties.
     let loose = PartTieInput {

@@ -127,6 +127,20 @@ fn add_supports_and_ties(
                 tolerance: t.tolerance,
             };
             super::bodies::keep_tie_sets(inputs, &tie);
+            // A pad tied on its abutments is held there by the tie, not by their restraint.
+            let count = inputs.pads.len();
+            for (i, pad) in inputs.pads.iter_mut().enumerate() {
+                let abutments = pad_set(&parts.sets, &pad.name, 2, i, count).map(|c| &c.name);
+                for (part, set) in [&tie.slave, &tie.master] {
+                    if *part == pad.name && abutments == Some(set) {
+                        pad.part
+                            .restraints
+                            .retain(|r| r.nodes != NodeSelection::Set(set.clone()));
+                        pad.part.skew_restraints.retain(|r| r.0 != *set);
+                        pad.part.axis_restraints.retain(|r| r.0 != *set);
+                    }
+                }
+            }
             inputs.part_ties.push(tie);
             continue;
         }

@@ -107,15 +107,16 @@ fn nodal_rows(
                 projected: None,
             });
             for d in 0..3 {
-                let dof = dofmap
-                    .free_dof(node, d)
-                    .ok_or_else(|| ReduceError::BoundaryRestrained {
-                        part: spec.name.clone(),
-                        set: coupling.set.clone(),
-                        node: mesh.node_ids[node as usize],
-                        position: mesh.nodes[node as usize],
-                        direction: AXES[d],
-                    })?;
+                let dof =
+                    dofmap
+                        .free_dof(node, d)
+                        .ok_or_else(|| ReduceError::BoundaryRestrained {
+                            part: spec.name.clone(),
+                            set: coupling.set.clone(),
+                            node: mesh.node_ids[node as usize],
+                            position: mesh.nodes[node as usize],
+                            direction: AXES[d],
+                        })?;
                 rows.push(Row {
                     point: p,
                     label: point_label(p, d),
