@@ -21,7 +21,7 @@ pub enum ReduceError {
     Mesh(#[from] squeal_mesh::MeshError),
     /// A tie between two parts cannot be made ([`crate::part_tie`]).
     #[error(transparent)]
-    PartTie(#[from] crate::part_tie::PartTieError),
+    PartTie(Box<crate::part_tie::PartTieError>),
     /// A part named by element set cannot be cut out of its file.
     #[error("{}: {error}", path.display())]
     Part {

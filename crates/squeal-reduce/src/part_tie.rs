@@ -194,6 +194,12 @@ pub enum PartTieError {
     },
 }
 
+impl From<PartTieError> for crate::ReduceError {
+    fn from(e: PartTieError) -> Self {
+        crate::ReduceError::PartTie(Box::new(e))
+    }
+}
+
 /// The slave nodes' projections of one tie: `(slave node id, [(master node id, weight)])`.
 pub type Projected = Vec<(u64, Vec<(u64, f64)>)>;
 
@@ -255,7 +261,7 @@ pub fn check_ties(
     parts: &[&str],
     bodies: &[&str],
     sets: &dyn Fn(&str, &str) -> Vec<u64>,
-) -> Result<(), PartTieError> {
+) -> Result<(), crate::ReduceError> {
     let mut slaves: BTreeMap<(&str, u64), &str> = BTreeMap::new();
     for t in ties {
         let (sp, ss) = &t.slave;
@@ -269,7 +275,8 @@ pub fn check_ties(
                     master_set: ms.clone(),
                     part: p.clone(),
                     have: parts.join(", "),
-                });
+                }
+                .into());
             }
         }
         if sp == mp {
@@ -277,7 +284,8 @@ pub fn check_ties(
                 part: sp.clone(),
                 slave_set: ss.clone(),
                 master_set: ms.clone(),
-            });
+            }
+            .into());
         }
         if !bodies.contains(&sp.as_str()) {
             return Err(PartTieError::SlaveNotBody {
@@ -285,7 +293,8 @@ pub fn check_ties(
                 slave_set: ss.clone(),
                 master_part: mp.clone(),
                 master_set: ms.clone(),
-            });
+            }
+            .into());
         }
         for node in sets(sp, ss) {
             if let Some(first) = slaves.insert((sp.as_str(), node), ss.as_str()) {
@@ -294,7 +303,8 @@ pub fn check_ties(
                     node,
                     first: first.to_string(),
                     second: ss.clone(),
-                });
+                }
+                .into());
             }
         }
     }
@@ -308,7 +318,8 @@ pub fn check_ties(
                 part: mp.clone(),
                 node,
                 master_set: ms.clone(),
-            });
+            }
+            .into());
         }
     }
     Ok(())
@@ -331,23 +342,23 @@ pub fn resolve_tie(
     projected: &Projected,
     slave: &ReducedPart,
     master: &ReducedPart,
-) -> Result<PartTie, PartTieError> {
+) -> Result<PartTie, crate::ReduceError> {
     let (sp, mp) = (tie_points(slave), tie_points(master));
     let point = |map: &BTreeMap<u64, usize>, part: &ReducedPart, set: &str, node: u64| {
-        map.get(&node)
-            .copied()
-            .ok_or_else(|| PartTieError::NoPoint {
+        map.get(&node).copied().ok_or_else(|| {
+            crate::ReduceError::from(PartTieError::NoPoint {
                 part: part.info.name.clone(),
                 node,
                 set: set.to_string(),
             })
+        })
     };
     let mut links = Vec::with_capacity(projected.len());
     for (s, weights) in projected {
         let masters = weights
             .iter()
             .map(|&(m, w)| Ok((point(&mp, master, &tie.master.1, m)?, w)))
-            .collect::<Result<Vec<_>, PartTieError>>()?;
+            .collect::<Result<Vec<_>, crate::ReduceError>>()?;
         links.push(TieLink {
             slave: point(&sp, slave, &tie.slave.1, *s)?,
             masters,
@@ -530,7 +541,7 @@ pub fn resolve_ties(
     ties: &[PartTieInput],
     projected: &[Projected],
     parts: &[ReducedPart],
-) -> Result<Vec<PartTie>, PartTieError> {
+) -> Result<Vec<PartTie>, crate::ReduceError> {
     let part = |name: &str| parts.iter().find(|p| p.info.name == name);
     ties.iter()
         .zip(projected)
@@ -551,7 +562,8 @@ pub fn resolve_ties(
                     .map(|p| p.info.name.as_str())
                     .collect::<Vec<_>>()
                     .join(", "),
-            }),
+            }
+            .into()),
         })
         .collect()
 }
