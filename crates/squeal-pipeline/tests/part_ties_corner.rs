@@ -97,3 +97,40 @@ fn corner_with_a_tied_abutment() {
         "{e}"
     );
 }
+
+/// A tie between parts whose slave is a pad is refused by the scene at its key, with the way
+/// out (swap master and slave); a master_part that is not a part is refused likewise.
+#[test]
+fn a_pad_slave_is_refused_at_its_key() {
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes/corner/brake_tied.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let swapped = text.replace(
+        "part = \"bracket\"\nslave = \"BRACKET_ABUTMENT_OUTBOARD\"\nmaster_part = \"outboard\"\nmaster = \"OUTBOARD_ABUTMENT\"",
+        "part = \"outboard\"\nslave = \"OUTBOARD_ABUTMENT\"\nmaster_part = \"bracket\"\nmaster = \"BRACKET_ABUTMENT_OUTBOARD\"",
+    );
+    assert_ne!(swapped, text);
+    let e = refusal(&path, swapped);
+    assert!(
+        e.contains("brake_tied.toml:") && e.contains("ties.3.part"),
+        "{e}"
+    );
+    assert!(
+        e.contains("must be a [parts.<name>] part") && e.contains("master_part = \"outboard\""),
+        "{e}"
+    );
+    let unknown = text.replace("master_part = \"outboard\"", "master_part = \"knuckle\"");
+    let e = refusal(&path, unknown);
+    assert!(e.contains("'knuckle' is not a part"), "{e}");
+}
+
+/// The error of scene `text` (read as `path`), on reading or on its ties.
+fn refusal(path: &std::path::Path, text: String) -> String {
+    match Scene::parse(path, text) {
+        Ok(scene) => match scene.ties() {
+            Ok(_) => panic!("the scene reads"),
+            Err(e) => e.to_string(),
+        },
+        Err(e) => e.to_string(),
+    }
+}

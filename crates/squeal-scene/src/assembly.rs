@@ -168,7 +168,7 @@ impl Scene {
                     &key("part"),
                     &t.part,
                     format!(
-                        "the slave of a tie between parts must be a [parts.<name>] part, not '{part}': make '{part}''s set the master (master_part = \"{part}\") and the other part's the slave"
+                        "the slave of a tie between parts must be a [parts.<name>] part, not '{part}': make the set on '{part}' the master (master_part = \"{part}\") and the other part's set the slave"
                     ),
                 ));
             }
