@@ -589,6 +589,7 @@ pub fn assemble(
         &mut brake.k_vibration,
         &mut brake.f_piston,
     )?;
+    crate::connections::eliminate_ties(rom, &blocks, layout.all_pads().end, &mut brake)?;
     brake.validate()?;
     Ok((brake, layout, report))
 }

@@ -125,3 +125,58 @@ pub fn add_connections(
     }
     Ok(())
 }
+
+/// Eliminates the ties between parts of `rom` from the assembled brake (`K`, `M`, `F_piston`,
+/// `K_vib`, `C`): the congruence `q = T q_r` of [`squeal_reduce::part_tie`], `K' = Tᵀ K T`,
+/// `M' = Tᵀ M T`, `f' = Tᵀ f`. The slave dofs are on further parts, after every pad's dofs
+/// (`first_body`), so the contact pairs' and the load's dofs keep their places.
+pub fn eliminate_ties(
+    rom: &ReducedModel,
+    parts: &[&ReducedPart],
+    first_body: usize,
+    brake: &mut crate::model::Brake,
+) -> Result<(), BrakeError> {
+    if rom.ties.is_empty() {
+        return Ok(());
+    }
+    let mut offsets = Vec::with_capacity(parts.len());
+    let mut start = 0;
+    for p in parts {
+        offsets.push((p.info.name.as_str(), start, *p));
+        start += p.size();
+    }
+    let find = |name: &str| offsets.iter().find(|o| o.0 == name);
+    let offset = |name: &str| find(name).map(|o| o.1);
+    let dof = |name: &str, point: usize, d: usize| {
+        find(name).and_then(|o| {
+            o.2.info.dofs.iter().position(|l| {
+                matches!(*l, DofLabel::Point { point: q, direction } if q == point && usize::from(direction) == d)
+            })
+        })
+    };
+    let n = brake.size();
+    let t = squeal_reduce::part_tie::TieTransform::new(n, &rom.ties, &offset, &dof).map_err(
+        |what| BrakeError::Connection {
+            name: "ties between parts".into(),
+            what,
+        },
+    )?;
+    if let Some((s, _)) = t.slaves.iter().find(|(s, _)| *s < first_body) {
+        return Err(BrakeError::Connection {
+            name: "ties between parts".into(),
+            what: format!(
+                "slave dof {s} is on the disc or a pad: the slave of a tie between parts must be a further part ([parts.<name>])"
+            ),
+        });
+    }
+    brake.k = t.congruence(&brake.k);
+    brake.m = t.congruence(&brake.m);
+    brake.f_piston = t.reduce_vector(&brake.f_piston);
+    if let Some(kv) = &brake.k_vibration {
+        brake.k_vibration = Some(t.congruence(kv));
+    }
+    if let Some(c) = &brake.c {
+        brake.c = Some(t.congruence(c));
+    }
+    Ok(())
+}

@@ -133,6 +133,11 @@ fn full_parts(parts: &SceneParts, inputs: &BrakeInputs) -> Result<Vec<FullPart>>
 
 /// The full model of the brake `model` (reduced from `parts` with `inputs`).
 pub fn full_brake(parts: &SceneParts, inputs: &BrakeInputs, model: &Model) -> Result<FullBrake> {
+    if !inputs.part_ties.is_empty() || !model.rom.ties.is_empty() {
+        return Err(full_error(
+            "the scene ties two parts ([[ties]] with master_part), which the full model does not build yet (its slave nodes would have to be eliminated on the full meshes as the reduced brake eliminates them on the parts' boundary dofs, squeal_reduce::part_tie). Compare without --full, or tie the surfaces inside one part (leave master_part out and give both element sets to one part)",
+        ));
+    }
     let full = full_parts(parts, inputs)?;
     let n = full.last().map_or(0, |p| p.offset + p.unreduced.num_free());
     let (mut kt, mut mt) = (Vec::new(), Vec::new());

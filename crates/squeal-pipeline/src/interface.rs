@@ -484,6 +484,7 @@ pub fn at_blocks(model: &Model, blocks: &[(String, faer::Mat<f64>)]) -> Result<M
         tool_version: model.rom.tool_version.clone(),
         parts,
         connections: model.rom.connections.clone(),
+        ties: model.rom.ties.clone(),
     };
     Ok(Model {
         rom,

@@ -450,7 +450,7 @@ fn choose_assembly_sets(scene: &Scene, meshes: &mut [(&str, &mut Mesh)]) -> Resu
     }
     for t in scene.ties()? {
         wanted.push((t.part.clone(), t.slave));
-        wanted.push((t.part, t.master));
+        wanted.push((t.master_part.unwrap_or(t.part), t.master));
     }
     for s in scene.springs()? {
         wanted.push((s.part.clone(), s.set));

@@ -281,6 +281,9 @@ pub struct BrakeInputs {
     pub bodies: Vec<PadInput>,
     /// Springs between coupling points of two parts or to ground.
     pub connections: Vec<crate::coupling::ConnectionInput>,
+    /// Ties between two parts, eliminated on the assembled model ([`crate::part_tie`]); their
+    /// sets must be each part's `nodal` coupling sets.
+    pub part_ties: Vec<crate::part_tie::PartTieInput>,
     /// Parallelism of the sparse factorizations (the rest runs on rayon in fixed-size
     /// blocks). Their bits do not depend on it; faer's dense kernels on small matrices, which
     /// follow `faer::get_global_parallelism()`, do: set that to `Par::Seq` for results that
@@ -311,6 +314,7 @@ impl Default for BrakeInputs {
             pairing_tolerance: DEFAULT_PAIRING_TOLERANCE,
             bodies: Vec::new(),
             connections: Vec::new(),
+            part_ties: Vec::new(),
             par: Par::rayon(0),
         }
     }
@@ -623,6 +627,29 @@ pub fn reduce_brake_keeping(
         let spec = inputs.spec(name, input, part.info.clone());
         require_held_coupled(&part.mesh, &spec, &input.couplings).map_err(in_mesh(input))?;
     }
+    // Ties between parts: checked and projected before any reduction.
+    let tie_projections = {
+        let meshes: Vec<(&str, &Mesh)> = parts
+            .iter()
+            .zip(&loaded)
+            .map(|((name, _), part)| (*name, &part.mesh))
+            .collect();
+        let bodies: Vec<&str> = inputs.bodies.iter().map(|b| b.name.as_str()).collect();
+        for t in &inputs.part_ties {
+            for (part, set) in [&t.slave, &t.master] {
+                let kept = parts.iter().any(|(name, input)| {
+                    name == part && input.couplings.iter().any(|c| c.nodal && c.set == *set)
+                });
+                if !kept && parts.iter().any(|(name, _)| name == part) {
+                    return Err(ReduceError::Options(format!(
+                        "tie of {} on {} to {} on {}: part '{part}' does not keep the set {set} node by node (add it to the part's couplings with nodal = true)",
+                        t.slave.1, t.slave.0, t.master.1, t.master.0
+                    )));
+                }
+            }
+        }
+        crate::part_tie::project_ties(&inputs.part_ties, &meshes, &bodies)?
+    };
     let mut pairs = Vec::new();
     let mut tolerance = 0.0;
     // Nodal interface: each pad's face nodes projected onto the disc face under it, before
@@ -735,10 +762,12 @@ pub fn reduce_brake_keeping(
         pairs = attach_projections(&mut reduced_parts, projections)?;
     }
     let connections = resolve_connections(inputs, &reduced_parts)?;
+    let ties = crate::part_tie::resolve_ties(&inputs.part_ties, &tie_projections, &reduced_parts)?;
     let model = ReducedModel {
         tool_version: TOOL_VERSION.into(),
         parts: reduced_parts,
         connections,
+        ties,
     };
     let read: Duration = reports.iter().map(|r| r.read_time).sum();
     let report = BrakeReport {

@@ -69,6 +69,11 @@ pub struct CouplingSet {
     /// brake applies the pad's clamp force there.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub load: bool,
+    /// Kept node by node instead (a tie between parts, [`crate::part_tie`]): each node's three
+    /// dofs are boundary coordinates, points of role [`crate::rom::PointRole::Tie`], kept
+    /// before the mean-motion sets' points.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub nodal: bool,
 }
 
 /// The mean motion of a node set: weights, centroid and `J⁻¹` (module docs).

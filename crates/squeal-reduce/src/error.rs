@@ -19,6 +19,9 @@ pub enum ReduceError {
     /// The mesh file could not be read.
     #[error(transparent)]
     Mesh(#[from] squeal_mesh::MeshError),
+    /// A tie between two parts cannot be made ([`crate::part_tie`]).
+    #[error(transparent)]
+    PartTie(Box<crate::part_tie::PartTieError>),
     /// A part named by element set cannot be cut out of its file.
     #[error("{}: {error}", path.display())]
     Part {

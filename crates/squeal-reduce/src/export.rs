@@ -94,6 +94,7 @@ fn write_dof_labels(w: &mut dyn Write, part: &ReducedPart) -> std::io::Result<()
             crate::rom::PointRole::Piston => "piston",
             crate::rom::PointRole::Face => "face",
             crate::rom::PointRole::Coupling => "coupling",
+            crate::rom::PointRole::Tie => "tie",
         };
         let axis = direction
             .iter()

@@ -14,6 +14,7 @@ pub mod export;
 pub mod held;
 pub mod interface;
 pub mod interface_modes;
+pub mod part_tie;
 pub mod rom;
 pub mod springs;
 pub mod summary;

@@ -37,7 +37,9 @@ pub const FORMAT: &str = "squeal-rom";
 /// point's normal (`along`). Version 4 added parts of role `body` (a caliper, a bracket),
 /// points of role `coupling` (a node set's mean motion, six dofs: three translations and
 /// three `rotation` dofs) and the header's `connections` between parts
-/// ([`crate::coupling`]). Files of versions 1 to 3 still read (their parts are a disc and
+/// ([`crate::coupling`]), and later, still version 4, points of role `tie` and the header's
+/// `ties` between parts ([`crate::part_tie`]; absent from files without them, so those read
+/// as before). Files of versions 1 to 3 still read (their parts are a disc and
 /// pads); a scene reduces them again ([`crate::brake::freshness`]).
 pub const VERSION: u32 = 4;
 
@@ -145,6 +147,8 @@ pub enum PointRole {
     /// A node set's mean motion ([`crate::coupling`]): three translations and three rotations,
     /// where a connection to another part or to ground acts (version 4).
     Coupling,
+    /// A node of a tie between parts, its three dofs kept ([`crate::part_tie`]).
+    Tie,
 }
 
 /// A retained interface point.
@@ -442,6 +446,10 @@ pub struct RomHeader {
     /// are none).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub connections: Vec<crate::coupling::Connection>,
+    /// Ties between parts, eliminated on the assembled model ([`crate::part_tie`]; absent
+    /// when there are none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ties: Vec<crate::part_tie::PartTie>,
 }
 
 /// The basis `[T_C T_phi]` on the part's free dofs, with each row's node id and direction.
@@ -484,6 +492,8 @@ pub struct ReducedModel {
     pub parts: Vec<ReducedPart>,
     /// Springs between the parts' coupling points or to ground ([`crate::coupling`]).
     pub connections: Vec<crate::coupling::Connection>,
+    /// Ties between parts, eliminated on the assembled model ([`crate::part_tie`]).
+    pub ties: Vec<crate::part_tie::PartTie>,
 }
 
 impl ReducedModel {
@@ -569,6 +579,7 @@ impl ReducedModel {
                 .collect(),
             arrays_crc32: Some(format!("{:08x}", crc.0.finalize())),
             connections: self.connections.clone(),
+            ties: self.ties.clone(),
         };
         let json =
             serde_json::to_string(&header).map_err(|e| RomError::Serialize(e.to_string()))?;
@@ -680,6 +691,7 @@ impl ReducedModel {
             tool_version: header.tool_version,
             parts,
             connections: header.connections,
+            ties: header.ties,
         })
     }
 }

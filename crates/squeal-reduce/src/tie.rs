@@ -26,6 +26,10 @@
 //! twice). A slave node that is itself a master node (a shared node) is left as it is. Slave
 //! nodes must not be restrained, kept as boundary nodes, or masters of another tie.
 //!
+//! A tie between two separately reduced parts (`[[ties]]` with `master_part`) keeps both faces
+//! as boundary dofs and eliminates the same projection's constraints on the assembled reduced
+//! model instead ([`crate::part_tie`]).
+//!
 //! **Supports.** A support is a spring to ground on a node set, with a stiffness per global
 //! direction `[k_x, k_y, k_z]` (N/m, the set's total): a piston's seal, a caliper finger, a
 //! bracket mount, or a pad held over its back face. It acts on the vibration about the

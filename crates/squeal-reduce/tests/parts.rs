@@ -179,6 +179,7 @@ fn reduced(a: &Mesh, b: &Mesh, c: &Connection, modes: usize) -> Vec<f64> {
         let couplings = [CouplingSet {
             set: set.into(),
             load: false,
+            nodal: false,
         }];
         reduce_part_coupled(
             mesh,

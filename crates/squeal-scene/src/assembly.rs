@@ -11,7 +11,17 @@
 //! slave = "SHIM_TOP"      # node set or rule
 //! master = "BACKPLATE_BACK"
 //! tolerance = 1.0e-4      # optional (the [units] length): default 1 % of the master's size
+//!
+//! [[ties]]                # a bonded interface between two separately reduced parts
+//! part = "shim"           # the slave's part: a [parts.<name>] part
+//! slave = "SHIM_FRONT"    # its node set or rule
+//! master_part = "inboard" # the master's part (any part); leave out for a tie inside `part`
+//! master = "BACKPLATE_BACK"
 //! ```
+//!
+//! With `master_part`, both sets stay physical boundary dofs of their parts' Craig–Bampton
+//! reductions and the tie is eliminated exactly on the assembled reduced brake
+//! (`squeal_reduce::part_tie`): the meshes need not match.
 //!
 //! The reduction shares a support's stiffness over its set by tributary area and adds it to
 //! the part's stiffness before the Craig–Bampton reduction; a tie's constraints are
@@ -46,6 +56,8 @@ pub struct TieSection {
     pub master: Spanned<toml::Value>,
     /// Largest distance of a slave node from the master face.
     pub tolerance: Option<Spanned<f64>>,
+    /// The master face's part when it is not `part`: a tie between two parts.
+    pub master_part: Option<Spanned<String>>,
 }
 
 /// A support, typed: the part, its set's rules and the stiffness in N/m.
@@ -70,6 +82,9 @@ pub struct TieSpec {
     pub master: SetRule,
     /// Tolerance (m), if given.
     pub tolerance: Option<f64>,
+    /// The master's part when it is another part than `part` (key `ties.<k>.master_part`):
+    /// a tie between two separately reduced parts; `None`: both surfaces on `part`.
+    pub master_part: Option<String>,
 }
 
 impl Scene {
@@ -144,7 +159,21 @@ impl Scene {
             if let Some(tol) = &t.tolerance {
                 self.positive(&key("tolerance"), tol)?;
             }
+            let master_part = match &t.master_part {
+                Some(m) => Some(self.check_part(&key("master_part"), m)?).filter(|m| *m != part),
+                None => None,
+            };
+            if master_part.is_some() && !self.bodies().iter().any(|b| b.0 == part) {
+                return Err(self.error_at(
+                    &key("part"),
+                    &t.part,
+                    format!(
+                        "the slave of a tie between parts must be a [parts.<name>] part, not '{part}': make the set on '{part}' the master (master_part = \"{part}\") and the other part's set the slave"
+                    ),
+                ));
+            }
             out.push(TieSpec {
+                master_part,
                 part,
                 slave: rule("slave", &t.slave)?,
                 master: rule("master", &t.master)?,

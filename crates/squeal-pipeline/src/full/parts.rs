@@ -86,6 +86,7 @@ fn end_rows(
     let coupling = [CouplingSet {
         set: end.set.clone(),
         load,
+        nodal: false,
     }];
     let rows = fp
         .unreduced

@@ -117,6 +117,7 @@ pub fn add_bodies(scene: &Scene, parts: &SceneParts, inputs: &mut BrakeInputs) -
                 part.couplings.push(CouplingSet {
                     set: end.1.clone(),
                     load,
+                    nodal: false,
                 });
             }
             if load {
@@ -142,6 +143,22 @@ pub fn add_bodies(scene: &Scene, parts: &SceneParts, inputs: &mut BrakeInputs) -
         });
     }
     Ok(())
+}
+
+/// Keeps both sets of a tie between parts node by node in their parts' reductions (`nodal`
+/// coupling sets, [`squeal_reduce::part_tie`]).
+pub(super) fn keep_tie_sets(inputs: &mut BrakeInputs, tie: &squeal_reduce::part_tie::PartTieInput) {
+    for (part, set) in [&tie.slave, &tie.master] {
+        if let Some(p) = part_mut(inputs, part)
+            && !p.couplings.iter().any(|k| k.set == *set && k.nodal)
+        {
+            p.couplings.push(CouplingSet {
+                set: set.clone(),
+                load: false,
+                nodal: true,
+            });
+        }
+    }
 }
 
 /// The message of a step that does not take further parts and connectors yet.

@@ -120,6 +120,30 @@ fn add_supports_and_ties(
         }
     }
     for t in scene.ties()? {
+        if let Some(master_part) = &t.master_part {
+            let tie = squeal_reduce::part_tie::PartTieInput {
+                slave: (t.part.clone(), name_of(&t.slave.key)),
+                master: (master_part.clone(), name_of(&t.master.key)),
+                tolerance: t.tolerance,
+            };
+            super::bodies::keep_tie_sets(inputs, &tie);
+            // A pad tied on its abutments is held there by the tie, not by their restraint.
+            let count = inputs.pads.len();
+            for (i, pad) in inputs.pads.iter_mut().enumerate() {
+                let abutments = pad_set(&parts.sets, &pad.name, 2, i, count).map(|c| &c.name);
+                for (part, set) in [&tie.slave, &tie.master] {
+                    if *part == pad.name && abutments == Some(set) {
+                        pad.part
+                            .restraints
+                            .retain(|r| r.nodes != NodeSelection::Set(set.clone()));
+                        pad.part.skew_restraints.retain(|r| r.0 != *set);
+                        pad.part.axis_restraints.retain(|r| r.0 != *set);
+                    }
+                }
+            }
+            inputs.part_ties.push(tie);
+            continue;
+        }
         if let Some(p) = part_mut(inputs, &t.part) {
             p.ties.push(squeal_reduce::tie::Tie {
                 slave: name_of(&t.slave.key),

@@ -36,7 +36,7 @@ pub(super) fn validate_bodies(inputs: &BrakeInputs) -> Result<(), ReduceError> {
                 parts.iter().map(|p| p.0).collect::<Vec<_>>().join(", ")
             )));
         };
-        match input.couplings.iter().find(|c| c.set == end.1) {
+        match input.couplings.iter().find(|c| c.set == end.1 && !c.nodal) {
             Some(c) => Ok(c.load),
             None => Err(ReduceError::Options(format!(
                 "connection {what}: part '{}' keeps no coupling set {}",
@@ -124,7 +124,7 @@ pub fn free_motions_coupled(
 }
 
 /// The connections of `inputs` on the reduced parts: each end's coupling point (the part's
-/// coupling points are its last points, in the order of its coupling sets).
+/// mean-motion coupling points are its last points, in the order of its coupling sets).
 pub fn resolve_connections(
     inputs: &BrakeInputs,
     parts: &[ReducedPart],
@@ -136,8 +136,9 @@ pub fn resolve_connections(
             what: format!("no coupling point for set {set}"),
         };
         let input = all.iter().find(|p| p.0 == part).ok_or_else(missing)?.1;
-        let k = input
-            .couplings
+        // The tie sets' nodes (`nodal`) are kept before the mean-motion points.
+        let mean: Vec<&CouplingSet> = input.couplings.iter().filter(|c| !c.nodal).collect();
+        let k = mean
             .iter()
             .position(|c| c.set == *set)
             .ok_or_else(missing)?;
@@ -149,7 +150,7 @@ pub fn resolve_connections(
             .info
             .points
             .len()
-            .checked_sub(input.couplings.len())
+            .checked_sub(mean.len())
             .ok_or_else(missing)?;
         Ok(End {
             part: part.clone(),

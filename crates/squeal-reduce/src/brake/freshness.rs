@@ -73,6 +73,10 @@ pub fn stale_reasons(header: &RomHeader, inputs: &BrakeInputs, hashes: &[String]
         }
     }
     reasons.extend(connection_reasons(&header.connections, inputs));
+    reasons.extend(crate::part_tie::tie_reasons(
+        &header.ties,
+        &inputs.part_ties,
+    ));
     reasons
 }
 

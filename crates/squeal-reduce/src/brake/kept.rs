@@ -68,6 +68,7 @@ pub(super) fn keep_parts(dir: &Path, parts: &[&ReducedPart]) -> Result<Vec<PathB
             tool_version: TOOL_VERSION.into(),
             parts: vec![(*part).clone()],
             connections: Vec::new(),
+            ties: Vec::new(),
         };
         model.write(&path)?;
         written.push(path);

@@ -16,7 +16,8 @@ pub(crate) fn coupling_rows(
     points: &mut Vec<InterfacePoint>,
     rows: &mut Vec<Row>,
 ) -> Result<(), ReduceError> {
-    for coupling in couplings {
+    nodal_rows(mesh, dofmap, spec, couplings, points, rows)?;
+    for coupling in couplings.iter().filter(|c| !c.nodal) {
         let mean = MeanMotion::of(mesh, &coupling.set)?;
         let p = points.len();
         points.push(InterfacePoint {
@@ -66,6 +67,63 @@ pub(crate) fn coupling_rows(
                 entries,
                 footprint: true,
             });
+        }
+    }
+    Ok(())
+}
+
+/// The rows of the `nodal` coupling sets (the sets of ties between parts,
+/// [`crate::part_tie`]): each node, once however many sets hold it, a point of role
+/// [`PointRole::Tie`] with its three dofs `x, y, z` kept as they are (as a contact node's).
+fn nodal_rows(
+    mesh: &Mesh,
+    dofmap: &FreeDofs,
+    spec: &PartSpec,
+    couplings: &[CouplingSet],
+    points: &mut Vec<InterfacePoint>,
+    rows: &mut Vec<Row>,
+) -> Result<(), ReduceError> {
+    let mut seen = std::collections::BTreeSet::new();
+    for coupling in couplings.iter().filter(|c| c.nodal) {
+        let nodes = mesh
+            .node_set(&coupling.set)
+            .ok_or_else(|| InterfaceError::MissingSet(coupling.set.clone()))?;
+        if nodes.is_empty() {
+            return Err(InterfaceError::EmptySet(coupling.set.clone()).into());
+        }
+        for &node in nodes {
+            if !seen.insert(node) {
+                continue;
+            }
+            let p = points.len();
+            points.push(InterfacePoint {
+                role: PointRole::Tie,
+                node_id: Some(mesh.node_ids[node as usize]),
+                patch: None,
+                position: mesh.nodes[node as usize],
+                area: None,
+                normal: None,
+                surface: None,
+                projected: None,
+            });
+            for d in 0..3 {
+                let dof =
+                    dofmap
+                        .free_dof(node, d)
+                        .ok_or_else(|| ReduceError::BoundaryRestrained {
+                            part: spec.name.clone(),
+                            set: coupling.set.clone(),
+                            node: mesh.node_ids[node as usize],
+                            position: mesh.nodes[node as usize],
+                            direction: AXES[d],
+                        })?;
+                rows.push(Row {
+                    point: p,
+                    label: point_label(p, d),
+                    entries: vec![(dof, 1.0)],
+                    footprint: false,
+                });
+            }
         }
     }
     Ok(())

@@ -64,6 +64,7 @@ fn sample() -> ReducedModel {
             basis: Some(basis),
         }],
         connections: Vec::new(),
+        ties: Vec::new(),
     }
 }
 
