@@ -3,50 +3,17 @@
 //! dofs each, against the unreduced assembly (both blocks' full `K` and `M`, the same connector
 //! on the sets' mean-motion rows `C`, `K_full = diag(K_A, K_B) + Cᵀ K_c C`), solved densely.
 
-use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
-use faer::{Mat, Par, Side};
-use squeal_fe::{DofMap, ElasticMaterial, MaterialTable, Restraint, assemble};
+#[path = "common/blocks.rs"]
+mod blocks;
+
+use blocks::{block_diag, frequencies, spec, steel};
+use faer::Mat;
+use squeal_fe::{DofMap, Restraint, assemble};
 use squeal_mesh::Mesh;
 use squeal_mesh::generate::box_tet10_origin;
 use squeal_reduce::coupling::{Connection, CouplingSet, End, MeanMotion, connection_stiffness};
-use squeal_reduce::craig_bampton::{PartSpec, ReduceOptions, reduce_part_coupled};
-use squeal_reduce::interface::Axis;
-use squeal_reduce::rom::{DofLabel, InterfaceKind, MeshInfo, PartRole, ReducedPart};
-
-fn steel(mesh: &Mesh) -> MaterialTable {
-    MaterialTable::uniform(mesh, ElasticMaterial::isotropic(210e9, 0.3, 7850.0)).unwrap()
-}
-
-fn spec(name: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec {
-    PartSpec {
-        name: name.into(),
-        role: PartRole::Body,
-        mesh: MeshInfo {
-            path: name.into(),
-            sha256: String::new(),
-            nodes: 0,
-            elements: 0,
-        },
-        restraints,
-        skew_restraints: Vec::new(),
-        axis_restraints: Vec::new(),
-        interface: InterfaceKind::Node,
-        contact_set: String::new(),
-        contact_face_set: String::new(),
-        facing: None,
-        extra_surfaces: Vec::new(),
-        grid: [1, 1],
-        axis: Axis::default(),
-        piston_set: None,
-        piston_footprints: Vec::new(),
-        normal_direction: 2,
-        piston_direction: None,
-        modes,
-        ties: Vec::new(),
-        supports: Vec::new(),
-        springs: Vec::new(),
-    }
-}
+use squeal_reduce::craig_bampton::{ReduceOptions, reduce_part_coupled};
+use squeal_reduce::rom::{DofLabel, ReducedPart};
 
 /// Block A (20 mm cube on the origin, clamped on z = 0) and block B (the same cube 1 mm
 /// above it, held only by the connector), the connector between A's top and B's bottom.
@@ -69,30 +36,6 @@ fn blocks() -> (Mesh, Mesh, Connection) {
         vibration_only: false,
     };
     (a, b, c)
-}
-
-/// Frequencies (Hz) of `K x = ω² M x`, ascending (dense: `M = L Lᵀ`).
-fn frequencies(k: &Mat<f64>, m: &Mat<f64>) -> Vec<f64> {
-    let l = m.llt(Side::Lower).unwrap().L().to_owned();
-    let mut x = k.clone();
-    solve_lower_triangular_in_place(l.as_ref(), x.as_mut(), Par::Seq);
-    let mut y = x.transpose().to_owned();
-    solve_lower_triangular_in_place(l.as_ref(), y.as_mut(), Par::Seq);
-    let y = Mat::from_fn(y.nrows(), y.ncols(), |i, j| 0.5 * (y[(i, j)] + y[(j, i)]));
-    y.self_adjoint_eigenvalues(Side::Lower)
-        .unwrap()
-        .into_iter()
-        .map(|w2| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
-        .collect()
-}
-
-fn block_diag(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
-    let (na, nb) = (a.nrows(), b.nrows());
-    Mat::from_fn(na + nb, na + nb, |i, j| match (i < na, j < na) {
-        (true, true) => a[(i, j)],
-        (false, false) => b[(i - na, j - na)],
-        _ => 0.0,
-    })
 }
 
 /// The connector's stiffness added on the twelve dofs `dofs`.
