@@ -150,6 +150,9 @@ pub struct SweepStats {
     /// Evaluations of a projected sweep's Hopf refinement that were whole decompositions
     /// instead of Rayleigh iterations ([`crate::projected_hopf`]).
     pub refinement_whole: usize,
+    /// Times the sweep was redone with friction values inserted into the bracket of a
+    /// crossing whose Hopf refinement lost its mode (at most [`RESWEEPS`]).
+    pub resweeps: usize,
 }
 
 /// Wall time of a sweep's phases, for benchmarks (`crates/squeal-pipeline/benches`): not
@@ -336,6 +339,36 @@ fn sweep_until(
     to_hopf: bool,
     progress: SweepProgress,
 ) -> Result<Sweep, BrakeError> {
+    sweep_at_depth(brake, reference, mus, opts, to_hopf, progress, 0)
+}
+
+/// How many times a sweep is redone with friction values inserted into the bracket of a
+/// crossing whose refinement lost its mode ([`BrakeError::HopfNotResolved`]).
+pub const RESWEEPS: usize = 2;
+
+/// Friction values inserted into such a bracket, evenly (an eighth of its width apart).
+const RESWEEP_POINTS: usize = 7;
+
+/// `mus` with [`RESWEEP_POINTS`] values inserted evenly between `lo` and `hi`.
+fn inserted(mus: &[f64], lo: f64, hi: f64) -> Vec<f64> {
+    let n = RESWEEP_POINTS + 1;
+    let mut out: Vec<f64> = mus.to_vec();
+    out.extend((1..n).map(|i| lo + (hi - lo) * i as f64 / n as f64));
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    out
+}
+
+#[allow(clippy::too_many_arguments)]
+fn sweep_at_depth(
+    brake: &Brake,
+    reference: &Reference,
+    mus: &[f64],
+    opts: &SweepOptions,
+    to_hopf: bool,
+    progress: SweepProgress,
+    depth: usize,
+) -> Result<Sweep, BrakeError> {
     check_ascending(mus)?;
     brake.validate()?;
     let lin = LinearizedBrake::new(brake, reference)?;
@@ -395,46 +428,74 @@ fn sweep_until(
         None => Vec::new(),
     };
     for first in first_bracket {
-        let continued = match low_rank {
-            Some(lr) => crate::hopf::refine(brake, reference, lr, &sweep, &first, opts, tau)?,
-            None => None,
-        };
-        // A projected sweep's refinement carries the two followed eigenpairs by Rayleigh
-        // iteration (crate::projected_hopf).
-        let rayleigh_refinement = opts.projection.rayleigh_refinement;
-        let followed = crate::projected_hopf::followed(&sweep, &first);
-        let spectrum_at = |eq: &Equilibrium| match &projection {
-            Some(p) if rayleigh_refinement => {
-                crate::projected_hopf::spectrum_near(&lin, p, &lin.coupling(brake, eq), &followed)
-            }
-            Some(p) => crate::projected::spectrum(&lin, p, &lin.coupling(brake, eq)),
-            None => spectrum(brake, reference, eq),
-        };
-        // The projection's equilibria take their Newton steps in the modal basis (a dense LU
-        // of a large brake per step costs more than its projected spectrum).
-        let equilibrium_at = |mu: f64, from: &[f64]| match &projection {
-            Some(_) => {
-                crate::projected::equilibrium(brake, reference, &lin, mu, Some(from), &opts.newton)
-            }
-            None => static_equilibrium(brake, mu, Some(from), &opts.newton),
-        };
-        let refined = match continued {
-            Some(h) => h,
-            None => {
-                let mut h = crate::hopf::regula_falsi(
-                    &equilibrium_at,
-                    &spectrum_at,
-                    &sweep,
-                    &first,
-                    opts,
-                    tau,
-                )?;
-                if let Some(p) = projection.as_ref().filter(|_| rayleigh_refinement) {
-                    crate::projected_hopf::complete(brake, &lin, p, &mut h)?;
-                    sweep.stats.refinement_whole += followed.whole.get();
+        let refined = (|| -> Result<(Hopf, usize), BrakeError> {
+            let continued = match low_rank {
+                Some(lr) => crate::hopf::refine(brake, reference, lr, &sweep, &first, opts, tau)?,
+                None => None,
+            };
+            // A projected sweep's refinement carries the two followed eigenpairs by Rayleigh
+            // iteration (crate::projected_hopf).
+            let rayleigh_refinement = opts.projection.rayleigh_refinement;
+            let followed = crate::projected_hopf::followed(&sweep, &first);
+            let spectrum_at = |eq: &Equilibrium| match &projection {
+                Some(p) if rayleigh_refinement => crate::projected_hopf::spectrum_near(
+                    &lin,
+                    p,
+                    &lin.coupling(brake, eq),
+                    &followed,
+                ),
+                Some(p) => crate::projected::spectrum(&lin, p, &lin.coupling(brake, eq)),
+                None => spectrum(brake, reference, eq),
+            };
+            // The projection's equilibria take their Newton steps in the modal basis (a dense LU
+            // of a large brake per step costs more than its projected spectrum).
+            let equilibrium_at = |mu: f64, from: &[f64]| match &projection {
+                Some(_) => crate::projected::equilibrium(
+                    brake,
+                    reference,
+                    &lin,
+                    mu,
+                    Some(from),
+                    &opts.newton,
+                ),
+                None => static_equilibrium(brake, mu, Some(from), &opts.newton),
+            };
+            Ok(match continued {
+                Some(h) => (h, 0),
+                None => {
+                    let mut h = crate::hopf::regula_falsi(
+                        &equilibrium_at,
+                        &spectrum_at,
+                        &sweep,
+                        &first,
+                        opts,
+                        tau,
+                    )?;
+                    if let Some(p) = projection.as_ref().filter(|_| rayleigh_refinement) {
+                        crate::projected_hopf::complete(brake, &lin, p, &mut h)?;
+                    }
+                    (h, followed.whole.get())
                 }
+            })
+        })();
+        // A refinement that lost its mode (the tracking between the bracket's two points
+        // assigned the crossing to another eigenvalue than the one followed continuously):
+        // the sweep is redone with values inserted into that bracket, so the tracking and
+        // the crossing are decided on steps an eighth as wide; the result says how often
+        // (`SweepStats::resweeps`). After [`RESWEEPS`] the error stands.
+        let refined = match refined {
+            Ok((h, whole)) => {
+                sweep.stats.refinement_whole += whole;
                 h
             }
+            Err(BrakeError::HopfNotResolved { .. }) if depth < RESWEEPS => {
+                let finer = inserted(mus, first.mu_lo, first.mu_hi);
+                let mut s =
+                    sweep_at_depth(brake, reference, &finer, opts, to_hopf, progress, depth + 1)?;
+                s.stats.resweeps += 1;
+                return Ok(s);
+            }
+            Err(e) => return Err(e),
         };
         if sweep.hopf.as_ref().is_none_or(|h| refined.mu0 < h.mu0) {
             sweep.hopf = Some(refined);

@@ -272,6 +272,13 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
             ", user band {a:.0}..{b:.0} Hz"
         ))
     );
+    if sw.stats.resweeps > 0 {
+        let _ = writeln!(
+            out,
+            "  the sweep was redone {} time(s) with friction values inserted into the bracket of the first crossing: its Hopf refinement had lost the mode (the modes could not be followed across the step)",
+            sw.stats.resweeps
+        );
+    }
     out.push_str(&crate::caveats::kept_modes_text(s));
     let outside: Vec<_> = sw.crossings.iter().filter(|c| !c.in_band).collect();
     for c in sw.crossings.iter().filter(|c| c.in_band) {
