@@ -58,6 +58,7 @@ pub mod sensitivity;
 pub mod spectrum;
 pub mod studies;
 pub mod sweep;
+mod sweep_continued;
 pub mod tracking;
 pub mod vibration_only;
 
