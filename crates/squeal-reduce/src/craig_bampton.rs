@@ -148,6 +148,36 @@ pub struct PartSpec {
 }
 
 impl PartSpec {
+    /// A part with only its name, role, mesh and kept modes: held by nothing, a node
+    /// interface on no contact set, the paper's 3 × 3 patch grid, the z axis as disc axis and
+    /// contact normal, no pistons, ties, supports or springs. Set the rest with struct update
+    /// syntax (`PartSpec { restraints, ..PartSpec::new(..) }`).
+    pub fn new(name: &str, role: PartRole, mesh: MeshInfo, modes: usize) -> Self {
+        Self {
+            name: name.into(),
+            role,
+            mesh,
+            restraints: Vec::new(),
+            skew_restraints: Vec::new(),
+            axis_restraints: Vec::new(),
+            interface: InterfaceKind::Node,
+            contact_set: String::new(),
+            contact_face_set: String::new(),
+            facing: None,
+            extra_surfaces: Vec::new(),
+            grid: [3, 3],
+            axis: Axis::default(),
+            piston_set: None,
+            piston_footprints: Vec::new(),
+            normal_direction: 2,
+            piston_direction: None,
+            modes,
+            ties: Vec::new(),
+            supports: Vec::new(),
+            springs: Vec::new(),
+        }
+    }
+
     /// The part's contact surfaces: its own sets first, then the further ones.
     pub fn surfaces(&self) -> Vec<ContactSurface> {
         ContactSurface::list(

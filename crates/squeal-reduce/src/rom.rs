@@ -249,6 +249,18 @@ pub struct MeshInfo {
     pub elements: usize,
 }
 
+impl MeshInfo {
+    /// A mesh built in memory, not read from a file: `name` as its path, no hash, no counts.
+    pub fn in_memory(name: &str) -> Self {
+        Self {
+            path: name.into(),
+            sha256: String::new(),
+            nodes: 0,
+            elements: 0,
+        }
+    }
+}
+
 /// A material as used by a part's elements.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MaterialInfo {

@@ -8,8 +8,7 @@ use squeal_mesh::Mesh;
 use squeal_mesh::generate::box_tet10_origin;
 use squeal_reduce::craig_bampton::{PartSpec, ReduceOptions, reduce_part};
 use squeal_reduce::dampers::{Damper, Spread, reduced_damping};
-use squeal_reduce::interface::Axis;
-use squeal_reduce::rom::{InterfaceKind, MeshInfo, ReducedPart};
+use squeal_reduce::rom::{MeshInfo, PartRole, ReducedPart};
 use squeal_reduce::tie::Support;
 
 const STEEL: (f64, f64, f64) = (210e9, 0.3, 7850.0);
@@ -23,32 +22,11 @@ fn add_node_set(mesh: &mut Mesh, name: &str, x: [f64; 3]) {
 
 fn spec(supports: Vec<Support>, modes: usize) -> PartSpec {
     PartSpec {
-        name: "block".into(),
-        role: squeal_reduce::rom::PartRole::Pad,
-        mesh: MeshInfo {
-            path: "block".into(),
-            sha256: String::new(),
-            nodes: 0,
-            elements: 0,
-        },
-        restraints: Vec::new(),
-        skew_restraints: Vec::new(),
-        axis_restraints: Vec::new(),
-        interface: InterfaceKind::Node,
         contact_set: "TIP".into(),
         contact_face_set: "TIP".into(),
-        facing: None,
-        extra_surfaces: Vec::new(),
         grid: [1, 1],
-        axis: Axis::default(),
-        piston_set: None,
-        piston_footprints: Vec::new(),
-        normal_direction: 2,
-        piston_direction: None,
-        modes,
-        ties: Vec::new(),
         supports,
-        springs: Vec::new(),
+        ..PartSpec::new("block", PartRole::Pad, MeshInfo::in_memory("block"), modes)
     }
 }
 

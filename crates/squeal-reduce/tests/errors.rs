@@ -10,8 +10,8 @@ use squeal_reduce::brake::{
     BrakeInputs, LoadedPart, ModeChoice, reduce_brake, reduce_brake_loaded,
 };
 use squeal_reduce::craig_bampton::{PartSpec, ReduceError, ReduceOptions, reduce_part};
-use squeal_reduce::interface::{Axis, InterfaceError};
-use squeal_reduce::rom::{InterfaceKind, MeshInfo};
+use squeal_reduce::interface::InterfaceError;
+use squeal_reduce::rom::{InterfaceKind, MeshInfo, PartRole};
 
 /// Reduces the coarse brake after `edit` changed the meshes.
 fn reduce_edited(
@@ -134,32 +134,11 @@ fn a_clamped_boundary_node_is_refused() {
 /// A 40 x 10 x 10 mm steel bar of 4 x 1 x 1 cells.
 fn bar_spec(contact: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec {
     PartSpec {
-        name: "bar".into(),
-        role: squeal_reduce::rom::PartRole::Pad,
-        mesh: MeshInfo {
-            path: "bar".into(),
-            sha256: String::new(),
-            nodes: 0,
-            elements: 0,
-        },
         restraints,
-        skew_restraints: Vec::new(),
-        axis_restraints: Vec::new(),
-        interface: InterfaceKind::Node,
         contact_set: contact.into(),
         contact_face_set: contact.into(),
-        facing: None,
-        extra_surfaces: Vec::new(),
         grid: [1, 1],
-        axis: Axis::default(),
-        piston_set: None,
-        piston_footprints: Vec::new(),
-        normal_direction: 2,
-        piston_direction: None,
-        modes,
-        ties: Vec::new(),
-        supports: Vec::new(),
-        springs: Vec::new(),
+        ..PartSpec::new("bar", PartRole::Pad, MeshInfo::in_memory("bar"), modes)
     }
 }
 

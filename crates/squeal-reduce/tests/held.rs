@@ -11,7 +11,6 @@ use squeal_mesh::Mesh;
 use squeal_mesh::generate::box_tet10;
 use squeal_reduce::craig_bampton::{PartSpec, ReduceError, ReduceOptions, reduce_part};
 use squeal_reduce::held::{FreeMotion, free_motions, require_held};
-use squeal_reduce::interface::Axis;
 use squeal_reduce::rom::{InterfaceKind, MeshInfo, PartRole};
 
 const TOL: f64 = 1e-9;
@@ -24,32 +23,14 @@ fn pad() -> Mesh {
 
 fn spec(restraints: Vec<Restraint>, footprints: Vec<String>, pistons: Option<&str>) -> PartSpec {
     PartSpec {
-        name: "pad".into(),
-        role: PartRole::Pad,
-        mesh: MeshInfo {
-            path: "pad".into(),
-            sha256: String::new(),
-            nodes: 0,
-            elements: 0,
-        },
         restraints,
-        skew_restraints: Vec::new(),
-        axis_restraints: Vec::new(),
         interface: InterfaceKind::Patch,
         contact_set: "ZMIN".into(),
         contact_face_set: "ZMIN".into(),
-        facing: None,
-        extra_surfaces: Vec::new(),
         grid: [1, 1],
-        axis: Axis::default(),
         piston_set: pistons.map(String::from),
         piston_footprints: footprints,
-        normal_direction: 2,
-        piston_direction: None,
-        modes: 4,
-        ties: Vec::new(),
-        supports: Vec::new(),
-        springs: Vec::new(),
+        ..PartSpec::new("pad", PartRole::Pad, MeshInfo::in_memory("pad"), 4)
     }
 }
 

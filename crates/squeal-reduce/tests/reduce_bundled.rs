@@ -2,8 +2,7 @@
 
 use squeal_fe::{MaterialTable, Restraint};
 use squeal_reduce::craig_bampton::{PartSpec, ReduceOptions, reduce_part};
-use squeal_reduce::interface::Axis;
-use squeal_reduce::rom::{InterfaceKind, MeshInfo};
+use squeal_reduce::rom::{InterfaceKind, MeshInfo, PartRole};
 use std::path::PathBuf;
 
 fn spec(name: &str, interface: InterfaceKind) -> (squeal_mesh::Mesh, PartSpec) {
@@ -26,32 +25,18 @@ fn spec(name: &str, interface: InterfaceKind) -> (squeal_mesh::Mesh, PartSpec) {
         nodes: mesh.num_nodes(),
         elements: mesh.num_elements(),
     };
+    let role = if name == "disc" {
+        PartRole::Disc
+    } else {
+        PartRole::Pad
+    };
     let spec = PartSpec {
-        name: name.into(),
-        role: if name == "disc" {
-            squeal_reduce::rom::PartRole::Disc
-        } else {
-            squeal_reduce::rom::PartRole::Pad
-        },
-        mesh: info,
         restraints,
-        skew_restraints: Vec::new(),
-        axis_restraints: Vec::new(),
         interface,
         contact_set: "CONTACT".into(),
         contact_face_set: "CONTACT_FACE".into(),
-        facing: None,
-        extra_surfaces: Vec::new(),
-        grid: [3, 3],
-        axis: Axis::default(),
         piston_set: piston,
-        piston_footprints: Vec::new(),
-        normal_direction: 2,
-        piston_direction: None,
-        modes: 50,
-        ties: Vec::new(),
-        supports: Vec::new(),
-        springs: Vec::new(),
+        ..PartSpec::new(name, role, info, 50)
     };
     (mesh, spec)
 }

@@ -9,8 +9,7 @@ use faer::{Mat, Par, Side};
 use squeal_fe::{ElasticMaterial, MaterialTable, Restraint};
 use squeal_mesh::Mesh;
 use squeal_reduce::craig_bampton::PartSpec;
-use squeal_reduce::interface::Axis;
-use squeal_reduce::rom::{InterfaceKind, MeshInfo, PartRole};
+use squeal_reduce::rom::{MeshInfo, PartRole};
 
 pub fn steel(mesh: &Mesh) -> MaterialTable {
     MaterialTable::uniform(mesh, ElasticMaterial::isotropic(210e9, 0.3, 7850.0)).unwrap()
@@ -18,32 +17,9 @@ pub fn steel(mesh: &Mesh) -> MaterialTable {
 
 pub fn spec(name: &str, restraints: Vec<Restraint>, modes: usize) -> PartSpec {
     PartSpec {
-        name: name.into(),
-        role: PartRole::Body,
-        mesh: MeshInfo {
-            path: name.into(),
-            sha256: String::new(),
-            nodes: 0,
-            elements: 0,
-        },
         restraints,
-        skew_restraints: Vec::new(),
-        axis_restraints: Vec::new(),
-        interface: InterfaceKind::Node,
-        contact_set: String::new(),
-        contact_face_set: String::new(),
-        facing: None,
-        extra_surfaces: Vec::new(),
         grid: [1, 1],
-        axis: Axis::default(),
-        piston_set: None,
-        piston_footprints: Vec::new(),
-        normal_direction: 2,
-        piston_direction: None,
-        modes,
-        ties: Vec::new(),
-        supports: Vec::new(),
-        springs: Vec::new(),
+        ..PartSpec::new(name, PartRole::Body, MeshInfo::in_memory(name), modes)
     }
 }
 
