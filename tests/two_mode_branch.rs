@@ -54,4 +54,16 @@ fn branch_report_gives_the_two_mode_answer_past_the_second_onset() {
     assert!((f2 / 2879.796179 - 1.0).abs() < 1e-7, "{f2}");
     let file = std::fs::read_to_string(out.join("branch").join("two_mode.txt")).unwrap();
     assert!(file.contains("two-mode torus"), "{file}");
+    // branch.json carries the same answer: the same numbers as the text, not rounded.
+    let json: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(out.join("branch").join("branch.json")).unwrap(),
+    )
+    .unwrap();
+    let two = &json["two_mode"];
+    let mu0 = two["onset"]["mu0"].as_f64().unwrap();
+    assert!((mu0 - onset).abs() < 1e-8, "{mu0} against {onset}");
+    let f = &two["answer"]["torus"]["frequencies_hz"];
+    assert!((f[0].as_f64().unwrap() - f1).abs() < 1e-6, "{f}");
+    assert!((f[1].as_f64().unwrap() - f2).abs() < 1e-6, "{f}");
+    assert_eq!(two["onset"]["criticality"], "supercritical", "{two}");
 }

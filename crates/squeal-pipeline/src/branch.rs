@@ -485,6 +485,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
         "microphone_m": a.microphone,
         "tori": crate::branch_torus::json(a),
         "stick_slip": crate::branch_stick::json(a),
+        "two_mode": crate::branch_two_mode::json(a.two_mode.as_ref()),
         "cycles_at": a.at.iter().map(|c| {
             let f = c.floquet.as_ref().ok();
             serde_json::json!({

@@ -148,3 +148,88 @@ pub fn summary_text(s: Option<&SecondMode>) -> String {
     }
     out
 }
+
+/// `branch.json`'s `two_mode`: the second mode's crossing, its refined onset and criticality,
+/// and the generalized CHBM's answer past it, each part with its failure as text when it
+/// failed (null without a second mode).
+pub fn json(s: Option<&SecondMode>) -> serde_json::Value {
+    let Some(s) = s else {
+        return serde_json::Value::Null;
+    };
+    let c = &s.crossing;
+    serde_json::json!({
+        "crossing": {
+            "frequency_hz": c.frequency_hz,
+            "mu_bracket": [c.mu_lo, c.mu_hi],
+        },
+        "onset": match &s.onset {
+            Ok(o) => serde_json::json!({
+                "mu0": o.mu0,
+                "mu_bracket": [o.bracket.0, o.bracket.1],
+                "frequency_hz": o.lambda.im / std::f64::consts::TAU,
+                "first_lyapunov_coefficient": o.normal_form.as_ref().ok().map(|nf| nf.l1),
+                "criticality": match &o.normal_form {
+                    Ok(nf) => nf.criticality().to_string(),
+                    Err(e) => format!("not computed: {e}"),
+                },
+            }),
+            Err(e) => serde_json::json!({ "failed": e }),
+        },
+        "answer": match &s.answer {
+            Ok(r) => answer_json(r),
+            Err(e) => serde_json::json!({ "failed": e }),
+        },
+    })
+}
+
+/// The generalized CHBM's answer as JSON: the unstable eigenvalues, each mode's cycle, the
+/// verdict and the torus.
+fn answer_json(r: &TwoModeReport) -> serde_json::Value {
+    use std::f64::consts::TAU;
+    let torus = match &r.torus {
+        Ok(t) => {
+            let f = t.point.frequencies_hz();
+            let (pair, e) = t.point.loudest();
+            serde_json::json!({
+                "frequencies_hz": f,
+                "truncation": crate::branch_torus::truncation_text(t.basis.truncation()),
+                "pair": pair + 1,
+                "closure_first_harmonics_m": t.first_harmonics,
+                "swing_m": [e.swing_min, e.swing_max],
+                "closure_m": [e.min, e.max],
+                "constraints_per_s": r.constraints.as_ref().map(|c| match c {
+                    Ok(l) => serde_json::json!(l.iter().map(|v| [v.re, v.im]).collect::<Vec<_>>()),
+                    Err(e) => serde_json::json!({ "failed": e }),
+                }),
+                "lyapunov": r.lyapunov.as_ref().map(|l| match l {
+                    Ok(s) => serde_json::json!({
+                        "exponents_per_s": s.exponents,
+                        "uncertainty_per_s": s.uncertainty(),
+                        "stability": s.stability().to_string(),
+                    }),
+                    Err(e) => serde_json::json!({ "failed": e }),
+                }),
+            })
+        }
+        Err(e) => serde_json::json!({ "failed": e }),
+    };
+    serde_json::json!({
+        "mu": r.mu,
+        "unstable_eigenvalues": r.lambdas.iter().map(|l| serde_json::json!({
+            "re_per_s": l.re,
+            "frequency_hz": l.im / TAU,
+        })).collect::<Vec<_>>(),
+        "cycles": r.cycles.iter().map(|c| serde_json::json!({
+            "mode": c.mode + 1,
+            "outcome": c.solution.outcome.to_string(),
+            "frequency_hz": c.solution.omega / TAU,
+            "stability": match &c.floquet {
+                Some(Ok(f)) => f.stability().to_string(),
+                Some(Err(e)) => format!("Hill failed: {e}"),
+                None => "no cycle".to_string(),
+            },
+        })).collect::<Vec<_>>(),
+        "verdict": r.verdict.to_string(),
+        "torus": torus,
+    })
+}
