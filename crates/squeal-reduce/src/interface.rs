@@ -732,6 +732,8 @@ fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
     (n > 0.0 && n.is_finite()).then(|| scale(a, 1.0 / n))
 }
 #[cfg(test)]
+mod contact_area_tests;
+#[cfg(test)]
 mod quad_tests;
 #[cfg(test)]
 mod tests;

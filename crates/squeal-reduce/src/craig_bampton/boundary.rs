@@ -72,7 +72,14 @@ pub(crate) fn boundary_rows(
                     PartRole::Disc => PointRole::Face,
                     PartRole::Pad | PartRole::Body => PointRole::Contact,
                 };
-                for node in face_nodes(mesh, &surface.contact_face_set)? {
+                // The disc keeps every face node (its projected points combine them); a
+                // pad's contact points carry their share of a uniform pressure
+                // ([`crate::interface::nodal::contact_face_nodes`]).
+                let nodes = match role {
+                    PointRole::Face => face_nodes(mesh, &surface.contact_face_set)?,
+                    _ => contact_face_nodes(mesh, &surface.contact_face_set)?,
+                };
+                for node in nodes {
                     let p = points.len();
                     points.push(InterfacePoint {
                         role,

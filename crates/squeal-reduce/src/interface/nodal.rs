@@ -64,10 +64,51 @@
 //!   (`¼∫∫ ¼(1+s)(1+t)(s+t−1) ds dt·A/4·4 = −A/12`, `¼∫∫ ½(1−s²)(1+t) ds dt·A = A/3`, and
 //!   `4·(−A/12) + 4·A/3 = A`).
 //!
-//! Springs `κ ∫ N_k dA` would leave every triangle's corner without a spring, free to pass
-//! through the disc, and put negative springs (a softening, unstable foundation) at every
-//! quadrilateral's corners. The areas are lumped instead, on sub-cells of each face cut at its
-//! edge midpoints ([`super::face::Shape::subcells`]), each shared equally by its nodes:
+//! # Tributary areas of the contact points
+//!
+//! The springs stand for a bed of stiffness `κ` per unit area under the pad, and what the
+//! brake's modes see of it is the bed's energy `½ ∫ κ δ² dA` over the pad face's displacement
+//! field `δ` (quadratic on each face), and, at the static equilibrium, the nodal loads of the
+//! clamp pressure. Nodal springs `κ A_k` replace the integral by the nodal rule
+//! `Σ_k A_k f(x_k)`:
+//!
+//! - on a 6-node triangle, the contact points' areas ([`contact_face_nodes`]) are the
+//!   edge-midpoint rule, `|X_s × X_t|(m_e)/6` at each midside node `m_e` (the reference
+//!   triangle's area ½ in three equal weights) and nothing at the corners. On a flat triangle
+//!   with straight edges these are the consistent nodal loads of a uniform pressure, `∫ N_k dA`
+//!   (0 at corners, `A/3` at midside nodes, above), and the rule is exact for polynomials of
+//!   degree 2 (the triangle's three-point rule at its edge midpoints, weights 1/3 of the area:
+//!   Zienkiewicz, Taylor & Zhu, *The Finite Element Method: Its Basis and Fundamentals*, 6th
+//!   ed., 2005, the table of integration rules for triangles): a flat pad's
+//!   area, centroid and second moments, that is a rigid pad's bounce and rocking stiffness on
+//!   its springs, are those of the continuous bed on any mesh, and a uniform closure loads the
+//!   pad with exactly a uniform pressure. The area element of a flat face with quadratic
+//!   edges is a polynomial of degree 2, so the areas still sum to the face's area to
+//!   round-off there; on a doubly curved face the sum is the rule's approximation of the area.
+//!   A corner with no area keeps its pair (the same contact points, whatever the rule), with
+//!   no spring: the element's midside nodes carry the pressure, as a finite-element code's
+//!   consistent pressure loads do.
+//! - The lumped sub-cell areas of [`face_nodes`] (each 6-node triangle cut at its edge
+//!   midpoints into four triangles whose areas go a third to each of their nodes: `A/12` at a
+//!   corner, `A/4` at a midside node) are positive everywhere but exact for linear functions
+//!   only. They were the contact areas until 2026-11-28 and over-state a pad's rocking
+//!   stiffness by `O(h²)`: by 50 % on a pad one element long, 12.5 % two elements long (the
+//!   tests), 13.2 % on the bundled coarse ventilated pad's radial second moment; and they load
+//!   the corners with `A/12` where a uniform pressure loads them with nothing, so a uniform
+//!   closure bends each element (corners 1.05 µm less closed than midside nodes at the coarse
+//!   ventilated brake's equilibrium, against 0.19 µm more with the edge-midpoint rule). This
+//!   error was most of the coarse ventilated brake's μ0 error (docs/reduction.md, "Why the
+//!   ventilated brake's μ0 moved with the mesh"). [`face_nodes`] is kept for what needs every
+//!   node with a positive share (the disc's face points, springs and ties spread over a face).
+//! - On an 8-node quadrilateral `∫ N_k dA` is `−A/12` at the corners (a negative spring, a
+//!   softening foundation), and no nodal rule on its eight nodes with positive weights is
+//!   exact for quadratics (symmetric weights would need `−A/12` at the corners again), so its
+//!   contact areas stay the lumped sub-cell areas below, exact for linear functions only: a
+//!   hex20 pad's rocking stiffness has the `O(h²)` error above. Not measured on a brake (no
+//!   bundled pad has quadrilateral friction faces).
+//!
+//! The lumped sub-cell areas ([`face_nodes`]) are cut at each face's edge midpoints
+//! ([`super::face::Shape::subcells`]), each sub-cell shared equally by its nodes:
 //!
 //! - a 6-node triangle splits into four triangles (in reference coordinates: its own
 //!   sub-triangles); each node takes a third of each sub-triangle it is a corner of: `A/12` at
@@ -145,6 +186,42 @@ pub fn face_nodes(mesh: &Mesh, face_set: &str) -> Result<Vec<FaceNode>, Interfac
             node,
             area,
             normal: unit(normal).unwrap_or([0.0; 3]),
+        })
+        .collect())
+}
+
+/// The nodes of the boundary faces of `face_set` as contact points, in node order (the same
+/// nodes as [`face_nodes`], with its normals), each with its share of a uniform pressure:
+/// on a 6-node triangle the edge-midpoint rule, `|X_s × X_t|(m_e) / 6` at each midside node
+/// and nothing at the corners (module docs, "Tributary areas of the contact points"); on an
+/// 8-node quadrilateral the lumped sub-cell areas of [`face_nodes`].
+pub fn contact_face_nodes(mesh: &Mesh, face_set: &str) -> Result<Vec<FaceNode>, InterfaceError> {
+    let (_, faces) = face_triangles(mesh, face_set)?;
+    let mut area: BTreeMap<u32, f64> = BTreeMap::new();
+    for f in &faces {
+        let x = f.coords(mesh);
+        match f.shape {
+            Shape::Tri6 => {
+                for k in 3..6 {
+                    let (_, _, dn) = face::map_point(f.shape, &x, f.shape.reference()[k]);
+                    *area.entry(f.nodes[k]).or_insert(0.0) += norm(dn) / 6.0;
+                }
+            }
+            Shape::Quad8 => {
+                for (cell, sharing) in f.shape.subcells() {
+                    let (a, _) = subtriangle_integrals(f.shape, &x, cell);
+                    for k in &sharing {
+                        *area.entry(f.nodes[*k]).or_insert(0.0) += a / sharing.len() as f64;
+                    }
+                }
+            }
+        }
+    }
+    Ok(face_nodes(mesh, face_set)?
+        .into_iter()
+        .map(|n| FaceNode {
+            area: area.get(&n.node).copied().unwrap_or(0.0),
+            ..n
         })
         .collect())
 }
@@ -432,7 +509,7 @@ pub fn project_pad(
     pad_face: &str,
 ) -> Result<Vec<NodalPair>, InterfaceError> {
     let surface = Surface::new(disc, disc_face)?;
-    let pairs: Vec<NodalPair> = face_nodes(pad, pad_face)?
+    let pairs: Vec<NodalPair> = contact_face_nodes(pad, pad_face)?
         .into_iter()
         .map(|node| {
             let projection = surface.project(pad.nodes[node.node as usize]);
