@@ -72,7 +72,7 @@ fn the_convergence_study_tabulates_each_knob_and_its_verdict_follows_the_recorde
     let names: Vec<&str> = knobs.iter().map(|k| k["knob"].as_str().unwrap()).collect();
     assert_eq!(names, ["contact", "modes"]);
     let tol = num(&j["tolerance"]);
-    assert_eq!(tol, 0.01);
+    assert_eq!(tol, 0.001);
     let labels = |k: &Value| -> Vec<String> {
         k["levels"]
             .as_array()
@@ -126,9 +126,10 @@ fn the_convergence_study_tabulates_each_knob_and_its_verdict_follows_the_recorde
         assert!(levels[0]["mac_vs_previous"].is_null());
         let mac = num(&levels[1]["mac_vs_previous"]);
         assert!((0.0..=1.0 + 1e-12).contains(&mac), "{mac}");
-        // The verdict is the one the recorded values call for: the relative change of mu0
-        // (recomputed from the JSON's values, which read back with their bits: to 1e-15) below
-        // the tolerance and the same unstable mode (MAC >= 0.9) is converged, else not.
+        // The verdict is the one the recorded values call for: with two levels the estimated
+        // error is the relative change of mu0 (recomputed from the JSON's values, which read
+        // back with their bits: to 1e-15); below the tolerance and the same unstable mode
+        // (MAC >= 0.9) is converged, else not.
         let (m0, m1) = (num(&levels[0]["mu0"]), num(&levels[1]["mu0"]));
         let change = (m1 - m0) / m0;
         let v = &k["verdict"];

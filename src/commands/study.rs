@@ -67,8 +67,9 @@ pub struct StudyArgs {
     /// [chbm] friction, a ratio of it taken on the base level's mu0)
     #[arg(long)]
     pub growth_mu: Option<f64>,
-    /// --kind convergence: the relative change of mu0 over the last refinement below which a
-    /// knob has converged
+    /// --kind convergence: the estimated relative error of the last level's mu0 (its last
+    /// change, or what the observed rate says is still to come when larger) below which a knob
+    /// has converged
     #[arg(long, default_value_t = squeal_pipeline::study::verdict::DEFAULT_TOLERANCE)]
     pub tolerance: f64,
     /// Compute only shard i of n (1-based, e.g. 2/4) and write it to

@@ -25,9 +25,12 @@
 //! the same mesh; on a finer mesh the nearest one, which on the bundled nested meshes is the
 //! same point). The MAC of complex shapes is invariant to their scaling and phase.
 //!
-//! Each knob gets a verdict from its μ0 sequence ([`super::verdict`]): converged when μ0 moved
-//! less than the tolerance over the last refinement and the same mode goes unstable; the
-//! observed rate where three levels exist. The overall verdict is converged when every knob is.
+//! Each knob gets a verdict from its μ0 sequence ([`super::verdict`]): converged when the
+//! estimated error of the last level's μ0 (its last change, or with three levels what the
+//! observed rate says is still to come, when that is larger) is below the tolerance (0.1 % by
+//! default) and the same mode goes unstable; with three levels the observed rate and the
+//! extrapolated μ0 with its uncertainty. The overall verdict is converged when every knob is,
+//! and names each knob that is not with its spread (`mu0 ± error`).
 
 use super::coupled::{face_set, rings, summarize};
 use super::create_dir;
@@ -160,7 +163,8 @@ pub struct Options {
     /// The friction of the growth-rate column (`None`: the scene's `[chbm]` friction, a ratio
     /// of it taken on the base level's μ0).
     pub growth_mu: Option<f64>,
-    /// Relative change of μ0 over the last refinement below which a knob has converged.
+    /// Estimated relative error of the last level's μ0 below which a knob has converged
+    /// ([`super::verdict`]).
     pub tolerance: f64,
 }
 

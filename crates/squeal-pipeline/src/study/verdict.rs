@@ -1,27 +1,40 @@
 //! The verdict of a convergence study on one knob: has μ0 stopped moving under refinement?
 //!
 //! A knob is refined through levels `1 … n` with Hopf points `μ0_1 … μ0_n`. Its verdict rests
-//! on the last refinement: the relative change `δ_n = (μ0_n − μ0_{n−1}) / μ0_{n−1}` against a
-//! tolerance (1 % by default), and on the unstable mode staying the same mode (its MAC against
+//! on the error left in the last level's μ0, estimated from the sequence, against a tolerance
+//! (0.1 % by default, below), and on the unstable mode staying the same mode (its MAC against
 //! the previous level at least [`MAC_SAME_MODE`]): a μ0 that did not move while the mode that
 //! goes unstable changed is a coincidence, not convergence.
 //!
-//! Where three levels exist, the observed rate is the ratio of the last two changes,
-//! `q = |Δ_n| / |Δ_{n−1}|` with `Δ_k = μ0_k − μ0_{k−1}`: below 1 the changes shrink, and if
-//! they shrink geometrically (and keep their sign) the rest of the sequence adds up to
-//! `Δ_n q / (1 − q)`, which gives the extrapolated limit `μ0_n + Δ_n q / (1 − q)` (Aitken's
-//! Δ² estimate, exact for a geometric sequence). Changes of alternating sign are called
-//! oscillating and get no extrapolation. The knobs' levels are not evenly spaced (3 × 3 → 3 × 5
-//! → 5 × 5 patches, ×1 → ×1.5 → ×2 modes), so the rate is given per refinement, not as an
-//! order in a mesh size.
+//! **The error estimate.** With two levels it is the last relative change
+//! `δ_n = (μ0_n − μ0_{n−1}) / μ0_{n−1}`. Where three levels exist, the observed rate is the
+//! ratio of the last two changes, `q = |Δ_n| / |Δ_{n−1}|` with `Δ_k = μ0_k − μ0_{k−1}`: below 1
+//! the changes shrink, and if they shrink geometrically (and keep their sign) the rest of the
+//! sequence adds up to `Δ_n q / (1 − q)`, which gives the extrapolated limit
+//! `μ0_n + Δ_n q / (1 − q)` (Aitken's Δ² estimate, exact for a geometric sequence; with mesh
+//! levels that halve the element size, Richardson's extrapolation with the observed order
+//! `p = log2(1/q)`). The error left in `μ0_n` is then that remainder, `|Δ_n| q / (1 − q)`,
+//! which is larger than the last change whenever `q > ½`: a last change under the tolerance
+//! does not make a slowly converging knob converged (the ventilated brake's mesh: changes
+//! +0.050 then +0.035, `q` = 0.71, 2.4 times the last change still to come). The estimate
+//! is the larger of the last change and the remainder, and the extrapolated limit is given
+//! with that remainder as its uncertainty (it assumes the rate holds; three levels cannot
+//! show that it does). Changes of alternating sign are called oscillating and get no
+//! extrapolation; growing changes neither. The knobs' levels are not evenly spaced (3 × 3 →
+//! 3 × 5 → 5 × 5 patches, ×1 → ×1.5 → ×2 modes), so the rate is given per refinement, not as
+//! an order in a mesh size.
 
 /// Smallest MAC of the unstable mode against the previous level's for the two to count as
 /// the same mode (0.9: the MAC of two shapes of one mode computed on different discretizations
 /// is typically above 0.95; two modes of a doublet or of different orders give well under 0.5).
 pub const MAC_SAME_MODE: f64 = 0.9;
 
-/// Default relative tolerance on μ0 between the last two levels.
-pub const DEFAULT_TOLERANCE: f64 = 0.01;
+/// Default relative tolerance on the error left in the last level's μ0: 0.1 %, the accuracy
+/// issue 20 asks of the reduced brake against the full model. At 1 % (the default until
+/// 2026-11-28) 50 fixed-interface modes per part passed on the coarse ventilated brake (μ0
+/// moved 0.14 % from 50 to 100 modes) though its μ0 is 2.0e-3 from the full model's there and
+/// 1.7e-4 only from 100 modes on (docs/verification.md); at 0.1 % the study asks for the 100.
+pub const DEFAULT_TOLERANCE: f64 = 0.001;
 
 /// Converged or not.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -60,6 +73,11 @@ pub struct KnobVerdict {
     /// `δ_n`, when the last two levels have a μ0.
     pub last_change: Option<f64>,
     pub rate: Option<ConvergenceRate>,
+    /// The last level's μ0, when the last two levels have one.
+    pub mu0: Option<f64>,
+    /// The estimated relative error left in it (module docs), when the last two levels have
+    /// a μ0.
+    pub error: Option<f64>,
     /// One line: the status and why.
     pub text: String,
 }
@@ -85,7 +103,7 @@ pub fn rate(values: &[Option<f64>]) -> Option<ConvergenceRate> {
     })
 }
 
-fn rate_text(r: &ConvergenceRate) -> String {
+fn rate_text(r: &ConvergenceRate, last: f64) -> String {
     let mut t = if r.oscillating {
         format!(
             "oscillating: the last change is {:.2} times the one before, of opposite sign",
@@ -103,7 +121,10 @@ fn rate_text(r: &ConvergenceRate) -> String {
         )
     };
     if let Some(l) = r.limit {
-        t.push_str(&format!(", extrapolated mu0 {l:.5}"));
+        t.push_str(&format!(
+            ", extrapolated mu0 {l:.5} ± {:.5} (if the rate holds)",
+            (l - last).abs()
+        ));
     }
     t
 }
@@ -117,6 +138,8 @@ pub fn verdict(values: &[Option<f64>], mac: Option<f64>, tolerance: f64) -> Knob
         status: Status::Undetermined,
         last_change: None,
         rate: None,
+        mu0: None,
+        error: None,
         text: format!("undetermined: {why}"),
     };
     if n < 2 {
@@ -133,6 +156,8 @@ pub fn verdict(values: &[Option<f64>], mac: Option<f64>, tolerance: f64) -> Knob
                 status: Status::NotConverged,
                 last_change: None,
                 rate: None,
+                mu0: None,
+                error: None,
                 text: format!(
                     "not converged: the {which} level has no Hopf point in the band and the other has one"
                 ),
@@ -141,16 +166,30 @@ pub fn verdict(values: &[Option<f64>], mac: Option<f64>, tolerance: f64) -> Knob
     };
     let change = (last - prev) / prev.abs();
     let r = rate(values);
+    // The remainder of a geometric sequence at the observed rate (module docs).
+    let remainder = r
+        .and_then(|r| r.limit)
+        .map(|l| (l - last).abs() / last.abs());
+    let error = remainder.map_or(change.abs(), |t| t.max(change.abs()));
     let mut text = format!(
-        "mu0 moved {:.2} % from the last refinement, {} {} %",
-        100.0 * change.abs(),
-        if change.abs() < tolerance {
-            "below"
-        } else {
-            "above"
-        },
-        100.0 * tolerance
+        "mu0 moved {:.2} % between the last two levels",
+        100.0 * change.abs()
     );
+    if let (Some(t), Some(rt)) = (remainder, &r)
+        && t > change.abs()
+    {
+        text.push_str(&format!(
+            ", and at the observed rate (each change {:.2} times the one before) about {:.2} % more is still to come",
+            rt.ratio,
+            100.0 * t
+        ));
+    }
+    text.push_str(&format!(
+        ": estimated error {:.2} %, {} the tolerance {} %",
+        100.0 * error,
+        if error < tolerance { "below" } else { "above" },
+        100.0 * tolerance
+    ));
     let mode_changed = mac.is_some_and(|m| m < MAC_SAME_MODE);
     if let Some(m) = mac {
         text.push_str(&format!(
@@ -163,9 +202,9 @@ pub fn verdict(values: &[Option<f64>], mac: Option<f64>, tolerance: f64) -> Knob
         ));
     }
     if let Some(r) = &r {
-        text.push_str(&format!("; {}", rate_text(r)));
+        text.push_str(&format!("; {}", rate_text(r, last)));
     }
-    let status = if change.abs() < tolerance && !mode_changed {
+    let status = if error < tolerance && !mode_changed {
         Status::Converged
     } else {
         Status::NotConverged
@@ -174,6 +213,8 @@ pub fn verdict(values: &[Option<f64>], mac: Option<f64>, tolerance: f64) -> Knob
         status,
         last_change: Some(change),
         rate: r,
+        mu0: Some(last),
+        error: Some(error),
         text: format!("{}: {text}", status.name()),
     }
 }
@@ -192,11 +233,24 @@ pub fn overall(knobs: &[(&str, &KnobVerdict)]) -> (Status, String) {
     if knobs.is_empty() {
         (Status::Undetermined, "undetermined: no knob refined".into())
     } else if !bad.is_empty() {
+        let said: Vec<String> = knobs
+            .iter()
+            .filter(|k| k.1.status == Status::NotConverged)
+            .map(|(name, v)| match (v.mu0, v.error) {
+                (Some(m), Some(e)) => format!(
+                    "{name} (estimated error {:.2} %: mu0 {m:.5} ± {:.5})",
+                    100.0 * e,
+                    e * m.abs()
+                ),
+                _ => name.to_string(),
+            })
+            .collect();
         (
             Status::NotConverged,
             format!(
-                "not converged: mu0 still moves with {} (refine further, or report mu0 with that spread)",
-                bad.join(", ")
+                "not converged: mu0 still moves with {}; refine {} further, or report mu0 with that spread",
+                said.join(", "),
+                if bad.len() == 1 { "it" } else { "them" }
             ),
         )
     } else if !open.is_empty() {
@@ -241,7 +295,42 @@ mod tests {
         // With a 1 % tolerance the same sequence is not converged yet.
         let strict = verdict(&v, Some(0.99), 0.01);
         assert_eq!(strict.status, Status::NotConverged, "{}", strict.text);
-        assert!(strict.text.contains("above 1 %"), "{}", strict.text);
+        assert!(
+            strict.text.contains("above the tolerance 1 %"),
+            "{}",
+            strict.text
+        );
+    }
+
+    #[test]
+    fn a_slowly_converging_knob_is_judged_by_what_is_still_to_come() {
+        // 1.0, 1.01, 1.018: the last change 0.786 % is below a 1 % tolerance, but the changes
+        // shrink only by q = 0.8, so 0.008 × 0.8 / 0.2 = 0.032 (3.14 % of 1.018) is still to
+        // come: not converged, extrapolated 1.05 ± 0.032. Exact arithmetic: 1e-12.
+        let v = [Some(1.0), Some(1.01), Some(1.018)];
+        let slow = verdict(&v, Some(0.99), 0.01);
+        assert_eq!(slow.status, Status::NotConverged, "{}", slow.text);
+        let e = slow.error.unwrap();
+        assert!((e - 0.032 / 1.018).abs() < 1e-12, "{e}");
+        assert!((slow.mu0.unwrap() - 1.018).abs() < 1e-15);
+        assert!(
+            slow.text
+                .contains("mu0 moved 0.79 % between the last two levels")
+                && slow.text.contains("about 3.14 % more is still to come")
+                && slow.text.contains("extrapolated mu0 1.05000 ± 0.03200"),
+            "{}",
+            slow.text
+        );
+        let (s, t) = overall(&[("mesh", &slow)]);
+        assert_eq!(s, Status::NotConverged);
+        assert!(
+            t.contains("mesh (estimated error 3.14 %: mu0 1.01800 ± 0.03200); refine it further"),
+            "{t}"
+        );
+        // A fast sequence (q = 0.1) is judged by its last change.
+        let fast = verdict(&[Some(1.0), Some(1.01), Some(1.011)], Some(0.99), 0.01);
+        assert_eq!(fast.status, Status::Converged, "{}", fast.text);
+        assert!((fast.error.unwrap() - 0.001 / 1.01).abs() < 1e-12);
     }
 
     #[test]
