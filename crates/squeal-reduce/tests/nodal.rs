@@ -10,7 +10,7 @@ mod common;
 use common::{coarse, coarse_inputs};
 use squeal_reduce::brake::{LoadedPart, ModeChoice, reduce_brake_loaded};
 use squeal_reduce::interface::footprint;
-use squeal_reduce::interface::nodal::{face_nodes, project_pad};
+use squeal_reduce::interface::nodal::{contact_face_nodes, face_nodes, project_pad};
 use squeal_reduce::rom::{InterfaceKind, PointRole};
 
 /// The bundled contact faces: 50 degrees (65 to 115) of the annulus 85..135 mm at z = 20 mm.
@@ -32,9 +32,13 @@ fn every_coarse_pad_face_node_pairs_with_areas_summing_to_the_face() {
     let pad = coarse("pad");
     let face = face_nodes(&pad.mesh, "CONTACT_FACE").unwrap();
     let pairs = project_pad(&disc.mesh, "CONTACT_FACE", &pad.mesh, "CONTACT_FACE").unwrap();
-    // Every node of the pad's face (the nodes of its boundary triangles) is paired.
-    assert_eq!(pairs.len(), face.len());
-    assert_eq!(pairs.len(), 355);
+    // Every node of the pad's face that carries a share of a uniform pressure (the 258
+    // midside nodes of its 6-node triangles; its 97 corners carry none) is paired.
+    let contact = contact_face_nodes(&pad.mesh, "CONTACT_FACE").unwrap();
+    assert_eq!((face.len(), contact.len(), pairs.len()), (355, 258, 258));
+    for (c, p) in contact.iter().zip(&pairs) {
+        assert_eq!((c.node, c.area), (p.pad.node, p.pad.area));
+    }
     // The lumped areas partition the face: their sum against the face's area integrated by
     // the whole triangles' degree-4 rule. The face is flat with curved (quadratic) edges, so
     // the area Jacobian is a quadratic and both are exact: round-off (measured below).
@@ -47,6 +51,14 @@ fn every_coarse_pad_face_node_pairs_with_areas_summing_to_the_face() {
     );
     assert!((total / area - 1.0).abs() < 1e-14, "{total} vs {area}");
     assert!(face.iter().all(|n| n.area > 0.0));
+    // So do the contact points' areas (the edge-midpoint rule is exact for the quadratic
+    // area Jacobian of a flat face with curved edges): round-off.
+    let shares: f64 = contact.iter().map(|n| n.area).sum();
+    eprintln!(
+        "contact areas: sum {shares:.15e} ({:.1e})",
+        shares / area - 1.0
+    );
+    assert!((shares / area - 1.0).abs() < 1e-14, "{shares} vs {area}");
     // The meshes touch: pad and disc faces both lie on z = 20 mm, so every gap measured by
     // projection is 0 up to the round-off of coordinates of 0.1 m (1e-17 measured).
     let worst_gap = pairs
@@ -108,7 +120,7 @@ fn a_turned_and_lifted_pad_pairs_every_node() {
     let disc = coarse("disc");
     let pad = moved(coarse("pad"), turn, lift);
     let pairs = project_pad(&disc.mesh, "CONTACT_FACE", &pad.mesh, "CONTACT_FACE").unwrap();
-    assert_eq!(pairs.len(), 355);
+    assert_eq!(pairs.len(), 258);
     // Pairs inside the disc face landing on a disc node (one weight).
     let on_disc_node = pairs
         .iter()
@@ -188,19 +200,20 @@ fn the_reduced_brake_keeps_every_face_node_and_pairs_each_pad_node() {
     let disc_face = face_nodes(&coarse("disc").mesh, "CONTACT_FACE")
         .unwrap()
         .len();
-    assert_eq!(count(pad, PointRole::Contact), 355);
+    // The pad's contact points: the 258 midside nodes of its friction face.
+    assert_eq!(count(pad, PointRole::Contact), 258);
     assert_eq!(count(disc, PointRole::Face), disc_face);
-    assert_eq!(count(disc, PointRole::Contact), 355);
-    // 3 dofs per face node and per pad node, 4 pistons, 10 modes each.
+    assert_eq!(count(disc, PointRole::Contact), 258);
+    // 3 dofs per disc face node and per pad contact point, 4 pistons, 10 modes each.
     assert_eq!(disc.size(), 3 * disc_face + 10);
-    assert_eq!(pad.size(), 3 * 355 + 4 + 10);
+    assert_eq!(pad.size(), 3 * 258 + 4 + 10);
     eprintln!(
-        "reduced nodal brake: disc {} + pad {} = {} dofs ({disc_face} disc face nodes, 355 pad face nodes)",
+        "reduced nodal brake: disc {} + pad {} = {} dofs ({disc_face} disc face nodes, 258 pad contact points)",
         disc.size(),
         pad.size(),
         model.size()
     );
-    assert_eq!(report.pairs.len(), 355);
+    assert_eq!(report.pairs.len(), 258);
     for (k, pair) in report.pairs.iter().enumerate() {
         assert_eq!(pair.disc_point, k);
         let p = disc

@@ -334,6 +334,35 @@ mod tests {
     }
 
     #[test]
+    fn the_ventilated_brakes_mesh_sequence_reads_as_not_converged_with_its_spread() {
+        // The ventilated brake's μ0 on its coarse, medium and fine meshes with the lumped
+        // contact areas (docs/reduction.md, "Why the ventilated brake's μ0 moved with the
+        // mesh"): changes +0.04983 and +0.03539, q = 0.7103, so 0.08678 is still to come,
+        // 22.54 % of the last level's 0.38498, where the last change is 10.12 %.
+        let v = [Some(0.29976078), Some(0.34958792), Some(0.38498091)];
+        let mesh = verdict(&v, None, DEFAULT_TOLERANCE);
+        println!("{}", mesh.text);
+        assert_eq!(mesh.status, Status::NotConverged);
+        assert!(
+            (mesh.error.unwrap() - 0.2254260).abs() < 1e-6,
+            "{:?}",
+            mesh.error
+        );
+        assert!(
+            mesh.text.starts_with("not converged: mu0 moved 10.12 % between the last two levels, and at the observed rate (each change 0.71 times the one before) about 22.54 % more is still to come: estimated error 22.54 %, above the tolerance 0.1 %")
+                && mesh.text.ends_with("extrapolated mu0 0.47177 ± 0.08678 (if the rate holds)"),
+            "{}",
+            mesh.text
+        );
+        let (_, t) = overall(&[("mesh", &mesh)]);
+        println!("{t}");
+        assert!(
+            t.contains("mesh (estimated error 22.54 %: mu0 0.38498 ± 0.08678)"),
+            "{t}"
+        );
+    }
+
+    #[test]
     fn a_small_change_with_another_unstable_mode_is_not_convergence() {
         let v = [Some(0.40), Some(0.4001)];
         let same = verdict(&v, Some(0.97), 0.01);

@@ -73,8 +73,8 @@ pub(crate) fn boundary_rows(
                     PartRole::Pad | PartRole::Body => PointRole::Contact,
                 };
                 // The disc keeps every face node (its projected points combine them); a
-                // pad's contact points carry their share of a uniform pressure
-                // ([`crate::interface::nodal::contact_face_nodes`]).
+                // pad's contact points are the face nodes that carry a share of a uniform
+                // pressure ([`crate::interface::nodal::contact_face_nodes`]).
                 let nodes = match role {
                     PointRole::Face => face_nodes(mesh, &surface.contact_face_set)?,
                     _ => contact_face_nodes(mesh, &surface.contact_face_set)?,

@@ -85,9 +85,10 @@
 //!   pad with exactly a uniform pressure. The area element of a flat face with quadratic
 //!   edges is a polynomial of degree 2, so the areas still sum to the face's area to
 //!   round-off there; on a doubly curved face the sum is the rule's approximation of the area.
-//!   A corner with no area keeps its pair (the same contact points, whatever the rule), with
-//!   no spring: the element's midside nodes carry the pressure, as a finite-element code's
-//!   consistent pressure loads do.
+//!   A corner with no area is not a contact point (no pair: a pair without a spring would
+//!   carry nothing, and laws that need a positive stiffness, such as DLFT's, would refuse it):
+//!   the element's midside nodes carry the pressure, as a finite-element code's consistent
+//!   pressure loads do, and the corners are interior nodes of the pad's reduction.
 //! - The lumped sub-cell areas of [`face_nodes`] (each 6-node triangle cut at its edge
 //!   midpoints into four triangles whose areas go a third to each of their nodes: `A/12` at a
 //!   corner, `A/4` at a midside node) are positive everywhere but exact for linear functions
@@ -190,11 +191,12 @@ pub fn face_nodes(mesh: &Mesh, face_set: &str) -> Result<Vec<FaceNode>, Interfac
         .collect())
 }
 
-/// The nodes of the boundary faces of `face_set` as contact points, in node order (the same
-/// nodes as [`face_nodes`], with its normals), each with its share of a uniform pressure:
-/// on a 6-node triangle the edge-midpoint rule, `|X_s × X_t|(m_e) / 6` at each midside node
-/// and nothing at the corners (module docs, "Tributary areas of the contact points"); on an
-/// 8-node quadrilateral the lumped sub-cell areas of [`face_nodes`].
+/// The nodes of the boundary faces of `face_set` that carry a share of a uniform pressure,
+/// in node order, with that share as their area and [`face_nodes`]' normals: on a 6-node
+/// triangle the edge-midpoint rule, `|X_s × X_t|(m_e) / 6` at each midside node and nothing
+/// at the corners (module docs, "Tributary areas of the contact points"); on an 8-node
+/// quadrilateral the lumped sub-cell areas of [`face_nodes`]. A node with no share (a corner
+/// of 6-node triangles only) is not a contact point.
 pub fn contact_face_nodes(mesh: &Mesh, face_set: &str) -> Result<Vec<FaceNode>, InterfaceError> {
     let (_, faces) = face_triangles(mesh, face_set)?;
     let mut area: BTreeMap<u32, f64> = BTreeMap::new();
@@ -219,9 +221,9 @@ pub fn contact_face_nodes(mesh: &Mesh, face_set: &str) -> Result<Vec<FaceNode>, 
     }
     Ok(face_nodes(mesh, face_set)?
         .into_iter()
-        .map(|n| FaceNode {
-            area: area.get(&n.node).copied().unwrap_or(0.0),
-            ..n
+        .filter_map(|n| {
+            let a = area.get(&n.node).copied().filter(|a| *a > 0.0)?;
+            Some(FaceNode { area: a, ..n })
         })
         .collect())
 }
