@@ -98,7 +98,7 @@
 //!   the corners with `A/12` where a uniform pressure loads them with nothing, so a uniform
 //!   closure bends each element (corners 1.05 µm less closed than midside nodes at the coarse
 //!   ventilated brake's equilibrium, against 0.19 µm more with the edge-midpoint rule). This
-//!   error was most of the coarse ventilated brake's μ0 error (docs/reduction.md, "Why the
+//!   error was about a third of the coarse ventilated brake's μ0 error (docs/reduction.md, "Why the
 //!   ventilated brake's μ0 moved with the mesh"). [`face_nodes`] is kept for what needs every
 //!   node with a positive share (the disc's face points, springs and ties spread over a face).
 //! - On an 8-node quadrilateral `∫ N_k dA` is `−A/12` at the corners (a negative spring, a
