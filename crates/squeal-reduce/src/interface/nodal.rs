@@ -96,11 +96,12 @@
 //!   stiffness by `O(h²)`: by 50 % on a pad one element long, 12.5 % two elements long (the
 //!   tests), 13.2 % on the bundled coarse ventilated pad's radial second moment; and they load
 //!   the corners with `A/12` where a uniform pressure loads them with nothing, so a uniform
-//!   closure bends each element (corners 1.05 µm less closed than midside nodes at the coarse
-//!   ventilated brake's equilibrium, against 0.19 µm more with the edge-midpoint rule). This
-//!   error was about a third of the coarse ventilated brake's μ0 error (docs/reduction.md, "Why the
-//!   ventilated brake's μ0 moved with the mesh"). [`face_nodes`] is kept for what needs every
-//!   node with a positive share (the disc's face points, springs and ties spread over a face).
+//!   closure bends each element (at the coarse ventilated brake's equilibrium the corners
+//!   1.05 µm less closed than a smooth fit of the closure and the midside nodes 0.51 µm more,
+//!   of 22.5 µm; 0.19 and 0.09 µm with the edge-midpoint rule). This error was about a third
+//!   of the coarse ventilated brake's μ0 error (docs/reduction.md, "Why the ventilated
+//!   brake's μ0 moved with the mesh"). [`face_nodes`] is kept for what needs every node with a
+//!   positive share (the disc's face points, springs and ties spread over a face).
 //! - On an 8-node quadrilateral `∫ N_k dA` is `−A/12` at the corners (a negative spring, a
 //!   softening foundation), and no nodal rule on its eight nodes with positive weights is
 //!   exact for quadratics (symmetric weights would need `−A/12` at the corners again), so its
