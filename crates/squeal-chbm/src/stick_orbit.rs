@@ -75,6 +75,9 @@ pub struct OrbitRecord {
     pub periods: Vec<f64>,
     /// The loudest pair's peak-to-peak closure in each of them (m).
     pub closures: Vec<f64>,
+    /// Each pair's states over the last recorded period, in time order as runs `(state,
+    /// fraction of the period)`: `'s'` stuck, `'r'` reversed, `'o'` open, `'f'` sliding forwards.
+    pub patterns: Vec<Vec<(char, f64)>>,
 }
 
 impl OrbitRecord {
@@ -137,6 +140,9 @@ struct Recorder<'a> {
     last: Option<(f64, f64)>,
     crossings: Vec<f64>,
     extrema: Vec<(f64, f64)>,
+    /// Every pair's state at the last `per_cycle` samples (a ring).
+    last_cycle: Vec<Vec<u8>>,
+    per_cycle: usize,
 }
 
 impl Recorder<'_> {
@@ -160,9 +166,12 @@ impl Recorder<'_> {
             } else if g < 0.0 {
                 1
             } else {
-                continue;
+                3
             };
-            self.counts[state][k] += 1;
+            self.last_cycle[k][(self.samples - 1) % self.per_cycle] = state as u8;
+            if state < 3 {
+                self.counts[state][k] += 1;
+            }
         }
         let d = self.mb.pairs[self.pair].penetration(&self.xn) - self.level;
         if let Some((t0, d0)) = self.last
@@ -186,7 +195,25 @@ impl Recorder<'_> {
                 .collect()
         };
         let cycles = self.crossings.len().saturating_sub(1);
+        let n = self.per_cycle;
+        let first = self.samples % n;
+        let patterns = self
+            .last_cycle
+            .iter()
+            .map(|ring| {
+                let mut runs: Vec<(char, f64)> = Vec::new();
+                for j in 0..n {
+                    let c = ['s', 'r', 'o', 'f'][ring[(first + j) % n] as usize];
+                    match runs.last_mut() {
+                        Some(r) if r.0 == c => r.1 += 1.0 / n as f64,
+                        _ => runs.push((c, 1.0 / n as f64)),
+                    }
+                }
+                runs
+            })
+            .collect();
         OrbitRecord {
+            patterns,
             stuck: frac(&self.counts[0]),
             reversed: frac(&self.counts[1]),
             open: frac(&self.counts[2]),
@@ -245,6 +272,8 @@ pub fn integrate_orbit(
         last: None,
         crossings: Vec::new(),
         extrema: Vec::new(),
+        last_cycle: vec![vec![3; opts.samples_per_cycle]; mbp.pairs.len()],
+        per_cycle: opts.samples_per_cycle,
     };
     let sys = BrakeDynamics::new(&mbp);
     let mut y = vec![0.0; start.y0.len()];

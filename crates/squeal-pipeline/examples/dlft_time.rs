@@ -206,6 +206,17 @@ fn main() -> Res<()> {
                 ),
                 Err(e) => println!("    record failed: {e}"),
             }
+            if let Ok(rec) = &orbit.record {
+                for (k, runs) in rec.patterns.iter().enumerate() {
+                    if runs.iter().any(|r| r.0 != 'f') {
+                        let s: Vec<String> = runs
+                            .iter()
+                            .map(|(c, f)| format!("{c} {:.2}%", 100.0 * f))
+                            .collect();
+                        println!("      pair {k} over the last period: {}", s.join(", "));
+                    }
+                }
+            }
             if exact.is_none()
                 && let Some(g) = steady_point(&mb, mu, ch, dof)?
             {
