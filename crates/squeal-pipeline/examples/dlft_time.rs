@@ -3,8 +3,10 @@
 //! docs/stick_slip.md, "DLFT against time integration").
 //!
 //! `cargo run --release -p squeal-pipeline --example dlft_time -- [ratios] [fractions] [rtol]
-//! [record_cycles] [start]` (defaults `1.0452` (μ/μ0, comma separated), `0.05,0.025,0.0125,
-//! 0.00625` (v_reg as fractions of the slowest pair's disc speed), `1e-7`, `40`, `dlft`).
+//! [record_cycles] [start] [starts]` (defaults `1.0452` (μ/μ0, comma separated), `0.05,0.025,0.0125,
+//! 0.00625` (v_reg as fractions of the slowest pair's disc speed), `1e-7`, `40`, `dlft`, none);
+//! `starts` first solves DLFT as squeal does, from the CHBM cycle and then the regularized
+//! cycles walked down in `v_reg` (`squeal_chbm::stick_dlft_starts`).
 //!
 //! At each μ: the CHBM cycle (permanent sliding, as `squeal chbm --mu-ratio` solves it), the
 //! DLFT cycle from it (24 harmonics, `squeal_pipeline::cycle_stick`), then for each `v_reg`:
@@ -20,6 +22,7 @@ use squeal_chbm::branch::BranchPoint;
 use squeal_chbm::floquet::{HillOptions, hill};
 use squeal_chbm::stick_branch::{StickOptions, sticking_brake, surface_speeds};
 use squeal_chbm::stick_dlft::{DlftOptions, dlft_cycle, regularized_cycle};
+use squeal_chbm::stick_dlft_starts::{START_FRACTIONS, dlft_from_starts};
 use squeal_chbm::stick_orbit::{OrbitOptions, integrate_orbit, steady_point};
 use squeal_chbm::{ChbmOptions, RESTART_AMPLITUDES};
 use squeal_hbm::{HarmonicLayout, PhaseCondition};
@@ -128,6 +131,27 @@ fn main() -> Res<()> {
         let layout = HarmonicLayout::new(mb.nl(), d.harmonics)?;
         let PhaseCondition::FirstSineZero { dof } =
             PhaseCondition::strongest_dof(&layout, &d.nl_coeffs)?;
+        if arg(5, "") == "starts" {
+            // DLFT from the CHBM cycle and, when that stops short, from the regularized cycles
+            // walked down in v_reg (`squeal_chbm::stick_dlft_starts`), as squeal does.
+            let mut o = DlftOptions::default();
+            o.harmonics = Some(24);
+            let t = Instant::now();
+            let s = dlft_from_starts(&mb, mu, &c.sliding, dof, &o, &START_FRACTIONS)?;
+            let e = &s.cycle;
+            println!(
+                "  DLFT from starts: f {:.5} Hz, p2p {:.4} um, residual {:.1e}, converged {}, stick {}, reversed {}, tried {:?} ({:.1} s) {}",
+                e.point.frequency_hz(),
+                e.point.pairs[pair].peak_to_peak() * 1e6,
+                e.point.residual,
+                e.converged,
+                fractions(&e.stick_fractions),
+                fractions(&e.reversed_fractions),
+                s.tried,
+                t.elapsed().as_secs_f64(),
+                s.reason()
+            );
+        }
         // The exact cycle: DLFT from the CHBM cycle, or (when that stops short) from the first
         // steady integrated cycle.
         let mut exact = c.converged.then(|| c.cycle.clone());
