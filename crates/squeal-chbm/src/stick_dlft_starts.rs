@@ -86,11 +86,9 @@ pub fn dlft_from_starts(
         .fold(f64::INFINITY, f64::min);
     let mut g = guess.clone();
     let mut reg_opts = opts.clone();
-    reg_opts.samples = opts
-        .samples
-        .or(Some(squeal_hbm::default_stick_slip_samples(
-            opts.harmonics.unwrap_or(guess.harmonics),
-        )));
+    reg_opts.samples = opts.samples.or(Some(squeal_hbm::default_stick_slip_samples(
+        opts.harmonics.unwrap_or(guess.harmonics),
+    )));
     for &f in fractions {
         let (q, ok) = regularized_cycle(mb, mu, f * v_min, &g, phase_dof, &reg_opts)?;
         if !ok {

@@ -83,9 +83,8 @@ pub struct OrbitRecord {
 impl OrbitRecord {
     /// `(min, max)` of `v` (`(NaN, NaN)` when empty).
     fn range(v: &[f64]) -> (f64, f64) {
-        v.iter().fold((f64::NAN, f64::NAN), |(lo, hi), &x| {
-            (lo.min(x), hi.max(x))
-        })
+        v.iter()
+            .fold((f64::NAN, f64::NAN), |(lo, hi), &x| (lo.min(x), hi.max(x)))
     }
 
     /// Relative spread `(max - min) / mean` of the cycles' periods.

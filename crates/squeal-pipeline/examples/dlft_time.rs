@@ -73,7 +73,11 @@ fn fractions(v: &[f64]) -> String {
         .filter(|(_, f)| **f > 0.0)
         .map(|(i, f)| format!("{i}:{:.2}%", 100.0 * f))
         .collect();
-    if s.is_empty() { "none".into() } else { s.join(" ") }
+    if s.is_empty() {
+        "none".into()
+    } else {
+        s.join(" ")
+    }
 }
 
 fn main() -> Res<()> {
@@ -174,7 +178,11 @@ fn main() -> Res<()> {
             let mut mbp = smb.clone();
             mbp.mu = mu;
             let t = Instant::now();
-            let h = hill(&mbp, &cycle_of(&smb, &q, Some(samples))?, &HillOptions::default())?;
+            let h = hill(
+                &mbp,
+                &cycle_of(&smb, &q, Some(samples))?,
+                &HillOptions::default(),
+            )?;
             println!(
                 "    Hill: leading exponent {:.3e} 1/s ({}), trivial error {:.1e}, coverage {:.0} ({:.1} s)",
                 h.leading().map_or(f64::NAN, |e| e.sigma.re),

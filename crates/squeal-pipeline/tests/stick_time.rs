@@ -108,13 +108,20 @@ fn integrated_regularized_orbits_approach_the_dlft_cycle_at_3_kmh() {
                 d.point.residual,
                 d.stick_fractions
             );
-            assert!(d.converged && d.point.residual < 1e-9, "{}", d.point.residual);
+            assert!(
+                d.converged && d.point.residual < 1e-9,
+                "{}",
+                d.point.residual
+            );
             exact = Some(d.point);
         }
         let d = exact.as_ref().unwrap();
         let df = d.omega * rec.mean_period() / (2.0 * std::f64::consts::PI) - 1.0;
         let dp = rec.mean_closure() / d.pairs[pair].peak_to_peak() - 1.0;
-        eprintln!("V*{frac}: integrated minus DLFT {:+.2e} f, {dp:+.2e} p2p", -df);
+        eprintln!(
+            "V*{frac}: integrated minus DLFT {:+.2e} f, {dp:+.2e} p2p",
+            -df
+        );
         errors.push((df.abs(), dp.abs()));
     }
     // The integrated orbit approaches DLFT as v_reg shrinks: V/20 -> V/80 divides both errors by
