@@ -119,7 +119,7 @@ fn mean(v: &[f64]) -> f64 {
 pub struct StickOrbit {
     /// The run to the steady cycle against the balance ([`crate::stick_check`]).
     pub check: StickCheck,
-    /// The record (`None` when the record's integration failed: the error).
+    /// The record, or the integrator's error that stopped it.
     pub record: Result<OrbitRecord, OdeError>,
     /// BDF steps of the record.
     pub record_steps: usize,
