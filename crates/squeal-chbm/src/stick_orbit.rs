@@ -50,11 +50,12 @@ pub struct OrbitOptions {
 
 impl Default for OrbitOptions {
     fn default() -> Self {
-        let mut ti = TiOptions::default();
-        ti.rtol = 1e-7;
-        ti.harmonics = 24;
         Self {
-            ti,
+            ti: TiOptions {
+                rtol: 1e-7,
+                harmonics: 24,
+                ..TiOptions::default()
+            },
             record_cycles: 40,
             samples_per_cycle: 4096,
             stick_band: 3.0,
