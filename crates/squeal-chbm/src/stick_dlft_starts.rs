@@ -7,10 +7,12 @@
 //! depends on the start. On the coarse bundled brake at 3 km/h the time integration of the
 //! regularized law is periodic at every μ tried (1.045, 1.054, 1.065 μ0; period and closure
 //! the same from cycle to cycle within 2.5e-5), and its cycle approaches the regularized
-//! balance's to the integrator's error, so the exact cycle is there to be found; from the
-//! 3-harmonic CHBM cycle DLFT stops at residuals of 1e-2 to 5e-1, from the regularized
-//! cycles it converges once `v_reg` is small enough (1.0649 μ0: from V/160, not from V/20 to
-//! V/80).
+//! balance's to the integrator's error, so the exact cycle is there to be found. From the
+//! 3-harmonic CHBM cycle DLFT stops at residuals of 1e-2 to 5e-1. From the regularized
+//! balance's cycles it converged at 1.0452 μ0 but not at 1.0540 or 1.0649 μ0 (V/20 to V/320:
+//! 1e-3 to 3e-2); from the BDF record's own 24-harmonic cycles it converged at 1.0540 μ0
+//! (from V/320) and 1.0649 μ0 (from V/160), not from every `v_reg`: the solve reaches the
+//! cycle only from some starts close to it.
 //!
 //! **What.** [`dlft_from_starts`] solves from the given guess; if that stops short, it walks
 //! the regularized law's cycle down in `v_reg` ([`crate::stick_dlft::regularized_cycle`],
