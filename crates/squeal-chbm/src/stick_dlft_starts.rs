@@ -9,10 +9,11 @@
 //! the same from cycle to cycle within 2.5e-5), and its cycle approaches the regularized
 //! balance's to the integrator's error, so the exact cycle is there to be found. From the
 //! 3-harmonic CHBM cycle DLFT stops at residuals of 1e-2 to 5e-1. From the regularized
-//! balance's cycles it converged at 1.0452 μ0 but not at 1.0540 or 1.0649 μ0 (V/20 to V/320:
-//! 1e-3 to 3e-2); from the BDF record's own 24-harmonic cycles it converged at 1.0540 μ0
-//! (from V/320) and 1.0649 μ0 (from V/160), not from every `v_reg`: the solve reaches the
-//! cycle only from some starts close to it.
+//! balance's cycles it did not converge at 1.0540 or 1.0649 μ0 (V/20 to V/320: 1e-3 to 3e-2);
+//! from the BDF record's own 24-harmonic cycles it converged at 1.0452 μ0 (from V/20),
+//! 1.0540 μ0 (from V/320) and 1.0649 μ0 (from V/160), not from every `v_reg`: the solve
+//! reaches the cycle only from some starts close to it. The walk below is what squeal can
+//! afford per cycle (about 2 s a start); it tells the user what was tried.
 //!
 //! **What.** [`dlft_from_starts`] solves from the given guess; if that stops short, it walks
 //! the regularized law's cycle down in `v_reg` ([`crate::stick_dlft::regularized_cycle`],
