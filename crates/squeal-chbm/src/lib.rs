@@ -50,6 +50,8 @@ pub mod start;
 pub mod stick_branch;
 pub mod stick_check;
 pub mod stick_dlft;
+pub mod stick_dlft_starts;
+pub mod stick_orbit;
 pub mod system;
 pub mod timeint;
 pub mod torus;

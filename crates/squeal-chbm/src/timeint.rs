@@ -274,6 +274,16 @@ impl TiStart {
     pub fn epsilon(&self) -> f64 {
         self.epsilon
     }
+
+    /// The absolute tolerances [`integrate_from`] gives the BDF from this start with `opts`
+    /// (module docs: `atol_q` on the displacements, `ω₀ atol_q` on the velocities).
+    pub fn atol(&self, opts: &TiOptions) -> Vec<f64> {
+        let n = self.y0.len() / 2;
+        let atol_q = opts.atol_factor * opts.rtol * self.q_scale;
+        (0..2 * n)
+            .map(|i| if i < n { atol_q } else { atol_q * self.omega0 })
+            .collect()
+    }
 }
 
 /// Takes every sample of `sums` due by the end of `bdf`'s last step (its dense output).
@@ -391,10 +401,7 @@ pub fn integrate_from(mb: &ModalBrake, s: &TiStart, opts: &TiOptions) -> Result<
         });
     }
     FourierSums::new(2 * n, opts.harmonics, opts.samples_per_cycle, 1, 0.0, 1.0)?;
-    let atol_q = opts.atol_factor * opts.rtol * s.q_scale;
-    let atol: Vec<f64> = (0..2 * n)
-        .map(|i| if i < n { atol_q } else { atol_q * s.omega0 })
-        .collect();
+    let atol = s.atol(opts);
     let bdf_opts = {
         let mut o = BdfOptions::default();
         o.rtol = opts.rtol;

@@ -2,15 +2,17 @@
 //! branch recomputes because its sliding margin is below 1 ([`crate::branch_stick`]) is also
 //! solved with exact Coulomb stick–slip (the dynamic Lagrangian frequency–time method,
 //! [`squeal_chbm::stick_dlft::dlft_cycle`], 24 harmonics), at its μ, from the permanent-sliding
-//! cycle. The summary prints one line per cycle: frequency and loudest closure with their
+//! cycle, and when that stops short from the regularized cycles walked down in `v_reg`
+//! ([`squeal_chbm::stick_dlft_starts`]). The summary prints one line per cycle: frequency and loudest closure with their
 //! changes against permanent sliding, how long the pairs stick, and whether the solve met its
-//! tolerance (docs/stick_slip.md: past 1.05 μ0 at 3 km/h on the coarse brake it does not).
+//! tolerance, with the starts tried when it did not (docs/stick_slip.md).
 
 use crate::branch::BranchAnalysis;
 use crate::model::Model;
 use squeal_brake::analysis::LinearStability;
 use squeal_brake::modal_brake::ModalBrake;
-use squeal_chbm::stick_dlft::{DlftCycle, DlftOptions, dlft_cycle};
+use squeal_chbm::stick_dlft::{DlftCycle, DlftOptions};
+use squeal_chbm::stick_dlft_starts::{START_FRACTIONS, dlft_from_starts};
 use squeal_scene::StickSlipSetting;
 use std::fmt::Write as _;
 
@@ -25,6 +27,9 @@ pub struct DlftRow {
     pub mu: f64,
     /// The DLFT cycle, or why it could not be set up.
     pub cycle: Result<DlftCycle, String>,
+    /// When the cycle stopped short: why, and the starts tried
+    /// ([`squeal_chbm::stick_dlft_starts::StartedDlft::reason`]); empty when converged.
+    pub reason: String,
 }
 
 /// The DLFT cycles at the points of `a` the sticking branch recomputes (`None`: the scene does
@@ -46,11 +51,22 @@ pub fn recompute(
     Some(
         s.cycles
             .iter()
-            .map(|c| DlftRow {
-                point: c.point,
-                mu: c.mu,
-                cycle: dlft_cycle(&mb, c.mu, &a.branch.points[c.point], a.branch.phase_dof, &o)
-                    .map_err(|e| e.to_string()),
+            .map(|c| {
+                let d = dlft_from_starts(
+                    &mb,
+                    c.mu,
+                    &a.branch.points[c.point],
+                    a.branch.phase_dof,
+                    &o,
+                    &START_FRACTIONS,
+                );
+                let reason = d.as_ref().map_or(String::new(), |d| d.reason());
+                DlftRow {
+                    point: c.point,
+                    mu: c.mu,
+                    cycle: d.map(|d| d.cycle).map_err(|e| e.to_string()),
+                    reason,
+                }
             })
             .collect(),
     )
@@ -60,7 +76,7 @@ pub fn recompute(
 pub fn text(a: &BranchAnalysis, rows: &[DlftRow]) -> String {
     let mu0 = a.mu0();
     let mut out = format!(
-        "  the same cycles with exact Coulomb stick-slip (dynamic Lagrangian frequency-time method, Nacivet et al. 2003; {HARMONICS} harmonics, from the permanent-sliding cycle):\n"
+        "  the same cycles with exact Coulomb stick-slip (dynamic Lagrangian frequency-time method, Nacivet et al. 2003; {HARMONICS} harmonics, from the permanent-sliding cycle, then if needed from the regularized cycles at v_reg = V/20 down to V/320):\n"
     );
     for r in rows {
         let p = &a.branch.points[r.point];
@@ -91,8 +107,8 @@ pub fn text(a: &BranchAnalysis, rows: &[DlftRow]) -> String {
                         String::new()
                     } else {
                         format!(
-                            "; NOT converged (relative residual {:.1e}): approximate",
-                            q.residual
+                            "; NOT converged (relative residual {:.1e}; {}): approximate",
+                            q.residual, r.reason
                         )
                     }
                 )

@@ -8,7 +8,9 @@
 //!   v_reg)` with `v_reg` a twentieth of the slowest pair's disc speed, 24 harmonics and the
 //!   branch's AFT samples ([`squeal_chbm::stick_dlft::regularized_cycle`]);
 //! - `"dlft"`: exact Coulomb stick–slip by the dynamic Lagrangian frequency–time method
-//!   ([`squeal_chbm::stick_dlft::dlft_cycle`], docs/stick_slip.md), 24 harmonics.
+//!   ([`squeal_chbm::stick_dlft::dlft_cycle`], docs/stick_slip.md), 24 harmonics; when the
+//!   solve from the CHBM cycle stops short, from the regularized cycles walked down in `v_reg`
+//!   ([`squeal_chbm::stick_dlft_starts`]).
 //!
 //! Both start from the CHBM cycle (permanent sliding) at fixed μ. The text says which law, the
 //! new frequency and loudest closure with their changes, the new margin and, for DLFT, how
@@ -22,7 +24,8 @@ use squeal_chbm::ChbmSolution;
 use squeal_chbm::branch::{BranchPoint, pair_cycles};
 use squeal_chbm::physics::SlidingMargin;
 use squeal_chbm::stick_branch::{StickOptions, point_margin, surface_speeds};
-use squeal_chbm::stick_dlft::{DlftOptions, dlft_cycle, regularized_cycle};
+use squeal_chbm::stick_dlft::{DlftOptions, regularized_cycle};
+use squeal_chbm::stick_dlft_starts::{START_FRACTIONS, dlft_from_starts};
 use squeal_hbm::{HarmonicLayout, PhaseCondition};
 use squeal_scene::StickSlipSetting;
 use std::path::Path;
@@ -46,6 +49,9 @@ pub struct CycleStick {
     pub stick_fractions: Option<Vec<f64>>,
     /// Whether the solve met its residual tolerance (the residual is in `cycle`).
     pub converged: bool,
+    /// DLFT only, when it stopped short: why, and the starts tried
+    /// ([`squeal_chbm::stick_dlft_starts::StartedDlft::reason`]).
+    pub reason: String,
 }
 
 /// The CHBM solution `sol` at `mu` as a branch point of `mb`.
@@ -90,6 +96,7 @@ pub fn recompute(
         PhaseCondition::strongest_dof(&layout, &sol.nl_coeffs).map_err(|e| err(&e))?;
     let mut o = DlftOptions::default();
     o.harmonics = Some(HARMONICS);
+    let mut reason = String::new();
     let (law_text, cycle, converged, fractions) = match law {
         StickSlipSetting::Regularized => {
             let v_min = speeds.iter().copied().fold(f64::INFINITY, f64::min);
@@ -104,7 +111,10 @@ pub fn recompute(
         }
         StickSlipSetting::Dlft { epsilon_factor } => {
             o.epsilon_factor = epsilon_factor;
-            let d = dlft_cycle(&mb, mu, &sliding, dof, &o).map_err(|e| err(&e))?;
+            let s = dlft_from_starts(&mb, mu, &sliding, dof, &o, &START_FRACTIONS)
+                .map_err(|e| err(&e))?;
+            reason = s.reason();
+            let d = s.cycle;
             let text = format!(
                 "exact Coulomb stick-slip (dynamic Lagrangian frequency-time method, Nacivet et al. 2003), {HARMONICS} harmonics, {} samples, penalty {epsilon_factor} x default",
                 d.samples
@@ -121,6 +131,7 @@ pub fn recompute(
         stick_margin,
         stick_fractions: fractions,
         converged,
+        reason,
     }))
 }
 
@@ -151,6 +162,9 @@ pub fn text(c: &CycleStick) -> String {
             "\n  NOTE: the solve stopped short of its tolerance (relative residual {:.1e}): the recomputed cycle is approximate",
             q.residual
         );
+        if !c.reason.is_empty() {
+            s += &format!(" ({})", c.reason);
+        }
     }
     s.push('\n');
     s
