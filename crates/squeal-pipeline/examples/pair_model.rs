@@ -55,9 +55,9 @@ fn projected(
             phi.iter()
                 .map(|x| {
                     let mut y = vec![0.0; x.len()];
-                    for j in 0..k.ncols() {
+                    for (j, &xj) in x.iter().enumerate() {
                         for (i, &v) in k.row_idx_of_col(j).zip(k.val_of_col(j)) {
-                            y[i] += v * x[j];
+                            y[i] += v * xj;
                         }
                     }
                     y
@@ -152,9 +152,9 @@ fn full_modes(
         let turn = big.conj() / big.norm();
         let x: Vec<f64> = p.vector.iter().map(|v| (v * turn).re).collect();
         let mut mx = vec![0.0; x.len()];
-        for j in 0..full.m.ncols() {
+        for (j, &xj) in x.iter().enumerate() {
             for (i, &v) in full.m.row_idx_of_col(j).zip(full.m.val_of_col(j)) {
-                mx[i] += v * x[j];
+                mx[i] += v * xj;
             }
         }
         let norm = x.iter().zip(&mx).map(|(a, b)| a * b).sum::<f64>().sqrt();
