@@ -7,7 +7,9 @@
 //! ([`squeal_reduce::unreduced`], from the same [`BrakeInputs`]: the restraints, those in node
 //! frames, the ties eliminated by the same projection, the supports' and `[[springs]]`'
 //! stiffness) and stacked block-diagonally; the connectors between parts add `Cᵀ K_c C` on
-//! their coupling sets' mean-motion rows and the dampers their `C_d` ([`parts`]). Each contact pair `p`
+//! their coupling sets' mean-motion rows and the dampers their `C_d` ([`parts`]); the ties
+//! between parts (`[[ties]]` with `master_part`) are eliminated from the stacked model by the
+//! reduced brake's congruence ([`ties`]). Each contact pair `p`
 //! of the reduced brake gets its vectors `g_p` (along the pair normal `n_p`) and `h_p` (along
 //! the sliding direction `s_p`) over the full model's dofs, with the weights the reduction
 //! uses: for a patch pair the disc patch's area-weighted mean motion minus the pad patch's
@@ -35,6 +37,7 @@
 pub mod onset;
 pub mod parts;
 pub mod run;
+pub mod ties;
 
 use crate::error::{PipelineError, Result};
 use crate::model::Model;
@@ -79,6 +82,10 @@ pub struct FullBrake {
     pub tangent: Vec<SparseVec>,
     /// The dampers' `C_d` ([`parts`]); `None` without any.
     pub damping: Option<SparseColMat<usize, f64>>,
+    /// The ties between parts, eliminated from `k`, `m`, the pairs' vectors and the damping
+    /// ([`ties`]); `None` without any. With ties the parts' offsets are on the stacked dofs
+    /// before the elimination ([`ties::FullTies::expand`] maps the model's dofs onto them).
+    pub ties: Option<ties::FullTies>,
 }
 
 /// Components of a direction below 64 ε are dropped, as the reduced brake drops them.
@@ -133,11 +140,6 @@ fn full_parts(parts: &SceneParts, inputs: &BrakeInputs) -> Result<Vec<FullPart>>
 
 /// The full model of the brake `model` (reduced from `parts` with `inputs`).
 pub fn full_brake(parts: &SceneParts, inputs: &BrakeInputs, model: &Model) -> Result<FullBrake> {
-    if !inputs.part_ties.is_empty() || !model.rom.ties.is_empty() {
-        return Err(full_error(
-            "the scene ties two parts ([[ties]] with master_part), which the full model does not build yet (its slave nodes would have to be eliminated on the full meshes as the reduced brake eliminates them on the parts' boundary dofs, squeal_reduce::part_tie). Compare without --full, or tie the surfaces inside one part (leave master_part out and give both element sets to one part)",
-        ));
-    }
     let full = full_parts(parts, inputs)?;
     let n = full.last().map_or(0, |p| p.offset + p.unreduced.num_free());
     let (mut kt, mut mt) = (Vec::new(), Vec::new());
@@ -152,17 +154,36 @@ pub fn full_brake(parts: &SceneParts, inputs: &BrakeInputs, model: &Model) -> Re
         normal.push(vectors.vector(pairing, pairing.normal)?);
         tangent.push(vectors.vector(pairing, pairing.sliding)?);
     }
-    let sparse = |t: &[Triplet<usize, usize, f64>]| {
-        SparseColMat::try_new_from_triplets(n, n, t)
-            .map_err(|e| full_error(format!("stacking the parts' matrices: {e}")))
+    let ties = ties::FullTies::new(parts, inputs, &full)?;
+    let linked: usize = model.rom.ties.iter().map(|t| t.links.len()).sum();
+    if ties.as_ref().map_or(0, |t| t.slave_nodes) != linked {
+        return Err(full_error(format!(
+            "the reduced model ties {linked} slave nodes between parts and the scene {}: was it reduced from another scene? Reduce again",
+            ties.as_ref().map_or(0, |t| t.slave_nodes)
+        )));
+    }
+    let (k, m) = match &ties {
+        Some(t) => {
+            normal = normal.iter().map(|g| t.reduce(g)).collect();
+            tangent = tangent.iter().map(|h| t.reduce(h)).collect();
+            (t.congruence(&kt)?, t.congruence(&mt)?)
+        }
+        None => {
+            let sparse = |t: &[Triplet<usize, usize, f64>]| {
+                SparseColMat::try_new_from_triplets(n, n, t)
+                    .map_err(|e| full_error(format!("stacking the parts' matrices: {e}")))
+            };
+            (sparse(&kt)?, sparse(&mt)?)
+        }
     };
     Ok(FullBrake {
-        k: sparse(&kt)?,
-        m: sparse(&mt)?,
+        k,
+        m,
         parts: full,
         normal,
         tangent,
         damping: None,
+        ties,
     })
 }
 
@@ -182,7 +203,15 @@ impl FullBrake {
     /// The model with the scene's dampers in its damping (module [`parts`]); `parts` the
     /// scene's parts it was built from.
     pub fn with_dampers(mut self, scene: &squeal_scene::Scene, parts: &SceneParts) -> Result<Self> {
-        self.damping = parts::damping(scene, &self.parts, parts)?;
+        let stacked = parts::damping(scene, &self.parts, parts)?;
+        self.damping = match (stacked, &self.ties) {
+            (Some(d), Some(t)) => {
+                let mut triplets = Vec::new();
+                push_block(&d, 0, &mut triplets);
+                Some(t.congruence(&triplets)?)
+            }
+            (d, _) => d,
+        };
         Ok(self)
     }
 

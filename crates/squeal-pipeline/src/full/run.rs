@@ -46,10 +46,16 @@ pub fn full_check(p: &Pipeline, at: Option<f64>) -> Result<String> {
         .iter()
         .map(|q| format!("{} {}", q.name, q.unreduced.num_free()))
         .collect();
+    let tied = full.ties.as_ref().map_or(String::new(), |t| {
+        format!(
+            "; {} slave nodes tied between parts eliminated ({} stacked dofs)",
+            t.slave_nodes, t.stacked
+        )
+    });
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "full model: {} dofs ({}), {} contact pairs, assembled in {:.1} s; reduced brake {} dofs",
+        "full model: {} dofs ({}{tied}), {} contact pairs, assembled in {:.1} s; reduced brake {} dofs",
         full.size(),
         sizes.join(", "),
         full.normal.len(),
