@@ -12,9 +12,16 @@ use crate::model::Model;
 use squeal_brake::analysis::LinearStability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::stick_dlft::{DlftCycle, DlftOptions};
-use squeal_chbm::stick_dlft_starts::{START_FRACTIONS, dlft_from_starts};
+use squeal_chbm::stick_dlft_starts::dlft_from_starts;
 use squeal_scene::StickSlipSetting;
 use std::fmt::Write as _;
+
+/// The regularized starts `squeal branch` and `squeal chbm` try after the permanent-sliding
+/// cycle, as fractions of the slowest pair's disc speed: the branch's own V/20 only. Walking
+/// further down ([`squeal_chbm::stick_dlft_starts::START_FRACTIONS`], to V/320) reached no DLFT
+/// cycle on the coarse brake at 1.0540 and 1.0649 μ0 and cost about 40 s per cycle that stops
+/// short (docs/stick_slip.md, "Past 1.05 μ0").
+pub const DLFT_STARTS: [f64; 1] = [0.05];
 
 /// Harmonics of the DLFT cycles (the sticking branch's).
 const HARMONICS: usize = 24;
@@ -58,7 +65,7 @@ pub fn recompute(
                     &a.branch.points[c.point],
                     a.branch.phase_dof,
                     &o,
-                    &START_FRACTIONS,
+                    &DLFT_STARTS,
                 );
                 let reason = d.as_ref().map_or(String::new(), |d| d.reason());
                 DlftRow {

@@ -17,6 +17,7 @@
 //! much of the period each pair sticks and whether the solve met its tolerance;
 //! `<out>/chbm/stick_slip.json` has the same.
 
+use crate::branch_dlft::DLFT_STARTS;
 use crate::error::{Result, json_text};
 use crate::model::Model;
 use squeal_brake::modal_brake::ModalBrake;
@@ -25,7 +26,7 @@ use squeal_chbm::branch::{BranchPoint, pair_cycles};
 use squeal_chbm::physics::SlidingMargin;
 use squeal_chbm::stick_branch::{StickOptions, point_margin, surface_speeds};
 use squeal_chbm::stick_dlft::{DlftOptions, regularized_cycle};
-use squeal_chbm::stick_dlft_starts::{START_FRACTIONS, dlft_from_starts};
+use squeal_chbm::stick_dlft_starts::dlft_from_starts;
 use squeal_hbm::{HarmonicLayout, PhaseCondition};
 use squeal_scene::StickSlipSetting;
 use std::path::Path;
@@ -111,8 +112,8 @@ pub fn recompute(
         }
         StickSlipSetting::Dlft { epsilon_factor } => {
             o.epsilon_factor = epsilon_factor;
-            let s = dlft_from_starts(&mb, mu, &sliding, dof, &o, &START_FRACTIONS)
-                .map_err(|e| err(&e))?;
+            let s =
+                dlft_from_starts(&mb, mu, &sliding, dof, &o, &DLFT_STARTS).map_err(|e| err(&e))?;
             reason = s.reason();
             let d = s.cycle;
             let text = format!(
