@@ -454,13 +454,17 @@ pub fn at_blocks(model: &Model, blocks: &[(String, faer::Mat<f64>)]) -> Result<M
         })
         .collect::<Result<Vec<_>>>()?;
     let (brake, layout) = project_brake(&model.brake, &model.layout, &ordered)?;
-    // The sweep's continuation borders `T(λ)` with one column per pair (355 on the coarse
-    // nodal brake), whatever the size: on a brake smaller than its pair count a dense
-    // eigen-decomposition per friction value is cheaper (`SweepMethod::Dense`; above
-    // `PROJECT_ABOVE` dofs `Auto` projects, as for any brake).
+    // The sweep's continuation borders `T(λ)` with one column per pair (258 on the coarse
+    // nodal brake), whatever the size: each of its `2n` eigenpairs then costs a complex LU
+    // of about the pair count per friction value, so on a brake with more than a quarter as
+    // many pairs as dofs a dense eigen-decomposition per friction value is cheaper
+    // (`SweepMethod::Dense`; above `PROJECT_ABOVE` dofs `Auto` projects, as for any brake).
+    // Measured on the coarse nodal one-pad brake's 264-dof system level with 258 pairs
+    // (`squeal stability` of its scene, one slot): continuation 16.7 s per friction value,
+    // the dense sweep's 201 values 81.6 s in all (its first value's set-up included).
     let mut sweep = model.sweep;
     if sweep.method == SweepMethod::Auto
-        && brake.pairs.len() > brake.size()
+        && 4 * brake.pairs.len() > brake.size()
         && brake.size() <= PROJECT_ABOVE
     {
         sweep.method = SweepMethod::Dense;
