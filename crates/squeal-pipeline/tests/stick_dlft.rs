@@ -140,15 +140,7 @@ fn the_single_cycle_below_margin_1_is_recomputed_with_the_scenes_law() {
     // The first cycle the branch recomputes at 3 km/h (margin 0.983), by CHBM from the
     // unstable mode as `squeal chbm --mu-ratio 1.0364` solves it.
     let mu = 1.0364 * p.mu0().unwrap();
-    let (start, mb) = squeal_pipeline::chbm::start(m, st, mu, None).unwrap();
-    let (sol, _) = squeal_pipeline::chbm::solve_with_restarts(
-        &mb,
-        &start,
-        &squeal_chbm::ChbmOptions::default(),
-        &squeal_chbm::RESTART_AMPLITUDES,
-        &quiet,
-    )
-    .unwrap();
+    let sol = common::chbm_cycle(&p, mu);
     assert!(
         sol.outcome == squeal_chbm::Outcome::LimitCycle,
         "CHBM converged"

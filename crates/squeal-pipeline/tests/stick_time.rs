@@ -25,15 +25,7 @@ fn integrated_regularized_orbits_approach_the_dlft_cycle_at_3_kmh() {
     // The second cycle the branch recomputes at 3 km/h (margin 0.95): stable, the pads near
     // sticking.
     let mu = 1.0452 * p.mu0().unwrap();
-    let (start, mb) = squeal_pipeline::chbm::start(m, st, mu, None).unwrap();
-    let (sol, _) = squeal_pipeline::chbm::solve_with_restarts(
-        &mb,
-        &start,
-        &squeal_chbm::ChbmOptions::default(),
-        &squeal_chbm::RESTART_AMPLITUDES,
-        &quiet,
-    )
-    .unwrap();
+    let sol = common::chbm_cycle(&p, mu);
     // The regularized cycle at V/20, 24 harmonics (as `squeal chbm` recomputes it).
     let c = squeal_pipeline::cycle_stick::recompute(
         m,

@@ -114,3 +114,19 @@ pub fn best<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     }
     (best, out.expect("at least one repetition"))
 }
+
+/// The limit cycle at `mu` by CHBM from the pipeline's unstable mode, with restarts, as
+/// `squeal chbm` solves it.
+pub fn chbm_cycle(p: &squeal_pipeline::Pipeline, mu: f64) -> squeal_chbm::ChbmSolution {
+    let (m, st) = (p.model().unwrap(), p.stability().unwrap());
+    let (start, mb) = squeal_pipeline::chbm::start(m, st, mu, None).unwrap();
+    squeal_pipeline::chbm::solve_with_restarts(
+        &mb,
+        &start,
+        &squeal_chbm::ChbmOptions::default(),
+        &squeal_chbm::RESTART_AMPLITUDES,
+        &quiet,
+    )
+    .unwrap()
+    .0
+}
