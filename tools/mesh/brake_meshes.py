@@ -435,7 +435,13 @@ def main(argv: list[str] | None = None) -> int:
         "(its inboard pad is the one-pad brake's pad); ventilated: ventilated/disc, "
         "ventilated/inboard and ventilated/outboard (meshes/README.md, Ventilated brake)",
     )
-    ap.add_argument("--levels", nargs="+", choices=list(LEVELS), default=BUNDLED)
+    ap.add_argument(
+        "--levels",
+        nargs="+",
+        choices=list(LEVELS) + ["xfine"],
+        default=BUNDLED,
+        help="xfine: the ventilated pads only (--brake ventilated --parts inboard outboard)",
+    )
     ap.add_argument(
         "--parts",
         nargs="+",
@@ -450,8 +456,12 @@ def main(argv: list[str] | None = None) -> int:
         parts = args.parts or list(vm.PARTS)
         if any(p not in vm.PARTS for p in parts) or "huge" in args.levels:
             ap.error(f"the ventilated brake writes the parts {', '.join(vm.PARTS)} (no huge level)")
+        if "xfine" in args.levels and "disc" in parts:
+            ap.error("the xfine level meshes the ventilated pads only: add --parts inboard outboard")
         vm.generate(args.levels, parts, args.out_dir)
         return 0
+    if "xfine" in args.levels:
+        ap.error("the xfine level is the ventilated brake's pads only (--brake ventilated)")
     parts = args.parts or default_parts(args.brake)
     own = default_parts(args.brake)
     if any(p not in own for p in parts):

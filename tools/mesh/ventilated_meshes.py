@@ -42,7 +42,12 @@ LEVELS = {
     "coarse": VentLevel("coarse", disc_size=0.024, pad_size=0.030, netgen=False),
     "medium": VentLevel("medium", disc_size=0.012, pad_size=0.015, netgen=False),
     "fine": VentLevel("fine", disc_size=0.0065, pad_size=0.0075, netgen=False),
+    # xfine: the pads only (3.75 mm, four elements through the 15 mm pad), a fourth level of
+    # the pads' refinement on a coarser disc (docs/reduction.md, "A fourth pad level"); a disc
+    # at half the fine size would need about 100 GB to reduce
+    "xfine": VentLevel("xfine", disc_size=0.0, pad_size=0.00375, netgen=False),
 }
+PAD_ONLY_LEVELS = ("xfine",)
 PARTS = ("disc", "inboard", "outboard")
 
 
@@ -210,6 +215,8 @@ def generate(levels: list[str], parts: list[str], out_dir: str) -> dict[str, flo
     gmsh.initialize(["ventilated_meshes"], readConfigFiles=False)
     gmsh.option.setNumber("General.Terminal", 0)
     seconds = {}
+    if "disc" in parts and any(name in PAD_ONLY_LEVELS for name in levels):
+        raise ValueError("the xfine level meshes the ventilated pads only (--parts inboard outboard)")
     try:
         for name in levels:
             level = LEVELS[name]
