@@ -62,6 +62,41 @@ impl DenseFactor {
         }
     }
 
+    /// `T(λ) = Δ(λ) + U(λ) Vᵀ` with a diagonal `D` (`Δ_jj = λ² + λ d_j + ω_j²`, `U(λ) = U₀ +
+    /// λ U₁`), formed by one matrix product `U(λ) Vᵀ` (`n² r`, sequential, so the same bits on
+    /// any thread count) and LU-factored: for a coupling whose rank reaches the size, where
+    /// [`Bordered`]'s `(m + r)`-square system would be larger than `T` itself
+    /// ([`LinearizedBrake::factor`]).
+    pub(super) fn low_rank(lr: &LinearizedBrake, c: &Coupling, d: &[f64], l: c64) -> Self {
+        let n = lr.size();
+        let r = c.rank;
+        let u = Mat::<c64>::from_fn(n, r, |i, p| {
+            let a = c64::new(c.u0[p * n + i], 0.0);
+            match &c.u1 {
+                Some(u1) => a + l * u1[p * n + i],
+                None => a,
+            }
+        });
+        let vt = Mat::<c64>::from_fn(r, n, |p, j| c64::new(c.v[p * n + j], 0.0));
+        let mut t = Mat::<c64>::zeros(n, n);
+        faer::linalg::matmul::matmul(
+            t.as_mut(),
+            faer::Accum::Replace,
+            u.as_ref(),
+            vt.as_ref(),
+            c64::new(1.0, 0.0),
+            faer::Par::Seq,
+        );
+        for j in 0..n {
+            t[(j, j)] += l * l + l * d[j] + lr.omega[j] * lr.omega[j];
+        }
+        let th = t.adjoint().to_owned();
+        Self {
+            lu: t.partial_piv_lu(),
+            lu_adjoint: th.partial_piv_lu(),
+        }
+    }
+
     pub(super) fn solve(&self, b: &[c64], adjoint: bool) -> Vec<c64> {
         let rhs = Mat::<c64>::from_fn(b.len(), 1, |i, _| b[i]);
         let x = if adjoint {
@@ -335,4 +370,65 @@ pub(super) fn schur(
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A brake of `n` modes (diagonal damping) and a rank-`r` coupling with `U₁ ≠ 0`, from a
+    /// fixed linear congruential sequence.
+    fn brake(n: usize, r: usize) -> (LinearizedBrake, Coupling) {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let omega: Vec<f64> = (0..n).map(|j| 1000.0 * (1.0 + j as f64)).collect();
+        let d: Vec<f64> = (0..n).map(|j| 0.02 * omega[j]).collect();
+        let lr = LinearizedBrake::modal(omega, ModalDamping::Diagonal(d));
+        let v: Vec<f64> = (0..n * r).map(|_| next()).collect();
+        let u0: Vec<f64> = (0..n * r).map(|_| 1e5 * next()).collect();
+        let u1: Vec<f64> = (0..n * r).map(|_| 10.0 * next()).collect();
+        (lr, Coupling::from_columns(0.4, v, u0, Some(u1), n))
+    }
+
+    fn rel(a: &[c64], b: &[c64]) -> f64 {
+        let d: f64 = a.iter().zip(b).map(|(x, y)| (x - y).norm_sqr()).sum();
+        let s: f64 = b.iter().map(|y| y.norm_sqr()).sum();
+        (d / s).sqrt()
+    }
+
+    /// With more pairs than modes `factor` forms `T` itself; its solves must be those of the
+    /// bordered system (the same matrix, another elimination) and solve `T x = b` and
+    /// `Tᴴ y = b`. Both are backward stable on a `T` of condition about 1e3 here, so 1e-10
+    /// leaves a margin of 1e3 over the round-off; a wrong entry of `U Vᵀ` or of the diagonal
+    /// is off by order one.
+    #[test]
+    fn a_coupling_of_rank_above_the_size_is_factored_whole_with_the_bordered_solves() {
+        let (n, r) = (12, 20);
+        let (lr, c) = brake(n, r);
+        let d = lr.damping.diagonal().unwrap().to_vec();
+        let l = c64::new(-30.0, 2.0e3 * std::f64::consts::TAU);
+        let b: Vec<c64> = (0..n).map(|j| c64::new(1.0 + j as f64, 0.5 - j as f64)).collect();
+        let whole = lr.factor(&c, l);
+        assert!(matches!(whole, Factor::Dense(_)));
+        let bordered = Bordered::new(&lr, &c, &d, l);
+        let x = whole.solve(&lr, &c, &b);
+        assert!(rel(&x, &bordered.solve(&lr, &c, &b, false)) < 1e-10);
+        assert!(rel(&lr.apply(&c, l, &x), &b) < 1e-10);
+        let y = whole.solve_adjoint(&lr, &c, &b);
+        assert!(rel(&y, &bordered.solve(&lr, &c, &b, true)) < 1e-10);
+        assert!(rel(&lr.apply_adjoint(&c, l, &y), &b) < 1e-10);
+    }
+
+    /// Below the size the bordered system stays (the pinned brakes' bits).
+    #[test]
+    fn a_coupling_of_rank_below_the_size_keeps_the_bordered_system() {
+        let (lr, c) = brake(30, 10);
+        let l = c64::new(-30.0, 5.0e3);
+        assert!(matches!(lr.factor(&c, l), Factor::Bordered(_)));
+    }
 }
