@@ -412,7 +412,9 @@ mod tests {
         let (lr, c) = brake(n, r);
         let d = lr.damping.diagonal().unwrap().to_vec();
         let l = c64::new(-30.0, 2.0e3 * std::f64::consts::TAU);
-        let b: Vec<c64> = (0..n).map(|j| c64::new(1.0 + j as f64, 0.5 - j as f64)).collect();
+        let b: Vec<c64> = (0..n)
+            .map(|j| c64::new(1.0 + j as f64, 0.5 - j as f64))
+            .collect();
         let whole = lr.factor(&c, l);
         assert!(matches!(whole, Factor::Dense(_)));
         let bordered = Bordered::new(&lr, &c, &d, l);
