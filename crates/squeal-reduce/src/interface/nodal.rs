@@ -1,5 +1,6 @@
 //! The nodal interface: every node of the pad's friction face is a contact point, paired with
-//! the point of the disc face it projects onto.
+//! the point of the disc face it projects onto (on 8-node faces their Gauss points instead:
+//! [`super::quad_contact`]).
 //!
 //! This is node-to-surface contact (Wriggers, *Computational Contact Mechanics*, 2nd ed.,
 //! Springer 2006, Sec. 4.1 and 9.1; Laursen, *Computational Contact and Impact Mechanics*,
@@ -104,10 +105,13 @@
 //!   positive share (the disc's face points, springs and ties spread over a face).
 //! - On an 8-node quadrilateral `∫ N_k dA` is `−A/12` at the corners (a negative spring, a
 //!   softening foundation), and no nodal rule on its eight nodes with positive weights is
-//!   exact for quadratics (symmetric weights would need `−A/12` at the corners again), so its
-//!   contact areas stay the lumped sub-cell areas below, exact for linear functions only: a
-//!   hex20 pad's rocking stiffness has the `O(h²)` error above. Not measured on a brake (no
-//!   bundled pad has quadrilateral friction faces).
+//!   exact for quadratics (symmetric weights would need `−A/12` at the corners again). Its
+//!   lumped sub-cell areas below are exact for linear functions only (a rigid hex20 pad's
+//!   rocking stiffness +75 % on one element, +18.75 % on two, the `O(h²)` error above), so
+//!   since 2026-11-28 a pad's 8-node faces carry their contact at their 2 × 2 Gauss points
+//!   instead, each a combination of the face's eight nodes, exact for quadratics with
+//!   positive weights ([`super::quad_contact`]); [`contact_face_nodes`] keeps the lumped
+//!   areas there for comparison.
 //!
 //! The lumped sub-cell areas ([`face_nodes`]) are cut at each face's edge midpoints
 //! ([`super::face::Shape::subcells`]), each sub-cell shared equally by its nodes:
