@@ -145,7 +145,8 @@ pub(super) fn nodal_projections(
     Ok(out)
 }
 
-/// Adds to the reduced disc one contact point per pad face node, at its projection, moving
+/// Adds to the reduced disc one contact point per pad contact point (a face node, or a Gauss
+/// point of an 8-node face), at its projection, moving
 /// as the disc face's shape functions there combine the disc's face points; returns the
 /// pairs (disc and pad contact point indices among each part's contact points).
 pub(super) fn attach_projections(
