@@ -18,14 +18,15 @@
 //! `O(h²)` error in the rocking stiffness (tests: +75 % on a pad one element long, +18.75 %
 //! on two, +4.69 % on four).
 //!
-//! So on an 8-node face the contact points are the face's Gauss points, as in segment-to-
-//! segment and Gauss-point-to-surface contact (Zavarise & De Lorenzis, *A modified
-//! node-to-segment algorithm passing the contact patch test*, IJNME 79, 2009, and Wriggers,
-//! *Computational Contact Mechanics*, 2nd ed., Springer 2006, Sec. 9.1.2, the contact
-//! integrals evaluated at the slave face's quadrature points; Ansys' surface-to-surface
-//! contact elements detect contact at Gauss points by default, two per quadratic edge for
-//! CONTA172 and 2 × 2 on the 4-node CONTA173, Ansys *Mechanical APDL Theory Reference*,
-//! Sec. 14.172–14.174): point `q` at reference coordinates `(s_q, t_q)` has
+//! So on an 8-node face the contact points are the face's Gauss points, as in
+//! segment-to-segment and Gauss-point-to-surface contact, where the contact integrals are
+//! evaluated at the quadrature points of the slave (here the pad's) faces (Simo, Wriggers &
+//! Taylor, *A perturbed Lagrangian formulation for the finite element solution of contact
+//! problems*, CMAME 50, 1985; Wriggers, *Computational Contact Mechanics*, 2nd ed., Springer
+//! 2006, Ch. 9); Ansys' surface-to-surface contact elements detect contact at Gauss points by
+//! default, two on the quadratic edge of CONTA172 and 2 × 2 on the quadrilateral of CONTA173
+//! (*Mechanical APDL Theory Reference*, Release 18.2, Sec. 13.172 and 13.173). Point `q` at
+//! reference coordinates `(s_q, t_q)` has
 //!
 //! - position `x_q = Σ_a N_a(s_q, t_q) x_a` and pad motion `u_q = Σ_a N_a(s_q, t_q) u_a`: the
 //!   pair's pad side is a combination of the face's eight nodes, as its disc side is of the
@@ -36,7 +37,8 @@
 //!
 //! The rule is Gauss–Legendre ([`QUAD_RULE`]: 2 points in each direction): `n` points
 //! integrate polynomials of degree `2n − 1` in each of `s`, `t` exactly (Zienkiewicz, Taylor
-//! & Zhu, *The Finite Element Method: Its Basis and Fundamentals*, 6th ed., 2005, Sec. 6.8).
+//! & Zhu, *The Finite Element Method: Its Basis and Fundamentals*, 6th ed., 2005, Ch. 6,
+//! numerical integration).
 //! 2 × 2 is the lowest order exact for quadratics (degree 3 in each variable; one point is
 //! exact for linear functions only): on a parallelogram face, where `x(s, t)` is affine,
 //! `f(x)` quadratic is quadratic in `(s, t)` and `|X_s × X_t|` constant, so a rigid pad's
