@@ -288,12 +288,42 @@ fn along(
 /// point of the nodal interface `Σ_k c_k (w · u_k)` over the face points it combines
 /// ([`squeal_reduce::rom::Projected`]), entries of a dof summed in the order of the weights.
 fn disc_along(disc: &ReducedPart, point: usize, w: [f64; 3]) -> Result<SparseVec, BrakeError> {
-    let Some(p) = &disc.info.points[point].projected else {
-        return along(disc, "disc", point, w, 0, 1.0);
-    };
+    match &disc.info.points[point].projected {
+        None => along(disc, "disc", point, w, 0, 1.0),
+        Some(p) => combined_along(disc, "disc", &p.weights, w, 0, 1.0),
+    }
+}
+
+/// The motion along `w` of pad point `point` (its generalized force times `sign`, offset by
+/// `shift`): [`along`] its own dofs, or for a Gauss point of an 8-node face
+/// ([`squeal_reduce::rom::InterfacePoint::combines`]) `Σ_k c_k (w · u_k)` over the face
+/// points it combines.
+fn pad_along(
+    pad: &ReducedPart,
+    point: usize,
+    w: [f64; 3],
+    shift: usize,
+    sign: f64,
+) -> Result<SparseVec, BrakeError> {
+    match &pad.info.points[point].combines {
+        None => along(pad, "pad", point, w, shift, sign),
+        Some(c) => combined_along(pad, "pad", c, w, shift, sign),
+    }
+}
+
+/// `Σ_k c_k` [`along`]`(k)` over `weights` `(k, c_k)`, entries of a dof summed in the order
+/// of the weights.
+fn combined_along(
+    part: &ReducedPart,
+    name: &'static str,
+    weights: &[(usize, f64)],
+    w: [f64; 3],
+    shift: usize,
+    sign: f64,
+) -> Result<SparseVec, BrakeError> {
     let mut v: SparseVec = Vec::new();
-    for &(k, c) in &p.weights {
-        for (dof, e) in along(disc, "disc", k, w, 0, 1.0)? {
+    for &(k, c) in weights {
+        for (dof, e) in along(part, name, k, w, shift, sign)? {
             match v.iter_mut().find(|x| x.0 == dof) {
                 Some(x) => x.1 += c * e,
                 None => v.push((dof, c * e)),
@@ -514,9 +544,9 @@ pub fn assemble(
             )?;
             let (sliding, surface_speed) = pair_sliding(params, xi, normal, k + 1)?;
             let mut g = disc_along(disc, i, normal)?;
-            g.extend(along(pad, "pad", j, normal, np0, -1.0)?);
+            g.extend(pad_along(pad, j, normal, np0, -1.0)?);
             let mut h = disc_along(disc, i, sliding)?;
-            h.extend(along(pad, "pad", j, sliding, np0, -1.0)?);
+            h.extend(pad_along(pad, j, sliding, np0, -1.0)?);
             // A pad point below the disc surface (along n) starts in interference.
             let geometric_gap = (0..3)
                 .map(|d| normal[d] * (position(pad, j)[d] - xi[d]))

@@ -371,7 +371,8 @@ impl<'a> PairVectors<'a> {
     }
 
     /// A nodal pair: `+w` on the disc face nodes weighted by the shape functions at the
-    /// projected point, `-w` on the pad node.
+    /// projected point, `-w` on the pad node (or on a Gauss point's face nodes, weighted by
+    /// the shape functions there).
     fn nodal(&self, pairing: &Pairing, w: [f64; 3]) -> Result<SparseVec> {
         let rom = &self.model.rom;
         let disc = rom
@@ -391,15 +392,27 @@ impl<'a> PairVectors<'a> {
             .projected
             .as_ref()
             .ok_or_else(|| full_error("a nodal pair without its projection"))?;
-        let pad_id = point_node(&pad.info.points, pairing.pad_point, &pairing.pad)?;
-        let pad_node = self.node(&pairing.pad, pad_id)?;
+        // The pad's side: its node, or a Gauss point's combination of its face's nodes.
+        let pp = pad
+            .info
+            .points
+            .get(pairing.pad_point)
+            .ok_or_else(|| full_error(format!("no pad point of {} for a pair", pairing.pad)))?;
+        let pad_weights = match &pp.combines {
+            Some(c) => c.clone(),
+            None => vec![(pairing.pad_point, 1.0)],
+        };
         let w = kept(w);
         let mut g = Vec::new();
         for &(k, wk) in &proj.weights {
             let node = self.node("disc", point_node(&disc.info.points, k, "disc")?)?;
             g.extend(self.along("disc", node, w, wk)?);
         }
-        g.extend(self.along(&pairing.pad, pad_node, w, -1.0)?);
+        for (k, wk) in pad_weights {
+            let id = point_node(&pad.info.points, k, &pairing.pad)?;
+            let node = self.node(&pairing.pad, id)?;
+            g.extend(self.along(&pairing.pad, node, w, -wk)?);
+        }
         Ok(g)
     }
 

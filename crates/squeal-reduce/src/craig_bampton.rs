@@ -54,7 +54,8 @@
 //! couples every footprint dof to every neighbour of the master in `K_vv`.)
 
 pub use crate::error::ReduceError;
-use crate::interface::nodal::{contact_face_nodes, face_nodes};
+use crate::interface::nodal::face_nodes;
+use crate::interface::quad_contact::{combined_nodes, contact_points};
 use crate::interface::{InterfaceError, contact_nodes, footprint, patches, tributary_areas};
 use crate::rom::{
     Basis, DofLabel, InterfaceKind, InterfacePoint, MaterialInfo, PartInfo, PartRole, PointRole,

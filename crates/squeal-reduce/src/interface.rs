@@ -39,6 +39,7 @@ use squeal_element::geometry::{cross, dot, norm, sub};
 mod clip;
 pub mod face;
 pub mod nodal;
+pub mod quad_contact;
 
 use face::{Shape, SurfaceFace};
 
@@ -733,6 +734,8 @@ fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
 }
 #[cfg(test)]
 mod contact_area_tests;
+#[cfg(test)]
+mod quad_contact_tests;
 #[cfg(test)]
 mod quad_tests;
 #[cfg(test)]

@@ -142,7 +142,9 @@ pub enum PointRole {
     /// kept).
     Piston,
     /// A node of the disc's contact face kept as a boundary point (nodal interface): the disc's
-    /// contact points are combinations of these ([`InterfacePoint::projected`]).
+    /// contact points are combinations of these ([`InterfacePoint::projected`]); on a pad, a
+    /// node of an 8-node friction face that is no contact point itself, whose Gauss points
+    /// combine it ([`InterfacePoint::combines`]).
     Face,
     /// A node set's mean motion ([`crate::coupling`]): three translations and three rotations,
     /// where a connection to another part or to ground acts (version 4).
@@ -180,6 +182,13 @@ pub struct InterfacePoint {
     /// other interfaces).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub projected: Option<Projected>,
+    /// A pad contact point of the nodal interface at a Gauss point of an 8-node face
+    /// ([`crate::interface::quad_contact`]): `(point index, weight)` over the pad's points
+    /// whose dofs it combines (its face's eight nodes, kept as [`PointRole::Contact`] or
+    /// [`PointRole::Face`] points), `u = Σ w u_k`, the face's shape functions there. Such a
+    /// point has no dofs of its own. Absent for every other point.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub combines: Option<Vec<(usize, f64)>>,
 }
 
 /// Where a pad node of the nodal interface lands on the disc face

@@ -37,7 +37,7 @@ fn every_coarse_pad_face_node_pairs_with_areas_summing_to_the_face() {
     let contact = contact_face_nodes(&pad.mesh, "CONTACT_FACE").unwrap();
     assert_eq!((face.len(), contact.len(), pairs.len()), (355, 258, 258));
     for (c, p) in contact.iter().zip(&pairs) {
-        assert_eq!((c.node, c.area), (p.pad.node, p.pad.area));
+        assert_eq!((Some(c.node), c.area), (p.pad.node(), p.pad.area));
     }
     // The lumped areas partition the face: their sum against the face's area integrated by
     // the whole triangles' degree-4 rule. The face is flat with curved (quadratic) edges, so
@@ -130,7 +130,7 @@ fn a_turned_and_lifted_pad_pairs_every_node() {
     let mut worst_edge: f64 = 0.0;
     let mut beyond = 0;
     for p in &pairs {
-        let x = pad.mesh.nodes[p.pad.node as usize];
+        let x = p.pad.position;
         // The faces are flat: every gap is the lift (round-off of 0.02 m: 1e-17).
         worst_gap = worst_gap.max((p.projection.gap - lift).abs());
         let phi = x[1].atan2(x[0]).to_degrees();

@@ -109,7 +109,8 @@ pub(super) struct PadProjection {
     pub(super) pad: String,
     /// The disc surface it faces (`None`: the brake's only pad).
     pub(super) facing: Option<String>,
-    /// Each pad face node's id and its pair.
+    /// Each pad contact point's node id (a Gauss point's: its face's first node) and its
+    /// pair.
     pub(super) pairs: Vec<(u64, NodalPair)>,
     /// The disc face's node ids by mesh index.
     pub(super) disc_ids: Vec<u64>,
@@ -136,7 +137,7 @@ pub(super) fn nodal_projections(
             facing: surfaces[k].facing.clone(),
             pairs: pairs
                 .into_iter()
-                .map(|p| (part.mesh.node_ids[p.pad.node as usize], p))
+                .map(|p| (part.mesh.node_ids[p.pad.nodes[0].0 as usize], p))
                 .collect(),
             disc_ids: disc.node_ids.clone(),
         });
@@ -144,7 +145,8 @@ pub(super) fn nodal_projections(
     Ok(out)
 }
 
-/// Adds to the reduced disc one contact point per pad face node, at its projection, moving
+/// Adds to the reduced disc one contact point per pad contact point (a face node, or a Gauss
+/// point of an 8-node face), at its projection, moving
 /// as the disc face's shape functions there combine the disc's face points; returns the
 /// pairs (disc and pad contact point indices among each part's contact points).
 pub(super) fn attach_projections(
@@ -171,15 +173,24 @@ pub(super) fn attach_projections(
                 .collect::<std::collections::HashMap<u64, usize>>()
         };
         let face = index(disc, PointRole::Face, &proj.facing);
-        let pad_points = index(pad, PointRole::Contact, &None);
         let pad_contacts: Vec<usize> = (0..pad.info.points.len())
             .filter(|&i| pad.info.points[i].role == PointRole::Contact)
             .collect();
-        for (id, pair) in proj.pairs {
+        // The pad's contact points are the pairs' pad points in the same order (both are
+        // `quad_contact::contact_points` of the pad's face): checked by position.
+        if pad_contacts.len() != proj.pairs.len() {
+            return Err(invalid(format!(
+                "the {} has {} contact points, its face {} pairs",
+                proj.pad,
+                pad_contacts.len(),
+                proj.pairs.len()
+            )));
+        }
+        for (&pad_point, (id, pair)) in pad_contacts.iter().zip(proj.pairs) {
             let lost = |what: &str, id: u64| invalid(format!("{what} node {id} was not kept"));
-            let pad_point = *pad_points
-                .get(&id)
-                .ok_or_else(|| lost(&format!("{} face", proj.pad), id))?;
+            if pad.info.points[pad_point].position != pair.pad.position {
+                return Err(lost(&format!("{} face", proj.pad), id));
+            }
             let weights = pair
                 .projection
                 .weights
@@ -205,6 +216,7 @@ pub(super) fn attach_projections(
                     weights,
                     outside: pair.projection.outside,
                 }),
+                combines: None,
             });
             pairs.push(PointPair {
                 disc_point: disc_contacts,

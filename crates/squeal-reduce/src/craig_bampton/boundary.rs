@@ -24,6 +24,28 @@ pub(crate) fn boundary_rows(
         PartRole::Body => Vec::new(),
         _ => spec.surfaces(),
     };
+    // A node kept as a boundary point: the point and its three rows.
+    let keep_node = |point: InterfacePoint,
+                     node: u32,
+                     set: &str,
+                     points: &mut Vec<InterfacePoint>,
+                     rows: &mut Vec<Row>|
+     -> Result<(), ReduceError> {
+        let p = points.len();
+        points.push(point);
+        for d in 0..3 {
+            let dof = dofmap
+                .free_dof(node, d)
+                .ok_or_else(|| restrained(set, node, d))?;
+            rows.push(Row {
+                point: p,
+                label: point_label(p, d),
+                entries: vec![(dof, 1.0)],
+                footprint: false,
+            });
+        }
+        Ok(())
+    };
     for surface in surfaces {
         match spec.interface {
             InterfaceKind::Node => {
@@ -50,6 +72,7 @@ pub(crate) fn boundary_rows(
                         normal: cell.map(|c| c.1),
                         surface: surface.facing.clone(),
                         projected: None,
+                        combines: None,
                     });
                     for d in 0..3 {
                         let dof = dofmap
@@ -64,46 +87,98 @@ pub(crate) fn boundary_rows(
                     }
                 }
             }
-            InterfaceKind::Nodal => {
-                // Every node of the face, its three dofs kept: the pad's contact points, the
-                // disc's face points that its projected contact points combine
-                // ([`crate::interface::nodal`]; the brake adds those).
-                let role = match spec.role {
-                    PartRole::Disc => PointRole::Face,
-                    PartRole::Pad | PartRole::Body => PointRole::Contact,
-                };
-                // The disc keeps every face node (its projected points combine them); a
-                // pad's contact points are the face nodes that carry a share of a uniform
-                // pressure ([`crate::interface::nodal::contact_face_nodes`]).
-                let nodes = match role {
-                    PointRole::Face => face_nodes(mesh, &surface.contact_face_set)?,
-                    _ => contact_face_nodes(mesh, &surface.contact_face_set)?,
-                };
-                for node in nodes {
-                    let p = points.len();
-                    points.push(InterfacePoint {
-                        role,
-                        node_id: Some(mesh.node_ids[node.node as usize]),
-                        patch: None,
-                        position: mesh.nodes[node.node as usize],
-                        area: Some(node.area),
-                        normal: Some(node.normal),
-                        surface: surface.facing.clone(),
-                        projected: None,
-                    });
-                    for d in 0..3 {
-                        let dof = dofmap
-                            .free_dof(node.node, d)
-                            .ok_or_else(|| restrained(&surface.contact_face_set, node.node, d))?;
-                        rows.push(Row {
-                            point: p,
-                            label: point_label(p, d),
-                            entries: vec![(dof, 1.0)],
-                            footprint: false,
+            InterfaceKind::Nodal => match spec.role {
+                // Every node of the face, its three dofs kept: the disc's face points that its
+                // projected contact points combine ([`crate::interface::nodal`]; the brake
+                // adds those).
+                PartRole::Disc => {
+                    for node in face_nodes(mesh, &surface.contact_face_set)? {
+                        let point = InterfacePoint {
+                            role: PointRole::Face,
+                            node_id: Some(mesh.node_ids[node.node as usize]),
+                            patch: None,
+                            position: mesh.nodes[node.node as usize],
+                            area: Some(node.area),
+                            normal: Some(node.normal),
+                            surface: surface.facing.clone(),
+                            projected: None,
+                            combines: None,
+                        };
+                        keep_node(
+                            point,
+                            node.node,
+                            &surface.contact_face_set,
+                            &mut points,
+                            &mut rows,
+                        )?;
+                    }
+                }
+                // A pad's contact points ([`crate::interface::quad_contact`]): the face nodes
+                // that carry a share of a uniform pressure (6-node triangles), kept; the
+                // other nodes of its 8-node faces, kept as face points; then the Gauss points
+                // of those faces, combinations of the kept nodes with no dofs of their own.
+                PartRole::Pad | PartRole::Body => {
+                    let contact = contact_points(mesh, &surface.contact_face_set)?;
+                    let mut kept = std::collections::HashMap::new();
+                    for c in contact.iter().filter(|c| c.node().is_some()) {
+                        let node = c.nodes[0].0;
+                        kept.insert(node, points.len());
+                        let point = InterfacePoint {
+                            role: PointRole::Contact,
+                            node_id: Some(mesh.node_ids[node as usize]),
+                            patch: None,
+                            position: c.position,
+                            area: Some(c.area),
+                            normal: Some(c.normal),
+                            surface: surface.facing.clone(),
+                            projected: None,
+                            combines: None,
+                        };
+                        keep_node(
+                            point,
+                            node,
+                            &surface.contact_face_set,
+                            &mut points,
+                            &mut rows,
+                        )?;
+                    }
+                    for node in combined_nodes(&contact) {
+                        kept.insert(node, points.len());
+                        let point = InterfacePoint {
+                            role: PointRole::Face,
+                            node_id: Some(mesh.node_ids[node as usize]),
+                            patch: None,
+                            position: mesh.nodes[node as usize],
+                            area: None,
+                            normal: None,
+                            surface: surface.facing.clone(),
+                            projected: None,
+                            combines: None,
+                        };
+                        keep_node(
+                            point,
+                            node,
+                            &surface.contact_face_set,
+                            &mut points,
+                            &mut rows,
+                        )?;
+                    }
+                    for c in contact.into_iter().filter(|c| c.node().is_none()) {
+                        let combines = c.nodes.iter().map(|&(n, w)| (kept[&n], w)).collect();
+                        points.push(InterfacePoint {
+                            role: PointRole::Contact,
+                            node_id: None,
+                            patch: None,
+                            position: c.position,
+                            area: Some(c.area),
+                            normal: Some(c.normal),
+                            surface: surface.facing.clone(),
+                            projected: None,
+                            combines: Some(combines),
                         });
                     }
                 }
-            }
+            },
             InterfaceKind::Patch => {
                 let patches = patches(
                     mesh,
@@ -123,6 +198,7 @@ pub(crate) fn boundary_rows(
                         normal: Some(patch.normal),
                         surface: surface.facing.clone(),
                         projected: None,
+                        combines: None,
                     });
                     for d in 0..3 {
                         // A restrained face node would pin the patch's mean motion: refuse it,
@@ -191,6 +267,7 @@ pub(crate) fn boundary_rows(
             normal,
             surface: None,
             projected: None,
+            combines: None,
         });
         rows.push(Row {
             point: p,
@@ -235,6 +312,7 @@ pub(crate) fn boundary_rows(
                         normal: Some(direction),
                         surface: None,
                         projected: None,
+                        combines: None,
                     });
                     rows.push(Row {
                         point: p,

@@ -33,6 +33,7 @@ pub(crate) fn coupling_rows(
             normal: mean.normal,
             surface: None,
             projected: None,
+            combines: None,
         });
         for (k, motion) in mean.rows(mesh).into_iter().enumerate() {
             let mut entries = Vec::new();
@@ -105,6 +106,7 @@ fn nodal_rows(
                 normal: None,
                 surface: None,
                 projected: None,
+                combines: None,
             });
             for d in 0..3 {
                 let dof =

@@ -1,5 +1,6 @@
 //! The nodal interface: every node of the pad's friction face is a contact point, paired with
-//! the point of the disc face it projects onto.
+//! the point of the disc face it projects onto (on 8-node faces their Gauss points instead:
+//! [`super::quad_contact`]).
 //!
 //! This is node-to-surface contact (Wriggers, *Computational Contact Mechanics*, 2nd ed.,
 //! Springer 2006, Sec. 4.1 and 9.1; Laursen, *Computational Contact and Impact Mechanics*,
@@ -104,10 +105,13 @@
 //!   positive share (the disc's face points, springs and ties spread over a face).
 //! - On an 8-node quadrilateral `∫ N_k dA` is `−A/12` at the corners (a negative spring, a
 //!   softening foundation), and no nodal rule on its eight nodes with positive weights is
-//!   exact for quadratics (symmetric weights would need `−A/12` at the corners again), so its
-//!   contact areas stay the lumped sub-cell areas below, exact for linear functions only: a
-//!   hex20 pad's rocking stiffness has the `O(h²)` error above. Not measured on a brake (no
-//!   bundled pad has quadrilateral friction faces).
+//!   exact for quadratics (symmetric weights would need `−A/12` at the corners again). Its
+//!   lumped sub-cell areas below are exact for linear functions only (a rigid hex20 pad's
+//!   rocking stiffness +75 % on one element, +18.75 % on two, the `O(h²)` error above), so
+//!   since 2026-11-28 a pad's 8-node faces carry their contact at their 2 × 2 Gauss points
+//!   instead, each a combination of the face's eight nodes, exact for quadratics with
+//!   positive weights ([`super::quad_contact`]); [`contact_face_nodes`] keeps the lumped
+//!   areas there for comparison.
 //!
 //! The lumped sub-cell areas ([`face_nodes`]) are cut at each face's edge midpoints
 //! ([`super::face::Shape::subcells`]), each sub-cell shared equally by its nodes:
@@ -135,6 +139,7 @@
 //! (a wedge-and-hexahedron disc).
 
 use super::face::{self, Shape, SurfaceFace};
+use super::quad_contact::{ContactPoint, contact_points};
 use super::{DUNAVANT4, InterfaceError, dot, face_triangles, norm, sub, unit};
 use squeal_mesh::Mesh;
 use std::collections::BTreeMap;
@@ -493,11 +498,12 @@ fn closest_on_edge(
     at(best)
 }
 
-/// A pad face node paired with its projection onto the disc face.
+/// A pad contact point paired with its projection onto the disc face.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NodalPair {
-    /// The pad's face node, its area and normal.
-    pub pad: FaceNode,
+    /// The pad's contact point (a face node, or a Gauss point of an 8-node face:
+    /// [`super::quad_contact`]), its area and normal.
+    pub pad: ContactPoint,
     /// Its projection onto the disc face.
     pub projection: Projection,
 }
@@ -512,12 +518,12 @@ pub fn project_pad(
     pad_face: &str,
 ) -> Result<Vec<NodalPair>, InterfaceError> {
     let surface = Surface::new(disc, disc_face)?;
-    let pairs: Vec<NodalPair> = contact_face_nodes(pad, pad_face)?
+    let pairs: Vec<NodalPair> = contact_points(pad, pad_face)?
         .into_iter()
-        .map(|node| {
-            let projection = surface.project(pad.nodes[node.node as usize]);
+        .map(|point| {
+            let projection = surface.project(point.position);
             NodalPair {
-                pad: node,
+                pad: point,
                 projection,
             }
         })
@@ -544,7 +550,7 @@ pub fn check_facing(
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in pairs {
-        let x = pad.nodes[p.pad.node as usize];
+        let x = p.pad.position;
         for d in 0..3 {
             lo[d] = lo[d].min(x[d]);
             hi[d] = hi[d].max(x[d]);
@@ -554,7 +560,15 @@ pub fn check_facing(
     let farthest = pairs
         .iter()
         .max_by(|a, b| a.projection.gap.abs().total_cmp(&b.projection.gap.abs()));
-    let node_id = |p: &NodalPair| pad.node_ids.get(p.pad.node as usize).copied().unwrap_or(0);
+    // A face node by its id; a Gauss point of an 8-node face by its face's first node.
+    let name = |p: &NodalPair| {
+        let n = p.pad.nodes.first().map_or(0, |n| n.0);
+        let id = pad.node_ids.get(n as usize).copied().unwrap_or(0);
+        match p.pad.node() {
+            Some(_) => format!("pad node {id}"),
+            None => format!("a Gauss point of the pad's face with node {id}"),
+        }
+    };
     if let Some(far) = farthest
         && far.projection.gap.abs() > width
     {
@@ -562,8 +576,8 @@ pub fn check_facing(
             pad_face: pad_face.into(),
             disc_face: disc_face.into(),
             what: format!(
-                "pad node {} lies {:.3e} m from the disc face along its normal, more than the pad face is wide ({width:.3e} m): check that the pad sits on the disc in the meshes' common frame and that both meshes are in the same units",
-                node_id(far),
+                "{} lies {:.3e} m from the disc face along its normal, more than the pad face is wide ({width:.3e} m): check that the pad sits on the disc in the meshes' common frame and that both meshes are in the same units",
+                name(far),
                 far.projection.gap.abs()
             ),
         });
@@ -572,12 +586,12 @@ pub fn check_facing(
         let worst = pairs
             .iter()
             .max_by(|a, b| a.projection.outside.total_cmp(&b.projection.outside));
-        let (id, outside) = worst.map_or((0, 0.0), |w| (node_id(w), w.projection.outside));
+        let (id, outside) = worst.map_or((String::new(), 0.0), |w| (name(w), w.projection.outside));
         return Err(InterfaceError::NotFacing {
             pad_face: pad_face.into(),
             disc_face: disc_face.into(),
             what: format!(
-                "only {:.1}% of the pad face's area projects onto the disc face (at least {:.0}% must); pad node {id} lies {outside:.3e} m beyond the disc face's edge: check that the disc face set is the face under this pad and that the pad sits over it",
+                "only {:.1}% of the pad face's area projects onto the disc face (at least {:.0}% must); {id} lies {outside:.3e} m beyond the disc face's edge: check that the disc face set is the face under this pad and that the pad sits over it",
                 (100.0 * inside / total.max(f64::MIN_POSITIVE)).max(0.0),
                 100.0 * MIN_FACING_SHARE
             ),

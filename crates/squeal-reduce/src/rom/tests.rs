@@ -27,6 +27,7 @@ fn sample() -> ReducedModel {
             normal: Some([0.0, 0.0, -1.0]),
             surface: None,
             projected: None,
+            combines: None,
         }],
         dofs: vec![
             DofLabel::Point {
