@@ -6,6 +6,16 @@
 //! `M' = Tᵀ M T`, `K' = Tᵀ K T`, `F'_piston = Tᵀ F_piston`, and every pair's `g'_p = Tᵀ g_p`,
 //! `h'_p = Tᵀ h_p`.
 //!
+//! **Further parts.** The dofs after the last pad's (`[parts.<name>]`: a caliper, a bracket,
+//! with their ties' slave dofs already eliminated, `crate::connections::eliminate_ties`) have no
+//! contact face to reduce: their block of `T` is the identity, `T = diag(T_disc, T_pad, …, I)`.
+//! The connectors' springs and the ties' couplings are entries of the assembled `K` (and
+//! `K_vib`, `C`) between those dofs and the pads' non-face dofs (coupling points, tie nodes),
+//! which every `T_I` keeps as identity columns too, so `Tᵀ K T` carries them exactly; what a
+//! tie's slave follows on a pad's contact face is restricted with that face, as the face itself
+//! is. `T` is still a Rayleigh–Ritz basis of the whole brake: no frictionless frequency falls
+//! below the unreduced brake's.
+//!
 //! The pairs keep their elements, gaps, normals and surface speeds: the closure
 //! `δ_p = g'_pᵀ x' − g0_p` and the slip `V_p + h'_pᵀ x'̇` are the same numbers as
 //! `g_pᵀ (T x') − g0_p` and `V_p + h_pᵀ (T x'̇)`, so the contact force of eq (10) is still
@@ -18,9 +28,10 @@ use crate::error::BrakeError;
 use crate::model::{Brake, SparseVec};
 use faer::Mat;
 
-/// The brake and its layout in the coordinates `x = T x'`, `T = diag(blocks)` with one block
+/// The brake and its layout in the coordinates `x = T x'`, `T = diag(blocks, I)` with one block
 /// per part in the layout's order (disc, then the pads), block `I` having as many rows as part
-/// `I` has dofs.
+/// `I` has dofs, and the identity on the further parts' dofs after the last pad's (module
+/// docs).
 pub fn project_brake(
     brake: &Brake,
     layout: &Layout,
@@ -37,6 +48,14 @@ pub fn project_brake(
         });
     }
     let n = brake.size();
+    let ends = ranges.last().map_or(0, |r| r.end);
+    if ends > n {
+        return Err(BrakeError::Dimension {
+            what: "dofs of the brake's layout",
+            expected: n,
+            got: ends,
+        });
+    }
     let mut new_ranges = Vec::with_capacity(ranges.len());
     let mut start = 0;
     for (r, b) in ranges.iter().zip(blocks) {
@@ -50,14 +69,9 @@ pub fn project_brake(
         new_ranges.push(start..start + b.ncols());
         start += b.ncols();
     }
-    if ranges.last().map_or(0, |r| r.end) != n {
-        return Err(BrakeError::Dimension {
-            what: "dofs of the brake's layout",
-            expected: n,
-            got: ranges.last().map_or(0, |r| r.end),
-        });
-    }
-    let r = start;
+    // The further parts' dofs, kept as they are: `ends..n` becomes `start..r`.
+    let rest = n - ends;
+    let r = start + rest;
     let mut t = Mat::zeros(n, r);
     for ((old, new), b) in ranges.iter().zip(&new_ranges).zip(blocks) {
         for j in 0..b.ncols() {
@@ -66,13 +80,20 @@ pub fn project_brake(
             }
         }
     }
+    for k in 0..rest {
+        t[(ends + k, start + k)] = 1.0;
+    }
     let project = |a: &Mat<f64>| t.transpose() * (a * &t);
     // The part of each old dof: its block, its row there and the block's new columns.
-    let part_of = |d: usize| ranges.iter().position(|r| r.contains(&d)).unwrap_or(0);
+    let part_of = |d: usize| ranges.iter().position(|r| r.contains(&d));
     let vector = |v: &SparseVec| -> SparseVec {
         let mut dense = vec![0.0; r];
         for &(d, a) in v {
-            let p = part_of(d);
+            let Some(p) = part_of(d) else {
+                // A further part's dof: the identity block.
+                dense[start + d - ends] += a;
+                continue;
+            };
             let (b, row) = (&blocks[p], d - ranges[p].start);
             for j in 0..b.ncols() {
                 dense[new_ranges[p].start + j] += a * b[(row, j)];
@@ -220,5 +241,97 @@ mod tests {
         // The pair's disc dof 1 is kept (column 1), its pad dof 3 became 2.
         assert_eq!(p.pairs[0].normal, vec![(1, 1.0), (2, -1.0)]);
         assert!(project_brake(&b, &layout, &[Mat::identity(3, 3)]).is_err());
+    }
+
+    /// The brake of [`brake`] with a further part of two dofs (5, 6) after the pad's: a
+    /// connector spring `k_c` between pad dof 4 and dof 5, a spring to ground on dof 6 and one
+    /// between 5 and 6, and a load on dof 6.
+    fn with_further_part() -> (Brake, Layout) {
+        let (b, layout) = brake();
+        let n = 7;
+        let kc = 3.0;
+        let mut k = Mat::from_fn(n, n, |i, j| if i < 5 && j < 5 { b.k[(i, j)] } else { 0.0 });
+        for (i, j, v) in [(4, 4, kc), (5, 5, kc), (4, 5, -kc), (5, 4, -kc)] {
+            k[(i, j)] += v;
+        }
+        for (i, j, v) in [
+            (5, 5, 2.0),
+            (6, 6, 2.0),
+            (5, 6, -2.0),
+            (6, 5, -2.0),
+            (6, 6, 5.0),
+        ] {
+            k[(i, j)] += v;
+        }
+        let m = Mat::from_fn(n, n, |i, j| match (i, j) {
+            _ if i < 5 && j < 5 => b.m[(i, j)],
+            _ if i == j => 0.7 + 0.1 * i as f64,
+            _ => 0.0,
+        });
+        let mut f = b.f_piston.clone();
+        f.extend([0.0, 1.5]);
+        let brake = Brake {
+            m,
+            k,
+            f_piston: f,
+            c: None,
+            k_vibration: None,
+            pairs: b.pairs,
+        };
+        (brake, layout)
+    }
+
+    #[test]
+    fn further_parts_keep_their_dofs_and_their_springs() {
+        let (b, layout) = with_further_part();
+        // Square, invertible blocks: the same brake in other coordinates, the further part's
+        // two dofs last and untouched.
+        let blocks = [rotation(3, 0.3), rotation(2, -0.7)];
+        let (p, l) = project_brake(&b, &layout, &blocks).unwrap();
+        assert_eq!((p.size(), l.all_pads()), (7, 3..5));
+        let xp = [0.3, -0.2, 0.5, 0.1, -0.4, 0.25, -0.6];
+        let mut x = xp;
+        for (i, xi) in x.iter_mut().enumerate().take(5) {
+            let (blk, off, nb) = if i < 3 { (0, 0, 3) } else { (1, 3, 2) };
+            *xi = (0..nb)
+                .map(|j| blocks[blk][(i - off, j)] * xp[off + j])
+                .sum();
+        }
+        let energy = |a: &Mat<f64>, v: &[f64]| -> f64 {
+            (0..v.len())
+                .map(|i| (0..v.len()).map(|j| v[i] * a[(i, j)] * v[j]).sum::<f64>())
+                .sum()
+        };
+        // Energies of O(1) terms: a few ulps.
+        assert!((energy(&p.k, &xp) - energy(&b.k, &x)).abs() < 1e-13);
+        assert!((energy(&p.m, &xp) - energy(&b.m, &x)).abs() < 1e-13);
+        // The further part's block is the original, bit for bit (identity columns), and its
+        // load stays where it was.
+        for i in 5..7 {
+            for j in 5..7 {
+                assert_eq!(p.k[(i, j)], b.k[(i, j)]);
+                assert_eq!(p.m[(i, j)], b.m[(i, j)]);
+            }
+        }
+        assert_eq!(p.f_piston[6], 1.5);
+        // The connector between pad dof 4 and dof 5: on the pad's rotated coordinates.
+        assert!((p.k[(3, 5)] - (-3.0 * blocks[1][(1, 0)])).abs() < 1e-15);
+        assert!((p.k[(4, 5)] - (-3.0 * blocks[1][(1, 1)])).abs() < 1e-15);
+        // A truncated disc: the further part's dofs move up by one, whole.
+        let keep_two = Mat::from_fn(3, 2, |i, j| if i == j { 1.0 } else { 0.0 });
+        let (q, lq) = project_brake(&b, &layout, &[keep_two, Mat::identity(2, 2)]).unwrap();
+        assert_eq!((q.size(), lq.all_pads()), (6, 2..4));
+        assert_eq!(q.k[(3, 4)], -3.0);
+        assert_eq!((q.k[(4, 5)], q.f_piston[5]), (-2.0, 1.5));
+        // A layout longer than the brake is refused.
+        let short = Brake {
+            m: Mat::identity(4, 4),
+            k: Mat::identity(4, 4),
+            f_piston: vec![0.0; 4],
+            c: None,
+            k_vibration: None,
+            pairs: Vec::new(),
+        };
+        assert!(project_brake(&short, &layout, &blocks).is_err());
     }
 }

@@ -22,7 +22,9 @@
 //! `dx/dμ = −K_t0⁻¹ Σ_p F_n,p(x_0) h_p`,
 //!
 //! so `x_0` and `dx/dμ` join the vectors: with them in the span the reduced brake's
-//! frictionless equilibrium is the unreduced one, and its tangent springs with it.
+//! frictionless equilibrium is the unreduced one, and its tangent springs with it. (With
+//! connectors on the vibration only, `Brake::k_vibration`, the static solve has `K − K_vib`,
+//! so `dx/dμ` is solved with `K_t0 − K_vib`.)
 //!
 //! Every vector depends on μ only through these two terms: the basis is computed once, at
 //! μ = 0, and the sweep's μ-dependence (equilibrium and friction coupling) is carried by the
@@ -130,7 +132,15 @@ pub fn system_vectors_to(
     brake.add_nonlinear_force(&eq.x, None, 1.0, &mut f1);
     brake.add_nonlinear_force(&eq.x, None, 0.0, &mut f0);
     let ft = Mat::from_fn(n, 1, |i, _| f0[i] - f1[i]);
-    let dx = solver.solve(&ft);
+    let dx = match &brake.k_vibration {
+        None => solver.solve(&ft),
+        // Connectors on the vibration only (`Brake::k_vibration`, a caliper's pistons) are out
+        // of the static solve: the equilibrium moves with `K_t0 − K_vib`.
+        Some(kv) => {
+            let ks = Mat::from_fn(n, n, |i, j| kt0[(i, j)] - 0.5 * (kv[(i, j)] + kv[(j, i)]));
+            ks.partial_piv_lu().solve(&ft)
+        }
+    };
     let finite = |a: &Mat<f64>| (0..a.ncols()).all(|j| (0..n).all(|i| a[(i, j)].is_finite()));
     if !finite(&residuals) || !finite(&dx) {
         return Err(BrakeError::StiffnessNotPositive);

@@ -14,6 +14,12 @@
 //! unreduced-interface model in other coordinates) when no count before settles. Each count's
 //! μ0, frequency, size and time are kept in [`InterfaceSummary`] and written by `squeal
 //! stability` (its text and `summary.json`), so the choice can be checked.
+//!
+//! **Further parts.** A scene's `[parts.<name>]` (a caliper, a bracket) have no contact face:
+//! their dofs (after their ties' slaves are eliminated) are kept whole, and the connectors'
+//! springs and the ties reach the disc and the pads through coordinates that every basis here
+//! keeps as they are (coupling points, tie nodes), so only the disc's and the pads' contact
+//! faces are reduced ([`face_parts`], `squeal_brake::interface_reduced`).
 
 use crate::error::{PipelineError, Result};
 use crate::model::{Log, Model};
@@ -22,6 +28,7 @@ use squeal_brake::sweep::{PROJECT_ABOVE, SweepMethod};
 use squeal_reduce::interface_modes::{
     InterfaceModes, characteristic_constraint_modes_loaded, transformed_part,
 };
+use squeal_reduce::rom::{PartRole, ReducedModel, ReducedPart};
 use squeal_scene::Scene;
 use squeal_scene::reduction::{InterfaceBasis, InterfaceModeCount};
 use std::fmt::Write as _;
@@ -363,8 +370,15 @@ pub fn auto(
     Ok(finish(m, done, reason))
 }
 
+/// The parts whose contact face an interface reduction reduces: the disc and the pads, in the
+/// rom's order (the further parts, `[parts.<name>]`, have none and are kept whole).
+pub fn face_parts(rom: &ReducedModel) -> impl Iterator<Item = &ReducedPart> {
+    rom.parts.iter().filter(|p| p.info.role() != PartRole::Body)
+}
+
 /// Each part's CC modes with the contact springs' tangent stiffness at the frictionless
-/// static equilibrium on its face (the other part held), in the rom's part order.
+/// static equilibrium on its face (the other part held), in the rom's part order (the disc and
+/// the pads: [`face_parts`]).
 pub fn loaded_modes(model: &Model) -> Result<Vec<InterfaceModes>> {
     let eq = squeal_brake::equilibrium::static_equilibrium(
         &model.brake,
@@ -383,10 +397,7 @@ pub fn loaded_modes(model: &Model) -> Result<Vec<InterfaceModes>> {
                     .map(|p| (p.0.as_str(), p.1.clone())),
             )
             .collect();
-    model
-        .rom
-        .parts
-        .iter()
+    face_parts(&model.rom)
         .map(|part| {
             let r = ranges
                 .iter()
@@ -471,12 +482,15 @@ pub fn at_blocks(model: &Model, blocks: &[(String, faer::Mat<f64>)]) -> Result<M
     }
     // Each part's `Φ T` from the model's own part, not from a clone of the whole model: a
     // nodal disc's basis `Φ` is gigabytes (docs/benchmarks.md, the Craig–Bampton step with
-    // thousands of boundary points).
+    // thousands of boundary points). A further part is kept as it is (`T = I`).
     let parts = model
         .rom
         .parts
         .iter()
         .map(|part| {
+            if part.info.role() == PartRole::Body {
+                return Ok(part.clone());
+            }
             let block = blocks
                 .iter()
                 .find(|b| b.0 == part.info.name)

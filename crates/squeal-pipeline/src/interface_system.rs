@@ -23,10 +23,10 @@
 //! fixed count takes the whole decomposition.
 
 use crate::error::Result;
-use crate::interface::{Candidate, Head, at_count, fixed};
+use crate::interface::{Candidate, Head, at_count, face_parts, fixed};
 use crate::model::{Log, Model};
 use squeal_brake::interface_system::{SystemVectors, system_vectors, system_vectors_to};
-use squeal_reduce::interface_modes::{InterfaceModes, face_basis, face_dofs};
+use squeal_reduce::interface_modes::{InterfaceModes, face_basis_keeping, face_dofs};
 use squeal_scene::Scene;
 use squeal_scene::reduction::InterfaceModeCount;
 use std::time::Instant;
@@ -56,10 +56,7 @@ pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -
         vectors.modes.omega.len(),
         t.elapsed().as_secs_f64()
     ));
-    let face_dofs = model
-        .rom
-        .parts
-        .iter()
+    let face_dofs = face_parts(&model.rom)
         .map(|p| (p.info.name.clone(), face_dofs(p).len()))
         .collect();
     let head = Head {
@@ -139,7 +136,8 @@ fn band_top(model: &Model) -> f64 {
         .map_or(b.valid_max_hz, |(_, hi)| hi.min(b.valid_max_hz))
 }
 
-/// Each part's face basis: the face rows of the system vectors, M̂_cc-orthonormalized.
+/// Each part's face basis: the face rows of the system vectors, M̂_cc-orthonormalized (the
+/// disc's and the pads', [`face_parts`]: the further parts keep their dofs).
 pub fn face_bases(
     model: &Model,
     vectors: &SystemVectors,
@@ -147,10 +145,7 @@ pub fn face_bases(
     residuals: usize,
 ) -> Result<Vec<InterfaceModes>> {
     let columns = vectors.columns(modes, residuals);
-    model
-        .rom
-        .parts
-        .iter()
+    face_parts(&model.rom)
         .map(|part| {
             let start = if part.info.name == "disc" {
                 model.layout.disc.start
@@ -167,7 +162,9 @@ pub fn face_bases(
             let v = faer::Mat::from_fn(rows.len(), columns.ncols(), |i, j| {
                 columns[(start + rows[i], j)]
             });
-            Ok(face_basis(part, &v)?)
+            // The static vectors (the last two columns) exactly: the reduced brake's
+            // equilibrium is then the unreduced one (`face_basis_keeping`).
+            Ok(face_basis_keeping(part, &v, 2)?)
         })
         .collect()
 }

@@ -416,12 +416,6 @@ pub fn at_damping_key(scene: &Scene, e: PipelineError) -> PipelineError {
 /// The reduced model (cached) and the brake of a scene.
 pub fn build(scene: &Scene, out: &Path, log: Log) -> Result<Model> {
     let (rom, rom_path) = reduced_model(scene, out, log)?;
-    if scene.interface_reduction()?.is_some() {
-        crate::parts::refuse_bodies_in(
-            "an interface reduction ([reduction] interface_modes)",
-            &rom,
-        )?;
-    }
     let mut model = model_on(scene, rom, rom_path)?;
     crate::dampers::apply(scene, &mut model, log)?;
     crate::interface::apply(scene, model, log)

@@ -37,9 +37,9 @@ mod materials;
 use materials::*;
 
 mod bodies;
+pub use bodies::add_bodies;
 #[allow(unused_imports)]
 use bodies::*;
-pub use bodies::{add_bodies, refuse_bodies_in};
 
 pub mod left_out;
 

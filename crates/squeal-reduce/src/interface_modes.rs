@@ -265,6 +265,26 @@ pub const SPAN_TOLERANCE: f64 = 1e-10;
 /// Rayleigh–Ritz modes of the face partition on that span, `(Wᵀ K̂_cc W) y = λ y`, `Ψ = W Y`,
 /// lowest first. The result is used as the part's [`InterfaceModes`], all of them kept.
 pub fn face_basis(part: &ReducedPart, vectors: &Mat<f64>) -> Result<InterfaceModes, ReduceError> {
+    face_basis_keeping(part, vectors, 0)
+}
+
+/// Below this `M̂_cc` norm (of a unit column) a kept vector's part outside the span of the
+/// others is round-off, and not added ([`face_basis_keeping`]).
+pub const KEPT_RESIDUAL: f64 = 1e-12;
+
+/// [`face_basis`], with the last `exact` columns of `vectors` in the span exactly: the Gram
+/// matrix's dropped directions may hold up to about `√SPAN_TOLERANCE` (1e-5) of a vector, and a
+/// vector that must be represented exactly (the static equilibrium `x_0` of the `"system"`
+/// basis: without it the reduced brake's equilibrium, hence its contact springs, differ from
+/// the unreduced brake's, 2.6e-4 of the largest normal force on the caliper corner, and its
+/// frequencies are no longer bounded by the unreduced ones) has that part, `M̂_cc`-orthogonal
+/// to the kept directions, added as a direction of its own when its norm is above
+/// [`KEPT_RESIDUAL`].
+pub fn face_basis_keeping(
+    part: &ReducedPart,
+    vectors: &Mat<f64>,
+    exact: usize,
+) -> Result<InterfaceModes, ReduceError> {
     let name = part.info.name.clone();
     let invalid = |what: String| ReduceError::Invalid {
         part: name.clone(),
@@ -305,6 +325,7 @@ pub fn face_basis(part: &ReducedPart, vectors: &Mat<f64>) -> Result<InterfaceMod
         let j = kept[col];
         (0..nv).map(|l| v[(i, l)] * q[(l, j)]).sum::<f64>() / d[j].sqrt()
     });
+    let w = with_exact(w, &v, &m, exact.min(nv));
     let a = w.transpose() * (&k * &w);
     let (lambda, y) =
         symmetric_eigen(&a).ok_or_else(|| invalid("the face basis' Rayleigh–Ritz modes".into()))?;
@@ -317,6 +338,32 @@ pub fn face_basis(part: &ReducedPart, vectors: &Mat<f64>) -> Result<InterfaceMod
         lambda,
         size: part.size(),
     })
+}
+
+/// `w` (`M`-orthonormal columns) with the part of each of the last `exact` columns of `v` (unit
+/// `M` norm) outside its span added as a column of its own, `M`-orthonormalized (twice, for
+/// the round-off of one pass), when its norm is above [`KEPT_RESIDUAL`].
+fn with_exact(mut w: Mat<f64>, v: &Mat<f64>, m: &Mat<f64>, exact: usize) -> Mat<f64> {
+    let nc = v.nrows();
+    for j in v.ncols() - exact..v.ncols() {
+        let mut r = Mat::from_fn(nc, 1, |i, _| v[(i, j)]);
+        for _ in 0..2 {
+            let c = w.transpose() * (m * &r);
+            r -= &w * &c;
+        }
+        let norm = (r.transpose() * (m * &r))[(0, 0)].max(0.0).sqrt();
+        if norm > KEPT_RESIDUAL {
+            let cols = w.ncols();
+            w = Mat::from_fn(nc, cols + 1, |i, col| {
+                if col < cols {
+                    w[(i, col)]
+                } else {
+                    r[(i, 0)] / norm
+                }
+            });
+        }
+    }
+    w
 }
 
 /// Eigenvalues (ascending) and eigenvectors of a symmetric matrix, solved at unit max-norm and

@@ -106,16 +106,15 @@ pub struct InterfaceReduction {
 
 impl Scene {
     /// `[reduction] interface`: `None` without an interface reduction, else its mode count.
-    /// Absent, nodal contact takes `"system"` with `"auto"` (module documentation) and patch
-    /// contact none; so does a brake with parts beyond the disc and the pads (`[parts.*]`,
-    /// `[[connectors]]`), which no interface reduction carries yet.
+    /// Absent, nodal contact takes `"system"` with `"auto"` (module documentation), with parts
+    /// beyond the disc and the pads too (`[parts.*]`, `[[connectors]]`: their dofs are kept
+    /// whole, only the contact faces are reduced), and patch contact none.
     pub fn interface_reduction(&self) -> Result<Option<InterfaceReduction>> {
         let r = &self.file.reduction;
         let iface = self.file.model.interface.get_ref();
         let nodal = iface == "nodal" || iface == "node";
         let Some(written) = &r.interface else {
-            let bodies = !self.file.parts.is_empty() || !self.file.connectors.is_empty();
-            if !nodal || bodies {
+            if !nodal {
                 return Ok(None);
             }
             return self.interface_count(InterfaceBasis::System).map(|modes| {

@@ -138,6 +138,9 @@ pub struct ReducedOnset {
     pub frequency_hz: f64,
     /// Wall time (s).
     pub seconds: f64,
+    /// The coalescing pair's frictionless modes (1-based) and frequencies (Hz), when the sweep
+    /// names it (for the near-degenerate caveat, `crate::caveats::near_degenerate`).
+    pub pair: Option<((usize, usize), (f64, f64))>,
 }
 
 /// The full model's spectrum with `Im λ / 2π` in `band_hz` at friction `mu`, linearized about
@@ -327,10 +330,13 @@ pub fn undamped() -> DampingSpec {
 pub fn reduced_onset(model: &Model, mus: &[f64]) -> Result<Option<ReducedOnset>> {
     let t = Instant::now();
     let st = squeal_brake::analysis::stability(&model.brake, &undamped(), mus, &model.sweep)?;
+    let hz = |j: usize| st.reference.basis.omega[j] / TAU;
+    let pair = st.pair.map(|(a, b)| ((a + 1, b + 1), (hz(a), hz(b))));
     Ok(st.sweep.hopf.map(|h| ReducedOnset {
         mu0: h.mu0,
         frequency_hz: h.frequency_hz,
         seconds: t.elapsed().as_secs_f64(),
+        pair,
     }))
 }
 

@@ -113,6 +113,12 @@ pub fn full_check(p: &Pipeline, at: Option<f64>) -> Result<String> {
             };
             let _ = writeln!(out, "band {:.0}..{:.0} Hz", band.0, band.1);
             out.push_str(&comparison_text(r.as_ref(), f.as_ref(), mode.as_ref()));
+            // The undamped onset is often a near-degenerate pair, whose μ0 amplifies every
+            // frequency error (the scene's damped run may not name it): said here too.
+            let pair = r.as_ref().and_then(|r| r.pair);
+            if let Some(c) = pair.and_then(|(m, hz)| crate::caveats::near_degenerate(m, hz)) {
+                let _ = writeln!(out, "  warning (reduced brake, undamped): {c}");
+            }
             if let Some(f) = f.as_ref().filter(|f| other_mode(r.as_ref(), f, &opts)) {
                 out.push_str(&split_text(&pair_split(&full, m, f.frequency_hz, &opts)?));
             }

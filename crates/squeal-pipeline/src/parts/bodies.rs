@@ -160,21 +160,3 @@ pub(super) fn keep_tie_sets(inputs: &mut BrakeInputs, tie: &squeal_reduce::part_
         }
     }
 }
-
-/// The message of a step that does not take further parts and connectors yet.
-fn not_yet(step: &str) -> PipelineError {
-    PipelineError::Input {
-        what: "scene parts",
-        message: format!(
-            "{step} does not take [parts.<name>] and [[connectors]] yet: their parts and springs are in the reduced model only. Run without it, or leave the further parts and connectors out of the scene"
-        ),
-    }
-}
-
-/// Refuses `step` on a reduced model with further parts or connections.
-pub fn refuse_bodies_in(step: &str, rom: &squeal_reduce::rom::ReducedModel) -> Result<()> {
-    match rom.bodies().is_empty() && rom.connections.is_empty() {
-        true => Ok(()),
-        false => Err(not_yet(step)),
-    }
-}
