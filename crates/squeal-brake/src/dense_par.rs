@@ -209,12 +209,19 @@ mod tests {
         // SPD: A Aᵀ / n + I; symmetric indefinite: that less 0.9 I.
         let spd = {
             let mut s = Mat::zeros(n, n);
-            matmul(s.as_mut(), Accum::Replace, a.as_ref(), a.transpose(), 1.0, Par::Seq);
-            Mat::from_fn(n, n, |i, j| s[(i, j)] / n as f64 + f64::from(u8::from(i == j)))
+            matmul(
+                s.as_mut(),
+                Accum::Replace,
+                a.as_ref(),
+                a.transpose(),
+                1.0,
+                Par::Seq,
+            );
+            Mat::from_fn(n, n, |i, j| {
+                s[(i, j)] / n as f64 + f64::from(u8::from(i == j))
+            })
         };
-        let indefinite = Mat::from_fn(n, n, |i, j| {
-            spd[(i, j)] - if i == j { 1.2 } else { 0.0 }
-        });
+        let indefinite = Mat::from_fn(n, n, |i, j| spd[(i, j)] - if i == j { 1.2 } else { 0.0 });
         let lu = Lu::new(a.clone());
         let l = cholesky(&spd).unwrap();
         let mut lx = b.clone();
@@ -244,12 +251,19 @@ mod tests {
         let one = entries(n, 1, 3);
         let spd = {
             let mut s = Mat::zeros(n, n);
-            matmul(s.as_mut(), Accum::Replace, a.as_ref(), a.transpose(), 1.0, Par::Seq);
-            Mat::from_fn(n, n, |i, j| s[(i, j)] / n as f64 + f64::from(u8::from(i == j)))
+            matmul(
+                s.as_mut(),
+                Accum::Replace,
+                a.as_ref(),
+                a.transpose(),
+                1.0,
+                Par::Seq,
+            );
+            Mat::from_fn(n, n, |i, j| {
+                s[(i, j)] / n as f64 + f64::from(u8::from(i == j))
+            })
         };
-        let indefinite = Mat::from_fn(n, n, |i, j| {
-            spd[(i, j)] - if i == j { 1.2 } else { 0.0 }
-        });
+        let indefinite = Mat::from_fn(n, n, |i, j| spd[(i, j)] - if i == j { 1.2 } else { 0.0 });
         let seq = |x: MatRef<'_, f64>, y: MatRef<'_, f64>| {
             let mut c = Mat::zeros(x.nrows(), y.ncols());
             matmul(c.as_mut(), Accum::Replace, x, y, 1.0, Par::Seq);
@@ -259,7 +273,11 @@ mod tests {
         let plu = a.partial_piv_lu();
         // faer's L (unit) and U in one matrix, as `Lu` keeps them.
         let lu = Mat::from_fn(n, n, |i, j| {
-            if i > j { plu.L()[(i, j)] } else { plu.U()[(i, j)] }
+            if i > j {
+                plu.L()[(i, j)]
+            } else {
+                plu.U()[(i, j)]
+            }
         });
         let l = spd.llt(Side::Lower).unwrap().L().to_owned();
         let mut lx = b.clone();

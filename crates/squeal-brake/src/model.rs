@@ -550,8 +550,7 @@ pub(crate) mod tests {
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            let (jx, jv) =
-                pool.install(|| contact_jacobians(&pairs, n, &x, Some(&v), 0.4, false));
+            let (jx, jv) = pool.install(|| contact_jacobians(&pairs, n, &x, Some(&v), 0.4, false));
             assert!(bits(&jx) == bits(&kx), "dF/dx, {threads} threads");
             assert!(bits(&jv.unwrap()) == bits(&kv), "dF/dv, {threads} threads");
         }

@@ -37,9 +37,9 @@
 //! about `13 n³` for the whole decomposition ([`dense_flops`]). On the fine corner (7636 dofs,
 //! 100 in-band modes) that is about 15 times fewer.
 
+use crate::dense_par::{add_product, par_for, product};
 use crate::error::BrakeError;
 use crate::modal::ModalBasis;
-use crate::dense_par::{add_product, par_for, product};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
