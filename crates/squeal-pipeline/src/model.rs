@@ -390,7 +390,7 @@ pub fn sweep_options(scene: &Scene, rom: &ReducedModel) -> SweepOptions {
 
 /// The brake of a scene on a reduced model.
 pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<Model> {
-    model_or_rom(scene, rom, rom_path).map_err(|(e, _)| e)
+    model_or_rom(scene, rom, rom_path).map_err(|b| b.0)
 }
 
 /// [`model_on`], giving the reduced model back with the error (so that a model just reduced
@@ -399,7 +399,7 @@ fn model_or_rom(
     scene: &Scene,
     rom: ReducedModel,
     rom_path: PathBuf,
-) -> std::result::Result<Model, (PipelineError, ReducedModel)> {
+) -> std::result::Result<Model, Box<(PipelineError, ReducedModel)>> {
     let formed = (|| -> Result<_> {
         let params = brake_params(scene)?;
         let (brake, layout, pairs) = assemble(&rom, &params).map_err(|e| at_scene_key(scene, e))?;
@@ -416,7 +416,7 @@ fn model_or_rom(
     })();
     let (params, brake, layout, pairs, damping, pad_meshes, disc, units) = match formed {
         Ok(f) => f,
-        Err(e) => return Err((e, rom)),
+        Err(e) => return Err(Box::new((e, rom))),
     };
     Ok(Model {
         sweep: sweep_options(scene, &rom),
@@ -497,7 +497,8 @@ pub fn build(scene: &Scene, out: &Path, log: Log) -> Result<Model> {
     }
     let mut model = match model_or_rom(scene, rom, rom_path) {
         Ok(m) => m,
-        Err((e, rom)) => {
+        Err(b) => {
+            let (e, rom) = *b;
             let path = self::rom_path(scene, out);
             return Err(stored_with(e, &rom, &path));
         }

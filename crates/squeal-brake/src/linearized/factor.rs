@@ -217,17 +217,12 @@ impl Bordered {
                 at[(m + p) * size + m + q] = s[q * r + p];
             }
         }
-        // The system and its transpose are factored side by side on rayon's threads: each
-        // factorization is the same sequential elimination whatever the thread count, so the
-        // bits do not depend on it (a 2300-row complex LU takes seconds on the fine
-        // ventilated brake: docs/benchmarks.md, "After Craig-Bampton on both cores").
-        let (lu, lu_t) = rayon::join(|| SmallLu::new(size, a), || SmallLu::new(size, at));
         Bordered {
             delta,
             near,
             u_lambda,
-            lu,
-            lu_t,
+            lu: SmallLu::new(size, a),
+            lu_t: SmallLu::new(size, at),
         }
     }
 
