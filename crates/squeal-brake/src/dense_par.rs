@@ -47,7 +47,8 @@ pub fn product(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> Mat<f64> {
 }
 
 /// `c = alpha a b` (`Replace`) or `c += alpha a b` (`Add`): on rayon's threads only for more
-/// than one column (module documentation: a single column would split its sums).
+/// than one row and more than one column (module documentation: a single column, or a single
+/// row that faer takes as a column of the transposed product, would split its sums).
 pub fn add_product(
     c: MatMut<'_, f64>,
     accum: Accum,
@@ -55,7 +56,7 @@ pub fn add_product(
     b: MatRef<'_, f64>,
     alpha: f64,
 ) {
-    let par = if b.ncols() > 1 {
+    let par = if a.nrows() > 1 && b.ncols() > 1 {
         par_for(a.nrows().max(a.ncols()))
     } else {
         Par::Seq
@@ -181,17 +182,30 @@ mod tests {
     use super::*;
     use faer::Side;
 
-    /// Deterministic entries in `[-1, 1)` (splitmix64).
+    /// Deterministic entries in `[-1, 1)`.
     fn entries(n: usize, m: usize, seed: u64) -> Mat<f64> {
-        let mut s = seed;
-        Mat::from_fn(n, m, |_, _| {
-            s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = s;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^= z >> 31;
-            (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        })
+        let mut next = crate::partial_modes::uniform(seed);
+        Mat::from_fn(n, m, |_, _| next())
+    }
+
+    /// The problems of the test: a general `n × n` matrix, 9 and 1 right-hand sides, an SPD
+    /// matrix (`A Aᵀ / n + I`) and a symmetric indefinite one (that less 1.2 I).
+    fn problems(n: usize) -> [Mat<f64>; 5] {
+        let a = entries(n, n, 1);
+        let mut s = Mat::zeros(n, n);
+        matmul(
+            s.as_mut(),
+            Accum::Replace,
+            a.as_ref(),
+            a.transpose(),
+            1.0,
+            Par::Seq,
+        );
+        let spd = Mat::from_fn(n, n, |i, j| {
+            s[(i, j)] / n as f64 + f64::from(u8::from(i == j))
+        });
+        let indefinite = Mat::from_fn(n, n, |i, j| spd[(i, j)] - if i == j { 1.2 } else { 0.0 });
+        [a, entries(n, 9, 2), entries(n, 1, 3), spd, indefinite]
     }
 
     fn bits(a: &Mat<f64>) -> Vec<u64> {
@@ -203,25 +217,7 @@ mod tests {
 
     /// Everything the module computes, as bits.
     fn outputs(n: usize) -> Vec<Vec<u64>> {
-        let a = entries(n, n, 1);
-        let b = entries(n, 9, 2);
-        let one = entries(n, 1, 3);
-        // SPD: A Aᵀ / n + I; symmetric indefinite: that less 0.9 I.
-        let spd = {
-            let mut s = Mat::zeros(n, n);
-            matmul(
-                s.as_mut(),
-                Accum::Replace,
-                a.as_ref(),
-                a.transpose(),
-                1.0,
-                Par::Seq,
-            );
-            Mat::from_fn(n, n, |i, j| {
-                s[(i, j)] / n as f64 + f64::from(u8::from(i == j))
-            })
-        };
-        let indefinite = Mat::from_fn(n, n, |i, j| spd[(i, j)] - if i == j { 1.2 } else { 0.0 });
+        let [a, b, one, spd, indefinite] = problems(n);
         let lu = Lu::new(a.clone());
         let l = cholesky(&spd).unwrap();
         let mut lx = b.clone();
@@ -246,24 +242,7 @@ mod tests {
 
     /// faer's own sequential results for the same problems.
     fn sequential(n: usize) -> Vec<Vec<u64>> {
-        let a = entries(n, n, 1);
-        let b = entries(n, 9, 2);
-        let one = entries(n, 1, 3);
-        let spd = {
-            let mut s = Mat::zeros(n, n);
-            matmul(
-                s.as_mut(),
-                Accum::Replace,
-                a.as_ref(),
-                a.transpose(),
-                1.0,
-                Par::Seq,
-            );
-            Mat::from_fn(n, n, |i, j| {
-                s[(i, j)] / n as f64 + f64::from(u8::from(i == j))
-            })
-        };
-        let indefinite = Mat::from_fn(n, n, |i, j| spd[(i, j)] - if i == j { 1.2 } else { 0.0 });
+        let [a, b, one, spd, indefinite] = problems(n);
         let seq = |x: MatRef<'_, f64>, y: MatRef<'_, f64>| {
             let mut c = Mat::zeros(x.nrows(), y.ncols());
             matmul(c.as_mut(), Accum::Replace, x, y, 1.0, Par::Seq);

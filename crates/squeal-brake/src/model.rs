@@ -488,15 +488,7 @@ pub(crate) mod tests {
     fn column_blocks_give_the_textbook_sums_on_any_thread_count() {
         use crate::contact::VelocityDependent;
         let (n, count) = (150, 80);
-        let mut s = 7u64;
-        let mut next = move || {
-            s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = s;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^= z >> 31;
-            (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        };
+        let mut next = crate::partial_modes::uniform(7);
         let pairs: Vec<ContactPair> = (0..count)
             .map(|p| {
                 let mut normal: SparseVec = (0..n).map(|i| (i, next())).collect();

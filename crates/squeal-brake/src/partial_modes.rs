@@ -150,16 +150,22 @@ fn apply(m: &Mat<f64>, l: MatRef<'_, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
 
 /// A deterministic start block (splitmix64 values in `[-1, 1)`): the same bits every run.
 fn start_block(n: usize, b: usize, seed: u64) -> Mat<f64> {
+    let mut next = uniform(seed);
+    Mat::from_fn(n, b, |_, _| next())
+}
+
+/// Deterministic values in `[-1, 1)` from `seed` (splitmix64): the same bits every run (the
+/// start blocks here, and test matrices).
+pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
     let mut s = seed;
-    let mut next = move || {
+    move || {
         s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = s;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         z ^= z >> 31;
         (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    };
-    Mat::from_fn(n, b, |_, _| next())
+    }
 }
 
 /// Orthonormalizes the columns of `w` against the columns of `v` (block classical

@@ -12,19 +12,6 @@ use squeal_brake::interface_system::{SystemVectors, system_vectors_to};
 use squeal_brake::model::{Brake, ContactPair};
 use std::sync::Arc;
 
-/// Deterministic values in `[-1, 1)` (splitmix64).
-fn values(seed: u64) -> impl FnMut() -> f64 {
-    let mut s = seed;
-    move || {
-        s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = s;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-}
-
 /// A brake of 640 dofs: `K` a stiff chain (its modes from 7.5 kHz up) whose first eight dofs
 /// are soft and nearly free of it (eight modes of 1.6 to 4.5 kHz, well apart, as a brake's
 /// in-band modes are from the rest), with weak dense coupling everywhere, `M` diagonal, 100
@@ -33,7 +20,7 @@ fn values(seed: u64) -> impl FnMut() -> f64 {
 fn brake() -> Brake {
     let n = 640;
     let soft = 8;
-    let mut next = values(11);
+    let mut next = squeal_brake::partial_modes::uniform(11);
     let weak = Mat::from_fn(n, n, |_, _| next());
     let k = Mat::from_fn(n, n, |i, j| {
         let chain = if i == j && i < soft {
