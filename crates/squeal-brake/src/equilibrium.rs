@@ -41,7 +41,6 @@
 use crate::error::{BrakeError, OpenPair};
 use crate::model::Brake;
 use faer::Mat;
-use faer::linalg::solvers::Solve;
 
 /// Convergence controls of the Newton iteration and of the load continuation.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -200,7 +199,9 @@ fn newton_at(
                 None => {
                     let jac = &brake.k + brake.nonlinear_jacobian(&x, mu, closed).0;
                     let rhs = Mat::from_fn(n, 1, |i, _| minus_r[i]);
-                    jac.partial_piv_lu().solve(&rhs)
+                    // faer's LU, factored on rayon's threads where large (the same bits:
+                    // crate::dense_par).
+                    crate::dense_par::lu_solve(jac, &rhs)
                 }
             };
             if (0..n).any(|i| !dx[(i, 0)].is_finite()) {

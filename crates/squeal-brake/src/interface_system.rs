@@ -126,7 +126,7 @@ pub fn system_vectors_to(
         .filter(|w| **w / tau <= residuals_to_hz)
         .count();
     let phi = Mat::from_fn(n, r, |i, j| modes.phi[(i, j)]);
-    let residuals = solver.solve(&(&kf * &phi));
+    let residuals = solver.solve(&crate::dense_par::product(kf.as_ref(), phi.as_ref()));
     // Σ F_n h at x_0: the nonlinear force at μ = 1 less at μ = 0.
     let (mut f1, mut f0) = (vec![0.0; n], vec![0.0; n]);
     brake.add_nonlinear_force(&eq.x, None, 1.0, &mut f1);
@@ -165,9 +165,16 @@ impl Factor {
     fn solve(&self, b: &Mat<f64>) -> Mat<f64> {
         match self {
             Factor::Cholesky(l) => {
+                // Several columns on rayon's threads, one sequentially (the same bits:
+                // crate::dense_par).
                 let mut x = b.clone();
-                solve_lower_triangular_in_place(l.as_ref(), x.as_mut(), Par::Seq);
-                solve_upper_triangular_in_place(l.transpose(), x.as_mut(), Par::Seq);
+                let par = if b.ncols() > 1 {
+                    crate::dense_par::par_for(l.nrows())
+                } else {
+                    Par::Seq
+                };
+                solve_lower_triangular_in_place(l.as_ref(), x.as_mut(), par);
+                solve_upper_triangular_in_place(l.transpose(), x.as_mut(), par);
                 x
             }
             Factor::Lu(lu) => lu.solve(b),

@@ -37,6 +37,7 @@ pub mod contact;
 pub mod continuation;
 pub mod criticality;
 pub mod damping;
+pub mod dense_par;
 pub mod dynamics;
 pub mod equilibrium;
 pub mod error;

@@ -37,13 +37,13 @@
 //! about `13 n³` for the whole decomposition ([`dense_flops`]). On the fine corner (7636 dofs,
 //! 100 in-band modes) that is about 15 times fewer.
 
+use crate::dense_par::{add_product, par_for, product};
 use crate::error::BrakeError;
 use crate::modal::ModalBasis;
-use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
-use faer::{Accum, Mat, MatRef, Par, Side};
+use faer::{Accum, Mat, MatRef, Side};
 
 /// Relative residual `‖A y − θ y‖ / θ` at which a Ritz pair is accepted: its vector is then
 /// within about this over the relative gap of the exact one (and its eigenvalue within its
@@ -70,7 +70,7 @@ pub fn partial_flops(n: usize, r: usize) -> f64 {
 
 /// The Cholesky factor `L` of `K` (`K = L Lᵀ`), `None` when `K` is not positive definite.
 pub fn cholesky(k: &Mat<f64>) -> Option<Mat<f64>> {
-    k.llt(Side::Lower).ok().map(|c| c.L().to_owned())
+    crate::dense_par::cholesky(k)
 }
 
 /// The number of eigenvalues of the pencil `(K, M)` below `sigma` (both symmetric, `M`
@@ -78,8 +78,7 @@ pub fn cholesky(k: &Mat<f64>) -> Option<Mat<f64>> {
 pub fn count_below(k: &Mat<f64>, m: &Mat<f64>, sigma: f64) -> usize {
     let n = k.nrows();
     let shifted = Mat::from_fn(n, n, |i, j| k[(i, j)] - sigma * m[(i, j)]);
-    let f = shifted.lblt(Side::Lower);
-    let (d, e) = (f.B_diag().column_vector(), f.B_subdiag().column_vector());
+    let (d, e) = crate::dense_par::lblt_blocks(shifted);
     let mut negative = 0;
     let mut i = 0;
     while i < n {
@@ -123,11 +122,11 @@ pub fn lowest_modes(
     };
     // φ = L⁻ᵀ y, then the Rayleigh–Ritz step on the pencil itself.
     let mut phi = y;
-    solve_upper_triangular_in_place(l.transpose(), phi.as_mut(), Par::Seq);
-    let kr = phi.transpose() * (k * &phi);
-    let mr = phi.transpose() * (m * &phi);
+    solve_upper_triangular_in_place(l.transpose(), phi.as_mut(), par_for(n));
+    let kr = product(phi.transpose(), product(k.as_ref(), phi.as_ref()).as_ref());
+    let mr = product(phi.transpose(), product(m.as_ref(), phi.as_ref()).as_ref());
     let small = crate::modal::modal_basis(&symmetric(&mr), &symmetric(&kr))?;
-    let phi = &phi * &small.phi;
+    let phi = product(phi.as_ref(), small.phi.as_ref());
     Ok(Some(ModalBasis {
         phi,
         omega: small.omega,
@@ -142,32 +141,31 @@ fn symmetric(a: &Mat<f64>) -> Mat<f64> {
 /// `A x = L⁻¹ M L⁻ᵀ x` for the columns of `x`.
 fn apply(m: &Mat<f64>, l: MatRef<'_, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
     let mut y = x.to_owned();
-    solve_upper_triangular_in_place(l.transpose(), y.as_mut(), Par::Seq);
-    let mut z = Mat::zeros(m.nrows(), y.ncols());
-    matmul(
-        z.as_mut(),
-        Accum::Replace,
-        m.as_ref(),
-        y.as_ref(),
-        1.0,
-        Par::Seq,
-    );
-    solve_lower_triangular_in_place(l, z.as_mut(), Par::Seq);
+    let par = par_for(l.nrows());
+    solve_upper_triangular_in_place(l.transpose(), y.as_mut(), par);
+    let mut z = product(m.as_ref(), y.as_ref());
+    solve_lower_triangular_in_place(l, z.as_mut(), par);
     z
 }
 
 /// A deterministic start block (splitmix64 values in `[-1, 1)`): the same bits every run.
 fn start_block(n: usize, b: usize, seed: u64) -> Mat<f64> {
+    let mut next = uniform(seed);
+    Mat::from_fn(n, b, |_, _| next())
+}
+
+/// Deterministic values in `[-1, 1)` from `seed` (splitmix64): the same bits every run (the
+/// start blocks here, and test matrices).
+pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
     let mut s = seed;
-    let mut next = move || {
+    move || {
         s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = s;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         z ^= z >> 31;
         (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    };
-    Mat::from_fn(n, b, |_, _| next())
+    }
 }
 
 /// Orthonormalizes the columns of `w` against the columns of `v` (block classical
@@ -178,8 +176,8 @@ fn orthonormalize(v: MatRef<'_, f64>, w: &mut Mat<f64>, seed: &mut u64) {
     let before: Vec<f64> = (0..w.ncols()).map(|j| w.col(j).norm_l2()).collect();
     for _ in 0..2 {
         if v.ncols() > 0 {
-            let c = v.transpose() * w.as_ref();
-            matmul(w.as_mut(), Accum::Add, v, c.as_ref(), -1.0, Par::Seq);
+            let c = product(v.transpose(), w.as_ref());
+            add_product(w.as_mut(), Accum::Add, v, c.as_ref(), -1.0);
         }
     }
     for j in 0..w.ncols() {
@@ -199,8 +197,8 @@ fn orthonormalize(v: MatRef<'_, f64>, w: &mut Mat<f64>, seed: &mut u64) {
             let mut fresh = start_block(n, 1, *seed);
             for _ in 0..2 {
                 if v.ncols() > 0 {
-                    let c = v.transpose() * fresh.as_ref();
-                    matmul(fresh.as_mut(), Accum::Add, v, c.as_ref(), -1.0, Par::Seq);
+                    let c = product(v.transpose(), fresh.as_ref());
+                    add_product(fresh.as_mut(), Accum::Add, v, c.as_ref(), -1.0);
                 }
             }
             reference = fresh.col(0).norm_l2();
@@ -264,7 +262,7 @@ fn concat(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
 /// below [`TOLERANCE`] `θ`, else `None`.
 fn converged(v: &Mat<f64>, av: &Mat<f64>, r: usize) -> Option<Mat<f64>> {
     let k = v.ncols();
-    let t = v.transpose() * av;
+    let t = product(v.transpose(), av.as_ref());
     let t = symmetric(&t);
     let scale = t.norm_max().max(f64::MIN_POSITIVE);
     let ts = Mat::from_fn(k, k, |i, j| t[(i, j)] / scale);
@@ -273,8 +271,8 @@ fn converged(v: &Mat<f64>, av: &Mat<f64>, r: usize) -> Option<Mat<f64>> {
     let s: Vec<usize> = (k - r..k).rev().collect();
     let z = Mat::from_fn(k, r, |i, j| evd.U()[(i, s[j])]);
     let theta: Vec<f64> = s.iter().map(|&j| evd.S()[j] * scale).collect();
-    let y = v * &z;
-    let ay = av * &z;
+    let y = product(v.as_ref(), z.as_ref());
+    let ay = product(av.as_ref(), z.as_ref());
     let floor = 1e3 * f64::EPSILON * theta[0];
     let ok = (0..r).all(|j| {
         let res = (0..y.nrows())
@@ -289,6 +287,7 @@ fn converged(v: &Mat<f64>, av: &Mat<f64>, r: usize) -> Option<Mat<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use faer::Par;
 
     /// A dense pencil with known modes, `K = M V diag(ω²) Vᵀ M` with `V` `M`-orthonormal and an
     /// exact doublet (modes 10 and 11 share `ω`): the count and the partial solve against the

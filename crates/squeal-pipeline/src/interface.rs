@@ -194,14 +194,29 @@ pub struct Candidate {
 
 /// The model with the scene's interface reduction applied (the model itself without one).
 pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
+    Ok(apply_to(scene, &model, log)?.unwrap_or(model))
+}
+
+/// The interface-reduced model of `model` the scene asks for, `None` when it asks for none.
+pub fn apply_to(scene: &Scene, model: &Model, log: Log) -> Result<Option<Model>> {
     let Some(choice) = scene.interface_reduction()? else {
-        return Ok(model);
+        return Ok(None);
     };
     if choice.basis == InterfaceBasis::System {
-        return crate::interface_system::apply(scene, model, log, choice.modes);
+        return crate::interface_system::apply(scene, model, log, choice.modes).map(Some);
     }
+    reduced_by_cc_modes(scene, model, log, choice.modes).map(Some)
+}
+
+/// The model reduced on its faces' characteristic constraint modes.
+fn reduced_by_cc_modes(
+    scene: &Scene,
+    model: &Model,
+    log: Log,
+    count: InterfaceModeCount,
+) -> Result<Model> {
     let t = Instant::now();
-    let modes = loaded_modes(&model)?;
+    let modes = loaded_modes(model)?;
     log(&format!(
         "interface reduction: CC modes of {} in {:.1} s",
         modes
@@ -219,15 +234,15 @@ pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
     };
     let candidate = |k: usize| -> Result<Candidate> {
         Ok(Candidate {
-            model: at_count(&model, &modes, k)?,
+            model: at_count(model, &modes, k)?,
             kept: kept(&modes, k),
             basis: format!("{k} CC modes per part"),
         })
     };
-    match choice.modes {
+    match count {
         InterfaceModeCount::Fixed(k) => {
             let reason = format!("interface_modes = {k} in {}", scene.path.display());
-            fixed(&model, head, candidate(k)?, reason)
+            fixed(model, head, candidate(k)?, reason)
         }
         InterfaceModeCount::Auto { tolerance } => {
             let levels = std::iter::successors(Some(FIRST_LEVEL.min(most)), |&k| {
@@ -235,7 +250,7 @@ pub fn apply(scene: &Scene, model: Model, log: Log) -> Result<Model> {
             })
             .map(candidate);
             let what = format!("{FIRST_LEVEL}, {}, ... CC modes per part", 2 * FIRST_LEVEL);
-            auto(scene, &model, log, head, levels, tolerance, &what)
+            auto(scene, model, log, head, levels, tolerance, &what)
         }
     }
 }

@@ -32,9 +32,9 @@ use squeal_scene::reduction::InterfaceModeCount;
 use std::time::Instant;
 
 /// The model with a `"system"` interface reduction.
-pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -> Result<Model> {
+pub fn apply(scene: &Scene, model: &Model, log: Log, count: InterfaceModeCount) -> Result<Model> {
     let t = Instant::now();
-    let top = band_top(&model);
+    let top = band_top(model);
     let tau = std::f64::consts::TAU;
     let below = |v: &SystemVectors, f: f64| v.modes.omega.iter().filter(|w| **w / tau <= f).count();
     let (brake, newton) = (&model.brake, &model.sweep.newton);
@@ -65,9 +65,9 @@ pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -
     };
     let total = vectors.modes.omega.len();
     let candidate = |v: &SystemVectors, modes: usize, residuals: usize| -> Result<Candidate> {
-        let bases = face_bases(&model, v, modes, residuals)?;
+        let bases = face_bases(model, v, modes, residuals)?;
         Ok(Candidate {
-            model: at_count(&model, &bases, usize::MAX)?,
+            model: at_count(model, &bases, usize::MAX)?,
             kept: bases.iter().map(InterfaceModes::count).collect(),
             basis: format!(
                 "{modes} brake modes + {residuals} friction residuals + 2 static vectors"
@@ -78,12 +78,7 @@ pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -
         InterfaceModeCount::Fixed(n) => {
             let n = n.min(total);
             let reason = format!("interface_modes = {n} in {}", scene.path.display());
-            fixed(
-                &model,
-                head,
-                candidate(&vectors, n, n.min(in_band))?,
-                reason,
-            )
+            fixed(model, head, candidate(&vectors, n, n.min(in_band))?, reason)
         }
         InterfaceModeCount::Auto { tolerance } => {
             // (modes, residuals): the band alone, with residuals, then 2, 4, ... times its top
@@ -124,7 +119,7 @@ pub fn apply(scene: &Scene, model: Model, log: Log, count: InterfaceModeCount) -
                 "the {in_band} in-band brake modes, then with their friction residuals, then the modes below 2, 4, ... x {top:.0} Hz"
             );
             let mus = scene.mu_values()?;
-            crate::interface_check::auto(&model, &mus, log, head, levels, tolerance, &what)
+            crate::interface_check::auto(model, &mus, log, head, levels, tolerance, &what)
         }
     }
 }

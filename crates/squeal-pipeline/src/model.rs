@@ -175,6 +175,35 @@ pub fn check_outputs(scene: &Scene, out: &Path) -> Result<()> {
 /// Loads the scene's reduced model, or reduces the meshes (and stores the result) when it is
 /// missing or stale (other meshes, by SHA-256, other options, another tool version).
 pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedModel, PathBuf)> {
+    let (rom, rom_path, unwritten) = reduced_model_unwritten(scene, out, log)?;
+    if let Some(kept) = unwritten {
+        store(&rom, &rom_path, &kept, log)?;
+    }
+    Ok((rom, rom_path))
+}
+
+/// Writes a freshly reduced model to `rom_path` (atomically: squeal-io's `atomic_write*`
+/// under `ReducedModel::write`) and forgets the parts kept in `kept` by an earlier run.
+pub fn store(rom: &ReducedModel, rom_path: &Path, kept: &Path, log: Log) -> Result<()> {
+    rom.write(rom_path).map_err(|error| PipelineError::Rom {
+        path: rom_path.to_path_buf(),
+        error,
+    })?;
+    // The whole model holds them now.
+    if let Err(e) = squeal_reduce::brake::forget_kept(kept) {
+        log(&format!("warning: cannot remove {}: {e}", kept.display()));
+    }
+    Ok(())
+}
+
+/// [`reduced_model`] without its write: a model just reduced comes with the folder of kept
+/// parts, to be passed to [`store`] (which [`build`] runs beside the interface reduction);
+/// `None` when the model was read from its file.
+pub fn reduced_model_unwritten(
+    scene: &Scene,
+    out: &Path,
+    log: Log,
+) -> Result<(ReducedModel, PathBuf, Option<PathBuf>)> {
     let rom_path = rom_path(scene, out);
     let parts = crate::parts::load_parts(scene, log)?;
     let inputs = crate::parts::brake_inputs(scene, &parts)?;
@@ -187,7 +216,7 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
                 ));
                 // This run's model, though an earlier run wrote the file.
                 squeal_io::folder::record_reused(&rom_path);
-                return Ok((rom, rom_path));
+                return Ok((rom, rom_path, None));
             }
             // A header that matches over arrays that do not read: rebuilt, not an error the
             // user must clear by deleting the file.
@@ -243,15 +272,7 @@ pub fn reduced_model(scene: &Scene, out: &Path, log: Log) -> Result<(ReducedMode
         rom.size(),
         t.elapsed().as_secs_f64()
     ));
-    rom.write(&rom_path).map_err(|error| PipelineError::Rom {
-        path: rom_path.clone(),
-        error,
-    })?;
-    // The whole model holds them now.
-    if let Err(e) = squeal_reduce::brake::forget_kept(&kept) {
-        log(&format!("warning: cannot remove {}: {e}", kept.display()));
-    }
-    Ok((rom, rom_path))
+    Ok((rom, rom_path, Some(kept)))
 }
 
 /// The disc's rotation of the scene (`[rotation]`, or the older `[disc]`) as the brake takes
@@ -369,11 +390,37 @@ pub fn sweep_options(scene: &Scene, rom: &ReducedModel) -> SweepOptions {
 
 /// The brake of a scene on a reduced model.
 pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<Model> {
-    let params = brake_params(scene)?;
-    let (brake, layout, pairs) = assemble(&rom, &params).map_err(|e| at_scene_key(scene, e))?;
+    model_or_rom(scene, rom, rom_path).map_err(|b| b.0)
+}
+
+/// [`model_on`], giving the reduced model back with the error (so that a model just reduced
+/// is still written when the scene's brake cannot be formed on it).
+fn model_or_rom(
+    scene: &Scene,
+    rom: ReducedModel,
+    rom_path: PathBuf,
+) -> std::result::Result<Model, Box<(PipelineError, ReducedModel)>> {
+    let formed = (|| -> Result<_> {
+        let params = brake_params(scene)?;
+        let (brake, layout, pairs) = assemble(&rom, &params).map_err(|e| at_scene_key(scene, e))?;
+        Ok((
+            params,
+            brake,
+            layout,
+            pairs,
+            damping_spec(scene)?,
+            scene.pad_meshes()?,
+            disc_speed(scene)?,
+            scene.units()?,
+        ))
+    })();
+    let (params, brake, layout, pairs, damping, pad_meshes, disc, units) = match formed {
+        Ok(f) => f,
+        Err(e) => return Err(Box::new((e, rom))),
+    };
     Ok(Model {
         sweep: sweep_options(scene, &rom),
-        damping: damping_spec(scene)?,
+        damping,
         damping_from: damping_from(scene),
         rom,
         rom_path,
@@ -382,9 +429,9 @@ pub fn model_on(scene: &Scene, rom: ReducedModel, rom_path: PathBuf) -> Result<M
         pairs,
         params,
         disc_mesh: scene.disc_mesh(),
-        pad_meshes: scene.pad_meshes()?,
-        disc: disc_speed(scene)?,
-        units: scene.units()?,
+        pad_meshes,
+        disc,
+        units,
         interface: None,
         normal_forms: Default::default(),
     })
@@ -414,11 +461,66 @@ pub fn at_damping_key(scene: &Scene, e: PipelineError) -> PipelineError {
 }
 
 /// The reduced model (cached) and the brake of a scene.
+///
+/// A model just reduced is written to its `.rom` on a thread of its own while the interface
+/// reduction runs (the fine ventilated brake's 7.3 GB took 15 s of the run on the critical
+/// path: docs/benchmarks.md); the write is joined before the model is returned, so a run
+/// reports success only with its `.rom` complete, and a failed write fails the run as
+/// before (the file is written atomically: never a partial one).
 pub fn build(scene: &Scene, out: &Path, log: Log) -> Result<Model> {
-    let (rom, rom_path) = reduced_model(scene, out, log)?;
+    let (rom, rom_path, unwritten) = reduced_model_unwritten(scene, out, log)?;
+    let Some(kept) = unwritten else {
+        return crate::interface::apply(
+            scene,
+            model_before_interface(scene, rom, rom_path, log)?,
+            log,
+        );
+    };
+    // A model just reduced is stored whatever the scene's brake makes of it (as before: the
+    // next run takes it up).
+    let stored_with = |e: PipelineError, rom: &ReducedModel, path: &Path| -> PipelineError {
+        match store(rom, path, &kept, log) {
+            Ok(()) => e,
+            Err(w) => w,
+        }
+    };
+    if let Err(e) = scene.interface_reduction() {
+        return Err(stored_with(e.into(), &rom, &rom_path));
+    }
+    let mut model = match model_or_rom(scene, rom, rom_path) {
+        Ok(m) => m,
+        Err(b) => {
+            let (e, rom) = *b;
+            let path = self::rom_path(scene, out);
+            return Err(stored_with(e, &rom, &path));
+        }
+    };
+    if let Err(e) = crate::dampers::apply(scene, &mut model, log) {
+        return Err(stored_with(e, &model.rom, &model.rom_path));
+    }
+    let (reduced, written) = std::thread::scope(|s| {
+        let writer = s.spawn(|| store(&model.rom, &model.rom_path, &kept, log));
+        let reduced = crate::interface::apply_to(scene, &model, log);
+        let written = writer
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (reduced, written)
+    });
+    written?;
+    Ok(reduced?.unwrap_or(model))
+}
+
+/// The model of a reduced model read from its file, before the interface reduction: the
+/// brake formed and the scene's dampers on it.
+fn model_before_interface(
+    scene: &Scene,
+    rom: ReducedModel,
+    rom_path: PathBuf,
+    log: Log,
+) -> Result<Model> {
     let mut model = model_on(scene, rom, rom_path)?;
     crate::dampers::apply(scene, &mut model, log)?;
-    crate::interface::apply(scene, model, log)
+    Ok(model)
 }
 
 /// The default output folder of a scene: `out/` and the scene's path relative to the working
