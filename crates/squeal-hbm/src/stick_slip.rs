@@ -132,7 +132,7 @@ use crate::lm::{self, LeastSquaresProblem, LmOptions};
 mod projection;
 
 pub use projection::ContactState;
-use projection::{Projected, Transition, project_samples};
+use projection::{Projected, Transition, clamp_samples, project_samples};
 
 /// The normal load `N` that bounds a contact's friction force (`|φ| ≤ μ N`).
 #[derive(Clone, Debug, PartialEq)]
@@ -324,6 +324,7 @@ pub struct StickSlipBalance<L, F> {
     basis: ScalarBasis,
     rest: Vec<f64>,
     states: Vec<Vec<ContactState>>,
+    clamp: bool,
 }
 
 impl<L: DynamicStiffness, F: NonlinearForce> StickSlipBalance<L, F> {
@@ -360,7 +361,15 @@ impl<L: DynamicStiffness, F: NonlinearForce> StickSlipBalance<L, F> {
             states: vec![Vec::new(); contacts.len()],
             hb,
             contacts,
+            clamp: false,
         })
+    }
+
+    /// Project the contacts with one friction coefficient (`static_ratio` 1) by the plain
+    /// clamp onto Coulomb's cone instead of the relay (module docs, "One coefficient: the
+    /// clamp"); contacts with `μ_s > μ` keep the relay. Off by default.
+    pub fn set_clamp(&mut self, on: bool) {
+        self.clamp = on;
     }
 
     /// The layout of `U~`.
@@ -473,7 +482,11 @@ impl<L: DynamicStiffness, F: NonlinearForce> StickSlipBalance<L, F> {
         }
         let mut b = vec![0.0; nt];
         self.basis.synthesize(&bc, &mut b);
-        let p = project_samples(&a, &b, &load, c.mu, c.static_ratio);
+        let p = if self.clamp && c.static_ratio == 1.0 {
+            clamp_samples(&a, &load, c.mu)
+        } else {
+            project_samples(&a, &b, &load, c.mu, c.static_ratio)
+        };
         (a, p, load)
     }
 

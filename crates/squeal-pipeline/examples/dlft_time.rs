@@ -15,6 +15,13 @@
 //! the DLFT cycle (`start = dlft`) or from the regularized cycle (`start = reg`), to its steady
 //! cycle and a record of `record_cycles` periods. When the integration is steady its cycle
 //! also starts a DLFT solve. Everything is printed; nothing is written.
+//!
+//! `starts` = `walk`: instead, DLFT at the first ratio from its CHBM cycle, then continued in μ
+//! through the other ratios (`squeal_chbm::stick_dlft_walk`), each from the last two converged
+//! cycles; one line per ratio (no time integration). With `DLFT_CONTINUITY` set in the
+//! environment it first prints the DLFT balance's residual at the first cycle's coefficients at
+//! μ (1 + dμ) for dμ = 0, 1e-5, 1e-4 (before any iteration and after 5): whether the balance is
+//! continuous in μ.
 
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::bifurcation::cycle_of;
@@ -99,6 +106,9 @@ fn main() -> Res<()> {
     let (m, st) = (p.model()?, p.stability()?);
     let mu0 = p.mu0()?;
     let samples = StickOptions::default().samples_for(24);
+    if arg(5, "") == "walk" {
+        return walk(m, st, mu0, &ratios);
+    }
     for r in ratios {
         let mu = r * mu0;
         let t = Instant::now();
@@ -301,5 +311,102 @@ fn main() -> Res<()> {
             );
         }
     }
+    Ok(())
+}
+
+/// DLFT at `ratios[0]` μ0 from its CHBM cycle, then walked in μ through the other ratios.
+fn walk(
+    m: &squeal_pipeline::model::Model,
+    st: &squeal_brake::analysis::LinearStability,
+    mu0: f64,
+    ratios: &[f64],
+) -> Res<()> {
+    use squeal_chbm::stick_dlft_walk::{WalkOptions, dlft_walk};
+    let t0 = Instant::now();
+    let mu = ratios[0] * mu0;
+    let (start, mb) = squeal_pipeline::chbm::start(m, st, mu, None)?;
+    let (sol, _) = squeal_pipeline::chbm::solve_with_restarts(
+        &mb,
+        &start,
+        &ChbmOptions::default(),
+        &RESTART_AMPLITUDES,
+        &quiet,
+    )?;
+    let law = StickSlipSetting::Dlft {
+        epsilon_factor: 1.0,
+    };
+    let c = squeal_pipeline::cycle_stick::recompute(m, &st.reference, law, mu, &sol)?
+        .ok_or("the margin is not below 1")?;
+    if !c.converged {
+        return Err("DLFT did not converge at the first ratio".into());
+    }
+    let mut first = c.cycle.clone();
+    first.parameter = mu;
+    let (pair, _) = first.loudest();
+    let mb = ModalBrake::new(&m.brake, &st.reference, mu0);
+    let layout = HarmonicLayout::new(mb.nl(), first.harmonics)?;
+    let PhaseCondition::FirstSineZero { dof } =
+        PhaseCondition::strongest_dof(&layout, &first.nl_coeffs)?;
+    println!(
+        "mu/mu0 {}: DLFT f {:.5} Hz, p2p {:.4} um, residual {:.1e} ({:.1} s with the CHBM cycle)",
+        ratios[0],
+        first.frequency_hz(),
+        first.pairs[pair].peak_to_peak() * 1e6,
+        first.residual,
+        t0.elapsed().as_secs_f64()
+    );
+    let mut o = DlftOptions::default();
+    o.harmonics = Some(24);
+    if std::env::var("DLFT_CONTINUITY").is_ok() {
+        for (k, dm) in [(0usize, 0.0), (0, 1e-5), (0, 1e-4), (5, 0.0), (5, 1e-4)] {
+            let mut oo = o.clone();
+            oo.lm.max_iterations = k;
+            let d = squeal_chbm::stick_dlft::dlft_cycle(&mb, mu * (1.0 + dm), &first, dof, &oo)?;
+            println!(
+                "debug iterations {k} dmu {dm}: residual {:.2e}, converged {}, f {:.6}",
+                d.point.residual,
+                d.converged,
+                d.point.frequency_hz()
+            );
+        }
+    }
+    let mut prev = vec![first];
+    for &r in &ratios[1..] {
+        let t = Instant::now();
+        let w = dlft_walk(&mb, &prev, r * mu0, dof, &o, &WalkOptions::default())?;
+        let tried: Vec<String> = w
+            .solves
+            .iter()
+            .map(|(m, res, ok)| format!("{:.5}{}{res:.0e}", m / mu0, if *ok { ":" } else { "!" }))
+            .collect();
+        let Some(e) = &w.cycle else {
+            println!("mu/mu0 {r}: no step converged; solves {}", tried.join(" "));
+            break;
+        };
+        println!(
+            "mu/mu0 {r}: {} at {:.5} mu0, f {:.5} Hz, p2p {:.4} um, residual {:.1e}, stick {}, reversed {}, margin {:.3}, {} solves ({:.1} s): {}",
+            if w.reached { "reached" } else { "STOPPED" },
+            e.point.parameter / mu0,
+            e.point.frequency_hz(),
+            e.point.pairs[pair].peak_to_peak() * 1e6,
+            e.point.residual,
+            fractions(&e.stick_fractions),
+            fractions(&e.reversed_fractions),
+            e.margin.min,
+            w.solves.len(),
+            t.elapsed().as_secs_f64(),
+            tried.join(" ")
+        );
+        if !w.reached {
+            break;
+        }
+        let mut p = e.point.clone();
+        p.parameter = r * mu0;
+        prev.push(p);
+        if prev.len() > 2 {
+            prev.remove(0);
+        }
+    }
+    println!("total {:.1} s", t0.elapsed().as_secs_f64());
     Ok(())
 }

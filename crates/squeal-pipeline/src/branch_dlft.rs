@@ -1,9 +1,10 @@
 //! `squeal branch` with `[contact] stick_slip = "dlft"` (issue 24, item 4): every cycle the
 //! branch recomputes because its sliding margin is below 1 ([`crate::branch_stick`]) is also
 //! solved with exact Coulomb stick–slip (the dynamic Lagrangian frequency–time method,
-//! [`squeal_chbm::stick_dlft::dlft_cycle`], 24 harmonics), at its μ, from the permanent-sliding
-//! cycle, and when that stops short from the regularized cycles walked down in `v_reg`
-//! ([`squeal_chbm::stick_dlft_starts`]). The summary prints one line per cycle: frequency and loudest closure with their
+//! [`squeal_chbm::stick_dlft::dlft_cycle`], 24 harmonics), at its μ, in order of μ: the first
+//! from the permanent-sliding cycle, each next one continued in μ from the last two converged
+//! ([`squeal_chbm::stick_dlft_walk`]), and when that stops short from the permanent-sliding
+//! and the regularized cycle ([`squeal_chbm::stick_dlft_starts`]). The summary prints one line per cycle: frequency and loudest closure with their
 //! changes against permanent sliding, how long the pairs stick, and whether the solve met its
 //! tolerance, with the starts tried when it did not (docs/stick_slip.md).
 
@@ -12,7 +13,10 @@ use crate::model::Model;
 use squeal_brake::analysis::LinearStability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::stick_dlft::{DlftCycle, DlftOptions};
+use squeal_chbm::branch::BranchPoint;
 use squeal_chbm::stick_dlft_starts::dlft_from_starts;
+use squeal_chbm::stick_dlft_walk::{WalkOptions, dlft_walk};
+use std::time::Instant;
 use squeal_scene::StickSlipSetting;
 use std::fmt::Write as _;
 
@@ -37,6 +41,10 @@ pub struct DlftRow {
     /// When the cycle stopped short: why, and the starts tried
     /// ([`squeal_chbm::stick_dlft_starts::StartedDlft::reason`]); empty when converged.
     pub reason: String,
+    /// DLFT solves spent on it (walk steps and starts).
+    pub solves: usize,
+    /// Wall time spent on it (s).
+    pub seconds: f64,
 }
 
 /// The DLFT cycles at the points of `a` the sticking branch recomputes (`None`: the scene does
@@ -55,35 +63,67 @@ pub fn recompute(
     let mut o = DlftOptions::default();
     o.harmonics = Some(HARMONICS);
     o.epsilon_factor = epsilon_factor;
-    Some(
-        s.cycles
-            .iter()
-            .map(|c| {
-                let d = dlft_from_starts(
-                    &mb,
-                    c.mu,
-                    &a.branch.points[c.point],
-                    a.branch.phase_dof,
-                    &o,
-                    &DLFT_STARTS,
-                );
-                let reason = d.as_ref().map_or(String::new(), |d| d.reason());
-                DlftRow {
-                    point: c.point,
-                    mu: c.mu,
-                    cycle: d.map(|d| d.cycle).map_err(|e| e.to_string()),
-                    reason,
-                }
-            })
-            .collect(),
-    )
+    // The last two converged cycles, each carrying its μ: the walk's starts.
+    let mut done: Vec<BranchPoint> = Vec::new();
+    let mut rows = Vec::new();
+    for c in &s.cycles {
+        let t = Instant::now();
+        let (cycle, reason, solves) = match one_cycle(&mb, c.mu, a, c.point, &o, &done) {
+            Ok((d, reason, solves)) => (Ok(d), reason, solves),
+            Err(e) => (Err(e.to_string()), String::new(), 0),
+        };
+        if let Ok(d) = &cycle
+            && d.converged
+        {
+            done.push(d.point.clone());
+            if done.len() > 2 {
+                done.remove(0);
+            }
+        }
+        rows.push(DlftRow {
+            point: c.point,
+            mu: c.mu,
+            cycle,
+            reason,
+            solves,
+            seconds: t.elapsed().as_secs_f64(),
+        });
+    }
+    Some(rows)
+}
+
+/// The DLFT cycle at `mu` (the branch's point `point`): continued in μ from the converged
+/// cycles `done` when there are any ([`dlft_walk`]), else (or when the walk stops short) from
+/// the permanent-sliding cycle and the regularized start ([`dlft_from_starts`]). With the
+/// reason when it stopped short and the number of DLFT solves.
+fn one_cycle(
+    mb: &ModalBrake,
+    mu: f64,
+    a: &BranchAnalysis,
+    point: usize,
+    o: &DlftOptions,
+    done: &[BranchPoint],
+) -> Result<(DlftCycle, String, usize), squeal_chbm::stick_branch::StickError> {
+    let phase = a.branch.phase_dof;
+    let mut solves = 0;
+    if !done.is_empty() {
+        let w = dlft_walk(mb, done, mu, phase, o, &WalkOptions::default())?;
+        solves += w.solves.len();
+        if let (true, Some(d)) = (w.reached, w.cycle) {
+            return Ok((d, String::new(), solves));
+        }
+    }
+    let d = dlft_from_starts(mb, mu, &a.branch.points[point], phase, o, &DLFT_STARTS)?;
+    solves += d.tried.len();
+    let reason = d.reason();
+    Ok((d.cycle, reason, solves))
 }
 
 /// The summary's lines on the DLFT cycles.
 pub fn text(a: &BranchAnalysis, rows: &[DlftRow]) -> String {
     let mu0 = a.mu0();
     let mut out = format!(
-        "  the same cycles with exact Coulomb stick-slip (dynamic Lagrangian frequency-time method, Nacivet et al. 2003; {HARMONICS} harmonics, from the permanent-sliding cycle, then if needed from the regularized cycles at v_reg = V/20 down to V/320):\n"
+        "  the same cycles with exact Coulomb stick-slip (dynamic Lagrangian frequency-time method, Nacivet et al. 2003; {HARMONICS} harmonics, projection onto the friction cone as a clamp; the first cycle from the permanent-sliding one, each next continued in mu from the last converged ones, else from the permanent-sliding and the V/20 regularized cycle; no stability computed for these cycles):\n"
     );
     for r in rows {
         let p = &a.branch.points[r.point];
@@ -100,7 +140,7 @@ pub fn text(a: &BranchAnalysis, rows: &[DlftRow]) -> String {
                 let most = d.stick_fractions.iter().copied().fold(0.0, f64::max);
                 writeln!(
                     out,
-                    "    point {} ({:.5} mu0): {:.4} Hz ({:+.2e}), pair {} {:.3} um ({:+.2} %), margin {:.3}, pairs stick up to {:.1} % of the period{}",
+                    "    point {} ({:.5} mu0): {:.4} Hz ({:+.2e}), pair {} {:.3} um ({:+.2} %), margin {:.3}, pairs stick up to {:.1} % of the period, residual {:.1e}, {} solves, {:.1} s{}",
                     r.point,
                     r.mu / mu0,
                     q.frequency_hz(),
@@ -110,6 +150,9 @@ pub fn text(a: &BranchAnalysis, rows: &[DlftRow]) -> String {
                     100.0 * (q.pairs[pair].peak_to_peak() / p2p - 1.0),
                     d.margin.min,
                     100.0 * most,
+                    q.residual,
+                    r.solves,
+                    r.seconds,
                     if d.converged {
                         String::new()
                     } else {

@@ -44,6 +44,33 @@ pub(super) struct Projected {
     pub(super) transitions: Vec<Transition>,
 }
 
+/// (S3) as the plain projection onto Coulomb's cone at every sample, `φ_j = clamp(a_j, -μ N_j,
+/// μ N_j)`, without memory (module docs of [`super`], "One coefficient: the clamp"): a
+/// piecewise linear, continuous function of `(a, N)`; the derivative taken on the sample's own
+/// piece (1 in `a` where stuck, `sign a μ N'` where sliding) is an element of its
+/// B-subdifferential, and there are no transitions to blend.
+pub(super) fn clamp_samples(a: &[f64], load: &[(f64, f64)], mu: f64) -> Projected {
+    let n = a.len();
+    let mut p = Projected {
+        state: vec![ContactState::Stick; n],
+        force: vec![0.0; n],
+        stick_weight: vec![0.0; n],
+        slip_slope: vec![0.0; n],
+        transitions: Vec::new(),
+    };
+    for j in 0..n {
+        if a[j].abs() <= mu * load[j].0 {
+            p.force[j] = a[j];
+            p.stick_weight[j] = 1.0;
+        } else {
+            p.state[j] = ContactState::Slip;
+            p.force[j] = a[j].signum() * mu * load[j].0;
+            p.slip_slope[j] = a[j].signum() * mu * load[j].1;
+        }
+    }
+    p
+}
+
 /// (S3) with the memory rule and the breakaway blending of the module docs. `a` is the
 /// multiplier prediction (S2), `b` the breakaway indicator (module docs, Breakaway), `load[j]`
 /// is `(N, N')` at sample `j`.
