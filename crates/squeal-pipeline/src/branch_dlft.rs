@@ -12,13 +12,13 @@ use crate::branch::BranchAnalysis;
 use crate::model::Model;
 use squeal_brake::analysis::LinearStability;
 use squeal_brake::modal_brake::ModalBrake;
-use squeal_chbm::stick_dlft::{DlftCycle, DlftOptions};
 use squeal_chbm::branch::BranchPoint;
+use squeal_chbm::stick_dlft::{DlftCycle, DlftOptions};
 use squeal_chbm::stick_dlft_starts::dlft_from_starts;
 use squeal_chbm::stick_dlft_walk::{WalkOptions, dlft_walk};
-use std::time::Instant;
 use squeal_scene::StickSlipSetting;
 use std::fmt::Write as _;
+use std::time::Instant;
 
 /// The regularized starts `squeal branch` and `squeal chbm` try after the permanent-sliding
 /// cycle, as fractions of the slowest pair's disc speed: the branch's own V/20 only. Walking

@@ -101,7 +101,11 @@ fn dlft_continued_past_1_05_mu0_matches_the_time_integration() {
         // The pairs DLFT finds stuck are the ones the integration holds near zero slip.
         for (k, &s) in d.stick_fractions.iter().enumerate() {
             if s > 0.03 {
-                assert!(rec.stuck[k] > 0.5 * s, "pair {k}: {} against {s}", rec.stuck[k]);
+                assert!(
+                    rec.stuck[k] > 0.5 * s,
+                    "pair {k}: {} against {s}",
+                    rec.stuck[k]
+                );
             }
         }
         prev.push(d.point.clone());
