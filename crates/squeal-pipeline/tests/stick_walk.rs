@@ -63,8 +63,7 @@ fn dlft_continued_past_1_05_mu0_matches_the_time_integration() {
         );
         // Reached and converged (the solve's own rule: 1e-9 of the largest static pair force).
         assert!(w.reached && d.converged && d.point.residual <= 1e-9);
-        // The relay's cycle, where it converged: TOL_RELAY (the two projections differ at the
-        // samples of the transitions only).
+        // The relay's cycle, where it converged from the integrated cycles: TOL_RELAY.
         assert!(
             (d.point.frequency_hz() / f_relay - 1.0).abs() < TOL_RELAY,
             "{} Hz against {f_relay}",
@@ -115,5 +114,8 @@ fn dlft_continued_past_1_05_mu0_matches_the_time_integration() {
     }
 }
 
-/// The relay's and the clamp's converged cycles: to be measured.
-const TOL_RELAY: f64 = 1e-5;
+/// The clamp's cycle against the relay's, in frequency: measured 3.3e-5 (1.0540 mu0) and
+/// 4.3e-5 (1.0649 mu0). The two discrete balances differ at the samples of the transitions
+/// (24 harmonics across a stick phase); the integrated orbits' limit in v_reg lies within 1e-5
+/// of the clamp's (docs/stick_slip.md), and stick-slip itself moves the cycle by 1e-3.
+const TOL_RELAY: f64 = 6e-5;
