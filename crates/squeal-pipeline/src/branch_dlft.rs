@@ -107,13 +107,7 @@ fn one_cycle(
     let phase = a.branch.phase_dof;
     let mut solves = 0;
     if !done.is_empty() {
-        // With two converged cycles the secant predicts the next across the whole gap (the
-        // branch's points are 1-2 % of mu apart): the largest step first, halved if it stalls.
-        let mut walk = WalkOptions::default();
-        if done.len() == 2 {
-            walk.first_step = walk.max_step;
-        }
-        let w = dlft_walk(mb, done, mu, phase, o, &walk)?;
+        let w = dlft_walk(mb, done, mu, phase, o, &WalkOptions::default())?;
         solves += w.solves.len();
         if let (true, Some(d)) = (w.reached, w.cycle) {
             return Ok((d, String::new(), solves));
