@@ -93,10 +93,13 @@ fn regularized_cycles_approach_the_dlft_ones_at_3_kmh() {
         let t = std::time::Instant::now();
         let d = dlft_cycle(&mb, c.mu, slide, phase, &o).unwrap();
         // The branch stage's DLFT cycle is this one: the first from the same start (same
-        // bits), the second continued in mu from the first; both converged to 1e-9 of the
-        // largest pair force, so 1e-9 in frequency.
+        // bits), the second continued in mu from the first (residual 3.2e-10 against 1.6e-12
+        // from the sliding start): 1e-6 in frequency, below the 24 -> 36 harmonics change
+        // (7e-7 at 1.0364 mu0) and far below the regularization errors judged here (1e-5 up).
         let r = row.cycle.as_ref().unwrap();
-        assert!((r.point.omega / d.point.omega - 1.0).abs() < 1e-9);
+        let df = r.point.omega / d.point.omega - 1.0;
+        eprintln!("branch stage's DLFT cycle minus this one: {df:+.2e} in f");
+        assert!(df.abs() < 1e-6, "{df:e}");
         eprintln!(
             "mu/mu0 {:.4}: DLFT f {:.5} Hz p2p {:.4} um, stick {:?}, reversed {:?}, margin {:.4}, residual {:.1e} ({:.1} s)",
             c.mu / a.mu0(),
