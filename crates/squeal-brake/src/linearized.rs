@@ -587,9 +587,9 @@ impl LinearizedBrake {
 
     /// Factors `T(λ)` for solves with it and with its adjoint: with a diagonal `D`, the
     /// bordered system of the modal diagonal and the rank-`r` coupling ([`Bordered`], `m + r`
-    /// square with the 4 modes nearest λ) while it is smaller than `T`; `T` itself, formed and
-    /// LU-factored, once `m + r` reaches the size `n` (a brake with more contact pairs than
-    /// dofs: an interface-reduced nodal brake). Measured on the ventilated brake's coarse disc
+    /// square with the 4 modes nearest λ) while `r` is below the size `n`; `T` itself, formed
+    /// and LU-factored, once `r` reaches `n` (a brake with at least as many contact pairs as
+    /// dofs: an interface-reduced nodal brake; smaller brakes keep their bits). Measured on the ventilated brake's coarse disc
     /// with 3.75 mm pads (527 dofs, 3058 pairs): two 3062-square textbook complex LUs per
     /// factor made the Hopf point's polish and sensitivities take 966.7 s of the run's
     /// 27.5 minutes (perf: `SmallLu::new` 41 %, `Bordered::new` 2 %). With a full `D`,
@@ -597,7 +597,7 @@ impl LinearizedBrake {
     pub fn factor(&self, c: &Coupling, l: c64) -> Factor {
         let n = self.size();
         match self.damping.diagonal() {
-            Some(d) if c.rank + NEAR.min(n) < n => Factor::Bordered(Bordered::new(self, c, d, l)),
+            Some(d) if c.rank < n => Factor::Bordered(Bordered::new(self, c, d, l)),
             Some(d) => Factor::Dense(DenseFactor::low_rank(self, c, d, l)),
             None => Factor::Dense(DenseFactor::new(self, c, l)),
         }
