@@ -19,7 +19,7 @@
 
 use crate::contact::{Kinematics, Law, Response};
 use crate::error::BrakeError;
-use faer::{Mat, MatMut};
+use faer::Mat;
 
 /// A sparse vector over the brake's dofs: `(dof, value)`.
 pub type SparseVec = Vec<(usize, f64)>;
@@ -97,21 +97,10 @@ impl ContactPair {
 
     /// Calls `entry(row, col, ∂F/∂x, ∂F/∂x')` for every term of the pair's Jacobians (module
     /// [`crate::contact`]); a `(row, col)` may come more than once: the terms add up.
-    pub fn jacobian_terms(&self, r: &Response, entry: impl FnMut(usize, usize, f64, f64)) {
-        self.jacobian_terms_in(r, 0..usize::MAX, entry);
-    }
-
-    /// [`Self::jacobian_terms`] for the columns in `cols` only, in the same order: the terms
-    /// of any one entry come in the order the whole call gives them.
-    pub fn jacobian_terms_in(
-        &self,
-        r: &Response,
-        cols: std::ops::Range<usize>,
-        mut entry: impl FnMut(usize, usize, f64, f64),
-    ) {
+    pub fn jacobian_terms(&self, r: &Response, mut entry: impl FnMut(usize, usize, f64, f64)) {
         let [n_d, n_r, n_v] = r.normal_derivatives;
         let [t_d, t_r, t_v] = r.tangential_derivatives;
-        for &(c, gc) in self.normal.iter().filter(|t| cols.contains(&t.0)) {
+        for &(c, gc) in &self.normal {
             for &(row, gr) in &self.normal {
                 entry(row, c, n_d * gr * gc, n_r * gr * gc);
             }
@@ -120,7 +109,7 @@ impl ContactPair {
             }
         }
         if n_v != 0.0 || t_v != 0.0 {
-            for &(c, hc) in self.tangent.iter().filter(|t| cols.contains(&t.0)) {
+            for &(c, hc) in &self.tangent {
                 for &(row, gr) in &self.normal {
                     entry(row, c, 0.0, n_v * gr * hc);
                 }
@@ -160,12 +149,6 @@ pub fn add_contact_forces(
 /// depends on the velocities there. With `closed_start`, an open pair gets the derivatives of
 /// its element just after closing (`δ = 0⁺`), to start Newton's method with the contact
 /// closed.
-///
-/// Each entry is the sum of its pairs' terms in the order of the pairs, from `+0`. Where the
-/// terms are many (an interface-reduced brake: every pair's `g_p`, `h_p` dense over its
-/// hundreds of dofs, 1136 pairs on the fine ventilated brake) the columns are filled in
-/// blocks of [`JACOBIAN_COLUMNS`] on rayon's threads, each block taking every pair's terms in
-/// its columns in the same order: the same sums, so the same bits for any thread count.
 pub fn contact_jacobians(
     pairs: &[ContactPair],
     n: usize,
@@ -174,65 +157,27 @@ pub fn contact_jacobians(
     mu: f64,
     closed_start: bool,
 ) -> (Mat<f64>, Option<Mat<f64>>) {
-    use rayon::prelude::*;
-    let responses: Vec<Response> = pairs
-        .iter()
-        .map(|p| {
-            let mut kin = p.kinematics(x, v);
-            if closed_start && kin.penetration <= 0.0 {
-                // Derivatives just after closing; the force itself is not used here.
-                kin.penetration = f64::MIN_POSITIVE;
-            }
-            p.law.response(mu, &kin)
-        })
-        .collect();
     let mut kx = Mat::zeros(n, n);
-    // Zero columns take the terms of the pairs without velocity terms as `+0` (adding `±0`
-    // leaves them `+0`), as if the matrix were made at the first pair with them.
-    let mut kv = responses
-        .iter()
-        .any(Response::has_velocity_terms)
-        .then(|| Mat::zeros(n, n));
-    let fill = |c0: usize, mut kx: MatMut<'_, f64>, mut kv: Option<MatMut<'_, f64>>| {
-        let cols = c0..c0 + kx.ncols();
-        for (p, r) in pairs.iter().zip(&responses) {
-            p.jacobian_terms_in(r, cols.clone(), |row, col, dx, dv| {
-                kx[(row, col - c0)] += dx;
-                if let Some(c) = kv.as_mut() {
-                    c[(row, col - c0)] += dv;
-                }
-            });
+    let mut kv: Option<Mat<f64>> = None;
+    for p in pairs {
+        let mut kin = p.kinematics(x, v);
+        if closed_start && kin.penetration <= 0.0 {
+            // Derivatives just after closing; the force itself is not used here.
+            kin.penetration = f64::MIN_POSITIVE;
         }
-    };
-    let terms: usize = pairs
-        .iter()
-        .map(|p| (p.normal.len() + p.tangent.len()).pow(2))
-        .sum();
-    let chunk = JACOBIAN_COLUMNS;
-    match (terms >= PARALLEL_TERMS, kv.as_mut()) {
-        (false, kv) => fill(0, kx.as_mut(), kv.map(|m| m.as_mut())),
-        (true, None) => kx
-            .as_mut()
-            .par_col_chunks_mut(chunk)
-            .enumerate()
-            .for_each(|(i, a)| fill(i * chunk, a, None)),
-        (true, Some(kv)) => kx
-            .as_mut()
-            .par_col_chunks_mut(chunk)
-            .zip(kv.as_mut().par_col_chunks_mut(chunk))
-            .enumerate()
-            .for_each(|(i, (a, b))| fill(i * chunk, a, Some(b))),
+        let r = p.law.response(mu, &kin);
+        if r.has_velocity_terms() && kv.is_none() {
+            kv = Some(Mat::zeros(n, n));
+        }
+        p.jacobian_terms(&r, |row, col, dx, dv| {
+            kx[(row, col)] += dx;
+            if let Some(c) = kv.as_mut() {
+                c[(row, col)] += dv;
+            }
+        });
     }
     (kx, kv)
 }
-
-/// Columns per block of [`contact_jacobians`] on rayon's threads.
-pub const JACOBIAN_COLUMNS: usize = 32;
-
-/// Terms (about `Σ_p (|g_p| + |h_p|)²`) from which [`contact_jacobians`] fills its columns
-/// on rayon's threads: below, a task costs more than it saves (the bundled brakes' few dofs
-/// per pair).
-const PARALLEL_TERMS: usize = 1 << 18;
 
 /// The reduced brake: linear part, contact pairs, piston load.
 #[derive(Clone, Debug)]
@@ -478,74 +423,6 @@ pub(crate) mod tests {
         }
         // Friction couples the x rows to the normal motion only: eq (19)'s pattern.
         assert!(j[(0, 1)] > 0.0 && j[(2, 1)] < 0.0 && j[(1, 0)] == 0.0 && j[(0, 0)] == 0.0);
-    }
-
-    /// The Jacobians of many pairs with dense `g`, `h` (an interface-reduced brake's), some
-    /// with velocity terms, one dof twice in a pair: filled in column blocks on 1, 2 and 3
-    /// threads, every entry has the bits of the textbook loop (the pairs' terms added in
-    /// order into one matrix, the velocity matrix made at the first pair that needs it).
-    #[test]
-    fn column_blocks_give_the_textbook_sums_on_any_thread_count() {
-        use crate::contact::VelocityDependent;
-        let (n, count) = (150, 80);
-        let mut next = crate::partial_modes::uniform(7);
-        let pairs: Vec<ContactPair> = (0..count)
-            .map(|p| {
-                let mut normal: SparseVec = (0..n).map(|i| (i, next())).collect();
-                normal.push((p % n, next()));
-                let tangent: SparseVec = (0..n).map(|i| (i, next())).collect();
-                let law: Law = if p % 3 == 1 {
-                    Arc::new(VelocityDependent {
-                        k_linear: 2e6,
-                        k_cubic: 3e15,
-                        static_ratio: 1.3,
-                        decay_speed: 0.5,
-                    })
-                } else {
-                    Arc::new(PenaltyCoulomb {
-                        k_linear: 2e6,
-                        k_cubic: 3e15,
-                    })
-                };
-                ContactPair {
-                    normal,
-                    tangent,
-                    initial_gap: -1e-6 * (1.0 + next()),
-                    surface_speed: Some(3.0),
-                    law,
-                    ..one_pair(0.0)
-                }
-            })
-            .collect();
-        let x: Vec<f64> = (0..n).map(|_| 1e-7 * next()).collect();
-        let v: Vec<f64> = (0..n).map(|_| 1e-3 * next()).collect();
-        let mut kx = Mat::<f64>::zeros(n, n);
-        let mut kv: Option<Mat<f64>> = None;
-        for p in &pairs {
-            let r = p.response(&x, Some(&v), 0.4);
-            if r.has_velocity_terms() && kv.is_none() {
-                kv = Some(Mat::zeros(n, n));
-            }
-            p.jacobian_terms(&r, |row, col, dx, dv| {
-                kx[(row, col)] += dx;
-                if let Some(c) = kv.as_mut() {
-                    c[(row, col)] += dv;
-                }
-            });
-        }
-        let kv = kv.expect("the velocity-dependent pairs have velocity terms");
-        let bits = |a: &Mat<f64>| -> Vec<u64> {
-            (0..n * n).map(|k| a[(k % n, k / n)].to_bits()).collect()
-        };
-        for threads in [1, 2, 3] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            let (jx, jv) = pool.install(|| contact_jacobians(&pairs, n, &x, Some(&v), 0.4, false));
-            assert!(bits(&jx) == bits(&kx), "dF/dx, {threads} threads");
-            assert!(bits(&jv.unwrap()) == bits(&kv), "dF/dv, {threads} threads");
-        }
     }
 
     #[test]

@@ -1,9 +1,7 @@
 //! The stages that run on rayon's threads give the same bits on one thread and on two: the
 //! `"system"` interface basis of a brake large enough for faer's dense kernels to split their
 //! work (its static equilibrium by dense Newton steps, the Sturm count, the Cholesky factor,
-//! the block Lanczos and the residual solves: `squeal_brake::dense_par`) with pairs dense
-//! enough for the contact Jacobians to be filled in column blocks
-//! (`squeal_brake::model::contact_jacobians`).
+//! the block Lanczos and the residual solves: `squeal_brake::dense_par`) with dense pairs.
 
 use faer::Mat;
 use squeal_brake::contact::PenaltyCoulomb;

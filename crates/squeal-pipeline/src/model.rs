@@ -484,9 +484,6 @@ pub fn build(scene: &Scene, out: &Path, log: Log) -> Result<Model> {
             Err(w) => w,
         }
     };
-    if let Err(e) = scene.interface_reduction() {
-        return Err(stored_with(e.into(), &rom, &rom_path));
-    }
     let mut model = match model_or_rom(scene, rom, rom_path) {
         Ok(m) => m,
         Err(b) => {

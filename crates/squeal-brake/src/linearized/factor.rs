@@ -55,11 +55,7 @@ impl DenseFactor {
             }
             s
         });
-        let th = t.adjoint().to_owned();
-        Self {
-            lu: t.partial_piv_lu(),
-            lu_adjoint: th.partial_piv_lu(),
-        }
+        Self::of(t)
     }
 
     /// `T(λ) = Δ(λ) + U(λ) Vᵀ` with a diagonal `D` (`Δ_jj = λ² + λ d_j + ω_j²`, `U(λ) = U₀ +
@@ -90,6 +86,11 @@ impl DenseFactor {
         for j in 0..n {
             t[(j, j)] += l * l + l * d[j] + lr.omega[j] * lr.omega[j];
         }
+        Self::of(t)
+    }
+
+    /// `t` and its adjoint LU-factored.
+    fn of(t: Mat<c64>) -> Self {
         let th = t.adjoint().to_owned();
         Self {
             lu: t.partial_piv_lu(),
