@@ -13,15 +13,22 @@
 //! the entries outside stay `+0`. The terms of one column are independent of every other
 //! column's, so splitting the columns among threads does not change a bit.
 //!
-//! The dense form does `2 P |S|²` such updates (`4 P |S|²` with the rate terms), without the
-//! loop's scattered indexing; it is used when that is less than twice the loop's
-//! `Σ_p (|g_p| + |h_p|) |g_p|`, and only when every derivative is finite (a zero times an
-//! infinite derivative would be `NaN` where the loop writes nothing).
+//! The dense form does `2 P |S|²` such updates (`4 P |S|²` with the rate terms), contiguous
+//! and vectorized, where the loop does `Σ_p (|g_p| + |h_p|) |g_p|` of them, each through a
+//! bounds-checked index into the matrix; it is used when its count is at most
+//! [`LOOP_COST`] times the loop's (a pair of the interface-reduced ventilated brake is dense
+//! over the disc's and its own pad's coordinates, about half of `S`: twice the loop's count,
+//! which the loop took 6 % of a medium brake's run for), and only when every derivative is
+//! finite (a zero times an infinite derivative would be `NaN` where the loop writes nothing).
 
 use crate::contact::Response;
 use crate::model::ContactPair;
 use faer::Mat;
 use rayon::prelude::*;
+
+/// How many dense updates cost as much as one of the loop's scattered ones, about: the
+/// dense form is taken up to this many times the loop's count.
+const LOOP_COST: f64 = 8.0;
 
 /// Columns per block handed to a thread.
 const COLUMNS: usize = 16;
@@ -65,7 +72,7 @@ impl Spread {
         }
         let m = dofs.len() as f64;
         let terms = if velocity { 4.0 } else { 2.0 };
-        if pairs.is_empty() || terms * pairs.len() as f64 * m * m > 2.0 * looped {
+        if pairs.is_empty() || terms * pairs.len() as f64 * m * m > LOOP_COST * looped {
             return None;
         }
         dofs.sort_unstable();
@@ -198,7 +205,7 @@ mod tests {
         (*state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
 
-    /// `count` pairs dense over dofs `1..n` (dof 0 in no pair), with responses: some pairs
+    /// `count` pairs dense over dofs of `1..n` (dof 0 in no pair), with responses: some pairs
     /// open (zero derivatives), the rate and slip terms on some when `velocity`.
     fn dense_pairs(n: usize, count: usize, velocity: bool) -> (Vec<ContactPair>, Vec<Response>) {
         let mut s = 7u64;
@@ -206,10 +213,16 @@ mod tests {
         let mut responses = Vec::new();
         for p in 0..count {
             let mut pair = one_pair(0.0);
-            // Both vectors over every dof but 0, in a shuffled order (the loop's order of
-            // terms within a pair does not matter for an entry: each dof once).
-            pair.normal = (1..n).rev().map(|d| (d, next(&mut s))).collect();
-            pair.tangent = (1..n).map(|d| (d, next(&mut s))).collect();
+            // Both vectors over a "disc" (dofs 1..n/3) and one of two "pads" (the pairs in
+            // turn), as on an interface-reduced two-pad brake, in a shuffled order (the loop's
+            // order of terms within a pair does not matter for an entry: each dof once).
+            let own = |d: &usize| *d < n / 3 || (*d < 2 * n / 3) == (p % 2 == 0);
+            pair.normal = (1..n)
+                .rev()
+                .filter(own)
+                .map(|d| (d, next(&mut s)))
+                .collect();
+            pair.tangent = (1..n).filter(own).map(|d| (d, next(&mut s))).collect();
             pairs.push(pair);
             let open = p % 5 == 3;
             let k = |s: &mut u64| if open { 0.0 } else { 1e7 * next(s) };
