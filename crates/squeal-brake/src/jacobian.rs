@@ -17,9 +17,10 @@
 //! and vectorized, where the loop does `Σ_p (|g_p| + |h_p|) |g_p|` of them, each through a
 //! bounds-checked index into the matrix; it is used when its count is at most
 //! [`LOOP_COST`] times the loop's (a pair of the interface-reduced ventilated brake is dense
-//! over the disc's and its own pad's coordinates, about half of `S`: twice the loop's count,
-//! which the loop took 6 % of a medium brake's run for), and only when every derivative is
-//! finite (a zero times an infinite derivative would be `NaN` where the loop writes nothing).
+//! over the disc's and its own pad's coordinates, not the other pad's: at a bar of 2 the medium
+//! brake stayed in the loop, 6 % of its run's samples, docs/benchmarks.md), and only when
+//! every derivative is finite (a zero times an infinite derivative would be `NaN` where the
+//! loop writes nothing).
 
 use crate::contact::Response;
 use crate::model::ContactPair;
