@@ -171,8 +171,7 @@ fn assemble(pairs: &[Pair<'_>], dofs: &[usize], n: usize) -> Mat<f64> {
                 for pair in pairs {
                     for (row, col) in &pair.terms {
                         let row = &row[r0..r1];
-                        for j in 0..width {
-                            let c = col[first + j];
+                        for (j, &c) in col[first..first + width].iter().enumerate() {
                             let o = &mut out[j * m + r0..j * m + r1];
                             for (o, a) in o.iter_mut().zip(row) {
                                 *o += a * c;
