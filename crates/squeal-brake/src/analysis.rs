@@ -6,7 +6,10 @@ use crate::error::BrakeError;
 use crate::modal::Damping;
 use crate::model::Brake;
 use crate::spectrum::Reference;
-use crate::sweep::{Sweep, SweepOptions, SweepProgress, reference, sweep_to_hopf_with, sweep_with};
+use crate::sweep::{
+    Sweep, SweepOptions, SweepProgress, reference, reference_redamped, sweep_after,
+    sweep_to_hopf_with, sweep_with,
+};
 
 /// Which two modes of the frictionless basis get eq (13)'s `D1`, `D2`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,6 +46,9 @@ pub struct LinearStability {
     pub reference: Reference,
     /// The friction sweep with that damping, and its Hopf point.
     pub sweep: Sweep,
+    /// The sweep that named the pair ([`PairChoice::Auto`] with pair damping), before this
+    /// one: its points and wall time (for benchmarks; the numbers do not depend on it).
+    pub naming: Option<(usize, std::time::Duration)>,
 }
 
 /// The frictionless mode a tracked branch starts from: the largest modal coordinate of its
@@ -85,9 +91,11 @@ pub fn stability_with(
         extra: vec![],
     };
     let has_pair_damping = spec.pair_ratios.iter().any(|r| *r != 0.0);
+    let mut naming = None;
     let (pair, preliminary) = match spec.pair {
         PairChoice::Modes(a, b) => (Some((a, b)), None),
         PairChoice::Auto => {
+            let start = std::time::Instant::now();
             let r = reference(brake, &global, &newton)?;
             // With pair damping this sweep only names the pair: it may stop at the Hopf point.
             let s = if has_pair_damping {
@@ -95,6 +103,7 @@ pub fn stability_with(
             } else {
                 sweep_with(brake, &r, mus, opts, progress)?
             };
+            naming = Some((s.points.len(), start.elapsed()));
             let pair = s.hopf.as_ref().and_then(|h| {
                 h.partner.map(|p| {
                     (
@@ -116,6 +125,7 @@ pub fn stability_with(
                 pair: None,
                 reference,
                 sweep,
+                naming: None,
             }),
             _ => Err(BrakeError::NoPairFound),
         };
@@ -133,9 +143,15 @@ pub fn stability_with(
             pair,
             reference: r.clone(),
             sweep: s.clone(),
+            naming: None,
         });
     }
-    let mut reference = reference(brake, &damping, &newton)?;
+    // The preliminary sweep's frictionless equilibrium and modes serve again (they do not
+    // depend on the damping): the same bits as solving them anew.
+    let mut reference = match &preliminary {
+        Some((r, _)) => reference_redamped(brake, r, &damping)?,
+        None => reference(brake, &damping, &newton)?,
+    };
     if let Some((m1, m2)) = pair {
         let n = reference.basis.omega.len();
         if m1 >= n || m2 >= n {
@@ -163,11 +179,17 @@ pub fn stability_with(
             })
             .unwrap_or_default(),
     };
-    let sweep = sweep_with(brake, &reference, mus, opts, progress)?;
+    // The preliminary sweep's static equilibria at the same friction values serve again
+    // (crate::sweep::sweep_after: the same bits).
+    let sweep = match &preliminary {
+        Some((_, before)) => sweep_after(brake, &reference, mus, opts, progress, before)?,
+        None => sweep_with(brake, &reference, mus, opts, progress)?,
+    };
     Ok(LinearStability {
         damping,
         pair,
         reference,
         sweep,
+        naming,
     })
 }

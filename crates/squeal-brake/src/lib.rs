@@ -46,6 +46,7 @@ pub mod hessenberg_rqi;
 pub mod hopf;
 pub mod interface_reduced;
 pub mod interface_system;
+mod jacobian;
 pub mod linearized;
 pub mod modal;
 pub mod modal_brake;

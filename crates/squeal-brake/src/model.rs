@@ -157,15 +157,35 @@ pub fn contact_jacobians(
     mu: f64,
     closed_start: bool,
 ) -> (Mat<f64>, Option<Mat<f64>>) {
+    let responses: Vec<Response> = pairs
+        .iter()
+        .map(|p| {
+            let mut kin = p.kinematics(x, v);
+            if closed_start && kin.penetration <= 0.0 {
+                // Derivatives just after closing; the force itself is not used here.
+                kin.penetration = f64::MIN_POSITIVE;
+            }
+            p.law.response(mu, &kin)
+        })
+        .collect();
+    // Pairs dense over their dofs (an interface-reduced brake): the same sums by column
+    // blocks (crate::jacobian, the same bits).
+    if let Some(k) = crate::jacobian::dense_jacobians(pairs, &responses, n) {
+        return k;
+    }
+    looped_jacobians(pairs, responses, n)
+}
+
+/// The Jacobians of [`contact_jacobians`] from the pairs' responses, pair by pair, term by
+/// term.
+pub(crate) fn looped_jacobians(
+    pairs: &[ContactPair],
+    responses: Vec<Response>,
+    n: usize,
+) -> (Mat<f64>, Option<Mat<f64>>) {
     let mut kx = Mat::zeros(n, n);
     let mut kv: Option<Mat<f64>> = None;
-    for p in pairs {
-        let mut kin = p.kinematics(x, v);
-        if closed_start && kin.penetration <= 0.0 {
-            // Derivatives just after closing; the force itself is not used here.
-            kin.penetration = f64::MIN_POSITIVE;
-        }
-        let r = p.law.response(mu, &kin);
+    for (p, r) in pairs.iter().zip(responses) {
         if r.has_velocity_terms() && kv.is_none() {
             kv = Some(Mat::zeros(n, n));
         }

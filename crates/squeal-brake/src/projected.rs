@@ -180,6 +180,9 @@ pub struct Projection {
     pub trials: Vec<Trial>,
     /// The basis, its frequencies `[Ω_m, Θ]` and damping `Qᵀ D Q`.
     basis: Basis,
+    /// The equilibria at `checked_mus`, in turn from the frictionless one (for
+    /// [`crate::sweep::sweep_after`]).
+    checked_equilibria: Vec<Equilibrium>,
 }
 
 /// A projection basis with what the projected problem needs of it.
@@ -228,6 +231,7 @@ pub(crate) fn choose(
     lr: &LinearizedBrake,
     mus: &[f64],
     opts: &SweepOptions,
+    before: Option<&Projection>,
 ) -> Result<Projection, BrakeError> {
     let omega = &lr.omega;
     let n = omega.len();
@@ -245,18 +249,36 @@ pub(crate) fn choose(
         tolerance: opts.projection.tolerance,
         trials: Vec::new(),
         basis: basis(lr, reference, n, 0, None)?,
+        checked_equilibria: Vec::new(),
     };
     if !top.is_finite() {
         return Ok(out);
     }
     let mut couplings = Vec::new();
-    let mut start: Option<Equilibrium> = None;
-    for k in check_indices(mus.len(), opts.projection.checks) {
-        let from = start.as_ref().map(|e| e.x.as_slice());
-        let eq = equilibrium(brake, reference, lr, mus[k], from, &opts.newton)?;
+    for (i, k) in check_indices(mus.len(), opts.projection.checks)
+        .into_iter()
+        .enumerate()
+    {
+        // The same friction values as `before`'s checks so far: its equilibria, the same
+        // bits (crate::sweep::sweep_after).
+        let same = before.is_some_and(|b| {
+            b.checked_equilibria.len() > i
+                && out.checked_mus[..]
+                    .iter()
+                    .chain([&mus[k]])
+                    .zip(&b.checked_mus)
+                    .all(|(a, b)| a.to_bits() == b.to_bits())
+        });
+        let eq = match before.filter(|_| same) {
+            Some(b) => b.checked_equilibria[i].clone(),
+            None => {
+                let from = out.checked_equilibria.last().map(|e| e.x.as_slice());
+                equilibrium(brake, reference, lr, mus[k], from, &opts.newton)?
+            }
+        };
         couplings.push(lr.coupling(brake, &eq));
         out.checked_mus.push(mus[k]);
-        start = Some(eq);
+        out.checked_equilibria.push(eq);
     }
     // The unprojected eigenvalues when dense solves are cheaper, computed at the first check.
     let mut exact: Option<Option<Vec<Vec<c64>>>> = None;
@@ -681,13 +703,26 @@ pub(crate) fn points(
     stop_at: Option<f64>,
     progress: SweepProgress,
     timings: &mut SweepTimings,
+    known: &[SweepPoint],
 ) -> Result<SweptPoints, BrakeError> {
+    // How many of `known`'s points are at `mus`' first friction values, in order: their
+    // equilibria are the ones found here (crate::sweep::sweep_after).
+    let same = known
+        .iter()
+        .zip(mus)
+        .take_while(|(p, mu)| p.equilibrium.mu.to_bits() == mu.to_bits())
+        .count();
     let mut points: Vec<SweepPoint> = Vec::with_capacity(mus.len());
     let mut branches: Vec<Vec<usize>> = Vec::new();
     for chunk in mus.chunks(CHUNK) {
         let t = Instant::now();
         let mut equilibria: Vec<Equilibrium> = Vec::with_capacity(chunk.len());
         for &mu in chunk {
+            let index = points.len() + equilibria.len();
+            if index < same {
+                equilibria.push(known[index].equilibrium.clone());
+                continue;
+            }
             let mut recent = points
                 .iter()
                 .map(|p| &p.equilibrium)

@@ -261,6 +261,34 @@ pub fn reference(
     let eq = static_equilibrium(brake, 0.0, None, newton)?;
     let kt0 = brake.tangent_stiffness(&eq.x, 0.0);
     let basis = modal_basis(&brake.m, &kt0)?;
+    with_damping(brake, eq, kt0, basis, damping)
+}
+
+/// The frictionless reference of `before` (its equilibrium, tangent stiffness and modal basis,
+/// which do not depend on the damping) with the damping of `damping`: what [`reference`] gives
+/// for it, without solving the equilibrium and the modes again.
+pub fn reference_redamped(
+    brake: &Brake,
+    before: &Reference,
+    damping: &Damping,
+) -> Result<Reference, BrakeError> {
+    with_damping(
+        brake,
+        before.equilibrium.clone(),
+        before.kt0.clone(),
+        before.basis.clone(),
+        damping,
+    )
+}
+
+/// The reference of the equilibrium `eq`, its tangent `kt0` and modes `basis` with `damping`.
+fn with_damping(
+    brake: &Brake,
+    eq: Equilibrium,
+    kt0: faer::Mat<f64>,
+    basis: crate::modal::ModalBasis,
+    damping: &Damping,
+) -> Result<Reference, BrakeError> {
     let mut d = damping.modal(&basis)?;
     // The dampers' physical damping, projected on the modes (crate::damping).
     if let Some(c) = &brake.c {
@@ -330,6 +358,36 @@ pub fn sweep_to_hopf_with(
     sweep_until(brake, reference, mus, opts, true, progress)
 }
 
+/// [`sweep_with`] taking the static equilibria `before` found where it would find them again:
+/// `before` is a sweep of the same brake from the same frictionless equilibrium and modes
+/// (`reference` of [`reference_redamped`] from its reference) with other damping, over
+/// friction values of which `mus` repeats a first part. The projected sweep's equilibria
+/// (those of its points and of its truncation check) are each found by Newton's method from a
+/// start made of the equilibria before it and the frictionless one, with steps that do not
+/// read the damping (dense LU steps, or the modal steps' `T(0)`, in which the damping enters
+/// multiplied by `λ = 0`): at the same friction values after the same equilibria they are the
+/// same bits, and are taken from `before` instead of solved again. The other methods and the
+/// Hopf refinement (whose friction values depend on the spectra) solve their own.
+pub(crate) fn sweep_after(
+    brake: &Brake,
+    reference: &Reference,
+    mus: &[f64],
+    opts: &SweepOptions,
+    progress: SweepProgress,
+    before: &Sweep,
+) -> Result<Sweep, BrakeError> {
+    sweep_at_depth(
+        brake,
+        reference,
+        mus,
+        opts,
+        false,
+        progress,
+        0,
+        Some(before),
+    )
+}
+
 fn sweep_until(
     brake: &Brake,
     reference: &Reference,
@@ -338,7 +396,7 @@ fn sweep_until(
     to_hopf: bool,
     progress: SweepProgress,
 ) -> Result<Sweep, BrakeError> {
-    sweep_at_depth(brake, reference, mus, opts, to_hopf, progress, 0)
+    sweep_at_depth(brake, reference, mus, opts, to_hopf, progress, 0, None)
 }
 
 /// How many times a sweep is redone with friction values inserted into the bracket of a
@@ -367,6 +425,7 @@ fn sweep_at_depth(
     to_hopf: bool,
     progress: SweepProgress,
     depth: usize,
+    before: Option<&Sweep>,
 ) -> Result<Sweep, BrakeError> {
     check_ascending(mus)?;
     brake.validate()?;
@@ -385,7 +444,10 @@ fn sweep_at_depth(
     let t = Instant::now();
     let projection = match method {
         SweepMethod::Projected => {
-            Some(crate::projected::choose(brake, reference, &lin, mus, opts)?)
+            let checked = before.and_then(|b| b.projection.as_ref());
+            Some(crate::projected::choose(
+                brake, reference, &lin, mus, opts, checked,
+            )?)
         }
         _ => None,
     };
@@ -393,7 +455,10 @@ fn sweep_at_depth(
     let t = &mut timings;
     let (points, branches, stats) = match (&projection, low_rank) {
         (Some(p), _) => {
-            crate::projected::points(brake, reference, &lin, p, mus, opts, stop, progress, t)?
+            let known = before.map_or(&[][..], |b| b.points.as_slice());
+            crate::projected::points(
+                brake, reference, &lin, p, mus, opts, stop, progress, t, known,
+            )?
         }
         (None, Some(lr)) => {
             let start = Instant::now();
@@ -489,8 +554,16 @@ fn sweep_at_depth(
             }
             Err(BrakeError::HopfNotResolved { .. }) if depth < RESWEEPS => {
                 let finer = inserted(mus, first.mu_lo, first.mu_hi);
-                let mut s =
-                    sweep_at_depth(brake, reference, &finer, opts, to_hopf, progress, depth + 1)?;
+                let mut s = sweep_at_depth(
+                    brake,
+                    reference,
+                    &finer,
+                    opts,
+                    to_hopf,
+                    progress,
+                    depth + 1,
+                    before,
+                )?;
                 s.stats.resweeps += 1;
                 return Ok(s);
             }

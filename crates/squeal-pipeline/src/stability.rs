@@ -272,6 +272,20 @@ pub fn summary_text(s: &Model, st: &Stability, seconds: f64) -> String {
             ", user band {a:.0}..{b:.0} Hz"
         ))
     );
+    let t = &sw.timings;
+    let _ = writeln!(
+        out,
+        "  sweep time: {}final sweep: projection {:.2} s, equilibria {:.2} s, spectra {:.2} s, tracking {:.2} s, Hopf refinement {:.2} s",
+        st.naming.map_or(String::new(), |(n, d)| format!(
+            "pair-naming sweep ({n} values) {:.2} s; ",
+            d.as_secs_f64()
+        )),
+        t.projection.as_secs_f64(),
+        t.equilibria.as_secs_f64(),
+        t.spectra.as_secs_f64(),
+        t.tracking.as_secs_f64(),
+        t.refinement.as_secs_f64()
+    );
     if sw.stats.resweeps > 0 {
         let _ = writeln!(
             out,
