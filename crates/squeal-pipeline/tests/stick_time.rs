@@ -29,7 +29,7 @@ fn integrated_regularized_orbits_approach_the_dlft_cycle_at_3_kmh() {
     // The regularized cycle at V/20, 24 harmonics (as `squeal chbm` recomputes it).
     let c = squeal_pipeline::cycle_stick::recompute(
         m,
-        &st.reference,
+        st,
         StickSlipSetting::Regularized,
         mu,
         &sol,
