@@ -78,7 +78,10 @@ fn main() -> Res<()> {
         &RESTART_AMPLITUDES,
         &quiet,
     )?;
-    println!("model, mu0 and CHBM cycle: {:.2} s", t.elapsed().as_secs_f64());
+    println!(
+        "model, mu0 and CHBM cycle: {:.2} s",
+        t.elapsed().as_secs_f64()
+    );
     let law = StickSlipSetting::Dlft {
         epsilon_factor: 1.0,
     };

@@ -29,13 +29,15 @@ use squeal_chbm::stick_dlft_walk::{WalkOptions, dlft_walk};
 use squeal_chbm::{ChbmOptions, Outcome, RESTART_AMPLITUDES};
 use squeal_hbm::{HarmonicLayout, PhaseCondition};
 
-/// The lower μ tried as the walk's start, as fractions below the requested μ, nearest first.
-pub const BELOW: [f64; 5] = [0.01, 0.02, 0.04, 0.08, 0.16];
+/// The lower μ tried as the walk's start, as fractions below the requested μ, nearest first:
+/// fine near μ (a CHBM solve costs about a second, a DLFT walk step several), coarser below.
+pub const BELOW: [f64; 10] = [0.005, 0.01, 0.015, 0.02, 0.03, 0.04, 0.06, 0.08, 0.12, 0.16];
 
 /// The smallest sliding margin of a lower μ's permanent-sliding cycle for which DLFT is tried
 /// from it: on the coarse bundled brake at 3 km/h DLFT converged from the sliding cycle at
-/// margins 0.983 and 0.965 and stopped short at 0.919 and below (docs/stick_slip.md).
-pub const MARGIN_TO_TRY: f64 = 0.95;
+/// margins 1.022, 0.983 and 0.965 and stopped short at 0.956 (1.0436 μ0) and below
+/// (docs/stick_slip.md).
+pub const MARGIN_TO_TRY: f64 = 0.97;
 
 /// How the single cycle was reached by a walk in μ.
 #[derive(Clone, Debug, Default)]
@@ -65,7 +67,11 @@ impl SingleWalk {
                 format!(
                     "{:.5} {ref_name} {r:.1e}{}",
                     m / mu_ref,
-                    if *ok { "" } else { " (stopped short, step halved)" }
+                    if *ok {
+                        ""
+                    } else {
+                        " (stopped short, step halved)"
+                    }
                 )
             })
             .collect();

@@ -27,19 +27,20 @@ fn the_single_cycle_walks_past_1_05_mu0_to_the_branch_cycle() {
         .expect("the margin is below 1 at 3 km/h");
     let text = squeal_pipeline::cycle_stick::text(&c);
     eprintln!("{text}({:.1} s)", t.elapsed().as_secs_f64());
-    // The direct starts stop short there (measured: relative residuals 3e-4 to 5e-1), so the
-    // cycle must come from the walk.
+    // The direct starts (40 iterations each) stop short there (measured: relative residuals
+    // 9.0e-3 from the CHBM cycle, 9.6e-3 from V/20), so the cycle must come from the walk.
+    // (At 1.0540 mu0 the CHBM start converges with the clamp.)
     let w = c.walk.as_ref().expect("continued in mu from below");
     assert!(w.reached && c.converged, "{text}");
     assert!(text.contains("continued in mu from below"), "{text}");
     // Converged by the rule every DLFT cycle is judged by: 1e-9 of the largest pair force.
     assert!(c.cycle.residual <= 1e-9, "residual {:e}", c.cycle.residual);
     // `squeal branch`'s walk at 1.0649 mu0 (the same DLFT balance continued in mu from the
-    // 1.0452 mu0 cycle through 1.0540 mu0; docs/stick_slip.md, "Continuation in mu", and
+    // 1.0452 mu0 cycle through 1.0540 mu0; docs/stick_slip.md, "Continuation in mu",
     // `tests/stick_walk.rs`): 3963.84817 Hz, 46.0683 um on pair 7 (0-based 6). Both are roots
-    // of the same balance with residuals <= 1e-9 reached from different starts; tolerance
-    // 1e-7 in frequency and 1e-5 in closure: the printed digits' rounding (1.3e-9, 1.1e-6)
-    // plus the spread of converged roots of one balance from different starts.
+    // of the same balance with residuals <= 1e-9 reached by different walks; tolerance 2e-7
+    // in frequency and 1e-5 in closure: the printed digits' rounding (1.3e-9, 1.1e-6) plus the
+    // spread of such roots (measured from a walk from 1.0223 mu0: 4.7e-8 and 9.6e-7).
     let (pair, _) = c.sliding.loudest();
     let f = c.cycle.frequency_hz();
     let p2p = c.cycle.pairs[pair].peak_to_peak() * 1e6;
@@ -50,6 +51,6 @@ fn the_single_cycle_walks_past_1_05_mu0_to_the_branch_cycle() {
         p2p / 46.0683 - 1.0
     );
     assert_eq!(pair, 6, "the loudest pair");
-    assert!((f / 3963.84817 - 1.0).abs() < 1e-7, "{f}");
+    assert!((f / 3963.84817 - 1.0).abs() < 2e-7, "{f}");
     assert!((p2p / 46.0683 - 1.0).abs() < 1e-5, "{p2p}");
 }
