@@ -117,7 +117,7 @@
 //! coefficients decay like `1/k` and aliasing decays like `1/N` only: take `N` well above
 //! `2H + 1` ([`default_stick_slip_samples`]: `16 (2H + 1)` rounded up to a power of two).
 
-use faer::reborrow::ReborrowMut;
+use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Mat, MatMut};
 
 use crate::HbmError;
@@ -246,48 +246,51 @@ pub fn default_stick_slip_samples(n_harmonics: usize) -> usize {
 }
 
 /// Cosines and sines of one scalar signal's harmonics at the samples: synthesis `D`,
-/// projection `E` and the weighted products `E diag(d) D`.
+/// projection `E` and the weighted products `E diag(d) D`, from tables of both built once.
 struct ScalarBasis {
     h: usize,
     n: usize,
-    /// `cos(k θ_j)` at `j * (H + 1) + k`.
-    cos: Vec<f64>,
-    /// `sin(k θ_j)` at `j * (H + 1) + k`.
-    sin: Vec<f64>,
+    /// `D[j, b]` (basis function `b`, layout block order 1, cos θ, sin θ, cos 2θ, ..., at
+    /// sample `j`) at `j * (2H + 1) + b`.
+    dt: Vec<f64>,
+    /// `E[b, j]` at `j * (2H + 1) + b`.
+    et: Vec<f64>,
 }
 
 impl ScalarBasis {
     fn new(h: usize, n: usize) -> Self {
-        let (mut cos, mut sin) = (vec![0.0; n * (h + 1)], vec![0.0; n * (h + 1)]);
+        let nb = 2 * h + 1;
+        let (mut dt, mut et) = (vec![0.0; n * nb], vec![0.0; n * nb]);
         for j in 0..n {
-            for k in 0..=h {
+            dt[j * nb] = 1.0;
+            for k in 1..=h {
                 // k j reduced mod n keeps the argument small (exact samples of the same grid).
                 let th = 2.0 * std::f64::consts::PI * ((k * j) % n) as f64 / n as f64;
-                (sin[j * (h + 1) + k], cos[j * (h + 1) + k]) = th.sin_cos();
+                (dt[j * nb + 2 * k], dt[j * nb + 2 * k - 1]) = th.sin_cos();
+            }
+            for b in 0..nb {
+                let s = if b == 0 { 1.0 } else { 2.0 } / n as f64;
+                et[j * nb + b] = s * dt[j * nb + b];
             }
         }
-        Self { h, n, cos, sin }
+        Self { h, n, dt, et }
     }
 
-    /// Basis function `b` (layout block order: 1, cos θ, sin θ, cos 2θ, ...) at sample `j`.
+    /// Basis function `b` at sample `j`.
     fn d(&self, j: usize, b: usize) -> f64 {
-        let k = b.div_ceil(2);
-        match b {
-            0 => 1.0,
-            b if b % 2 == 1 => self.cos[j * (self.h + 1) + k],
-            _ => self.sin[j * (self.h + 1) + k],
-        }
+        self.dt[j * (2 * self.h + 1) + b]
     }
 
     /// Projection weight `E[b, j]`.
     fn e(&self, b: usize, j: usize) -> f64 {
-        let s = if b == 0 { 1.0 } else { 2.0 } / self.n as f64;
-        s * self.d(j, b)
+        self.et[j * (2 * self.h + 1) + b]
     }
 
     fn synthesize(&self, c: &[f64], out: &mut [f64]) {
+        let nb = 2 * self.h + 1;
         for (j, o) in out.iter_mut().enumerate() {
-            *o = (0..c.len()).map(|b| c[b] * self.d(j, b)).sum();
+            let row = &self.dt[j * nb..j * nb + c.len()];
+            *o = c.iter().zip(row).map(|(c, d)| c * d).sum();
         }
     }
 
@@ -297,22 +300,27 @@ impl ScalarBasis {
         }
     }
 
-    /// `G = E diag(d) D`, `(2H+1)²`.
+    /// `G = E diag(d) D`, `(2H+1)²`: every entry summed over the samples in order (the rows
+    /// accumulated contiguously, then copied).
     fn weighted(&self, d: &[f64]) -> Mat<f64> {
         let nb = 2 * self.h + 1;
-        let mut g = Mat::zeros(nb, nb);
+        let mut g = vec![0.0; nb * nb];
         for (j, &dj) in d.iter().enumerate() {
             if dj == 0.0 {
                 continue;
             }
-            for a in 0..nb {
-                let ea = self.e(a, j) * dj;
-                for b in 0..nb {
-                    g[(a, b)] += ea * self.d(j, b);
+            let (dr, er) = (
+                &self.dt[j * nb..(j + 1) * nb],
+                &self.et[j * nb..(j + 1) * nb],
+            );
+            for (a, row) in g.chunks_exact_mut(nb).enumerate() {
+                let ea = er[a] * dj;
+                for (v, &db) in row.iter_mut().zip(dr) {
+                    *v += ea * db;
                 }
             }
         }
-        g
+        Mat::from_fn(nb, nb, |a, b| g[a * nb + b])
     }
 }
 
@@ -588,10 +596,16 @@ impl<L: DynamicStiffness, F: NonlinearForce> StickSlipBalance<L, F> {
             let mut q = Mat::<f64>::zeros(nb, len + 1);
             for &(d, hd) in &c.direction {
                 let wd = hd / norm2;
-                for b in 0..nb {
-                    for col in 0..len {
-                        q[(b, col)] -= wd * jac_u[(b * n + d, col)];
+                // Column by column (the matrices are column-major); each entry gets the same
+                // operations in the same order as row by row.
+                for col in 0..len {
+                    let src = jac_u.rb().col(col);
+                    let mut dst = q.col_mut(col);
+                    for b in 0..nb {
+                        dst[b] -= wd * src[b * n + d];
                     }
+                }
+                for b in 0..nb {
                     q[(b, len)] -= wd * jac_omega[b * n + d];
                 }
                 for k in 1..=layout.n_harmonics() {
@@ -641,10 +655,14 @@ impl<L: DynamicStiffness, F: NonlinearForce> StickSlipBalance<L, F> {
             }
         }
         for (d, hd, dphi) in adds {
-            for b in 0..nb {
-                for col in 0..len {
-                    jac_u[(b * n + d, col)] += hd * dphi[(b, col)];
+            for col in 0..len {
+                let src = dphi.col(col);
+                let mut dst = jac_u.rb_mut().col_mut(col);
+                for b in 0..nb {
+                    dst[b * n + d] += hd * src[b];
                 }
+            }
+            for b in 0..nb {
                 jac_omega[b * n + d] += hd * dphi[(b, len)];
             }
         }
@@ -726,8 +744,11 @@ impl<L: DynamicStiffness, F: NonlinearForce> LeastSquaresProblem for StickSlipPr
         let inv = 1.0 / self.force_scale;
         for i in 0..len {
             jac[(i, len)] = self.jac_omega[i] * inv;
-            for j in 0..len {
-                jac[(i, j)] *= inv;
+        }
+        // Column by column: the matrix is column-major.
+        for j in 0..len {
+            for v in jac.rb_mut().col_mut(j).iter_mut().take(len) {
+                *v *= inv;
             }
         }
         for j in 0..=len {

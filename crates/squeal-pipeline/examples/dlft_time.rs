@@ -123,7 +123,7 @@ fn main() -> Res<()> {
         let law = StickSlipSetting::Dlft {
             epsilon_factor: 1.0,
         };
-        let c = squeal_pipeline::cycle_stick::recompute(m, &st.reference, law, mu, &sol)?
+        let c = squeal_pipeline::cycle_stick::recompute(m, st, law, mu, &sol)?
             .ok_or("the margin is not below 1")?;
         let d = &c.cycle;
         let (pair, _) = d.loudest();
@@ -335,7 +335,7 @@ fn walk(
     let law = StickSlipSetting::Dlft {
         epsilon_factor: 1.0,
     };
-    let c = squeal_pipeline::cycle_stick::recompute(m, &st.reference, law, mu, &sol)?
+    let c = squeal_pipeline::cycle_stick::recompute(m, st, law, mu, &sol)?
         .ok_or("the margin is not below 1")?;
     if !c.converged {
         return Err("DLFT did not converge at the first ratio".into());

@@ -9,8 +9,11 @@
 //!   branch's AFT samples ([`squeal_chbm::stick_dlft::regularized_cycle`]);
 //! - `"dlft"`: exact Coulomb stick–slip by the dynamic Lagrangian frequency–time method
 //!   ([`squeal_chbm::stick_dlft::dlft_cycle`], docs/stick_slip.md), 24 harmonics; when the
-//!   solve from the CHBM cycle stops short, from the regularized cycles walked down in `v_reg`
-//!   ([`squeal_chbm::stick_dlft_starts`]).
+//!   solve from the CHBM cycle stops short, from the V/20 regularized cycle
+//!   ([`squeal_chbm::stick_dlft_starts`]), and when that stops short too, continued in μ from
+//!   a lower μ where DLFT converges from that μ's own CHBM cycle ([`crate::cycle_walk`], the
+//!   branch's walk); if the walk does not reach μ the recomputation fails with its report
+//!   instead of giving an approximate cycle.
 //!
 //! Both start from the CHBM cycle (permanent sliding) at fixed μ. The text says which law, the
 //! new frequency and loudest closure with their changes, the new margin and, for DLFT, how
@@ -18,8 +21,10 @@
 //! `<out>/chbm/stick_slip.json` has the same.
 
 use crate::branch_dlft::DLFT_STARTS;
+use crate::cycle_walk::{SingleWalk, walk_from_below};
 use crate::error::{Result, json_text};
 use crate::model::Model;
+use squeal_brake::analysis::LinearStability as Stability;
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::ChbmSolution;
 use squeal_chbm::branch::{BranchPoint, pair_cycles};
@@ -53,10 +58,16 @@ pub struct CycleStick {
     /// DLFT only, when it stopped short: why, and the starts tried
     /// ([`squeal_chbm::stick_dlft_starts::StartedDlft::reason`]).
     pub reason: String,
+    /// DLFT only, when the direct starts stopped short and the cycle was continued in μ from
+    /// below ([`crate::cycle_walk`]): the walk; with the direct starts' reason in `reason`.
+    pub walk: Option<SingleWalk>,
+    /// μ0 when the stability analysis found it (else the cycle's μ): the walk's μ are told as
+    /// ratios to it.
+    pub mu_ref: f64,
 }
 
 /// The CHBM solution `sol` at `mu` as a branch point of `mb`.
-fn as_point(mb: &ModalBrake, mu: f64, sol: &ChbmSolution) -> Result<BranchPoint> {
+pub(crate) fn as_point(mb: &ModalBrake, mu: f64, sol: &ChbmSolution) -> Result<BranchPoint> {
     let layout =
         HarmonicLayout::new(mb.nl(), sol.harmonics).map_err(squeal_chbm::ChbmError::from)?;
     Ok(BranchPoint {
@@ -73,10 +84,11 @@ fn as_point(mb: &ModalBrake, mu: f64, sol: &ChbmSolution) -> Result<BranchPoint>
 }
 
 /// The cycle `sol` at `mu` recomputed with `law` when its sliding margin is below 1 (`Ok(None)`:
-/// no disc speed, or the margin is at least 1).
+/// no disc speed, or the margin is at least 1; `Err`: it could not be set up, or with DLFT no
+/// start nor walk in μ reached a converged cycle, with what was tried).
 pub fn recompute(
     m: &Model,
-    reference: &squeal_brake::spectrum::Reference,
+    st: &Stability,
     law: StickSlipSetting,
     mu: f64,
     sol: &ChbmSolution,
@@ -84,7 +96,8 @@ pub fn recompute(
     if m.disc.is_none() || m.brake.pairs.iter().any(|p| p.surface_speed.is_none()) {
         return Ok(None);
     }
-    let mb = ModalBrake::new(&m.brake, reference, mu);
+    let mb = ModalBrake::new(&m.brake, &st.reference, mu);
+    let mu_ref = st.sweep.hopf.as_ref().map_or(mu, |h| h.mu0);
     let err = |e: &dyn std::fmt::Display| e.to_string();
     let speeds = surface_speeds(&mb).map_err(|e| err(&e))?;
     let sliding = as_point(&mb, mu, sol).map_err(|e| err(&e))?;
@@ -98,6 +111,7 @@ pub fn recompute(
     let mut o = DlftOptions::default();
     o.harmonics = Some(HARMONICS);
     let mut reason = String::new();
+    let mut walk = None;
     let (law_text, cycle, converged, fractions) = match law {
         StickSlipSetting::Regularized => {
             let v_min = speeds.iter().copied().fold(f64::INFINITY, f64::min);
@@ -112,10 +126,32 @@ pub fn recompute(
         }
         StickSlipSetting::Dlft { epsilon_factor } => {
             o.epsilon_factor = epsilon_factor;
+            // The direct starts get a walk step's iterations: where they converge they took
+            // 22-33 (coarse brake at 3 km/h, 1.0364 and 1.0452 mu0); one that stalls runs to
+            // the limit, and the walk from below reaches the same converged cycle.
+            o.lm.max_iterations = squeal_chbm::stick_dlft_walk::WalkOptions::default().iterations;
             let s =
                 dlft_from_starts(&mb, mu, &sliding, dof, &o, &DLFT_STARTS).map_err(|e| err(&e))?;
             reason = s.reason();
-            let d = s.cycle;
+            let mut d = s.cycle;
+            if !d.converged {
+                let (c, w) = walk_from_below(m, st, &mb, mu, &o)?;
+                let Some(c) = c else {
+                    let ref_name = if mu_ref == mu { "mu" } else { "mu0" };
+                    return Err(format!(
+                        "exact stick-slip (DLFT) reached no converged cycle at {:.5} {ref_name}: from the CHBM cycle and the V/20 start it stopped short ({reason}); {}; {}",
+                        mu / mu_ref,
+                        w.text(mu_ref, ref_name),
+                        if w.from_mu.is_some() {
+                            "the walk did not reach this mu"
+                        } else {
+                            "no lower mu converged to start a walk from"
+                        }
+                    ));
+                };
+                d = c;
+                walk = Some(w);
+            }
             let text = format!(
                 "exact Coulomb stick-slip (dynamic Lagrangian frequency-time method, Nacivet et al. 2003), {HARMONICS} harmonics, {} samples, penalty {epsilon_factor} x default",
                 d.samples
@@ -133,6 +169,8 @@ pub fn recompute(
         stick_fractions: fractions,
         converged,
         reason,
+        walk,
+        mu_ref,
     }))
 }
 
@@ -157,6 +195,14 @@ pub fn text(c: &CycleStick) -> String {
     if let Some(f) = &c.stick_fractions {
         let most = f.iter().copied().fold(0.0, f64::max);
         s += &format!(", pairs stick up to {:.1} % of the period", 100.0 * most);
+    }
+    if let Some(w) = &c.walk {
+        let ref_name = if c.mu_ref == q.parameter { "mu" } else { "mu0" };
+        s += &format!(
+            "\n  DLFT stopped short from the CHBM cycle and the V/20 start at this mu ({}), so the cycle was continued in mu from below, as squeal branch does: {}",
+            c.reason,
+            w.text(c.mu_ref, ref_name)
+        );
     }
     if !c.converged {
         s += &format!(
@@ -189,6 +235,8 @@ pub fn write(dir: &Path, c: &CycleStick) -> Result<()> {
         "harmonics": c.cycle.harmonics,
         "layout": "nl_coefficients[b * n_nl + dof] on the nonlinear dofs, blocks b = [0c, 1c, 1s, 2c, 2s, ...] (eq 25)",
         "nl_coefficients": c.cycle.nl_coeffs,
+        "walk": c.walk.as_ref().map(|w| w.json()),
+        "direct_starts": if c.walk.is_some() { Some(&c.reason) } else { None },
     });
     squeal_io::atomic_write_bytes(
         &dir.join("stick_slip.json"),
@@ -209,14 +257,26 @@ pub fn stage(
     let law = p.scene.stick_slip_law()?;
     let m = p.model()?;
     let st = p.stability()?;
-    match recompute(m, &st.reference, law, mu, sol) {
+    match recompute(m, st, law, mu, sol) {
         Ok(None) => Ok(None),
         Ok(Some(c)) => {
             write(dir, &c)?;
             Ok(Some(text(&c)))
         }
-        Err(e) => Ok(Some(format!(
-            "stick-slip: the sliding margin is below 1 but the cycle could not be recomputed with the stick-slip law: {e}\n"
-        ))),
+        Err(e) => {
+            // No stale cycle of an earlier run next to this one's: the file says what failed.
+            let name = match law {
+                StickSlipSetting::Regularized => "regularized",
+                StickSlipSetting::Dlft { .. } => "dlft",
+            };
+            let json = serde_json::json!({ "law": name, "error": e });
+            squeal_io::atomic_write_bytes(
+                &dir.join("stick_slip.json"),
+                json_text(&json, "the stick-slip failure")?.as_bytes(),
+            )?;
+            Ok(Some(format!(
+                "stick-slip: the sliding margin is below 1 but the cycle could not be recomputed with the stick-slip law: {e}\n"
+            )))
+        }
     }
 }

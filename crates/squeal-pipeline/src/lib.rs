@@ -37,6 +37,7 @@ pub mod chbm;
 pub mod compare;
 pub mod cycle;
 pub mod cycle_stick;
+pub mod cycle_walk;
 pub mod dampers;
 mod error;
 pub mod fe_export;

@@ -174,7 +174,7 @@ fn the_single_cycle_below_margin_1_is_recomputed_with_the_scenes_law() {
         ),
         (squeal_scene::StickSlipSetting::Regularized, 3991.28207),
     ] {
-        let c = squeal_pipeline::cycle_stick::recompute(m, &st.reference, law, mu, &sol)
+        let c = squeal_pipeline::cycle_stick::recompute(m, st, law, mu, &sol)
             .unwrap()
             .expect("the margin is below 1 at 3 km/h");
         let text = squeal_pipeline::cycle_stick::text(&c);

@@ -27,15 +27,9 @@ fn integrated_regularized_orbits_approach_the_dlft_cycle_at_3_kmh() {
     let mu = 1.0452 * p.mu0().unwrap();
     let sol = common::chbm_cycle(&p, mu);
     // The regularized cycle at V/20, 24 harmonics (as `squeal chbm` recomputes it).
-    let c = squeal_pipeline::cycle_stick::recompute(
-        m,
-        &st.reference,
-        StickSlipSetting::Regularized,
-        mu,
-        &sol,
-    )
-    .unwrap()
-    .expect("the margin is below 1 at 3 km/h");
+    let c = squeal_pipeline::cycle_stick::recompute(m, st, StickSlipSetting::Regularized, mu, &sol)
+        .unwrap()
+        .expect("the margin is below 1 at 3 km/h");
     assert!(c.converged);
     let mb = ModalBrake::new(&m.brake, &st.reference, mu);
     let v_min = surface_speeds(&mb)

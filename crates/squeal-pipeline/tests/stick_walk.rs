@@ -29,7 +29,7 @@ fn dlft_continued_past_1_05_mu0_matches_the_time_integration() {
     let law = StickSlipSetting::Dlft {
         epsilon_factor: 1.0,
     };
-    let c = squeal_pipeline::cycle_stick::recompute(m, &st.reference, law, mu, &sol)
+    let c = squeal_pipeline::cycle_stick::recompute(m, st, law, mu, &sol)
         .unwrap()
         .expect("the margin is below 1 at 3 km/h");
     assert!(c.converged, "DLFT at 1.0452 mu0 from the CHBM cycle");
