@@ -422,6 +422,11 @@ pub fn stick_slip_monodromy(
             "the model's sizes must match the cycle, with at least 16 steps per period",
         ));
     }
+    if model.contacts.iter().any(|c| c.static_ratio != 1.0) {
+        return Err(FloquetError::BadOption(
+            "the stick-slip Floquet analysis needs one friction coefficient per contact (static = kinetic): the saltation at the exit from stick is the identity only then",
+        ));
+    }
     let (sw, start) = switches(model, cycle)?;
     let ph = Phases::new(model);
     let mut counts = SwitchCounts::default();
