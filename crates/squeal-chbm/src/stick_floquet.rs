@@ -123,6 +123,9 @@ impl LinearPart {
     }
 }
 
+/// `∂G/∂x_n` of the smooth force as a function of `x_n`.
+pub type SmoothJacobian<'a> = Box<dyn Fn(&[f64]) -> Mat<f64> + Sync + 'a>;
+
 /// The non-smooth system (module docs): mass the identity.
 pub struct StickSlipModel<'a> {
     /// `K` (`n × n`).
@@ -132,7 +135,7 @@ pub struct StickSlipModel<'a> {
     /// `L` (`n_nl × n`): `x_n = L q`.
     pub lift: Mat<f64>,
     /// `∂G/∂x_n` (`n_nl × n_nl`) of the smooth (frictionless) force at `x_n`.
-    pub smooth_jacobian: Box<dyn Fn(&[f64]) -> Mat<f64> + Sync + 'a>,
+    pub smooth_jacobian: SmoothJacobian<'a>,
     /// The friction pairs (one coefficient each).
     pub contacts: Vec<FrictionContact>,
 }
@@ -229,7 +232,14 @@ impl StickSlipFloquet {
 
 fn mm(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
     let mut c = Mat::zeros(a.nrows(), b.ncols());
-    matmul(c.as_mut(), Accum::Replace, a.as_ref(), b.as_ref(), 1.0, Par::Seq);
+    matmul(
+        c.as_mut(),
+        Accum::Replace,
+        a.as_ref(),
+        b.as_ref(),
+        1.0,
+        Par::Seq,
+    );
     c
 }
 
@@ -275,11 +285,7 @@ fn monodromy_with(
     let mut taken = 0;
     *counts = SwitchCounts::default();
     for k in 1..=steps {
-        let grid = if k == steps {
-            period
-        } else {
-            k as f64 * h0
-        };
+        let grid = if k == steps { period } else { k as f64 * h0 };
         loop {
             let target = match sw.get(next) {
                 Some(s) if s.t < grid => s.t,
@@ -293,7 +299,9 @@ fn monodromy_with(
                 let w1 = ph.coupling(cycle, &phase, &stuck, t + c);
                 let k1 = ph.solve(&s, c, &w1, &ph.apply(&w1, &y));
                 let w2 = ph.coupling(cycle, &phase, &stuck, t + h);
-                let y2 = Mat::from_fn(2 * n, 2 * n, |i, j| y[(i, j)] + (1.0 - gam) * h * k1[(i, j)]);
+                let y2 = Mat::from_fn(2 * n, 2 * n, |i, j| {
+                    y[(i, j)] + (1.0 - gam) * h * k1[(i, j)]
+                });
                 let k2 = ph.solve(&s, c, &w2, &ph.apply(&w2, &y2));
                 for j in 0..2 * n {
                     for i in 0..2 * n {
@@ -448,11 +456,7 @@ pub fn stick_slip_floquet(
     let (ext, fine, steps, switches) = stick_slip_monodromy(model, cycle, opts)?;
     let period = 2.0 * PI / cycle.omega;
     let exponents = exponents_of(&ext, period)?;
-    let lead = |e: &[Exponent]| {
-        e.iter()
-            .find(|x| !x.trivial)
-            .map_or(0.0, |x| x.sigma.re)
-    };
+    let lead = |e: &[Exponent]| e.iter().find(|x| !x.trivial).map_or(0.0, |x| x.sigma.re);
     let fine_e = exponents_of(&fine, period)?;
     let integration_error = (lead(&exponents) - lead(&fine_e)).abs();
     let trivial_error = exponents

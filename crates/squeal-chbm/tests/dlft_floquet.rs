@@ -279,7 +279,11 @@ fn saltation_monodromy_matches_finite_differences_of_the_event_driven_flow() {
             f.switches,
             f.time.as_secs_f64()
         );
-        let d: Vec<f64> = mult.iter().zip(&ref_mult).map(|(a, b)| (a - b).norm()).collect();
+        let d: Vec<f64> = mult
+            .iter()
+            .zip(&ref_mult)
+            .map(|(a, b)| (a - b).norm())
+            .collect();
         println!("  |Δρ| (modulus order) = {d:.2e?}");
         // Measured (H = 20, 30): trivial 1.30e-3, 1.15e-3; leading 2.4e-4, 3.9e-4; third
         // (-0.546) 1.1e-2, 7.9e-3; the stick's zero multiplier 1.2e-8 (the finite differences'

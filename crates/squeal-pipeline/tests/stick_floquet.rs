@@ -107,7 +107,11 @@ fn dlft_cycles_at_3_kmh_are_stable_with_the_regularized_limit_exponents() {
             limit(*ratio)
         );
         if *ratio < 1.05 {
-            assert!(f.trivial_error < 0.5, "no stick: trivial error {:e}", f.trivial_error);
+            assert!(
+                f.trivial_error < 0.5,
+                "no stick: trivial error {:e}",
+                f.trivial_error
+            );
         }
     }
 }

@@ -1,8 +1,8 @@
 //! The switches of a DLFT cycle's pairs, located between the balance's time samples (module
 //! docs of [`super`], "Phases from the DLFT cycle").
 
-use super::StickSlipModel;
 use super::StickSlipCycle;
+use super::StickSlipModel;
 use crate::floquet::FloquetError;
 use squeal_hbm::{ContactState, FrictionContact, NormalLoad};
 use std::f64::consts::PI;
@@ -42,7 +42,10 @@ pub(super) fn pair_signals(
         } => {
             let d = dot(normal, x) + offset;
             let l = if d > 0.0 {
-                (k_linear * d + k_cubic * d.powi(3), k_linear + 3.0 * k_cubic * d * d)
+                (
+                    k_linear * d + k_cubic * d.powi(3),
+                    k_linear + 3.0 * k_cubic * d * d,
+                )
             } else {
                 (0.0, 0.0)
             };
@@ -151,4 +154,3 @@ pub(super) fn switches(
     let start = phases.iter().map(|ph| ph[0]).collect();
     Ok((out, start))
 }
-
