@@ -284,7 +284,10 @@ fn saltation_monodromy_matches_finite_differences_of_the_event_driven_flow() {
             .zip(&ref_mult)
             .map(|(a, b)| (a - b).norm())
             .collect();
-        println!("  |Δρ| (modulus order) = {:.2e} {:.2e} {:.2e} {:.2e}", d[0], d[1], d[2], d[3]);
+        println!(
+            "  |Δρ| (modulus order) = {:.2e} {:.2e} {:.2e} {:.2e}",
+            d[0], d[1], d[2], d[3]
+        );
         // Measured (H = 20, 30): trivial 1.30e-3, 1.15e-3; leading 2.4e-4, 3.9e-4; third
         // (-0.546) 1.1e-2, 7.9e-3; the stick's zero multiplier 1.2e-8 (the finite differences'
         // own size, step 1e-7). The tolerances are the DLFT cycle's truncation: its switch
