@@ -52,6 +52,7 @@ pub mod stick_check;
 pub mod stick_dlft;
 pub mod stick_dlft_starts;
 pub mod stick_dlft_walk;
+pub mod stick_floquet;
 pub mod stick_orbit;
 pub mod system;
 pub mod timeint;

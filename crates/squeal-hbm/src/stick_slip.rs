@@ -332,6 +332,7 @@ pub struct StickSlipBalance<L, F> {
     basis: ScalarBasis,
     rest: Vec<f64>,
     states: Vec<Vec<ContactState>>,
+    predicted: Vec<Vec<f64>>,
     clamp: bool,
 }
 
@@ -367,6 +368,7 @@ impl<L: DynamicStiffness, F: NonlinearForce> StickSlipBalance<L, F> {
             basis: ScalarBasis::new(h, n),
             rest: vec![0.0; layout.len()],
             states: vec![Vec::new(); contacts.len()],
+            predicted: vec![Vec::new(); contacts.len()],
             hb,
             contacts,
             clamp: false,
@@ -403,6 +405,14 @@ impl<L: DynamicStiffness, F: NonlinearForce> StickSlipBalance<L, F> {
     /// Stick/slip state of every sample of every contact at the last evaluation.
     pub fn states(&self) -> &[Vec<ContactState>] {
         &self.states
+    }
+
+    /// The predicted multiplier `a(t_j)` (S2) of every sample of every contact at the last
+    /// evaluation of the residual (its projection gives the friction force; `|a| - μ N` changes
+    /// sign where the contact sticks or breaks away, used to locate the transitions between
+    /// samples, e.g. by a Floquet analysis of the cycle).
+    pub fn predicted_multipliers(&self) -> &[Vec<f64>] {
+        &self.predicted
     }
 
     /// Fraction of the period each contact sticks, at the last evaluation.
@@ -559,7 +569,7 @@ impl<L: DynamicStiffness, F: NonlinearForce> StickSlipBalance<L, F> {
         let mut phi = vec![0.0; layout.n_blocks()];
         for ci in 0..self.contacts.len() {
             let c = &self.contacts[ci];
-            let (_, p, _) = self.predict(c, u, omega);
+            let (a, p, _) = self.predict(c, u, omega);
             self.basis.project(&p.force, &mut phi);
             for &(d, hd) in &c.direction {
                 for (b, f) in phi.iter().enumerate() {
@@ -567,6 +577,7 @@ impl<L: DynamicStiffness, F: NonlinearForce> StickSlipBalance<L, F> {
                 }
             }
             self.states[ci] = p.state;
+            self.predicted[ci] = a;
         }
         if r.iter().any(|v| !v.is_finite()) {
             return Err(HbmError::NonFiniteForce { sample: 0 });

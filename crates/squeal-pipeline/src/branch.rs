@@ -708,6 +708,9 @@ pub fn write(dir: &Path, a: &BranchAnalysis) -> Result<()> {
     if let Some(s) = a.stick.as_ref().and_then(|r| r.sticking.as_ref()) {
         crate::branch_stick::table(s).write_csv(&dir.join("branch_stick.csv"))?;
     }
+    if let Some(rows) = a.stick.as_ref().and_then(|r| r.dlft.as_ref()) {
+        crate::branch_dlft::table(rows).write_csv(&dir.join("branch_dlft.csv"))?;
+    }
     squeal_io::atomic_write_bytes(
         &dir.join("branch.json"),
         json_text(&json(a), "the branch")?.as_bytes(),

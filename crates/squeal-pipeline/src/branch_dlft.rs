@@ -6,7 +6,11 @@
 //! ([`squeal_chbm::stick_dlft_walk`]), and when that stops short from the permanent-sliding
 //! and the regularized cycle ([`squeal_chbm::stick_dlft_starts`]). The summary prints one line per cycle: frequency and loudest closure with their
 //! changes against permanent sliding, how long the pairs stick, and whether the solve met its
-//! tolerance, with the starts tried when it did not (docs/stick_slip.md).
+//! tolerance, with the starts tried when it did not (docs/stick_slip.md). Every converged cycle
+//! also gets its stability under the exact law: the Floquet multipliers of the non-smooth
+//! system's monodromy with saltation matrices at its stick/slip switches
+//! ([`squeal_chbm::stick_floquet`]), printed and written to `branch_dlft.csv` and
+//! `branch.json` (`stick_slip.dlft`).
 
 use crate::branch::BranchAnalysis;
 use crate::model::Model;
@@ -16,6 +20,8 @@ use squeal_chbm::branch::BranchPoint;
 use squeal_chbm::stick_dlft::{DlftCycle, DlftOptions};
 use squeal_chbm::stick_dlft_starts::dlft_from_starts;
 use squeal_chbm::stick_dlft_walk::{WalkOptions, dlft_walk};
+use squeal_chbm::stick_floquet::StickSlipFloquet;
+use squeal_chbm::stick_floquet::brake::dlft_floquet;
 use squeal_scene::StickSlipSetting;
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -45,6 +51,10 @@ pub struct DlftRow {
     pub solves: usize,
     /// Wall time spent on it (s).
     pub seconds: f64,
+    /// Its stability under the exact law (converged cycles only), or why it is not known.
+    pub stability: Result<StickSlipFloquet, String>,
+    /// Wall time of the stability (s).
+    pub stability_seconds: f64,
 }
 
 /// The DLFT cycles at the points of `a` the sticking branch recomputes (`None`: the scene does
@@ -80,13 +90,24 @@ pub fn recompute(
                 done.remove(0);
             }
         }
+        let seconds = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let stability = match &cycle {
+            Ok(d) if d.converged => {
+                dlft_floquet(&mb, d, &Default::default()).map_err(|e| e.to_string())
+            }
+            Ok(_) => Err("the cycle did not converge".to_string()),
+            Err(_) => Err("no cycle".to_string()),
+        };
         rows.push(DlftRow {
             point: c.point,
             mu: c.mu,
             cycle,
             reason,
             solves,
-            seconds: t.elapsed().as_secs_f64(),
+            seconds,
+            stability,
+            stability_seconds: t.elapsed().as_secs_f64(),
         });
     }
     Some(rows)
@@ -123,7 +144,7 @@ fn one_cycle(
 pub fn text(a: &BranchAnalysis, rows: &[DlftRow]) -> String {
     let mu0 = a.mu0();
     let mut out = format!(
-        "  the same cycles with exact Coulomb stick-slip (dynamic Lagrangian frequency-time method, Nacivet et al. 2003; {HARMONICS} harmonics, projection onto the friction cone as a clamp; the first cycle from the permanent-sliding one, each next continued in mu from the last converged ones, else from the permanent-sliding and the V/20 regularized cycle; no stability computed for these cycles):\n"
+        "  the same cycles with exact Coulomb stick-slip (dynamic Lagrangian frequency-time method, Nacivet et al. 2003; {HARMONICS} harmonics, projection onto the friction cone as a clamp; the first cycle from the permanent-sliding one, each next continued in mu from the last converged ones, else from the permanent-sliding and the V/20 regularized cycle; stability of the exact law by the monodromy of the non-smooth variational equations with saltation matrices at the stick/slip switches, Leine & Nijmeijer 2004):\n"
     );
     for r in rows {
         let p = &a.branch.points[r.point];
@@ -140,7 +161,7 @@ pub fn text(a: &BranchAnalysis, rows: &[DlftRow]) -> String {
                 let most = d.stick_fractions.iter().copied().fold(0.0, f64::max);
                 writeln!(
                     out,
-                    "    point {} ({:.5} mu0): {:.4} Hz ({:+.2e}), pair {} {:.3} um ({:+.2} %), margin {:.3}, pairs stick up to {:.1} % of the period, residual {:.1e}, {} solves, {:.1} s{}",
+                    "    point {} ({:.5} mu0): {:.4} Hz ({:+.2e}), pair {} {:.3} um ({:+.2} %), margin {:.3}, pairs stick up to {:.1} % of the period, residual {:.1e}, {} solves, {:.1} s{}; {}",
                     r.point,
                     r.mu / mu0,
                     q.frequency_hz(),
@@ -160,10 +181,106 @@ pub fn text(a: &BranchAnalysis, rows: &[DlftRow]) -> String {
                             "; NOT converged (relative residual {:.1e}; {}): approximate",
                             q.residual, r.reason
                         )
-                    }
+                    },
+                    stability_text(r)
                 )
             }
         };
     }
     out
+}
+
+/// The stability's words on one row.
+fn stability_text(r: &DlftRow) -> String {
+    match &r.stability {
+        Err(e) => format!("stability not computed ({e})"),
+        Ok(f) => match f.leading() {
+            Some(e) => format!(
+                "{} (leading Floquet exponent {:+.2} {:+.1}i 1/s, |multiplier| {:.5}, error {:.1e} 1/s; {:.1} s)",
+                f.stability(),
+                e.sigma.re,
+                e.sigma.im.abs(),
+                e.multiplier.norm(),
+                f.error(),
+                r.stability_seconds
+            ),
+            None => format!("{}", f.stability()),
+        },
+    }
+}
+
+/// `(verdict, Re σ, |Im σ|, |ρ|, error)` of a row's stability.
+fn stability_fields(r: &DlftRow) -> Option<(String, f64, f64, f64, f64)> {
+    let f = r.stability.as_ref().ok()?;
+    let e = f.leading()?;
+    Some((
+        f.stability().to_string(),
+        e.sigma.re,
+        e.sigma.im.abs(),
+        e.multiplier.norm(),
+        f.error(),
+    ))
+}
+
+/// `branch.json`'s `stick_slip.dlft`: one object per DLFT cycle.
+pub fn json(rows: &[DlftRow]) -> serde_json::Value {
+    serde_json::Value::Array(
+        rows.iter()
+            .map(|r| {
+                let c = r.cycle.as_ref().ok();
+                let s = stability_fields(r);
+                serde_json::json!({
+                    "point": r.point,
+                    "mu": r.mu,
+                    "frequency_hz": c.map(|d| d.point.frequency_hz()),
+                    "residual": c.map(|d| d.point.residual),
+                    "converged": c.map(|d| d.converged),
+                    "largest_stick_fraction": c.map(|d| d.stick_fractions.iter().copied().fold(0.0, f64::max)),
+                    "stability": s.as_ref().map(|v| v.0.clone()),
+                    "leading_exponent_re_per_s": s.as_ref().map(|v| v.1),
+                    "leading_exponent_im_rad_per_s": s.as_ref().map(|v| v.2),
+                    "largest_multiplier": s.as_ref().map(|v| v.3),
+                    "exponent_error_per_s": s.as_ref().map(|v| v.4),
+                    "stability_note": r.stability.as_ref().err(),
+                })
+            })
+            .collect(),
+    )
+}
+
+/// `branch_dlft.csv`: one row per DLFT cycle.
+pub fn table(rows: &[DlftRow]) -> squeal_report::Table {
+    let mut t = squeal_report::Table::new([
+        "point",
+        "mu",
+        "frequency_hz",
+        "residual",
+        "converged",
+        "largest_stick_fraction",
+        "stability",
+        "leading_exponent_re_per_s",
+        "leading_exponent_im_rad_per_s",
+        "largest_multiplier",
+        "exponent_error_per_s",
+    ]);
+    for r in rows {
+        let c = r.cycle.as_ref().ok();
+        let s = stability_fields(r);
+        let opt = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:e}"));
+        t.push_row([
+            r.point.to_string(),
+            format!("{}", r.mu),
+            c.map_or(String::new(), |d| format!("{}", d.point.frequency_hz())),
+            opt(c.map(|d| d.point.residual)),
+            c.map_or(String::new(), |d| d.converged.to_string()),
+            opt(c.map(|d| d.stick_fractions.iter().copied().fold(0.0, f64::max))),
+            s.as_ref()
+                .map_or("not computed".to_string(), |v| v.0.clone()),
+            opt(s.as_ref().map(|v| v.1)),
+            opt(s.as_ref().map(|v| v.2)),
+            opt(s.as_ref().map(|v| v.3)),
+            opt(s.as_ref().map(|v| v.4)),
+        ]);
+    }
+    t
 }

@@ -275,6 +275,7 @@ pub fn json(a: &BranchAnalysis) -> serde_json::Value {
                 "largest_multiplier_sticking": c.floquet.as_ref().and_then(|f| f.as_ref().ok()).map(|f| f.largest_multiplier()),
             })
         }).collect::<Vec<_>>(),
+        "dlft": run.dlft.as_ref().map(|rows| crate::branch_dlft::json(rows)),
     })
 }
 
