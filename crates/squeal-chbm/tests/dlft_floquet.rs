@@ -5,57 +5,15 @@
 //! 1e-15 s: the reference of `dlft_two_dof.rs`), on the 2-dof friction oscillator of Hoffmann
 //! et al. (2002) at μ = 0.6, V = 0.01 m/s, where the mass sticks about a third of each period.
 
+mod common;
+
+use common::belt::{C, K11, K12, K22, KC, M, MU, N0, V, event, normal, rk4, stuck_force};
 use faer::{Mat, c64};
 use squeal_chbm::stick_floquet::{
     LinearPart, StickSlipCycle, StickSlipFloquetOptions, StickSlipModel, stick_slip_floquet,
 };
 use squeal_hbm::*;
 use std::f64::consts::PI;
-
-const M: f64 = 1.0;
-const C: f64 = 2.0;
-const K11: f64 = 1.0e4;
-const K12: f64 = -2.0e3;
-const K22: f64 = 6.0e3;
-const KC: f64 = 5.0e3;
-const N0: f64 = 10.0;
-const MU: f64 = 0.6;
-const V: f64 = 0.01;
-
-fn normal(y: f64) -> f64 {
-    N0 - KC * y
-}
-
-fn stuck_force(s: &[f64; 4]) -> f64 {
-    C * V + K11 * s[0] + K12 * s[1]
-}
-
-fn rhs(s: &[f64; 4], stick: bool, sign: f64) -> [f64; 4] {
-    let fy = -(C * s[3] + K12 * s[0] + (K22 + KC) * s[1]) / M;
-    if stick {
-        return [V, s[3], 0.0, fy];
-    }
-    let phi = sign * MU * normal(s[1]);
-    let fx = (phi - C * s[2] - K11 * s[0] - K12 * s[1]) / M;
-    [s[2], s[3], fx, fy]
-}
-
-fn rk4(s: &[f64; 4], dt: f64, stick: bool, sign: f64) -> [f64; 4] {
-    let add = |a: &[f64; 4], k: &[f64; 4], h: f64| std::array::from_fn(|i| a[i] + h * k[i]);
-    let k1 = rhs(s, stick, sign);
-    let k2 = rhs(&add(s, &k1, dt / 2.0), stick, sign);
-    let k3 = rhs(&add(s, &k2, dt / 2.0), stick, sign);
-    let k4 = rhs(&add(s, &k3, dt), stick, sign);
-    std::array::from_fn(|i| s[i] + dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
-}
-
-fn event(s: &[f64; 4], stick: bool, sign: f64) -> f64 {
-    if stick {
-        MU * normal(s[1]) - stuck_force(s).abs()
-    } else {
-        sign * (V - s[2])
-    }
-}
 
 /// The event-driven flow over `duration` from `(s, stick, sign)`; with `onsets` the stick
 /// onsets met.

@@ -15,59 +15,12 @@
 //! `|φ_stuck| = μ_s N`, slip to stick where `γ = 0` with `|φ_stuck| <= μ_s N`). No
 //! regularization: its only error is Runge–Kutta's, `O(dt^4)` — checked by halving `dt`.
 
+mod common;
+
+use common::belt::{C, K11, K12, K22, KC, M, MU, N0, V, event, normal, rk4, stuck_force};
 use faer::Mat;
 use squeal_hbm::*;
 use std::f64::consts::PI;
-
-const M: f64 = 1.0;
-const C: f64 = 2.0;
-const K11: f64 = 1.0e4;
-const K12: f64 = -2.0e3;
-const K22: f64 = 6.0e3;
-const KC: f64 = 5.0e3;
-const N0: f64 = 10.0;
-const MU: f64 = 0.6;
-const V: f64 = 0.01;
-
-/// `N(y)`.
-fn normal(y: f64) -> f64 {
-    N0 - KC * y
-}
-
-/// The stuck force on `x` (`x' = V`, `x'' = 0`): `c V + K11 x + K12 y`.
-fn stuck_force(s: &[f64; 4]) -> f64 {
-    C * V + K11 * s[0] + K12 * s[1]
-}
-
-/// Right-hand side in phase `stick` (sliding: `sign` the friction's sign).
-fn rhs(s: &[f64; 4], stick: bool, sign: f64) -> [f64; 4] {
-    let fy = -(C * s[3] + K12 * s[0] + (K22 + KC) * s[1]) / M;
-    if stick {
-        return [V, s[3], 0.0, fy];
-    }
-    let phi = sign * MU * normal(s[1]);
-    let fx = (phi - C * s[2] - K11 * s[0] - K12 * s[1]) / M;
-    [s[2], s[3], fx, fy]
-}
-
-fn rk4(s: &[f64; 4], dt: f64, stick: bool, sign: f64) -> [f64; 4] {
-    let add = |a: &[f64; 4], k: &[f64; 4], h: f64| std::array::from_fn(|i| a[i] + h * k[i]);
-    let k1 = rhs(s, stick, sign);
-    let k2 = rhs(&add(s, &k1, dt / 2.0), stick, sign);
-    let k3 = rhs(&add(s, &k2, dt / 2.0), stick, sign);
-    let k4 = rhs(&add(s, &k3, dt), stick, sign);
-    std::array::from_fn(|i| s[i] + dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
-}
-
-/// The switching function of the current phase: stuck, `μ_s N - |φ_stuck|` (switch where it
-/// turns negative); sliding, `sign γ` times `γ` (switch where it turns negative).
-fn event(s: &[f64; 4], stick: bool, sign: f64) -> f64 {
-    if stick {
-        MU * normal(s[1]) - stuck_force(s).abs()
-    } else {
-        sign * (V - s[2])
-    }
-}
 
 /// One settled cycle of the event-driven reference: period, and the samples of `x` over one
 /// period from a stick onset.

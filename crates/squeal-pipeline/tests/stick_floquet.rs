@@ -30,7 +30,7 @@ fn dlft_cycles_at_3_kmh_are_stable_with_the_regularized_limit_exponents() {
     let law = StickSlipSetting::Dlft {
         epsilon_factor: 1.0,
     };
-    let c = squeal_pipeline::cycle_stick::recompute(m, &st.reference, law, mu, &sol)
+    let c = squeal_pipeline::cycle_stick::recompute(m, st, law, mu, &sol)
         .unwrap()
         .expect("the margin is below 1 at 3 km/h");
     let mb = ModalBrake::new(&m.brake, &st.reference, mu0);

@@ -2,6 +2,7 @@
 //! references the tests share (Hopf point by bisection, normal form, the subcritical variant).
 #![allow(dead_code)]
 
+pub mod belt;
 pub mod oscillator;
 
 use oscillator::{KL, KNL, band, brake, frictionless};
