@@ -265,7 +265,7 @@ pub fn reference(
 }
 
 /// The frictionless reference of `before` (its equilibrium, tangent stiffness and modal basis,
-/// which do not depend on the damping) with the damping of `damping`: what [`reference`] gives
+/// which do not depend on the damping) with the damping of `damping`: what [`reference()`] gives
 /// for it, without solving the equilibrium and the modes again.
 pub fn reference_redamped(
     brake: &Brake,
