@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::belt::{C, K11, K12, K22, KC, M, MU, N0, V, event, normal, rk4, stuck_force};
+use common::belt::{C, M, MU, N0, V, balance, event, normal, rk4, stiffness, stuck_force};
 use faer::{Mat, c64};
 use squeal_chbm::stick_floquet::{
     LinearPart, StickSlipCycle, StickSlipFloquetOptions, StickSlipModel, stick_slip_floquet,
@@ -124,44 +124,6 @@ fn coeffs(r: &Reference, h: usize) -> Vec<f64> {
         }
     }
     c
-}
-
-fn stiffness() -> Mat<f64> {
-    Mat::from_fn(2, 2, |i, j| match (i, j) {
-        (0, 0) => K11,
-        (1, 1) => K22 + KC,
-        _ => K12,
-    })
-}
-
-fn balance(h: usize, epsilon: f64) -> StickSlipBalance<MckStiffness, impl NonlinearForce> {
-    let layout = HarmonicLayout::new(2, h).unwrap();
-    let m = Mat::from_fn(2, 2, |i, j| if i == j { M } else { 0.0 });
-    let c = Mat::from_fn(2, 2, |i, j| if i == j { C } else { 0.0 });
-    let k = stiffness();
-    let linear = MckStiffness::new(m.as_ref(), c.as_ref(), k.as_ref()).unwrap();
-    let none = FnForce::new(
-        2,
-        vec![],
-        false,
-        |_: &[f64], _: &[f64], _: &mut [f64], _: Option<LocalJacobian<'_>>| {},
-    );
-    let hb = HarmonicBalance::new(layout, linear, none, vec![0.0; layout.len()], None).unwrap();
-    let contact = FrictionContact {
-        direction: vec![(0, -1.0)],
-        sliding_speed: V,
-        normal: NormalLoad::Penalty {
-            normal: vec![(1, -1.0)],
-            offset: N0 / KC,
-            k_linear: KC,
-            k_cubic: 0.0,
-        },
-        mu: MU,
-        static_ratio: 1.0,
-        epsilon,
-        contact_mass: M,
-    };
-    StickSlipBalance::new(hb, vec![contact], None).unwrap()
 }
 
 /// Multipliers of a real 4×4 matrix, modulus descending.

@@ -4,6 +4,9 @@
 //! integration that `dlft_two_dof.rs` and `dlft_floquet.rs` take as their reference (the
 //! physics is in `dlft_two_dof.rs`'s module doc).
 
+use faer::Mat;
+use squeal_hbm::*;
+
 pub const M: f64 = 1.0;
 pub const C: f64 = 2.0;
 pub const K11: f64 = 1.0e4;
@@ -53,4 +56,45 @@ pub fn event(s: &[f64; 4], stick: bool, sign: f64) -> f64 {
     } else {
         sign * (V - s[2])
     }
+}
+
+/// The stiffness of the sliding system without friction: the springs and the contact's `k_c`.
+pub fn stiffness() -> Mat<f64> {
+    Mat::from_fn(2, 2, |i, j| match (i, j) {
+        (0, 0) => K11,
+        (1, 1) => K22 + KC,
+        _ => K12,
+    })
+}
+
+/// The oscillator's harmonic balance with exact stick–slip (DLFT) at `h` harmonics, penalty
+/// `epsilon`: the normal load `N0 - k_c y` as a penalty on the belt, friction on `x`.
+pub fn balance(h: usize, epsilon: f64) -> StickSlipBalance<MckStiffness, impl NonlinearForce> {
+    let layout = HarmonicLayout::new(2, h).unwrap();
+    let m = Mat::from_fn(2, 2, |i, j| if i == j { M } else { 0.0 });
+    let c = Mat::from_fn(2, 2, |i, j| if i == j { C } else { 0.0 });
+    let k = stiffness();
+    let linear = MckStiffness::new(m.as_ref(), c.as_ref(), k.as_ref()).unwrap();
+    let none = FnForce::new(
+        2,
+        vec![],
+        false,
+        |_: &[f64], _: &[f64], _: &mut [f64], _: Option<LocalJacobian<'_>>| {},
+    );
+    let hb = HarmonicBalance::new(layout, linear, none, vec![0.0; layout.len()], None).unwrap();
+    let contact = FrictionContact {
+        direction: vec![(0, -1.0)],
+        sliding_speed: V,
+        normal: NormalLoad::Penalty {
+            normal: vec![(1, -1.0)],
+            offset: N0 / KC,
+            k_linear: KC,
+            k_cubic: 0.0,
+        },
+        mu: MU,
+        static_ratio: 1.0,
+        epsilon,
+        contact_mass: M,
+    };
+    StickSlipBalance::new(hb, vec![contact], None).unwrap()
 }
