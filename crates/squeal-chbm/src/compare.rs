@@ -256,7 +256,7 @@ pub fn compare_at(
     start: &ChbmStart,
     opts: &CompareOptions,
 ) -> Result<Comparison, CompareError> {
-    compare_at_with(mb, start, opts, &mut |_| {})
+    compare_at_with(mb, start, opts, &|_| {})
 }
 
 /// One run of a comparison, announced by [`compare_at_with`] as it starts.
@@ -281,7 +281,8 @@ impl std::fmt::Display for CompareStep {
 }
 
 impl CompareOptions {
-    /// The runs [`compare_at_with`] announces, in order.
+    /// The runs [`compare_at_with`] announces, each once (in this order when they run one
+    /// after the other; with several threads the integrations start beside the CHBM solves).
     pub fn steps(&self) -> Vec<CompareStep> {
         let mut steps: Vec<CompareStep> = self
             .harmonics
@@ -303,7 +304,7 @@ fn chbm_solves(
     mb: &ModalBrake,
     start: &ChbmStart,
     opts: &CompareOptions,
-    step: &mut dyn FnMut(CompareStep),
+    step: &(dyn Fn(CompareStep) + Sync),
 ) -> Result<Vec<Solve>, CompareError> {
     let mut out = Vec::new();
     for &h in &opts.harmonics {
@@ -324,16 +325,16 @@ fn chbm_solves(
     Ok(out)
 }
 
-/// The reference's start: the limit cycle of the CHBM solve with the most harmonics, else the
-/// steady cycle of the tightest integration that settled.
-fn reference_start(chbm: &[Solve], ti: &[TiRow]) -> Result<(Cycle, ReferenceStart), CompareError> {
-    let best = chbm
-        .iter()
+/// The CHBM solve the reference starts from: the limit cycle with the most harmonics.
+fn best_chbm(chbm: &[Solve]) -> Option<&Solve> {
+    chbm.iter()
         .filter(|c| c.1.outcome == Outcome::LimitCycle)
-        .max_by_key(|c| c.0);
-    if let Some((h, s, ..)) = best {
-        return Ok((s.cycle()?, ReferenceStart::Chbm(*h)));
-    }
+        .max_by_key(|c| c.0)
+}
+
+/// The reference's start when no CHBM solve gave a limit cycle: the steady cycle of the
+/// tightest integration that settled.
+fn integration_start(ti: &[TiRow]) -> Result<(Cycle, ReferenceStart), CompareError> {
     let tightest = ti
         .iter()
         .filter(|r| r.run.steady.is_some())
@@ -344,24 +345,133 @@ fn reference_start(chbm: &[Solve], ti: &[TiRow]) -> Result<(Cycle, ReferenceStar
     }
 }
 
+/// The shooting reference from `from`, phase-fixed on its most moving contact dof.
+fn reference_from(
+    mb: &ModalBrake,
+    from: &Cycle,
+    opts: &CompareOptions,
+    step: &(dyn Fn(CompareStep) + Sync),
+) -> Result<(ShootingReference, usize), CompareError> {
+    step(CompareStep::Reference(opts.reference.rtol));
+    let phase_dof = from.strongest_dof(&mb.nl_dofs).unwrap_or(0);
+    Ok((
+        shooting_reference(mb, from, phase_dof, &opts.reference)?,
+        phase_dof,
+    ))
+}
+
+/// The CHBM solves, then the reference from the one with the most harmonics (`None` when no
+/// solve gave a limit cycle: the reference then waits for the integrations).
+type Chain = (
+    Vec<Solve>,
+    Option<(ShootingReference, usize, ReferenceStart)>,
+);
+
+fn chbm_then_reference(
+    mb: &ModalBrake,
+    start: &ChbmStart,
+    opts: &CompareOptions,
+    step: &(dyn Fn(CompareStep) + Sync),
+) -> Result<Chain, CompareError> {
+    let solves = chbm_solves(mb, start, opts, step)?;
+    let reference = match best_chbm(&solves) {
+        Some((h, s, ..)) => {
+            let (r, phase_dof) = reference_from(mb, &s.cycle()?, opts, step)?;
+            Some((r, phase_dof, ReferenceStart::Chbm(*h)))
+        }
+        None => None,
+    };
+    Ok((solves, reference))
+}
+
 /// [`compare_at`], telling `step` each run (of [`CompareOptions::steps`]) as it starts: for a
 /// progress display over runs that take up to minutes each.
 pub fn compare_at_with(
     mb: &ModalBrake,
     start: &ChbmStart,
     opts: &CompareOptions,
-    step: &mut dyn FnMut(CompareStep),
+    step: &(dyn Fn(CompareStep) + Sync),
 ) -> Result<Comparison, CompareError> {
-    let solves = chbm_solves(mb, start, opts, step)?;
-    let mut ti = Vec::new();
-    for &rtol in &opts.rtols {
-        step(CompareStep::Integration(rtol));
-        ti.push(ti_row(mb, start, &opts.ti, rtol)?);
+    let mut out = compare_levels(&[(mb, start)], opts, &|_, s| step(s))?;
+    out.pop().ok_or(CompareError::NoStart)
+}
+
+/// The result of one run of [`compare_levels`].
+enum Run {
+    Chain(Result<Chain, CompareError>),
+    Ti(Result<TiRow, CompareError>),
+}
+
+/// The comparisons at several friction levels (`levels[i]`: its modal brake and CHBM start),
+/// telling `step(i, run)` each run as it starts.
+///
+/// The runs are independent but for the reference, which starts from the CHBM solves (or,
+/// without a CHBM limit cycle, from the integrations): each level's CHBM solves and reference
+/// are one run, each time integration another, and they go side by side, each alone on one
+/// thread ([`crate::alone`]), the CHBM-and-reference runs first (the longest), then the
+/// integrations from the tightest tolerance. So `step` may be called from several threads
+/// and in another order than [`CompareOptions::steps`]; the results are the same bits for
+/// any number of threads, and every wall time is the run's own one-thread cost.
+pub fn compare_levels(
+    levels: &[(&ModalBrake, &ChbmStart)],
+    opts: &CompareOptions,
+    step: &(dyn Fn(usize, CompareStep) + Sync),
+) -> Result<Vec<Comparison>, CompareError> {
+    use crate::alone::{Job, run_alone};
+    let mut rtols: Vec<(usize, f64)> = opts.rtols.iter().copied().enumerate().collect();
+    rtols.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let mut jobs: Vec<Job<'_, (usize, Run)>> = Vec::new();
+    for (i, &(mb, start)) in levels.iter().enumerate() {
+        jobs.push(Box::new(move || {
+            let step = |s| step(i, s);
+            (i, Run::Chain(chbm_then_reference(mb, start, opts, &step)))
+        }));
     }
-    step(CompareStep::Reference(opts.reference.rtol));
-    let (from, reference_start) = reference_start(&solves, &ti)?;
-    let phase_dof = from.strongest_dof(&mb.nl_dofs).unwrap_or(0);
-    let reference = shooting_reference(mb, &from, phase_dof, &opts.reference)?;
+    for &(_, rtol) in &rtols {
+        for (i, &(mb, start)) in levels.iter().enumerate() {
+            jobs.push(Box::new(move || {
+                step(i, CompareStep::Integration(rtol));
+                (i, Run::Ti(ti_row(mb, start, &opts.ti, rtol)))
+            }));
+        }
+    }
+    let mut chains: Vec<Option<Chain>> = (0..levels.len()).map(|_| None).collect();
+    let mut ti: Vec<Vec<TiRow>> = (0..levels.len()).map(|_| Vec::new()).collect();
+    for (i, run) in run_alone(jobs) {
+        match run {
+            Run::Chain(c) => chains[i] = Some(c?),
+            Run::Ti(r) => ti[i].push(r?),
+        }
+    }
+    let mut out = Vec::with_capacity(levels.len());
+    for (i, (chain, mut ti)) in chains.into_iter().zip(ti).enumerate() {
+        // The integrations in the order of `opts.rtols`, as the tables list them.
+        ti.sort_by_key(|r| rtols.iter().find(|t| t.1 == r.rtol).map_or(0, |t| t.0));
+        let (solves, reference) = chain.ok_or(CompareError::NoStart)?;
+        let (mb, _) = levels[i];
+        out.push(measured(mb, opts, solves, reference, ti, &|s| step(i, s))?);
+    }
+    Ok(out)
+}
+
+/// One level's comparison from its runs: the reference (from the integrations if no CHBM
+/// solve gave it), and every cycle aligned on it and measured.
+fn measured(
+    mb: &ModalBrake,
+    opts: &CompareOptions,
+    solves: Vec<Solve>,
+    reference: Option<(ShootingReference, usize, ReferenceStart)>,
+    mut ti: Vec<TiRow>,
+    step: &(dyn Fn(CompareStep) + Sync),
+) -> Result<Comparison, CompareError> {
+    let (reference, phase_dof, reference_start) = match reference {
+        Some(r) => r,
+        None => {
+            let (from, reference_start) = integration_start(&ti)?;
+            let (r, phase_dof) = reference_from(mb, &from, opts, step)?;
+            (r, phase_dof, reference_start)
+        }
+    };
     let ref_cycle = &reference.reference.cycle;
     let disc = opts.disc.as_ref();
     let reference_measures = measures(mb, ref_cycle, ref_cycle, disc)?;

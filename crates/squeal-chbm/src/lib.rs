@@ -36,6 +36,7 @@
 // Index loops over dofs and harmonics read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+pub mod alone;
 pub mod bifurcation;
 pub mod branch;
 pub mod compare;

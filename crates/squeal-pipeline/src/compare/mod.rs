@@ -16,7 +16,7 @@ use crate::Pipeline;
 use crate::error::{PipelineError, Result, json_text};
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::ChbmStart;
-use squeal_chbm::compare::{CompareOptions, Comparison, compare_at_with};
+use squeal_chbm::compare::{CompareOptions, Comparison, compare_levels};
 use squeal_chbm::cycle::RelativeErrors;
 use squeal_chbm::shooting::ShootingReferenceOptions;
 use squeal_chbm::timeint::TiOptions;
@@ -185,7 +185,11 @@ pub fn run(
     let mut first = first;
     let steps = opts.steps().len() * settings.mu_ratios.len();
     progress.begin("CHBM against BDF", steps);
+    // The starts follow one another (each from the last one's equilibrium); the comparisons
+    // and their runs are independent and go side by side (`compare_levels`), each the same
+    // bits as alone; the tables are written in the order of the friction levels.
     let mut guess: Option<Vec<f64>> = None;
+    let mut runs = Vec::new();
     for &ratio in &settings.mu_ratios {
         let mu = ratio * mu0;
         let (start, mb) = match first.take() {
@@ -193,6 +197,14 @@ pub fn run(
             _ => crate::chbm::start(m, st, mu, guess.as_deref())?,
         };
         guess = Some(start.equilibrium.clone());
+        runs.push((ratio, start, mb));
+    }
+    let brakes: Vec<(&ModalBrake, &ChbmStart)> = runs.iter().map(|(_, s, mb)| (mb, s)).collect();
+    let comparisons = compare_levels(&brakes, &opts, &|i, step| {
+        progress.item(&format!("{} mu0: {step}", settings.mu_ratios[i]))
+    })?;
+    for ((ratio, _, mb), c) in runs.iter().zip(comparisons) {
+        let ratio = *ratio;
         log(&format!(
             "\n== mu = {:.6} ({ratio} mu0): {} CHBM solves, {} BDF runs to the steady cycle, and the reference limit cycle by shooting (BDF rtol {:e}, checked at {:e})",
             mb.mu,
@@ -201,9 +213,6 @@ pub fn run(
             opts.reference.rtol,
             opts.reference.check_rtol,
         ));
-        let c = compare_at_with(&mb, &start, &opts, &mut |step| {
-            progress.item(&format!("{ratio} mu0: {step}"))
-        })?;
         let folder = format!("mu_{ratio:.3}");
         let files = tables::write_comparison(&dir.join(&folder), m, &c, ratio, log)?;
         summary.push(comparison_json(&c, ratio, &files));
