@@ -118,6 +118,12 @@ fn main() -> Res<()> {
     if std::env::var("DLFT_BENCH_RESOLVE").is_ok() {
         // The direct cycle solved again from itself (docs/stick_slip.md: the two 1.0540 mu0
         // cycles).
+        let n = mb.nl();
+        println!(
+            "  phase row U1s[{dof}] = {:.3e} m (U1c {:.3e} m)",
+            first.nl_coeffs[2 * n + dof],
+            first.nl_coeffs[n + dof]
+        );
         let again = dlft_cycle(&mb, mu, &first, dof, &o)?;
         println!(
             "  solved again from itself: {} ({} iterations), stuck samples {}",
@@ -143,6 +149,12 @@ fn main() -> Res<()> {
         q.parameter = r * mu0;
         if std::env::var("DLFT_BENCH_RESOLVE").is_ok() {
             // The walked cycle solved again from itself: does Levenberg-Marquardt stay put?
+            let n = mb.nl();
+            println!(
+                "  phase row U1s[{dof}] = {:.3e} m (U1c {:.3e} m)",
+                q.nl_coeffs[2 * n + dof],
+                q.nl_coeffs[n + dof]
+            );
             let again = dlft_cycle(&mb, r * mu0, &q, dof, &o)?;
             println!(
                 "  solved again from itself: {} ({} iterations), stuck samples {}",
