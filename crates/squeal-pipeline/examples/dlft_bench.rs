@@ -10,7 +10,7 @@
 
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::branch::BranchPoint;
-use squeal_chbm::stick_dlft::DlftOptions;
+use squeal_chbm::stick_dlft::{DlftOptions, dlft_cycle};
 use squeal_chbm::stick_dlft_walk::{WalkOptions, dlft_walk};
 use squeal_chbm::{ChbmOptions, RESTART_AMPLITUDES};
 use squeal_hbm::{HarmonicLayout, PhaseCondition};
@@ -39,6 +39,12 @@ fn coarse_scene() -> Res<Scene> {
         .replacen("# vehicle_speed_kmh = 5.0", "vehicle_speed_kmh = 3.0", 1)
         .replacen("# rolling_radius = 0.3", "rolling_radius = 0.3", 1);
     Ok(Scene::parse(&path, text)?)
+}
+
+/// Stuck samples of each pair (of 1024), from its fraction of the period.
+fn samples(f: &[f64]) -> String {
+    let v: Vec<String> = f.iter().map(|x| format!("{:.0}", x * 1024.0)).collect();
+    v.join(" ")
 }
 
 /// Frequency, loudest closure (17 digits), residual and an FNV checksum of the coefficients.
@@ -96,6 +102,9 @@ fn main() -> Res<()> {
         first.iterations,
         t.elapsed().as_secs_f64()
     );
+    if let Some(f) = &c.stick_fractions {
+        println!("  stuck samples per pair: {}", samples(f));
+    }
     if !c.converged {
         return Err("DLFT did not converge at the first ratio".into());
     }
@@ -106,6 +115,23 @@ fn main() -> Res<()> {
         PhaseCondition::strongest_dof(&layout, &first.nl_coeffs)?;
     let mut o = DlftOptions::default();
     o.harmonics = Some(24);
+    if std::env::var("DLFT_BENCH_RESOLVE").is_ok() {
+        // The direct cycle solved again from itself (docs/stick_slip.md: the two 1.0540 mu0
+        // cycles).
+        let n = mb.nl();
+        println!(
+            "  phase row U1s[{dof}] = {:.3e} m (U1c {:.3e} m)",
+            first.nl_coeffs[2 * n + dof],
+            first.nl_coeffs[n + dof]
+        );
+        let again = dlft_cycle(&mb, mu, &first, dof, &o)?;
+        println!(
+            "  solved again from itself: {} ({} iterations), stuck samples {}",
+            line(&again.point),
+            again.point.iterations,
+            samples(&again.stick_fractions)
+        );
+    }
     let mut prev = vec![first];
     for &r in &ratios[1..] {
         let t = Instant::now();
@@ -118,8 +144,25 @@ fn main() -> Res<()> {
             line(&e.point),
             t.elapsed().as_secs_f64()
         );
+        println!("  stuck samples per pair: {}", samples(&e.stick_fractions));
         let mut q = e.point.clone();
         q.parameter = r * mu0;
+        if std::env::var("DLFT_BENCH_RESOLVE").is_ok() {
+            // The walked cycle solved again from itself: does Levenberg-Marquardt stay put?
+            let n = mb.nl();
+            println!(
+                "  phase row U1s[{dof}] = {:.3e} m (U1c {:.3e} m)",
+                q.nl_coeffs[2 * n + dof],
+                q.nl_coeffs[n + dof]
+            );
+            let again = dlft_cycle(&mb, r * mu0, &q, dof, &o)?;
+            println!(
+                "  solved again from itself: {} ({} iterations), stuck samples {}",
+                line(&again.point),
+                again.point.iterations,
+                samples(&again.stick_fractions)
+            );
+        }
         prev = vec![q];
     }
     Ok(())

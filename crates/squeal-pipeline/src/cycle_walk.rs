@@ -9,9 +9,9 @@
 //! single cycle has no converged cycle below it, so it makes one.
 //!
 //! **What.** [`walk_from_below`] looks for a lower μ where DLFT converges from that μ's own CHBM
-//! cycle: it solves CHBM at `μ (1 - f)` for `f` in [`BELOW`] in turn, skips those whose
-//! permanent-sliding cycle has a sliding margin below [`MARGIN_TO_TRY`] (the pads stick there
-//! too much for the direct start; each such DLFT attempt would cost up to 200
+//! cycle: it solves CHBM at `μ (1 - f)` for `f` in [`BELOW`] in turn (above the Hopf point),
+//! skips those whose permanent-sliding cycle has a sliding margin below [`MARGIN_TO_TRY`] (the
+//! pads stick there too much for the direct start; each such DLFT attempt would cost up to 200
 //! Levenberg–Marquardt iterations), and solves DLFT from the first other one. From the first
 //! that converges it walks to μ with [`squeal_chbm::stick_dlft_walk::dlft_walk`], the branch's
 //! own walk and options. A cycle the walk returns is as exact as any (the walk's steps are
@@ -30,8 +30,18 @@ use squeal_chbm::{ChbmOptions, Outcome, RESTART_AMPLITUDES};
 use squeal_hbm::{HarmonicLayout, PhaseCondition};
 
 /// The lower μ tried as the walk's start, as fractions below the requested μ, nearest first:
-/// fine near μ (a CHBM solve costs about a second, a DLFT walk step several), coarser below.
-pub const BELOW: [f64; 10] = [0.005, 0.01, 0.015, 0.02, 0.03, 0.04, 0.06, 0.08, 0.12, 0.16];
+/// fine near μ (a CHBM solve costs about a second, a DLFT walk step several), then every 2 %
+/// to 30 %, so that the first tried at or above [`MARGIN_TO_TRY`] lies within 2 % of μ above
+/// where the margin crosses it: the walk from there is shorter. The list ended at 16 % with
+/// 12 % and 16 % next to each other; on the coarse bundled brake at 3 km/h, whose sliding
+/// margin is at least [`MARGIN_TO_TRY`] only below about 1.04 μ0, that reached no start above
+/// about 1.19 μ0 (none at 1.3 μ0) and at 1.15 μ0 started from 1.012 μ0 (margin 1.070)
+/// (docs/stick_slip.md). Lower μ at or below the Hopf point are not tried (there the branch of
+/// a subcritical Hopf point has a second, small cycle).
+pub const BELOW: [f64; 21] = [
+    0.005, 0.01, 0.015, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.10, 0.12, 0.14, 0.16, 0.18,
+    0.20, 0.22, 0.24, 0.26, 0.28, 0.30,
+];
 
 /// The smallest sliding margin of a lower μ's permanent-sliding cycle for which DLFT is tried
 /// from it: on the coarse bundled brake at 3 km/h DLFT converged from the sliding cycle at
@@ -135,8 +145,15 @@ pub fn walk_from_below(
 ) -> Result<(Option<DlftCycle>, SingleWalk), String> {
     let mut report = SingleWalk::default();
     let speeds = squeal_chbm::stick_branch::surface_speeds(mb).map_err(|e| e.to_string())?;
+    let mu0 = st.sweep.hopf.as_ref().map(|h| h.mu0);
     for f in BELOW {
         let below = mu * (1.0 - f);
+        if mu0.is_some_and(|m0| below <= m0) {
+            report
+                .starts
+                .push((below, "at or below the Hopf point, not tried".to_string()));
+            break;
+        }
         let (mbl, point, dof) = match sliding_cycle(m, st, below) {
             Ok(c) => c,
             Err(e) => {
