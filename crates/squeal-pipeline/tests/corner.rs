@@ -71,12 +71,24 @@ fn the_coarse_corner_pairs_its_pads_and_its_bdf_gives_the_same_bits() {
             "{pad}: {area} vs {exact}"
         );
     }
-    let mus = corner_scene("corner_coarse.inp").mu_values().unwrap();
+    // The scene's friction values up to 0.2 (its 0..1/41 grid's first nine): μ0, the first
+    // onset, is the same crossing as over the whole grid (the same points below it and the
+    // same bracket [0.175, 0.2]): measured 0.176314167 at 3311.130 Hz against 0.176314169 at
+    // 3311.130 Hz over the whole grid (1e-8 apart: the end of the Hopf refinement). The 32
+    // points above it made this test 45.5 s instead of 13.8 s on one thread (2026-11-28, load
+    // average 3.8).
+    let mus: Vec<f64> = corner_scene("corner_coarse.inp")
+        .mu_values()
+        .unwrap()
+        .into_iter()
+        .filter(|&m| m <= 0.2 + 1e-12)
+        .collect();
+    assert_eq!(mus.len(), 9, "{mus:?}");
     let st = squeal_pipeline::stability::analyse(&inp, &mus).unwrap();
     let hopf = st
         .sweep
         .hopf
-        .expect("the coarse corner has a Hopf point in 0..1");
+        .expect("the coarse corner has a Hopf point in 0..0.2");
     eprintln!(
         "corner: mu0 {:.9} at {:.3} Hz; {} dofs",
         hopf.mu0,
