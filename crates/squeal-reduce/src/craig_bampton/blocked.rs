@@ -63,6 +63,11 @@ impl Split {
     ) -> Result<(), EigError> {
         let nb = self.kinds.len();
         let kr = k.as_ref();
+        // One buffer for every block's right-hand sides, zeroed in place: a fresh `n_v × block`
+        // allocation per block (300 MB on the fine corner's disc) came back from the kernel
+        // as new pages each time, zeroed by page faults (docs/benchmarks.md, the fine corner on
+        // main: page zeroing was 12 % of the samples of the disc's constraint modes).
+        let mut y_buf = Mat::<f64>::zeros(self.interior.len(), block.max(1).min(nb));
         let mut b0 = 0;
         while b0 < nb {
             let b1 = (b0 + block.max(1)).min(nb);
@@ -76,7 +81,8 @@ impl Split {
                 }
             }
             // y = -K_vv⁻¹ K_vm / c.
-            let mut y = Mat::<f64>::zeros(self.interior.len(), eliminated.len());
+            let mut y = y_buf.as_mut().subcols_mut(0, eliminated.len());
+            y.fill(0.0);
             for (e, &(_, m, inv)) in eliminated.iter().enumerate() {
                 for (r, &v) in kr.row_idx_of_col(m).zip(kr.val_of_col(m)) {
                     if let Some(i) = self.interior_index[r] {
@@ -111,7 +117,7 @@ impl Split {
                 }
             }
             for (e, &(b, m, inv)) in eliminated.iter().enumerate() {
-                self.expand_into(y.col(e), basis.as_mut().col_mut(b));
+                self.expand_into(y.as_ref().col(e), basis.as_mut().col_mut(b));
                 basis[(m, b)] = inv;
             }
             if let Some(x) = &x {
@@ -189,19 +195,7 @@ fn lower_blocks(
             None => (None, basis),
         };
         let nrows = row_list.map_or(basis.nrows(), <[usize]>::len);
-        let mut w = Mat::<f64>::zeros(nrows, j1 - j0);
-        let columns: Vec<_> = w.col_iter_mut().enumerate().collect();
-        columns.into_par_iter().for_each(|(c, wc)| {
-            let b = basis.col(j0 + c);
-            for (r, out) in wc.iter_mut().enumerate() {
-                let i = row_list.map_or(r, |l| l[r]);
-                *out = xr
-                    .row_idx_of_col(i)
-                    .zip(xr.val_of_col(i))
-                    .map(|(q, &v)| v * b[q])
-                    .sum();
-            }
-        });
+        let w = sparse_times_block(xr, basis.subcols(j0, j1 - j0), row_list, nrows);
         // out[top..row_end, J] = left[:, top..row_end]ᵀ W, OUT_ROWS rows of out per task.
         let (top, row_end) = (out_rows.0.unwrap_or(j0), out_rows.1);
         let target = out.as_mut().submatrix_mut(top, j0, row_end - top, j1 - j0);
@@ -229,6 +223,70 @@ fn lower_blocks(
         j0 = j1;
     }
 }
+
+/// `W = X B_J` on `nrows` rows of `X` (`rows[r]`, or `r` itself when `None`), `X` symmetric
+/// with both triangles stored (row `i` of `X` is its column `i`).
+///
+/// Row by row: `B_J` is first copied row-major (`|J|` contiguous values per dof), then each
+/// row of `W` is `Σ_q x_iq B_J[q, :]` over `X`'s column `i` in stored order, `X` read once per
+/// block. Each entry is the same sum, in the same order, of the same products as the dot
+/// product `Σ_q x_iq b_q` of one column at a time (started at `-0.0`, as `Iterator::sum`), so
+/// the bits are the same; that form read all of `X` and gathered from `B` once per column
+/// (`|J|` times per block) and was a third of the fine corner disc's projection
+/// (docs/benchmarks.md, "The fine corner on main, where its time goes").
+fn sparse_times_block(
+    xr: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    block: MatRef<'_, f64>,
+    rows: Option<&[usize]>,
+    nrows: usize,
+) -> Mat<f64> {
+    let width = block.ncols();
+    let n = block.nrows();
+    let mut bt = vec![0.0; n * width];
+    bt.par_chunks_mut(width * ROW_TASK)
+        .enumerate()
+        .for_each(|(t, chunk)| {
+            let r0 = t * ROW_TASK;
+            let len = chunk.len() / width.max(1);
+            for c in 0..width {
+                let col = block.col(c);
+                for r in 0..len {
+                    chunk[r * width + c] = col[r0 + r];
+                }
+            }
+        });
+    let mut w = Mat::<f64>::zeros(nrows, width);
+    let mut pieces = Vec::new();
+    let mut rest = w.as_mut();
+    let mut start = 0;
+    while rest.nrows() > 0 {
+        let len = ROW_TASK.min(rest.nrows());
+        let (piece, bottom) = rest.split_at_row_mut(len);
+        pieces.push((start, piece));
+        rest = bottom;
+        start += len;
+    }
+    pieces.into_par_iter().for_each(|(start, mut piece)| {
+        let mut acc = vec![-0.0; width];
+        for r in 0..piece.nrows() {
+            let i = rows.map_or(start + r, |l| l[start + r]);
+            acc.fill(-0.0);
+            for (q, &v) in xr.row_idx_of_col(i).zip(xr.val_of_col(i)) {
+                let b = &bt[q * width..(q + 1) * width];
+                for (a, &bq) in acc.iter_mut().zip(b) {
+                    *a += v * bq;
+                }
+            }
+            for (c, &a) in acc.iter().enumerate() {
+                piece[(r, c)] = a;
+            }
+        }
+    });
+    w
+}
+
+/// Rows of `W` (and of the row-major copy of `B_J`) per task of [`sparse_times_block`].
+const ROW_TASK: usize = 256;
 
 /// The symmetric matrix whose lower triangle is that of `a`.
 fn mirror(mut a: Mat<f64>) -> Mat<f64> {

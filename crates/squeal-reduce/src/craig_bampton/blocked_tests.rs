@@ -153,4 +153,24 @@ fn blocked_constraint_modes_and_projection_match_unblocked() {
         whole == pieces,
         "the unconstrained solves differ between block sizes"
     );
+    // W = X B_J row by row: the same bits as the dot product of one column at a time (each
+    // entry the same products summed in the same order), on all rows and on the support.
+    let mr = system.m.as_ref();
+    let by_column = |rows: &[usize]| {
+        Mat::from_fn(rows.len(), 7, |r, c| {
+            let b = basis.col(3 + c);
+            mr.row_idx_of_col(rows[r])
+                .zip(mr.val_of_col(rows[r]))
+                .map(|(q, &v)| v * b[q])
+                .sum::<f64>()
+        })
+    };
+    let all: Vec<usize> = (0..n_free).collect();
+    let w = sparse_times_block(mr, basis.subcols(3, 7), None, n_free);
+    assert!(
+        w == by_column(&all),
+        "W = M B_J differs from the column form"
+    );
+    let w = sparse_times_block(mr, basis.subcols(3, 7), Some(&support), support.len());
+    assert!(w == by_column(&support), "W on the support differs");
 }
