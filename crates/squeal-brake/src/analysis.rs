@@ -54,16 +54,56 @@ pub struct LinearStability {
 /// The frictionless mode a tracked branch starts from: the largest modal coordinate of its
 /// vector at the first sweep point.
 pub fn basis_mode_of_branch(s: &Sweep, branch: usize) -> usize {
+    largest(&branch_energy(s, branch))
+}
+
+/// The squared modal coordinates of `branch`'s vector at the first sweep point.
+fn branch_energy(s: &Sweep, branch: usize) -> Vec<f64> {
     let j = s.branches[branch][0];
-    let q = s.points[0].spectrum.modal(j);
-    let mut best = (0.0, 0);
-    for (i, qi) in q.iter().enumerate() {
-        let v = qi.norm_sqr();
-        if v > best.0 {
-            best = (v, i);
+    s.points[0]
+        .spectrum
+        .modal(j)
+        .iter()
+        .map(|q| q.norm_sqr())
+        .collect()
+}
+
+/// The index of the largest entry (the first of equals; 0 when empty).
+fn largest(v: &[f64]) -> usize {
+    let mut best = (f64::NEG_INFINITY, 0);
+    for (i, &x) in v.iter().enumerate() {
+        if x > best.0 {
+            best = (x, i);
         }
     }
     best.1
+}
+
+/// The two distinct frictionless modes a coalescing pair of branches starts from: each
+/// branch's largest modal coordinate, or, when both are the same mode (a sweep that starts
+/// above μ = 0, where the pair's vectors already mix the two modes), the distinct pair
+/// `(i, j)` of largest `|q_a,i|² + |q_b,j|²`. From μ = 0 the vectors are single modes and this
+/// is [`basis_mode_of_branch`] of each.
+pub fn basis_modes_of_pair(s: &Sweep, a: usize, b: usize) -> (usize, usize) {
+    let (ea, eb) = (branch_energy(s, a), branch_energy(s, b));
+    let (ia, ib) = (largest(&ea), largest(&eb));
+    if ia != ib || ea.len() < 2 || eb.len() != ea.len() {
+        return (ia, ib);
+    }
+    // The other mode of the pair: the runner-up of one branch, taken where it costs least.
+    let second = |e: &[f64]| {
+        let mut r = e.to_vec();
+        if let Some(x) = r.get_mut(ia) {
+            *x = f64::NEG_INFINITY;
+        }
+        largest(&r)
+    };
+    let (ja, jb) = (second(&ea), second(&eb));
+    if ea[ia] + eb[jb] >= ea[ja] + eb[ib] {
+        (ia, jb)
+    } else {
+        (ja, ib)
+    }
 }
 
 /// Sweeps `mus` with the damping of `spec` (a preliminary sweep picks the pair when
@@ -104,14 +144,10 @@ pub fn stability_with(
                 sweep_with(brake, &r, mus, opts, progress)?
             };
             naming = Some((s.points.len(), start.elapsed()));
-            let pair = s.hopf.as_ref().and_then(|h| {
-                h.partner.map(|p| {
-                    (
-                        basis_mode_of_branch(&s, p),
-                        basis_mode_of_branch(&s, h.branch),
-                    )
-                })
-            });
+            let pair = s
+                .hopf
+                .as_ref()
+                .and_then(|h| h.partner.map(|p| basis_modes_of_pair(&s, p, h.branch)));
             (pair, Some((r, s)))
         }
     };

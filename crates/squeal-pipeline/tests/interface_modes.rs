@@ -166,6 +166,21 @@ fn system_basis_reproduces_the_unreduced_interface_brake() {
         "{}",
         h.frequency_hz
     );
+    // A grid that starts above μ = 0, where the pair's vectors already mix its two modes,
+    // names the same pair and finds the same Hopf point. Before, 0.38..0.41 named mode 14
+    // twice, the scene's pair damping went on one mode only, and μ0 read 0.394035 at 4106.81 Hz
+    // (`squeal stability --mu 0.38..0.41/4`, 2026-11-28). Asserted to 1e-7 relative: both are
+    // the same Hopf point refined to its bracket (about 2e-8 wide).
+    let narrow: Vec<f64> = (0..4).map(|i| 0.38 + 0.01 * i as f64).collect();
+    let sn = squeal_pipeline::stability::analyse(&m, &narrow).unwrap();
+    assert_eq!(sn.pair, st.pair, "the pair named from 0.38 and from 0.3");
+    let hn = sn.sweep.hopf.expect("a Hopf point in mu = 0.38..0.41");
+    assert!(
+        (hn.mu0 - h.mu0).abs() <= 1e-7 * h.mu0,
+        "{} {}",
+        hn.mu0,
+        h.mu0
+    );
 }
 
 /// Nodal contact without a `[reduction]` section: the `"system"` interface reduction with its
