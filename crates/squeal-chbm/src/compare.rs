@@ -399,7 +399,8 @@ pub fn compare_at_with(
 /// The result of one run of [`compare_levels`].
 enum Run {
     Chain(Result<Chain, CompareError>),
-    Ti(Result<TiRow, CompareError>),
+    /// The integration at `opts.rtols[k]`.
+    Ti(usize, Result<TiRow, CompareError>),
 }
 
 /// The comparisons at several friction levels (`levels[i]`: its modal brake and CHBM start),
@@ -427,26 +428,28 @@ pub fn compare_levels(
             (i, Run::Chain(chbm_then_reference(mb, start, opts, &step)))
         }));
     }
-    for &(_, rtol) in &rtols {
+    for &(k, rtol) in &rtols {
         for (i, &(mb, start)) in levels.iter().enumerate() {
             jobs.push(Box::new(move || {
                 step(i, CompareStep::Integration(rtol));
-                (i, Run::Ti(ti_row(mb, start, &opts.ti, rtol)))
+                (i, Run::Ti(k, ti_row(mb, start, &opts.ti, rtol)))
             }));
         }
     }
     let mut chains: Vec<Option<Chain>> = (0..levels.len()).map(|_| None).collect();
-    let mut ti: Vec<Vec<TiRow>> = (0..levels.len()).map(|_| Vec::new()).collect();
+    // Each level's integrations in the order of `opts.rtols`, as the tables list them.
+    let mut ti: Vec<Vec<Option<TiRow>>> = (0..levels.len())
+        .map(|_| (0..opts.rtols.len()).map(|_| None).collect())
+        .collect();
     for (i, run) in run_alone(jobs) {
         match run {
             Run::Chain(c) => chains[i] = Some(c?),
-            Run::Ti(r) => ti[i].push(r?),
+            Run::Ti(k, r) => ti[i][k] = Some(r?),
         }
     }
     let mut out = Vec::with_capacity(levels.len());
-    for (i, (chain, mut ti)) in chains.into_iter().zip(ti).enumerate() {
-        // The integrations in the order of `opts.rtols`, as the tables list them.
-        ti.sort_by_key(|r| rtols.iter().find(|t| t.1 == r.rtol).map_or(0, |t| t.0));
+    for (i, (chain, ti)) in chains.into_iter().zip(ti).enumerate() {
+        let ti = ti.into_iter().flatten().collect();
         let (solves, reference) = chain.ok_or(CompareError::NoStart)?;
         let (mb, _) = levels[i];
         out.push(measured(mb, opts, solves, reference, ti, &|s| step(i, s))?);
