@@ -18,16 +18,18 @@
 //! Reading from Python with numpy alone is shown in `docs/rom-format.md`.
 
 use faer::Mat;
-use safetensors::tensor::{Dtype, Metadata, SafeTensors, TensorInfo};
+use safetensors::tensor::{Dtype, Metadata, TensorInfo};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 mod arrays;
+mod read;
 pub use arrays::sha256_file;
 #[allow(unused_imports)]
 use arrays::*;
+pub use read::read_header;
 
 /// Name of the format in the header.
 pub const FORMAT: &str = "squeal-rom";
@@ -627,168 +629,6 @@ impl ReducedModel {
         header.extend(json);
         Ok((header, arrays))
     }
-
-    /// Reads a model written by [`ReducedModel::write`].
-    pub fn read(path: &Path) -> Result<Self, RomError> {
-        let bytes = std::fs::read(path).map_err(|error| RomError::Io {
-            path: path.to_path_buf(),
-            error,
-        })?;
-        Self::from_bytes(&bytes, path)
-    }
-
-    /// Parses a model from bytes; `path` only names the source in errors.
-    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Self, RomError> {
-        let bad = |message: String| RomError::Format {
-            path: path.to_path_buf(),
-            message,
-        };
-        let st = SafeTensors::deserialize(bytes).map_err(|e| bad(format!("{e}")))?;
-        let (n, meta) = SafeTensors::read_metadata(bytes).map_err(|e| bad(format!("{e}")))?;
-        let json = meta
-            .metadata()
-            .as_ref()
-            .and_then(|m| m.get("squeal"))
-            .ok_or_else(|| bad("no squeal header in __metadata__".into()))?;
-        let header = parse_header(json, path)?;
-        let damaged = |message: String| RomError::Damaged {
-            path: path.to_path_buf(),
-            message,
-        };
-        if let Some(recorded) = &header.arrays_crc32 {
-            let data = bytes.get(8 + n..).unwrap_or_default();
-            let found = format!("{:08x}", crc32fast::hash(data));
-            if !found.eq_ignore_ascii_case(recorded) {
-                return Err(damaged(format!(
-                    "the arrays' CRC-32 is {found}, the file records {recorded}"
-                )));
-            }
-        }
-        let mut parts = Vec::with_capacity(header.parts.len());
-        for info in header.parts {
-            let n = info.dofs.len();
-            let name = info.name.clone();
-            let k = read_mat(&st, &format!("{name}.K"), Some((n, n))).map_err(bad)?;
-            let m = read_mat(&st, &format!("{name}.M"), Some((n, n))).map_err(bad)?;
-            let basis = if st.names().contains(&format!("{name}.basis").as_str()) {
-                let values = read_mat(&st, &format!("{name}.basis"), Some((info.full_dofs, n)))
-                    .map_err(bad)?;
-                let dof_node =
-                    read_vec(&st, &format!("{name}.dof_node"), Dtype::U64, info.full_dofs)
-                        .map_err(bad)?
-                        .chunks_exact(8)
-                        .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-                        .collect();
-                let dof_dir = read_vec(&st, &format!("{name}.dof_dir"), Dtype::U8, info.full_dofs)
-                    .map_err(bad)?;
-                Some(Basis {
-                    dof_node,
-                    dof_dir,
-                    values,
-                })
-            } else {
-                None
-            };
-            for (what, a) in [("K", &k), ("M", &m)]
-                .into_iter()
-                .chain(basis.as_ref().map(|b| ("basis", &b.values)))
-            {
-                if let Some((i, j)) = first_non_finite(a) {
-                    return Err(damaged(format!(
-                        "array {name}.{what} holds {} at row {}, column {}",
-                        a[(i, j)],
-                        i + 1,
-                        j + 1
-                    )));
-                }
-            }
-            let info = PartInfo {
-                has_basis: basis.is_some(),
-                ..info
-            };
-            parts.push(ReducedPart { info, k, m, basis });
-        }
-        Ok(ReducedModel {
-            tool_version: header.tool_version,
-            parts,
-            connections: header.connections,
-            ties: header.ties,
-        })
-    }
-}
-
-/// Reads only the JSON header of a reduced-model file (not its arrays).
-pub fn read_header(path: &Path) -> Result<RomHeader, RomError> {
-    use std::io::Read;
-    let io = |error| RomError::Io {
-        path: path.to_path_buf(),
-        error,
-    };
-    let bad = |message: String| RomError::Format {
-        path: path.to_path_buf(),
-        message,
-    };
-    let mut file = std::fs::File::open(path).map_err(io)?;
-    let size = file.metadata().map_err(io)?.len();
-    let mut len = [0u8; 8];
-    file.read_exact(&mut len)
-        .map_err(|e| bad(format!("no header length: {e}")))?;
-    let n = u64::from_le_bytes(len);
-    if n > MAX_HEADER_BYTES {
-        return Err(bad(format!(
-            "header of {n} bytes, more than the {MAX_HEADER_BYTES} accepted"
-        )));
-    }
-    let mut json = Vec::new();
-    file.take(n).read_to_end(&mut json).map_err(io)?;
-    if json.len() as u64 != n {
-        return Err(bad(format!(
-            "header cut short: {} of {n} bytes",
-            json.len()
-        )));
-    }
-    let outer: serde_json::Value =
-        serde_json::from_slice(&json).map_err(|e| bad(format!("header: {e}")))?;
-    // The arrays' byte ranges must all lie in the file: a file cut short (a copy or download
-    // that stopped) has a complete header and is caught here, not when its arrays are read.
-    let data_end = outer
-        .as_object()
-        .into_iter()
-        .flatten()
-        .filter_map(|(_, t)| t.get("data_offsets")?.as_array()?.get(1)?.as_u64())
-        .max()
-        .unwrap_or(0);
-    let expected = 8 + n + data_end;
-    if size < expected {
-        return Err(bad(format!(
-            "the file is cut short: {size} bytes, its header describes {expected}"
-        )));
-    }
-    let inner = outer
-        .get("__metadata__")
-        .and_then(|m| m.get("squeal"))
-        .and_then(|v| v.as_str())
-        .ok_or_else(|| bad("no squeal header in __metadata__".into()))?;
-    parse_header(inner, path)
-}
-
-/// Parses and checks the `squeal` header JSON.
-fn parse_header(json: &str, path: &Path) -> Result<RomHeader, RomError> {
-    let bad = |message: String| RomError::Format {
-        path: path.to_path_buf(),
-        message,
-    };
-    let header: RomHeader = serde_json::from_str(json).map_err(|e| bad(format!("header: {e}")))?;
-    if header.format != FORMAT {
-        return Err(bad(format!("format '{}' is not '{FORMAT}'", header.format)));
-    }
-    if header.version > VERSION {
-        return Err(RomError::Version {
-            path: path.to_path_buf(),
-            found: header.version,
-        });
-    }
-    Ok(header)
 }
 
 /// An array of the file with its name.

@@ -1,4 +1,4 @@
-//! The file's arrays: matrices and raw bytes written with a CRC-32 of each, read back with their shape, type and checksum checked (docs/rom-format.md).
+//! The file's arrays: matrices and raw bytes written row by row with their CRC-32 (read back by [`super::read`]; docs/rom-format.md).
 
 use super::*;
 
@@ -106,65 +106,32 @@ pub(super) fn write_file(
     arrays.iter().try_for_each(|(_, a)| a.write(w))
 }
 
-pub(super) fn read_mat(
-    st: &SafeTensors,
-    name: &str,
-    shape: Option<(usize, usize)>,
-) -> Result<Mat<f64>, String> {
-    let t = st.tensor(name).map_err(|e| format!("array {name}: {e}"))?;
-    if t.dtype() != Dtype::F64 || t.shape().len() != 2 {
-        return Err(format!(
-            "array {name}: expected a 2-D F64 array, found {} of shape {}",
-            t.dtype(),
-            shape_text(t.shape())
-        ));
-    }
-    let (r, c) = (t.shape()[0], t.shape()[1]);
-    if let Some(s) = shape
-        && s != (r, c)
-    {
-        return Err(format!(
-            "array {name}: expected shape ({}, {}), found ({r}, {c})",
-            s.0, s.1
-        ));
-    }
-    let data = t.data();
-    Ok(Mat::from_fn(r, c, |i, j| {
-        let k = 8 * (i * c + j);
-        f64::from_le_bytes(data[k..k + 8].try_into().unwrap_or([0; 8]))
-    }))
-}
-
-pub(super) fn read_vec(
-    st: &SafeTensors,
-    name: &str,
-    dtype: Dtype,
-    len: usize,
-) -> Result<Vec<u8>, String> {
-    let t = st.tensor(name).map_err(|e| format!("array {name}: {e}"))?;
-    if t.dtype() != dtype || t.shape() != [len] {
-        return Err(format!(
-            "array {name}: expected {dtype} of shape ({len}), found {} of shape {}",
-            t.dtype(),
-            shape_text(t.shape())
-        ));
-    }
-    Ok(t.data().to_vec())
-}
-
-/// SHA-256 of a file, as lowercase hex.
+/// SHA-256 of a file, as lowercase hex, read a megabyte at a time (a mesh or a model of
+/// gigabytes is never held whole).
 pub fn sha256_file(path: &Path) -> Result<String, RomError> {
     use sha2::{Digest, Sha256};
-    let bytes = std::fs::read(path).map_err(|error| RomError::Io {
+    use std::io::Read;
+    let io = |error| RomError::Io {
         path: path.to_path_buf(),
         error,
-    })?;
-    let digest = Sha256::digest(&bytes);
+    };
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let mut hasher = Sha256::new();
+    let mut buf = vec![0u8; 1 << 20];
+    loop {
+        match file.read(&mut buf) {
+            Ok(0) => break,
+            Ok(k) => hasher.update(&buf[..k]),
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(io(e)),
+        }
+    }
+    let digest = hasher.finalize();
     Ok(digest.iter().map(|b| format!("{b:02x}")).collect())
 }
 
 /// A tensor's shape as `(a, b, …)`.
-fn shape_text(shape: &[usize]) -> String {
+pub(super) fn shape_text(shape: &[usize]) -> String {
     let dims: Vec<String> = shape.iter().map(|d| d.to_string()).collect();
     format!("({})", dims.join(", "))
 }
