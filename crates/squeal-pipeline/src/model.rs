@@ -232,12 +232,13 @@ pub fn reduced_model_unwritten(
     crate::restraints::check_held(scene, &parts, &inputs)?;
     log(&format!(
         "reduced model: reducing {} ...",
-        inputs
-            .parts()
-            .iter()
-            .map(|p| p.1.mesh.display().to_string())
-            .collect::<Vec<_>>()
-            .join(" and ")
+        parts_by_mesh(
+            &inputs
+                .parts()
+                .iter()
+                .map(|(name, p)| (*name, p.mesh.as_path()))
+                .collect::<Vec<_>>()
+        )
     ));
     let t = std::time::Instant::now();
     // Finished part reductions are kept beside the model when another part fails, and taken
@@ -561,4 +562,50 @@ pub fn read_mesh(path: &Path, log: Log) -> Result<Mesh> {
         log(&format!("warning: {w}"));
     }
     Ok(read.mesh)
+}
+
+/// The parts to reduce, each mesh named once after the parts it holds, in the parts' order:
+/// `disc (disc.inp) and pad (pad.inp)`, or `disc, pad_in, pad_out (corner.bdf) and shim
+/// (shim.inp)` for an assembly file with its parts as element sets.
+fn parts_by_mesh(parts: &[(&str, &std::path::Path)]) -> String {
+    let mut groups: Vec<(&std::path::Path, Vec<&str>)> = Vec::new();
+    for &(name, mesh) in parts {
+        match groups.iter_mut().find(|(m, _)| *m == mesh) {
+            Some((_, names)) => names.push(name),
+            None => groups.push((mesh, vec![name])),
+        }
+    }
+    let items: Vec<String> = groups
+        .iter()
+        .map(|(mesh, names)| format!("{} ({})", names.join(", "), mesh.display()))
+        .collect();
+    match items.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+        _ => items.join(""),
+    }
+}
+
+#[cfg(test)]
+mod parts_by_mesh_tests {
+    use super::parts_by_mesh;
+    use std::path::Path;
+
+    /// Each mesh is named once (the fine corner's `.bdf` was named three times in the line).
+    #[test]
+    fn each_mesh_is_named_once() {
+        let corner = Path::new("corner.bdf");
+        let line = parts_by_mesh(&[
+            ("disc", corner),
+            ("pad_in", corner),
+            ("shim", Path::new("shim.inp")),
+            ("pad_out", corner),
+        ]);
+        assert_eq!(
+            line,
+            "disc, pad_in, pad_out (corner.bdf) and shim (shim.inp)"
+        );
+        let line = parts_by_mesh(&[("disc", Path::new("d.inp")), ("pad", Path::new("p.inp"))]);
+        assert_eq!(line, "disc (d.inp) and pad (p.inp)");
+        assert_eq!(parts_by_mesh(&[("disc", corner)]), "disc (corner.bdf)");
+    }
 }
