@@ -242,7 +242,7 @@ pub fn dlft_cycle(
 
 /// The regularized cycle of `mb` at `mu` with every pair made to stick at `v_reg`
 /// ([`crate::stick_branch::sticking_brake`]), with `opts`' harmonics (`None`: the guess's), AFT samples
-/// and Levenberg–Marquardt controls (its ε is not used),
+/// and Levenberg–Marquardt controls (its ε is not used; nor its Gauss–Newton steps),
 /// from `guess` (padded or truncated), at fixed μ: for the convergence of the regularized law
 /// towards DLFT as `v_reg → 0` (docs/stick_slip.md). The rows are scaled as [`dlft_cycle`]'s.
 pub fn regularized_cycle(
@@ -274,7 +274,12 @@ pub fn regularized_cycle(
         squeal_hbm::Unconstrained,
         scales,
     )?;
-    let (report, converged) = match squeal_hbm::lm::solve(&mut problem, &z0, &opts.lm) {
+    // The damped iteration alone (no Gauss–Newton steps, whatever `opts` says): the
+    // regularized cycles and their figures stay what they were (docs/stick_slip.md; with
+    // Gauss–Newton steps first the V/20 start at 1.0649 μ0 did not converge in 40 iterations).
+    let mut lm = opts.lm.clone();
+    lm.newton_damping = 0.0;
+    let (report, converged) = match squeal_hbm::lm::solve(&mut problem, &z0, &lm) {
         Ok(r) => (r, true),
         Err(squeal_hbm::LmError::NotConverged { report }) => (*report, false),
         Err(squeal_hbm::LmError::Problem(e)) => return Err(e.into()),

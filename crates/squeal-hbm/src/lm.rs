@@ -318,9 +318,9 @@ impl State {
         for j in 0..self.grad.len() {
             let col = self.jac.col(j);
             let (mut g, mut c) = (0.0, 0.0);
-            for i in 0..self.r.len() {
-                g += col[i] * self.r[i];
-                c += col[i] * col[i];
+            for (&a, &r) in col.iter().zip(&self.r) {
+                g += a * r;
+                c += a * a;
             }
             self.grad[j] = g;
             self.col_norm[j] = f64::sqrt(c);
@@ -359,8 +359,8 @@ impl State {
             MemStack::new(&mut self.lu_mem),
             Default::default(),
         );
-        for i in 0..n {
-            self.step[i] = -self.r[self.perm[i]];
+        for (h, &p) in self.step.iter_mut().zip(&self.perm) {
+            *h = -self.r[p];
         }
         let lu = self.lu.as_ref();
         let mut x = faer::MatMut::from_column_major_slice_mut(&mut self.step, n, 1);
