@@ -40,15 +40,28 @@ pub struct DlftOptions {
 }
 
 impl Default for DlftOptions {
+    /// Levenberg–Marquardt with a Gauss–Newton step first while the damping is at most its
+    /// initial value ([`NEWTON_DAMPING`]).
     fn default() -> Self {
+        let mut lm = LmOptions::default();
+        lm.newton_damping = NEWTON_DAMPING;
         Self {
             harmonics: None,
             samples: None,
             epsilon_factor: 1.0,
-            lm: LmOptions::default(),
+            lm,
         }
     }
 }
+
+/// The damping up to which [`dlft_cycle`]'s Levenberg–Marquardt solve tries a Gauss–Newton
+/// step (one LU factorization of the square Jacobian) before the damped one
+/// (`squeal_hbm::LmOptions::newton_damping`): its initial damping, 1e-3, so every solve starts
+/// with Gauss–Newton steps and goes back to them when the damping has come down. The damped
+/// step's normal equations cost about twice the LU (`J^T J` and its Cholesky factor against
+/// `n^3/3` for `n` = 1765 on the coarse brake); docs/stick_slip.md, "Gauss–Newton first",
+/// has the cycles and times before and after.
+pub const NEWTON_DAMPING: f64 = 1e-3;
 
 /// A limit cycle with exact stick–slip.
 #[derive(Clone, Debug)]
@@ -67,9 +80,15 @@ pub struct DlftCycle {
     pub epsilon: Vec<f64>,
     /// Time samples of the friction forces.
     pub samples: usize,
-    /// Whether Levenberg–Marquardt met its residual tolerance (`false`: it stopped on a small
-    /// step or gradient, e.g. at a change of the stick/slip pattern; the residual says how far).
+    /// Whether Levenberg–Marquardt met its residual tolerance, or stopped short of it (its
+    /// iteration limit, a small step or gradient) with the balance residual at most 1e-9 and
+    /// the phase condition met to 1e-6 rad ([`DlftCycle::phase_error`]). `false`: neither;
+    /// the residual and phase error say how far.
     pub converged: bool,
+    /// The phase condition's row `|U1s[dof]|` relative to the first harmonic's amplitude
+    /// `|U1|` of the phase dof: the cycle's shift in time from the phase condition, in radians
+    /// of the first harmonic.
+    pub phase_error: f64,
 }
 
 /// The largest pair normal force at the mean of `u` (N), a force scale of the brake.
@@ -78,6 +97,19 @@ pub struct DlftCycle {
 /// the round-off of the AFT sums measured on the coarse brake (1e-12) and far below the
 /// regularization errors it judges (1e-5 and up, docs/stick_slip.md).
 const ACCEPTED_RESIDUAL: f64 = 1e-9;
+
+/// A solve that stopped short of Levenberg–Marquardt's own tolerance (its iteration limit, a
+/// small step) is accepted on [`ACCEPTED_RESIDUAL`] only if its phase row, relative to the
+/// first harmonic's amplitude of the phase dof ([`DlftCycle::phase_error`], a shift in time in
+/// radians), is at most this. The sampled balance is invariant to a shift in time by less than
+/// the sample spacing (2π/1024 = 6.1e-3 rad at 24 harmonics) except where a sample crosses a
+/// transition, so a cycle off its phase condition by a fraction of a sample can have an exact
+/// balance and one stuck sample more: at 1.0540 μ0 on the coarse brake at 3 km/h such a cycle
+/// was 1.7e-3 rad off (a quarter of a sample) and 4.1e-7 in frequency from the cycle on its
+/// phase condition (docs/stick_slip.md, "The two cycles at 1.0540 μ0"). 1e-6 rad is 1.6e-4 of
+/// a sample; a converged solve's phase row is met to round-off (each Gauss–Newton step solves
+/// that linear row exactly).
+const ACCEPTED_PHASE: f64 = 1e-6;
 
 fn force_scale(mb: &ModalBrake, u: &[f64]) -> f64 {
     let x0 = &u[..mb.nl()];
@@ -173,7 +205,14 @@ pub fn dlft_cycle(
     // Levenberg–Marquardt judges the stacked rows, phase row (in metres) included, and can run
     // to its step limit on a cycle whose balance is already exact: the cycle is judged by its
     // own balance residual, relative to the largest static normal force of a pair.
-    let converged = converged || residual <= ACCEPTED_RESIDUAL;
+    // The phase condition, too (ACCEPTED_PHASE): the balance alone accepts a cycle shifted in
+    // time by a fraction of a sample.
+    let PhaseCondition::FirstSineZero { dof } = phase;
+    let phase_error = match layout.amplitude(&coeffs, 1, dof) {
+        Some(a) if a > 0.0 => coeffs[phase.index(&layout)?].abs() / a,
+        _ => f64::INFINITY,
+    };
+    let converged = converged || (residual <= ACCEPTED_RESIDUAL && phase_error <= ACCEPTED_PHASE);
     let mut mbp = mb.clone();
     mbp.mu = mu;
     let point = BranchPoint {
@@ -196,13 +235,14 @@ pub fn dlft_cycle(
         epsilon,
         samples: b.n_samples(),
         converged,
+        phase_error,
         point,
     })
 }
 
 /// The regularized cycle of `mb` at `mu` with every pair made to stick at `v_reg`
 /// ([`crate::stick_branch::sticking_brake`]), with `opts`' harmonics (`None`: the guess's), AFT samples
-/// and Levenberg–Marquardt controls (its ε is not used),
+/// and Levenberg–Marquardt controls (its ε is not used; nor its Gauss–Newton steps),
 /// from `guess` (padded or truncated), at fixed μ: for the convergence of the regularized law
 /// towards DLFT as `v_reg → 0` (docs/stick_slip.md). The rows are scaled as [`dlft_cycle`]'s.
 pub fn regularized_cycle(
@@ -234,7 +274,12 @@ pub fn regularized_cycle(
         squeal_hbm::Unconstrained,
         scales,
     )?;
-    let (report, converged) = match squeal_hbm::lm::solve(&mut problem, &z0, &opts.lm) {
+    // The damped iteration alone (no Gauss–Newton steps, whatever `opts` says): the
+    // regularized cycles and their figures stay what they were (docs/stick_slip.md; with
+    // Gauss–Newton steps first the V/20 start at 1.0649 μ0 did not converge in 40 iterations).
+    let mut lm = opts.lm.clone();
+    lm.newton_damping = 0.0;
+    let (report, converged) = match squeal_hbm::lm::solve(&mut problem, &z0, &lm) {
         Ok(r) => (r, true),
         Err(squeal_hbm::LmError::NotConverged { report }) => (*report, false),
         Err(squeal_hbm::LmError::Problem(e)) => return Err(e.into()),

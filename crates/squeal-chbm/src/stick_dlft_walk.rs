@@ -23,7 +23,8 @@
 //! branch has a kink and the steps shrink. It stops when the step falls below
 //! [`WalkOptions::min_step`] (the cycle then is the last converged one, short of the target).
 //! Every solve is an ordinary [`dlft_cycle`] with its converged-residual rule (1e-9 of the
-//! largest static pair force), so a cycle the walk returns is as exact as one from any start.
+//! largest static pair force, and the phase condition met to 1e-6 rad when the solve stopped
+//! short of its own tolerance), so a cycle the walk returns is as exact as one from any start.
 
 use crate::branch::BranchPoint;
 use crate::stick_branch::StickError;

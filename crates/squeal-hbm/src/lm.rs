@@ -17,6 +17,18 @@
 //! problems", Alg. 3.16). The smooth update avoids the oscillation of the classical
 //! "x10 / /10" rule and needs no inner loop, unlike Moré's trust-region `lambda` search.
 //!
+//! **Gauss–Newton first** ([`LmOptions::newton_damping`], off by default): for a square
+//! system, while `lambda` is at most that bound, the first trial at each new Jacobian is the
+//! undamped step `J h = -r` by one LU factorization of `J` with partial pivoting (`n^3/3`
+//! multiply–adds) instead of forming `J^T J` (`n^2 m / 2`) and its damped Cholesky factor
+//! (`n^3/6`). It is accepted if it decreases `||r||` (gain ratio against the Gauss–Newton
+//! model's decrease `||r||^2`, then `lambda` updated as for a damped step); otherwise the
+//! damped step at the current `lambda` follows, with `J^T J` formed then. Near a regular root
+//! the damped steps' `lambda` shrinks to its floor and Levenberg–Marquardt is Gauss–Newton
+//! anyway, so this saves the normal equations' algebra on the steps that would have been
+//! (nearly) Gauss–Newton steps; the iterates differ from the damped ones by round-off and by
+//! the damping's `lambda D^2` term.
+//!
 //! Normal equations instead of a QR of `[J; sqrt(lambda) D]`: for the square
 //! `(n (2H+1) + 1)`-unknown systems of harmonic balance they cost about half the flops
 //! (`J^T J` once per Jacobian, one Cholesky per trial), and `lambda > 0` keeps the matrix
@@ -37,9 +49,13 @@
 //! All reductions are sequential in a fixed order (faer with `Par::Seq`), so results do not
 //! depend on the thread count.
 
-use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt;
+use faer::linalg::lu::partial_pivoting::factor::lu_in_place;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
+use faer::linalg::triangular_solve::{
+    solve_unit_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
 use faer::{Accum, Mat, MatMut, Par};
 
 /// Upper bound on `n_residuals * n_params` (the dense Jacobian must fit in 2 GiB).
@@ -88,6 +104,10 @@ pub struct LmOptions {
     /// Treat the small-step and small-gradient stops as success (least-squares fits with a
     /// nonzero minimum). Off by default: harmonic balance wants a root.
     pub accept_stationary: bool,
+    /// Square systems only: while `lambda` is at most this, the first trial at each new
+    /// Jacobian is a Gauss–Newton step by an LU factorization of `J` (module docs); `0`
+    /// (the default) never tries one.
+    pub newton_damping: f64,
 }
 
 impl Default for LmOptions {
@@ -102,6 +122,7 @@ impl Default for LmOptions {
             min_damping: 1e-15,
             max_damping: 1e16,
             accept_stationary: false,
+            newton_damping: 0.0,
         }
     }
 }
@@ -217,7 +238,12 @@ pub enum LmError<E> {
 
 fn check_options<E>(o: &LmOptions) -> Result<(), LmError<E>> {
     let nonneg = |v: f64| v.is_finite() && v >= 0.0;
-    if !nonneg(o.abs_tol) || !nonneg(o.rel_tol) || !nonneg(o.step_tol) || !nonneg(o.gradient_tol) {
+    if !nonneg(o.abs_tol)
+        || !nonneg(o.rel_tol)
+        || !nonneg(o.step_tol)
+        || !nonneg(o.gradient_tol)
+        || !nonneg(o.newton_damping)
+    {
         return Err(LmError::BadOption("tolerances must be finite and >= 0"));
     }
     let pos = |v: f64| v.is_finite() && v > 0.0;
@@ -250,8 +276,16 @@ struct State {
     r: Vec<f64>,
     norm: f64,
     jac: Mat<f64>,
-    /// Lower triangle of `J^T J`.
+    /// Lower triangle of `J^T J` (valid when `jtj_ready`).
     jtj: Mat<f64>,
+    jtj_ready: bool,
+    /// Euclidean norms of the Jacobian's columns.
+    col_norm: Vec<f64>,
+    /// Gauss–Newton: the LU factors of `J` (`0 x 0` when not used), its row permutation.
+    lu: Mat<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+    lu_mem: MemBuffer,
     /// Damped matrix, then its Cholesky factor (lower triangle).
     factor: Mat<f64>,
     grad: Vec<f64>,
@@ -265,6 +299,39 @@ struct State {
 impl State {
     /// `jtj = J^T J` (lower), `grad = J^T r`, and Moré's scaling update.
     fn normal_equations(&mut self) {
+        self.form_jtj();
+        for j in 0..self.grad.len() {
+            let col = self.jac.col(j);
+            self.grad[j] = (0..self.r.len()).map(|i| col[i] * self.r[i]).sum();
+            let col_norm = self.jtj[(j, j)].sqrt();
+            self.col_norm[j] = col_norm;
+            if col_norm > self.scale[j] {
+                self.scale[j] = col_norm;
+            }
+        }
+    }
+
+    /// `grad = J^T r`, the column norms and Moré's scaling update, without `J^T J` (formed
+    /// by [`State::form_jtj`] when a damped step needs it).
+    fn gradient_only(&mut self) {
+        self.jtj_ready = false;
+        for j in 0..self.grad.len() {
+            let col = self.jac.col(j);
+            let (mut g, mut c) = (0.0, 0.0);
+            for (&a, &r) in col.iter().zip(&self.r) {
+                g += a * r;
+                c += a * a;
+            }
+            self.grad[j] = g;
+            self.col_norm[j] = f64::sqrt(c);
+            if self.col_norm[j] > self.scale[j] {
+                self.scale[j] = self.col_norm[j];
+            }
+        }
+    }
+
+    /// The lower triangle of `J^T J`.
+    fn form_jtj(&mut self) {
         triangular::matmul(
             self.jtj.as_mut(),
             BlockStructure::TriangularLower,
@@ -276,21 +343,37 @@ impl State {
             1.0,
             Par::Seq,
         );
-        for j in 0..self.grad.len() {
-            let col = self.jac.col(j);
-            self.grad[j] = (0..self.r.len()).map(|i| col[i] * self.r[i]).sum();
-            let col_norm = self.jtj[(j, j)].sqrt();
-            if col_norm > self.scale[j] {
-                self.scale[j] = col_norm;
-            }
+        self.jtj_ready = true;
+    }
+
+    /// Solves `J h = -r` (square `J`) into `step` by an LU factorization with partial
+    /// pivoting; false if the step is not finite (a singular `J`).
+    fn newton_step(&mut self) -> bool {
+        let n = self.grad.len();
+        self.lu.copy_from(self.jac.as_ref());
+        lu_in_place(
+            self.lu.as_mut(),
+            &mut self.perm,
+            &mut self.perm_inv,
+            Par::Seq,
+            MemStack::new(&mut self.lu_mem),
+            Default::default(),
+        );
+        for (h, &p) in self.step.iter_mut().zip(&self.perm) {
+            *h = -self.r[p];
         }
+        let lu = self.lu.as_ref();
+        let mut x = faer::MatMut::from_column_major_slice_mut(&mut self.step, n, 1);
+        solve_unit_lower_triangular_in_place(lu, x.as_mut(), Par::Seq);
+        solve_upper_triangular_in_place(lu, x.as_mut(), Par::Seq);
+        self.step.iter().all(|v| v.is_finite())
     }
 
     /// `max_j |g_j| / (||J_j|| ||r||)` over nonzero columns.
     fn scaled_gradient(&self) -> f64 {
         let mut worst: f64 = 0.0;
         for j in 0..self.grad.len() {
-            let col_norm = self.jtj[(j, j)].sqrt();
+            let col_norm = self.col_norm[j];
             if col_norm > 0.0 && self.norm > 0.0 {
                 worst = worst.max(self.grad[j].abs() / (col_norm * self.norm));
             }
@@ -358,12 +441,20 @@ pub fn solve<P: LeastSquaresProblem>(
     let norm0 = norm(&r);
     let chol_req = llt::factor::cholesky_in_place_scratch::<f64>(n, Par::Seq, Default::default())
         .or(llt::solve::solve_in_place_scratch::<f64>(n, 1, Par::Seq));
+    let newton = options.newton_damping > 0.0 && m == n;
+    let lu_n = if newton { n } else { 0 };
     let mut s = State {
         x: z0.to_vec(),
         r,
         norm: norm0,
         jac: Mat::zeros(m, n),
         jtj: Mat::zeros(n, n),
+        jtj_ready: false,
+        col_norm: vec![0.0; n],
+        lu: Mat::zeros(lu_n, lu_n),
+        perm: vec![0; lu_n],
+        perm_inv: vec![0; lu_n],
+        lu_mem: MemBuffer::new(StackReq::new::<usize>(lu_n)),
         factor: Mat::zeros(n, n),
         grad: vec![0.0; n],
         scale: vec![0.0; n],
@@ -389,6 +480,8 @@ pub fn solve<P: LeastSquaresProblem>(
             break 'outer stop;
         }
         let mut need_jacobian = true;
+        // Whether the current Jacobian's Gauss–Newton step was tried.
+        let mut newton_tried = false;
         let mut lambda = options.initial_damping;
         let mut nu = 2.0;
         loop {
@@ -402,7 +495,12 @@ pub fn solve<P: LeastSquaresProblem>(
                         iteration: iterations,
                     });
                 }
-                s.normal_equations();
+                if newton {
+                    s.gradient_only();
+                } else {
+                    s.normal_equations();
+                }
+                newton_tried = false;
                 for d in &mut s.scale {
                     if *d == 0.0 {
                         *d = 1.0;
@@ -417,16 +515,26 @@ pub fn solve<P: LeastSquaresProblem>(
                 break 'outer LmStop::MaxIterations;
             }
             iterations += 1;
+            // A Gauss–Newton trial (module docs) is recorded with damping 0.
+            let gauss_newton = newton && !newton_tried && lambda <= options.newton_damping;
             let mut entry = LmIteration {
                 iteration: iterations,
                 residual_norm: s.norm,
                 trial_residual_norm: f64::INFINITY,
-                damping: lambda,
+                damping: if gauss_newton { 0.0 } else { lambda },
                 step_norm: f64::NAN,
                 gain_ratio: f64::NEG_INFINITY,
                 accepted: false,
             };
-            let solvable = s.damped_step(lambda);
+            let solvable = if gauss_newton {
+                newton_tried = true;
+                s.newton_step()
+            } else {
+                if !s.jtj_ready {
+                    s.form_jtj();
+                }
+                s.damped_step(lambda)
+            };
             let mut small_step = false;
             if solvable {
                 entry.step_norm = norm(&s.step);
@@ -440,9 +548,17 @@ pub fn solve<P: LeastSquaresProblem>(
                     .residual(&s.x_trial, &mut s.r_trial)
                     .map_err(LmError::Problem)?;
                 let trial_norm = norm(&s.r_trial);
-                let predicted: f64 = (0..n)
-                    .map(|j| s.step[j] * (lambda * s.scale[j] * s.scale[j] * s.step[j] - s.grad[j]))
-                    .sum();
+                // The model's decrease: `||r||^2 - ||r + J h||^2`, all of `||r||^2` for the
+                // Gauss–Newton step (`J h = -r`).
+                let predicted: f64 = if gauss_newton {
+                    s.norm * s.norm
+                } else {
+                    (0..n)
+                        .map(|j| {
+                            s.step[j] * (lambda * s.scale[j] * s.scale[j] * s.step[j] - s.grad[j])
+                        })
+                        .sum()
+                };
                 if trial_norm.is_finite() {
                     entry.trial_residual_norm = trial_norm;
                     if predicted > 0.0 {
@@ -471,6 +587,10 @@ pub fn solve<P: LeastSquaresProblem>(
                 need_jacobian = true;
             } else {
                 history.push(entry);
+                if gauss_newton {
+                    // The damped step at the same lambda comes next.
+                    continue;
+                }
                 if small_step {
                     break 'outer LmStop::SmallStep;
                 }

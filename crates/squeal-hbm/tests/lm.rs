@@ -88,6 +88,29 @@ fn rosenbrock_reaches_its_minimum() {
         "Rosenbrock: {} trials, {} accepted",
         report.iterations, report.accepted_steps
     );
+    // Gauss–Newton first (an LU of the square J while lambda <= 1e-3): the same root to the
+    // same 1e-9 (the residual tolerance pins it either way), at least one Gauss–Newton trial
+    // (recorded with damping 0) accepted, and no more trials than the damped iteration's.
+    let mut o = absolute_only();
+    o.newton_damping = 1e-3;
+    let gn = lm::solve(&mut rosenbrock(), &[-1.2, 1.0], &o).unwrap();
+    assert!(gn.stop.is_converged() && gn.residual_norm <= 1e-10);
+    assert!(
+        (gn.x[0] - 1.0).abs() < 1e-9 && (gn.x[1] - 1.0).abs() < 1e-9,
+        "{:?}",
+        gn.x
+    );
+    let newton_accepted = gn
+        .history
+        .iter()
+        .filter(|h| h.damping == 0.0 && h.accepted)
+        .count();
+    println!(
+        "Rosenbrock, Gauss-Newton first: {} trials, {newton_accepted} Gauss-Newton accepted",
+        gn.iterations
+    );
+    assert!(newton_accepted >= 1);
+    assert!(gn.iterations <= report.iterations);
 }
 
 #[test]
@@ -126,6 +149,17 @@ fn powell_singular_reaches_its_minimum() {
     println!(
         "Powell singular: {} trials, |r| = {:e}",
         report.iterations, report.residual_norm
+    );
+    // Gauss–Newton first, with J singular at the root: the damped step takes over where the
+    // LU's step fails; the same bounds.
+    let mut o = absolute_only();
+    o.newton_damping = 1e-3;
+    let gn = lm::solve(&mut p, &[3.0, -1.0, 0.0, 1.0], &o).unwrap();
+    assert!(gn.residual_norm <= 1e-10);
+    assert!(gn.x.iter().all(|v| v.abs() < 1e-4), "{:?}", gn.x);
+    println!(
+        "Powell singular, Gauss-Newton first: {} trials",
+        gn.iterations
     );
 }
 

@@ -105,6 +105,12 @@ fn main() -> Res<()> {
     if let Some(f) = &c.stick_fractions {
         println!("  stuck samples per pair: {}", samples(f));
     }
+    if !c.reason.is_empty() {
+        println!("  direct starts: {}", c.reason);
+    }
+    if let Some(w) = &c.walk {
+        println!("  walked from below: {}", w.text(mu0, "mu0"));
+    }
     if !c.converged {
         return Err("DLFT did not converge at the first ratio".into());
     }
@@ -115,6 +121,11 @@ fn main() -> Res<()> {
         PhaseCondition::strongest_dof(&layout, &first.nl_coeffs)?;
     let mut o = DlftOptions::default();
     o.harmonics = Some(24);
+    if std::env::var("DLFT_BENCH_DAMPED").is_ok() {
+        // The walk's and re-solves' Levenberg-Marquardt without Gauss-Newton steps first (the
+        // direct start keeps `squeal chbm`'s options).
+        o.lm.newton_damping = 0.0;
+    }
     if std::env::var("DLFT_BENCH_RESOLVE").is_ok() {
         // The direct cycle solved again from itself (docs/stick_slip.md: the two 1.0540 mu0
         // cycles).
@@ -126,9 +137,10 @@ fn main() -> Res<()> {
         );
         let again = dlft_cycle(&mb, mu, &first, dof, &o)?;
         println!(
-            "  solved again from itself: {} ({} iterations), stuck samples {}",
+            "  solved again from itself: {} ({} iterations, phase error {:.2e} rad), stuck samples {}",
             line(&again.point),
             again.point.iterations,
+            again.phase_error,
             samples(&again.stick_fractions)
         );
     }
@@ -145,6 +157,13 @@ fn main() -> Res<()> {
             t.elapsed().as_secs_f64()
         );
         println!("  stuck samples per pair: {}", samples(&e.stick_fractions));
+        println!("  phase error {:.2e} rad", e.phase_error);
+        let solves: Vec<String> = w
+            .solves
+            .iter()
+            .map(|(m, r, ok)| format!("{:.5} {r:.1e}{}", m / mu0, if *ok { "" } else { " short" }))
+            .collect();
+        println!("  solves (mu/mu0, residual): {}", solves.join(", "));
         let mut q = e.point.clone();
         q.parameter = r * mu0;
         if std::env::var("DLFT_BENCH_RESOLVE").is_ok() {
@@ -157,9 +176,10 @@ fn main() -> Res<()> {
             );
             let again = dlft_cycle(&mb, r * mu0, &q, dof, &o)?;
             println!(
-                "  solved again from itself: {} ({} iterations), stuck samples {}",
+                "  solved again from itself: {} ({} iterations, phase error {:.2e} rad), stuck samples {}",
                 line(&again.point),
                 again.point.iterations,
+                again.phase_error,
                 samples(&again.stick_fractions)
             );
         }

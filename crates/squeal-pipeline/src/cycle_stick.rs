@@ -17,8 +17,11 @@
 //!
 //! Both start from the CHBM cycle (permanent sliding) at fixed μ. The text says which law, the
 //! new frequency and loudest closure with their changes, the new margin and, for DLFT, how
-//! much of the period each pair sticks and whether the solve met its tolerance;
-//! `<out>/chbm/stick_slip.json` has the same.
+//! much of the period each pair sticks and whether the solve met its tolerance, and for a
+//! converged DLFT cycle its stability under the exact law ([`add_stability`]: the Floquet
+//! analysis of the non-smooth law that `squeal branch` gives its DLFT cycles,
+//! [`squeal_chbm::stick_floquet::brake::dlft_floquet`]); `<out>/chbm/stick_slip.json` has the
+//! same.
 
 use crate::branch_dlft::DLFT_STARTS;
 use crate::cycle_walk::{SingleWalk, walk_from_below};
@@ -30,8 +33,10 @@ use squeal_chbm::ChbmSolution;
 use squeal_chbm::branch::{BranchPoint, pair_cycles};
 use squeal_chbm::physics::SlidingMargin;
 use squeal_chbm::stick_branch::{StickOptions, point_margin, surface_speeds};
-use squeal_chbm::stick_dlft::{DlftOptions, regularized_cycle};
+use squeal_chbm::stick_dlft::{DlftCycle, DlftOptions, regularized_cycle};
 use squeal_chbm::stick_dlft_starts::dlft_from_starts;
+use squeal_chbm::stick_floquet::StickSlipFloquet;
+use squeal_chbm::stick_floquet::brake::dlft_floquet;
 use squeal_hbm::{HarmonicLayout, PhaseCondition};
 use squeal_scene::StickSlipSetting;
 use std::path::Path;
@@ -64,6 +69,24 @@ pub struct CycleStick {
     /// μ0 when the stability analysis found it (else the cycle's μ): the walk's μ are told as
     /// ratios to it.
     pub mu_ref: f64,
+    /// DLFT only: the solved cycle (its samples and penalties, for the Floquet analysis).
+    pub dlft: Option<DlftCycle>,
+    /// The exact law's Floquet analysis of a converged DLFT cycle and its seconds, once
+    /// [`add_stability`] ran (`None` before, and for the regularized law).
+    pub stability: Option<(std::result::Result<StickSlipFloquet, String>, f64)>,
+}
+
+/// The stability of `c`'s cycle under the exact law, when it is a converged DLFT cycle: the
+/// Floquet analysis of the non-smooth law (`squeal_chbm::stick_floquet`, default options), as
+/// `squeal branch` gives its DLFT cycles; stored in `c.stability` with its time.
+pub fn add_stability(m: &Model, st: &Stability, c: &mut CycleStick) {
+    let Some(d) = c.dlft.as_ref().filter(|_| c.converged) else {
+        return;
+    };
+    let t = std::time::Instant::now();
+    let mb = ModalBrake::new(&m.brake, &st.reference, d.point.parameter);
+    let f = dlft_floquet(&mb, d, &Default::default()).map_err(|e| e.to_string());
+    c.stability = Some((f, t.elapsed().as_secs_f64()));
 }
 
 /// The CHBM solution `sol` at `mu` as a branch point of `mb`.
@@ -112,6 +135,7 @@ pub fn recompute(
     o.harmonics = Some(HARMONICS);
     let mut reason = String::new();
     let mut walk = None;
+    let mut dlft = None;
     let (law_text, cycle, converged, fractions) = match law {
         StickSlipSetting::Regularized => {
             let v_min = speeds.iter().copied().fold(f64::INFINITY, f64::min);
@@ -156,7 +180,14 @@ pub fn recompute(
                 "exact Coulomb stick-slip (dynamic Lagrangian frequency-time method, Nacivet et al. 2003), {HARMONICS} harmonics, {} samples, penalty {epsilon_factor} x default",
                 d.samples
             );
-            (text, d.point, d.converged, Some(d.stick_fractions))
+            let out = (
+                text,
+                d.point.clone(),
+                d.converged,
+                Some(d.stick_fractions.clone()),
+            );
+            dlft = Some(d);
+            out
         }
     };
     let stick_margin = point_margin(&mb, &cycle, &speeds).map_err(|e| err(&e))?;
@@ -171,6 +202,8 @@ pub fn recompute(
         reason,
         walk,
         mu_ref,
+        dlft,
+        stability: None,
     }))
 }
 
@@ -203,6 +236,23 @@ pub fn text(c: &CycleStick) -> String {
             c.reason,
             w.text(c.mu_ref, ref_name)
         );
+    }
+    match &c.stability {
+        Some((Ok(f), secs)) => match f.leading() {
+            Some(e) => {
+                s += &format!(
+                    "\n  stability with the exact law: {} (leading Floquet exponent {:+.2} {:+.1}i 1/s, |multiplier| {:.5}, error {:.1e} 1/s; {secs:.1} s)",
+                    f.stability(),
+                    e.sigma.re,
+                    e.sigma.im.abs(),
+                    e.multiplier.norm(),
+                    f.error()
+                )
+            }
+            None => s += &format!("\n  stability with the exact law: {}", f.stability()),
+        },
+        Some((Err(e), _)) => s += &format!("\n  stability with the exact law not computed ({e})"),
+        None => {}
     }
     if !c.converged {
         s += &format!(
@@ -237,6 +287,16 @@ pub fn write(dir: &Path, c: &CycleStick) -> Result<()> {
         "nl_coefficients": c.cycle.nl_coeffs,
         "walk": c.walk.as_ref().map(|w| w.json()),
         "direct_starts": if c.walk.is_some() { Some(&c.reason) } else { None },
+        "stability": c.stability.as_ref().map(|(f, secs)| match f {
+            Ok(f) => serde_json::json!({
+                "verdict": f.stability().to_string(),
+                "leading_exponent_re": f.leading().map(|e| e.sigma.re),
+                "leading_exponent_im": f.leading().map(|e| e.sigma.im.abs()),
+                "error": f.error(),
+                "seconds": secs,
+            }),
+            Err(e) => serde_json::json!({ "error_text": e }),
+        }),
     });
     squeal_io::atomic_write_bytes(
         &dir.join("stick_slip.json"),
@@ -259,7 +319,8 @@ pub fn stage(
     let st = p.stability()?;
     match recompute(m, st, law, mu, sol) {
         Ok(None) => Ok(None),
-        Ok(Some(c)) => {
+        Ok(Some(mut c)) => {
+            add_stability(m, st, &mut c);
             write(dir, &c)?;
             Ok(Some(text(&c)))
         }
