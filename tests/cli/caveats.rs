@@ -2,7 +2,7 @@
 //! without damping is flagged, prints no slope at its coalescence, does not call one mode of
 //! the pair "the unstable one", and is told that its coalescing pair is near-degenerate.
 
-mod common;
+use super::common;
 use common::{bundled_scene, run_ok, temp_dir};
 
 fn stability(name: &str, scene_text: &str) -> (String, serde_json::Value) {

@@ -2,7 +2,7 @@
 //! before any work, and what its messages say. Each case failed before the fix: the commands
 //! exited 0 and wrote over their input, or ran the reduction before rejecting an argument.
 
-mod common;
+use super::common;
 
 use common::{bundled_scene, root, run_ok, squeal, temp_dir};
 use std::path::Path;

@@ -4,7 +4,7 @@
 //! its stated own error are read from `summary.json`, and the reference must be more accurate
 //! than the CHBM cycles it judges.
 
-mod common;
+use super::common;
 
 use common::{bundled_scene, run_ok, temp_dir};
 

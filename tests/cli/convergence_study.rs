@@ -4,7 +4,7 @@
 //! the scene itself (the pinned coarse μ0), and that each verdict is the one its recorded
 //! values call for.
 
-mod common;
+use super::common;
 
 use serde_json::Value;
 

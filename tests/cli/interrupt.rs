@@ -2,7 +2,7 @@
 //! partial file and no stale lock in the output folder, and `stability.csv` says the damping it
 //! used.
 
-mod common;
+use super::common;
 
 use common::{bundled_scene, root, squeal, temp_dir};
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 //! the microphones given instead of the default one, and refuse a position that is not three
 //! numbers or that lies inside the brake, saying what to do. On the bundled coarse brake.
 
-mod common;
+use super::common;
 use common::{bundled_scene, run_ok, squeal, temp_dir};
 
 /// The `(position, dB(A), ERP dB)` of every `sound:` line `squeal chbm` prints.

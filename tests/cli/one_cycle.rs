@@ -2,7 +2,7 @@
 //! scene's cycle (`[chbm]`: 1.02 μ0 with 3 harmonics in the bundled scene) the same way —
 //! along the branch from the Hopf point — and write the same Fourier coefficients, bit for bit.
 
-mod common;
+use super::common;
 use common::{bundled_scene, run_ok, temp_dir};
 
 #[test]

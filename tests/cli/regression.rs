@@ -12,7 +12,7 @@
 //! Each tolerance says what it allows for: these are round-off and solver-tolerance bounds, not
 //! modelling allowances.
 
-mod common;
+use super::common;
 
 use common::{bundled_scene, run_ok, squeal, temp_dir};
 use std::path::Path;

@@ -5,7 +5,7 @@
 //! debug formatting reaches the page, and in headless Chromium every image loads and every
 //! link and anchor has its target (a screenshot is kept in the target folder).
 
-mod common;
+use super::common;
 
 use common::{bundled_scene, run_ok, temp_dir};
 use std::path::Path;

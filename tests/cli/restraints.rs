@@ -5,7 +5,7 @@
 //! reduction away. Now it stops before any reduction with the free motions, the scene keys
 //! that hold the pad (file:line) and what to add.
 
-mod common;
+use super::common;
 
 use common::{bundled_scene, squeal, temp_dir};
 

@@ -11,7 +11,7 @@
 //! end with the complete file. Needs `unshare` with user and PID namespaces (util-linux; root or
 //! unprivileged user namespaces): where it does not run, the test prints why and passes.
 
-mod common;
+use super::common;
 
 use common::{root, temp_dir};
 use std::path::{Path, PathBuf};

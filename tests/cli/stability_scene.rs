@@ -2,7 +2,7 @@
 //! line, and the bundled brake's Hopf point on the coarse meshes (issue #5's requirement:
 //! 0.2 < μ0 < 0.8, 1 < f < 15 kHz).
 
-mod common;
+use super::common;
 
 use common::{bundled_scene, squeal};
 use std::path::Path;

@@ -3,7 +3,7 @@
 //! theory and the modal damping ratio, and the mesh study's patch model against
 //! `squeal stability`.
 
-mod common;
+use super::common;
 
 use std::path::PathBuf;
 use std::process::Output;

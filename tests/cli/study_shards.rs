@@ -2,7 +2,7 @@
 //! tables and figures are the unsplit run's, byte for byte; the merge refuses missing, mixed,
 //! stale and inconsistent shards; bad `--shard` values are usage errors.
 
-mod common;
+use super::common;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -5,7 +5,7 @@
 //! second mode with its refined onset and criticality, and gives the generalized CHBM's
 //! two-mode torus just past it (also written to `branch/two_mode.txt`).
 
-mod common;
+use super::common;
 
 use common::{root, run_ok, temp_dir};
 

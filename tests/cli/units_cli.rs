@@ -9,7 +9,7 @@
 //! must give the same volume and mass to round-off (1e-12 relative: a handful of roundings
 //! of each coordinate and constant by 1e3 steps; a wrong conversion is off by powers of 1e3).
 
-mod common;
+use super::common;
 
 use common::{root, squeal, temp_dir};
 use std::path::{Path, PathBuf};

@@ -7,7 +7,7 @@
 //! project's shared 2-core machine, too long for a test; what is asserted is what nodal
 //! contact must do with separately meshed parts, and the frictionless pair that coalesces.
 
-mod common;
+use super::common;
 
 use common::{root, temp_dir};
 

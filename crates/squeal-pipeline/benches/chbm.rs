@@ -10,7 +10,7 @@
 //! start at μ is [`squeal_chbm::start::start_at`] with the unstable mode of largest growth in
 //! the band.
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/pipeline/common/mod.rs"]
 mod common;
 
 use common::best;

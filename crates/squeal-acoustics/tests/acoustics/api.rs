@@ -1,7 +1,7 @@
 //! The plain-data interface: both velocity inputs, 8-node quadrilaterals, the levels of a
 //! periodic motion and the refusals.
 
-mod common;
+use super::common;
 
 use squeal_acoustics::{
     AcousticsError, Air, Complex64, FaceRule, Facing, Harmonic, RadiatingSurface, Velocity,

@@ -5,7 +5,7 @@
 //! `cargo test --release -p squeal-acoustics --test closed_forms -- --nocapture` prints the
 //! measured values recorded in docs/verification.md.
 
-mod common;
+use super::common;
 
 use common::{Tri6Surface, bessel_j1, disc, sphere};
 use squeal_acoustics::{

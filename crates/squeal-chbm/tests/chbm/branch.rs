@@ -4,7 +4,7 @@
 //! full equations on either side of the fold, and two Floquet methods (Hill's and the monodromy
 //! matrix) against each other and against Liouville's formula.
 
-mod common;
+use super::common;
 
 use common::oscillator::{KL, KNL};
 use common::{Model, model, normal_form_of, subcritical};

@@ -5,7 +5,7 @@
 //! 1e-15 s: the reference of `dlft_two_dof.rs`), on the 2-dof friction oscillator of Hoffmann
 //! et al. (2002) at μ = 0.6, V = 0.01 m/s, where the mass sticks about a third of each period.
 
-mod common;
+use super::common;
 
 use common::belt::{C, M, MU, N0, V, balance, event, normal, rk4, stiffness, stuck_force};
 use faer::{Mat, c64};

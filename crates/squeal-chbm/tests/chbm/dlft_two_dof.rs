@@ -15,7 +15,7 @@
 //! `|φ_stuck| = μ_s N`, slip to stick where `γ = 0` with `|φ_stuck| <= μ_s N`). No
 //! regularization: its only error is Runge–Kutta's, `O(dt^4)` — checked by halving `dt`.
 
-mod common;
+use super::common;
 
 use common::belt::{MU, N0, V, balance, event, normal, rk4, stuck_force};
 use faer::Mat;

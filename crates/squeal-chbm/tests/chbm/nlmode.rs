@@ -4,7 +4,7 @@
 //! `examples/nonlinear_mode.rs`), and the small-amplitude limit against the dense linear mode
 //! when the damping is not mass-proportional (where it is not the eigenvalue itself).
 
-mod common;
+use super::common;
 
 use common::{normal_form_of, start, subcritical};
 use squeal_brake::criticality::Criticality;

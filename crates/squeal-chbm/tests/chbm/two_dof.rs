@@ -7,7 +7,7 @@
 //! is supercritical and, near it, the limit cycle's amplitude squared grows linearly with
 //! `μ - μ0` (normal form of the Hopf bifurcation).
 
-mod common;
+use super::common;
 
 use common::oscillator::{self as example, KL, KNL};
 use common::{Model, growth, hopf, model, normal_form_of, start, subcritical};

@@ -10,7 +10,7 @@ use squeal_eigs::{
     lowest_modes_with_factor, shifted, sturm_check,
 };
 
-mod common;
+use super::common;
 use common::{in_pool, orthonormality_error, rel};
 
 #[test]

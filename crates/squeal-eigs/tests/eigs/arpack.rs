@@ -6,7 +6,7 @@ use squeal_eigs::model_problems::{
 };
 use squeal_eigs::{Backend, EigOptions, lowest_modes};
 
-mod common;
+use super::common;
 use common::rel;
 
 fn both(

@@ -10,7 +10,7 @@ use squeal_eigs::{
     CholeskyOptions, EigOptions, FillOrdering, SparseCholesky, count_below, lowest_modes,
 };
 
-mod common;
+use super::common;
 use common::{in_pool, orthonormality_error, rel};
 
 fn block_opts(block_size: usize) -> EigOptions {

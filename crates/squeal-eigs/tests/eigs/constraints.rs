@@ -11,7 +11,7 @@ use squeal_eigs::{
     lowest_modes_constrained,
 };
 
-mod common;
+use super::common;
 use common::rel;
 
 /// Three "patch" rows averaging one component over a block of nodes each,

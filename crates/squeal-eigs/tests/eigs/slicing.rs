@@ -7,7 +7,7 @@ use squeal_eigs::{
     count_below_constrained, lowest_modes, lowest_modes_constrained,
 };
 
-mod common;
+use super::common;
 use common::{in_pool, orthonormality_error, rel};
 
 fn sliced(slice: usize) -> EigOptions {

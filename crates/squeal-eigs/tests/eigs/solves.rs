@@ -6,7 +6,7 @@ use faer::sparse::SparseColMatRef;
 use squeal_eigs::model_problems::box_vector;
 use squeal_eigs::{CholeskyOptions, FillOrdering, SparseCholesky};
 
-mod common;
+use super::common;
 use common::in_pool;
 
 /// Normwise backward error max_j ||A x_j - b_j|| / (||A||_1 ||x_j|| + ||b_j||).

@@ -1,7 +1,7 @@
 //! Global assembly: against a naive dense assembly, bit-for-bit independence of the thread
 //! count, exact symmetry, and the sparsity pattern.
 
-mod common;
+use super::common;
 use common::{Sparse, curve_midside, steel};
 use squeal_fe::{
     AssemblyOptions, DofMap, ElasticMaterial, MaterialTable, Quadrature, Restraint, System,

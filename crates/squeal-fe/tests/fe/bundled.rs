@@ -2,7 +2,7 @@
 //! set against the closed-form volumes of meshes/README.md, materials from the sections, and
 //! rigid motions of the curved, unstructured meshes.
 
-mod common;
+use super::common;
 use common::{frobenius, matvec, norm};
 use squeal_fe::{DofMap, MaterialTable, Quadrature, assemble, mesh_volume, total_mass};
 use squeal_mesh::Mesh;

@@ -2,7 +2,7 @@
 //! frequency converges at the P2 rate (eigenvalue error ~ h⁴) and lands near Timoshenko beam
 //! theory; with tet10 and with hex20 elements.
 
-mod common;
+use super::common;
 use common::{dense, dense_eigenvalues, hz, lowest_eigenvalues, steel};
 use squeal_fe::ElementKind;
 use squeal_fe::{DofMap, MaterialTable, Restraint, System, assemble};

@@ -1,6 +1,6 @@
 //! MatrixMarket export read back with squeal-io's reader, and the dof-map CSV.
 
-mod common;
+use super::common;
 use common::steel;
 use squeal_fe::{DofMap, MaterialTable, Restraint, assemble, write_matrix_market};
 use squeal_mesh::generate::box_tet10;

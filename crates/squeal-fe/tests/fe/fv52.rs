@@ -12,7 +12,7 @@
 //!    tet10 frequencies are upper bounds, converge at the P2 rate, and all ten lowest are
 //!    within 1% on a 12×12×3 mesh. Its (1,1) bending mode is 0.16% above NAFEMS's mode 4.
 
-mod common;
+use super::common;
 use common::{dense_eigenvalues, hz, lowest_eigenvalues};
 use faer::Mat;
 use squeal_fe::ElementKind;

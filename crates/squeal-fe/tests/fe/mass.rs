@@ -1,7 +1,7 @@
 //! Total mass and second moments from the consistent mass matrix, on straight and curved
 //! meshes, against volumes computed independently.
 
-mod common;
+use super::common;
 use common::{curve_midside, distort_vertices, dot, matvec};
 use squeal_fe::{
     DofMap, ElasticMaterial, MaterialTable, Quadrature, Summary, assemble, mesh_volume, total_mass,

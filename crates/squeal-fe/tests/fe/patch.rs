@@ -1,7 +1,7 @@
 //! Patch test (Irons): a linear displacement field on a distorted mesh gives constant strain
 //! in every element, zero residual `K u` at interior nodes, and strain energy `V εᵀ C ε / 2`.
 
-mod common;
+use super::common;
 use common::{PATCH_A as A, distort_vertices, linear_field, lining, on_box_boundary};
 use squeal_fe::{DofMap, MaterialTable, Quadrature, assemble, strain_at};
 use squeal_mesh::generate::box_tet10;

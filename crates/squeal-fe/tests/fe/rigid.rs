@@ -1,6 +1,6 @@
 //! A free part has exactly six zero-energy modes: the rigid motions.
 
-mod common;
+use super::common;
 use common::{curve_midside, distort_vertices, frobenius, matvec, norm, steel};
 use squeal_fe::{DofMap, MaterialTable, assemble};
 use squeal_mesh::generate::box_tet10;

@@ -5,7 +5,7 @@
 // Index loops mirror the formulas (coordinates, Voigt pairs).
 #![allow(clippy::needless_range_loop)]
 
-mod common;
+use super::common;
 use common::{
     PATCH_A as A, distort_solid, dot, linear_field, lining, lowest_eigenvalues, matvec,
     on_box_boundary, steel,

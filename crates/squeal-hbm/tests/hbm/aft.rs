@@ -1,7 +1,7 @@
 //! AFT (eq. 29): exact projection of trigonometric polynomials, the predicted aliasing when
 //! too few samples are used, and the analytic Jacobians against finite differences.
 
-mod common;
+use super::common;
 
 use common::*;
 use faer::Mat;

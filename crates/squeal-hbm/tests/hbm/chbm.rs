@@ -2,9 +2,9 @@
 //! (the example `chbm_van_der_pol`, run here), the secant property of the describing-function
 //! linearization on a 2-dof force, and the analytic gradient of `f2` against differences.
 
-mod common;
+use super::common;
 
-#[path = "../examples/chbm_van_der_pol.rs"]
+#[path = "../../examples/chbm_van_der_pol.rs"]
 mod van_der_pol_example;
 
 use common::*;

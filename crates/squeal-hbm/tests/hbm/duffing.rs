@@ -2,7 +2,7 @@
 //! an RK4 integration to steady state, and single-harmonic HB against the classical
 //! frequency-amplitude relation.
 
-mod common;
+use super::common;
 
 use common::*;
 use squeal_hbm::*;

@@ -2,7 +2,7 @@
 //! `x'' - (1 - x^2) x' + x = 0` (mu = 1): period against the reference value of Hairer,
 //! Norsett & Wanner, amplitude against an independent RK4 integration.
 
-mod common;
+use super::common;
 
 use common::*;
 use squeal_hbm::*;

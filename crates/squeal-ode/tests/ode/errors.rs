@@ -1,6 +1,6 @@
 //! Failure modes: every one ends in a typed error, never a silent answer.
 
-mod common;
+use super::common;
 
 use common::{Linear, complex_pair};
 use faer::MatMut;

@@ -1,7 +1,7 @@
 //! Linear validation: exponentials, convergence order, oscillator damping,
 //! growth rate of a slightly unstable mode.
 
-mod common;
+use super::common;
 
 use common::{Linear, complex_pair, complex_pair_exact};
 use squeal_ode::{Atol, Bdf, BdfOptions, FixedStep, OscillationMonitor, SteadyOptions, solve};

@@ -3,7 +3,7 @@
 //! multipliers `1` and `e^{-2μT}`, all exact) and the van der Pol oscillator at `μ = 1`, whose
 //! period is published to 29 digits.
 
-mod common;
+use super::common;
 
 use common::VanDerPol;
 use faer::MatMut;

@@ -1,7 +1,7 @@
 //! Stiff and nonlinear validation: Robertson, van der Pol (period of the
 //! limit cycle through the steady-state detector; stiff mu = 1000).
 
-mod common;
+use super::common;
 
 use common::{Robertson, VanDerPol};
 use squeal_ode::{Atol, Bdf, BdfOptions, SteadyOptions, run_to_steady_state, solve};

@@ -4,7 +4,7 @@
 //! and named in the scene by `[model] disc_elset` and `pad_elset` give the same reduced model
 //! and Hopf point, bit for bit, as the two files.
 
-mod common;
+use super::common;
 
 use common::{bundled_scene, meshes};
 use squeal_pipeline::model::{build, quiet};

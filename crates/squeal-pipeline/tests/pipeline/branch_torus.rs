@@ -3,7 +3,7 @@
 //! torus that `squeal_chbm::torus::torus_at` computes independently at its μ (a fresh
 //! correction at fixed μ from the interpolated neighbours, on the same basis and grid).
 
-mod common;
+use super::common;
 
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::torus::{TorusOptions, torus_at};

@@ -11,7 +11,7 @@
 //! every pair, no slope): a falling curve must lower μ0 below the frozen brake's, a rising
 //! one raise it.
 
-mod common;
+use super::common;
 
 use squeal_brake::Brake;
 use squeal_brake::contact::{ContactLaw, Kinematics, Law, Parameter, Response};

@@ -4,7 +4,7 @@
 //! abutments), so it travels through the gap rigidly and ends in the zero-gap equilibrium,
 //! g0 further down. `close_initial_gaps = true` is the zero-gap brake.
 
-mod common;
+use super::common;
 
 use squeal_brake::equilibrium::{NewtonOptions, static_equilibrium};
 use squeal_pipeline::model::{Model, model_on, quiet, reduced_model};

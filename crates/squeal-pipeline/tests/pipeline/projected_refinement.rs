@@ -3,7 +3,7 @@
 //! eigen-decomposition at each evaluation (the reference: it sees every eigenvalue), on the
 //! coarse bundled brake projected (158 dofs; its projection keeps 105 modes + 18 vectors).
 
-mod common;
+use super::common;
 
 use squeal_brake::sweep::{SweepMethod, sweep};
 

@@ -7,7 +7,7 @@
 //! the piston load, each part's modulus and density, the damping of all modes and of each) in
 //! its four rates (μ0, Re λ, Im λ, the frequency at the moved Hopf point), and the friction
 //! coefficient's `dλ/dμ`; and the contributions' sums.
-mod common;
+use super::common;
 
 use faer::c64;
 use squeal_brake::Brake;

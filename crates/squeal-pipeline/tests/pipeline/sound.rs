@@ -1,7 +1,7 @@
 //! The sound of a limit cycle on the coarse bundled brake: the surface velocity of each
 //! harmonic against the time derivative of the expanded displacement, and the radiating faces.
 
-mod common;
+use super::common;
 
 use squeal_pipeline::shapes::{Meshes, expand};
 use squeal_pipeline::sound::{BrakeSurface, SoundOptions};

@@ -6,7 +6,7 @@
 //! `stick_slip.rs`; its 3 km/h test ran the same branch stage as the first test here and is
 //! now part of it). The three tests run alongside on the machine's cores.
 
-mod common;
+use super::common;
 
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::branch::BranchPoint;

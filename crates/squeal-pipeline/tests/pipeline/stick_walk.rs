@@ -17,7 +17,7 @@
 //! (was `stick_time.rs`), and `squeal chbm`'s single DLFT cycle at 1.0649 μ0 walked in μ from
 //! below to the cycle of the walk above (was `stick_chbm_walk.rs`).
 
-mod common;
+use super::common;
 
 use squeal_brake::modal_brake::ModalBrake;
 use squeal_chbm::floquet::CycleStability;

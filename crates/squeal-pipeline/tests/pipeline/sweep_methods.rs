@@ -4,7 +4,7 @@
 //! crossings and the same Hopf point; the projected sweep (the default for large brakes) must
 //! stay within the tolerance its truncation was checked to.
 
-mod common;
+use super::common;
 
 use squeal_brake::sweep::{SweepMethod, sweep};
 

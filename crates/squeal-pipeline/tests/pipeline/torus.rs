@@ -7,7 +7,7 @@
 //! below the tolerances asserted), and measures the loudest pair's closure with the same
 //! spectral-peak and envelope measures as the torus' signal.
 
-mod common;
+use super::common;
 
 use squeal_brake::dynamics::BrakeDynamics;
 use squeal_brake::modal_brake::ModalBrake;

@@ -1,7 +1,7 @@
 //! The brake-level entry point on the bundled coarse meshes: the 158-dof layout, the file
 //! round trip, freshness of an existing file, and the automatic mode choice.
 
-mod common;
+use super::common;
 
 use common::{coarse, coarse_brake, coarse_inputs, mesh_path};
 use squeal_fe::MaterialTable;

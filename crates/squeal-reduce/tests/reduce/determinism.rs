@@ -3,7 +3,7 @@
 //! at the same time, the supernodal solves split over subtrees and the Sturm check beside the
 //! Lanczos iteration.
 
-mod common;
+use super::common;
 
 use common::{coarse, coarse_inputs};
 use squeal_reduce::brake::reduce_brake_loaded;

@@ -1,6 +1,6 @@
 //! Errors, not panics (issue #4, item 8): each bad input is named by a typed error.
 
-mod common;
+use super::common;
 
 use common::{coarse, coarse_inputs, mesh_path};
 use squeal_eigs::{EigError, EigOptions};

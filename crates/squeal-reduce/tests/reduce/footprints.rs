@@ -4,7 +4,7 @@
 //! the full finite-element model of the pad (frequencies on springs are a Ritz projection's;
 //! a static load on a footprint's coordinate is its force spread over the footprint).
 
-mod common;
+use super::common;
 
 use faer::Mat;
 use faer::prelude::Solve;

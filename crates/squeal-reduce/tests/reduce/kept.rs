@@ -4,7 +4,7 @@
 //! after the fix takes it instead of reducing it again — the same bits as a reduction from
 //! scratch; a kept part that no longer stands for the part as asked for is reduced again.
 
-mod common;
+use super::common;
 
 use common::{coarse, coarse_inputs};
 use squeal_reduce::brake::{

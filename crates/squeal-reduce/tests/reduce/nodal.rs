@@ -5,7 +5,7 @@
 // Index loops over the three directions read like the formulas they check.
 #![allow(clippy::needless_range_loop)]
 
-mod common;
+use super::common;
 
 use common::{coarse, coarse_inputs};
 use squeal_reduce::brake::{LoadedPart, ModeChoice, reduce_brake_loaded};

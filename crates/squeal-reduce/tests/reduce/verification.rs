@@ -1,7 +1,7 @@
 //! Verification of the reduced coarse parts (issue #4, item 7) against independent
 //! computations on the full finite-element model.
 
-mod common;
+use super::common;
 
 use common::{coarse, coarse_brake};
 use faer::Mat;
