@@ -1,4 +1,4 @@
-// Loaded into a copy of the report by tests/report.rs and run in headless Chromium: lists
+// Loaded into a copy of the report by tests/cli/report.rs and run in headless Chromium: lists
 // every image that did not load, every relative link whose file cannot be read and every
 // anchor without its target, in a pre element (id squeal-browser-check) the test reads back.
 window.addEventListener('load', () => {

@@ -168,7 +168,7 @@ fn the_report_shows_both_instabilities_of_the_coarse_brake() {
     // Issue 23: the cycle's level at the microphone is in the same paragraph, on the first
     // screen (the browser check below puts the verdict's paragraphs above 800 px); the
     // Rayleigh level of the 1.02 μ0 cycle at the default microphone, as `squeal chbm` prints
-    // it (the same cycle, bit for bit: tests/one_cycle.rs).
+    // it (the same cycle, bit for bit: tests/cli/one_cycle.rs).
     let cycle = &html[html.find("<p>Limit cycle at μ = 0.47106").unwrap()..];
     let cycle = &cycle[..cycle.find("</p>").unwrap()];
     assert!(
@@ -358,7 +358,7 @@ fn headless(browser: &Path, args: &[&str], page: &Path) -> std::process::Output 
 
 /// Opens the report of `out` in headless Chromium: every one of its `images` must load, every
 /// relative link must name a file that can be read and every anchor its target
-/// (`tests/browser_check.js` lists the failures in the page, read back with `--dump-dom`); a
+/// (`tests/cli/browser_check.js` lists the failures in the page, read back with `--dump-dom`); a
 /// screenshot 800 px wide is kept in the target folder. Without a browser the check is
 /// skipped with a note, unless `SQUEAL_REQUIRE_BROWSER` is set (CI sets it and installs
 /// Debian's chromium), so that the README's test command still needs only Rust.
@@ -434,7 +434,7 @@ fn check_in_browser(out: &Path, images: usize) {
 /// Table 1 and 2 and the overlays in the report, the reference by shooting, and the time
 /// integration that did not reach a steady cycle (BDF at rtol 1e-5 on the coarse brake) said as
 /// such. About a minute (the reference's monodromy and the failed run are most of it): run with
-/// `cargo test --release --test report -- --ignored`.
+/// `cargo test --release --test cli report:: -- --ignored`.
 #[test]
 #[ignore = "about a minute: the reference and a failed time integration"]
 fn the_report_has_the_comparison_tables_and_failures() {

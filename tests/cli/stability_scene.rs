@@ -210,7 +210,7 @@ fn the_two_pad_brake_presses_both_pads_with_the_clamp_force_and_squeals() {
     let out = sweep_41(&scene, &out_dir);
     let stdout = String::from_utf8_lossy(&out.stdout);
     // Each pad carries the clamp force (printed to 1 mN; the equilibrium balances it to
-    // 1e-13 relative, crates/squeal-pipeline/tests/two_pad.rs).
+    // 1e-13 relative, crates/squeal-pipeline/tests/pipeline/two_pad.rs).
     let line = stdout
         .lines()
         .find(|l| l.trim_start().starts_with("pad resultants"))

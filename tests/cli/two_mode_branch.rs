@@ -41,7 +41,7 @@ fn branch_report_gives_the_two_mode_answer_past_the_second_onset() {
         text.contains("second unstable mode inside the branch's range: 2880 Hz"),
         "{text}"
     );
-    // The onset by bisection to 1e-9 of μ (measured 0.23771043; `tests/two_mode_brake.rs`
+    // The onset by bisection to 1e-9 of μ (measured 0.23771043; `crates/squeal-pipeline/tests/pipeline/two_mode_brake.rs`
     // checks the bisection against the sweep's own refinement to 1e-7).
     let onset = number_after(&text, "onset mu0' = ");
     assert!((onset - 0.23771043).abs() < 1e-7, "{onset}");

@@ -2,7 +2,7 @@
 //! power, convergence with the mesh), the pulsating sphere (ERP against the true power, the
 //! monopole sum against the exact field) and the A-weighting table of IEC 61672-1.
 //!
-//! `cargo test --release -p squeal-acoustics --test closed_forms -- --nocapture` prints the
+//! `cargo test --release -p squeal-acoustics --test acoustics closed_forms:: -- --nocapture` prints the
 //! measured values recorded in docs/verification.md.
 
 use super::common;

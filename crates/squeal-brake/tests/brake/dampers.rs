@@ -163,7 +163,7 @@ fn small_dampers_move_each_eigenvalue_by_half_phi_c_phi() {
 
 #[test]
 fn a_physical_damping_matrix_gives_the_routh_hurwitz_threshold() {
-    // The 2-dof mode-coupling brake of tests/two_dof.rs (M = I, K_t = [[k11, k12 - μ kH],
+    // The 2-dof mode-coupling brake of tests/brake/two_dof.rs (M = I, K_t = [[k11, k12 - μ kH],
     // [k12, k22]]) with C = [[c1, c12], [c12, c2]] on the brake: D = Φᵀ C Φ, full, formed by
     // the reference itself.
     let (k11, k12, k22, kh) = (1.0e6, 1.0e5, 1.2e6, 2.0e5);
@@ -220,7 +220,7 @@ fn a_physical_damping_matrix_gives_the_routh_hurwitz_threshold() {
     };
     let s = sweep(&brake, &r, &mus, &opts).unwrap();
     let h = s.hopf.as_ref().expect("no Hopf point");
-    // As tests/two_dof.rs with the same D set by hand: dense eigenvalues to ~ε ω, a bracket of
+    // As tests/brake/two_dof.rs with the same D set by hand: dense eigenvalues to ~ε ω, a bracket of
     // 1e-13 μ*; asserted 1e-10.
     assert!((h.mu0 / exact - 1.0).abs() < 1e-10, "{} vs {exact}", h.mu0);
     let f = delta3(exact).1.sqrt() / (2.0 * std::f64::consts::PI);

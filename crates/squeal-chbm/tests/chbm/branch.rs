@@ -1,5 +1,5 @@
 //! Branches of limit cycles and their Floquet stability on the 2-dof friction oscillator
-//! (`tests/common/oscillator.rs`), each checked against something independent: the
+//! (`tests/chbm/common/oscillator.rs`), each checked against something independent: the
 //! normal form at the Hopf point, CHBM at a branch point's friction, BDF time integration of the
 //! full equations on either side of the fold, and two Floquet methods (Hill's and the monodromy
 //! matrix) against each other and against Liouville's formula.

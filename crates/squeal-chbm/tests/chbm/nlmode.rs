@@ -1,5 +1,5 @@
 //! The nonlinear mode (extended periodic motion concept, `squeal_chbm::nlmode`) on the 2-dof
-//! oscillator's variants of `tests/common`: the criticality read from ζ(a) against the
+//! oscillator's variants of `tests/chbm/common`: the criticality read from ζ(a) against the
 //! Lyapunov coefficient on the subcritical variant (the supercritical one is in
 //! `examples/nonlinear_mode.rs`), and the small-amplitude limit against the dense linear mode
 //! when the damping is not mass-proportional (where it is not the eigenvalue itself).
@@ -13,7 +13,7 @@ use squeal_chbm::nlmode::{NlModeOptions, nonlinear_mode};
 
 #[test]
 fn the_subcritical_oscillator_reads_subcritical() {
-    // l1 = +8.4 (tests/common): ζ must fall with the amplitude above μ0. The first two
+    // l1 = +8.4 (tests/chbm/common): ζ must fall with the amplitude above μ0. The first two
     // points (1e-2 and 2e-2 of the opening amplitude) resolve ζ2 a² ~ 1e-7 against LM's
     // ~1e-10 on ζ.
     let m = subcritical();

@@ -3,7 +3,7 @@
 //! `s = 1 + (r - 1) e^(-|γ|/v_s)`), integrated by BDF (squeal-ode) to its steady stick–slip
 //! cycle, against the closed-form cycle of Coulomb's law with static and kinetic coefficients
 //! as `v_reg`, `v_s → 0` (the closed form is derived in
-//! `crates/squeal-hbm/tests/stick_slip_belt.rs`: `T = (π + 2α)/ω0 + 2 d0 / V`, peak-to-peak
+//! `crates/squeal-hbm/tests/hbm/stick_slip_belt.rs`: `T = (π + 2α)/ω0 + 2 d0 / V`, peak-to-peak
 //! `2 sqrt(d0² + (V/ω0)²)`, `d0 = (μ_s - μ) N / k`, `α = atan2(V/ω0, d0)`).
 
 use faer::MatMut;

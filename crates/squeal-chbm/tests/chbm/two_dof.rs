@@ -1,5 +1,5 @@
 //! Independent checks of CHBM and of the time-integration reference on the 2-dof
-//! mode-coupling friction oscillator (`tests/common/oscillator.rs`, the path of
+//! mode-coupling friction oscillator (`tests/chbm/common/oscillator.rs`, the path of
 //! `examples/friction_oscillator.rs` by hand; issue #6, item 9): a pair whose normal is dof 1 (eq 8's
 //! `F = k_l δ + k_nl δ³`, δ = x1 - g0) and whose friction acts along `-e0` (coupling
 //! `-μ k_t` in `K[0][1]`). The cubic term hardens the contact as the vibration grows; with
@@ -450,7 +450,7 @@ fn the_shooting_reference_states_an_error_that_bounds_its_own() {
         r.all
     );
     // CHBM 3H is 2.6e-6 off (a nearly harmonic cycle): the reference's stated error is below
-    // it, but not by the factor 10 the brake shows (tests/compare_reference.rs).
+    // it, but not by the factor 10 the brake shows (tests/cli/compare_reference.rs of the squeal package).
     assert!(r.all.displacement < h3.displacement, "{h3:?}");
     // Newton converged: periodicity residual below the asked 300 rtol = 3e-8.
     assert!(

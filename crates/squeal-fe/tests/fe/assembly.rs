@@ -10,7 +10,7 @@ use squeal_fe::{
 use squeal_mesh::generate::box_tet10;
 
 /// Naive reference: dense matrices, each element scattered through the dof map, with the
-/// element's stiffness rule (4-point if straight, 24-point if curved: `tests/curved.rs`).
+/// element's stiffness rule (4-point if straight, 24-point if curved: `tests/fe/curved.rs`).
 fn dense_reference(
     mesh: &squeal_mesh::Mesh,
     materials: &MaterialTable,

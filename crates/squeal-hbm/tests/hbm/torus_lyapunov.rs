@@ -1,5 +1,5 @@
 //! The Lyapunov exponents of a torus (`squeal_hbm::torus::lyapunov`) against the closed form of
-//! two coupled Hopf normal forms (the system of tests/torus.rs):
+//! two coupled Hopf normal forms (the system of tests/hbm/torus.rs):
 //!
 //! `z_a' = (α_a + i ω_a) z_a - (1 + i γ_a) |z_a|² z_a + (i κ_a - δ_a) |z_b|² z_a`, and the same
 //! with `a ↔ b`. In polar form `z = r e^{iθ}` the radii obey

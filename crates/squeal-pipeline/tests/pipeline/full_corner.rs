@@ -131,7 +131,7 @@ fn corner_with_caliper_and_bracket_frictionless_modes_match_the_full_model() {
     // frequency at or above the full one (the smallest gap +4.6e-8, the caliper's 32.6 Hz
     // slide on its guide pins); from 1 kHz up the largest +1.07e-3 (mode 36, 3710 Hz).
     // Asserted 2.7e-3, 2.5 times the measured: the Craig–Bampton truncation, as on the
-    // two-pad brake (`--test two_pad`). A left-out tie or connector is off by far more (a
+    // two-pad brake (`--test pipeline two_pad::`). A left-out tie or connector is off by far more (a
     // loose shim or a free caliper changes the spectrum by order one).
     let (reduced, full, _) = frequencies("brake_caliper.toml", 40);
     check(&reduced, &full, 6000.0, 2.7e-3);

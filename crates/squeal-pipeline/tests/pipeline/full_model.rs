@@ -197,7 +197,7 @@ fn reduced_onset_matches_the_full_model_patch() {
     // Measured (undamped, 50 modes per part, 13980 full dofs): the reduced brake's μ0
     // 0.2636878 at 2943.081 Hz, the full model's onset of that mode 0.2631766 at 2942.160 Hz:
     // +1.94e-3 and +3.1e-4. That is the Craig–Bampton error: the 50-mode brake's frequencies
-    // lie 1e-6 … 1.2e-3 above the full model's (`--test two_pad`), and a coalescence's μ0
+    // lie 1e-6 … 1.2e-3 above the full model's (`--test pipeline two_pad::`), and a coalescence's μ0
     // is proportional to the gap between the two frequencies, here 0.78 % of them (modes #7
     // and #8, 2930 and 2953 Hz): the difference of the two modes' relative errors is
     // amplified 128 times. Asserted: 4e-3 and 1e-3, about 2x and 3x the measured. Not

@@ -400,7 +400,7 @@ fn rules_and_materials_that_make_no_sense_are_errors_naming_key_and_line() {
 fn pistons_as_circles_reduce_to_one_footprint_coordinate_each() {
     // The bundled pistons' centres (r = 110 mm at 77.5 and 102.5 deg, on the back face
     // z = 35 mm), 40 mm diameter, on the coarse brake with 50 modes per part: the brake of
-    // the pinned results (tests/regression.rs) with its four PISTON nodes replaced by two
+    // the pinned results (tests/cli/regression.rs) with its four PISTON nodes replaced by two
     // footprints.
     let (x, y) = (
         0.11 * 77.5f64.to_radians().cos(),

@@ -348,7 +348,7 @@ fn the_single_cycle_walks_past_1_05_mu0_to_the_branch_cycle() {
     assert!(c.cycle.residual <= 1e-9, "residual {:e}", c.cycle.residual);
     // `squeal branch`'s walk at 1.0649 mu0 (the same DLFT balance continued in mu from the
     // 1.0452 mu0 cycle through 1.0540 mu0; docs/stick_slip.md, "Continuation in mu",
-    // `tests/stick_walk.rs`): 3963.84817 Hz, 46.0683 um on pair 7 (0-based 6). Both are roots
+    // `tests/pipeline/stick_walk.rs`): 3963.84817 Hz, 46.0683 um on pair 7 (0-based 6). Both are roots
     // of the same balance with residuals <= 1e-9 reached by different walks; tolerance 2e-7
     // in frequency and 1e-5 in closure: the printed digits' rounding (1.3e-9, 1.1e-6) plus the
     // spread of such roots (measured from a walk from 1.0223 mu0: 4.7e-8 and 9.6e-7).

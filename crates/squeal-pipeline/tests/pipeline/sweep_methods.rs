@@ -174,7 +174,7 @@ fn the_projected_sweep_agrees_with_continuation_within_its_checked_tolerance() {
 #[test]
 fn auto_continues_the_bundled_brakes_and_projects_larger_ones() {
     // The bundled brakes (158 and 266 dofs) keep the continuation their pinned numbers come
-    // from (tests/regression.rs); above PROJECT_ABOVE the sweep projects.
+    // from (tests/cli/regression.rs); above PROJECT_ABOVE the sweep projects.
     use squeal_brake::sweep::PROJECT_ABOVE;
     assert_eq!(SweepMethod::default(), SweepMethod::Auto);
     for n in [158, 266, PROJECT_ABOVE] {

@@ -65,7 +65,7 @@ fn bundled_brake_has_158_dofs_in_the_papers_layout() {
             assert_eq!((p.disc_point, p.pad_point), (k, k));
             // Node interface: the same node coordinates bit for bit; patches: centroids
             // of the same footprint, equal to the arcs' discretisation (1e-5 m measured
-            // in tests/interface_bundled.rs), far inside 5% of the 16.7 mm spacing.
+            // in tests/reduce/interface_bundled.rs), far inside 5% of the 16.7 mm spacing.
             assert!(p.distance < 1e-5 && tol > 5e-4, "{p:?} {tol}");
         }
         // Record of the options.

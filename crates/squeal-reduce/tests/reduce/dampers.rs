@@ -115,7 +115,7 @@ fn a_cube_on_a_spring_and_a_dashpot_is_a_damped_single_dof() {
         let error = (l - exact).norm() / exact.norm();
         eprintln!("zeta {zeta} {spread:?}: {l} against {exact} ({error:.2e})");
         // The elastic cube couples with the vertical motion by about (f0 / f_elastic)² ≈ 2e-6
-        // (the spring-only test of tests/tie.rs: the same order); measured 1.2e-6 (ζ = 0.1,
+        // (the spring-only test of tests/reduce/tie.rs: the same order); measured 1.2e-6 (ζ = 0.1,
         // both spreads) and 2.3e-6 (ζ = 0.7), asserted 1e-5.
         assert!(
             error < 1e-5,

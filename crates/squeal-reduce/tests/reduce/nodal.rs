@@ -91,7 +91,7 @@ fn every_coarse_pad_face_node_pairs_with_areas_summing_to_the_face() {
     assert!(on_node < pairs.len());
     // The two faces' outlines are different quadratic interpolations of the same arcs: a pad
     // node on the outline may fall outside the disc's by the arcs' interpolation error
-    // (below 1e-5 m, tests/interface_bundled.rs); every other node projects inside.
+    // (below 1e-5 m, tests/reduce/interface_bundled.rs); every other node projects inside.
     assert!(worst_out < 1e-5, "{worst_out:e}");
     for p in &pairs {
         let sum: f64 = p.projection.weights.iter().map(|w| w.1).sum();

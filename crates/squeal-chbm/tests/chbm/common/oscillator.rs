@@ -14,7 +14,7 @@
 //! until the cubic contact hardens enough to stop it: a limit cycle, found here by CHBM.
 //! With these stiffnesses a stiffer contact raises the flutter threshold, so the bifurcation
 //! is supercritical: the cycle's squared amplitude grows linearly with `μ - μ0` (the Hopf
-//! normal form), which `tests/two_dof.rs` checks against time integration.
+//! normal form), which `tests/chbm/two_dof.rs` checks against time integration.
 
 use faer::Mat;
 use squeal_brake::equilibrium::NewtonOptions;
