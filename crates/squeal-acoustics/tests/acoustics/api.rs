@@ -1,8 +1,6 @@
 //! The plain-data interface: both velocity inputs, 8-node quadrilaterals, the levels of a
 //! periodic motion and the refusals.
 
-use super::common;
-
 use squeal_acoustics::{
     AcousticsError, Air, Complex64, FaceRule, Facing, Harmonic, RadiatingSurface, Velocity,
     a_weighting_db, erp, rayleigh, sound, spl_db,
