@@ -16,7 +16,10 @@ use squeal_pipeline::{Pipeline, model::quiet, stages};
 #[test]
 fn coarse_brake_branch_continues_onto_the_torus() {
     faer::set_global_parallelism(faer::Par::Seq);
-    let out = std::env::temp_dir().join("squeal-test-branch-torus-coarse");
+    let out = std::env::temp_dir().join(format!(
+        "squeal-test-branch-torus-coarse-{}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&out);
     let p = Pipeline::new(common::bundled_scene("coarse"), out.clone(), &quiet).unwrap();
     let mut opts = BranchOptions::default();

@@ -16,7 +16,7 @@ use squeal_pipeline::{Pipeline, model::quiet};
 /// Doubling the oscillation raises every level by 20 log10 2 = 6.02 dB (1e-9: linearity).
 #[test]
 fn surface_velocity_is_the_derivative_of_the_expanded_cycle() {
-    let out = std::env::temp_dir().join("squeal-test-sound");
+    let out = std::env::temp_dir().join(format!("squeal-test-sound-{}", std::process::id()));
     let p = Pipeline::new(common::bundled_scene("coarse"), out, &quiet).unwrap();
     let m = p.model().unwrap();
     let mu0 = p.mu0().unwrap();

@@ -33,7 +33,8 @@ fn diff(q: &BranchPoint, r: &BranchPoint, pair: usize) -> (f64, f64) {
 #[test]
 fn regularized_cycles_approach_the_dlft_ones_at_3_kmh() {
     faer::set_global_parallelism(faer::Par::Seq);
-    let out = std::env::temp_dir().join("squeal-test-dlft-coarse-3");
+    let out =
+        std::env::temp_dir().join(format!("squeal-test-dlft-coarse-3-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     // The scene asks for exact stick-slip: the branch stage solves its recomputed cycles by DLFT.
     let base = scene(3.0);
@@ -252,7 +253,8 @@ fn stable_sticking_cycle_against_time_integration(
 #[test]
 fn the_single_cycle_below_margin_1_is_recomputed_with_the_scenes_law() {
     faer::set_global_parallelism(faer::Par::Seq);
-    let out = std::env::temp_dir().join("squeal-test-dlft-single-3");
+    let out =
+        std::env::temp_dir().join(format!("squeal-test-dlft-single-3-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     let p = Pipeline::new(scene(3.0), out.clone(), &quiet).unwrap();
     let (m, st) = (p.model().unwrap(), p.stability().unwrap());
@@ -297,7 +299,8 @@ fn the_single_cycle_below_margin_1_is_recomputed_with_the_scenes_law() {
 #[test]
 fn coarse_brake_at_5_kmh_sticks_and_the_branch_is_recomputed() {
     faer::set_global_parallelism(faer::Par::Seq);
-    let out = std::env::temp_dir().join("squeal-test-stick-coarse-5");
+    let out =
+        std::env::temp_dir().join(format!("squeal-test-stick-coarse-5-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     let p = Pipeline::new(scene(5.0), out.clone(), &quiet).unwrap();
     let mut opts = BranchOptions::default();

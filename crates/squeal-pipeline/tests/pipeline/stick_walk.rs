@@ -34,7 +34,7 @@ use squeal_scene::StickSlipSetting;
 #[test]
 fn dlft_continued_past_1_05_mu0_matches_the_time_integration() {
     faer::set_global_parallelism(faer::Par::Seq);
-    let out = std::env::temp_dir().join("squeal-test-stick-walk-3");
+    let out = std::env::temp_dir().join(format!("squeal-test-stick-walk-3-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     let p = Pipeline::new(common::bundled_scene_at_speed(3.0), out, &quiet).unwrap();
     let (m, st) = (p.model().unwrap(), p.stability().unwrap());
@@ -217,7 +217,7 @@ fn stable_with_the_regularized_limit_exponents(mb: &ModalBrake, cycles: &[(f64, 
 #[test]
 fn integrated_regularized_orbits_approach_the_dlft_cycle_at_3_kmh() {
     faer::set_global_parallelism(faer::Par::Seq);
-    let out = std::env::temp_dir().join("squeal-test-stick-time-3");
+    let out = std::env::temp_dir().join(format!("squeal-test-stick-time-3-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     let p = Pipeline::new(common::bundled_scene_at_speed(3.0), out, &quiet).unwrap();
     let (m, st) = (p.model().unwrap(), p.stability().unwrap());
@@ -322,7 +322,7 @@ fn integrated_regularized_orbits_approach_the_dlft_cycle_at_3_kmh() {
 #[test]
 fn the_single_cycle_walks_past_1_05_mu0_to_the_branch_cycle() {
     faer::set_global_parallelism(faer::Par::Seq);
-    let out = std::env::temp_dir().join("squeal-test-chbm-walk");
+    let out = std::env::temp_dir().join(format!("squeal-test-chbm-walk-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     let p = Pipeline::new(common::bundled_scene_at_speed(3.0), out, &quiet).unwrap();
     let (m, st) = (p.model().unwrap(), p.stability().unwrap());

@@ -31,7 +31,7 @@ const RECORD: usize = 400;
 #[test]
 fn coarse_brake_torus_matches_time_integration() {
     faer::set_global_parallelism(faer::Par::Seq);
-    let out = std::env::temp_dir().join("squeal-test-torus-coarse");
+    let out = std::env::temp_dir().join(format!("squeal-test-torus-coarse-{}", std::process::id()));
     let p = Pipeline::new(common::bundled_scene("coarse"), out, &quiet).unwrap();
     let (m, st) = (p.model().unwrap(), p.stability().unwrap());
     let nf = stability::normal_form(m, st).unwrap().unwrap();

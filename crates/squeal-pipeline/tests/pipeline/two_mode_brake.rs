@@ -20,7 +20,7 @@ use std::path::PathBuf;
 fn pipeline(name: &str) -> Pipeline<'static> {
     let scene =
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes/two_pad/two_mode_coarse.toml");
-    let out = std::env::temp_dir().join(name);
+    let out = std::env::temp_dir().join(format!("{name}-{}", std::process::id()));
     Pipeline::new(Scene::read(&scene).unwrap(), out, &quiet).unwrap()
 }
 
