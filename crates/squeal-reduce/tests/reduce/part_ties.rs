@@ -5,8 +5,7 @@
 //! meshed as one part (unreduced, dense). Then the upper cube meshed finer (a non-matching
 //! tie) against the matching one, on two mesh levels.
 
-#[path = "common/blocks.rs"]
-mod blocks;
+use super::common::blocks;
 
 use blocks::{block_diag, frequencies, spec, steel};
 use squeal_fe::{DofMap, Restraint, assemble};

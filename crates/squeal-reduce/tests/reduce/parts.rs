@@ -3,8 +3,7 @@
 //! dofs each, against the unreduced assembly (both blocks' full `K` and `M`, the same connector
 //! on the sets' mean-motion rows `C`, `K_full = diag(K_A, K_B) + Cᵀ K_c C`), solved densely.
 
-#[path = "common/blocks.rs"]
-mod blocks;
+use super::common::blocks;
 
 use blocks::{block_diag, frequencies, spec, steel};
 use faer::Mat;

@@ -3,6 +3,8 @@
 
 #![allow(dead_code)]
 
+pub mod blocks;
+
 use squeal_reduce::brake::{BrakeInputs, LoadedPart, load_part, reduce_brake_loaded};
 use squeal_reduce::rom::{InterfaceKind, ReducedModel};
 use std::path::PathBuf;
