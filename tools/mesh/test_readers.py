@@ -4,7 +4,7 @@ Run from the repository root:  python3 -m unittest tools/mesh/test_readers.py -v
 
 crates/squeal-mesh/tests/data/formats/pad_coarse.{bdf,cdb} are written from
 meshes/pad_coarse.inp by tools/mesh/inp_to_bdf_cdb.py. squeal's own test
-(crates/squeal-mesh/tests/formats.rs) reads the three files to the same bits. Here:
+(crates/squeal-mesh/tests/mesh/formats.rs) reads the three files to the same bits. Here:
 
 - pyNastran reads the .bdf, meshio reads the .inp and the .bdf, mapdl-archive (Ansys's
   reader) reads the .cdb: the same node ids and coordinates (exactly: every file carries 17

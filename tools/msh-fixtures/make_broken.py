@@ -1,6 +1,6 @@
 """Writes the broken-file corpus of the .msh reader tests (tests/data/broken/msh/).
 
-Each file breaks one thing; crates/squeal-mesh/tests/msh.rs lists, for each, the location and the
+Each file breaks one thing; crates/squeal-mesh/tests/mesh/msh.rs lists, for each, the location and the
 message fragment the reader must report. Most are small edits of ONE_TET_V22 / ONE_TET_V41 (one
 10-node tetrahedron and one 6-node triangle), whose line numbers the expectations refer to; the
 binary truncations cut Gmsh's own box fixtures at a field boundary found from the layout.

@@ -45,7 +45,7 @@
 //! is below half the whole decomposition's; the same Cholesky factor then solves the residual
 //! and static vectors above (one factorization of `K_t0`). The vectors are the whole
 //! decomposition's to round-off (the same count, frequencies and span:
-//! `crates/squeal-pipeline/tests/partial_system.rs`); below the estimate's break-even (small
+//! `crates/squeal-pipeline/tests/pipeline/partial_system.rs`); below the estimate's break-even (small
 //! brakes) the whole decomposition is kept, with the same bits as before.
 
 use crate::equilibrium::{NewtonOptions, static_equilibrium};

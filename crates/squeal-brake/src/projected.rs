@@ -129,7 +129,7 @@ impl Default for ProjectionOptions {
         Self {
             // A relative 1e-5 of |λ| ~ 2.5e4 rad/s (4 kHz) is 0.25 rad/s, on frequencies that
             // approach each other at some 1e3-1e4 rad/s per unit μ before they coalesce: μ0
-            // within about 1e-4 (measured: tests/sweep_methods.rs in squeal-pipeline).
+            // within about 1e-4 (measured: tests/pipeline/sweep_methods.rs in squeal-pipeline).
             tolerance: 1e-5,
             first_cutoff: 1.5,
             growth: 1.25,

@@ -86,7 +86,7 @@ mod tests {
         let nf = &b.normal_form;
         assert!(nf.l1 > 0.0, "subcritical: l1 = {}", nf.l1);
         // The fold: 0.98882 μ0 in docs/verification.md (the hand-built oscillator of
-        // tests/branch.rs, 15 harmonics); it moves by 5e-6 μ0 from 7 to 25 harmonics, and this
+        // tests/chbm/branch.rs, 15 harmonics); it moves by 5e-6 μ0 from 7 to 25 harmonics, and this
         // system's modal damping differs from that one's by round-off only: 1e-5.
         let fold = b.branch.folds[0].parameter / nf.mu0;
         assert!((fold - 0.98882).abs() < 1e-5, "fold at {fold} mu0");

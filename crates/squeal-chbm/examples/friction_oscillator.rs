@@ -63,14 +63,14 @@ mod tests {
     fn the_oscillators_cycle_follows_the_hopf_normal_form() {
         let (mu0, cycle) = run(1.0005).unwrap();
         // μ0 pinned: the sweep's Newton refinement converges μ0 to 1e-8 absolute
-        // (SweepOptions::mu_tolerance); `tests/two_dof.rs` checks it against bisection on the
-        // dense spectrum, and this run against the hand-built path of `tests/common`.
+        // (SweepOptions::mu_tolerance); `tests/chbm/two_dof.rs` checks it against bisection on the
+        // dense spectrum, and this run against the hand-built path of `tests/chbm/common`.
         assert!((mu0 - MU0).abs() < 1e-8, "mu0 {mu0}");
         assert_eq!(cycle.outcome, Outcome::LimitCycle);
         // The normal form's first harmonic of x1 at 1.0005 μ0 (x = Φ q, q = 2 sqrt(|z|²) times
         // the critical mode): the asymptote is exact to first order in ε = μ/μ0 - 1 and CHBM's
         // A²/ε drifts by 0.2 % from ε = 5e-4 to 2e-3, so at 5e-4 the two agree well within 1 %
-        // (`tests/two_dof.rs` does the same with 5 harmonics and time integration).
+        // (`tests/chbm/two_dof.rs` does the same with 5 harmonics and time integration).
         let s = system().unwrap();
         let nf = s.normal_form().unwrap();
         let q = nf

@@ -20,7 +20,7 @@
 //! `Q_Eᵀ g`, `Q_Eᵀ h`, `Q_Rᵀ g`, `Q_Rᵀ h` computed once, `Q_Eᵀ K Q_R` at an angle costs a few
 //! `q_E q_R` products per pair instead of forming the `n_nl × n_nl` Jacobian and two matrix
 //! products: it is the same matrix to round-off (the test `the_fast_jacobian_is_the_dense_one`
-//! in tests/multi.rs).
+//! in tests/chbm/multi.rs).
 //!
 //! **The torus' tangent directions** ([`squeal_hbm::torus::transverse::TorusTangents`]): the
 //! modal motion on the torus is `q(θ) = Re Σ_e q_e e^{i k_e·θ}`

@@ -29,7 +29,7 @@
 //!   zero-energy ("hourglass") modes besides its six rigid motions (the stiffness, 60×60,
 //!   has rank at most 48 with 8 points × 6 strains; measured: 12 zero eigenvalues, six
 //!   spurious). Neighbours constrain most of them, but not all at once: measured on free
-//!   meshes (`tests/solid.rs` of squeal-fe), a row of two elements (2×1×1) still has 9 zero
+//!   meshes (`tests/fe/solid.rs` of squeal-fe), a row of two elements (2×1×1) still has 9 zero
 //!   eigenvalues, a 2×2×2 block 6, the rigid motions only. So they are harmless in a mesh
 //!   that is more than one element across in every direction, and need checking where it is
 //!   not: a single element across the thickness, a one-element appendage, a row of elements.

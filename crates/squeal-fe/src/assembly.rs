@@ -59,7 +59,7 @@ pub struct AssemblyOptions {
 ///
 /// The 4-point rule's relative stiffness error on an element whose midside nodes are off by
 /// `δ` (relative to the edge) is first order, `0.31 δ` on an element of the coarse disc
-/// (`tests/curved.rs`), so an element taken as straight at this tolerance is integrated to
+/// (`tests/fe/curved.rs`), so an element taken as straight at this tolerance is integrated to
 /// about 3e-9, below the 24-point rule's error on the curved elements of the bundled meshes. Coordinates written with 16–17
 /// significant digits put the midside nodes of straight elements 1e-17 to 1e-13 off (the
 /// bundled meshes); a file written with 6 digits puts them up to ~1e-5 off, and its elements

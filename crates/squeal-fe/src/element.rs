@@ -44,7 +44,7 @@
 //!   [`crate::Quadrature::twenty_four_point`] (Keast's positive 24-point rule).
 //!
 //! Remaining error of the 24-point rule, against a collapsed Gauss rule of 12³ points
-//! (converged: 12³ and 20³ points agree to 4e-15), measured in `tests/curved.rs`: on the
+//! (converged: 12³ and 20³ points agree to 4e-15), measured in `tests/fe/curved.rs`: on the
 //! coarse disc's elements, at most 5.6e-5 relative (Frobenius norm of `K_e`; 4.4e-8 on its
 //! element with the largest midside offset), and at most 5.7e-8 on its 20 lowest
 //! clamped frequencies (the 4-point rule: 7.5e-4). Which elements are curved:

@@ -4,7 +4,7 @@
 //!
 //! Run: `nice cargo bench -p squeal-hbm --bench hbm`
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/hbm/common/mod.rs"]
 mod common;
 
 use std::hint::black_box;

@@ -55,7 +55,7 @@
 //! the residual vanishes, not every sample, and the truncated cycle carries the error of a
 //! series whose force jumps at the breakaway: measured on the mass on a belt, the period
 //! misses by 1.8 % at `H = 5`, 0.77 % at `H = 20` and 0.34 % at `H = 50` (ε = 300,
-//! `tests/stick_slip_belt.rs`).
+//! `tests/hbm/stick_slip_belt.rs`).
 //!
 //! **Static above kinetic: the relay.** With `μ_s > μ` Coulomb's law has memory: a stuck
 //! contact stays stuck until its force exceeds `μ_s N`, a sliding one slides until its slip
@@ -84,7 +84,7 @@
 //! changes sign). `m_c` is [`FrictionContact::contact_mass`]; 0 gives back the plain test.
 //!
 //! **Convergence.** With (S4) Levenberg–Marquardt converges on the mass on a belt for every
-//! `H` from 5 to 50 and every ε from 1e2 to 3e3 N·s/m (measured: `tests/stick_slip_belt.rs`);
+//! `H` from 5 to 50 and every ε from 1e2 to 3e3 N·s/m (measured: `tests/hbm/stick_slip_belt.rs`);
 //! at ε = 300 the period error falls monotonically from 1.8e-2 (H = 5) to 3.4e-3 (H = 50),
 //! like `H^-0.88` between 20 and 50: the force jumps at breakaway, so about first order in
 //! `1/H` is what the Galerkin truncation gives. On the 2-dof friction oscillator (normal load

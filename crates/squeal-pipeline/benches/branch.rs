@@ -10,7 +10,7 @@
 //! Ritz acceptance, default 1e-10): with other values each cycle's verdict and largest
 //! multiplier are compared with the defaults').
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/pipeline/common/mod.rs"]
 mod common;
 
 use common::best;

@@ -5,12 +5,12 @@
 //! `ratios=1.01,1.1`, `restarts` to also time the CLI's amplitude restarts for H = 1,2,3,5,10).
 //!
 //! The brake is the bundled scene on the coarse meshes built by the production builder
-//! (`tests/common`: patch contact, 3 kN, 1 % modal damping) with the scene's pair damping
+//! (`tests/pipeline/common`: patch contact, 3 kN, 1 % modal damping) with the scene's pair damping
 //! (0.1 % on the two coalescing modes, picked automatically), as `squeal chbm` sets it up; the
 //! start at μ is [`squeal_chbm::start::start_at`] with the unstable mode of largest growth in
 //! the band.
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/pipeline/common/mod.rs"]
 mod common;
 
 use common::best;

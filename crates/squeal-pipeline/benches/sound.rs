@@ -6,7 +6,7 @@
 //! `cargo bench -p squeal-pipeline --bench sound` (options after `--`: `level=coarse` or
 //! `medium` (default), `reps=N` (20): best-of-N times of one cycle's steps).
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/pipeline/common/mod.rs"]
 mod common;
 
 use common::best;

@@ -13,7 +13,7 @@
 //! `cargo bench -p squeal-pipeline --bench sound_cost` (after `--`: `level=coarse` or `medium`
 //! (default), `reps=N` (3): best of N of each step).
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/pipeline/common/mod.rs"]
 mod common;
 
 use squeal_pipeline::branch::{self, BranchOptions, HillOptions};

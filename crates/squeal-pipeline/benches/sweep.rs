@@ -1,6 +1,6 @@
 //! Prints a table of where a friction sweep's time goes on the coarse bundled brake.
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/pipeline/common/mod.rs"]
 mod common;
 
 use common::best;

@@ -17,7 +17,7 @@
 //! the number of friction values (default 201). Its interface reduction (nodal contact's
 //! default `"system"`) is printed with the time of each level tried.
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/pipeline/common/mod.rs"]
 mod common;
 
 use squeal_brake::Brake;

@@ -21,7 +21,7 @@
 //! and the differences (`noref=1`: the standard method's own record stands in for the
 //! reference). `dump=PATH` writes every number of the diagram in full (module docs of `dump`).
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/pipeline/common/mod.rs"]
 mod common;
 
 use squeal_brake::modal_brake::ModalBrake;

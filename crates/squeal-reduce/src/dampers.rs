@@ -23,7 +23,7 @@
 //!
 //! A rigid part of mass `m` on a `mean` spring `k` and a `mean` damper `c` to ground along `e`
 //! moves along `e` as one degree of freedom, `λ = −c/(2m) ± i √(k/m − c²/(4m²))`, as long as
-//! the part's elastic modes are far above `√(k/m)` (`crates/squeal-reduce/tests/dampers.rs`).
+//! the part's elastic modes are far above `√(k/m)` (`crates/squeal-reduce/tests/reduce/dampers.rs`).
 
 use crate::error::ReduceError;
 use crate::rom::ReducedPart;

@@ -35,7 +35,7 @@
 //!    eliminated by the same `W` on the full meshes) projected on `diag(B_p) T`. With every
 //!    fixed-interface mode kept, `B_p` spans the part's whole space and the tied reduced
 //!    model's frequencies are the full tied model's to round-off; on matching meshes, the one
-//!    mesh's (`cargo test --release -p squeal-reduce --test part_ties`).
+//!    mesh's (`cargo test --release -p squeal-reduce --test reduce part_ties::`).
 //!
 //! The slave part must be a further part (`[parts.<name>]`): its dofs follow the disc's and the
 //! pads' in the brake, so removing some leaves the contact's and the load's dofs where they

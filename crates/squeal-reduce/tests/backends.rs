@@ -2,6 +2,7 @@
 
 #![cfg(feature = "arpack")]
 
+#[path = "reduce/common/mod.rs"]
 mod common;
 
 use common::{coarse_brake, coarse_inputs, reduce};

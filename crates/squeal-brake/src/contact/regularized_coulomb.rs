@@ -14,7 +14,7 @@
 //! the contact carries a force `|F_t| < μ_s F_n` at a slip velocity of order `v_reg`; the force
 //! reaches 99.9 % of `μ F_n` at `|v| = 3.8 v_reg`. As `v_reg → 0` (and `v_s → 0` with
 //! `v_reg ≪ v_s`) the element tends to Coulomb's law with static and kinetic coefficients:
-//! `crates/squeal-chbm/tests/stick_slip_belt.rs` measures the convergence of the mass-on-belt
+//! `crates/squeal-chbm/tests/chbm/stick_slip_belt.rs` measures the convergence of the mass-on-belt
 //! cycle to its closed form.
 //!
 //! **Default** `v_reg = 1 mm/s` ([`DEFAULT_REGULARIZATION_SPEED`]), a common choice in the

@@ -24,9 +24,9 @@
 //! every mode that moves the pad tangentially, and the brake turns unstable at a lower friction
 //! level than with the constant coefficient `μ s(V)` of the same steady sliding. For `r < 1`
 //! the curve rises and the extra damping is positive. `r = 1` is [`super::PenaltyCoulomb`]
-//! exactly (`s ≡ 1`, `s' ≡ 0`). `crates/squeal-brake/tests/friction_law.rs` checks the Hopf
+//! exactly (`s ≡ 1`, `s' ≡ 0`). `crates/squeal-brake/tests/brake/friction_law.rs` checks the Hopf
 //! point of a 2-dof pad against the closed form `μ* = c v0 e^(V/v0) / ((r - 1) N)`, and
-//! `crates/squeal-pipeline/tests/contact_law.rs` the direction of the change on the bundled
+//! `crates/squeal-pipeline/tests/pipeline/contact_law.rs` the direction of the change on the bundled
 //! brake.
 
 use super::{ContactLaw, Kinematics, Parameter, Response, speed_shaped_response};

@@ -1,0 +1,7 @@
+//! The integration tests of squeal-report in one test binary: each file is a module, so
+//! the release build compiles and links them once, not once per file (docs/benchmarks.md,
+//! "Test suite and CI time"). One file's tests:
+//! `cargo test --release -p squeal-report --test report FILE::`.
+
+mod figures;
+mod report;
