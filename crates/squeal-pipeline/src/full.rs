@@ -37,6 +37,7 @@
 pub mod onset;
 pub mod parts;
 pub mod run;
+pub mod system;
 pub mod ties;
 
 use crate::error::{PipelineError, Result};
