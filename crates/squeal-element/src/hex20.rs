@@ -22,7 +22,7 @@
 //!   a parallelepiped (`J` constant, `Bᵀ C B` of degree 4 in each variable, the rule's degree
 //!   is 5) and for the interior-node residual of a linear field on any element with straight
 //!   edges (`adj(J)ᵀ ∇_ξN` of degree ≤ 4 in each variable): the patch test passes on
-//!   distorted meshes (`tests/patch_solid.rs` of squeal-fe).
+//!   distorted meshes (`tests/fe/solid.rs` of squeal-fe, `linear_fields_pass_the_patch_test_on_distorted_meshes`).
 //! - Reduced integration, 2×2×2 Gauss (Abaqus C3D20R, [`Hex20`]'s `reduced_stiffness_rule`):
 //!   cheaper, and softer, which offsets the stiffness the element's incomplete quadratic
 //!   field adds in bending. It integrates degree 3 only, so a single element has spurious

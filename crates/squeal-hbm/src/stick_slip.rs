@@ -89,7 +89,7 @@
 //! like `H^-0.88` between 20 and 50: the force jumps at breakaway, so about first order in
 //! `1/H` is what the Galerkin truncation gives. On the 2-dof friction oscillator (normal load
 //! varying with the motion) it converges at ε = 3e3 for H = 10…50 (period within 1.5e-6 of
-//! an event-driven integration at H = 50, `squeal-chbm/tests/dlft_two_dof.rs`), but for
+//! an event-driven integration at H = 50, `squeal-chbm/tests/chbm/dlft_two_dof.rs`), but for
 //! other ε or H = 5 it may still stop at a residual of 1e-7…1e-5 of the load: small jumps
 //! remain where a transition's sample state flips (the relay is discontinuous by nature).
 //!
