@@ -194,18 +194,24 @@ pub fn text(a: &BranchAnalysis, rows: &[DlftRow]) -> String {
 fn stability_text(r: &DlftRow) -> String {
     match &r.stability {
         Err(e) => format!("stability not computed ({e})"),
-        Ok(f) => match f.leading() {
-            Some(e) => format!(
-                "{} (leading Floquet exponent {:+.2} {:+.1}i 1/s, |multiplier| {:.5}, error {:.1e} 1/s; {:.1} s)",
-                f.stability(),
-                e.sigma.re,
-                e.sigma.im.abs(),
-                e.multiplier.norm(),
-                f.error(),
-                r.stability_seconds
-            ),
-            None => format!("{}", f.stability()),
-        },
+        Ok(f) => floquet_words(f, r.stability_seconds),
+    }
+}
+
+/// A DLFT cycle's exact-law Floquet verdict in words, with the leading exponent, its
+/// multiplier's modulus, the analysis' error and its time `seconds`: a branch row's, and
+/// `squeal chbm`'s single cycle's (`crate::cycle_stick`).
+pub(crate) fn floquet_words(f: &StickSlipFloquet, seconds: f64) -> String {
+    match f.leading() {
+        Some(e) => format!(
+            "{} (leading Floquet exponent {:+.2} {:+.1}i 1/s, |multiplier| {:.5}, error {:.1e} 1/s; {seconds:.1} s)",
+            f.stability(),
+            e.sigma.re,
+            e.sigma.im.abs(),
+            e.multiplier.norm(),
+            f.error(),
+        ),
+        None => format!("{}", f.stability()),
     }
 }
 

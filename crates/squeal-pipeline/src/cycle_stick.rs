@@ -238,19 +238,12 @@ pub fn text(c: &CycleStick) -> String {
         );
     }
     match &c.stability {
-        Some((Ok(f), secs)) => match f.leading() {
-            Some(e) => {
-                s += &format!(
-                    "\n  stability with the exact law: {} (leading Floquet exponent {:+.2} {:+.1}i 1/s, |multiplier| {:.5}, error {:.1e} 1/s; {secs:.1} s)",
-                    f.stability(),
-                    e.sigma.re,
-                    e.sigma.im.abs(),
-                    e.multiplier.norm(),
-                    f.error()
-                )
-            }
-            None => s += &format!("\n  stability with the exact law: {}", f.stability()),
-        },
+        Some((Ok(f), secs)) => {
+            s += &format!(
+                "\n  stability with the exact law: {}",
+                crate::branch_dlft::floquet_words(f, *secs)
+            )
+        }
         Some((Err(e), _)) => s += &format!("\n  stability with the exact law not computed ({e})"),
         None => {}
     }

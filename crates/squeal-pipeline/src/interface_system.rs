@@ -131,6 +131,21 @@ fn band_top(model: &Model) -> f64 {
         .map_or(b.valid_max_hz, |(_, hi)| hi.min(b.valid_max_hz))
 }
 
+/// The first dof of face part `name` (the disc, or a pad by its name) in the reduced
+/// brake's layout.
+pub(crate) fn part_start(model: &Model, name: &str) -> Result<usize> {
+    if name == "disc" {
+        return Ok(model.layout.disc.start);
+    }
+    model
+        .layout
+        .pads
+        .iter()
+        .find(|p| p.0 == name)
+        .map(|p| p.1.start)
+        .ok_or(crate::error::PipelineError::NoPart { part: "pad" })
+}
+
 /// Each part's face basis: the face rows of the system vectors, M̂_cc-orthonormalized (the
 /// disc's and the pads', [`face_parts`]: the further parts keep their dofs).
 pub fn face_bases(
@@ -142,17 +157,7 @@ pub fn face_bases(
     let columns = vectors.columns(modes, residuals);
     face_parts(&model.rom)
         .map(|part| {
-            let start = if part.info.name == "disc" {
-                model.layout.disc.start
-            } else {
-                model
-                    .layout
-                    .pads
-                    .iter()
-                    .find(|p| p.0 == part.info.name)
-                    .map(|p| p.1.start)
-                    .ok_or(crate::error::PipelineError::NoPart { part: "pad" })?
-            };
+            let start = part_start(model, &part.info.name)?;
             let rows = face_dofs(part);
             let v = faer::Mat::from_fn(rows.len(), columns.ncols(), |i, j| {
                 columns[(start + rows[i], j)]

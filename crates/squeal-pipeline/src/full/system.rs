@@ -45,7 +45,7 @@
 //! every face dof's constraint mode is the next step (docs/reduction.md).
 
 use super::{FullBrake, PairVectors, full_error};
-use crate::error::{PipelineError, Result};
+use crate::error::Result;
 use crate::interface::face_parts;
 use crate::model::Model;
 use crate::parts::SceneParts;
@@ -155,13 +155,10 @@ pub fn full_system_vectors(
         .collect();
     let mut rhs = Mat::<f64>::zeros(n, in_band);
     for j in 0..in_band {
-        let col: Vec<f64> = (0..n).map(|i| phi[(i, j)]).collect();
-        let mut out = vec![0.0; n];
+        let col = phi.col_as_slice(j);
+        let out = rhs.col_as_slice_mut(j);
         for (p, (g, h)) in full.normal.iter().zip(&full.tangent).enumerate() {
-            axpy(h, b[p] * dot(g, &col), &mut out);
-        }
-        for (i, v) in out.into_iter().enumerate() {
-            rhs[(i, j)] = v;
+            axpy(h, b[p] * dot(g, col), out);
         }
     }
     let residuals = if in_band > 0 {
@@ -171,14 +168,12 @@ pub fn full_system_vectors(
     };
     // f_t = −Σ_p (F_t,p(μ = 1) − F_t,p(μ = 0)) h_p: dx/dμ = K_t0⁻¹ f_t.
     let mut ft = Mat::<f64>::zeros(n, 1);
-    {
-        let mut out = vec![0.0; n];
-        for (p, h) in full.tangent.iter().enumerate() {
-            axpy(h, -(r1[p].tangential - r0[p].tangential), &mut out);
-        }
-        for (i, v) in out.into_iter().enumerate() {
-            ft[(i, 0)] = v;
-        }
+    for (p, h) in full.tangent.iter().enumerate() {
+        axpy(
+            h,
+            -(r1[p].tangential - r0[p].tangential),
+            ft.col_as_slice_mut(0),
+        );
     }
     let dx = factor.solve(ft.as_ref())?;
     let finite =
@@ -192,7 +187,7 @@ pub fn full_system_vectors(
     let faces = face_parts(&model.rom)
         .map(|part| {
             let rows = face_rows(&mut vectors, full, part)?;
-            let start = part_start(model, &part.info.name)?;
+            let start = crate::interface_system::part_start(model, &part.info.name)?;
             let dofs = face_dofs(part);
             let pick = |a: &Mat<f64>| {
                 Mat::from_fn(rows.len(), a.ncols(), |i, j| {
@@ -220,20 +215,6 @@ pub fn full_system_vectors(
         seconds: t.elapsed().as_secs_f64(),
         dofs: n,
     })
-}
-
-/// The first dof of part `name` in the reduced brake's layout.
-fn part_start(model: &Model, name: &str) -> Result<usize> {
-    if name == "disc" {
-        return Ok(model.layout.disc.start);
-    }
-    model
-        .layout
-        .pads
-        .iter()
-        .find(|p| p.0 == name)
-        .map(|p| p.1.start)
-        .ok_or(PipelineError::NoPart { part: "pad" })
 }
 
 /// Each face dof's row on the full model: the motion of its node along its direction.
