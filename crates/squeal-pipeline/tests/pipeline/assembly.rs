@@ -35,6 +35,9 @@ fn out(tag: &str) -> std::path::PathBuf {
 
 #[test]
 fn parts_cut_from_one_file_give_the_same_hopf_point_bit_for_bit() {
+    // Bits compared: faer's dense kernels sequential, as `squeal` runs them (with faer's
+    // default, parallel, their bits may vary: `squeal_reduce::brake::BrakeInputs::par`).
+    faer::set_global_parallelism(faer::Par::Seq);
     let separate = build(&bundled_scene("coarse"), &out("separate"), &quiet).unwrap();
     let combined = build(&assembly_scene(), &out("combined"), &quiet).unwrap();
     // The same meshes index for index (only the file ids differ): the same matrices.
@@ -117,6 +120,9 @@ fn a_pad_held_over_its_back_face_by_a_support_stiffness_builds() {
 /// (the pad's own sets, in tilted axes) holds no more than its rotations and changes `K̂`.
 #[test]
 fn a_spring_spread_by_area_is_the_support_bit_for_bit() {
+    // Bits compared: faer's dense kernels sequential, as `squeal` runs them (with faer's
+    // default, parallel, their bits may vary: `squeal_reduce::brake::BrakeInputs::par`).
+    faer::set_global_parallelism(faer::Par::Seq);
     let base = bundled_scene("coarse");
     let held = format!(
         "{}\n[sets.pad]\npistons = {BACK_FACE}\nabutments = {BACK_FACE}\n",

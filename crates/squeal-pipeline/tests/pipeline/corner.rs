@@ -50,6 +50,9 @@ fn frequencies(m: &Model) -> Vec<f64> {
 
 #[test]
 fn the_coarse_corner_pairs_its_pads_and_its_bdf_gives_the_same_bits() {
+    // Bits compared: faer's dense kernels sequential, as `squeal` runs them (with faer's
+    // default, parallel, their bits may vary: `squeal_reduce::brake::BrakeInputs::par`).
+    faer::set_global_parallelism(faer::Par::Seq);
     let inp = built("corner_coarse.inp");
     // Each pad's friction face: 2 x 6 quadrilateral cells of six tetrahedra, 5 x 13 nodes, of
     // which the 3 x 7 cell corners carry no share of the pressure (the consistent loads of
